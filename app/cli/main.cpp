@@ -1,0 +1,54 @@
+// linework-cli: the headless face of the engine. Needs no display, Qt or (optionally) DCMTK.
+#include "commands.h"
+
+#include "lw/core/error.h"
+
+#include <cstdio>
+#include <functional>
+#include <iostream>
+#include <map>
+#include <string>
+#include <vector>
+
+namespace {
+
+constexpr const char* kUsage = R"(usage: linework-cli COMMAND [ARGS]
+
+commands:
+  info PATH [--json]          describe a DICOM folder/DICOMDIR/file or a volume file
+                              (raw: --raw WxHxD --type int16 [--big-endian] [--spacing X,Y,Z])
+  help                        this text
+
+Exit codes: 0 success, 1 error (the message names the file and the reason), 2 usage error.
+)";
+
+} // namespace
+
+int main(int argc, char** argv) {
+    std::vector<std::string> args(argv + 1, argv + argc);
+    if (args.empty() || args[0] == "help" || args[0] == "--help" || args[0] == "-h") {
+        std::fputs(kUsage, args.empty() ? stderr : stdout);
+        return args.empty() ? 2 : 0;
+    }
+    using Command = std::function<int(const std::vector<std::string>&, std::ostream&)>;
+    const std::map<std::string, Command> commands = {
+        {"info", lw::cli::runInfo},
+    };
+    const auto command = commands.find(args[0]);
+    if (command == commands.end()) {
+        std::fprintf(stderr, "linework-cli: unknown command '%s'\n\n%s", args[0].c_str(), kUsage);
+        return 2;
+    }
+    try {
+        return command->second(std::vector<std::string>(args.begin() + 1, args.end()), std::cout);
+    } catch (const lw::core::Cancelled&) {
+        std::fprintf(stderr, "linework-cli: cancelled\n");
+        return 1;
+    } catch (const lw::core::Error& error) {
+        std::fprintf(stderr, "linework-cli: %s\n", error.what());
+        return 1;
+    } catch (const std::exception& error) {
+        std::fprintf(stderr, "linework-cli: internal error: %s\n", error.what());
+        return 1;
+    }
+}

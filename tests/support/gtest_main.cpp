@@ -1,0 +1,26 @@
+// gtest main for Linework. Error-level log messages fail the running test (DESIGN.md: errors at
+// error level fail tests). With LINEWORK_TEST_REQUIRES_DATA the binary exits with the SKIP code
+// when ../shared/data is missing.
+#include "lw/core/log.h"
+#include "test_support.h"
+
+#include <gtest/gtest.h>
+
+#include <cstdio>
+
+int main(int argc, char** argv) {
+    testing::InitGoogleTest(&argc, argv);
+#ifdef LINEWORK_TEST_REQUIRES_DATA
+    if (!lw::test::sharedDataDir()) {
+        std::puts("SKIP: ../shared/data not found (set LINEWORK_SHARED_DATA)");
+        return LINEWORK_SKIP_CODE;
+    }
+#endif
+    lw::core::setLogSink([](lw::core::LogLevel level, std::string_view category,
+                            const std::string& message) {
+        std::fprintf(stderr, "[%.*s] %s\n", int(category.size()), category.data(), message.c_str());
+        if (level == lw::core::LogLevel::Error)
+            ADD_FAILURE() << "error logged in " << category << ": " << message;
+    });
+    return RUN_ALL_TESTS();
+}

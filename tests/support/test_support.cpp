@@ -1,0 +1,37 @@
+#include "test_support.h"
+
+#include <cstdlib>
+#include <random>
+#include <string>
+
+namespace lw::test {
+
+std::optional<std::filesystem::path> sharedDataDir() {
+    std::filesystem::path dir = LINEWORK_DEFAULT_SHARED_DATA;
+    if (const char* env = std::getenv("LINEWORK_SHARED_DATA"); env && *env)
+        dir = env;
+    std::error_code ec;
+    if (std::filesystem::is_directory(dir, ec) && std::filesystem::exists(dir / "SOURCES.md", ec))
+        return std::filesystem::canonical(dir, ec);
+    return std::nullopt;
+}
+
+std::filesystem::path sourceDir() {
+    if (const char* env = std::getenv("LINEWORK_SOURCE_DIR"); env && *env)
+        return env;
+    return LINEWORK_DEFAULT_SOURCE_DIR;
+}
+
+TempDir::TempDir() {
+    std::random_device random;
+    m_path = std::filesystem::temp_directory_path() /
+             ("linework-test-" + std::to_string(random()) + std::to_string(random()));
+    std::filesystem::create_directories(m_path);
+}
+
+TempDir::~TempDir() {
+    std::error_code ignored;
+    std::filesystem::remove_all(m_path, ignored);
+}
+
+} // namespace lw::test
