@@ -1,0 +1,65 @@
+#!/usr/bin/env bash
+# One entry point for a fresh Debian 12 machine (2 cores, maybe no GPU, maybe no display):
+#
+#   scripts/linework.sh run    install what is missing, build, run the main job on the demo study
+#   scripts/linework.sh test   install what is missing, build, run the whole test suite (CTest)
+#
+# Both are idempotent: packages already present are not reinstalled, builds are incremental.
+# Environment: LINEWORK_BUILD_DIR (default build/<command>), LINEWORK_JOBS (default: cores),
+# LINEWORK_CUDA_ARCHITECTURES (run: 75;80;86;89;90, test: 90 — CI compiles one architecture).
+set -euo pipefail
+
+command=${1:-}
+case "$command" in
+  run|test) ;;
+  *) echo "usage: scripts/linework.sh run|test" >&2; exit 2 ;;
+esac
+shift || true
+
+root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+cd "$root"
+
+packages=(build-essential cmake ninja-build file pkg-config zlib1g-dev libgtest-dev
+          qt6-base-dev qt6-tools-dev qt6-l10n-tools libqt6opengl6-dev libqt6sql6-sqlite
+          libdcmtk-dev dcmtk libgdcm-dev libglm-dev libegl-dev libgl-dev libegl-mesa0
+          xvfb xauth)
+
+install_packages() {
+  local missing=()
+  for p in "${packages[@]}"; do
+    dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+  done
+  [ ${#missing[@]} -eq 0 ] && return 0
+  echo "linework: installing ${missing[*]}"
+  local sudo=""
+  [ "$(id -u)" -eq 0 ] || sudo="sudo"
+  $sudo apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"
+}
+
+install_packages
+
+jobs=${LINEWORK_JOBS:-$(nproc)}
+build_dir=${LINEWORK_BUILD_DIR:-build/$command}
+if [ "$command" = test ]; then
+  cuda_archs=${LINEWORK_CUDA_ARCHITECTURES:-90}
+else
+  cuda_archs=${LINEWORK_CUDA_ARCHITECTURES:-75;80;86;89;90}
+fi
+
+cmake -S . -B "$build_dir" -G Ninja -DCMAKE_BUILD_TYPE=Release \
+      "-DCMAKE_CUDA_ARCHITECTURES=$cuda_archs" "$@"
+cmake --build "$build_dir" --parallel "$jobs"
+
+demo=resources/demo/ct_head_ge_tilt
+if [ "$command" = run ]; then
+  # The main job. Until the review GUI exists it is the study summary of the demo CT.
+  exec "$build_dir/app/cli/linework-cli" info "$demo"
+fi
+
+# Tests: GL and GUI tests need a display; give them a virtual one when there is none.
+ctest_cmd=(ctest --test-dir "$build_dir" --output-on-failure --parallel "$jobs" --timeout 1500)
+if [ -z "${DISPLAY:-}" ] && command -v xvfb-run >/dev/null; then
+  exec xvfb-run -a -s "-screen 0 1920x1080x24" "${ctest_cmd[@]}"
+fi
+exec "${ctest_cmd[@]}"
