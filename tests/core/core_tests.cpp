@@ -1,0 +1,131 @@
+#include "lw/core/error.h"
+#include "lw/core/file_util.h"
+#include "lw/core/json_writer.h"
+#include "lw/core/log.h"
+#include "lw/core/progress.h"
+#include "test_support.h"
+
+#include <gtest/gtest.h>
+#include <zlib.h>
+
+#include <filesystem>
+#include <fstream>
+#include <thread>
+
+using namespace lw::core;
+
+TEST(Error, NamesSubjectAndReason) {
+    const Error error("/data/ct/01.dcm", "truncated pixel data");
+    EXPECT_EQ(error.subject(), "/data/ct/01.dcm");
+    EXPECT_EQ(error.reason(), "truncated pixel data");
+    EXPECT_STREQ(error.what(), "/data/ct/01.dcm: truncated pixel data");
+}
+
+TEST(JsonWriter, NestedStructuresAndEscaping) {
+    JsonWriter w(0);
+    w.beginObject();
+    w.field("name", "a \"quoted\"\nline");
+    w.key("dims").beginArray().value(512).value(512).value(28).endArray();
+    w.key("empty").beginArray().endArray();
+    w.key("nested").beginObject().field("ok", true).field("x", 0.5).endObject();
+    w.key("nothing").null();
+    w.endObject();
+    EXPECT_EQ(w.str(), "{\"name\":\"a \\\"quoted\\\"\\nline\",\"dims\":[512,512,28],\"empty\":[],"
+                       "\"nested\":{\"ok\":true,\"x\":0.5},\"nothing\":null}");
+}
+
+TEST(JsonWriter, NonFiniteNumbersBecomeNull) {
+    JsonWriter w(0);
+    w.beginArray().value(std::numeric_limits<double>::quiet_NaN()).value(1.25).endArray();
+    EXPECT_EQ(w.str(), "[null,1.25]");
+}
+
+TEST(Progress, ReportsFractionsAndCancels) {
+    auto token = std::make_shared<CancelToken>();
+    double last = -1.0;
+    int calls = 0;
+    Progress progress([&](double f, const std::string& message) {
+        EXPECT_GE(f, last);
+        EXPECT_EQ(message, "decoding");
+        last = f;
+        ++calls;
+    }, token);
+    progress.setTotal(4, "decoding");
+    for (int i = 0; i < 4; ++i)
+        progress.step();
+    EXPECT_DOUBLE_EQ(last, 1.0);
+    EXPECT_EQ(calls, 4);
+    EXPECT_NO_THROW(progress.throwIfCancelled());
+    token->cancel();
+    EXPECT_TRUE(progress.isCancelled());
+    EXPECT_THROW(progress.throwIfCancelled(), Cancelled);
+}
+
+TEST(Progress, StepIsThreadSafe) {
+    std::atomic<int> calls{0};
+    Progress progress([&](double, const std::string&) { ++calls; });
+    progress.setTotal(20000);
+    std::thread a([&] { for (int i = 0; i < 10000; ++i) progress.step(); });
+    std::thread b([&] { for (int i = 0; i < 10000; ++i) progress.step(); });
+    a.join();
+    b.join();
+    // Throttled to per-mille changes: at most 1001 callbacks, and the last one reached 100%.
+    EXPECT_LE(calls.load(), 1001);
+    EXPECT_GE(calls.load(), 10);
+}
+
+TEST(FileUtil, GunzipRoundTripAndCorruption) {
+    std::string text(100000, 'x');
+    for (std::size_t i = 0; i < text.size(); ++i)
+        text[i] = char('a' + (i * 7919) % 26);
+    // gzip stream via zlib's deflateInit2 with gzip wrapper.
+    z_stream s{};
+    ASSERT_EQ(deflateInit2(&s, 6, Z_DEFLATED, 15 + 16, 8, Z_DEFAULT_STRATEGY), Z_OK);
+    std::vector<unsigned char> out(compressBound(uLong(text.size())) + 64);
+    s.next_in = reinterpret_cast<Bytef*>(text.data());
+    s.avail_in = uInt(text.size());
+    s.next_out = out.data();
+    s.avail_out = uInt(out.size());
+    ASSERT_EQ(deflate(&s, Z_FINISH), Z_STREAM_END);
+    out.resize(s.total_out);
+    deflateEnd(&s);
+    const auto* bytes = reinterpret_cast<const std::byte*>(out.data());
+    EXPECT_TRUE(looksGzipped(bytes, out.size()));
+    const auto inflated = gunzip(bytes, out.size(), "test.gz");
+    ASSERT_EQ(inflated.size(), text.size());
+    EXPECT_EQ(std::memcmp(inflated.data(), text.data(), text.size()), 0);
+    EXPECT_THROW(gunzip(bytes, out.size() / 2, "half.gz"), Error);
+    std::vector<std::byte> garbage(64, std::byte{0x1f});
+    EXPECT_THROW(gunzip(garbage.data(), garbage.size(), "garbage.gz"), Error);
+}
+
+TEST(FileUtil, AtomicWriteReplacesAndLeavesNoTemporary) {
+    lw::test::TempDir dir;
+    const auto path = dir / "out.bin";
+    writeFileAtomically(path, "first", 5);
+    writeFileAtomically(path, "second", 6);
+    EXPECT_EQ(readFileText(path), "second");
+    int entries = 0;
+    for ([[maybe_unused]] const auto& e : std::filesystem::directory_iterator(dir.path()))
+        ++entries;
+    EXPECT_EQ(entries, 1);
+    EXPECT_THROW(writeFileAtomically(dir / "no-such-dir" / "x.bin", "x", 1), Error);
+    EXPECT_THROW(readFileBytes(dir / "missing.bin"), Error);
+}
+
+TEST(Log, SinkReceivesCategoryAndThresholdFilters) {
+    std::vector<std::string> seen;
+    auto previous = setLogSink([&](LogLevel level, std::string_view category, const std::string& m) {
+        seen.push_back(std::string(logLevelName(level)) + " " + std::string(category) + " " + m);
+    });
+    const LogCategory category("lw.test");
+    category.debug("hidden");
+    category.warning("shown");
+    setLogThreshold(LogLevel::Debug);
+    category.debug("now shown");
+    setLogThreshold(LogLevel::Info);
+    setLogSink(previous);
+    ASSERT_EQ(seen.size(), 2u);
+    EXPECT_EQ(seen[0], "warning lw.test shown");
+    EXPECT_EQ(seen[1], "debug lw.test now shown");
+}
