@@ -10,6 +10,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <cstring>
 #include <thread>
 
 using namespace lw::core;

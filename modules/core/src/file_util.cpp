@@ -78,8 +78,11 @@ std::vector<std::byte> gunzip(const std::byte* data, std::size_t size, const std
 
 void writeFileAtomically(const std::filesystem::path& path, const void* data, std::size_t size) {
     std::random_device random;
-    const auto temporary = path.parent_path() /
-                           ("." + path.filename().string() + ".tmp" + std::to_string(random()));
+    std::string temporaryName = ".";
+    temporaryName += path.filename().string();
+    temporaryName += ".tmp";
+    temporaryName += std::to_string(random());
+    const auto temporary = path.parent_path() / temporaryName;
     {
         std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
         if (!out)
