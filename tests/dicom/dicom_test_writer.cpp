@@ -1,0 +1,171 @@
+#include "dicom_test_writer.h"
+
+#include <dcmtk/dcmdata/dcdeftag.h>
+#include <dcmtk/dcmdata/dcfilefo.h>
+#include <dcmtk/dcmdata/dcrleerg.h>
+#include <dcmtk/dcmdata/dcrlerp.h>
+#include <dcmtk/dcmdata/dcuid.h>
+#include <dcmtk/dcmjpeg/djencode.h>
+#include <dcmtk/dcmjpeg/djrplol.h>
+#include <dcmtk/dcmjpls/djencode.h>
+#include <dcmtk/dcmjpls/djrparam.h>
+
+#include <cstdint>
+#include <memory>
+#include <sstream>
+#include <stdexcept>
+
+namespace lw::dicom::test {
+
+namespace {
+
+// The encoders are registered once per process; DCMTK's codec list is global.
+struct EncoderRegistration {
+    EncoderRegistration() {
+        DJEncoderRegistration::registerCodecs();
+        DJLSEncoderRegistration::registerCodecs();
+        DcmRLEEncoderRegistration::registerCodecs();
+    }
+    ~EncoderRegistration() {
+        DcmRLEEncoderRegistration::cleanup();
+        DJLSEncoderRegistration::cleanup();
+        DJEncoderRegistration::cleanup();
+    }
+};
+
+void ensureEncoders() { static EncoderRegistration registration; }
+
+void check(const OFCondition& status, const std::string& what) {
+    if (status.bad())
+        throw std::runtime_error("test DICOM writer: " + what + ": " + status.text());
+}
+
+std::string formatDouble(double value) {
+    std::ostringstream out;
+    out.precision(10);
+    out << value;
+    return out.str();
+}
+
+template <typename Seq> std::string joinNumbers(const Seq& values) {
+    std::string text;
+    for (const double v : values) {
+        if (!text.empty())
+            text += '\\';
+        text += formatDouble(v);
+    }
+    return text;
+}
+
+E_TransferSyntax toXfer(TestTransferSyntax syntax) {
+    switch (syntax) {
+    case TestTransferSyntax::ExplicitLittle: return EXS_LittleEndianExplicit;
+    case TestTransferSyntax::ImplicitLittle: return EXS_LittleEndianImplicit;
+    case TestTransferSyntax::ExplicitBig: return EXS_BigEndianExplicit;
+    case TestTransferSyntax::Deflated: return EXS_DeflatedLittleEndianExplicit;
+    case TestTransferSyntax::JpegLossless: return EXS_JPEGProcess14SV1;
+    case TestTransferSyntax::JpegLsLossless: return EXS_JPEGLSLossless;
+    case TestTransferSyntax::Rle: return EXS_RLELossless;
+    }
+    return EXS_LittleEndianExplicit;
+}
+
+} // namespace
+
+std::string transferSyntaxUid(TestTransferSyntax syntax) { return DcmXfer(toXfer(syntax)).getXferID(); }
+
+std::string makeTestUid() {
+    char buffer[100];
+    dcmGenerateUniqueIdentifier(buffer, SITE_INSTANCE_UID_ROOT);
+    return buffer;
+}
+
+std::vector<int> rampPixels(int rows, int columns, int start, int step) {
+    std::vector<int> values(std::size_t(rows) * std::size_t(columns));
+    for (std::size_t i = 0; i < values.size(); ++i)
+        values[i] = start + int(i) * step;
+    return values;
+}
+
+void writeTestSlice(const std::filesystem::path& path, const TestSlice& s) {
+    ensureEncoders();
+    DcmFileFormat file;
+    DcmDataset* ds = file.getDataset();
+    auto put = [&](const DcmTagKey& key, const std::string& value) {
+        check(ds->putAndInsertString(key, value.c_str()), "put " + DcmTag(key).toString().substr(0));
+    };
+    put(DCM_SOPClassUID, s.sopClassUid);
+    put(DCM_SOPInstanceUID, s.sopInstanceUid.empty() ? makeTestUid() : s.sopInstanceUid);
+    put(DCM_StudyInstanceUID, s.studyUid.empty() ? makeTestUid() : s.studyUid);
+    put(DCM_SeriesInstanceUID, s.seriesUid.empty() ? makeTestUid() : s.seriesUid);
+    put(DCM_Modality, s.modality);
+    put(DCM_PatientID, s.patientId);
+    put(DCM_PatientName, s.patientName);
+    put(DCM_SeriesDescription, s.seriesDescription);
+    put(DCM_ImageType, s.imageType);
+    if (s.seriesNumber)
+        put(DCM_SeriesNumber, std::to_string(*s.seriesNumber));
+    if (s.instanceNumber)
+        put(DCM_InstanceNumber, std::to_string(*s.instanceNumber));
+    if (s.acquisitionNumber)
+        put(DCM_AcquisitionNumber, std::to_string(*s.acquisitionNumber));
+    if (s.position)
+        put(DCM_ImagePositionPatient, joinNumbers(std::array<double, 3>{s.position->x, s.position->y, s.position->z}));
+    if (s.orientation)
+        put(DCM_ImageOrientationPatient, joinNumbers(*s.orientation));
+    if (s.pixelSpacing)
+        put(DCM_PixelSpacing, joinNumbers(std::array<double, 2>{s.pixelSpacing->x, s.pixelSpacing->y}));
+    put(DCM_SliceThickness, formatDouble(s.sliceThickness));
+    if (s.rescaleSlope)
+        put(DCM_RescaleSlope, formatDouble(*s.rescaleSlope));
+    if (s.rescaleIntercept)
+        put(DCM_RescaleIntercept, formatDouble(*s.rescaleIntercept));
+
+    check(ds->putAndInsertUint16(DCM_SamplesPerPixel, 1), "SamplesPerPixel");
+    put(DCM_PhotometricInterpretation, s.photometric);
+    check(ds->putAndInsertUint16(DCM_Rows, Uint16(s.rows)), "Rows");
+    check(ds->putAndInsertUint16(DCM_Columns, Uint16(s.columns)), "Columns");
+    check(ds->putAndInsertUint16(DCM_BitsAllocated, Uint16(s.bitsAllocated)), "BitsAllocated");
+    check(ds->putAndInsertUint16(DCM_BitsStored, Uint16(s.bitsStored)), "BitsStored");
+    check(ds->putAndInsertUint16(DCM_HighBit, Uint16(s.highBit)), "HighBit");
+    check(ds->putAndInsertUint16(DCM_PixelRepresentation, Uint16(s.pixelRepresentation)), "PixelRepresentation");
+    if (s.numberOfFrames > 1)
+        put(DCM_NumberOfFrames, std::to_string(s.numberOfFrames));
+
+    if (s.writePixelData) {
+        const std::size_t count = std::size_t(s.rows) * std::size_t(s.columns) * std::size_t(s.numberOfFrames);
+        if (!s.pixels.empty() && s.pixels.size() != count)
+            throw std::runtime_error("test DICOM writer: pixel count does not match rows*columns*frames");
+        if (s.bitsAllocated == 8) {
+            std::vector<Uint8> bytes(count, 0);
+            for (std::size_t i = 0; i < s.pixels.size(); ++i)
+                bytes[i] = Uint8(s.pixels[i] & 0xFF);
+            // An odd number of bytes is padded to even length by DCMTK when written.
+            check(ds->putAndInsertUint8Array(DCM_PixelData, bytes.data(), unsigned(count)), "PixelData");
+        } else if (s.bitsAllocated == 16) {
+            std::vector<Uint16> words(count, 0);
+            for (std::size_t i = 0; i < s.pixels.size(); ++i)
+                words[i] = Uint16(std::uint32_t(s.pixels[i]) & 0xFFFFu);
+            check(ds->putAndInsertUint16Array(DCM_PixelData, words.data(), unsigned(count)), "PixelData");
+        } else {
+            throw std::runtime_error("test DICOM writer: BitsAllocated must be 8 or 16");
+        }
+    }
+
+    const E_TransferSyntax xfer = toXfer(s.transferSyntax);
+    if (DcmXfer(xfer).isEncapsulated()) {
+        std::unique_ptr<DcmRepresentationParameter> params;
+        if (s.transferSyntax == TestTransferSyntax::JpegLossless)
+            params = std::make_unique<DJ_RPLossless>(1, 0);
+        else if (s.transferSyntax == TestTransferSyntax::JpegLsLossless)
+            params = std::make_unique<DJLSRepresentationParameter>(2, OFTrue);
+        else
+            params = std::make_unique<DcmRLERepresentationParameter>();
+        check(ds->chooseRepresentation(xfer, params.get()), "encode " + transferSyntaxUid(s.transferSyntax));
+        if (!ds->canWriteXfer(xfer))
+            throw std::runtime_error("test DICOM writer: DCMTK could not encode " + transferSyntaxUid(s.transferSyntax));
+    }
+    check(file.saveFile(OFFilename(path.c_str()), xfer), "save " + path.string());
+}
+
+} // namespace lw::dicom::test
