@@ -10,6 +10,8 @@
 #include <dcmtk/dcmjpls/djencode.h>
 #include <dcmtk/dcmjpls/djrparam.h>
 
+#include <dlfcn.h>
+
 #include <cstdint>
 #include <memory>
 #include <sstream>
@@ -23,7 +25,9 @@ namespace {
 struct EncoderRegistration {
     EncoderRegistration() {
         DJEncoderRegistration::registerCodecs();
-        DJLSEncoderRegistration::registerCodecs();
+        // Raw (not "cooked") JPEG-LS encoding: the cooked path goes through DicomImage and
+        // crashes in DCMTK 3.6.7 on small signed images; raw keeps the stored bits exactly.
+        DJLSEncoderRegistration::registerCodecs(0, 0, 0, 0, OFFalse);
         DcmRLEEncoderRegistration::registerCodecs();
     }
     ~EncoderRegistration() {
@@ -55,6 +59,17 @@ template <typename Seq> std::string joinNumbers(const Seq& values) {
         text += formatDouble(v);
     }
     return text;
+}
+
+// DCMTK's JPEG-LS encoder calls JpegLsEncode, which GDCM's system CharLS 2 also exports with
+// another ABI; when that copy was loaded first the encoder crashes. Link the test with
+// DCMTK::dcmjpls first and --no-as-needed (see tests/dicom/CMakeLists.txt) to get DCMTK's.
+bool dcmtkCharlsIsBound() {
+    void* symbol = dlsym(RTLD_DEFAULT, "JpegLsEncode");
+    Dl_info info{};
+    if (!symbol || !dladdr(symbol, &info) || !info.dli_fname)
+        return true;
+    return std::string(info.dli_fname).find("dcmtkcharls") != std::string::npos;
 }
 
 E_TransferSyntax toXfer(TestTransferSyntax syntax) {
@@ -157,6 +172,9 @@ void writeTestSlice(const std::filesystem::path& path, const TestSlice& s) {
         std::unique_ptr<DcmRepresentationParameter> params;
         if (s.transferSyntax == TestTransferSyntax::JpegLossless)
             params = std::make_unique<DJ_RPLossless>(1, 0);
+        else if (s.transferSyntax == TestTransferSyntax::JpegLsLossless && !dcmtkCharlsIsBound())
+            throw std::runtime_error("test DICOM writer: JpegLsEncode resolves to GDCM's CharLS, not DCMTK's; "
+                                     "link DCMTK::dcmjpls first with --no-as-needed");
         else if (s.transferSyntax == TestTransferSyntax::JpegLsLossless)
             params = std::make_unique<DJLSRepresentationParameter>(2, OFTrue);
         else

@@ -1,0 +1,137 @@
+// Reading headers and decoding frames of files the test writes itself (known ground truth).
+#include "dicom_file.h"
+#include "dicom_test_writer.h"
+#include "test_support.h"
+
+#include "lw/core/error.h"
+#include "lw/core/file_util.h"
+
+#include <gtest/gtest.h>
+
+#include <cstdint>
+#include <fstream>
+#include <zlib.h>
+
+namespace dt = lw::dicom::test;
+using namespace lw;
+using namespace lw::dicom;
+using lw::dicom::test::TestSlice;
+using lw::dicom::test::TestTransferSyntax;
+
+namespace {
+
+TestSlice ctSlice() {
+    TestSlice s;
+    // Not smaller: DCMTK 3.6.7's JPEG-LS encoder overruns its buffer on tiny images.
+    s.rows = 24;
+    s.columns = 20;
+    s.pixels = dt::rampPixels(24, 20, -1000, 37);
+    s.position = glm::dvec3(-10.5, 20.25, 33.0);
+    s.orientation = std::array<double, 6>{1, 0, 0, 0, 0.8, -0.6};
+    s.pixelSpacing = glm::dvec2(0.7, 0.9);
+    s.rescaleSlope = 1.5;
+    s.rescaleIntercept = -1024;
+    s.instanceNumber = 7;
+    s.seriesDescription = "head  ";
+    return s;
+}
+
+std::vector<std::int16_t> decodeInt16(const InstanceInfo& info, int frame = 0) {
+    FrameDecoder decoder(info);
+    std::vector<std::int16_t> out(std::size_t(info.rows) * std::size_t(info.columns));
+    decoder.decodeFrame(frame, volume::VoxelType::Int16, out.data());
+    return out;
+}
+
+} // namespace
+
+TEST(DicomFile, ReadsClassicHeader) {
+    lw::test::TempDir dir;
+    TestSlice s = ctSlice();
+    dt::writeTestSlice(dir / "a.dcm", s);
+    const InstanceInfo info = readInstanceHeader(dir / "a.dcm");
+    EXPECT_EQ(info.rows, 24);
+    EXPECT_EQ(info.columns, 20);
+    EXPECT_EQ(info.bitsAllocated, 16);
+    EXPECT_EQ(info.pixelRepresentation, 1);
+    EXPECT_EQ(info.modality, "CT");
+    EXPECT_EQ(info.seriesDescription, "head"); // trimmed
+    EXPECT_EQ(info.instanceNumber, 7);
+    EXPECT_TRUE(info.hasPixelData);
+    EXPECT_FALSE(info.isEnhanced);
+    EXPECT_FALSE(info.isGzipWrapped);
+    EXPECT_EQ(info.transferSyntaxUid, "1.2.840.10008.1.2.1");
+    ASSERT_EQ(info.frames.size(), 1u);
+    const FrameInfo& f = info.frames[0];
+    ASSERT_TRUE(f.position);
+    EXPECT_DOUBLE_EQ(f.position->x, -10.5);
+    EXPECT_DOUBLE_EQ(f.position->y, 20.25);
+    ASSERT_TRUE(f.orientation);
+    EXPECT_DOUBLE_EQ((*f.orientation)[4], 0.8);
+    EXPECT_DOUBLE_EQ((*f.orientation)[5], -0.6);
+    ASSERT_TRUE(f.pixelSpacing);
+    EXPECT_DOUBLE_EQ(f.pixelSpacing->x, 0.7);
+    EXPECT_DOUBLE_EQ(f.rescaleSlope, 1.5);
+    EXPECT_DOUBLE_EQ(f.rescaleIntercept, -1024);
+    EXPECT_EQ(f.frameType, "ORIGINAL\\PRIMARY\\AXIAL");
+    EXPECT_EQ(storedVoxelType(info), volume::VoxelType::Int16);
+}
+
+TEST(DicomFile, RejectsNonDicomAndMissingFiles) {
+    lw::test::TempDir dir;
+    {
+        std::ofstream out(dir / "text.dcm");
+        out << "This is certainly not a DICOM file, just some words of text.\n";
+    }
+    EXPECT_THROW(readInstanceHeader(dir / "text.dcm"), core::Error);
+    EXPECT_THROW(readInstanceHeader(dir / "missing.dcm"), core::Error);
+    {
+        std::ofstream out(dir / "empty.dcm");
+    }
+    EXPECT_THROW(readInstanceHeader(dir / "empty.dcm"), core::Error);
+    EXPECT_FALSE(isDicomdirFile(dir / "text.dcm"));
+}
+
+TEST(DicomFile, TransferSyntaxesReadAndDecodeIdentically) {
+    lw::test::TempDir dir;
+    TestSlice s = ctSlice();
+    const std::vector<int> expected = s.pixels;
+    for (TestTransferSyntax syntax :
+         {TestTransferSyntax::ExplicitLittle, TestTransferSyntax::ImplicitLittle, TestTransferSyntax::ExplicitBig,
+          TestTransferSyntax::Deflated, TestTransferSyntax::JpegLossless, TestTransferSyntax::JpegLsLossless,
+          TestTransferSyntax::Rle}) {
+        s.transferSyntax = syntax;
+        const std::string uid = dt::transferSyntaxUid(syntax);
+        const auto path = dir / (uid + ".dcm");
+        dt::writeTestSlice(path, s);
+        const InstanceInfo info = readInstanceHeader(path);
+        EXPECT_EQ(info.transferSyntaxUid, uid);
+        ASSERT_EQ(info.frames.size(), 1u) << uid;
+        ASSERT_TRUE(info.frames[0].position) << uid;
+        EXPECT_DOUBLE_EQ(info.frames[0].position->z, 33.0) << uid;
+        const auto pixels = decodeInt16(info);
+        for (std::size_t i = 0; i < expected.size(); ++i)
+            ASSERT_EQ(pixels[i], expected[i]) << uid << " pixel " << i;
+    }
+}
+
+TEST(DicomFile, GzipWrappedFile) {
+    lw::test::TempDir dir;
+    TestSlice s = ctSlice();
+    dt::writeTestSlice(dir / "plain.dcm", s);
+    const auto bytes = core::readFileBytes(dir / "plain.dcm");
+    {
+        gzFile gz = gzopen((dir / "wrapped.dcm.gz").c_str(), "wb");
+        ASSERT_NE(gz, nullptr);
+        ASSERT_EQ(gzwrite(gz, bytes.data(), unsigned(bytes.size())), int(bytes.size()));
+        gzclose(gz);
+    }
+    const InstanceInfo info = readInstanceHeader(dir / "wrapped.dcm.gz");
+    EXPECT_TRUE(info.isGzipWrapped);
+    EXPECT_EQ(info.rows, 24);
+    ASSERT_TRUE(info.frames.at(0).position);
+    EXPECT_DOUBLE_EQ(info.frames[0].position->y, 20.25);
+    const auto pixels = decodeInt16(info);
+    for (std::size_t i = 0; i < s.pixels.size(); ++i)
+        ASSERT_EQ(pixels[i], s.pixels[i]);
+}
