@@ -16,6 +16,7 @@
 #ifdef LINEWORK_HAVE_GDCM
 #include <gdcmImage.h>
 #include <gdcmImageReader.h>
+#include <gdcmTrace.h>
 #endif
 
 #include <dlfcn.h>
@@ -219,6 +220,15 @@ void FrameDecoder::Impl::loadJpeg2000(int frame, DcmPixelData& pixelData, E_Tran
 void FrameDecoder::Impl::loadWithGdcm(int frame) {
 #ifdef LINEWORK_HAVE_GDCM
     std::lock_guard lock(gdcmMutex());
+    // GDCM prints its warnings (missing spacing, corrected bit depths) to stderr; the ones that
+    // matter come back as a failed read and are reported with the file name.
+    static const bool quiet = [] {
+        gdcm::Trace::SetDebug(false);
+        gdcm::Trace::SetWarning(false);
+        gdcm::Trace::SetError(false);
+        return true;
+    }();
+    (void)quiet;
     gdcm::ImageReader reader;
     std::istringstream memory;
     if (inflated.empty()) {
