@@ -1,0 +1,62 @@
+#pragma once
+
+// One interface for the paper's three silhouette methods, whatever the back-end (CPU, CUDA, GL).
+//
+//   method 1  marching cubes mesh + geometry-shader silhouette, depth-tested against the surface
+//   method 2  silhouette-only extraction per active cell + ray-cast visibility (no mesh kept)
+//   method 3  own z-buffer rasterizer: triangles -> zbuffer1, segments -> zbuffer2, compare
+//
+// Chunked ("L") variants are the same code with a brick schedule (settings.brickCells > 0);
+// the whole-volume ("S") variant is the one-brick case.
+
+#include "lw/render/camera.h"
+#include "lw/render/pixel_mask.h"
+#include "lw/volume/volume.h"
+
+#include <cstddef>
+#include <string_view>
+
+namespace lw::render {
+
+enum class SilhouetteMethod { GeometryShader = 1, RayCastVisibility = 2, ZBuffer = 3 };
+
+// Mode a: the extraction is cached and only the view changes; mode b: re-extract every frame.
+enum class ExtractionMode { CachedA, EveryFrameB };
+
+struct SilhouetteSettings {
+    double isoReal = 300.5; // real units (HU for CT); the volume's value mapping converts it
+    int brickCells = 0;     // 0: whole volume (S); > 0: bricks of this many cells per axis (L)
+    ExtractionMode mode = ExtractionMode::CachedA;
+    bool visibility = true;        // false: every silhouette segment is drawn (paper, tables 2-4)
+    bool testAlongSegment = false; // method 2: test points along each segment, not only its endpoints
+    unsigned threads = 0;          // CPU back-end: 0 = all cores
+};
+
+// Wall-clock time of each stage of one frame, in milliseconds (0 when a stage did not run,
+// e.g. extraction in mode a after the first frame).
+struct StageTimes {
+    double extractMs = 0.0;
+    double silhouetteMs = 0.0;
+    double visibilityMs = 0.0;
+    double drawMs = 0.0;
+    double totalMs() const { return extractMs + silhouetteMs + visibilityMs + drawMs; }
+};
+
+struct SilhouetteFrame {
+    PixelMask lines;            // silhouette pixels on the camera's viewport, row 0 at the top
+    std::size_t triangles = 0;  // triangles extracted (method 2: triangles visited)
+    std::size_t segments = 0;   // silhouette segments found (before visibility)
+    StageTimes times;
+};
+
+class SilhouetteRenderer {
+public:
+    virtual ~SilhouetteRenderer() = default;
+    virtual SilhouetteMethod method() const = 0;
+    virtual std::string_view backendName() const = 0;
+    // Binds a volume; it must outlive the renderer or the next setVolume. Drops cached results.
+    virtual void setVolume(const volume::Volume& volume) = 0;
+    virtual SilhouetteFrame render(const Camera& camera, const SilhouetteSettings& settings) = 0;
+};
+
+} // namespace lw::render
