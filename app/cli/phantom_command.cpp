@@ -1,0 +1,113 @@
+// `phantom` writes the benchmark phantom; `bench-mc` times marching cubes on it.
+#include "arguments.h"
+#include "commands.h"
+
+#include "lw/core/error.h"
+#include "lw/render/iso_surface.h"
+#include "lw/render/phantom.h"
+#include "lw/volume/volume_reader.h"
+
+#include <algorithm>
+#include <chrono>
+#include <charconv>
+#include <cstdio>
+#include <ostream>
+#include <vector>
+
+namespace lw::cli {
+namespace {
+
+// "N" or "NXxNYxNZ".
+glm::ivec3 parseSize(const std::string& text) {
+    std::vector<int> parts;
+    const char* p = text.data();
+    const char* end = text.data() + text.size();
+    while (p < end) {
+        int value = 0;
+        const auto [next, error] = std::from_chars(p, end, value);
+        if (error != std::errc() || value < 1)
+            break;
+        parts.push_back(value);
+        p = next;
+        if (p < end && *p == 'x')
+            ++p;
+        else
+            break;
+    }
+    if (p != end || (parts.size() != 1 && parts.size() != 3))
+        throw core::Error("--size " + text, "expected N or NXxNYxNZ with positive integers");
+    return parts.size() == 1 ? glm::ivec3(parts[0]) : glm::ivec3(parts[0], parts[1], parts[2]);
+}
+
+std::string sizeText(glm::ivec3 d) {
+    return std::to_string(d.x) + "x" + std::to_string(d.y) + "x" + std::to_string(d.z);
+}
+
+double secondsSince(std::chrono::steady_clock::time_point start) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+} // namespace
+
+int runPhantom(const std::vector<std::string>& args, std::ostream& out) {
+    const Arguments arguments(args, {}, {"size", "kind", "threads"});
+    const auto size = arguments.option("size");
+    const auto output = arguments.option("output");
+    if (!size || !output || !arguments.positionals().empty())
+        throw core::Error("phantom", "usage: phantom --size N|NXxNYxNZ [--kind ct|sphere] -o OUT.nrrd");
+    const glm::ivec3 dims = parseSize(*size);
+    const render::PhantomKind kind = render::parsePhantomKind(arguments.option("kind", "ct"));
+    const auto start = std::chrono::steady_clock::now();
+    const volume::Volume phantom = render::makePhantom(dims, kind, unsigned(arguments.number("threads", 0)));
+    const double seconds = secondsSince(start);
+    const render::PhantomChecksum checksum = render::phantomChecksum(phantom);
+    volume::writeNrrd(*output, phantom);
+    char line[256];
+    std::snprintf(line, sizeof line, "gen %s %s via linework: %.2fs sum=%lld above_iso=%lld\n",
+                  std::string(render::phantomKindName(kind)).c_str(), sizeText(dims).c_str(), seconds,
+                  static_cast<long long>(checksum.sum), static_cast<long long>(checksum.above));
+    out << line;
+    return 0;
+}
+
+int runBenchMc(const std::vector<std::string>& args, std::ostream& out) {
+    const Arguments arguments(args, {}, {"size", "kind", "chunks", "repeat", "iso", "threads"});
+    const glm::ivec3 dims = parseSize(arguments.option("size", "256"));
+    const render::PhantomKind kind = render::parsePhantomKind(arguments.option("kind", "ct"));
+    const int repeat = std::max(1, int(arguments.number("repeat", 10)));
+    const double iso = arguments.number("iso", render::kPhantomBoneIso);
+    const std::string chunks = arguments.option("chunks", "off");
+
+    auto start = std::chrono::steady_clock::now();
+    const volume::Volume phantom = render::makePhantom(dims, kind);
+    const double generateSeconds = secondsSince(start);
+
+    render::IsoSurfaceOptions options;
+    options.brickCells = render::parseChunks(chunks, dims);
+    options.threads = unsigned(arguments.number("threads", 0));
+    render::Mesh mesh;
+    render::IsoSurfaceStats stats;
+    // Warm-up: first-touch page faults of the output buffers are not the algorithm's cost in
+    // mode b, where the buffers are reused frame after frame.
+    render::extractIsoSurface(phantom, iso, options, mesh, &stats);
+    std::vector<double> times;
+    for (int i = 0; i < repeat; ++i) {
+        start = std::chrono::steady_clock::now();
+        render::extractIsoSurface(phantom, iso, options, mesh, &stats);
+        times.push_back(secondsSince(start) * 1000.0);
+    }
+    std::sort(times.begin(), times.end());
+    const double median = times.size() % 2 ? times[times.size() / 2]
+                                           : 0.5 * (times[times.size() / 2 - 1] + times[times.size() / 2]);
+    char line[512];
+    std::snprintf(line, sizeof line,
+                  "mc %s %s iso=%g chunks=%s (brick %d) bricks=%zu/%zu: median %.1f ms, min %.1f ms over %d "
+                  "runs; triangles=%zu vertices=%zu; phantom generated in %.2f s\n",
+                  std::string(render::phantomKindName(kind)).c_str(), sizeText(dims).c_str(), iso, chunks.c_str(),
+                  options.brickCells, stats.activeBricks, stats.totalBricks, median, times.front(), repeat,
+                  mesh.triangleCount(), mesh.vertexCount(), generateSeconds);
+    out << line;
+    return 0;
+}
+
+} // namespace lw::cli

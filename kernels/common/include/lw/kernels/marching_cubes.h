@@ -1,0 +1,77 @@
+#pragma once
+
+// Host+device building blocks of marching cubes with gradient normals. They work on plain
+// values so the CPU slab engine and a CUDA kernel evaluate exactly the same expressions.
+
+#include "lw/kernels/host_device.h"
+#include "lw/kernels/marching_cubes_tables.h"
+
+#include <cmath>
+
+namespace lw::kernels {
+
+struct McVec3 {
+    float x, y, z;
+};
+
+// Inside means value >= iso. `iso` is the smallest float that is >= the requested iso (see
+// insideThreshold), so comparing floats here agrees with comparing the exact values.
+LW_HOST_DEVICE inline bool mcInside(float value, float iso) { return value >= iso; }
+
+// The float threshold t with (v >= t) == (double(v) >= iso) for every float v.
+inline float insideThreshold(double iso) {
+    float t = float(iso);
+    if (double(t) < iso)
+        t = std::nextafter(t, INFINITY);
+    return t;
+}
+
+// Case index from the eight corner values in diagram order.
+LW_HOST_DEVICE inline int mcCaseIndex(const float v[8], float iso) {
+    int c = 0;
+    for (int i = 0; i < 8; ++i)
+        c |= int(mcInside(v[i], iso)) << i;
+    return c;
+}
+
+// Where along an edge from value a (t = 0) to value b (t = 1) the iso-value lies. Always
+// evaluated from the edge's lower voxel to its upper one, whichever cell asks, so a shared
+// vertex comes out bit-identical in every cell and every brick.
+LW_HOST_DEVICE inline float mcEdgeParameter(double a, double b, double iso) {
+    const double d = b - a;
+    if (d == 0.0)
+        return 0.5f;
+    const double t = (iso - a) / d;
+    return float(t < 0.0 ? 0.0 : (t > 1.0 ? 1.0 : t));
+}
+
+// One-dimensional derivative at a grid point from its neighbours: central difference inside,
+// one-sided at the ends. `lo`/`hi` are the neighbouring values (the point's own value where the
+// neighbour is missing) and `span` the real distance between them.
+LW_HOST_DEVICE inline float mcDerivative(float lo, float hi, float span) {
+    return span > 0.0f ? (hi - lo) / span : 0.0f;
+}
+
+LW_HOST_DEVICE inline McVec3 mcLerp(McVec3 a, McVec3 b, float t) {
+    return {a.x + t * (b.x - a.x), a.y + t * (b.y - a.y), a.z + t * (b.z - a.z)};
+}
+
+// Row-major 3x3 matrix times vector.
+LW_HOST_DEVICE inline McVec3 mcTransform(const float m[9], McVec3 v) {
+    return {m[0] * v.x + m[1] * v.y + m[2] * v.z, m[3] * v.x + m[4] * v.y + m[5] * v.z,
+            m[6] * v.x + m[7] * v.y + m[8] * v.z};
+}
+
+// Outward unit normal from the (interpolated) patient-space gradient: the gradient points to
+// higher values, i.e. inside, so the surface normal is its negation. A zero gradient (flat
+// plateau exactly at the iso-value) falls back to `fallback`, which the caller sets to the
+// edge direction from its inside to its outside corner.
+LW_HOST_DEVICE inline McVec3 mcOutwardNormal(McVec3 gradient, McVec3 fallback) {
+    const float len2 = gradient.x * gradient.x + gradient.y * gradient.y + gradient.z * gradient.z;
+    if (!(len2 > 0.0f) || !std::isfinite(len2))
+        return fallback;
+    const float inv = -1.0f / std::sqrt(len2);
+    return {gradient.x * inv, gradient.y * inv, gradient.z * inv};
+}
+
+} // namespace lw::kernels

@@ -1,0 +1,52 @@
+#pragma once
+
+#include "lw/volume/volume.h"
+
+#include <glm/glm.hpp>
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace lw::render {
+
+// An indexed triangle mesh with shared vertices, in patient coordinates (mm).
+struct Mesh {
+    std::vector<glm::vec3> positions;
+    std::vector<glm::vec3> normals; // unit, pointing outward (from value >= iso towards lower values)
+    std::vector<std::uint32_t> indices; // three per triangle, counter-clockwise seen from outside
+
+    std::size_t triangleCount() const { return indices.size() / 3; }
+    std::size_t vertexCount() const { return positions.size(); }
+    bool isEmpty() const { return indices.empty(); }
+};
+
+struct IsoSurfaceOptions {
+    // Cells per brick along each axis; 0 extracts the whole volume as one brick (the paper's
+    // "S" variant), anything else is the chunked ("L") schedule. The mesh is the same either way.
+    int brickCells = 0;
+    unsigned threads = 0; // 0 = all cores
+};
+
+struct IsoSurfaceStats {
+    std::size_t totalBricks = 0;
+    std::size_t activeBricks = 0; // bricks whose min/max admit the iso-value (the rest are skipped)
+};
+
+// Brick edge length the "auto" chunking picks for a volume.
+int autoBrickCells(glm::ivec3 dims);
+
+// Parses --chunks: "off" (0), "auto" (autoBrickCells) or a positive cell count.
+int parseChunks(const std::string& text, glm::ivec3 dims);
+
+// Marching cubes with per-vertex gradient normals at `isoReal` (real units, HU for CT; the
+// volume's value mapping converts it). Inside = value >= iso. Vertices are ordered by global
+// edge id and triangles by cell, so the result does not depend on brickCells or threads.
+Mesh extractIsoSurface(const volume::Volume& volume, double isoReal, const IsoSurfaceOptions& options = {},
+                       IsoSurfaceStats* stats = nullptr);
+// Same, reusing `mesh`'s buffers (repeated extraction without fresh allocations).
+void extractIsoSurface(const volume::Volume& volume, double isoReal, const IsoSurfaceOptions& options,
+                       Mesh& mesh, IsoSurfaceStats* stats = nullptr);
+
+} // namespace lw::render

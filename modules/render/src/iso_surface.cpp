@@ -1,0 +1,66 @@
+#include "lw/render/iso_surface.h"
+
+#include "lw/core/error.h"
+#include "lw/kernels/cpu/marching_cubes_cpu.h"
+#include "lw/volume/bricks.h"
+
+#include <algorithm>
+#include <charconv>
+
+namespace lw::render {
+
+int autoBrickCells(glm::ivec3 dims) {
+    // 64 cells: small enough that skipping empty bricks pays on CT (air, soft tissue), large
+    // enough that the per-brick apron and bookkeeping stay a few percent.
+    const int largest = std::max({dims.x, dims.y, dims.z}) - 1;
+    return std::max(1, std::min(64, largest));
+}
+
+int parseChunks(const std::string& text, glm::ivec3 dims) {
+    if (text == "off")
+        return 0;
+    if (text == "auto")
+        return autoBrickCells(dims);
+    int value = 0;
+    const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+    if (error != std::errc() || end != text.data() + text.size() || value < 1)
+        throw core::Error("--chunks " + text, "expected off, auto or a positive number of cells per brick");
+    return value;
+}
+
+void extractIsoSurface(const volume::Volume& volume, double isoReal, const IsoSurfaceOptions& options,
+                       Mesh& mesh, IsoSurfaceStats* stats) {
+    if (volume.valueMapping().slope == 0.0)
+        throw core::Error("iso-surface", "the volume's value mapping has slope 0");
+    if (volume.valueMapping().slope < 0.0)
+        throw core::Error("iso-surface", "a negative rescale slope is not supported (inside would flip)");
+    const double storedIso = volume.valueMapping().toStored(isoReal);
+    const glm::ivec3 cells = glm::max(volume.dims() - 1, glm::ivec3(0));
+    const int edge = options.brickCells > 0 ? options.brickCells : std::max({cells.x, cells.y, cells.z, 1});
+    const volume::BrickGrid grid = volume::BrickGrid::build(volume, glm::ivec3(edge));
+
+    kernels::cpu::McOutput out;
+    out.positions = std::move(mesh.positions);
+    out.normals = std::move(mesh.normals);
+    out.indices = std::move(mesh.indices);
+    const kernels::cpu::McResult result = kernels::cpu::marchingCubes(volume, grid, storedIso, out, options.threads);
+    mesh.positions = std::move(out.positions);
+    mesh.normals = std::move(out.normals);
+    mesh.indices = std::move(out.indices);
+    if (result.status == kernels::cpu::McStatus::TooManyVertices)
+        throw core::Error("iso-surface at " + std::to_string(isoReal),
+                          "the mesh has more than 2^32 vertices; extract a smaller region");
+    if (stats) {
+        stats->totalBricks = result.totalBricks;
+        stats->activeBricks = result.activeBricks;
+    }
+}
+
+Mesh extractIsoSurface(const volume::Volume& volume, double isoReal, const IsoSurfaceOptions& options,
+                       IsoSurfaceStats* stats) {
+    Mesh mesh;
+    extractIsoSurface(volume, isoReal, options, mesh, stats);
+    return mesh;
+}
+
+} // namespace lw::render
