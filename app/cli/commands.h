@@ -9,5 +9,6 @@ namespace lw::cli {
 // Each sub-command takes its arguments (after the command name) and returns the exit code.
 // Errors are thrown as core::Error and reported by main().
 int runInfo(const std::vector<std::string>& args, std::ostream& out);
+int runBenchImport(const std::vector<std::string>& args, std::ostream& out);
 
 } // namespace lw::cli

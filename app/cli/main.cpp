@@ -17,6 +17,9 @@ constexpr const char* kUsage = R"(usage: linework-cli COMMAND [ARGS]
 commands:
   info PATH [--json]          describe a DICOM folder/DICOMDIR/file or a volume file
                               (raw: --raw WxHxD --type int16 [--big-endian] [--spacing X,Y,Z])
+  bench-import PATH [--repeat N] [--json]
+                              scan a DICOM input and load all its volumes N times (default 5);
+                              prints the median time and slices/s
   help                        this text
 
 Exit codes: 0 success, 1 error (the message names the file and the reason), 2 usage error.
@@ -33,6 +36,7 @@ int main(int argc, char** argv) {
     using Command = std::function<int(const std::vector<std::string>&, std::ostream&)>;
     const std::map<std::string, Command> commands = {
         {"info", lw::cli::runInfo},
+        {"bench-import", lw::cli::runBenchImport},
     };
     const auto command = commands.find(args[0]);
     if (command == commands.end()) {
