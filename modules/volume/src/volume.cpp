@@ -107,7 +107,9 @@ Histogram Volume::histogram(int binCount) const {
         const double shift = (m_mapping.intercept - h.min) / h.binWidth;
         for (std::size_t i = 0; i < m_voxelCount; ++i) {
             const double bin = double(voxels[i]) * scale + shift;
-            const auto b = std::clamp<long>(long(bin), 0, binCount - 1);
+            if (!(bin == bin))
+                continue; // NaN voxels (float volumes) belong to no bin
+            const auto b = long(std::clamp(bin, 0.0, double(binCount - 1)));
             ++h.counts[std::size_t(b)];
         }
     });
