@@ -1,0 +1,55 @@
+#pragma once
+
+#include "lw/core/image.h"
+
+#include <cstddef>
+#include <filesystem>
+#include <string>
+
+namespace lw::core {
+
+// What a baseline test may tolerate: pixels whose largest channel difference exceeds
+// `channelTolerance` are "bad"; the images match while there are at most `maxBadPixels`.
+struct ImageTolerance {
+    int channelTolerance = 0;
+    std::size_t maxBadPixels = 0;
+};
+
+struct ImageComparison {
+    bool sizesMatch = false;
+    int maxChannelDifference = 0; // over the overlapping pixels; 255 when the sizes differ
+    std::size_t badPixels = 0;    // over tolerance, plus every pixel outside the overlap
+    std::size_t pixelCount = 0;   // pixels of the larger extent
+    bool matches = false;
+    bool diffWritten = false;
+    std::filesystem::path diffPath;
+
+    // One line for test failure messages.
+    std::string describe() const;
+};
+
+// Per-pixel comparison (max |difference| over r, g, b, a). Sizes may differ: the extent is the
+// union of both and pixels present in only one image are bad.
+ImageComparison compareImages(const ImageRgba8& actual, const ImageRgba8& expected,
+                              ImageTolerance tolerance);
+
+// The diff picture: the expected image dimmed to a faint grey (so one sees where things are),
+// pixels that differ within tolerance in yellow, bad pixels in red, pixels outside the overlap
+// in magenta.
+ImageRgba8 diffImage(const ImageRgba8& actual, const ImageRgba8& expected,
+                     ImageTolerance tolerance);
+
+// Compares and, when the images do not match and `diffPath` is not empty, writes the diff image
+// there as PNG (atomically) and records that in the result.
+ImageComparison compareImages(const ImageRgba8& actual, const ImageRgba8& expected,
+                              ImageTolerance tolerance, const std::filesystem::path& diffPath);
+
+// The baseline-test helper: reads `baselinePng` (Error if missing or unreadable) and compares
+// `actual` with it; on mismatch writes `diffPath` (if given) and `actual` next to it as
+// "<diff stem>.actual.png", so a reviewer can accept the new image by copying it over.
+ImageComparison compareWithBaseline(const ImageRgba8& actual,
+                                    const std::filesystem::path& baselinePng,
+                                    ImageTolerance tolerance,
+                                    const std::filesystem::path& diffPath = {});
+
+} // namespace lw::core

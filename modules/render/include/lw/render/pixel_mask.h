@@ -1,0 +1,49 @@
+#pragma once
+
+#include "lw/core/image.h"
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+namespace lw::render {
+
+// A binary image (contour pixels, coverage), row-major with the top row first like the images
+// it is drawn from; 0 = off, anything else = on.
+class PixelMask {
+public:
+    PixelMask() = default;
+    PixelMask(int width, int height); // all off; throws core::Error for negative sizes
+
+    int width() const { return m_width; }
+    int height() const { return m_height; }
+    bool contains(int x, int y) const { return x >= 0 && y >= 0 && x < m_width && y < m_height; }
+    bool get(int x, int y) const { return m_pixels[index(x, y)] != 0; }
+    void set(int x, int y, bool on = true) { m_pixels[index(x, y)] = on ? 1 : 0; }
+    std::vector<std::uint8_t>& pixels() { return m_pixels; }
+    const std::vector<std::uint8_t>& pixels() const { return m_pixels; }
+    std::size_t count() const;
+
+    // Every pixel within Chebyshev distance `radius` of an on pixel (a (2r+1)^2 square).
+    PixelMask dilated(int radius) const;
+
+    core::ImageRgba8 toImage(core::Rgba8 on = {255, 255, 255, 255},
+                             core::Rgba8 off = {0, 0, 0, 255}) const;
+    // On where a pixel's colour (r, g, b) differs from `background`: turns a rendered line
+    // drawing into the mask that scoreContours() expects.
+    static PixelMask fromImage(const core::ImageRgba8& image,
+                               core::Rgba8 background = {0, 0, 0, 255});
+
+    friend bool operator==(const PixelMask&, const PixelMask&) = default;
+
+private:
+    std::size_t index(int x, int y) const {
+        return std::size_t(y) * std::size_t(m_width) + std::size_t(x);
+    }
+
+    int m_width = 0;
+    int m_height = 0;
+    std::vector<std::uint8_t> m_pixels;
+};
+
+} // namespace lw::render

@@ -1,0 +1,36 @@
+#include "lw/render/contour_score.h"
+
+#include "lw/core/error.h"
+
+#include <string>
+
+namespace lw::render {
+
+ContourScore scoreContours(const PixelMask& drawn, const PixelMask& truth, int tolerancePx) {
+    if (drawn.width() != truth.width() || drawn.height() != truth.height())
+        throw core::Error("contour score",
+                          "mask sizes differ: drawn " + std::to_string(drawn.width()) + "x" +
+                              std::to_string(drawn.height()) + ", truth " +
+                              std::to_string(truth.width()) + "x" + std::to_string(truth.height()));
+    if (tolerancePx < 0)
+        throw core::Error("contour score", "tolerance must not be negative");
+    const PixelMask nearDrawn = drawn.dilated(tolerancePx);
+    const PixelMask nearTruth = truth.dilated(tolerancePx);
+    ContourScore score;
+    for (std::size_t i = 0; i < truth.pixels().size(); ++i) {
+        if (truth.pixels()[i]) {
+            ++score.truePixels;
+            score.trueFound += nearDrawn.pixels()[i] ? 1 : 0;
+        }
+        if (drawn.pixels()[i]) {
+            ++score.drawnPixels;
+            score.drawnMatched += nearTruth.pixels()[i] ? 1 : 0;
+        }
+    }
+    score.recall = score.truePixels ? double(score.trueFound) / double(score.truePixels) : 1.0;
+    score.precision =
+        score.drawnPixels ? double(score.drawnMatched) / double(score.drawnPixels) : 1.0;
+    return score;
+}
+
+} // namespace lw::render

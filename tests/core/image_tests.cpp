@@ -1,0 +1,265 @@
+#include "lw/core/error.h"
+#include "lw/core/file_util.h"
+#include "lw/core/image.h"
+#include "lw/core/image_compare.h"
+#include "lw/core/png_io.h"
+#include "test_support.h"
+
+#include <filesystem>
+#include <gtest/gtest.h>
+#include <random>
+#include <zlib.h>
+
+using namespace lw::core;
+
+namespace {
+
+// Noise plus gradients, so the encoder picks different filter types on different rows.
+ImageRgba8 testImage(int width, int height, unsigned seed, bool grey = false, bool opaque = false) {
+    std::mt19937 random(seed);
+    ImageRgba8 image(width, height);
+    for (int y = 0; y < height; ++y)
+        for (int x = 0; x < width; ++x) {
+            const bool noisy = (y % 3) == 0;
+            auto v = [&](int base) {
+                return static_cast<std::uint8_t>(noisy ? random() & 0xff
+                                                       : (base + 7 * x + 3 * y) & 0xff);
+            };
+            Rgba8 p{v(0), v(80), v(160), opaque ? std::uint8_t(255) : v(40)};
+            if (grey)
+                p = {p.r, p.r, p.r, 255};
+            image.at(x, y) = p;
+        }
+    return image;
+}
+
+std::vector<std::byte> withFixedCrc(std::vector<std::byte> png, std::size_t chunkStart) {
+    const std::uint32_t length =
+        (std::uint32_t(png[chunkStart]) << 24) | (std::uint32_t(png[chunkStart + 1]) << 16) |
+        (std::uint32_t(png[chunkStart + 2]) << 8) | std::uint32_t(png[chunkStart + 3]);
+    const auto crc =
+        crc32(0L, reinterpret_cast<const Bytef*>(png.data() + chunkStart + 4), length + 4);
+    for (int i = 0; i < 4; ++i)
+        png[chunkStart + 8 + length + std::size_t(i)] = std::byte((crc >> (24 - 8 * i)) & 0xff);
+    return png;
+}
+
+void expectDecodeError(const std::vector<std::byte>& bytes, const std::string& reasonPart) {
+    try {
+        decodePng(bytes.data(), bytes.size(), "test.png");
+        FAIL() << "decoding succeeded, expected an error containing '" << reasonPart << "'";
+    } catch (const Error& error) {
+        EXPECT_EQ(error.subject(), "test.png");
+        EXPECT_NE(error.reason().find(reasonPart), std::string::npos) << error.reason();
+    }
+}
+
+} // namespace
+
+TEST(Image, LayoutFillAndFlip) {
+    ImageRgba8 image(3, 2, {1, 2, 3, 4});
+    EXPECT_EQ(image.pixelCount(), 6u);
+    EXPECT_EQ(image.at(2, 1), (Rgba8{1, 2, 3, 4}));
+    image.at(0, 0) = {9, 9, 9, 9};
+    EXPECT_EQ(image.bytes()[0], 9);
+    EXPECT_EQ(image.bytes()[4], 1); // row-major, 4 bytes per pixel
+    image.flipRows();
+    EXPECT_EQ(image.at(0, 1), (Rgba8{9, 9, 9, 9}));
+    EXPECT_EQ(image.at(0, 0), (Rgba8{1, 2, 3, 4}));
+    EXPECT_THROW(ImageRgba8(-1, 2), Error);
+}
+
+TEST(Image, FloatToGrey) {
+    ImageFloat depth(3, 1);
+    depth.at(0, 0) = 0.0f;
+    depth.at(1, 0) = 0.5f;
+    depth.at(2, 0) = std::numeric_limits<float>::infinity();
+    const ImageRgba8 grey = depth.toGrey(0.0f, 1.0f, {255, 0, 0, 255});
+    EXPECT_EQ(grey.at(0, 0), (Rgba8{0, 0, 0, 255}));
+    EXPECT_EQ(grey.at(1, 0), (Rgba8{128, 128, 128, 255}));
+    EXPECT_EQ(grey.at(2, 0), (Rgba8{255, 0, 0, 255}));
+}
+
+TEST(PngIo, RoundTripRgbaOddSizes) {
+    for (auto [w, h] : {std::pair{1, 1}, std::pair{7, 3}, std::pair{13, 5}, std::pair{64, 33},
+                        std::pair{101, 2}}) {
+        const ImageRgba8 image = testImage(w, h, unsigned(w * 31 + h));
+        const auto bytes = encodePng(image, PngFormat::Rgba);
+        PngFormat stored = PngFormat::Gray;
+        const ImageRgba8 back = decodePng(bytes.data(), bytes.size(), "memory", &stored);
+        EXPECT_EQ(stored, PngFormat::Rgba);
+        EXPECT_EQ(back, image) << w << "x" << h;
+    }
+}
+
+TEST(PngIo, RoundTripRgbDropsAlpha) {
+    const ImageRgba8 image = testImage(17, 9, 5);
+    const auto bytes = encodePng(image, PngFormat::Rgb);
+    PngFormat stored = PngFormat::Rgba;
+    const ImageRgba8 back = decodePng(bytes.data(), bytes.size(), "memory", &stored);
+    EXPECT_EQ(stored, PngFormat::Rgb);
+    ASSERT_EQ(back.width(), 17);
+    ASSERT_EQ(back.height(), 9);
+    for (int y = 0; y < 9; ++y)
+        for (int x = 0; x < 17; ++x) {
+            Rgba8 expected = image.at(x, y);
+            expected.a = 255;
+            ASSERT_EQ(back.at(x, y), expected) << x << "," << y;
+        }
+}
+
+TEST(PngIo, RoundTripGray) {
+    const ImageRgba8 image = testImage(23, 11, 9, /*grey=*/true);
+    const auto bytes = encodePng(image, PngFormat::Gray);
+    PngFormat stored = PngFormat::Rgba;
+    const ImageRgba8 back = decodePng(bytes.data(), bytes.size(), "memory", &stored);
+    EXPECT_EQ(stored, PngFormat::Gray);
+    EXPECT_EQ(back, image);
+    // One byte per pixel plus a filter byte per row, before compression: much smaller than RGBA.
+    EXPECT_LT(bytes.size(), encodePng(image, PngFormat::Rgba).size());
+}
+
+// Written by a separate encoder (a short Python script: its own filter code, rows filtered with
+// Sub, Up, Average and Paeth in turn, the data split over two IDAT chunks, a tEXt chunk), so a
+// mistake shared by our encoder and decoder cannot hide behind the round trip.
+TEST(PngIo, ReadsAnIndependentlyEncodedFile) {
+    static const unsigned char kIndependentPng[] = {
+        0x89, 0x50, 0x4e, 0x47, 0x0d, 0x0a, 0x1a, 0x0a, 0x00, 0x00, 0x00, 0x0d, 0x49, 0x48, 0x44,
+        0x52, 0x00, 0x00, 0x00, 0x05, 0x00, 0x00, 0x00, 0x04, 0x08, 0x02, 0x00, 0x00, 0x00, 0xc9,
+        0x51, 0x62, 0x17, 0x00, 0x00, 0x00, 0x13, 0x74, 0x45, 0x58, 0x74, 0x43, 0x6f, 0x6d, 0x6d,
+        0x65, 0x6e, 0x74, 0x00, 0x69, 0x6e, 0x64, 0x65, 0x70, 0x65, 0x6e, 0x64, 0x65, 0x6e, 0x74,
+        0xb5, 0x98, 0xd1, 0xe2, 0x00, 0x00, 0x00, 0x0a, 0x49, 0x44, 0x41, 0x54, 0x78, 0xda, 0x63,
+        0x64, 0x60, 0xf8, 0x6f, 0x2a, 0x78, 0xc3, 0xa6, 0x4f, 0x4e, 0x46, 0x00, 0x00, 0x00, 0x31,
+        0x49, 0x44, 0x41, 0x54, 0xd4, 0xf8, 0x86, 0x69, 0xe8, 0x0d, 0xd3, 0xf2, 0x1b, 0x4c, 0xb2,
+        0xee, 0xdf, 0x91, 0x11, 0xb3, 0x4e, 0x76, 0x91, 0xa6, 0xce, 0x0b, 0x4d, 0xdb, 0x17, 0x9a,
+        0x7e, 0x2f, 0x34, 0xe3, 0x5f, 0xb0, 0x80, 0x84, 0x05, 0xbf, 0xcb, 0x1a, 0x7f, 0x97, 0x0d,
+        0x05, 0xc9, 0x03, 0x00, 0x26, 0x36, 0x1a, 0x03, 0x1a, 0xd0, 0xcc, 0x85, 0x00, 0x00, 0x00,
+        0x00, 0x49, 0x45, 0x4e, 0x44, 0xae, 0x42, 0x60, 0x82};
+    PngFormat stored = PngFormat::Rgba;
+    const ImageRgba8 image = decodePng(reinterpret_cast<const std::byte*>(kIndependentPng),
+                                       sizeof(kIndependentPng), "independent.png", &stored);
+    EXPECT_EQ(stored, PngFormat::Rgb);
+    ASSERT_EQ(image.width(), 5);
+    ASSERT_EQ(image.height(), 4);
+    for (int y = 0; y < 4; ++y)
+        for (int x = 0; x < 5; ++x) {
+            const Rgba8 expected{std::uint8_t((x * 53 + y * 29) % 256),
+                                 std::uint8_t((x * x * 17 + y * 71) % 256),
+                                 std::uint8_t((255 - x * 40 - y * 9) % 256), 255};
+            EXPECT_EQ(image.at(x, y), expected) << x << "," << y;
+        }
+}
+
+TEST(PngIo, WritesAtomicallyAndReadsBack) {
+    lw::test::TempDir dir;
+    const ImageRgba8 image = testImage(31, 7, 3);
+    writePng(dir / "out.png", image);
+    EXPECT_EQ(readPng(dir / "out.png"), image);
+    int files = 0;
+    for ([[maybe_unused]] const auto& entry : std::filesystem::directory_iterator(dir.path()))
+        ++files;
+    EXPECT_EQ(files, 1) << "a temporary file was left behind";
+    EXPECT_THROW(writePng(dir / "empty.png", ImageRgba8()), Error);
+}
+
+TEST(PngIo, CorruptFilesGiveErrors) {
+    const auto good = encodePng(testImage(16, 16, 1), PngFormat::Rgba);
+    // Layout: signature (8), IHDR chunk at 8 (12 + 13 bytes), IDAT chunk at 33.
+    const std::size_t ihdr = 8, idat = 33;
+
+    auto badSignature = good;
+    badSignature[1] = std::byte{'X'};
+    expectDecodeError(badSignature, "signature");
+
+    const std::vector<std::byte> truncated(good.begin(),
+                                           good.begin() + std::ptrdiff_t(good.size() / 2));
+    expectDecodeError(truncated, "truncated");
+
+    auto flipped = good;
+    flipped[idat + 8 + 5] ^= std::byte{0x55};
+    expectDecodeError(flipped, "CRC");
+
+    // Damaged compressed data behind a valid CRC: the inflater must notice.
+    auto damaged = flipped;
+    for (std::size_t i = idat + 8 + 2; i < idat + 8 + 40; ++i)
+        damaged[i] = std::byte{0xff};
+    expectDecodeError(withFixedCrc(damaged, idat), "PNG image data");
+
+    auto sixteenBit = good;
+    sixteenBit[ihdr + 8 + 8] = std::byte{16};
+    expectDecodeError(withFixedCrc(sixteenBit, ihdr), "bit depth");
+
+    auto palette = good;
+    palette[ihdr + 8 + 9] = std::byte{3};
+    expectDecodeError(withFixedCrc(palette, ihdr), "colour type");
+
+    auto interlaced = good;
+    interlaced[ihdr + 8 + 12] = std::byte{1};
+    expectDecodeError(withFixedCrc(interlaced, ihdr), "interlaced");
+
+    lw::test::TempDir dir;
+    const auto path = dir / "broken.png";
+    writeFileAtomically(path, flipped.data(), flipped.size());
+    try {
+        readPng(path);
+        FAIL() << "corrupt file was read";
+    } catch (const Error& error) {
+        EXPECT_EQ(error.subject(), path.string());
+    }
+}
+
+TEST(ImageCompare, ToleranceAndBadPixelCount) {
+    const ImageRgba8 expected = testImage(20, 10, 4);
+    ImageRgba8 actual = expected;
+    EXPECT_TRUE(compareImages(actual, expected, {}).matches);
+
+    actual.at(3, 4).g =
+        static_cast<std::uint8_t>(actual.at(3, 4).g ^ 0x0a); // differs by 10 at most
+    const int d = std::abs(int(actual.at(3, 4).g) - int(expected.at(3, 4).g));
+    auto strict = compareImages(actual, expected, {d - 1, 0});
+    EXPECT_FALSE(strict.matches);
+    EXPECT_EQ(strict.badPixels, 1u);
+    EXPECT_EQ(strict.maxChannelDifference, d);
+    EXPECT_TRUE(compareImages(actual, expected, {d, 0}).matches);
+    EXPECT_TRUE(compareImages(actual, expected, {0, 1}).matches);
+
+    const auto resized = compareImages(ImageRgba8(21, 10), expected, {255, 1000});
+    EXPECT_FALSE(resized.sizesMatch);
+    EXPECT_FALSE(resized.matches);
+}
+
+TEST(ImageCompare, DiffImageWrittenOnlyOnMismatch) {
+    lw::test::TempDir dir;
+    const ImageRgba8 expected = testImage(12, 8, 6, false, true);
+    EXPECT_FALSE(compareImages(expected, expected, {}, dir / "same.png").diffWritten);
+    EXPECT_FALSE(std::filesystem::exists(dir / "same.png"));
+
+    ImageRgba8 actual = expected;
+    actual.at(5, 2) = {0, 0, 0, 0};
+    actual.at(6, 2).r = static_cast<std::uint8_t>(actual.at(6, 2).r ^ 1);
+    const auto result = compareImages(actual, expected, {2, 0}, dir / "diff.png");
+    EXPECT_TRUE(result.diffWritten);
+    EXPECT_EQ(result.badPixels, 1u);
+    EXPECT_NE(result.describe().find("diff.png"), std::string::npos);
+    const ImageRgba8 diff = readPng(dir / "diff.png");
+    EXPECT_EQ(diff.at(5, 2), (Rgba8{255, 0, 0, 255}));   // over tolerance
+    EXPECT_EQ(diff.at(6, 2), (Rgba8{255, 255, 0, 255})); // within tolerance
+    EXPECT_EQ(diff.at(0, 0).r, diff.at(0, 0).g);         // unchanged: grey
+}
+
+TEST(ImageCompare, BaselineHelperWritesDiffAndActual) {
+    lw::test::TempDir dir;
+    const ImageRgba8 baseline = testImage(9, 9, 8);
+    writePng(dir / "baseline.png", baseline);
+    EXPECT_TRUE(
+        compareWithBaseline(baseline, dir / "baseline.png", {}, dir / "case.diff.png").matches);
+    ImageRgba8 changed = baseline;
+    changed.at(0, 0) = {1, 2, 3, 4};
+    changed.at(8, 8) = {200, 2, 3, 4};
+    const auto result =
+        compareWithBaseline(changed, dir / "baseline.png", {}, dir / "case.diff.png");
+    EXPECT_FALSE(result.matches);
+    EXPECT_TRUE(std::filesystem::exists(dir / "case.diff.png"));
+    EXPECT_EQ(readPng(dir / "case.diff.actual.png"), changed);
+    EXPECT_THROW(compareWithBaseline(changed, dir / "missing.png", {}), Error);
+}
