@@ -1,0 +1,123 @@
+#pragma once
+
+// Method 1's OpenGL pipeline (Morar et al. 2013): pass 1 draws the iso-surface (shaded for the
+// iso panel, depth only for the silhouette panel), pass 2 sends the same triangles through a
+// geometry shader that emits each triangle's silhouette segment (Burns et al. 2005), depth-tested
+// against pass 1. It needs only a current OpenGL 4.1+ core context (GlContext, or the GUI's
+// QOpenGLWidget) and draws into its own framebuffer object.
+//
+// Mode a (mesh uploaded once, only the view changes) and mode b (re-upload every frame) are the
+// caller's choice: uploadMesh() and render() are separate, and buffers are reused when they fit.
+//
+// Every GL call needs the context that was current at initialize() to be current again. GL
+// objects are freed by release() (call it while the context is still current); the destructor
+// makes no GL calls because the context may already be gone.
+
+#include "lw/core/image.h"
+#include "lw/render/camera.h"
+#include "lw/render/iso_surface.h"
+
+#include <glm/glm.hpp>
+
+#include <cstddef>
+#include <cstdint>
+#include <span>
+
+namespace lw::render {
+
+enum class GlPanel {
+    Iso,        // shaded iso-surface (silhouette lines optionally on top)
+    Silhouette, // silhouette lines on the background; the surface only fills the depth buffer
+};
+
+struct SilhouetteGlOptions {
+    GlPanel panel = GlPanel::Silhouette;
+    // Depth-test the lines against pass 1 (hidden contours disappear); off draws every segment
+    // and skips pass 1 on the silhouette panel (the paper's "visibility off" rows).
+    bool visibility = true;
+    bool linesOnIso = false; // also draw the silhouette on the iso panel
+    float lineWidth = 1.0f;  // pixels; above 1 the segments are drawn as screen-space quads
+    glm::vec4 lineColour{0.0f, 0.0f, 0.0f, 1.0f};
+    glm::vec4 background{1.0f, 1.0f, 1.0f, 1.0f};
+    glm::vec3 frontColour{0.93f, 0.89f, 0.80f}; // bone
+    glm::vec3 backColour{0.55f, 0.35f, 0.35f};  // inside of a surface cut by the volume border
+    glm::vec4 material{0.15f, 0.80f, 0.25f, 32.0f}; // ambient, diffuse, specular, shininess
+    // Pass 1 is pushed back by glPolygonOffset(factor, units) so the lines, which lie exactly on
+    // the surface, win the depth test where they are visible; depthBias (NDC) pulls the lines
+    // forward as well (glPolygonOffset does not apply to lines).
+    float polygonOffsetFactor = 2.0f;
+    float polygonOffsetUnits = 4.0f;
+    float depthBias = 0.0f;
+    bool countSegments = false; // query how many segments the geometry shader emitted
+};
+
+struct SilhouetteGlStats {
+    std::size_t triangles = 0;
+    std::size_t segments = 0; // only with countSegments (GL_PRIMITIVES_GENERATED)
+};
+
+class SilhouetteGlRenderer {
+public:
+    SilhouetteGlRenderer() = default;
+    ~SilhouetteGlRenderer();
+    SilhouetteGlRenderer(const SilhouetteGlRenderer&) = delete;
+    SilhouetteGlRenderer& operator=(const SilhouetteGlRenderer&) = delete;
+
+    // Compiles the shaders and creates the vertex arrays. Needs a current context; throws
+    // core::Error with the compile/link log or the GL error. Called by the first upload/render.
+    void initialize();
+    bool isInitialized() const { return m_surfaceProgram != 0; }
+    // Frees every GL object; the context they were created in must be current. Safe to call twice.
+    void release();
+
+    // Uploads an indexed mesh (positions and normals per vertex, three indices per triangle).
+    // Buffers are reused when the new data fits; throws core::Error for inconsistent sizes or
+    // indices out of range.
+    void uploadMesh(const Mesh& mesh);
+    void uploadMesh(std::span<const glm::vec3> positions, std::span<const glm::vec3> normals,
+                    std::span<const std::uint32_t> indices);
+    std::size_t triangleCount() const { return m_indexCount / 3; }
+
+    // Renders the uploaded mesh with the camera's matrices into the framebuffer object, sized to
+    // the camera's viewport (recreated only when the size changes).
+    SilhouetteGlStats render(const Camera& camera, const SilhouetteGlOptions& options = {});
+    // Same with explicit matrices: `viewer` is the eye (w = 1) or, for an orthographic camera, the
+    // unit direction toward the viewer (w = 0); `lightDirection` points toward the light.
+    SilhouetteGlStats render(const glm::mat4& viewProjection, glm::vec4 viewer, glm::vec3 lightDirection,
+                             int width, int height, const SilhouetteGlOptions& options = {});
+
+    // The last frame as RGBA8, top row first.
+    core::ImageRgba8 readImage() const;
+    // render() + readImage().
+    core::ImageRgba8 renderImage(const Camera& camera, const SilhouetteGlOptions& options = {});
+
+    // The framebuffer object and its colour texture (GL_RGBA8), for a GUI that blits or samples
+    // them into its own framebuffer.
+    unsigned framebuffer() const { return m_framebuffer; }
+    unsigned colourTexture() const { return m_colourTexture; }
+    int width() const { return m_width; }
+    int height() const { return m_height; }
+
+private:
+    void ensureFramebuffer(int width, int height);
+
+    unsigned m_surfaceProgram = 0;
+    unsigned m_lineProgram = 0;     // geometry shader emitting GL lines
+    unsigned m_wideLineProgram = 0; // geometry shader emitting quads
+    unsigned m_vertexArray = 0;
+    unsigned m_positionBuffer = 0;
+    unsigned m_normalBuffer = 0;
+    unsigned m_indexBuffer = 0;
+    unsigned m_segmentQuery = 0;
+    std::size_t m_vertexCapacity = 0; // vertices the position/normal buffers can hold
+    std::size_t m_indexCapacity = 0;
+    std::size_t m_indexCount = 0;
+
+    unsigned m_framebuffer = 0;
+    unsigned m_colourTexture = 0;
+    unsigned m_depthBuffer = 0;
+    int m_width = 0;
+    int m_height = 0;
+};
+
+} // namespace lw::render

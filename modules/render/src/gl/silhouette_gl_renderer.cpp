@@ -1,0 +1,387 @@
+#include "lw/render/silhouette_gl_renderer.h"
+
+#include "gl_api.h"
+#include "lw_render_shaders.h"
+
+#include "lw/core/error.h"
+#include "lw/core/log.h"
+
+#include <glm/gtc/type_ptr.hpp>
+
+#include <algorithm>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+namespace lw::render {
+
+namespace {
+
+const core::LogCategory kLog("lw.render");
+
+// Inserts `defines` after the #version line, which must stay first in a GLSL source.
+std::string withDefines(const char* source, const std::string& defines) {
+    std::string text(source);
+    if (defines.empty())
+        return text;
+    const std::size_t lineEnd = text.find('\n');
+    text.insert(lineEnd == std::string::npos ? text.size() : lineEnd + 1, defines);
+    return text;
+}
+
+GLuint compileShader(GLenum type, const std::string& source, const char* name) {
+    const GLuint shader = glCreateShader(type);
+    if (shader == 0)
+        throw core::Error(std::string("shader ") + name, "glCreateShader failed");
+    const char* text = source.c_str();
+    glShaderSource(shader, 1, &text, nullptr);
+    glCompileShader(shader);
+    GLint ok = GL_FALSE;
+    glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
+    if (!ok) {
+        GLint length = 0;
+        glGetShaderiv(shader, GL_INFO_LOG_LENGTH, &length);
+        std::string log(std::size_t(std::max(length, 1)), '\0');
+        glGetShaderInfoLog(shader, GLsizei(log.size()), nullptr, log.data());
+        glDeleteShader(shader);
+        throw core::Error(std::string("shader ") + name, "compile failed: " + std::string(log.c_str()));
+    }
+    return shader;
+}
+
+struct ShaderSource {
+    GLenum type;
+    std::string text;
+    const char* name;
+};
+
+GLuint linkProgram(const std::vector<ShaderSource>& sources, const char* name) {
+    std::vector<GLuint> shaders;
+    try {
+        for (const ShaderSource& source : sources)
+            shaders.push_back(compileShader(source.type, source.text, source.name));
+    } catch (...) {
+        for (GLuint shader : shaders)
+            glDeleteShader(shader);
+        throw;
+    }
+    const GLuint program = glCreateProgram();
+    for (GLuint shader : shaders)
+        glAttachShader(program, shader);
+    glLinkProgram(program);
+    // The program keeps the compiled code; the shader objects are not needed any more.
+    for (GLuint shader : shaders) {
+        glDetachShader(program, shader);
+        glDeleteShader(shader);
+    }
+    GLint ok = GL_FALSE;
+    glGetProgramiv(program, GL_LINK_STATUS, &ok);
+    if (!ok) {
+        GLint length = 0;
+        glGetProgramiv(program, GL_INFO_LOG_LENGTH, &length);
+        std::string log(std::size_t(std::max(length, 1)), '\0');
+        glGetProgramInfoLog(program, GLsizei(log.size()), nullptr, log.data());
+        glDeleteProgram(program);
+        throw core::Error(std::string("GL program ") + name, "link failed: " + std::string(log.c_str()));
+    }
+    gl::checkGlError(name);
+    return program;
+}
+
+GLint uniform(GLuint program, const char* name) {
+    // -1 (optimised away) is legal for glUniform*, so it is not an error here.
+    return glGetUniformLocation(program, name);
+}
+
+void deleteBuffer(GLuint& id) {
+    if (id)
+        glDeleteBuffers(1, &id);
+    id = 0;
+}
+
+void deleteProgram(GLuint& id) {
+    if (id)
+        glDeleteProgram(id);
+    id = 0;
+}
+
+// Grows a buffer only when the data does not fit (mode b re-uploads every frame: reallocating
+// then would cost a driver allocation per frame); otherwise overwrites the front part in place.
+void uploadBuffer(GLenum target, GLuint buffer, const void* data, std::size_t bytes, std::size_t& capacityBytes) {
+    glBindBuffer(target, buffer);
+    if (bytes > capacityBytes) {
+        glBufferData(target, GLsizeiptr(bytes), data, GL_DYNAMIC_DRAW);
+        capacityBytes = bytes;
+    } else if (bytes > 0) {
+        glBufferSubData(target, 0, GLsizeiptr(bytes), data);
+    }
+}
+
+} // namespace
+
+SilhouetteGlRenderer::~SilhouetteGlRenderer() {
+    if (m_surfaceProgram != 0)
+        kLog.debug("SilhouetteGlRenderer destroyed without release(); its GL objects go with the context");
+}
+
+void SilhouetteGlRenderer::initialize() {
+    if (isInitialized())
+        return;
+    gl::checkGlError("before SilhouetteGlRenderer::initialize"); // someone else's error is not ours
+    try {
+        m_surfaceProgram = linkProgram({{GL_VERTEX_SHADER, gl::shaders::surface_vert, "surface.vert.glsl"},
+                                        {GL_FRAGMENT_SHADER, gl::shaders::surface_frag, "surface.frag.glsl"}},
+                                       "surface");
+        m_lineProgram = linkProgram({{GL_VERTEX_SHADER, gl::shaders::silhouette_vert, "silhouette.vert.glsl"},
+                                     {GL_GEOMETRY_SHADER, gl::shaders::silhouette_geom, "silhouette.geom.glsl"},
+                                     {GL_FRAGMENT_SHADER, gl::shaders::silhouette_frag, "silhouette.frag.glsl"}},
+                                    "silhouette lines");
+        m_wideLineProgram =
+            linkProgram({{GL_VERTEX_SHADER, gl::shaders::silhouette_vert, "silhouette.vert.glsl"},
+                         {GL_GEOMETRY_SHADER, withDefines(gl::shaders::silhouette_geom, "#define LW_WIDE_LINES 1\n"),
+                          "silhouette.geom.glsl (LW_WIDE_LINES)"},
+                         {GL_FRAGMENT_SHADER, gl::shaders::silhouette_frag, "silhouette.frag.glsl"}},
+                        "silhouette wide lines");
+
+        glGenVertexArrays(1, &m_vertexArray);
+        glGenBuffers(1, &m_positionBuffer);
+        glGenBuffers(1, &m_normalBuffer);
+        glGenBuffers(1, &m_indexBuffer);
+        glGenQueries(1, &m_segmentQuery);
+        glBindVertexArray(m_vertexArray);
+        // Separate position and normal buffers: Mesh keeps them apart, so each uploads without
+        // an interleaving copy.
+        glBindBuffer(GL_ARRAY_BUFFER, m_positionBuffer);
+        glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, sizeof(glm::vec3), nullptr);
+        glEnableVertexAttribArray(0);
+        glBindBuffer(GL_ARRAY_BUFFER, m_normalBuffer);
+        glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, sizeof(glm::vec3), nullptr);
+        glEnableVertexAttribArray(1);
+        glBindVertexArray(0);
+        gl::checkGlError("SilhouetteGlRenderer::initialize");
+    } catch (...) {
+        release();
+        throw;
+    }
+}
+
+void SilhouetteGlRenderer::release() {
+    deleteProgram(m_surfaceProgram);
+    deleteProgram(m_lineProgram);
+    deleteProgram(m_wideLineProgram);
+    if (m_vertexArray)
+        glDeleteVertexArrays(1, &m_vertexArray);
+    m_vertexArray = 0;
+    deleteBuffer(m_positionBuffer);
+    deleteBuffer(m_normalBuffer);
+    deleteBuffer(m_indexBuffer);
+    if (m_segmentQuery)
+        glDeleteQueries(1, &m_segmentQuery);
+    m_segmentQuery = 0;
+    if (m_framebuffer)
+        glDeleteFramebuffers(1, &m_framebuffer);
+    m_framebuffer = 0;
+    if (m_colourTexture)
+        glDeleteTextures(1, &m_colourTexture);
+    m_colourTexture = 0;
+    if (m_depthBuffer)
+        glDeleteRenderbuffers(1, &m_depthBuffer);
+    m_depthBuffer = 0;
+    m_vertexCapacity = m_indexCapacity = m_indexCount = 0;
+    m_width = m_height = 0;
+}
+
+void SilhouetteGlRenderer::uploadMesh(const Mesh& mesh) {
+    uploadMesh(mesh.positions, mesh.normals, mesh.indices);
+}
+
+void SilhouetteGlRenderer::uploadMesh(std::span<const glm::vec3> positions, std::span<const glm::vec3> normals,
+                                      std::span<const std::uint32_t> indices) {
+    if (positions.size() != normals.size())
+        throw core::Error("GL mesh upload", std::to_string(positions.size()) + " positions but " +
+                                                std::to_string(normals.size()) + " normals");
+    if (indices.size() % 3 != 0)
+        throw core::Error("GL mesh upload", std::to_string(indices.size()) + " indices is not a multiple of 3");
+    // An index past the end would make the GPU read outside the buffer (undefined, not an error).
+    std::uint32_t maxIndex = 0;
+    for (std::uint32_t index : indices)
+        maxIndex = std::max(maxIndex, index);
+    if (!indices.empty() && maxIndex >= positions.size())
+        throw core::Error("GL mesh upload", "index " + std::to_string(maxIndex) + " out of range for " +
+                                                std::to_string(positions.size()) + " vertices");
+    initialize();
+    std::size_t vertexBytes = m_vertexCapacity * sizeof(glm::vec3);
+    std::size_t normalBytes = vertexBytes;
+    uploadBuffer(GL_ARRAY_BUFFER, m_positionBuffer, positions.data(), positions.size_bytes(), vertexBytes);
+    uploadBuffer(GL_ARRAY_BUFFER, m_normalBuffer, normals.data(), normals.size_bytes(), normalBytes);
+    m_vertexCapacity = std::min(vertexBytes, normalBytes) / sizeof(glm::vec3);
+    glBindBuffer(GL_ARRAY_BUFFER, 0);
+    // The element buffer binding is vertex array state.
+    glBindVertexArray(m_vertexArray);
+    std::size_t indexBytes = m_indexCapacity * sizeof(std::uint32_t);
+    uploadBuffer(GL_ELEMENT_ARRAY_BUFFER, m_indexBuffer, indices.data(), indices.size_bytes(), indexBytes);
+    m_indexCapacity = indexBytes / sizeof(std::uint32_t);
+    glBindVertexArray(0);
+    m_indexCount = indices.size();
+    gl::checkGlError("SilhouetteGlRenderer::uploadMesh");
+}
+
+void SilhouetteGlRenderer::ensureFramebuffer(int width, int height) {
+    if (width <= 0 || height <= 0)
+        throw core::Error("GL render target", "invalid size " + std::to_string(width) + "x" + std::to_string(height));
+    if (m_framebuffer && width == m_width && height == m_height)
+        return;
+    GLint maxSize = 0;
+    glGetIntegerv(GL_MAX_RENDERBUFFER_SIZE, &maxSize);
+    if (width > maxSize || height > maxSize)
+        throw core::Error("GL render target", std::to_string(width) + "x" + std::to_string(height) +
+                                                  " exceeds the driver's limit of " + std::to_string(maxSize));
+    if (!m_framebuffer)
+        glGenFramebuffers(1, &m_framebuffer);
+    if (!m_colourTexture)
+        glGenTextures(1, &m_colourTexture);
+    if (!m_depthBuffer)
+        glGenRenderbuffers(1, &m_depthBuffer);
+    glBindTexture(GL_TEXTURE_2D, m_colourTexture);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, width, height, 0, GL_RGBA, GL_UNSIGNED_BYTE, nullptr);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    glBindTexture(GL_TEXTURE_2D, 0);
+    // 32-bit float depth: CT surfaces span hundreds of mm and the lines' depth offset is small.
+    glBindRenderbuffer(GL_RENDERBUFFER, m_depthBuffer);
+    glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT32F, width, height);
+    glBindRenderbuffer(GL_RENDERBUFFER, 0);
+    glBindFramebuffer(GL_FRAMEBUFFER, m_framebuffer);
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, m_colourTexture, 0);
+    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, m_depthBuffer);
+    const GLenum status = glCheckFramebufferStatus(GL_FRAMEBUFFER);
+    if (status != GL_FRAMEBUFFER_COMPLETE)
+        throw core::Error("GL render target", "framebuffer incomplete (status 0x" +
+                                                  [&] {
+                                                      char hex[16];
+                                                      std::snprintf(hex, sizeof hex, "%04X", status);
+                                                      return std::string(hex);
+                                                  }() +
+                                                  ")");
+    gl::checkGlError("SilhouetteGlRenderer: framebuffer");
+    m_width = width;
+    m_height = height;
+}
+
+SilhouetteGlStats SilhouetteGlRenderer::render(const Camera& camera, const SilhouetteGlOptions& options) {
+    const glm::dvec3 toViewer = -camera.forward();
+    const glm::vec4 viewer = camera.isOrthographic() ? glm::vec4(glm::vec3(toViewer), 0.0f)
+                                                     : glm::vec4(glm::vec3(camera.eye()), 1.0f);
+    // A light above and left of the eye, so the shading shows the surface's relief (a pure
+    // headlight flattens it).
+    const glm::vec3 light = glm::normalize(glm::vec3(toViewer + 0.45 * camera.up() - 0.30 * camera.right()));
+    return render(camera.viewProjectionMatrixF(), viewer, light, camera.width(), camera.height(), options);
+}
+
+SilhouetteGlStats SilhouetteGlRenderer::render(const glm::mat4& viewProjection, glm::vec4 viewer,
+                                               glm::vec3 lightDirection, int width, int height,
+                                               const SilhouetteGlOptions& options) {
+    initialize();
+    ensureFramebuffer(width, height);
+    if (options.lineWidth <= 0.0f)
+        throw core::Error("silhouette line width", std::to_string(options.lineWidth) + " is not positive");
+
+    glBindFramebuffer(GL_FRAMEBUFFER, m_framebuffer);
+    glViewport(0, 0, width, height);
+    glDisable(GL_BLEND);
+    glDisable(GL_CULL_FACE);
+    glDisable(GL_SCISSOR_TEST);
+    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    glDepthMask(GL_TRUE);
+    glClearColor(options.background.r, options.background.g, options.background.b, options.background.a);
+    glClearDepth(1.0);
+    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+
+    SilhouetteGlStats stats;
+    stats.triangles = triangleCount();
+    const bool iso = options.panel == GlPanel::Iso;
+    const bool drawLines = !iso || options.linesOnIso;
+    const GLsizei count = GLsizei(m_indexCount);
+    glBindVertexArray(m_vertexArray);
+
+    // Pass 1: the surface. The silhouette panel needs it only as the depth to test against.
+    if (count > 0 && (iso || options.visibility)) {
+        glUseProgram(m_surfaceProgram);
+        glUniformMatrix4fv(uniform(m_surfaceProgram, "uViewProjection"), 1, GL_FALSE, glm::value_ptr(viewProjection));
+        glUniform4fv(uniform(m_surfaceProgram, "uViewer"), 1, glm::value_ptr(viewer));
+        glUniform3fv(uniform(m_surfaceProgram, "uLightDirection"), 1, glm::value_ptr(lightDirection));
+        glUniform3fv(uniform(m_surfaceProgram, "uFrontColour"), 1, glm::value_ptr(options.frontColour));
+        glUniform3fv(uniform(m_surfaceProgram, "uBackColour"), 1, glm::value_ptr(options.backColour));
+        glUniform4fv(uniform(m_surfaceProgram, "uMaterial"), 1, glm::value_ptr(options.material));
+        glEnable(GL_DEPTH_TEST);
+        glDepthFunc(GL_LESS);
+        glEnable(GL_POLYGON_OFFSET_FILL);
+        glPolygonOffset(options.polygonOffsetFactor, options.polygonOffsetUnits);
+        if (!iso)
+            glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+        glDrawElements(GL_TRIANGLES, count, GL_UNSIGNED_INT, nullptr);
+        glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+        glDisable(GL_POLYGON_OFFSET_FILL);
+    }
+
+    // Pass 2: the silhouette segments from the geometry shader.
+    if (count > 0 && drawLines) {
+        const bool wide = options.lineWidth > 1.0f;
+        const GLuint program = wide ? m_wideLineProgram : m_lineProgram;
+        glUseProgram(program);
+        glUniformMatrix4fv(uniform(program, "uViewProjection"), 1, GL_FALSE, glm::value_ptr(viewProjection));
+        glUniform4fv(uniform(program, "uViewer"), 1, glm::value_ptr(viewer));
+        glUniform1f(uniform(program, "uDepthBias"), options.depthBias);
+        glUniform2f(uniform(program, "uViewportSize"), float(width), float(height));
+        glUniform1f(uniform(program, "uLineWidth"), options.lineWidth);
+        glUniform4fv(uniform(program, "uLineColour"), 1, glm::value_ptr(options.lineColour));
+        if (options.visibility) {
+            glEnable(GL_DEPTH_TEST);
+            glDepthFunc(GL_LEQUAL);
+        } else {
+            glDisable(GL_DEPTH_TEST);
+        }
+        // Lines do not change the depth buffer: a contour must not hide another one behind it
+        // that the surface itself leaves visible.
+        glDepthMask(GL_FALSE);
+        if (options.countSegments)
+            glBeginQuery(GL_PRIMITIVES_GENERATED, m_segmentQuery);
+        glDrawElements(GL_TRIANGLES, count, GL_UNSIGNED_INT, nullptr);
+        if (options.countSegments) {
+            glEndQuery(GL_PRIMITIVES_GENERATED);
+            GLuint primitives = 0;
+            glGetQueryObjectuiv(m_segmentQuery, GL_QUERY_RESULT, &primitives);
+            // A wide segment is one triangle strip of two triangles.
+            stats.segments = wide ? primitives / 2 : primitives;
+        }
+        glDepthMask(GL_TRUE);
+    }
+    glDisable(GL_DEPTH_TEST);
+    glBindVertexArray(0);
+    glUseProgram(0);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    gl::checkGlError("SilhouetteGlRenderer::render");
+    return stats;
+}
+
+core::ImageRgba8 SilhouetteGlRenderer::readImage() const {
+    if (!m_framebuffer)
+        throw core::Error("GL read-back", "nothing has been rendered yet");
+    core::ImageRgba8 image(m_width, m_height);
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, m_framebuffer);
+    glReadBuffer(GL_COLOR_ATTACHMENT0);
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
+    glReadPixels(0, 0, m_width, m_height, GL_RGBA, GL_UNSIGNED_BYTE, image.bytes());
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+    gl::checkGlError("SilhouetteGlRenderer::readImage");
+    image.flipRows(); // GL's first row is the bottom one
+    return image;
+}
+
+core::ImageRgba8 SilhouetteGlRenderer::renderImage(const Camera& camera, const SilhouetteGlOptions& options) {
+    render(camera, options);
+    return readImage();
+}
+
+} // namespace lw::render

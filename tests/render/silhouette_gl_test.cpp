@@ -1,0 +1,424 @@
+// Method 1's GL pipeline on a headless EGL context (llvmpipe here and in CI, NVIDIA on the GPU
+// machine). The binary has its own main: without an OpenGL 4.x context it exits with the SKIP
+// code, so a machine without GL reports SKIP rather than a PASS that tested nothing.
+
+#include "lw/core/error.h"
+#include "lw/core/image_compare.h"
+#include "lw/core/log.h"
+#include "lw/core/png_io.h"
+#include "lw/kernels/silhouette_segment.h"
+#include "lw/render/camera.h"
+#include "lw/render/gl_context.h"
+#include "lw/render/iso_surface.h"
+#include "lw/render/silhouette_gl_renderer.h"
+#include "test_support.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <numbers>
+#include <utility>
+
+using namespace lw::render;
+using lw::core::ImageRgba8;
+using lw::core::Rgba8;
+
+namespace {
+
+lw::render::EglHeadlessContext* g_context = nullptr;
+
+constexpr Rgba8 kWhite{255, 255, 255, 255};
+
+bool isBackground(Rgba8 p) { return p.r == 255 && p.g == 255 && p.b == 255; }
+
+// An icosphere: a subdivided icosahedron pushed onto the sphere, outward normals, counter-clockwise
+// seen from outside (as marching cubes delivers).
+Mesh icosphere(glm::vec3 centre, float radius, int subdivisions) {
+    const float t = (1.0f + std::sqrt(5.0f)) / 2.0f;
+    std::vector<glm::vec3> unit{{-1, t, 0}, {1, t, 0}, {-1, -t, 0}, {1, -t, 0}, {0, -1, t}, {0, 1, t},
+                                {0, -1, -t}, {0, 1, -t}, {t, 0, -1}, {t, 0, 1}, {-t, 0, -1}, {-t, 0, 1}};
+    for (auto& p : unit)
+        p = glm::normalize(p);
+    std::vector<std::uint32_t> tris{0, 11, 5, 0, 5,  1, 0, 1, 7, 0, 7,  10, 0, 10, 11, 1, 5, 9, 5, 11,
+                                    4, 11, 10, 2, 10, 7, 6, 7, 1, 8, 3, 9,  4, 3,  4,  2, 3, 2, 6, 3,
+                                    6, 8,  3,  8, 9,  4, 9, 5, 2, 4, 11, 6, 2, 10, 8,  6, 7, 9, 8, 1};
+    for (int level = 0; level < subdivisions; ++level) {
+        std::map<std::pair<std::uint32_t, std::uint32_t>, std::uint32_t> midpoints;
+        auto midpoint = [&](std::uint32_t a, std::uint32_t b) {
+            const auto key = std::minmax(a, b);
+            auto [it, inserted] = midpoints.try_emplace({key.first, key.second}, std::uint32_t(unit.size()));
+            if (inserted)
+                unit.push_back(glm::normalize(unit[a] + unit[b]));
+            return it->second;
+        };
+        std::vector<std::uint32_t> next;
+        for (std::size_t i = 0; i < tris.size(); i += 3) {
+            const std::uint32_t a = tris[i], b = tris[i + 1], c = tris[i + 2];
+            const std::uint32_t ab = midpoint(a, b), bc = midpoint(b, c), ca = midpoint(c, a);
+            next.insert(next.end(), {a, ab, ca, b, bc, ab, c, ca, bc, ab, bc, ca});
+        }
+        tris = std::move(next);
+    }
+    Mesh mesh;
+    for (const auto& n : unit) {
+        mesh.positions.push_back(centre + radius * n);
+        mesh.normals.push_back(n);
+    }
+    mesh.indices = std::move(tris);
+    return mesh;
+}
+
+void append(Mesh& to, const Mesh& from) {
+    const auto offset = std::uint32_t(to.positions.size());
+    to.positions.insert(to.positions.end(), from.positions.begin(), from.positions.end());
+    to.normals.insert(to.normals.end(), from.normals.begin(), from.normals.end());
+    for (std::uint32_t index : from.indices)
+        to.indices.push_back(index + offset);
+}
+
+Camera orthoCamera(const Aabb& bounds, int size, double az = 0.0, double el = 0.0) {
+    CameraSetup setup;
+    setup.bounds = bounds;
+    setup.projection = Projection::Orthographic;
+    setup.azimuthDeg = az;
+    setup.elevationDeg = el;
+    return Camera(setup, size, size);
+}
+
+// Projected centre and radius (pixels) of a sphere under an orthographic camera.
+std::pair<glm::dvec2, double> projectedDisc(const Camera& camera, glm::dvec3 centre, double radius) {
+    const glm::dvec2 c = camera.project(centre).pixel;
+    const glm::dvec2 r = camera.project(centre + radius * camera.right()).pixel;
+    return {c, glm::length(r - c)};
+}
+
+double distanceFrom(glm::dvec2 centre, int x, int y) { return glm::length(glm::dvec2(x + 0.5, y + 0.5) - centre); }
+
+std::filesystem::path outputDir() {
+    std::filesystem::path dir = std::filesystem::current_path() / "silhouette_gl_output";
+    std::filesystem::create_directories(dir);
+    return dir;
+}
+
+class SilhouetteGl : public testing::Test {
+protected:
+    void SetUp() override { g_context->makeCurrent(); }
+    void TearDown() override { m_renderer.release(); }
+    SilhouetteGlRenderer m_renderer;
+};
+
+} // namespace
+
+TEST(GlContext, ReportsRenderer) {
+    ASSERT_NE(g_context, nullptr);
+    EXPECT_FALSE(g_context->renderer().empty());
+    EXPECT_FALSE(g_context->version().empty());
+    EXPECT_NE(g_context->description().find(g_context->renderer()), std::string::npos);
+    std::printf("GL context: %s\n", g_context->description().c_str());
+}
+
+TEST_F(SilhouetteGl, IsoPanelShadesTheProjectedDisc) {
+    const Mesh sphere = icosphere({0, 0, 0}, 1.0f, 4);
+    const Camera camera = orthoCamera({{-1, -1, -1}, {1, 1, 1}}, 160);
+    const auto [centre, radius] = projectedDisc(camera, {0, 0, 0}, 1.0);
+    m_renderer.uploadMesh(sphere);
+    SilhouetteGlOptions options;
+    options.panel = GlPanel::Iso;
+    const ImageRgba8 image = m_renderer.renderImage(camera, options);
+    ASSERT_EQ(image.width(), 160);
+    ASSERT_EQ(image.height(), 160);
+    std::size_t inside = 0, shadedInside = 0, outside = 0, backgroundOutside = 0;
+    int darkest = 255, brightest = 0;
+    for (int y = 0; y < image.height(); ++y)
+        for (int x = 0; x < image.width(); ++x) {
+            const double d = distanceFrom(centre, x, y);
+            const Rgba8 p = image.at(x, y);
+            if (d < radius - 2.0) {
+                ++inside;
+                shadedInside += !isBackground(p);
+                darkest = std::min<int>(darkest, p.g);
+                brightest = std::max<int>(brightest, p.g);
+            } else if (d > radius + 2.0) {
+                ++outside;
+                backgroundOutside += isBackground(p);
+            }
+        }
+    EXPECT_GT(inside, 1000u);
+    EXPECT_EQ(shadedInside, inside);
+    EXPECT_EQ(backgroundOutside, outside);
+    // Shading, not a flat fill: the rim facing away from the light is much darker than the highlight.
+    EXPECT_GT(brightest - darkest, 80);
+    // The light sits above-left of the eye: the upper-left quadrant is brighter than the lower-right.
+    const Rgba8 upperLeft = image.at(int(centre.x - radius * 0.4), int(centre.y - radius * 0.4));
+    const Rgba8 lowerRight = image.at(int(centre.x + radius * 0.4), int(centre.y + radius * 0.4));
+    EXPECT_GT(int(upperLeft.g), int(lowerRight.g) + 20);
+}
+
+TEST_F(SilhouetteGl, SilhouettePanelDrawsARingAtTheProjectedRadius) {
+    const Mesh sphere = icosphere({10, -5, 3}, 20.0f, 4);
+    const Aabb bounds{{-10, -25, -17}, {30, 15, 23}};
+    for (auto [az, el] : {std::pair{0.0, 0.0}, std::pair{35.0, 20.0}, std::pair{-120.0, -60.0}}) {
+        SCOPED_TRACE(testing::Message() << "az " << az << " el " << el);
+        const Camera camera = orthoCamera(bounds, 200, az, el);
+        const auto [centre, radius] = projectedDisc(camera, {10, -5, 3}, 20.0);
+        m_renderer.uploadMesh(sphere);
+        const ImageRgba8 image = m_renderer.renderImage(camera);
+        std::size_t offRing = 0, lines = 0;
+        // Bins of about two pixels of arc: finer bins could fall between pixel centres.
+        std::vector<bool> angleCovered(180, false);
+        for (int y = 0; y < image.height(); ++y)
+            for (int x = 0; x < image.width(); ++x) {
+                const Rgba8 p = image.at(x, y);
+                if (isBackground(p))
+                    continue;
+                ++lines;
+                EXPECT_EQ(p, (Rgba8{0, 0, 0, 255})) << "line colour at " << x << "," << y;
+                const double d = distanceFrom(centre, x, y);
+                if (std::abs(d - radius) > 2.0)
+                    ++offRing;
+                const double angle = std::atan2(y + 0.5 - centre.y, x + 0.5 - centre.x);
+                angleCovered[std::size_t(int(std::floor((angle + std::numbers::pi) / (2 * std::numbers::pi) * 180.0)) % 180)] = true;
+            }
+        if (HasFailure())
+            lw::core::writePng(outputDir() / ("ring_az" + std::to_string(int(az)) + ".png"), image);
+        EXPECT_EQ(offRing, 0u) << "line pixels away from the projected radius " << radius;
+        EXPECT_EQ(std::count(angleCovered.begin(), angleCovered.end(), false), 0) << "gaps in the ring";
+        // A closed curve: every line pixel has at least two 8-neighbours on the line (a gap leaves
+        // two pixels with one).
+        std::size_t loose = 0;
+        for (int y = 1; y + 1 < image.height(); ++y)
+            for (int x = 1; x + 1 < image.width(); ++x) {
+                if (isBackground(image.at(x, y)))
+                    continue;
+                int neighbours = 0;
+                for (int dy = -1; dy <= 1; ++dy)
+                    for (int dx = -1; dx <= 1; ++dx)
+                        neighbours += (dx || dy) && !isBackground(image.at(x + dx, y + dy));
+                loose += neighbours < 2;
+            }
+        EXPECT_EQ(loose, 0u) << "line pixels with fewer than two neighbours (gaps)";
+        // A one-pixel ring: about its circumference in pixels, not a filled band.
+        EXPECT_GT(double(lines), 2.0 * std::numbers::pi * radius * 0.9);
+        EXPECT_LT(double(lines), 2.0 * std::numbers::pi * radius * 1.6);
+    }
+}
+
+TEST_F(SilhouetteGl, WideLinesAreWider) {
+    const Mesh sphere = icosphere({0, 0, 0}, 1.0f, 4);
+    const Camera camera = orthoCamera({{-1, -1, -1}, {1, 1, 1}}, 160, 20.0, 10.0);
+    const auto [centre, radius] = projectedDisc(camera, {0, 0, 0}, 1.0);
+    m_renderer.uploadMesh(sphere);
+    auto countLines = [&](float width, double band) {
+        SilhouetteGlOptions options;
+        options.lineWidth = width;
+        options.lineColour = {0.8f, 0.1f, 0.1f, 1.0f};
+        const ImageRgba8 image = m_renderer.renderImage(camera, options);
+        std::size_t lines = 0;
+        for (int y = 0; y < image.height(); ++y)
+            for (int x = 0; x < image.width(); ++x)
+                if (!isBackground(image.at(x, y))) {
+                    ++lines;
+                    EXPECT_NEAR(distanceFrom(centre, x, y), radius, band);
+                    EXPECT_EQ(image.at(x, y), (Rgba8{204, 26, 26, 255}));
+                }
+        return lines;
+    };
+    const std::size_t thin = countLines(1.0f, 2.0);
+    const std::size_t wide = countLines(4.0f, 3.5);
+    EXPECT_GT(double(wide), 3.0 * double(thin));
+    EXPECT_LT(double(wide), 5.5 * double(thin));
+}
+
+TEST_F(SilhouetteGl, VisibilityHidesTheSphereBehind) {
+    // The eye is at -y (azimuth 0): the small sphere sits behind the big one and projects inside it.
+    Mesh scene = icosphere({0, 0, 0}, 1.0f, 4);
+    append(scene, icosphere({0, 3.0f, 0}, 0.5f, 4));
+    const Camera camera = orthoCamera({{-1, -1, -1}, {1, 3.5, 1}}, 200);
+    const auto [centre, bigRadius] = projectedDisc(camera, {0, 0, 0}, 1.0);
+    const double smallRadius = projectedDisc(camera, {0, 3, 0}, 0.5).second;
+    ASSERT_LT(smallRadius + 5.0, bigRadius);
+    m_renderer.uploadMesh(scene);
+    auto ringPixels = [&](bool visibility) {
+        SilhouetteGlOptions options;
+        options.visibility = visibility;
+        const ImageRgba8 image = m_renderer.renderImage(camera, options);
+        std::size_t big = 0, small = 0, other = 0;
+        for (int y = 0; y < image.height(); ++y)
+            for (int x = 0; x < image.width(); ++x) {
+                if (isBackground(image.at(x, y)))
+                    continue;
+                const double d = distanceFrom(centre, x, y);
+                if (std::abs(d - bigRadius) <= 2.0)
+                    ++big;
+                else if (std::abs(d - smallRadius) <= 2.0)
+                    ++small;
+                else
+                    ++other;
+            }
+        return std::tuple{big, small, other};
+    };
+    const double bigCircumference = 2.0 * std::numbers::pi * bigRadius;
+    const double smallCircumference = 2.0 * std::numbers::pi * smallRadius;
+    const auto [bigOn, smallOn, otherOn] = ringPixels(true);
+    EXPECT_GT(double(bigOn), 0.9 * bigCircumference);
+    EXPECT_EQ(smallOn, 0u);
+    EXPECT_EQ(otherOn, 0u);
+    const auto [bigOff, smallOff, otherOff] = ringPixels(false);
+    EXPECT_GT(double(bigOff), 0.9 * bigCircumference);
+    EXPECT_GT(double(smallOff), 0.9 * smallCircumference);
+    EXPECT_EQ(otherOff, 0u);
+}
+
+TEST_F(SilhouetteGl, SegmentCountMatchesTheCpuRule) {
+    const Mesh sphere = icosphere({1, 2, 3}, 5.0f, 3);
+    CameraSetup setup;
+    setup.bounds = {{-4, -3, -2}, {6, 7, 8}};
+    setup.azimuthDeg = 25.0;
+    setup.elevationDeg = 17.0;
+    for (auto projection : {Projection::Orthographic, Projection::Perspective}) {
+        setup.projection = projection;
+        const Camera camera(setup, 96, 96);
+        const bool ortho = camera.isOrthographic();
+        const glm::vec3 eyeOrDirection = ortho ? glm::vec3(-camera.forward()) : glm::vec3(camera.eye());
+        std::size_t expected = 0;
+        for (std::size_t i = 0; i < sphere.indices.size(); i += 3) {
+            glm::vec3 p[3];
+            float d[3];
+            for (int k = 0; k < 3; ++k) {
+                p[k] = sphere.positions[sphere.indices[i + k]];
+                d[k] = lw::kernels::silhouetteDistance(p[k], sphere.normals[sphere.indices[i + k]], eyeOrDirection, ortho);
+            }
+            lw::kernels::SegmentEndpoints segment;
+            expected += lw::kernels::silhouetteSegment(p, d, segment);
+        }
+        ASSERT_GT(expected, 20u);
+        m_renderer.uploadMesh(sphere);
+        SilhouetteGlOptions options;
+        options.countSegments = true;
+        options.visibility = false;
+        for (float width : {1.0f, 3.0f}) {
+            options.lineWidth = width;
+            const SilhouetteGlStats stats = m_renderer.render(camera, options);
+            EXPECT_EQ(stats.triangles, sphere.triangleCount());
+            // GPU and CPU may round a d near zero differently: allow a couple of triangles.
+            EXPECT_NEAR(double(stats.segments), double(expected), 2.0) << (ortho ? "ortho" : "perspective");
+        }
+    }
+}
+
+TEST_F(SilhouetteGl, ReuploadReusesBuffersAndGivesTheSameImage) {
+    const Mesh small = icosphere({0, 0, 0}, 1.0f, 2);
+    Mesh big = icosphere({0, 0, 0}, 1.0f, 4);
+    append(big, icosphere({0.5f, -0.5f, 0.3f}, 0.4f, 3));
+    const Camera camera = orthoCamera({{-1, -1, -1}, {1, 1, 1}}, 96, 40.0, 30.0);
+    SilhouetteGlOptions options;
+    options.panel = GlPanel::Iso;
+    options.linesOnIso = true;
+    m_renderer.uploadMesh(small);
+    const ImageRgba8 first = m_renderer.renderImage(camera, options);
+    m_renderer.uploadMesh(big);
+    EXPECT_EQ(m_renderer.triangleCount(), big.triangleCount());
+    const ImageRgba8 bigImage = m_renderer.renderImage(camera, options);
+    EXPECT_NE(bigImage, first);
+    m_renderer.uploadMesh(small); // fits in the big buffers: overwritten in place
+    EXPECT_EQ(m_renderer.triangleCount(), small.triangleCount());
+    EXPECT_EQ(m_renderer.renderImage(camera, options), first);
+}
+
+TEST_F(SilhouetteGl, EmptyMeshGivesTheBackground) {
+    m_renderer.uploadMesh(Mesh{});
+    const Camera camera = orthoCamera({{-1, -1, -1}, {1, 1, 1}}, 32);
+    SilhouetteGlOptions options;
+    options.background = {0.0f, 0.0f, 0.0f, 1.0f};
+    const ImageRgba8 image = m_renderer.renderImage(camera, options);
+    EXPECT_EQ(image, ImageRgba8(32, 32, Rgba8{0, 0, 0, 255}));
+}
+
+TEST_F(SilhouetteGl, RejectsInconsistentMeshes) {
+    Mesh mesh = icosphere({0, 0, 0}, 1.0f, 0);
+    Mesh badIndex = mesh;
+    badIndex.indices[5] = std::uint32_t(mesh.positions.size());
+    EXPECT_THROW(m_renderer.uploadMesh(badIndex), lw::core::Error);
+    Mesh badNormals = mesh;
+    badNormals.normals.pop_back();
+    EXPECT_THROW(m_renderer.uploadMesh(badNormals), lw::core::Error);
+    Mesh badCount = mesh;
+    badCount.indices.pop_back();
+    EXPECT_THROW(m_renderer.uploadMesh(badCount), lw::core::Error);
+}
+
+// Golden images from llvmpipe. Tolerances leave room for another rasterizer (NVIDIA): shading
+// may differ by a few levels everywhere and edge pixels may flip; lines may move by a pixel.
+TEST_F(SilhouetteGl, GoldenImages) {
+    Mesh scene = icosphere({0, 0, 0}, 1.0f, 4);
+    append(scene, icosphere({0.9f, -0.4f, 0.5f}, 0.6f, 4));
+    append(scene, icosphere({-0.8f, 0.6f, -0.6f}, 0.5f, 3));
+    CameraSetup setup;
+    setup.bounds = {{-1.3, -1.1, -1.1}, {1.5, 1.2, 1.1}};
+    setup.azimuthDeg = 30.0;
+    setup.elevationDeg = 20.0;
+    setup.projection = Projection::Perspective;
+    const Camera camera(setup, 128, 128);
+    m_renderer.uploadMesh(scene);
+
+    struct Golden {
+        const char* name;
+        SilhouetteGlOptions options;
+        lw::core::ImageTolerance tolerance;
+    };
+    SilhouetteGlOptions iso;
+    iso.panel = GlPanel::Iso;
+    SilhouetteGlOptions silhouette;
+    SilhouetteGlOptions hiddenToo;
+    hiddenToo.visibility = false;
+    hiddenToo.lineWidth = 2.0f;
+    hiddenToo.lineColour = {0.1f, 0.2f, 0.7f, 1.0f};
+    const Golden goldens[] = {
+        {"gl_spheres_iso", iso, {12, 250}},
+        {"gl_spheres_silhouette", silhouette, {0, 250}},
+        {"gl_spheres_silhouette_novis_wide", hiddenToo, {0, 400}},
+    };
+    const std::filesystem::path baselines = lw::test::sourceDir() / "tests/render/baselines";
+    const bool update = std::getenv("LINEWORK_UPDATE_BASELINES") != nullptr;
+    for (const Golden& golden : goldens) {
+        SCOPED_TRACE(golden.name);
+        const ImageRgba8 image = m_renderer.renderImage(camera, golden.options);
+        const std::filesystem::path baseline = baselines / (std::string(golden.name) + ".png");
+        if (update) {
+            std::filesystem::create_directories(baselines);
+            lw::core::writePng(baseline, image);
+            std::printf("wrote %s\n", baseline.c_str());
+            continue;
+        }
+        const auto comparison = lw::core::compareWithBaseline(image, baseline, golden.tolerance,
+                                                              outputDir() / (std::string(golden.name) + ".diff.png"));
+        EXPECT_TRUE(comparison.matches) << comparison.describe();
+    }
+    EXPECT_FALSE(update) << "LINEWORK_UPDATE_BASELINES is set: baselines were rewritten, nothing was compared";
+}
+
+int main(int argc, char** argv) {
+    testing::InitGoogleTest(&argc, argv);
+    // Same policy as tests/support/gtest_main.cpp: error-level log messages fail the test.
+    lw::core::setLogSink([](lw::core::LogLevel level, std::string_view category, const std::string& message) {
+        std::fprintf(stderr, "[%.*s] %s\n", int(category.size()), category.data(), message.c_str());
+        if (level == lw::core::LogLevel::Error)
+            ADD_FAILURE() << "error logged in " << category << ": " << message;
+    });
+    std::unique_ptr<EglHeadlessContext> context;
+    try {
+        context = std::make_unique<EglHeadlessContext>();
+    } catch (const lw::core::Error& error) {
+        std::printf("SKIP: no headless OpenGL context: %s\n", error.what());
+        return LINEWORK_SKIP_CODE;
+    }
+    g_context = context.get();
+    const int result = RUN_ALL_TESTS();
+    g_context = nullptr;
+    return result;
+}
