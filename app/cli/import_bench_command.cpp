@@ -4,7 +4,6 @@
 // reported because the first run also pays for a cold file cache.
 #include "arguments.h"
 #include "commands.h"
-
 #include "lw/core/error.h"
 #include "lw/core/json_writer.h"
 #include "lw/volume/parallel.h"
@@ -87,7 +86,8 @@ int runBenchImport(const std::vector<std::string>& args, std::ostream& out) {
     }
     const ImportRun& first = runs.front();
     if (first.slices == 0)
-        throw core::Error(path, "no volume could be loaded: nothing to measure (see `linework-cli info`)");
+        throw core::Error(
+            path, "no volume could be loaded: nothing to measure (see `linework-cli info`)");
     const double medianTotal = median(totals);
     const double medianScan = median(scans);
     const double slicesPerSecond = double(first.slices) / medianTotal;
@@ -107,8 +107,8 @@ int runBenchImport(const std::vector<std::string>& args, std::ostream& out) {
         w.endObject();
         out << w.str() << "\n";
     } else {
-        out << path << ": " << first.files << " files, " << first.volumes << " volumes, " << first.slices
-            << " slices";
+        out << path << ": " << first.files << " files, " << first.volumes << " volumes, "
+            << first.slices << " slices";
         if (first.failedVolumes)
             out << " (" << first.failedVolumes << " volumes failed to load)";
         out << "\n  median of " << repeat << " runs: " << medianTotal * 1000.0 << " ms (scan "
@@ -119,7 +119,8 @@ int runBenchImport(const std::vector<std::string>& args, std::ostream& out) {
     return 0;
 #else
     (void)out;
-    throw core::Error("bench-import", "this linework-cli was built without DICOM support (LINEWORK_DICOM=OFF)");
+    throw core::Error("bench-import",
+                      "this linework-cli was built without DICOM support (LINEWORK_DICOM=OFF)");
 #endif
 }
 

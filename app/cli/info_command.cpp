@@ -1,7 +1,6 @@
 // `linework-cli info PATH [--json]`: what a DICOM input or a volume file holds.
 #include "arguments.h"
 #include "commands.h"
-
 #include "lw/core/error.h"
 #include "lw/core/json_writer.h"
 #include "lw/volume/volume_reader.h"
@@ -19,7 +18,8 @@
 namespace lw::cli {
 namespace {
 
-void printVolumeFile(const std::string& path, const volume::Volume& v, bool json, std::ostream& out) {
+void printVolumeFile(const std::string& path, const volume::Volume& v, bool json,
+                     std::ostream& out) {
     const auto range = v.realRange();
     const auto spacing = v.geometry().spacing();
     if (json) {
@@ -98,7 +98,8 @@ std::string optionalNumber(const std::optional<int>& number) {
     return number ? std::to_string(*number) : std::string("-");
 }
 
-void writeStrings(core::JsonWriter& w, std::string_view name, const std::vector<std::string>& items) {
+void writeStrings(core::JsonWriter& w, std::string_view name,
+                  const std::vector<std::string>& items) {
     w.key(name).beginArray();
     for (const auto& item : items)
         w.value(item);
@@ -113,8 +114,11 @@ void writeVolumeJson(core::JsonWriter& w, const dicom::VolumePlan& plan) {
     w.key("spacing").beginArray().value(spacing.x).value(spacing.y).value(spacing.z).endArray();
     w.field("slice_step_along_normal_mm", plan.geometry.sliceStepAlongNormal());
     w.field("voxel_type", std::string(volume::voxelTypeName(plan.voxelType)));
-    w.key("rescale").beginObject().field("slope", plan.valueMapping.slope)
-        .field("intercept", plan.valueMapping.intercept).endObject();
+    w.key("rescale")
+        .beginObject()
+        .field("slope", plan.valueMapping.slope)
+        .field("intercept", plan.valueMapping.intercept)
+        .endObject();
     w.field("tilt_deg", plan.tiltDegrees);
     w.field("uneven_gaps", plan.unevenGaps);
     w.key("gaps_mm").beginArray().value(plan.minGap).value(plan.maxGap).endArray();
@@ -128,8 +132,8 @@ void writeVolumeJson(core::JsonWriter& w, const dicom::VolumePlan& plan) {
 }
 
 void writeDicomJson(const std::string& path, const dicom::DicomIndex& index,
-                    const std::vector<SeriesReport>& reports, const std::vector<dicom::FileError>& errors,
-                    std::ostream& out) {
+                    const std::vector<SeriesReport>& reports,
+                    const std::vector<dicom::FileError>& errors, std::ostream& out) {
     core::JsonWriter w;
     w.beginObject();
     w.field("path", path).field("kind", "dicom");
@@ -147,7 +151,9 @@ void writeDicomJson(const std::string& path, const dicom::DicomIndex& index,
         for (const auto& study : patient.studies) {
             w.beginObject();
             w.field("study_instance_uid", study.studyInstanceUid).field("study_id", study.studyId);
-            w.field("description", study.description).field("date", study.date).field("time", study.time);
+            w.field("description", study.description)
+                .field("date", study.date)
+                .field("time", study.time);
             w.field("accession_number", study.accessionNumber);
             w.key("series").beginArray();
             for (const auto& series : study.series) {
@@ -188,8 +194,8 @@ void writeDicomJson(const std::string& path, const dicom::DicomIndex& index,
 }
 
 void writeDicomText(const std::string& path, const dicom::DicomIndex& index,
-                    const std::vector<SeriesReport>& reports, const std::vector<dicom::FileError>& errors,
-                    std::ostream& out) {
+                    const std::vector<SeriesReport>& reports,
+                    const std::vector<dicom::FileError>& errors, std::ostream& out) {
     out << path << (index.fromDicomdir ? " (DICOMDIR)" : "") << ": " << index.filesExamined
         << " files examined, " << index.instanceCount() << " instances in " << index.seriesCount()
         << " series, " << errors.size() << " errors\n";
@@ -202,26 +208,29 @@ void writeDicomText(const std::string& path, const dicom::DicomIndex& index,
                 << study.description << "\n";
             for (const auto& series : study.series) {
                 const SeriesReport& report = reports[next++];
-                out << "    series " << optionalNumber(series.seriesNumber) << "  " << series.modality << "  '"
-                    << series.description << "'  " << series.instances.size() << " instances\n"
+                out << "    series " << optionalNumber(series.seriesNumber) << "  "
+                    << series.modality << "  '" << series.description << "'  "
+                    << series.instances.size() << " instances\n"
                     << "      uid " << series.seriesInstanceUid << "\n";
                 for (const auto& plan : report.assembly.volumes) {
                     const auto s = plan.geometry.spacing();
-                    out << "      volume " << plan.dims.x << " x " << plan.dims.y << " x " << plan.dims.z
-                        << "  " << volume::voxelTypeName(plan.voxelType) << "  spacing " << s.x << " x " << s.y
-                        << " x " << s.z << " mm";
+                    out << "      volume " << plan.dims.x << " x " << plan.dims.y << " x "
+                        << plan.dims.z << "  " << volume::voxelTypeName(plan.voxelType)
+                        << "  spacing " << s.x << " x " << s.y << " x " << s.z << " mm";
                     if (!plan.label.empty())
                         out << "  [" << plan.label << "]";
                     out << "\n";
                     if (plan.tiltDegrees > 0.01)
-                        out << "        tilt " << std::fixed << std::setprecision(2) << plan.tiltDegrees
-                            << std::defaultfloat << " deg\n";
+                        out << "        tilt " << std::fixed << std::setprecision(2)
+                            << plan.tiltDegrees << std::defaultfloat << " deg\n";
                     if (plan.unevenGaps)
-                        out << "        uneven gaps " << plan.minGap << " .. " << plan.maxGap << " mm\n";
+                        out << "        uneven gaps " << plan.minGap << " .. " << plan.maxGap
+                            << " mm\n";
                     if (plan.missingSlices > 0)
                         out << "        missing slices " << plan.missingSlices << "\n";
                     for (const auto& uid : plan.transferSyntaxes)
-                        out << "        transfer syntax " << transferSyntaxName(uid) << " (" << uid << ")\n";
+                        out << "        transfer syntax " << transferSyntaxName(uid) << " (" << uid
+                            << ")\n";
                     for (const auto& warning : plan.warnings)
                         out << "        warning: " << warning << "\n";
                 }
@@ -292,9 +301,19 @@ int runInfo(const std::vector<std::string>& args, std::ostream& out) {
 #ifdef LINEWORK_HAVE_DICOM
     // Folders, DICOMDIRs and DICOM files go to the scanner; so do files no volume reader claims,
     // because DICOM without preamble or suffix is only recognised by parsing it.
-    if (dicom::looksLikeDicomInput(path) ||
-        volume::detectVolumeFormat(path) == volume::VolumeFormat::Unknown)
+    if (dicom::looksLikeDicomInput(path))
         return runDicomInfo(path, json, out);
+    if (volume::detectVolumeFormat(path) == volume::VolumeFormat::Unknown) {
+        try {
+            return runDicomInfo(path, json, out);
+        } catch (const core::Error& error) {
+            // Only a guess: say what was tried rather than just "not DICOM".
+            throw core::Error(path,
+                              "neither a known volume format (NRRD, NIfTI, PVM; raw data needs "
+                              "--raw WxHxD --type T) nor readable DICOM (" +
+                                  error.reason() + ")");
+        }
+    }
 #endif
     const volume::Volume v = volume::readVolumeFile(path);
     printVolumeFile(path, v, json, out);

@@ -15,7 +15,8 @@ struct CliResult {
 
 inline CliResult runCli(const std::string& arguments) {
     CliResult result;
-    const std::string command = std::string("\"") + LINEWORK_CLI_PATH + "\" " + arguments + " 2>/dev/null";
+    const std::string command =
+        std::string("\"") + LINEWORK_CLI_PATH + "\" " + arguments + " 2>/dev/null";
     FILE* pipe = popen(command.c_str(), "r");
     if (!pipe)
         return result;
@@ -43,6 +44,8 @@ inline std::string compact(const std::string& json) {
     return out;
 }
 
-inline std::string quoted(const std::string& path) { return "'" + path + "'"; }
+inline std::string quoted(const std::string& path) {
+    return "'" + path + "'";
+}
 
 } // namespace lw::test

@@ -1,12 +1,9 @@
 // Scanner, planner and loader on the shared third-party data (SOURCES.md says what each folder
 // holds; the expected numbers below come from there).
-#include "test_support.h"
-
 #include "lw/core/error.h"
 #include "lw/dicom/dicom_scanner.h"
 #include "lw/dicom/volume_assembler.h"
-
-#include <gtest/gtest.h>
+#include "test_support.h"
 
 #include <algorithm>
 #include <chrono>
@@ -14,6 +11,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <future>
+#include <gtest/gtest.h>
 #include <set>
 
 namespace fs = std::filesystem;
@@ -29,8 +27,9 @@ fs::path dataDir() {
 }
 
 std::size_t countReason(const dicom::DicomIndex& index, const std::string& reason) {
-    return std::size_t(std::count_if(index.errors.begin(), index.errors.end(),
-                                     [&](const dicom::FileError& e) { return e.reason == reason; }));
+    return std::size_t(
+        std::count_if(index.errors.begin(), index.errors.end(),
+                      [&](const dicom::FileError& e) { return e.reason == reason; }));
 }
 
 std::size_t studyCount(const dicom::DicomIndex& index) {
@@ -43,7 +42,8 @@ std::size_t studyCount(const dicom::DicomIndex& index) {
 const std::string kMissing = "referenced by DICOMDIR but missing";
 
 // All volume plans of every series in `dir` (folder scan).
-std::vector<dicom::VolumePlan> plansOf(const fs::path& dir, std::vector<std::string>* warnings = nullptr) {
+std::vector<dicom::VolumePlan> plansOf(const fs::path& dir,
+                                       std::vector<std::string>* warnings = nullptr) {
     const dicom::DicomIndex index = dicom::scanDicom(dir);
     std::vector<dicom::VolumePlan> plans;
     for (const auto* series : index.allSeries()) {
@@ -62,7 +62,8 @@ std::vector<dicom::VolumePlan> plansOf(const fs::path& dir, std::vector<std::str
 } // namespace
 
 TEST(DicomScannerData, PhilipsExportRootDicomdir) {
-    const auto index = dicom::scanDicom(dataDir() / "dicom/ct_headphantom_philips_dicomdir_export/DICOMDIR");
+    const auto index =
+        dicom::scanDicom(dataDir() / "dicom/ct_headphantom_philips_dicomdir_export/DICOMDIR");
     EXPECT_TRUE(index.fromDicomdir);
     EXPECT_EQ(countReason(index, kMissing), 338u);
     EXPECT_EQ(index.errors.size(), 338u);
@@ -92,11 +93,13 @@ TEST(DicomScannerData, PydicomTinyTree) {
     EXPECT_EQ(index.seriesCount(), 13u);
     EXPECT_EQ(studyCount(index), 6u);
     EXPECT_EQ(index.patients.size(), 2u);
-    EXPECT_TRUE(index.errors.empty()) << index.errors.front().file << ": " << index.errors.front().reason;
+    EXPECT_TRUE(index.errors.empty())
+        << index.errors.front().file << ": " << index.errors.front().reason;
 }
 
 TEST(DicomScannerData, TinyAlphaWithoutPixelDataIsReportedNotLoaded) {
-    const auto index = dicom::scanDicom(dataDir() / "dicom/dicomdir_pydicom_tiny_tree/TINY_ALPHA/DICOMDIR");
+    const auto index =
+        dicom::scanDicom(dataDir() / "dicom/dicomdir_pydicom_tiny_tree/TINY_ALPHA/DICOMDIR");
     EXPECT_EQ(index.instanceCount(), 50u);
     ASSERT_EQ(index.seriesCount(), 1u);
     const auto assembly = dicom::planVolumes(*index.allSeries()[0]);
@@ -209,13 +212,14 @@ TEST(DicomScannerData, EveryFileAndFolderScansPlansAndLoadsOrFailsClearly) {
             }
         });
         if (work.wait_for(std::chrono::seconds(120)) != std::future_status::ready) {
-            std::fprintf(stderr, "HANG: scanning/loading %s took over 120 s\n", input.string().c_str());
+            std::fprintf(stderr, "HANG: scanning/loading %s took over 120 s\n",
+                         input.string().c_str());
             std::fflush(stderr);
             std::_Exit(1); // the stuck thread cannot be joined; fail loudly instead
         }
         work.get();
     }
-    std::printf("%zu inputs: %zu volumes loaded, %zu load errors, %zu inputs rejected\n", inputs.size(),
-                loaded, loadErrors, scanErrors);
+    std::printf("%zu inputs: %zu volumes loaded, %zu load errors, %zu inputs rejected\n",
+                inputs.size(), loaded, loadErrors, scanErrors);
     EXPECT_GT(loaded, 100u);
 }

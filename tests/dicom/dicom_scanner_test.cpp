@@ -1,23 +1,20 @@
 // Scanner unit tests on folders and DICOMDIRs the tests write themselves, so every count and
 // every error below is known in advance.
 #include "dicom_test_writer.h"
-#include "test_support.h"
-
 #include "lw/core/error.h"
 #include "lw/core/progress.h"
 #include "lw/dicom/dicom_scanner.h"
+#include "test_support.h"
 
+#include <algorithm>
 #include <dcmtk/dcmdata/dcddirif.h>
 #include <dcmtk/dcmdata/dcdeftag.h>
 #include <dcmtk/dcmdata/dcfilefo.h>
 #include <dcmtk/dcmdata/dcmetinf.h>
 #include <dcmtk/dcmdata/dcsequen.h>
 #include <dcmtk/dcmdata/dcuid.h>
-
-#include <gtest/gtest.h>
-
-#include <algorithm>
 #include <fstream>
+#include <gtest/gtest.h>
 
 namespace fs = std::filesystem;
 using namespace lw;
@@ -35,7 +32,8 @@ struct SeriesSpec {
 };
 
 // Writes `spec.slices` axial slices 2 mm apart named <prefix>1, <prefix>2, ... into `dir`.
-std::vector<fs::path> writeSeries(const fs::path& dir, const SeriesSpec& spec, const std::string& prefix = "IM") {
+std::vector<fs::path> writeSeries(const fs::path& dir, const SeriesSpec& spec,
+                                  const std::string& prefix = "IM") {
     fs::create_directories(dir);
     std::vector<fs::path> paths;
     for (int i = 0; i < spec.slices; ++i) {
@@ -107,8 +105,10 @@ void writeRawDicomdir(const fs::path& path, const std::vector<DirRecord>& record
         sequence->append(item);
     }
     dataset->insert(sequence);
-    file.getMetaInfo()->putAndInsertString(DCM_MediaStorageSOPClassUID, UID_MediaStorageDirectoryStorage);
-    file.getMetaInfo()->putAndInsertString(DCM_MediaStorageSOPInstanceUID, dicom::test::makeTestUid().c_str());
+    file.getMetaInfo()->putAndInsertString(DCM_MediaStorageSOPClassUID,
+                                           UID_MediaStorageDirectoryStorage);
+    file.getMetaInfo()->putAndInsertString(DCM_MediaStorageSOPInstanceUID,
+                                           dicom::test::makeTestUid().c_str());
     const OFCondition status = file.saveFile(OFFilename(path.c_str()), EXS_LittleEndianExplicit);
     ASSERT_TRUE(status.good()) << status.text();
 }

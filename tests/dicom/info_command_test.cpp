@@ -3,9 +3,8 @@
 #include "dicom_test_writer.h"
 #include "test_support.h"
 
-#include <gtest/gtest.h>
-
 #include <fstream>
+#include <gtest/gtest.h>
 
 using namespace lw;
 
@@ -39,9 +38,9 @@ TEST(CliInfo, JsonOnAWrittenSeries) {
     const auto result = test::runCli("info " + test::quoted((dir / "series").string()) + " --json");
     ASSERT_EQ(result.exitCode, 0) << result.out;
     const std::string json = test::compact(result.out);
-    for (const char* key : {"\"patients\":[", "\"studies\":[", "\"series\":[", "\"volumes\":[", "\"tilt_deg\":",
-                            "\"errors\":[", "\"uneven_gaps\":false", "\"missing_slices\":0",
-                            "\"transfer_syntaxes\":["})
+    for (const char* key : {"\"patients\":[", "\"studies\":[", "\"series\":[", "\"volumes\":[",
+                            "\"tilt_deg\":", "\"errors\":[", "\"uneven_gaps\":false",
+                            "\"missing_slices\":0", "\"transfer_syntaxes\":["})
         EXPECT_NE(json.find(key), std::string::npos) << key << "\n" << result.out;
     EXPECT_NE(json.find("\"dims\":[5,6,3]"), std::string::npos) << result.out;
     EXPECT_NE(json.find("\"spacing\":[0.75,0.5,2]"), std::string::npos) << result.out;
@@ -67,5 +66,6 @@ TEST(CliInfo, NothingUsableExitsWithOne) {
     const auto result = test::runCli("info " + test::quoted(dir.path().string()) + " --json");
     EXPECT_EQ(result.exitCode, 1) << result.out;
     // Still machine-readable, with the reason per file.
-    EXPECT_NE(test::compact(result.out).find("a.txt\",\"reason\""), std::string::npos) << result.out;
+    EXPECT_NE(test::compact(result.out).find("a.txt\",\"reason\""), std::string::npos)
+        << result.out;
 }

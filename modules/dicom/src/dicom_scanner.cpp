@@ -1,18 +1,16 @@
 #include "lw/dicom/dicom_scanner.h"
 
 #include "dicom_file.h"
-
 #include "lw/core/error.h"
 #include "lw/core/log.h"
 #include "lw/volume/parallel.h"
 
+#include <algorithm>
+#include <cctype>
 #include <dcmtk/dcmdata/dcdeftag.h>
 #include <dcmtk/dcmdata/dcfilefo.h>
 #include <dcmtk/dcmdata/dcsequen.h>
 #include <dcmtk/dcmdata/dcuid.h>
-
-#include <algorithm>
-#include <cctype>
 #include <fstream>
 #include <map>
 #include <optional>
@@ -38,7 +36,9 @@ std::string lower(std::string text) {
     return text;
 }
 
-bool isNamedDicomdir(const fs::path& path) { return lower(path.filename().string()) == "dicomdir"; }
+bool isNamedDicomdir(const fs::path& path) {
+    return lower(path.filename().string()) == "dicomdir";
+}
 
 // Canonical where possible so that the same folder reached twice (symlinks) is recognised.
 fs::path canonicalOrAbsolute(const fs::path& path) {
@@ -117,7 +117,8 @@ void walkFolder(const fs::path& dir, WalkState& state) {
 // systems often end up lower case (or the other way round).
 class CaseInsensitiveResolver {
 public:
-    std::optional<fs::path> resolve(const fs::path& base, const std::vector<std::string>& components) {
+    std::optional<fs::path> resolve(const fs::path& base,
+                                    const std::vector<std::string>& components) {
         fs::path current = base;
         for (const auto& component : components) {
             fs::path candidate = current / component;
@@ -243,9 +244,10 @@ void handleReference(DcmItem& record, const fs::path& dicomdir, DicomdirState& s
         return;
     }
     if (!isInside(canonicalOrAbsolute(*resolved), state.canonicalRoot)) {
-        state.errors.push_back({resolved->string(), "referenced by " + dicomdir.string() +
-                                                        " but resolves (through a link) outside the file-set root " +
-                                                        state.root.string()});
+        state.errors.push_back(
+            {resolved->string(), "referenced by " + dicomdir.string() +
+                                     " but resolves (through a link) outside the file-set root " +
+                                     state.root.string()});
         return;
     }
     const std::string classInFile = trim(getString(record, DCM_ReferencedSOPClassUIDInFile));
@@ -273,8 +275,8 @@ void walkDicomdir(const fs::path& dicomdir, DicomdirState& state, int depth, boo
     }
     DcmFileFormat file;
     // Read-only: loadFile never writes. ERM_autoDetect accepts files without meta header.
-    const OFCondition status = file.loadFile(OFFilename(dicomdir.c_str()), EXS_Unknown, EGL_noChange,
-                                             DCM_MaxReadLength, ERM_autoDetect);
+    const OFCondition status = file.loadFile(OFFilename(dicomdir.c_str()), EXS_Unknown,
+                                             EGL_noChange, DCM_MaxReadLength, ERM_autoDetect);
     if (status.bad()) {
         const std::string reason = std::string("cannot read DICOMDIR: ") + status.text();
         if (topLevel)
@@ -284,7 +286,8 @@ void walkDicomdir(const fs::path& dicomdir, DicomdirState& state, int depth, boo
     }
     DcmDataset* dataset = file.getDataset();
     DcmSequenceOfItems* records = nullptr;
-    if (dataset == nullptr || dataset->findAndGetSequence(DCM_DirectoryRecordSequence, records).bad() ||
+    if (dataset == nullptr ||
+        dataset->findAndGetSequence(DCM_DirectoryRecordSequence, records).bad() ||
         records == nullptr || records->card() == 0) {
         state.warnings.push_back("DICOMDIR " + dicomdir.string() + " has no directory records");
         return;
@@ -374,9 +377,14 @@ HeaderResults readHeaders(const std::vector<fs::path>& files, core::Progress* pr
                 slot.instance.path = files[i].string();
             results.instances.push_back(std::move(slot.instance));
             break;
-        case Outcome::Error: results.errors.push_back({files[i].string(), slot.reason}); break;
-        case Outcome::Dicomdir: results.skippedDicomdirs.push_back(files[i].string()); break;
-        case Outcome::Pending: break;
+        case Outcome::Error:
+            results.errors.push_back({files[i].string(), slot.reason});
+            break;
+        case Outcome::Dicomdir:
+            results.skippedDicomdirs.push_back(files[i].string());
+            break;
+        case Outcome::Pending:
+            break;
         }
     }
     return results;
@@ -404,7 +412,8 @@ std::vector<PatientInfo> groupInstances(std::vector<InstanceInfo> instances,
     unique.reserve(instances.size());
     for (auto& instance : instances) {
         if (!instance.sopInstanceUid.empty()) {
-            auto [it, inserted] = firstPathOfUid.try_emplace(instance.sopInstanceUid, instance.path);
+            auto [it, inserted] =
+                firstPathOfUid.try_emplace(instance.sopInstanceUid, instance.path);
             if (!inserted) {
                 warnings.push_back("duplicate SOPInstanceUID " + instance.sopInstanceUid + ": " +
                                    instance.path + " ignored, " + it->second + " kept");
@@ -445,8 +454,9 @@ std::vector<PatientInfo> groupInstances(std::vector<InstanceInfo> instances,
         s.instances.push_back(std::move(instance));
     }
     if (withoutSeriesUid > 0)
-        warnings.push_back(std::to_string(withoutSeriesUid) +
-                           " instance(s) have no SeriesInstanceUID; they are grouped into one series");
+        warnings.push_back(
+            std::to_string(withoutSeriesUid) +
+            " instance(s) have no SeriesInstanceUID; they are grouped into one series");
 
     std::vector<PatientInfo> result;
     for (auto& [patientKey, patient] : patients) {
@@ -459,15 +469,18 @@ std::vector<PatientInfo> groupInstances(std::vector<InstanceInfo> instances,
                                  });
                 study.series.push_back(std::move(s));
             }
-            std::sort(study.series.begin(), study.series.end(), [](const SeriesInfo& a, const SeriesInfo& b) {
-                return std::tuple(optionalKey(a.seriesNumber), a.seriesInstanceUid) <
-                       std::tuple(optionalKey(b.seriesNumber), b.seriesInstanceUid);
-            });
+            std::sort(study.series.begin(), study.series.end(),
+                      [](const SeriesInfo& a, const SeriesInfo& b) {
+                          return std::tuple(optionalKey(a.seriesNumber), a.seriesInstanceUid) <
+                                 std::tuple(optionalKey(b.seriesNumber), b.seriesInstanceUid);
+                      });
             patient.studies.push_back(std::move(study));
         }
-        std::sort(patient.studies.begin(), patient.studies.end(), [](const StudyInfo& a, const StudyInfo& b) {
-            return std::tie(a.date, a.time, a.studyInstanceUid) < std::tie(b.date, b.time, b.studyInstanceUid);
-        });
+        std::sort(patient.studies.begin(), patient.studies.end(),
+                  [](const StudyInfo& a, const StudyInfo& b) {
+                      return std::tie(a.date, a.time, a.studyInstanceUid) <
+                             std::tie(b.date, b.time, b.studyInstanceUid);
+                  });
         result.push_back(std::move(patient));
     }
     std::sort(result.begin(), result.end(), [](const PatientInfo& a, const PatientInfo& b) {
@@ -575,10 +588,10 @@ DicomIndex scanDicom(const fs::path& path, core::Progress* progress) {
         index.root = path;
         index.errors = std::move(walk.errors);
         finishIndex(index, walk.files, progress);
-        kLog.info("scanned " + path.string() + ": " + std::to_string(index.filesExamined) + " files, " +
-                  std::to_string(index.instanceCount()) + " instances in " +
-                  std::to_string(index.seriesCount()) + " series, " + std::to_string(index.errors.size()) +
-                  " file errors");
+        kLog.info("scanned " + path.string() + ": " + std::to_string(index.filesExamined) +
+                  " files, " + std::to_string(index.instanceCount()) + " instances in " +
+                  std::to_string(index.seriesCount()) + " series, " +
+                  std::to_string(index.errors.size()) + " file errors");
         return index;
     }
     if (!fs::is_regular_file(status))
