@@ -2,13 +2,11 @@
 #include "lw/render/iso_surface.h"
 #include "lw/render/phantom.h"
 
-#include <gtest/gtest.h>
-
-#include <glm/glm.hpp>
-
 #include <bit>
 #include <cmath>
 #include <cstring>
+#include <glm/glm.hpp>
+#include <gtest/gtest.h>
 #include <map>
 #include <random>
 #include <utility>
@@ -19,7 +17,8 @@ namespace {
 using volume::Volume;
 using volume::VoxelType;
 
-template <typename F> Volume makeFloatVolume(glm::ivec3 dims, F&& value, volume::VolumeGeometry geometry = {}) {
+template <typename F>
+Volume makeFloatVolume(glm::ivec3 dims, F&& value, volume::VolumeGeometry geometry = {}) {
     Volume v(dims, VoxelType::Float32, std::move(geometry));
     float* data = v.dataAs<float>();
     for (int z = 0; z < dims.z; ++z)
@@ -44,8 +43,8 @@ std::string closedSurfaceProblem(const Mesh& mesh) {
     for (const auto& [edge, count] : directed) {
         const auto back = directed.find({edge.second, edge.first});
         if (count != 1 || back == directed.end() || back->second != 1)
-            return "edge " + std::to_string(edge.first) + "-" + std::to_string(edge.second) + " used " +
-                   std::to_string(count) + " times forward, " +
+            return "edge " + std::to_string(edge.first) + "-" + std::to_string(edge.second) +
+                   " used " + std::to_string(count) + " times forward, " +
                    std::to_string(back == directed.end() ? 0 : back->second) + " backward";
     }
     std::vector<bool> used(mesh.vertexCount(), false);
@@ -63,8 +62,13 @@ std::string closedSurfaceProblem(const Mesh& mesh) {
 void expectIdentical(const Mesh& a, const Mesh& b, const std::string& what) {
     ASSERT_EQ(a.positions.size(), b.positions.size()) << what;
     ASSERT_EQ(a.indices.size(), b.indices.size()) << what;
-    EXPECT_EQ(std::memcmp(a.positions.data(), b.positions.data(), a.positions.size() * sizeof(glm::vec3)), 0) << what;
-    EXPECT_EQ(std::memcmp(a.normals.data(), b.normals.data(), a.normals.size() * sizeof(glm::vec3)), 0) << what;
+    EXPECT_EQ(
+        std::memcmp(a.positions.data(), b.positions.data(), a.positions.size() * sizeof(glm::vec3)),
+        0)
+        << what;
+    EXPECT_EQ(std::memcmp(a.normals.data(), b.normals.data(), a.normals.size() * sizeof(glm::vec3)),
+              0)
+        << what;
     EXPECT_TRUE(a.indices == b.indices) << what;
 }
 
@@ -89,7 +93,8 @@ TEST(MarchingCubes, EmptyAndFullVolumesHaveNoTriangles) {
 }
 
 TEST(MarchingCubes, OneVoxelGivesAClosedOctahedron) {
-    const Volume v = makeFloatVolume({3, 3, 3}, [](int x, int y, int z) { return x == 1 && y == 1 && z == 1 ? 1.0 : 0.0; });
+    const Volume v = makeFloatVolume(
+        {3, 3, 3}, [](int x, int y, int z) { return x == 1 && y == 1 && z == 1 ? 1.0 : 0.0; });
     const Mesh mesh = extractIsoSurface(v, 0.5);
     EXPECT_EQ(mesh.triangleCount(), 8u);
     EXPECT_EQ(mesh.vertexCount(), 6u);
@@ -124,7 +129,8 @@ TEST(MarchingCubes, AllCubeCases) {
                     continue;
                 const auto* a = kernels::kMcCornerOffset[kernels::kMcEdgeCorners[e][0]];
                 const auto* b = kernels::kMcCornerOffset[kernels::kMcEdgeCorners[e][1]];
-                const glm::vec3 mid = 0.5f * (glm::vec3(a[0], a[1], a[2]) + glm::vec3(b[0], b[1], b[2]));
+                const glm::vec3 mid =
+                    0.5f * (glm::vec3(a[0], a[1], a[2]) + glm::vec3(b[0], b[1], b[2]));
                 if (glm::length(p - mid) < 1e-6f) {
                     onEdge = true;
                     seen |= 1 << e;
@@ -138,7 +144,8 @@ TEST(MarchingCubes, AllCubeCases) {
         std::map<std::pair<std::uint32_t, std::uint32_t>, int> edges;
         for (std::size_t t = 0; t < mesh.triangleCount(); ++t)
             for (int e = 0; e < 3; ++e) {
-                auto a = mesh.indices[t * 3 + std::size_t(e)], b = mesh.indices[t * 3 + std::size_t((e + 1) % 3)];
+                auto a = mesh.indices[t * 3 + std::size_t(e)],
+                     b = mesh.indices[t * 3 + std::size_t((e + 1) % 3)];
                 ++edges[{std::min(a, b), std::max(a, b)}];
             }
         for (const auto& [edge, count] : edges) {
@@ -159,13 +166,16 @@ TEST(MarchingCubes, EdgeTableMatchesCornerClassification) {
     for (int c = 0; c < 256; ++c) {
         int expected = 0;
         for (int e = 0; e < 12; ++e)
-            if (((c >> kernels::kMcEdgeCorners[e][0]) & 1) != ((c >> kernels::kMcEdgeCorners[e][1]) & 1))
+            if (((c >> kernels::kMcEdgeCorners[e][0]) & 1) !=
+                ((c >> kernels::kMcEdgeCorners[e][1]) & 1))
                 expected |= 1 << e;
         EXPECT_EQ(int(kernels::kMcEdgeTable[c]), expected) << "case " << c;
     }
 }
 
-Volume spherePhantom(glm::ivec3 dims) { return makePhantom(dims, PhantomKind::Sphere); }
+Volume spherePhantom(glm::ivec3 dims) {
+    return makePhantom(dims, PhantomKind::Sphere);
+}
 
 TEST(MarchingCubes, SphereIsWatertightAndIdenticalForEveryBrickSize) {
     const Volume v = spherePhantom({45, 38, 41});
@@ -192,8 +202,8 @@ TEST(MarchingCubes, RandomVolumesAreWatertight) {
         for (int z = 0; z < dims.z; ++z)
             for (int y = 0; y < dims.y; ++y)
                 for (int x = 0; x < dims.x; ++x) {
-                    const bool border = x == 0 || y == 0 || z == 0 || x == dims.x - 1 || y == dims.y - 1 ||
-                                        z == dims.z - 1;
+                    const bool border = x == 0 || y == 0 || z == 0 || x == dims.x - 1 ||
+                                        y == dims.y - 1 || z == dims.z - 1;
                     data[v.index(x, y, z)] = border ? 0 : std::uint8_t(value(random));
                 }
         // 128 is a stored value itself: ties (value == iso, inside) are exercised too.
@@ -212,9 +222,8 @@ TEST(MarchingCubes, RandomVolumesAreWatertight) {
 TEST(MarchingCubes, SphereNormalsPointOutward) {
     const glm::ivec3 dims(40, 40, 40);
     const glm::vec3 centre(19.5f);
-    const Volume v = makeFloatVolume(dims, [&](int x, int y, int z) {
-        return 12.0 - glm::length(glm::vec3(x, y, z) - centre);
-    });
+    const Volume v = makeFloatVolume(
+        dims, [&](int x, int y, int z) { return 12.0 - glm::length(glm::vec3(x, y, z) - centre); });
     const Mesh mesh = extractIsoSurface(v, 0.0, bricks(9));
     ASSERT_GT(mesh.triangleCount(), 1000u);
     for (std::size_t i = 0; i < mesh.vertexCount(); ++i) {
@@ -225,7 +234,8 @@ TEST(MarchingCubes, SphereNormalsPointOutward) {
     }
     // Winding: counter-clockwise seen from outside.
     for (std::size_t t = 0; t < mesh.triangleCount(); ++t) {
-        const glm::vec3 a = mesh.positions[mesh.indices[3 * t]], b = mesh.positions[mesh.indices[3 * t + 1]],
+        const glm::vec3 a = mesh.positions[mesh.indices[3 * t]],
+                        b = mesh.positions[mesh.indices[3 * t + 1]],
                         c = mesh.positions[mesh.indices[3 * t + 2]];
         const glm::vec3 face = glm::cross(b - a, c - a);
         if (glm::length(face) > 1e-6f) {
@@ -247,14 +257,16 @@ TEST(MarchingCubes, TiltedUnevenGeometry) {
         slices.push_back({0.0, zPos * std::tan(tilt), zPos});
         zPos += (k % 3 == 0) ? 1.6 : 0.8; // uneven gaps
     }
-    const auto geometry = volume::VolumeGeometry::fromSlicePositions(axisI, axisJ, spacingI, spacingJ, slices);
+    const auto geometry =
+        volume::VolumeGeometry::fromSlicePositions(axisI, axisJ, spacingI, spacingJ, slices);
     ASSERT_TRUE(geometry.isTilted());
     ASSERT_FALSE(geometry.hasUniformSlices());
     const glm::ivec3 dims(44, 60, 30);
     const glm::dvec3 centre = geometry.indexToPatient({21.5, 30.0, 14.5});
     const double radius = 9.0;
     auto field = [&](int x, int y, int z) {
-        return radius - glm::length(geometry.indexToPatient({double(x), double(y), double(z)}) - centre);
+        return radius -
+               glm::length(geometry.indexToPatient({double(x), double(y), double(z)}) - centre);
     };
     const Volume tilted = makeFloatVolume(dims, field, geometry);
     const Volume indexSpace = makeFloatVolume(dims, field); // same voxels, identity geometry
@@ -267,7 +279,8 @@ TEST(MarchingCubes, TiltedUnevenGeometry) {
     double worstPosition = 0.0, sumDot = 0.0, minDot = 1.0;
     for (std::size_t i = 0; i < mesh.vertexCount(); ++i) {
         const glm::dvec3 expected = geometry.indexToPatient(glm::dvec3(reference.positions[i]));
-        worstPosition = std::max(worstPosition, glm::length(glm::dvec3(mesh.positions[i]) - expected));
+        worstPosition =
+            std::max(worstPosition, glm::length(glm::dvec3(mesh.positions[i]) - expected));
         const glm::dvec3 radial = glm::normalize(glm::dvec3(mesh.positions[i]) - centre);
         EXPECT_NEAR(glm::length(glm::dvec3(mesh.positions[i]) - centre), radius, 0.15);
         const double d = glm::dot(glm::dvec3(mesh.normals[i]), radial);
@@ -285,7 +298,8 @@ TEST(MarchingCubes, IsoIsGivenInRealUnits) {
     for (int z = 0; z < 12; ++z)
         for (int y = 0; y < 12; ++y)
             for (int x = 0; x < 12; ++x)
-                data[stored.index(x, y, z)] = std::uint16_t(100 * (std::abs(x - 6) + std::abs(y - 5) + std::abs(z - 6)));
+                data[stored.index(x, y, z)] =
+                    std::uint16_t(100 * (std::abs(x - 6) + std::abs(y - 5) + std::abs(z - 6)));
     const Mesh atStored = extractIsoSurface(stored, 350.0);
     stored.setValueMapping({2.0, -1024.0});
     const Mesh atReal = extractIsoSurface(stored, 350.0 * 2.0 - 1024.0);

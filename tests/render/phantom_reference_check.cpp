@@ -8,9 +8,8 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
-#include <vector>
-
 #include <unistd.h>
+#include <vector>
 
 namespace {
 
@@ -33,9 +32,9 @@ std::string g_python;
 int compare(glm::ivec3 dims, lw::render::PhantomKind kind, const std::filesystem::path& dir) {
     const std::string name = std::string(lw::render::phantomKindName(kind));
     const std::filesystem::path raw = dir / (name + ".raw");
-    const std::string command = "'" + g_python + "' '" + std::string(LINEWORK_PHANTOM_PY) + "' " + std::to_string(dims.x) +
-                                " " + std::to_string(dims.y) + " " + std::to_string(dims.z) + " " + name + " '" +
-                                raw.string() + "'";
+    const std::string command = "'" + g_python + "' '" + std::string(LINEWORK_PHANTOM_PY) + "' " +
+                                std::to_string(dims.x) + " " + std::to_string(dims.y) + " " +
+                                std::to_string(dims.z) + " " + name + " '" + raw.string() + "'";
     if (std::system(command.c_str()) != 0) {
         std::printf("FAIL: %s failed\n", command.c_str());
         return 1;
@@ -45,7 +44,8 @@ int compare(glm::ivec3 dims, lw::render::PhantomKind kind, const std::filesystem
     std::ifstream in(raw, std::ios::binary);
     in.read(reinterpret_cast<char*>(reference.data()), std::streamsize(reference.size() * 2));
     if (!in) {
-        std::printf("FAIL: %s is shorter than %zu voxels\n", raw.string().c_str(), reference.size());
+        std::printf("FAIL: %s is shorter than %zu voxels\n", raw.string().c_str(),
+                    reference.size());
         return 1;
     }
     const std::int16_t* voxels = ours.dataAs<std::int16_t>();
@@ -54,10 +54,11 @@ int compare(glm::ivec3 dims, lw::render::PhantomKind kind, const std::filesystem
         const int d = std::abs(int(voxels[i]) - int(reference[i]));
         differing += d != 0;
         if (d > 1 && worse++ < 5)
-            std::printf("FAIL: %s voxel %zu: %d vs phantom.py %d\n", name.c_str(), i, voxels[i], reference[i]);
+            std::printf("FAIL: %s voxel %zu: %d vs phantom.py %d\n", name.c_str(), i, voxels[i],
+                        reference[i]);
     }
-    std::printf("%s %dx%dx%d: %zu of %zu voxels differ by 1, %zu by more\n", name.c_str(), dims.x, dims.y, dims.z,
-                differing, reference.size(), worse);
+    std::printf("%s %dx%dx%d: %zu of %zu voxels differ by 1, %zu by more\n", name.c_str(), dims.x,
+                dims.y, dims.z, differing, reference.size(), worse);
     return worse == 0 ? 0 : 1;
 }
 

@@ -1,11 +1,9 @@
-#include "lw/render/phantom.h"
-
 #include "lw/core/error.h"
-
-#include <gtest/gtest.h>
+#include "lw/render/phantom.h"
 
 #include <cstdlib>
 #include <cstring>
+#include <gtest/gtest.h>
 
 namespace lw::render {
 namespace {
@@ -18,7 +16,8 @@ void expectChecksum(glm::ivec3 dims, PhantomKind kind, std::int64_t sum, std::in
     const PhantomChecksum c = phantomChecksum(phantom);
     const auto voxels = std::int64_t(phantom.voxelCount());
     EXPECT_LE(std::llabs(c.sum - sum), voxels) << "sum " << c.sum << " vs phantom.py " << sum;
-    EXPECT_LE(std::llabs(c.above - above), above / 1000) << "above " << c.above << " vs phantom.py " << above;
+    EXPECT_LE(std::llabs(c.above - above), above / 1000)
+        << "above " << c.above << " vs phantom.py " << above;
 }
 
 TEST(Phantom, ChecksumsMatchPhantomPy) {

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <type_traits>
 
 // Two passes over (brick, slab) work units, like flying edges: pass 1 classifies rows and
 // counts vertices per row segment and triangles per cell-row segment; an exclusive prefix sum
@@ -26,18 +27,29 @@ namespace {
 // Classification summary of one voxel row over a brick's voxel x range [cb.x, ce.x]:
 // the row is constant (== left) on [cb.x, xl] and constant (== right) on [xr, ce.x].
 struct RowInfo {
-    int xl = 0;          // first x whose +x edge crosses; ce.x when none
-    int xr = 0;          // last such x + 1; cb.x when none
+    int xl = 0;               // first x whose +x edge crosses; ce.x when none
+    int xr = 0;               // last such x + 1; cb.x when none
     std::uint32_t xCross = 0; // crossing +x edges with x in [cb.x, ce.x)
     std::uint8_t left = 0;
     std::uint8_t right = 0;
 };
 
+// The cells of one cell row (y, z) that cut the surface: [begin, end) in Unit::cellX/cellCase.
+struct CellRow {
+    int y = 0, z = 0;
+    std::uint32_t begin = 0, end = 0;
+};
+
 struct Unit {
     int brick = 0;
-    int z0 = 0, z1 = 0;    // cell layers [z0, z1)
+    int z0 = 0, z1 = 0;       // cell layers [z0, z1)
     int rowY1 = 0, rowZ1 = 0; // rows y in [cb.y, rowY1], z in [z0, rowZ1]
     std::vector<RowInfo> rows;
+    // Pass 1 keeps the cases of the cutting cells so pass 2 neither re-classifies nor scans
+    // the empty cells between them.
+    std::vector<CellRow> cellRows;
+    std::vector<int> cellX;
+    std::vector<std::uint8_t> cellCase;
 };
 
 // Spread a column of four inside bits (y,z), (y+1,z), (y,z+1), (y+1,z+1) onto the corner bits
@@ -62,9 +74,20 @@ constexpr SpreadTables kSpread = makeSpread();
 
 template <typename T> class Extractor {
 public:
-    Extractor(const volume::Volume& volume, const volume::BrickGrid& grid, double iso, McOutput& out)
+    Extractor(const volume::Volume& volume, const volume::BrickGrid& grid, double iso,
+              McOutput& out)
         : m_volume(volume), m_grid(grid), m_voxels(volume.dataAs<T>()), m_iso(iso),
           m_isoF(insideThreshold(iso)), m_out(out) {
+        // Compare in the voxel type: exact, and it lets the row scan vectorise. For integer
+        // voxels, v >= iso  <=>  v >= ceil(iso); the caller only runs us when some brick has
+        // min < iso <= max, so ceil(iso) is a value of T.
+        if constexpr (std::is_integral_v<T>) {
+            const double c = std::ceil(iso);
+            m_threshold = T(std::clamp(c, double(std::numeric_limits<T>::lowest()),
+                                       double(std::numeric_limits<T>::max())));
+        } else {
+            m_threshold = m_isoF;
+        }
         const glm::ivec3 d = volume.dims();
         m_nx = d.x;
         m_ny = d.y;
@@ -85,6 +108,11 @@ public:
         m_offset.resize(std::size_t(m_nz));
         for (int k = 0; k < m_nz; ++k)
             m_offset[std::size_t(k)] = g.sliceOffset(double(k));
+        // Real distance between the neighbours used for d/ds at slice k (uneven gaps).
+        m_spanK.resize(std::size_t(m_nz));
+        for (int k = 0; k < m_nz; ++k)
+            m_spanK[std::size_t(k)] = float(m_offset[std::size_t(std::min(k + 1, m_nz - 1))] -
+                                            m_offset[std::size_t(std::max(k - 1, 0))]);
         // Derivatives are taken in the oblique frame (axisI, axisJ, stackAxis) with real
         // distances: d/du over the in-plane spacing, d/ds over the actual slice offsets of the
         // neighbours (uneven gaps). The patient gradient is M^-T (du, dw, ds) with M the frame's
@@ -94,7 +122,12 @@ public:
         for (int r = 0; r < 3; ++r)
             for (int c = 0; c < 3; ++c)
                 m_normalMatrix[r * 3 + c] = float(invT[c][r]);
+        m_invSpanK.resize(m_spanK.size());
+        for (std::size_t k = 0; k < m_spanK.size(); ++k)
+            m_invSpanK[k] = m_spanK[k] > 0.0f ? 1.0f / m_spanK[k] : 0.0f;
         m_spanI = float(2.0 * g.spacingI());
+        m_invSpanI = 1.0f / m_spanI;
+        m_invSpanJ = float(1.0 / (2.0 * g.spacingJ()));
         m_spanJ = float(2.0 * g.spacingJ());
         m_edgeSpanI = float(g.spacingI());
         m_edgeSpanJ = float(g.spacingJ());
@@ -104,6 +137,9 @@ public:
         if (m_nz > 1)
             slope = m_offset.back() - m_offset.front() >= 0.0 ? 1.0 : -1.0;
         m_axisDir[2] = glm::normalize(glm::dvec3(g.stackAxis())) * slope;
+        for (int a = 0; a < 3; ++a)
+            m_edgeDirection[a] = {float(m_axisDir[a].x), float(m_axisDir[a].y),
+                                  float(m_axisDir[a].z)};
     }
 
     McResult run(unsigned threads) {
@@ -124,7 +160,8 @@ public:
 
         m_vertexOffset.assign(std::size_t(m_nz) * std::size_t(m_ny) * std::size_t(m_gx), 0u);
         m_triangleOffset.assign(std::size_t(m_cz) * std::size_t(m_cy) * std::size_t(m_gx), 0u);
-        volume::parallelFor(m_units.size(), [&](std::size_t u) { countUnit(m_units[u]); }, threads);
+        volume::parallelFor(
+            m_units.size(), [&](std::size_t u) { countUnit(m_units[u]); }, threads);
 
         const std::uint64_t vertices = exclusiveScan(m_vertexOffset);
         const std::uint64_t triangles = exclusiveScan(m_triangleOffset);
@@ -138,7 +175,8 @@ public:
         m_out.positions.resize(std::size_t(vertices));
         m_out.normals.resize(std::size_t(vertices));
         m_out.indices.resize(std::size_t(triangles) * 3);
-        volume::parallelFor(m_units.size(), [&](std::size_t u) { emitUnit(m_units[u]); }, threads);
+        volume::parallelFor(
+            m_units.size(), [&](std::size_t u) { emitUnit(m_units[u]); }, threads);
         return result;
     }
 
@@ -163,7 +201,8 @@ private:
         // Enough units for dynamic load balance (a few per thread) but slabs thick enough that
         // the repeated apron layer stays a small overhead.
         const std::size_t wanted = std::size_t(threads) * 8;
-        const int perBrick = int(std::max<std::size_t>(1, (wanted + active.size() - 1) / active.size()));
+        const int perBrick =
+            int(std::max<std::size_t>(1, (wanted + active.size() - 1) / active.size()));
         m_units.clear();
         for (int b : active) {
             const auto& brick = m_grid.bricks()[std::size_t(b)];
@@ -180,7 +219,7 @@ private:
         }
     }
 
-    bool inside(std::size_t index) const { return float(m_voxels[index]) >= m_isoF; }
+    bool inside(std::size_t index) const { return m_voxels[index] >= m_threshold; }
     std::size_t voxelIndex(int x, int y, int z) const {
         return std::size_t(x) + m_sy * std::size_t(y) + m_sz * std::size_t(z);
     }
@@ -188,11 +227,13 @@ private:
     const RowInfo& row(const Unit& unit, int y, int z) const {
         const auto& brick = m_grid.bricks()[std::size_t(unit.brick)];
         const int width = unit.rowY1 - brick.cellBegin.y + 1;
-        return unit.rows[std::size_t(z - unit.z0) * std::size_t(width) + std::size_t(y - brick.cellBegin.y)];
+        return unit.rows[std::size_t(z - unit.z0) * std::size_t(width) +
+                         std::size_t(y - brick.cellBegin.y)];
     }
 
     // Voxel range [lo, hi) within [begin, end) outside which rows a and b agree everywhere.
-    static void differingRange(const RowInfo& a, const RowInfo& b, int begin, int end, int& lo, int& hi) {
+    static void differingRange(const RowInfo& a, const RowInfo& b, int begin, int end, int& lo,
+                               int& hi) {
         lo = a.left == b.left ? std::max(begin, std::min(a.xl, b.xl)) : begin;
         hi = a.right == b.right ? std::min(end, std::max(a.xr, b.xr) + 1) : end;
     }
@@ -209,30 +250,30 @@ private:
         for (int z = unit.z0; z <= unit.rowZ1; ++z)
             for (int y = cb.y; y <= unit.rowY1; ++y) {
                 const T* p = m_voxels + voxelIndex(0, y, z);
+                const T thr = m_threshold;
                 RowInfo info;
                 info.xl = ce.x;
                 info.xr = cb.x;
-                bool prev = float(p[cb.x]) >= m_isoF;
-                info.left = prev;
-                int first = -1, last = -1;
+                info.left = p[cb.x] >= thr;
+                info.right = p[ce.x] >= thr;
+                // Branch-free count first (the compiler vectorises it); most rows of a CT have
+                // no crossing at all and end here.
                 std::uint32_t crossings = 0;
-                for (int x = cb.x + 1; x <= ce.x; ++x) {
-                    const bool cur = float(p[x]) >= m_isoF;
-                    if (cur != prev) {
-                        if (first < 0)
-                            first = x - 1;
-                        last = x - 1;
-                        ++crossings;
-                    }
-                    prev = cur;
-                }
-                info.right = prev;
-                if (first >= 0) {
+                for (int x = cb.x; x < ce.x; ++x)
+                    crossings += std::uint32_t((p[x] >= thr) != (p[x + 1] >= thr));
+                if (crossings > 0) {
+                    int first = cb.x;
+                    while ((p[first] >= thr) == (p[first + 1] >= thr))
+                        ++first;
+                    int last = ce.x - 1;
+                    while ((p[last] >= thr) == (p[last + 1] >= thr))
+                        --last;
                     info.xl = first;
                     info.xr = last + 1;
                 }
                 info.xCross = crossings;
-                unit.rows[std::size_t(z - unit.z0) * std::size_t(width) + std::size_t(y - cb.y)] = info;
+                unit.rows[std::size_t(z - unit.z0) * std::size_t(width) + std::size_t(y - cb.y)] =
+                    info;
             }
 
         const int ownXEnd = ce.x == m_cx ? m_nx : ce.x;
@@ -254,7 +295,8 @@ private:
                     for (int x = lo; x < hi; ++x)
                         n += inside(base + std::size_t(x)) != inside(base + m_sz + std::size_t(x));
                 }
-                m_vertexOffset[(std::size_t(z) * std::size_t(m_ny) + std::size_t(y)) * std::size_t(m_gx) +
+                m_vertexOffset[(std::size_t(z) * std::size_t(m_ny) + std::size_t(y)) *
+                                   std::size_t(m_gx) +
                                std::size_t(bx)] = n;
             }
 
@@ -265,25 +307,36 @@ private:
                     continue;
                 std::uint32_t n = 0;
                 const std::size_t base = voxelIndex(0, y, z);
+                CellRow cellRow{y, z, std::uint32_t(unit.cellX.size()), 0};
                 int column = columnBits(base + std::size_t(lo));
                 for (int x = lo; x < hi; ++x) {
                     const int next = columnBits(base + std::size_t(x) + 1);
-                    n += kMcTriangleCount.count[kSpread.lower[column] | kSpread.upper[next]];
+                    const int cubeCase = kSpread.lower[column] | kSpread.upper[next];
                     column = next;
+                    if (cubeCase == 0 || cubeCase == 255)
+                        continue;
+                    n += kMcTriangleCount.count[cubeCase];
+                    unit.cellX.push_back(x);
+                    unit.cellCase.push_back(std::uint8_t(cubeCase));
                 }
-                m_triangleOffset[(std::size_t(z) * std::size_t(m_cy) + std::size_t(y)) * std::size_t(m_gx) +
+                cellRow.end = std::uint32_t(unit.cellX.size());
+                if (cellRow.end > cellRow.begin)
+                    unit.cellRows.push_back(cellRow);
+                m_triangleOffset[(std::size_t(z) * std::size_t(m_cy) + std::size_t(y)) *
+                                     std::size_t(m_gx) +
                                  std::size_t(bx)] = n;
             }
     }
 
     // Inside bits of voxels (x,y,z), (x,y+1,z), (x,y,z+1), (x,y+1,z+1).
     int columnBits(std::size_t index) const {
-        return int(inside(index)) | int(inside(index + m_sy)) << 1 | int(inside(index + m_sz)) << 2 |
-               int(inside(index + m_sy + m_sz)) << 3;
+        return int(inside(index)) | int(inside(index + m_sy)) << 1 |
+               int(inside(index + m_sz)) << 2 | int(inside(index + m_sy + m_sz)) << 3;
     }
 
     // Cells [lo, hi) of cell row (y, z) that can have mixed corners; false when none.
-    bool cellRange(const Unit& unit, glm::ivec3 cb, glm::ivec3 ce, int y, int z, int& lo, int& hi) const {
+    bool cellRange(const Unit& unit, glm::ivec3 cb, glm::ivec3 ce, int y, int z, int& lo,
+                   int& hi) const {
         const RowInfo* r[4] = {&row(unit, y, z), &row(unit, y + 1, z), &row(unit, y, z + 1),
                                &row(unit, y + 1, z + 1)};
         bool sameLeft = true, sameRight = true;
@@ -322,9 +375,10 @@ private:
         LayerIds* below = &layers[0];
         LayerIds* above = &layers[1];
         layerIds(unit, cb, ce, unit.z0, *below);
+        std::size_t cursor = 0;
         for (int z = unit.z0; z < unit.z1; ++z) {
             layerIds(unit, cb, ce, z + 1, *above);
-            emitTriangles(unit, cb, ce, z, *below, *above);
+            emitTriangles(unit, cb, ce, z, cursor, *below, *above);
             std::swap(below, above);
         }
     }
@@ -360,13 +414,17 @@ private:
             if (lo >= hi)
                 continue;
             const std::size_t segment =
-                (std::size_t(z) * std::size_t(m_ny) + std::size_t(y)) * std::size_t(m_gx) + std::size_t(bx);
+                (std::size_t(z) * std::size_t(m_ny) + std::size_t(y)) * std::size_t(m_gx) +
+                std::size_t(bx);
             std::uint32_t id = m_vertexOffset[segment];
             const bool ownRow = ownLayer && y < ownYEnd;
             const std::size_t base = voxelIndex(0, y, z);
-            std::uint32_t* idsX = ids.axis[0].data() + std::size_t(y - cb.y) * std::size_t(width) - std::size_t(cb.x);
-            std::uint32_t* idsY = ids.axis[1].data() + std::size_t(y - cb.y) * std::size_t(width) - std::size_t(cb.x);
-            std::uint32_t* idsZ = ids.axis[2].data() + std::size_t(y - cb.y) * std::size_t(width) - std::size_t(cb.x);
+            std::uint32_t* idsX =
+                ids.axis[0].data() + std::size_t(y - cb.y) * std::size_t(width) - std::size_t(cb.x);
+            std::uint32_t* idsY =
+                ids.axis[1].data() + std::size_t(y - cb.y) * std::size_t(width) - std::size_t(cb.x);
+            std::uint32_t* idsZ =
+                ids.axis[2].data() + std::size_t(y - cb.y) * std::size_t(width) - std::size_t(cb.x);
             for (int x = lo; x < hi; ++x) {
                 if (x == ce.x && nextSegment)
                     id = m_vertexOffset[segment + 1];
@@ -396,31 +454,28 @@ private:
         }
     }
 
-    void emitTriangles(const Unit& unit, glm::ivec3 cb, glm::ivec3 ce, int z, const LayerIds& below,
-                       const LayerIds& above) {
+    void emitTriangles(const Unit& unit, glm::ivec3 cb, glm::ivec3 ce, int z, std::size_t& cursor,
+                       const LayerIds& below, const LayerIds& above) {
         const int bx = cb.x / m_brickCells.x;
         const int width = ce.x - cb.x + 1;
         std::uint32_t* indices = m_out.indices.data();
-        for (int y = cb.y; y < ce.y; ++y) {
-            int lo, hi;
-            if (!cellRange(unit, cb, ce, y, z, lo, hi))
-                continue;
+        for (; cursor < unit.cellRows.size() && unit.cellRows[cursor].z == z; ++cursor) {
+            const CellRow& cellRow = unit.cellRows[cursor];
+            const int y = cellRow.y;
             std::size_t t = m_triangleOffset[(std::size_t(z) * std::size_t(m_cy) + std::size_t(y)) *
-                                                 std::size_t(m_gx) + std::size_t(bx)];
-            const std::size_t base = voxelIndex(0, y, z);
+                                                 std::size_t(m_gx) +
+                                             std::size_t(bx)];
             const std::size_t rowOffset = std::size_t(y - cb.y) * std::size_t(width);
-            int column = columnBits(base + std::size_t(lo));
-            for (int x = lo; x < hi; ++x) {
-                const int next = columnBits(base + std::size_t(x) + 1);
-                const int cubeCase = kSpread.lower[column] | kSpread.upper[next];
-                column = next;
+            for (std::uint32_t c = cellRow.begin; c < cellRow.end; ++c) {
+                const int cubeCase = unit.cellCase[c];
                 const std::int8_t* edges = kMcTriTable[cubeCase];
-                const std::size_t cell = rowOffset + std::size_t(x - cb.x);
+                const std::size_t cell = rowOffset + std::size_t(unit.cellX[c] - cb.x);
                 for (int e = 0; edges[e] >= 0; ++e) {
                     const std::int8_t* owner = kMcEdgeOwner[edges[e]];
                     const LayerIds& layer = owner[2] ? above : below;
                     indices[t * 3 + std::size_t(e)] =
-                        layer.axis[owner[3]][cell + std::size_t(owner[1]) * std::size_t(width) + std::size_t(owner[0])];
+                        layer.axis[owner[3]][cell + std::size_t(owner[1]) * std::size_t(width) +
+                                             std::size_t(owner[0])];
                 }
                 t += kMcTriangleCount.count[cubeCase];
             }
@@ -432,12 +487,19 @@ private:
     // Gradient in the (axisI, axisJ, stackAxis) frame, per mm.
     McVec3 gradient(int x, int y, int z) const {
         const std::size_t i = voxelIndex(x, y, z);
+        if (x > 0 && x < m_cx && y > 0 && y < m_cy && z > 0 && z < m_cz) {
+            // Interior: central differences everywhere, no boundary cases.
+            return {(value(i + 1) - value(i - 1)) * m_invSpanI,
+                    (value(i + m_sy) - value(i - m_sy)) * m_invSpanJ,
+                    (value(i + m_sz) - value(i - m_sz)) * m_invSpanK[std::size_t(z)]};
+        }
         const float c = value(i);
         McVec3 g;
         if (x > 0 && x < m_cx)
             g.x = mcDerivative(value(i - 1), value(i + 1), m_spanI);
         else if (m_nx > 1)
-            g.x = x == 0 ? mcDerivative(c, value(i + 1), m_edgeSpanI) : mcDerivative(value(i - 1), c, m_edgeSpanI);
+            g.x = x == 0 ? mcDerivative(c, value(i + 1), m_edgeSpanI)
+                         : mcDerivative(value(i - 1), c, m_edgeSpanI);
         else
             g.x = 0.0f;
         if (y > 0 && y < m_cy)
@@ -450,7 +512,7 @@ private:
         const int z0 = std::max(z - 1, 0), z1 = std::min(z + 1, m_cz);
         const float lo = z0 == z ? c : value(i - m_sz);
         const float hi = z1 == z ? c : value(i + m_sz);
-        g.z = mcDerivative(lo, hi, float(m_offset[std::size_t(z1)] - m_offset[std::size_t(z0)]));
+        g.z = mcDerivative(lo, hi, m_spanK[std::size_t(z)]);
         return g;
     }
 
@@ -460,9 +522,12 @@ private:
         const float a = value(i), b = value(i + step);
         const float t = mcEdgeParameter(a, b, m_iso);
         const int x1 = x + (axis == 0), y1 = y + (axis == 1), z1 = z + (axis == 2);
-        const McVec3 g = mcTransform(m_normalMatrix, mcLerp(gradient(x, y, z), gradient(x1, y1, z1), t));
-        const glm::dvec3 out = m_axisDir[axis] * (a >= m_isoF ? 1.0 : -1.0);
-        const McVec3 n = mcOutwardNormal(g, {float(out.x), float(out.y), float(out.z)});
+        const McVec3 g =
+            mcTransform(m_normalMatrix, mcLerp(gradient(x, y, z), gradient(x1, y1, z1), t));
+        McVec3 fallback = m_edgeDirection[axis];
+        if (!(a >= m_isoF))
+            fallback = {-fallback.x, -fallback.y, -fallback.z};
+        const McVec3 n = mcOutwardNormal(g, fallback);
 
         double px = x, py = y;
         double offset = m_offset[std::size_t(z)];
@@ -482,13 +547,18 @@ private:
     const T* m_voxels;
     double m_iso;
     float m_isoF;
+    T m_threshold{};
     McOutput& m_out;
     int m_nx = 0, m_ny = 0, m_nz = 0, m_cx = 0, m_cy = 0, m_cz = 0, m_gx = 1;
     std::size_t m_sy = 0, m_sz = 0;
     glm::ivec3 m_brickCells{1};
     glm::dvec3 m_origin{0.0}, m_stepI{0.0}, m_stepJ{0.0}, m_stack{0.0};
     glm::dvec3 m_axisDir[3];
+    McVec3 m_edgeDirection[3] =
+        {}; // patient direction of +x/+y/+z edges: the zero-gradient fallback
     std::vector<double> m_offset;
+    std::vector<float> m_spanK, m_invSpanK;
+    float m_invSpanI = 0.5f, m_invSpanJ = 0.5f;
     float m_normalMatrix[9] = {};
     float m_spanI = 2.0f, m_spanJ = 2.0f, m_edgeSpanI = 1.0f, m_edgeSpanJ = 1.0f;
     std::vector<Unit> m_units;
@@ -498,8 +568,8 @@ private:
 
 } // namespace
 
-McResult marchingCubes(const volume::Volume& volume, const volume::BrickGrid& grid, double storedIso,
-                       McOutput& out, unsigned threads) {
+McResult marchingCubes(const volume::Volume& volume, const volume::BrickGrid& grid,
+                       double storedIso, McOutput& out, unsigned threads) {
     return volume::dispatchVoxelType(volume.voxelType(), [&](auto tag) {
         using T = decltype(tag);
         Extractor<T> extractor(volume, grid, storedIso, out);

@@ -24,26 +24,43 @@ int parseChunks(const std::string& text, glm::ivec3 dims) {
     int value = 0;
     const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
     if (error != std::errc() || end != text.data() + text.size() || value < 1)
-        throw core::Error("--chunks " + text, "expected off, auto or a positive number of cells per brick");
+        throw core::Error("--chunks " + text,
+                          "expected off, auto or a positive number of cells per brick");
     return value;
 }
 
-void extractIsoSurface(const volume::Volume& volume, double isoReal, const IsoSurfaceOptions& options,
-                       Mesh& mesh, IsoSurfaceStats* stats) {
-    if (volume.valueMapping().slope == 0.0)
-        throw core::Error("iso-surface", "the volume's value mapping has slope 0");
-    if (volume.valueMapping().slope < 0.0)
-        throw core::Error("iso-surface", "a negative rescale slope is not supported (inside would flip)");
-    const double storedIso = volume.valueMapping().toStored(isoReal);
+struct IsoSurfaceExtractor::Impl {
+    volume::BrickGrid grid;
+};
+
+IsoSurfaceExtractor::IsoSurfaceExtractor(const volume::Volume& volume,
+                                         const IsoSurfaceOptions& options)
+    : m_volume(volume), m_options(options), m_impl(new Impl) {
     const glm::ivec3 cells = glm::max(volume.dims() - 1, glm::ivec3(0));
-    const int edge = options.brickCells > 0 ? options.brickCells : std::max({cells.x, cells.y, cells.z, 1});
-    const volume::BrickGrid grid = volume::BrickGrid::build(volume, glm::ivec3(edge));
+    const int edge =
+        options.brickCells > 0 ? options.brickCells : std::max({cells.x, cells.y, cells.z, 1});
+    m_impl->grid = volume::BrickGrid::build(volume, glm::ivec3(edge));
+}
+
+IsoSurfaceExtractor::~IsoSurfaceExtractor() {
+    delete m_impl;
+}
+
+void IsoSurfaceExtractor::extract(double isoReal, Mesh& mesh, IsoSurfaceStats* stats) const {
+    const auto& mapping = m_volume.valueMapping();
+    if (mapping.slope == 0.0)
+        throw core::Error("iso-surface", "the volume's value mapping has slope 0");
+    if (mapping.slope < 0.0)
+        throw core::Error("iso-surface",
+                          "a negative rescale slope is not supported (inside would flip)");
+    const double storedIso = mapping.toStored(isoReal);
 
     kernels::cpu::McOutput out;
     out.positions = std::move(mesh.positions);
     out.normals = std::move(mesh.normals);
     out.indices = std::move(mesh.indices);
-    const kernels::cpu::McResult result = kernels::cpu::marchingCubes(volume, grid, storedIso, out, options.threads);
+    const kernels::cpu::McResult result =
+        kernels::cpu::marchingCubes(m_volume, m_impl->grid, storedIso, out, m_options.threads);
     mesh.positions = std::move(out.positions);
     mesh.normals = std::move(out.normals);
     mesh.indices = std::move(out.indices);
@@ -56,8 +73,19 @@ void extractIsoSurface(const volume::Volume& volume, double isoReal, const IsoSu
     }
 }
 
-Mesh extractIsoSurface(const volume::Volume& volume, double isoReal, const IsoSurfaceOptions& options,
-                       IsoSurfaceStats* stats) {
+Mesh IsoSurfaceExtractor::extract(double isoReal, IsoSurfaceStats* stats) const {
+    Mesh mesh;
+    extract(isoReal, mesh, stats);
+    return mesh;
+}
+
+void extractIsoSurface(const volume::Volume& volume, double isoReal,
+                       const IsoSurfaceOptions& options, Mesh& mesh, IsoSurfaceStats* stats) {
+    IsoSurfaceExtractor(volume, options).extract(isoReal, mesh, stats);
+}
+
+Mesh extractIsoSurface(const volume::Volume& volume, double isoReal,
+                       const IsoSurfaceOptions& options, IsoSurfaceStats* stats) {
     Mesh mesh;
     extractIsoSurface(volume, isoReal, options, mesh, stats);
     return mesh;

@@ -66,8 +66,8 @@ Box boundingBox(const Prim& prim) {
     switch (prim.kind) {
     case PrimKind::Sph:
     case PrimKind::Gyr:
-        return {p[0] - p[3] - m, p[0] + p[3] + m, p[1] - p[3] - m, p[1] + p[3] + m, p[2] - p[3] - m,
-                p[2] + p[3] + m};
+        return {p[0] - p[3] - m, p[0] + p[3] + m, p[1] - p[3] - m,
+                p[1] + p[3] + m, p[2] - p[3] - m, p[2] + p[3] + m};
     case PrimKind::TorZ: {
         const double e = p[3] + p[4] + m;
         return {p[0] - e, p[0] + e, p[1] - e, p[1] + e, p[2] - p[4] - m, p[2] + p[4] + m};
@@ -81,8 +81,8 @@ Box boundingBox(const Prim& prim) {
         return {p[0] - e, p[0] + e, p[1] - e, p[1] + e, p[2] - e, p[2] + e};
     }
     case PrimKind::CapZ:
-        return {p[0] - p[4] - m, p[0] + p[4] + m, p[1] - p[4] - m, p[1] + p[4] + m,
-                p[2] - p[4] - m, p[3] + p[4] + m};
+        return {p[0] - p[4] - m, p[0] + p[4] + m, p[1] - p[4] - m,
+                p[1] + p[4] + m, p[2] - p[4] - m, p[3] + p[4] + m};
     }
     return {};
 }
@@ -107,8 +107,12 @@ std::vector<float> axisCoordinates(int n) {
     return c;
 }
 
-inline float sigmoid(float t) { return 1.0f / (1.0f + std::exp(-t)); }
-inline float sq(float v) { return v * v; }
+inline float sigmoid(float t) {
+    return 1.0f / (1.0f + std::exp(-t));
+}
+inline float sq(float v) {
+    return v * v;
+}
 
 inline float signedDistance(const Prim& prim, float X, float Y, float Z) {
     const auto& p = prim.f;
@@ -172,10 +176,12 @@ volume::Volume makePhantom(glm::ivec3 dims, PhantomKind kind, unsigned threads) 
     const int nx = dims.x, ny = dims.y, nz = dims.z;
     const glm::dvec3 spacing(1.0);
     const glm::dvec3 origin = -0.5 * glm::dvec3(dims - 1) * spacing;
-    volume::Volume out(dims, volume::VoxelType::Int16, volume::VolumeGeometry::regular(origin, spacing));
+    volume::Volume out(dims, volume::VoxelType::Int16,
+                       volume::VolumeGeometry::regular(origin, spacing));
     out.setDescription(std::string("phantom ") + std::string(phantomKindName(kind)));
 
-    const std::vector<float> cx = axisCoordinates(nx), cy = axisCoordinates(ny), cz = axisCoordinates(nz);
+    const std::vector<float> cx = axisCoordinates(nx), cy = axisCoordinates(ny),
+                             cz = axisCoordinates(nz);
     std::vector<Prim> prims;
     if (kind == PhantomKind::Ct) {
         for (Prim prim : makePrims()) {
@@ -190,45 +196,49 @@ volume::Volume makePhantom(glm::ivec3 dims, PhantomKind kind, unsigned threads) 
     std::int16_t* voxels = out.dataAs<std::int16_t>();
     const std::size_t sliceSize = std::size_t(nx) * std::size_t(ny);
 
-    volume::parallelFor(std::size_t(nz), [&](std::size_t zi) {
-        const int z = int(zi);
-        const float Z = cz[zi];
-        std::vector<float> row(static_cast<std::size_t>(nx));
-        std::vector<const Prim*> active;
-        for (int y = 0; y < ny; ++y) {
-            const float Y = cy[std::size_t(y)];
-            if (kind == PhantomKind::Ct) {
+    volume::parallelFor(
+        std::size_t(nz),
+        [&](std::size_t zi) {
+            const int z = int(zi);
+            const float Z = cz[zi];
+            std::vector<float> row(static_cast<std::size_t>(nx));
+            std::vector<const Prim*> active;
+            for (int y = 0; y < ny; ++y) {
+                const float Y = cy[std::size_t(y)];
+                if (kind == PhantomKind::Ct) {
+                    for (int x = 0; x < nx; ++x) {
+                        const float X = cx[std::size_t(x)];
+                        const float re = std::sqrt(sq(X / 0.85f) + sq(Y / 0.65f) + sq(Z / 0.95f));
+                        row[std::size_t(x)] = -1000.0f + 1040.0f * sigmoid((1.0f - re) / 0.02f);
+                    }
+                } else {
+                    for (int x = 0; x < nx; ++x) {
+                        const float X = cx[std::size_t(x)];
+                        const float r = std::sqrt(X * X + Y * Y + Z * Z);
+                        row[std::size_t(x)] = -1000.0f + 2000.0f * sigmoid((0.6f - r) / 0.01f);
+                    }
+                }
+                // Primitives in phantom.py's order: float addition is not associative.
+                for (const Prim& prim : prims) {
+                    if (z < prim.k0 || z >= prim.k1 || y < prim.j0 || y >= prim.j1)
+                        continue;
+                    for (int x = prim.i0; x < prim.i1; ++x) {
+                        const float sd = signedDistance(prim, cx[std::size_t(x)], Y, Z);
+                        row[std::size_t(x)] += float(kBone) * sigmoid(-sd / float(kW));
+                    }
+                }
+                const std::size_t base =
+                    std::size_t(z) * sliceSize + std::size_t(y) * std::size_t(nx);
+                std::int16_t* dst = voxels + base;
                 for (int x = 0; x < nx; ++x) {
-                    const float X = cx[std::size_t(x)];
-                    const float re = std::sqrt(sq(X / 0.85f) + sq(Y / 0.65f) + sq(Z / 0.95f));
-                    row[std::size_t(x)] = -1000.0f + 1040.0f * sigmoid((1.0f - re) / 0.02f);
-                }
-            } else {
-                for (int x = 0; x < nx; ++x) {
-                    const float X = cx[std::size_t(x)];
-                    const float r = std::sqrt(X * X + Y * Y + Z * Z);
-                    row[std::size_t(x)] = -1000.0f + 2000.0f * sigmoid((0.6f - r) / 0.01f);
+                    const float v = row[std::size_t(x)] + hashNoise(base + std::size_t(x));
+                    // np.rint rounds half to even, as nearbyint does in the default rounding mode.
+                    const float r = std::nearbyint(v);
+                    dst[x] = std::int16_t(std::clamp(r, -1024.0f, 3071.0f));
                 }
             }
-            // Primitives in phantom.py's order: float addition is not associative.
-            for (const Prim& prim : prims) {
-                if (z < prim.k0 || z >= prim.k1 || y < prim.j0 || y >= prim.j1)
-                    continue;
-                for (int x = prim.i0; x < prim.i1; ++x) {
-                    const float sd = signedDistance(prim, cx[std::size_t(x)], Y, Z);
-                    row[std::size_t(x)] += float(kBone) * sigmoid(-sd / float(kW));
-                }
-            }
-            const std::size_t base = std::size_t(z) * sliceSize + std::size_t(y) * std::size_t(nx);
-            std::int16_t* dst = voxels + base;
-            for (int x = 0; x < nx; ++x) {
-                const float v = row[std::size_t(x)] + hashNoise(base + std::size_t(x));
-                // np.rint rounds half to even, as nearbyint does in the default rounding mode.
-                const float r = std::nearbyint(v);
-                dst[x] = std::int16_t(std::clamp(r, -1024.0f, 3071.0f));
-            }
-        }
-    }, threads);
+        },
+        threads);
     return out;
 }
 

@@ -16,7 +16,9 @@ struct McVec3 {
 
 // Inside means value >= iso. `iso` is the smallest float that is >= the requested iso (see
 // insideThreshold), so comparing floats here agrees with comparing the exact values.
-LW_HOST_DEVICE inline bool mcInside(float value, float iso) { return value >= iso; }
+LW_HOST_DEVICE inline bool mcInside(float value, float iso) {
+    return value >= iso;
+}
 
 // The float threshold t with (v >= t) == (double(v) >= iso) for every float v.
 inline float insideThreshold(double iso) {

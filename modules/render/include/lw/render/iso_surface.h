@@ -2,10 +2,9 @@
 
 #include "lw/volume/volume.h"
 
-#include <glm/glm.hpp>
-
 #include <cstddef>
 #include <cstdint>
+#include <glm/glm.hpp>
 #include <string>
 #include <vector>
 
@@ -14,7 +13,8 @@ namespace lw::render {
 // An indexed triangle mesh with shared vertices, in patient coordinates (mm).
 struct Mesh {
     std::vector<glm::vec3> positions;
-    std::vector<glm::vec3> normals; // unit, pointing outward (from value >= iso towards lower values)
+    std::vector<glm::vec3>
+        normals; // unit, pointing outward (from value >= iso towards lower values)
     std::vector<std::uint32_t> indices; // three per triangle, counter-clockwise seen from outside
 
     std::size_t triangleCount() const { return indices.size() / 3; }
@@ -34,6 +34,27 @@ struct IsoSurfaceStats {
     std::size_t activeBricks = 0; // bricks whose min/max admit the iso-value (the rest are skipped)
 };
 
+// Extraction from one volume at changing iso-values: the brick grid (min/max per brick, one
+// scan of the volume) is built once here, each extract() then skips the bricks that cannot
+// hold the surface. The volume must outlive the extractor.
+class IsoSurfaceExtractor {
+public:
+    IsoSurfaceExtractor(const volume::Volume& volume, const IsoSurfaceOptions& options = {});
+    ~IsoSurfaceExtractor();
+    IsoSurfaceExtractor(const IsoSurfaceExtractor&) = delete;
+    IsoSurfaceExtractor& operator=(const IsoSurfaceExtractor&) = delete;
+
+    // Reuses `mesh`'s buffers (repeated extraction without fresh allocations).
+    void extract(double isoReal, Mesh& mesh, IsoSurfaceStats* stats = nullptr) const;
+    Mesh extract(double isoReal, IsoSurfaceStats* stats = nullptr) const;
+
+private:
+    struct Impl;
+    const volume::Volume& m_volume;
+    IsoSurfaceOptions m_options;
+    Impl* m_impl; // the brick grid; kernels types stay out of this header
+};
+
 // Brick edge length the "auto" chunking picks for a volume.
 int autoBrickCells(glm::ivec3 dims);
 
@@ -43,10 +64,11 @@ int parseChunks(const std::string& text, glm::ivec3 dims);
 // Marching cubes with per-vertex gradient normals at `isoReal` (real units, HU for CT; the
 // volume's value mapping converts it). Inside = value >= iso. Vertices are ordered by global
 // edge id and triangles by cell, so the result does not depend on brickCells or threads.
-Mesh extractIsoSurface(const volume::Volume& volume, double isoReal, const IsoSurfaceOptions& options = {},
-                       IsoSurfaceStats* stats = nullptr);
+Mesh extractIsoSurface(const volume::Volume& volume, double isoReal,
+                       const IsoSurfaceOptions& options = {}, IsoSurfaceStats* stats = nullptr);
 // Same, reusing `mesh`'s buffers (repeated extraction without fresh allocations).
-void extractIsoSurface(const volume::Volume& volume, double isoReal, const IsoSurfaceOptions& options,
-                       Mesh& mesh, IsoSurfaceStats* stats = nullptr);
+void extractIsoSurface(const volume::Volume& volume, double isoReal,
+                       const IsoSurfaceOptions& options, Mesh& mesh,
+                       IsoSurfaceStats* stats = nullptr);
 
 } // namespace lw::render

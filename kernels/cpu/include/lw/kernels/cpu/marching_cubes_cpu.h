@@ -3,10 +3,9 @@
 #include "lw/volume/bricks.h"
 #include "lw/volume/volume.h"
 
-#include <glm/glm.hpp>
-
 #include <cstddef>
 #include <cstdint>
+#include <glm/glm.hpp>
 #include <vector>
 
 namespace lw::kernels::cpu {
@@ -38,7 +37,7 @@ struct McOutput {
 // are ordered by their global edge id (voxel index * 3 + axis), triangles by their cell index
 // and then by table order. The one-brick grid (whole volume) and any chunked grid therefore
 // give bit-identical meshes.
-McResult marchingCubes(const volume::Volume& volume, const volume::BrickGrid& grid, double storedIso,
-                       McOutput& out, unsigned threads = 0);
+McResult marchingCubes(const volume::Volume& volume, const volume::BrickGrid& grid,
+                       double storedIso, McOutput& out, unsigned threads = 0);
 
 } // namespace lw::kernels::cpu
