@@ -216,7 +216,8 @@ TEST_F(SilhouetteGl, WideLinesAreWider) {
     auto countLines = [&](float width, double band) {
         SilhouetteGlOptions options;
         options.lineWidth = width;
-        options.lineColour = {0.8f, 0.1f, 0.1f, 1.0f};
+        // Exact multiples of 1/255: drivers round x.5 levels differently.
+        options.lineColour = {204 / 255.0f, 26 / 255.0f, 26 / 255.0f, 1.0f};
         const ImageRgba8 image = m_renderer.renderImage(camera, options);
         std::size_t lines = 0;
         for (int y = 0; y < image.height(); ++y)
@@ -377,7 +378,7 @@ TEST_F(SilhouetteGl, GoldenImages) {
     SilhouetteGlOptions hiddenToo;
     hiddenToo.visibility = false;
     hiddenToo.lineWidth = 2.0f;
-    hiddenToo.lineColour = {0.1f, 0.2f, 0.7f, 1.0f};
+    hiddenToo.lineColour = {26 / 255.0f, 51 / 255.0f, 178 / 255.0f, 1.0f}; // exact levels, see above
     const Golden goldens[] = {
         {"gl_spheres_iso", iso, {12, 250}},
         {"gl_spheres_silhouette", silhouette, {0, 250}},

@@ -79,7 +79,7 @@ struct Candidate {
 const char* eglPlatformName(EglPlatform platform) {
     switch (platform) {
     case EglPlatform::Device: return "EGL device";
-    case EglPlatform::SurfacelessMesa: return "surfaceless Mesa";
+    case EglPlatform::SurfacelessMesa: return "EGL surfaceless platform";
     case EglPlatform::SoftwareDevice: return "EGL software device";
     case EglPlatform::DefaultDisplay: return "EGL default display";
     }
@@ -193,8 +193,10 @@ EglHeadlessContext::EglHeadlessContext(const EglContextOptions& options) : m_imp
     // after surfaceless Mesa (the path DESIGN.md documents for llvmpipe).
     std::vector<Candidate> hardware, software;
     std::string attempts;
-    if (platformBase && hasExtension(clientExtensions, "EGL_EXT_device_enumeration") &&
-        hasExtension(clientExtensions, "EGL_EXT_platform_device")) {
+    // EGL_EXT_device_base is the older name that bundles enumeration and query.
+    const bool enumeration = hasExtension(clientExtensions, "EGL_EXT_device_enumeration") ||
+                             hasExtension(clientExtensions, "EGL_EXT_device_base");
+    if (platformBase && enumeration && hasExtension(clientExtensions, "EGL_EXT_platform_device")) {
         auto queryDevices = reinterpret_cast<PFNEGLQUERYDEVICESEXTPROC>(eglGetProcAddress("eglQueryDevicesEXT"));
         auto queryDeviceString =
             reinterpret_cast<PFNEGLQUERYDEVICESTRINGEXTPROC>(eglGetProcAddress("eglQueryDeviceStringEXT"));
@@ -210,6 +212,8 @@ EglHeadlessContext::EglHeadlessContext(const EglContextOptions& options) : m_imp
                                     "EGL device " + std::to_string(i)};
                 (isSoftware ? software : hardware).push_back(candidate);
             }
+            if (hardware.empty())
+                attempts += "\n  EGL devices: " + std::to_string(count) + " enumerated, none of them hardware";
         } else {
             attempts += "\n  EGL devices: none enumerated";
         }
@@ -220,9 +224,9 @@ EglHeadlessContext::EglHeadlessContext(const EglContextOptions& options) : m_imp
     if (platformBase && hasExtension(clientExtensions, "EGL_MESA_platform_surfaceless"))
         candidates.push_back({EglPlatform::SurfacelessMesa,
                               getPlatformDisplay(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr),
-                              "surfaceless Mesa"});
+                              "EGL surfaceless platform"});
     else
-        attempts += "\n  surfaceless Mesa: EGL_MESA_platform_surfaceless not offered";
+        attempts += "\n  EGL surfaceless platform: EGL_MESA_platform_surfaceless not offered";
     candidates.insert(candidates.end(), software.begin(), software.end());
     candidates.push_back({EglPlatform::DefaultDisplay, eglGetDisplay(EGL_DEFAULT_DISPLAY), "EGL_DEFAULT_DISPLAY"});
 
@@ -233,6 +237,10 @@ EglHeadlessContext::EglHeadlessContext(const EglContextOptions& options) : m_imp
                 glEnable(GL_DEBUG_OUTPUT_SYNCHRONOUS);
                 glDebugMessageCallback(debugMessage, nullptr);
             }
+            // Say why preferred displays were passed over: on a GPU machine, landing on a software
+            // rasterizer is worth knowing.
+            if (!attempts.empty())
+                kLog.info("EGL displays passed over:" + attempts);
             kLog.info("OpenGL context on " + candidate.name + ": " + description());
             return;
         }
