@@ -20,6 +20,9 @@ commands:
   bench-import PATH [--repeat N] [--json]
                               scan a DICOM input and load all its volumes N times (default 5);
                               prints the median time and slices/s
+  accuracy [--methods 1,2,3] [--sizes 32,64,256] [--shapes sphere,...] [--backend cpu|cuda|auto] [--json]
+                              the paper's Table 5 measured: recall/precision (1 px) of each
+                              method (S and L) against analytic contours
   help                        this text
 
 Exit codes: 0 success, 1 error (the message names the file and the reason), 2 usage error.
@@ -37,6 +40,7 @@ int main(int argc, char** argv) {
     const std::map<std::string, Command> commands = {
         {"info", lw::cli::runInfo},
         {"bench-import", lw::cli::runBenchImport},
+        {"accuracy", lw::cli::runAccuracy},
     };
     const auto command = commands.find(args[0]);
     if (command == commands.end()) {

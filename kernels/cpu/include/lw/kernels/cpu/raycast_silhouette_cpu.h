@@ -1,0 +1,73 @@
+#pragma once
+
+// Method 2 of the paper on the CPU: silhouette segments straight from the active cells (no mesh
+// kept) and the ray-cast visibility test through the voxel grid.
+
+#include "lw/kernels/cpu/voxel_ray.h"
+#include "lw/kernels/silhouette_segment.h"
+#include "lw/volume/bricks.h"
+#include "lw/volume/volume.h"
+
+#include <glm/glm.hpp>
+
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+namespace lw::kernels::cpu {
+
+// Where the silhouette is seen from: the eye (perspective) or the unit vector toward the viewer
+// (orthographic), the same convention as silhouetteDistance().
+struct SilhouetteView {
+    glm::dvec3 eyeOrDirection{0.0, -1.0, 0.0};
+    bool orthographic = false;
+};
+
+class RayCastSilhouetteCpu {
+public:
+    RayCastSilhouetteCpu();
+    ~RayCastSilhouetteCpu();
+    RayCastSilhouetteCpu(const RayCastSilhouetteCpu&) = delete;
+    RayCastSilhouetteCpu& operator=(const RayCastSilhouetteCpu&) = delete;
+
+    // The view-independent part (what mode a caches): the cells with mixed corners of the
+    // bricks of `grid` whose min/max admit `storedIso`, in brick order. Inside = value >= iso,
+    // as in marchingCubes(). `volume` must outlive this object or the next prepare().
+    void prepare(const volume::Volume& volume, const volume::BrickGrid& grid, double storedIso,
+                 unsigned threads = 0);
+    bool isPrepared() const;
+    std::size_t activeCellCount() const;
+    std::size_t activeBrickCount() const;
+
+    // The Burns segment of every marching-cubes triangle of the active cells that holds one, in
+    // patient mm, cell by cell in brick order. The triangles, vertices and normals are those of
+    // marchingCubes() bit for bit (same shared expressions, same evaluation order), so the
+    // segments equal the ones computed from its mesh. Returns the number of triangles visited.
+    std::size_t extractSegments(const SilhouetteView& view, std::vector<SegmentEndpoints>& out,
+                                unsigned threads = 0);
+
+    // The paper's visibility test for a point on the surface: a ray from the point toward the
+    // viewer, walked cell by cell (VoxelRayGrid); occluded when the bilinearly interpolated value
+    // on a wall the ray leaves a cell through is inside (>= iso).
+    //
+    // Self-occlusion rule: the ray starts 1e-4 cell off the point toward the viewer, and walls
+    // are not tested until the ray has left the cell it starts in and travelled at least
+    // selfSkipCells() cell widths (measured in grid units). A silhouette point lies on a chord of
+    // the interpolated surface and its ray grazes that surface; within the first cell it can
+    // dip below the iso-value by round-off and the difference between the linear mesh and the
+    // trilinear field. Occluders thinner than that are not seen (they are below the grid's
+    // resolution anyway). Rays leaving the grid, or reaching the eye, are visible.
+    bool isVisible(glm::dvec3 patientPoint, const SilhouetteView& view) const;
+    static double selfSkipCells();
+
+    const VoxelRayGrid& rayGrid() const;
+
+    // The per-voxel-type engine; public only so the implementation file can derive from it.
+    struct Impl;
+
+private:
+    std::unique_ptr<Impl> m_impl;
+};
+
+} // namespace lw::kernels::cpu

@@ -1,0 +1,409 @@
+#include "lw/kernels/cpu/raycast_silhouette_cpu.h"
+
+#include "lw/core/error.h"
+#include "lw/kernels/marching_cubes.h"
+#include "lw/volume/parallel.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+// Method 2 keeps no mesh: per frame every cached active cell is re-triangulated with the shared
+// marching-cubes expressions and only the Burns segments survive. Cells are handed to the threads
+// in chunks that never straddle a brick, so the chunked ("L") schedule really works brick by
+// brick; the output order (brick, then cell) does not depend on the thread count.
+
+namespace lw::kernels::cpu {
+namespace {
+
+constexpr std::size_t kChunkCells = 2048;
+constexpr double kStartOffsetCells = 1e-4;
+constexpr double kSelfSkipCells = 1.0;
+
+// Inside bits of the four voxels (x,y,z), (x,y+1,z), (x,y,z+1), (x,y+1,z+1) spread onto the
+// corner bits of a cell's lower-x (0, 3, 4, 7) or upper-x (1, 2, 5, 6) face (diagram in
+// marching_cubes_tables.h), so a row of cells is classified with four reads per cell.
+struct SpreadTables {
+    std::uint8_t lower[16];
+    std::uint8_t upper[16];
+};
+constexpr std::uint8_t spread(int column, int c00, int c10, int c01, int c11) {
+    return std::uint8_t(((column & 1) << c00) | (((column >> 1) & 1) << c10) | (((column >> 2) & 1) << c01) |
+                        (((column >> 3) & 1) << c11));
+}
+constexpr SpreadTables makeSpread() {
+    SpreadTables t{};
+    for (int c = 0; c < 16; ++c) {
+        t.lower[c] = spread(c, 0, 3, 4, 7);
+        t.upper[c] = spread(c, 1, 2, 5, 6);
+    }
+    return t;
+}
+constexpr SpreadTables kSpread = makeSpread();
+
+} // namespace
+
+struct RayCastSilhouetteCpu::Impl {
+    virtual ~Impl() = default;
+    virtual void findCells(const volume::BrickGrid& grid, unsigned threads) = 0;
+    virtual std::size_t extract(const SilhouetteView& view, std::vector<SegmentEndpoints>& out,
+                                unsigned threads) = 0;
+    virtual bool visible(glm::dvec3 point, const SilhouetteView& view) const = 0;
+
+    VoxelRayGrid rayGrid;
+    std::vector<std::uint32_t> cells;      // voxel index of each active cell's lowest corner
+    std::vector<std::size_t> chunkStarts;  // chunk c = cells [chunkStarts[c], chunkStarts[c + 1])
+    std::size_t activeBricks = 0;
+    // Per-chunk outputs, kept between frames so a new view allocates nothing once warm.
+    std::vector<std::vector<SegmentEndpoints>> chunkSegments;
+    std::vector<std::size_t> chunkTriangles;
+    std::vector<std::vector<std::uint32_t>> unitCells;
+};
+
+namespace {
+
+template <typename T> class Engine final : public RayCastSilhouetteCpu::Impl {
+public:
+    Engine(const volume::Volume& volume, double iso)
+        : m_voxels(volume.dataAs<T>()), m_iso(iso), m_isoF(insideThreshold(iso)) {
+        rayGrid = VoxelRayGrid(volume);
+        const glm::ivec3 d = volume.dims();
+        m_nx = d.x;
+        m_ny = d.y;
+        m_nz = d.z;
+        m_cx = m_nx - 1;
+        m_cy = m_ny - 1;
+        m_cz = m_nz - 1;
+        m_sy = std::size_t(m_nx);
+        m_sz = std::size_t(m_nx) * std::size_t(m_ny);
+
+        // The frame, spans and fallback directions exactly as marchingCubes() sets them up:
+        // bit-identical vertices and normals need identical inputs to the shared expressions.
+        const auto& g = volume.geometry();
+        m_origin = g.origin();
+        m_stepI = g.spacingI() * g.axisI();
+        m_stepJ = g.spacingJ() * g.axisJ();
+        m_stack = g.stackAxis();
+        m_offset.resize(std::size_t(std::max(m_nz, 1)));
+        for (int k = 0; k < m_nz; ++k)
+            m_offset[std::size_t(k)] = g.sliceOffset(double(k));
+        const glm::dmat3 frame(g.axisI(), g.axisJ(), g.stackAxis());
+        const glm::dmat3 invT = glm::inverse(glm::transpose(frame));
+        for (int r = 0; r < 3; ++r)
+            for (int c = 0; c < 3; ++c)
+                m_normalMatrix[r * 3 + c] = float(invT[c][r]);
+        m_spanK.resize(m_offset.size());
+        m_invSpanK.resize(m_offset.size());
+        for (int k = 0; k < m_nz; ++k) {
+            const std::size_t kk = std::size_t(k);
+            m_spanK[kk] = float(m_offset[std::size_t(std::min(k + 1, m_nz - 1))] -
+                                m_offset[std::size_t(std::max(k - 1, 0))]);
+            m_invSpanK[kk] = m_spanK[kk] > 0.0f ? 1.0f / m_spanK[kk] : 0.0f;
+        }
+        m_spanI = float(2.0 * g.spacingI());
+        m_spanJ = float(2.0 * g.spacingJ());
+        m_invSpanI = 1.0f / m_spanI;
+        m_invSpanJ = float(1.0 / (2.0 * g.spacingJ()));
+        m_edgeSpanI = float(g.spacingI());
+        m_edgeSpanJ = float(g.spacingJ());
+        m_axisDir[0] = glm::normalize(glm::dvec3(g.axisI()));
+        m_axisDir[1] = glm::normalize(glm::dvec3(g.axisJ()));
+        double slope = 1.0;
+        if (m_nz > 1)
+            slope = m_offset.back() - m_offset.front() >= 0.0 ? 1.0 : -1.0;
+        m_axisDir[2] = glm::normalize(glm::dvec3(g.stackAxis())) * slope;
+        // Cell widths in grid units (i, j, s), for the self-occlusion distance.
+        m_cellScale = glm::dvec3(1.0, 1.0, m_nz > 1 ? std::abs(m_offset.back() - m_offset.front()) / m_cz : 1.0);
+        if (!(m_cellScale.z > 0.0))
+            m_cellScale.z = 1.0;
+    }
+
+    void findCells(const volume::BrickGrid& grid, unsigned threads) override {
+        cells.clear();
+        chunkStarts.assign(1, 0);
+        activeBricks = 0;
+        if (m_cx < 1 || m_cy < 1 || m_cz < 1)
+            return;
+        if (voxelIndex(m_cx, m_cy, m_cz) > std::numeric_limits<std::uint32_t>::max())
+            throw core::Error("method 2", "volumes of more than 2^32 voxels are not supported");
+        const std::vector<int> active = grid.activeBricks(m_iso);
+        activeBricks = active.size();
+        // One unit per (brick, cell layer): enough units to balance, each a contiguous run.
+        struct Unit {
+            int brick;
+            int z;
+        };
+        std::vector<Unit> units;
+        for (int b : active) {
+            const auto& brick = grid.bricks()[std::size_t(b)];
+            for (int z = brick.cellBegin.z; z < brick.cellEnd.z; ++z)
+                units.push_back({b, z});
+        }
+        if (unitCells.size() < units.size())
+            unitCells.resize(units.size());
+        volume::parallelFor(
+            units.size(),
+            [&](std::size_t u) {
+                const auto& brick = grid.bricks()[std::size_t(units[u].brick)];
+                auto& list = unitCells[u];
+                list.clear();
+                const int z = units[u].z;
+                for (int y = brick.cellBegin.y; y < brick.cellEnd.y; ++y) {
+                    const std::size_t base = voxelIndex(0, y, z);
+                    int column = columnBits(base + std::size_t(brick.cellBegin.x));
+                    for (int x = brick.cellBegin.x; x < brick.cellEnd.x; ++x) {
+                        const int next = columnBits(base + std::size_t(x) + 1);
+                        const int cubeCase = kSpread.lower[column] | kSpread.upper[next];
+                        column = next;
+                        if (cubeCase != 0 && cubeCase != 255)
+                            list.push_back(std::uint32_t(base + std::size_t(x)));
+                    }
+                }
+            },
+            threads);
+        std::size_t total = 0;
+        for (std::size_t u = 0; u < units.size(); ++u)
+            total += unitCells[u].size();
+        cells.reserve(total);
+        std::size_t brickBegin = 0;
+        for (std::size_t u = 0; u < units.size(); ++u) {
+            cells.insert(cells.end(), unitCells[u].begin(), unitCells[u].end());
+            const bool brickEnds = u + 1 == units.size() || units[u + 1].brick != units[u].brick;
+            if (brickEnds) {
+                for (std::size_t s = brickBegin + kChunkCells; s < cells.size(); s += kChunkCells)
+                    chunkStarts.push_back(s);
+                if (cells.size() > chunkStarts.back())
+                    chunkStarts.push_back(cells.size());
+                brickBegin = cells.size();
+            }
+        }
+        // Release the per-layer lists of a large volume: the cache is the flat list only.
+        unitCells.clear();
+        unitCells.shrink_to_fit();
+    }
+
+    std::size_t extract(const SilhouetteView& view, std::vector<SegmentEndpoints>& out, unsigned threads) override {
+        const std::size_t chunks = chunkStarts.size() - 1;
+        if (chunkSegments.size() < chunks)
+            chunkSegments.resize(chunks);
+        chunkTriangles.assign(chunks, 0);
+        const glm::vec3 eye(view.eyeOrDirection);
+        volume::parallelFor(
+            chunks,
+            [&](std::size_t c) {
+                auto& segments = chunkSegments[c];
+                segments.clear();
+                std::size_t triangles = 0;
+                for (std::size_t i = chunkStarts[c]; i < chunkStarts[c + 1]; ++i)
+                    triangles += cellSegments(cells[i], eye, view.orthographic, segments);
+                chunkTriangles[c] = triangles;
+            },
+            threads);
+        out.clear();
+        std::size_t total = 0, triangles = 0;
+        for (std::size_t c = 0; c < chunks; ++c) {
+            total += chunkSegments[c].size();
+            triangles += chunkTriangles[c];
+        }
+        out.reserve(total);
+        for (std::size_t c = 0; c < chunks; ++c)
+            out.insert(out.end(), chunkSegments[c].begin(), chunkSegments[c].end());
+        return triangles;
+    }
+
+    bool visible(glm::dvec3 point, const SilhouetteView& view) const override {
+        const glm::dvec3 toward = view.orthographic ? view.eyeOrDirection : view.eyeOrDirection - point;
+        const double tMax = view.orthographic ? std::numeric_limits<double>::infinity() : 1.0;
+        const glm::dvec3 u0 = rayGrid.toGrid(point);
+        const glm::dvec3 du = rayGrid.directionToGrid(toward);
+        const double cellsPerT = glm::length(du / m_cellScale);
+        if (!(cellsPerT > 0.0))
+            return true;
+        const double tStart = kStartOffsetCells / cellsPerT;
+        if (tStart >= tMax)
+            return true;
+        const glm::dvec3 start = u0 + tStart * du;
+        glm::ivec3 startCell;
+        if (!rayGrid.cellOf(start, du, startCell))
+            return true;
+        const double tSkip = kSelfSkipCells / cellsPerT;
+        return rayGrid.walk(start, du, tMax - tStart, [&](const CellExit& exit) {
+            if (exit.cell == startCell || exit.t < tSkip)
+                return true;
+            return wallValue(exit) < m_iso;
+        });
+    }
+
+private:
+    std::size_t voxelIndex(int x, int y, int z) const {
+        return std::size_t(x) + m_sy * std::size_t(y) + m_sz * std::size_t(z);
+    }
+    float value(std::size_t index) const { return float(m_voxels[index]); }
+    bool inside(std::size_t index) const { return value(index) >= m_isoF; }
+    int columnBits(std::size_t index) const {
+        return int(inside(index)) | int(inside(index + m_sy)) << 1 | int(inside(index + m_sz)) << 2 |
+               int(inside(index + m_sy + m_sz)) << 3;
+    }
+
+    // Bilinear value on the wall the ray leaves through (stored units).
+    double wallValue(const CellExit& exit) const {
+        const int a = exit.axis, b = (a + 1) % 3, c = (a + 2) % 3;
+        auto fraction = [&](int axis) {
+            const double f = axis == 2 ? rayGrid.sliceFraction(exit.point.z, exit.cell.z)
+                                       : exit.point[axis] - double(exit.cell[axis]);
+            return std::clamp(f, 0.0, 1.0);
+        };
+        const double fb = fraction(b), fc = fraction(c);
+        glm::ivec3 v = exit.cell;
+        v[a] = exit.wall;
+        const std::size_t stride[3] = {1, m_sy, m_sz};
+        const std::size_t i00 = voxelIndex(v.x, v.y, v.z);
+        const std::size_t sb = stride[b], sc = stride[c];
+        const double v00 = value(i00), v10 = value(i00 + sb), v01 = value(i00 + sc), v11 = value(i00 + sb + sc);
+        return (1.0 - fc) * ((1.0 - fb) * v00 + fb * v10) + fc * ((1.0 - fb) * v01 + fb * v11);
+    }
+
+    // marchingCubes()'s gradient, expression for expression (the interior fast path multiplies
+    // by the inverse span, the border divides): identical floats give identical normals.
+    McVec3 gradient(int x, int y, int z) const {
+        const std::size_t i = voxelIndex(x, y, z);
+        if (x > 0 && x < m_cx && y > 0 && y < m_cy && z > 0 && z < m_cz) {
+            return {(value(i + 1) - value(i - 1)) * m_invSpanI, (value(i + m_sy) - value(i - m_sy)) * m_invSpanJ,
+                    (value(i + m_sz) - value(i - m_sz)) * m_invSpanK[std::size_t(z)]};
+        }
+        const float c = value(i);
+        McVec3 g;
+        if (x > 0 && x < m_cx)
+            g.x = mcDerivative(value(i - 1), value(i + 1), m_spanI);
+        else if (m_nx > 1)
+            g.x = x == 0 ? mcDerivative(c, value(i + 1), m_edgeSpanI) : mcDerivative(value(i - 1), c, m_edgeSpanI);
+        else
+            g.x = 0.0f;
+        if (y > 0 && y < m_cy)
+            g.y = mcDerivative(value(i - m_sy), value(i + m_sy), m_spanJ);
+        else if (m_ny > 1)
+            g.y = y == 0 ? mcDerivative(c, value(i + m_sy), m_edgeSpanJ) : mcDerivative(value(i - m_sy), c, m_edgeSpanJ);
+        else
+            g.y = 0.0f;
+        const int z0 = std::max(z - 1, 0), z1 = std::min(z + 1, m_cz);
+        const float lo = z0 == z ? c : value(i - m_sz);
+        const float hi = z1 == z ? c : value(i + m_sz);
+        g.z = mcDerivative(lo, hi, m_spanK[std::size_t(z)]);
+        return g;
+    }
+
+    std::size_t cellSegments(std::uint32_t cellIndex, glm::vec3 eye, bool orthographic,
+                             std::vector<SegmentEndpoints>& out) const {
+        const std::size_t index = cellIndex;
+        const int z = int(index / m_sz);
+        const std::size_t rest = index - std::size_t(z) * m_sz;
+        const int y = int(rest / m_sy);
+        const int x = int(rest - std::size_t(y) * m_sy);
+        float v[8];
+        for (int c = 0; c < 8; ++c)
+            v[c] = value(voxelIndex(x + kMcCornerOffset[c][0], y + kMcCornerOffset[c][1], z + kMcCornerOffset[c][2]));
+        const int cubeCase = mcCaseIndex(v, m_isoF);
+        const int triangles = kMcTriangleCount.count[cubeCase];
+        if (triangles == 0)
+            return 0;
+
+        const unsigned edges = kMcEdgeTable[cubeCase];
+        McVec3 grad[8];
+        unsigned haveGrad = 0;
+        auto cornerGradient = [&](int c) -> const McVec3& {
+            if (!(haveGrad & (1u << c))) {
+                grad[c] = gradient(x + kMcCornerOffset[c][0], y + kMcCornerOffset[c][1], z + kMcCornerOffset[c][2]);
+                haveGrad |= 1u << c;
+            }
+            return grad[c];
+        };
+        glm::vec3 position[12];
+        float distance[12];
+        for (int e = 0; e < 12; ++e) {
+            if (!(edges & (1u << e)))
+                continue;
+            const int c0 = kMcEdgeCorners[e][0], c1 = kMcEdgeCorners[e][1];
+            const std::int8_t* owner = kMcEdgeOwner[e];
+            const int axis = owner[3];
+            const int vx = x + owner[0], vy = y + owner[1], vz = z + owner[2];
+            const float a = v[c0], b = v[c1];
+            const float t = mcEdgeParameter(a, b, m_iso);
+            const McVec3 g = mcTransform(m_normalMatrix, mcLerp(cornerGradient(c0), cornerGradient(c1), t));
+            const glm::dvec3 outward = m_axisDir[axis] * (a >= m_isoF ? 1.0 : -1.0);
+            const McVec3 n = mcOutwardNormal(g, {float(outward.x), float(outward.y), float(outward.z)});
+            double px = vx, py = vy;
+            double offset = m_offset[std::size_t(vz)];
+            if (axis == 0)
+                px += t;
+            else if (axis == 1)
+                py += t;
+            else
+                offset += double(t) * (m_offset[std::size_t(vz) + 1] - offset);
+            const glm::dvec3 p = m_origin + px * m_stepI + py * m_stepJ + offset * m_stack;
+            position[e] = glm::vec3(p);
+            distance[e] = silhouetteDistance(position[e], glm::vec3(n.x, n.y, n.z), eye, orthographic);
+        }
+        const std::int8_t* row = kMcTriTable[cubeCase];
+        for (int k = 0; row[k] >= 0; k += 3) {
+            const glm::vec3 p[3] = {position[row[k]], position[row[k + 1]], position[row[k + 2]]};
+            const float d[3] = {distance[row[k]], distance[row[k + 1]], distance[row[k + 2]]};
+            SegmentEndpoints segment;
+            if (silhouetteSegment(p, d, segment))
+                out.push_back(segment);
+        }
+        return std::size_t(triangles);
+    }
+
+    const T* m_voxels;
+    double m_iso;
+    float m_isoF;
+    int m_nx = 0, m_ny = 0, m_nz = 0, m_cx = 0, m_cy = 0, m_cz = 0;
+    std::size_t m_sy = 0, m_sz = 0;
+    glm::dvec3 m_origin{0.0}, m_stepI{0.0}, m_stepJ{0.0}, m_stack{0.0};
+    glm::dvec3 m_axisDir[3];
+    glm::dvec3 m_cellScale{1.0};
+    std::vector<double> m_offset;
+    std::vector<float> m_spanK, m_invSpanK;
+    float m_invSpanI = 0.5f, m_invSpanJ = 0.5f;
+    float m_normalMatrix[9] = {};
+    float m_spanI = 2.0f, m_spanJ = 2.0f, m_edgeSpanI = 1.0f, m_edgeSpanJ = 1.0f;
+};
+
+} // namespace
+
+RayCastSilhouetteCpu::RayCastSilhouetteCpu() = default;
+RayCastSilhouetteCpu::~RayCastSilhouetteCpu() = default;
+
+void RayCastSilhouetteCpu::prepare(const volume::Volume& volume, const volume::BrickGrid& grid, double storedIso,
+                                   unsigned threads) {
+    m_impl = volume::dispatchVoxelType(volume.voxelType(), [&](auto tag) -> std::unique_ptr<Impl> {
+        using T = decltype(tag);
+        return std::make_unique<Engine<T>>(volume, storedIso);
+    });
+    m_impl->findCells(grid, threads);
+}
+
+bool RayCastSilhouetteCpu::isPrepared() const { return m_impl != nullptr; }
+std::size_t RayCastSilhouetteCpu::activeCellCount() const { return m_impl ? m_impl->cells.size() : 0; }
+std::size_t RayCastSilhouetteCpu::activeBrickCount() const { return m_impl ? m_impl->activeBricks : 0; }
+double RayCastSilhouetteCpu::selfSkipCells() { return kSelfSkipCells; }
+
+std::size_t RayCastSilhouetteCpu::extractSegments(const SilhouetteView& view, std::vector<SegmentEndpoints>& out,
+                                                  unsigned threads) {
+    if (!m_impl) {
+        out.clear();
+        return 0;
+    }
+    return m_impl->extract(view, out, threads);
+}
+
+bool RayCastSilhouetteCpu::isVisible(glm::dvec3 patientPoint, const SilhouetteView& view) const {
+    return !m_impl || m_impl->visible(patientPoint, view);
+}
+
+const VoxelRayGrid& RayCastSilhouetteCpu::rayGrid() const {
+    static const VoxelRayGrid empty;
+    return m_impl ? m_impl->rayGrid : empty;
+}
+
+} // namespace lw::kernels::cpu

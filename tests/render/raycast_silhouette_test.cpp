@@ -1,0 +1,384 @@
+// Method 2 (silhouette from active cells + ray-cast visibility) and its voxel walk.
+#include "lw/kernels/cpu/voxel_ray.h"
+#include "lw/kernels/silhouette_segment.h"
+#include "lw/render/analytic_shapes.h"
+#include "lw/render/camera.h"
+#include "lw/render/contour_score.h"
+#include "lw/render/iso_surface.h"
+#include "lw/render/raycast_silhouette_renderer.h"
+#include "lw/render/true_contour.h"
+
+#if __has_include("lw/render/zbuffer_silhouette_renderer.h")
+#include "lw/render/zbuffer_silhouette_renderer.h"
+#define LW_TEST_HAVE_METHOD3 1
+#else
+#define LW_TEST_HAVE_METHOD3 0
+#endif
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+#include <tuple>
+#include <vector>
+
+namespace lw::render {
+namespace {
+
+using kernels::cpu::CellExit;
+using kernels::cpu::VoxelRayGrid;
+
+volume::Volume makeGrid(glm::ivec3 dims, volume::VolumeGeometry geometry = {}) {
+    return volume::Volume(dims, volume::VoxelType::Float32, std::move(geometry));
+}
+
+std::vector<CellExit> walkAll(const VoxelRayGrid& grid, glm::dvec3 start, glm::dvec3 dir, double tMax = INFINITY) {
+    std::vector<CellExit> exits;
+    grid.walk(start, dir, tMax, [&](const CellExit& e) {
+        exits.push_back(e);
+        return true;
+    });
+    return exits;
+}
+
+TEST(VoxelRayGrid, AxisAlignedRayVisitsEveryCellOfItsRow) {
+    const volume::Volume v = makeGrid({8, 8, 8});
+    const VoxelRayGrid grid(v);
+    const auto exits = walkAll(grid, {1.5, 2.5, 3.5}, {1, 0, 0});
+    ASSERT_EQ(exits.size(), 6u); // cells 1..6 of the 7 cells along x
+    for (std::size_t n = 0; n < exits.size(); ++n) {
+        EXPECT_EQ(exits[n].cell, glm::ivec3(int(n) + 1, 2, 3));
+        EXPECT_EQ(exits[n].axis, 0);
+        EXPECT_EQ(exits[n].wall, int(n) + 2);
+        EXPECT_DOUBLE_EQ(exits[n].t, double(n) + 0.5);
+    }
+    // Backwards along z: cells 3, 2, 1, 0, leaving through walls 3, 2, 1, 0.
+    const auto down = walkAll(grid, {1.5, 2.5, 3.5}, {0, 0, -1});
+    ASSERT_EQ(down.size(), 4u);
+    for (std::size_t n = 0; n < down.size(); ++n) {
+        EXPECT_EQ(down[n].cell, glm::ivec3(1, 2, 3 - int(n)));
+        EXPECT_EQ(down[n].axis, 2);
+        EXPECT_EQ(down[n].wall, 3 - int(n));
+    }
+}
+
+TEST(VoxelRayGrid, DiagonalRayStepsThroughFaceNeighboursOnly) {
+    const volume::Volume v = makeGrid({8, 8, 8});
+    const VoxelRayGrid grid(v);
+    const auto exits = walkAll(grid, {0.5, 0.5, 0.5}, {1, 1, 1});
+    ASSERT_FALSE(exits.empty());
+    // Through the edges and corners the walk takes one wall at a time: 3 walls per diagonal cell.
+    EXPECT_EQ(exits.size(), 3u * 6u + 1u);
+    EXPECT_EQ(exits.back().cell, glm::ivec3(6, 6, 6));
+    for (std::size_t n = 1; n < exits.size(); ++n) {
+        const glm::ivec3 d = glm::abs(exits[n].cell - exits[n - 1].cell);
+        EXPECT_EQ(d.x + d.y + d.z, 1) << n;
+        EXPECT_GE(exits[n].t, exits[n - 1].t);
+    }
+}
+
+// Brute force: the cells a finely sampled ray passes through must appear, in order, in the walk.
+TEST(VoxelRayGrid, RandomRaysMatchDenseSampling) {
+    const volume::Volume v = makeGrid({9, 7, 11});
+    const VoxelRayGrid grid(v);
+    std::mt19937 rng(1234);
+    std::uniform_real_distribution<double> pos(0.2, 5.8), dirDist(-1.0, 1.0);
+    for (int r = 0; r < 200; ++r) {
+        const glm::dvec3 start(pos(rng), pos(rng), pos(rng) * 1.5);
+        glm::dvec3 dir(dirDist(rng), dirDist(rng), dirDist(rng));
+        if (glm::length(dir) < 0.1)
+            continue;
+        dir = glm::normalize(dir);
+        const auto exits = walkAll(grid, start, dir);
+        std::vector<glm::ivec3> walked;
+        glm::ivec3 first;
+        ASSERT_TRUE(grid.cellOf(start, dir, first));
+        walked.push_back(first);
+        for (const auto& e : exits) {
+            ASSERT_EQ(e.cell, walked.back());
+            glm::ivec3 next = e.cell;
+            next[e.axis] += e.wall > e.cell[e.axis] ? 1 : -1;
+            walked.push_back(next);
+            // The exit point lies on the reported wall.
+            EXPECT_NEAR(glm::length(start + e.t * dir - e.point), 0.0, 1e-9);
+        }
+        walked.pop_back(); // the last step leaves the grid
+        std::size_t k = 0;
+        const glm::ivec3 cells = grid.cellCount();
+        for (double t = 0.0;; t += 1e-3) {
+            const glm::dvec3 p = start + t * dir;
+            if (p.x < 0 || p.y < 0 || p.z < 0 || p.x > cells.x || p.y > cells.y || p.z > cells.z)
+                break;
+            const glm::ivec3 c = glm::min(glm::ivec3(glm::floor(p)), cells - 1);
+            while (k < walked.size() && walked[k] != c)
+                ++k;
+            ASSERT_LT(k, walked.size()) << "ray " << r << " sampled cell not walked at t=" << t;
+        }
+    }
+}
+
+TEST(VoxelRayGrid, RayLeavingTheVolumeStopsAtTheBorder) {
+    const volume::Volume v = makeGrid({8, 8, 8});
+    const VoxelRayGrid grid(v);
+    const auto exits = walkAll(grid, {3.5, 3.5, 3.5}, {-1, 0.1, 0});
+    ASSERT_FALSE(exits.empty());
+    EXPECT_EQ(exits.back().cell.x, 0);
+    EXPECT_EQ(exits.back().wall, 0);
+    EXPECT_EQ(exits.size(), 4u); // x walls 3, 2, 1, 0; y stays between 3 and 4
+    // Starting outside the grid visits nothing.
+    EXPECT_TRUE(walkAll(grid, {-1.0, 3.0, 3.0}, {-1, 0, 0}).empty());
+    // tMax stops early.
+    EXPECT_EQ(walkAll(grid, {1.5, 2.5, 3.5}, {1, 0, 0}, 2.0).size(), 2u);
+}
+
+TEST(VoxelRayGrid, UnevenTiltedStackWallsAtSliceOffsets) {
+    const glm::dvec3 axisI(1, 0, 0), axisJ(0, 1, 0);
+    // Uneven gaps (1, 2, 3 mm) and a tilt: each slice shifted in y by 0.3 mm per mm.
+    const std::vector<glm::dvec3> positions = {{0, 0, 0}, {0, 0.3, 1}, {0, 0.9, 3}, {0, 1.8, 6}};
+    const auto geometry = volume::VolumeGeometry::fromSlicePositions(axisI, axisJ, 1.0, 1.0, positions);
+    const volume::Volume v = makeGrid({4, 4, 4}, geometry);
+    const VoxelRayGrid grid(v);
+    // Grid coordinates round-trip through patient space, and slice k sits at s = offset(k).
+    for (int k = 0; k < 4; ++k) {
+        const glm::dvec3 p = geometry.indexToPatient({1.25, 2.5, double(k)});
+        const glm::dvec3 u = grid.toGrid(p);
+        EXPECT_NEAR(u.x, 1.25, 1e-12);
+        EXPECT_NEAR(u.y, 2.5, 1e-12);
+        EXPECT_NEAR(u.z, grid.offset(k), 1e-12);
+        EXPECT_NEAR(glm::length(grid.toPatient(u) - p), 0.0, 1e-12);
+    }
+    // A ray along the stack from inside slab 0 leaves through the walls at the slice offsets.
+    const glm::dvec3 start = grid.toGrid(geometry.indexToPatient({1.5, 1.5, 0.5}));
+    const auto exits = walkAll(grid, start, grid.directionToGrid(geometry.stackAxis()));
+    ASSERT_EQ(exits.size(), 3u);
+    for (int n = 0; n < 3; ++n) {
+        EXPECT_EQ(exits[std::size_t(n)].axis, 2);
+        EXPECT_EQ(exits[std::size_t(n)].cell, glm::ivec3(1, 1, n));
+        EXPECT_DOUBLE_EQ(exits[std::size_t(n)].point.z, grid.offset(n + 1));
+    }
+}
+
+Camera shapeCamera(const AnalyticShape& shape, const volume::Volume& v, double az, double el,
+                   Projection projection = Projection::Perspective) {
+    CameraSetup setup;
+    setup.bounds = shape.bounds();
+    setup.azimuthDeg = az;
+    setup.elevationDeg = el;
+    setup.projection = projection;
+    const int side = Camera::squareSizeForVoxelCoverage(setup, v.geometry().spacingI(), 2.0);
+    return Camera(setup, side, side);
+}
+
+SilhouetteSettings shapeSettings() {
+    SilhouetteSettings s;
+    s.isoReal = kShapeIso;
+    return s;
+}
+
+TEST(RayCastVisibility, FarSideOfSphereOccludedNearSideVisible) {
+    const SphereShape sphere({0, 0, 0}, 40.0);
+    const volume::Volume v = sampleShape(sphere, 64);
+    for (const Projection projection : {Projection::Perspective, Projection::Orthographic}) {
+        const Camera camera = shapeCamera(sphere, v, 25.0, 15.0, projection);
+        RayCastSilhouetteRenderer renderer;
+        renderer.setVolume(v);
+        renderer.render(camera, shapeSettings());
+        const glm::dvec3 towardViewer = camera.toViewer({0, 0, 0});
+        // Points just outside the surface (so no sampling error can put them inside).
+        EXPECT_TRUE(renderer.isPointVisible(camera, 40.2 * towardViewer));
+        EXPECT_FALSE(renderer.isPointVisible(camera, -40.2 * towardViewer));
+        // On the surface itself, at the poles.
+        EXPECT_TRUE(renderer.isPointVisible(camera, 40.0 * towardViewer));
+        EXPECT_FALSE(renderer.isPointVisible(camera, -40.0 * towardViewer));
+        // Beside the sphere on the far side but outside its shadow: visible.
+        EXPECT_TRUE(renderer.isPointVisible(camera, -40.0 * towardViewer + 45.0 * camera.right()));
+    }
+}
+
+struct SegmentKey {
+    std::array<float, 6> v;
+    bool operator<(const SegmentKey& o) const { return v < o.v; }
+    bool operator==(const SegmentKey& o) const { return v == o.v; }
+};
+
+std::vector<SegmentKey> meshSegments(const Mesh& mesh, const Camera& camera) {
+    const bool ortho = camera.isOrthographic();
+    const glm::vec3 eye = ortho ? glm::vec3(-camera.forward()) : glm::vec3(camera.eye());
+    std::vector<SegmentKey> out;
+    for (std::size_t t = 0; t < mesh.triangleCount(); ++t) {
+        glm::vec3 p[3];
+        float d[3];
+        for (int k = 0; k < 3; ++k) {
+            const std::uint32_t i = mesh.indices[3 * t + std::size_t(k)];
+            p[k] = mesh.positions[i];
+            d[k] = kernels::silhouetteDistance(p[k], mesh.normals[i], eye, ortho);
+        }
+        kernels::SegmentEndpoints s;
+        if (kernels::silhouetteSegment(p, d, s))
+            out.push_back({{s.a.x, s.a.y, s.a.z, s.b.x, s.b.y, s.b.z}});
+    }
+    std::sort(out.begin(), out.end());
+    return out;
+}
+
+std::vector<SegmentKey> rendererSegments(const RayCastSilhouetteRenderer& renderer) {
+    std::vector<SegmentKey> out;
+    for (const auto& s : renderer.lastSegments())
+        out.push_back({{s.a.x, s.a.y, s.a.z, s.b.x, s.b.y, s.b.z}});
+    std::sort(out.begin(), out.end());
+    return out;
+}
+
+TEST(RayCastSilhouette, SegmentsEqualTheMarchingCubesMeshSegments) {
+    const SphereShape sphere({0, 0, 0}, 40.0);
+    volume::Volume v = sampleShape(sphere, 48);
+    for (int geometryCase = 0; geometryCase < 2; ++geometryCase) {
+        if (geometryCase == 1) {
+            // Same samples on a tilted, unevenly spaced stack: the mesh moves, the rule must not.
+            const auto& g = v.geometry();
+            std::vector<glm::dvec3> positions;
+            double s = 0.0;
+            for (int k = 0; k < v.dims().z; ++k) {
+                positions.push_back(g.origin() + glm::dvec3(0.0, 0.2 * s, s));
+                s += g.spacingI() * (k % 3 == 0 ? 1.4 : 0.9);
+            }
+            v.setGeometry(volume::VolumeGeometry::fromSlicePositions({1, 0, 0}, {0, 1, 0}, g.spacingI(),
+                                                                      g.spacingJ(), positions));
+        }
+        const Camera camera = shapeCamera(sphere, v, 40.0, 25.0);
+        const Mesh mesh = extractIsoSurface(v, kShapeIso);
+        RayCastSilhouetteRenderer renderer;
+        renderer.setVolume(v);
+        const SilhouetteFrame frame = renderer.render(camera, shapeSettings());
+        EXPECT_EQ(frame.triangles, mesh.triangleCount()) << "geometry " << geometryCase;
+        const auto expected = meshSegments(mesh, camera);
+        const auto actual = rendererSegments(renderer);
+        ASSERT_GT(expected.size(), 100u);
+        EXPECT_EQ(frame.segments, expected.size());
+        EXPECT_TRUE(actual == expected) << "geometry " << geometryCase << ": " << actual.size() << " vs "
+                                        << expected.size() << " segments";
+    }
+}
+
+TEST(RayCastSilhouette, ChunkedEqualsWhole) {
+    const LinkedToriShape tori;
+    const volume::Volume v = sampleShape(tori, 40);
+    const Camera camera = shapeCamera(tori, v, 35.0, 30.0);
+    for (const bool along : {false, true}) {
+        SilhouetteSettings settings = shapeSettings();
+        settings.testAlongSegment = along;
+        RayCastSilhouetteRenderer whole;
+        whole.setVolume(v);
+        const SilhouetteFrame reference = whole.render(camera, settings);
+        const auto referenceSegments = rendererSegments(whole);
+        ASSERT_GT(reference.lines.count(), 100u);
+        for (const int brick : {5, 8, 16}) {
+            settings.brickCells = brick;
+            RayCastSilhouetteRenderer chunked;
+            chunked.setVolume(v);
+            const SilhouetteFrame frame = chunked.render(camera, settings);
+            EXPECT_TRUE(frame.lines == reference.lines) << "brick " << brick << " along " << along;
+            EXPECT_EQ(frame.triangles, reference.triangles);
+            EXPECT_TRUE(rendererSegments(chunked) == referenceSegments) << "brick " << brick;
+        }
+    }
+}
+
+TEST(RayCastSilhouette, VisibilityOffIsASupersetOfOn) {
+    const TorusShape torus;
+    const volume::Volume v = sampleShape(torus, 48);
+    // From slightly above: the far side of the hole is hidden behind the near tube.
+    const Camera camera = shapeCamera(torus, v, 20.0, 20.0);
+    RayCastSilhouetteRenderer renderer;
+    renderer.setVolume(v);
+    SilhouetteSettings settings = shapeSettings();
+    settings.visibility = false;
+    const SilhouetteFrame off = renderer.render(camera, settings);
+    for (const bool along : {false, true}) {
+        settings.visibility = true;
+        settings.testAlongSegment = along;
+        const SilhouetteFrame on = renderer.render(camera, settings);
+        ASSERT_GT(on.lines.count(), 100u);
+        EXPECT_LT(on.lines.count(), off.lines.count()) << "hidden contours must be removed";
+        for (int y = 0; y < on.lines.height(); ++y)
+            for (int x = 0; x < on.lines.width(); ++x)
+                if (on.lines.get(x, y))
+                    ASSERT_TRUE(off.lines.get(x, y)) << x << "," << y;
+        EXPECT_EQ(on.segments, off.segments);
+    }
+}
+
+TEST(RayCastSilhouette, ModeACachesTheActiveCells) {
+    const SphereShape sphere;
+    const volume::Volume v = sampleShape(sphere, 32);
+    Camera camera = shapeCamera(sphere, v, 0.0, 0.0);
+    RayCastSilhouetteRenderer renderer;
+    renderer.setVolume(v);
+    SilhouetteSettings settings = shapeSettings();
+    const SilhouetteFrame first = renderer.render(camera, settings);
+    EXPECT_GT(first.times.extractMs, 0.0);
+    const std::size_t cells = renderer.activeCellCount();
+    EXPECT_GT(cells, 0u);
+    camera.setView(60.0, 10.0);
+    const SilhouetteFrame second = renderer.render(camera, settings);
+    EXPECT_EQ(second.times.extractMs, 0.0);
+    EXPECT_GT(second.segments, 0u);
+    EXPECT_EQ(renderer.activeCellCount(), cells);
+    // Mode b re-extracts and gives the same picture.
+    settings.mode = ExtractionMode::EveryFrameB;
+    const SilhouetteFrame third = renderer.render(camera, settings);
+    EXPECT_GT(third.times.extractMs, 0.0);
+    EXPECT_TRUE(third.lines == second.lines);
+    // A new iso-value invalidates the cache: no surface above the maximum.
+    settings.mode = ExtractionMode::CachedA;
+    settings.isoReal = 1e6;
+    const SilhouetteFrame empty = renderer.render(camera, settings);
+    EXPECT_EQ(empty.segments, 0u);
+    EXPECT_EQ(empty.lines.count(), 0u);
+    EXPECT_EQ(renderer.activeCellCount(), 0u);
+}
+
+TEST(RayCastSilhouette, AlongSegmentSphereAccuracyAt64) {
+    const SphereShape sphere;
+    const volume::Volume v = sampleShape(sphere, 64);
+    const Camera camera = shapeCamera(sphere, v, 30.0, 20.0);
+    RayCastSilhouetteRenderer renderer;
+    renderer.setVolume(v);
+    SilhouetteSettings settings = shapeSettings();
+    settings.testAlongSegment = true;
+    const SilhouetteFrame frame = renderer.render(camera, settings);
+    const ContourScore score = scoreContours(frame.lines, trueContourMask(sphere, camera), 1);
+    EXPECT_GE(score.recall, 0.99);
+    EXPECT_GE(score.precision, 0.99);
+    EXPECT_GT(score.truePixels, 300u);
+}
+
+#if LW_TEST_HAVE_METHOD3
+// Methods 2 and 3 draw the same visible silhouette: >= 99% of either's pixels within 1 px of the
+// other's (recall and precision of one against the other).
+TEST(RayCastSilhouette, AgreesWithMethod3) {
+    for (const std::string name : {"sphere", "torus", "tori", "metaballs"}) {
+        const auto shape = makeAnalyticShape(name);
+        const volume::Volume v = sampleShape(*shape, 48);
+        const Camera camera = shapeCamera(*shape, v, 30.0, 20.0);
+        for (const int brick : {0, 12}) {
+            SilhouetteSettings settings = shapeSettings();
+            settings.brickCells = brick;
+            settings.testAlongSegment = true;
+            RayCastSilhouetteRenderer method2;
+            method2.setVolume(v);
+            ZBufferSilhouetteRenderer method3;
+            method3.setVolume(v);
+            const PixelMask a = method2.render(camera, settings).lines;
+            const PixelMask b = method3.render(camera, settings).lines;
+            const ContourScore score = scoreContours(a, b, 1);
+            EXPECT_GE(score.recall, 0.99) << name << " brick " << brick;
+            EXPECT_GE(score.precision, 0.99) << name << " brick " << brick;
+        }
+    }
+}
+#endif
+
+} // namespace
+} // namespace lw::render
