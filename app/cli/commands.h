@@ -10,6 +10,7 @@ namespace lw::cli {
 // Errors are thrown as core::Error and reported by main().
 int runInfo(const std::vector<std::string>& args, std::ostream& out);
 int runBenchImport(const std::vector<std::string>& args, std::ostream& out);
+int runRender(const std::vector<std::string>& args, std::ostream& out);
 int runAccuracy(const std::vector<std::string>& args, std::ostream& out);
 
 } // namespace lw::cli

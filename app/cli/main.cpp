@@ -23,6 +23,13 @@ commands:
   accuracy [--methods 1,2,3] [--sizes 32,64,256] [--shapes sphere,...] [--backend cpu|cuda|auto] [--json]
                               the paper's Table 5 measured: recall/precision (1 px) of each
                               method (S and L) against analytic contours
+  render INPUT [--series UID] --iso HU --method 1|2|3 [--chunks off|auto|N] [--mode a|b]
+         [--visibility on|off] [--view AZ,EL] [--camera perspective|ortho] [--size WxH]
+         [--panel iso|silhouette|both] [--backend cpu|cuda|auto] [--repeat N] -o OUT.png
+                              one view as PNG (default 512x512, silhouette, method 3, view 0,0);
+                              INPUT: volume file, DICOM folder/DICOMDIR or phantom:N[xNYxNZ][:sphere];
+                              both = shaded iso-surface left, silhouette right (width 2W);
+                              --repeat N: N more views 1 degree apart, prints their median ms
   help                        this text
 
 Exit codes: 0 success, 1 error (the message names the file and the reason), 2 usage error.
@@ -40,6 +47,7 @@ int main(int argc, char** argv) {
     const std::map<std::string, Command> commands = {
         {"info", lw::cli::runInfo},
         {"bench-import", lw::cli::runBenchImport},
+        {"render", lw::cli::runRender},
         {"accuracy", lw::cli::runAccuracy},
     };
     const auto command = commands.find(args[0]);
