@@ -425,29 +425,46 @@ private:
                 ids.axis[1].data() + std::size_t(y - cb.y) * std::size_t(width) - std::size_t(cb.x);
             std::uint32_t* idsZ =
                 ids.axis[2].data() + std::size_t(y - cb.y) * std::size_t(width) - std::size_t(cb.x);
+            // The three edges leaving voxel x share its gradient, and the +x edge's far end is
+            // the next voxel: compute each gradient once per row walk.
+            McVec3 gradientHere{}, gradientNext{};
+            int nextX = -1;
             for (int x = lo; x < hi; ++x) {
                 if (x == ce.x && nextSegment)
                     id = m_vertexOffset[segment + 1];
                 const std::size_t index = base + std::size_t(x);
                 const bool a = inside(index);
                 const bool own = ownRow && x < ownXEnd;
+                bool haveHere = nextX == x;
+                if (haveHere)
+                    gradientHere = gradientNext;
+                auto here = [&]() -> const McVec3& {
+                    if (!haveHere) {
+                        gradientHere = gradient(x, y, z);
+                        haveHere = true;
+                    }
+                    return gradientHere;
+                };
                 if (x + 1 < m_nx && a != inside(index + 1)) {
                     if (x < ce.x)
                         idsX[x] = id;
-                    if (own)
-                        writeVertex(x, y, z, 0, id);
+                    if (own) {
+                        gradientNext = gradient(x + 1, y, z);
+                        nextX = x + 1;
+                        writeVertex(x, y, z, 0, id, here(), gradientNext);
+                    }
                     ++id;
                 }
                 if (hasY && a != inside(index + m_sy)) {
                     idsY[x] = id;
                     if (own)
-                        writeVertex(x, y, z, 1, id);
+                        writeVertex(x, y, z, 1, id, here(), gradient(x, y + 1, z));
                     ++id;
                 }
                 if (hasZ && a != inside(index + m_sz)) {
                     idsZ[x] = id;
                     if (own)
-                        writeVertex(x, y, z, 2, id);
+                        writeVertex(x, y, z, 2, id, here(), gradient(x, y, z + 1));
                     ++id;
                 }
             }
@@ -516,14 +533,14 @@ private:
         return g;
     }
 
-    void writeVertex(int x, int y, int z, int axis, std::uint32_t id) {
+    // ga/gb: gradients at the edge's lower and upper voxel.
+    void writeVertex(int x, int y, int z, int axis, std::uint32_t id, const McVec3& ga,
+                     const McVec3& gb) {
         const std::size_t i = voxelIndex(x, y, z);
         const std::size_t step = axis == 0 ? 1 : (axis == 1 ? m_sy : m_sz);
         const float a = value(i), b = value(i + step);
         const float t = mcEdgeParameter(a, b, m_iso);
-        const int x1 = x + (axis == 0), y1 = y + (axis == 1), z1 = z + (axis == 2);
-        const McVec3 g =
-            mcTransform(m_normalMatrix, mcLerp(gradient(x, y, z), gradient(x1, y1, z1), t));
+        const McVec3 g = mcTransform(m_normalMatrix, mcLerp(ga, gb, t));
         McVec3 fallback = m_edgeDirection[axis];
         if (!(a >= m_isoF))
             fallback = {-fallback.x, -fallback.y, -fallback.z};
