@@ -404,3 +404,55 @@ TEST(VolumeAssembler, DecodeErrorNamesTheFile) {
         EXPECT_NE(std::string(e.what()).find(files[1].filename().string()), std::string::npos) << e.what();
     }
 }
+
+TEST(VolumeAssembler, MixedSignednessBecomesInt16WhenValuesFit) {
+    lw::test::TempDir dir;
+    const std::string uid = dt::makeTestUid();
+    dt::TestSlice a = baseSlice(uid); // signed 16-bit
+    auto files = writeStack(dir, {0, 1}, a, "signed");
+    dt::TestSlice b = baseSlice(uid); // unsigned 12-bit: fits int16
+    b.pixelRepresentation = 0;
+    b.bitsStored = 12;
+    b.highBit = 11;
+    for (int k = 0; k < 2; ++k) {
+        b.position = glm::dvec3(-20.0, 10.0, 2.0 + k);
+        b.pixels = dt::rampPixels(kSize, kSize, 100 * k, 7);
+        const auto path = dir / ("unsigned" + std::to_string(k) + ".dcm");
+        dt::writeTestSlice(path, b);
+        files.push_back(path);
+    }
+    const SeriesInfo series = readSeries(files);
+    const SeriesAssembly assembly = planVolumes(series);
+    ASSERT_EQ(assembly.volumes.size(), 1u);
+    EXPECT_EQ(assembly.volumes[0].voxelType, volume::VoxelType::Int16);
+    EXPECT_TRUE(assembly.volumes[0].warnings.empty());
+    const volume::Volume v = loadVolume(series, assembly.volumes[0]);
+    expectSliceValues(v, 3, dt::rampPixels(kSize, kSize, 100, 7));
+    // Signed slices sorted first (z 0 and 1): ramp from slicePixels, in position order.
+    EXPECT_EQ(v.storedValue(0, 0, 0), slicePixels(0)[0]);
+}
+
+TEST(VolumeAssembler, ClassicMultiFrameWithoutPositionsIsStackedWithWarning) {
+    lw::test::TempDir dir;
+    dt::TestSlice s = baseSlice(dt::makeTestUid());
+    s.numberOfFrames = 3;
+    s.pixels.clear();
+    for (int f = 0; f < 3; ++f) {
+        const auto frame = slicePixels(f);
+        s.pixels.insert(s.pixels.end(), frame.begin(), frame.end());
+    }
+    s.sliceThickness = 2.5;
+    s.transferSyntax = dt::TestTransferSyntax::Rle; // encapsulated multi-frame: decoded once
+    dt::writeTestSlice(dir / "multi.dcm", s);
+    const SeriesInfo series = readSeries({dir / "multi.dcm"});
+    ASSERT_EQ(series.instances[0].frames.size(), 3u);
+    EXPECT_FALSE(series.instances[0].frames[1].position.has_value());
+    const SeriesAssembly assembly = planVolumes(series);
+    ASSERT_EQ(assembly.volumes.size(), 1u);
+    EXPECT_EQ(assembly.volumes[0].dims, glm::ivec3(kSize, kSize, 3));
+    EXPECT_NEAR(assembly.volumes[0].geometry.sliceStep(), 2.5, 1e-9);
+    EXPECT_FALSE(assembly.volumes[0].warnings.empty());
+    const volume::Volume v = loadVolume(series, assembly.volumes[0]);
+    for (int z = 0; z < 3; ++z)
+        expectSliceValues(v, z, slicePixels(z));
+}
