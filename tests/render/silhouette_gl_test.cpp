@@ -15,6 +15,9 @@
 
 #include <gtest/gtest.h>
 
+#define GL_GLEXT_PROTOTYPES 1
+#include <GL/glcorearb.h>
+
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -329,6 +332,34 @@ TEST_F(SilhouetteGl, ReuploadReusesBuffersAndGivesTheSameImage) {
     m_renderer.uploadMesh(small); // fits in the big buffers: overwritten in place
     EXPECT_EQ(m_renderer.triangleCount(), small.triangleCount());
     EXPECT_EQ(m_renderer.renderImage(camera, options), first);
+}
+
+// The GUI paints into QOpenGLWidget's own framebuffer: the renderer must leave it bound.
+TEST_F(SilhouetteGl, RestoresTheCallersFramebufferAndViewport) {
+    GLuint fbo = 0, colour = 0;
+    glGenFramebuffers(1, &fbo);
+    glGenRenderbuffers(1, &colour);
+    glBindRenderbuffer(GL_RENDERBUFFER, colour);
+    glRenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, 8, 8);
+    glBindFramebuffer(GL_FRAMEBUFFER, fbo);
+    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, colour);
+    glViewport(1, 2, 5, 6);
+    m_renderer.uploadMesh(icosphere({0, 0, 0}, 1.0f, 1));
+    m_renderer.renderImage(orthoCamera({{-1, -1, -1}, {1, 1, 1}}, 40));
+    GLint draw = -1, read = -1, viewport[4] = {};
+    glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &draw);
+    glGetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &read);
+    glGetIntegerv(GL_VIEWPORT, viewport);
+    EXPECT_EQ(GLuint(draw), fbo);
+    EXPECT_EQ(GLuint(read), fbo);
+    EXPECT_EQ(viewport[0], 1);
+    EXPECT_EQ(viewport[1], 2);
+    EXPECT_EQ(viewport[2], 5);
+    EXPECT_EQ(viewport[3], 6);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    glDeleteFramebuffers(1, &fbo);
+    glDeleteRenderbuffers(1, &colour);
+    EXPECT_EQ(glGetError(), GLenum(GL_NO_ERROR));
 }
 
 TEST_F(SilhouetteGl, EmptyMeshGivesTheBackground) {

@@ -117,6 +117,29 @@ void uploadBuffer(GLenum target, GLuint buffer, const void* data, std::size_t by
     }
 }
 
+// Restores the caller's framebuffer bindings and viewport: under QOpenGLWidget the widget's own
+// framebuffer (not 0) is bound while painting, and the GUI must find it bound again afterwards.
+class FramebufferBindingGuard {
+public:
+    FramebufferBindingGuard() {
+        glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &m_draw);
+        glGetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &m_read);
+        glGetIntegerv(GL_VIEWPORT, m_viewport);
+    }
+    ~FramebufferBindingGuard() {
+        glBindFramebuffer(GL_DRAW_FRAMEBUFFER, GLuint(m_draw));
+        glBindFramebuffer(GL_READ_FRAMEBUFFER, GLuint(m_read));
+        glViewport(m_viewport[0], m_viewport[1], m_viewport[2], m_viewport[3]);
+    }
+    FramebufferBindingGuard(const FramebufferBindingGuard&) = delete;
+    FramebufferBindingGuard& operator=(const FramebufferBindingGuard&) = delete;
+
+private:
+    GLint m_draw = 0;
+    GLint m_read = 0;
+    GLint m_viewport[4] = {0, 0, 0, 0};
+};
+
 } // namespace
 
 SilhouetteGlRenderer::~SilhouetteGlRenderer() {
@@ -281,10 +304,11 @@ SilhouetteGlStats SilhouetteGlRenderer::render(const Camera& camera, const Silho
 SilhouetteGlStats SilhouetteGlRenderer::render(const glm::mat4& viewProjection, glm::vec4 viewer,
                                                glm::vec3 lightDirection, int width, int height,
                                                const SilhouetteGlOptions& options) {
-    initialize();
-    ensureFramebuffer(width, height);
     if (options.lineWidth <= 0.0f)
         throw core::Error("silhouette line width", std::to_string(options.lineWidth) + " is not positive");
+    initialize();
+    const FramebufferBindingGuard bindingGuard;
+    ensureFramebuffer(width, height);
 
     glBindFramebuffer(GL_FRAMEBUFFER, m_framebuffer);
     glViewport(0, 0, width, height);
@@ -359,7 +383,6 @@ SilhouetteGlStats SilhouetteGlRenderer::render(const glm::mat4& viewProjection, 
     glDisable(GL_DEPTH_TEST);
     glBindVertexArray(0);
     glUseProgram(0);
-    glBindFramebuffer(GL_FRAMEBUFFER, 0);
     gl::checkGlError("SilhouetteGlRenderer::render");
     return stats;
 }
@@ -368,12 +391,18 @@ core::ImageRgba8 SilhouetteGlRenderer::readImage() const {
     if (!m_framebuffer)
         throw core::Error("GL read-back", "nothing has been rendered yet");
     core::ImageRgba8 image(m_width, m_height);
+    const FramebufferBindingGuard bindingGuard;
     glBindFramebuffer(GL_READ_FRAMEBUFFER, m_framebuffer);
     glReadBuffer(GL_COLOR_ATTACHMENT0);
+    // Tightly packed rows into client memory, whatever the caller left set; restored afterwards.
+    GLint alignment = 4, packBuffer = 0;
+    glGetIntegerv(GL_PACK_ALIGNMENT, &alignment);
+    glGetIntegerv(GL_PIXEL_PACK_BUFFER_BINDING, &packBuffer);
     glPixelStorei(GL_PACK_ALIGNMENT, 1);
     glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
     glReadPixels(0, 0, m_width, m_height, GL_RGBA, GL_UNSIGNED_BYTE, image.bytes());
-    glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+    glPixelStorei(GL_PACK_ALIGNMENT, alignment);
+    glBindBuffer(GL_PIXEL_PACK_BUFFER, GLuint(packBuffer));
     gl::checkGlError("SilhouetteGlRenderer::readImage");
     image.flipRows(); // GL's first row is the bottom one
     return image;
