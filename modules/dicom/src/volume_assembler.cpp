@@ -76,8 +76,7 @@ struct GroupKey {
     double intercept = 0.0;
     bool hasPosition = true;
 
-    bool matches(const FrameRef& f, const GroupKey& other) const {
-        (void)f;
+    bool matches(const GroupKey& other) const {
         return rows == other.rows && columns == other.columns && sameOrientation(orientation, other.orientation) &&
                sameSpacing(spacing, other.spacing) && frameType == other.frameType &&
                std::abs(slope - other.slope) <= 1e-6 * std::max({1.0, std::abs(slope)}) &&
@@ -269,7 +268,7 @@ volume::VoxelType chooseVoxelType(const std::vector<const InstanceInfo*>& instan
     return volume::VoxelType::UInt16; // uint8 and uint16 mixed
 }
 
-VolumePlan makePlan(const SeriesInfo& series, Group group, std::vector<std::string>& seriesWarnings) {
+VolumePlan makePlan(const SeriesInfo& series, Group group) {
     VolumePlan plan;
     plan.seriesInstanceUid = series.seriesInstanceUid;
     plan.label = group.label;
@@ -361,7 +360,6 @@ VolumePlan makePlan(const SeriesInfo& series, Group group, std::vector<std::stri
         }
     }
     plan.voxelType = chooseVoxelType(instances, plan.warnings);
-    (void)seriesWarnings;
     return plan;
 }
 
@@ -446,7 +444,7 @@ SeriesAssembly planVolumes(const SeriesInfo& series) {
     std::vector<Group> groups;
     for (const FrameRef& f : frames) {
         const GroupKey key = keyOf(f);
-        auto it = std::find_if(groups.begin(), groups.end(), [&](const Group& g) { return g.key.matches(f, key); });
+        auto it = std::find_if(groups.begin(), groups.end(), [&](const Group& g) { return g.key.matches(key); });
         if (it == groups.end()) {
             groups.push_back(Group{key, {}, {}, {}});
             it = groups.end() - 1;
@@ -477,7 +475,7 @@ SeriesAssembly planVolumes(const SeriesInfo& series) {
     labelGroups(split);
     for (Group& g : split) {
         try {
-            assembly.volumes.push_back(makePlan(series, std::move(g), assembly.warnings));
+            assembly.volumes.push_back(makePlan(series, std::move(g)));
         } catch (const core::Error& e) {
             assembly.warnings.push_back(std::string("a group of frames could not be planned: ") + e.what());
         }
