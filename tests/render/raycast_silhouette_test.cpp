@@ -339,6 +339,27 @@ TEST(RayCastSilhouette, ModeACachesTheActiveCells) {
     EXPECT_EQ(renderer.activeCellCount(), 0u);
 }
 
+// Mode a skips cells by a cone around their normals; the cull must never lose a segment.
+TEST(RayCastSilhouette, NormalConeCullKeepsEverySegment) {
+    const MetaballsShape blobs;
+    const volume::Volume v = sampleShape(blobs, 40);
+    for (const Projection projection : {Projection::Perspective, Projection::Orthographic})
+        for (int view = 0; view < 6; ++view) {
+            const Camera camera = shapeCamera(blobs, v, -170.0 + 61.0 * view, -60.0 + 23.0 * view, projection);
+            RayCastSilhouetteRenderer cached, everyFrame;
+            cached.setVolume(v);
+            everyFrame.setVolume(v);
+            SilhouetteSettings settings = shapeSettings();
+            const SilhouetteFrame a = cached.render(camera, settings);
+            settings.mode = ExtractionMode::EveryFrameB;
+            const SilhouetteFrame b = everyFrame.render(camera, settings);
+            ASSERT_GT(b.segments, 50u);
+            EXPECT_EQ(a.triangles, b.triangles);
+            EXPECT_TRUE(rendererSegments(cached) == rendererSegments(everyFrame)) << "view " << view;
+            EXPECT_TRUE(a.lines == b.lines) << "view " << view;
+        }
+}
+
 TEST(RayCastSilhouette, AlongSegmentSphereAccuracyAt64) {
     const SphereShape sphere;
     const volume::Volume v = sampleShape(sphere, 64);

@@ -19,6 +19,12 @@ namespace {
 constexpr std::size_t kChunkCells = 2048;
 constexpr double kStartOffsetCells = 1e-4;
 constexpr double kSelfSkipCells = 1.0;
+// Empty-space skipping for the visibility rays: macro cells of this many cells per axis that hold
+// no inside voxel cannot occlude (a bilinear wall value is a convex combination of its corners).
+constexpr int kMacroCells = 8;
+// Slack of the normal-cone cull, relative to |eye - cell centre|: float round-off of d = N . V
+// (relative 1e-6 at most) must never turn a culled cell into one with a segment.
+constexpr double kConeSlack = 1e-4;
 
 // Inside bits of the four voxels (x,y,z), (x,y+1,z), (x,y,z+1), (x,y+1,z+1) spread onto the
 // corner bits of a cell's lower-x (0, 3, 4, 7) or upper-x (1, 2, 5, 6) face (diagram in
@@ -45,7 +51,7 @@ constexpr SpreadTables kSpread = makeSpread();
 
 struct RayCastSilhouetteCpu::Impl {
     virtual ~Impl() = default;
-    virtual void findCells(const volume::BrickGrid& grid, unsigned threads) = 0;
+    virtual void findCells(const volume::BrickGrid& grid, bool withCones, unsigned threads) = 0;
     virtual std::size_t extract(const SilhouetteView& view, std::vector<SegmentEndpoints>& out,
                                 unsigned threads) = 0;
     virtual bool visible(glm::dvec3 point, const SilhouetteView& view) const = 0;
@@ -54,9 +60,18 @@ struct RayCastSilhouetteCpu::Impl {
     std::vector<std::uint32_t> cells;      // voxel index of each active cell's lowest corner
     std::vector<std::size_t> chunkStarts;  // chunk c = cells [chunkStarts[c], chunkStarts[c + 1])
     std::size_t activeBricks = 0;
+    // Per active cell (mode a only): a cone holding every vertex normal of the cell, so a view
+    // skips the cells whose normals cannot straddle the view direction.
+    struct NormalCone {
+        float x, y, z; // unit axis
+        float cosA, sinA;
+    };
+    std::vector<NormalCone> cones;
+    std::vector<std::uint8_t> macroOccupied; // per macro cell: holds a voxel >= iso
     // Per-chunk outputs, kept between frames so a new view allocates nothing once warm.
     std::vector<std::vector<SegmentEndpoints>> chunkSegments;
     std::vector<std::size_t> chunkTriangles;
+    std::vector<std::size_t> chunkTriangleTotal; // with cones: triangles of every cell of the chunk
     std::vector<std::vector<std::uint32_t>> unitCells;
 };
 
@@ -112,16 +127,28 @@ public:
         if (m_nz > 1)
             slope = m_offset.back() - m_offset.front() >= 0.0 ? 1.0 : -1.0;
         m_axisDir[2] = glm::normalize(glm::dvec3(g.stackAxis())) * slope;
+        for (int a = 0; a < 3; ++a)
+            m_edgeDirection[a] = {float(m_axisDir[a].x), float(m_axisDir[a].y), float(m_axisDir[a].z)};
+        for (int k = 0; k + 1 < m_nz; ++k) {
+            const double gap = m_offset[std::size_t(k) + 1] - m_offset[std::size_t(k)];
+            for (int corner = 0; corner < 8; ++corner) {
+                const glm::dvec3 d = ((corner & 1) ? 0.5 : -0.5) * m_stepI + ((corner & 2) ? 0.5 : -0.5) * m_stepJ +
+                                     ((corner & 4) ? 0.5 : -0.5) * gap * m_stack;
+                m_cellRadius = std::max(m_cellRadius, glm::length(d));
+            }
+        }
         // Cell widths in grid units (i, j, s), for the self-occlusion distance.
         m_cellScale = glm::dvec3(1.0, 1.0, m_nz > 1 ? std::abs(m_offset.back() - m_offset.front()) / m_cz : 1.0);
         if (!(m_cellScale.z > 0.0))
             m_cellScale.z = 1.0;
     }
 
-    void findCells(const volume::BrickGrid& grid, unsigned threads) override {
+    void findCells(const volume::BrickGrid& grid, bool withCones, unsigned threads) override {
         cells.clear();
+        cones.clear();
         chunkStarts.assign(1, 0);
         activeBricks = 0;
+        buildMacroGrid(threads);
         if (m_cx < 1 || m_cy < 1 || m_cz < 1)
             return;
         if (voxelIndex(m_cx, m_cy, m_cz) > std::numeric_limits<std::uint32_t>::max())
@@ -180,6 +207,52 @@ public:
         // Release the per-layer lists of a large volume: the cache is the flat list only.
         unitCells.clear();
         unitCells.shrink_to_fit();
+        if (withCones) {
+            cones.resize(cells.size());
+            chunkTriangleTotal.assign(chunkStarts.size() - 1, 0);
+            volume::parallelFor(
+                chunkStarts.size() - 1,
+                [&](std::size_t c) {
+                    std::size_t triangles = 0;
+                    for (std::size_t i = chunkStarts[c]; i < chunkStarts[c + 1]; ++i) {
+                        cones[i] = normalCone(cells[i]);
+                        triangles += cellTriangleCount(cells[i]);
+                    }
+                    chunkTriangleTotal[c] = triangles;
+                },
+                threads);
+        }
+    }
+
+    void buildMacroGrid(unsigned threads) {
+        const glm::ivec3 cellsPerAxis(std::max(m_cx, 0), std::max(m_cy, 0), std::max(m_cz, 0));
+        m_macroDims = (cellsPerAxis + kMacroCells - 1) / kMacroCells;
+        macroOccupied.assign(std::size_t(m_macroDims.x) * std::size_t(m_macroDims.y) * std::size_t(m_macroDims.z), 0);
+        volume::parallelFor(
+            std::size_t(m_macroDims.z),
+            [&](std::size_t mz) {
+                const int z0 = int(mz) * kMacroCells, z1 = std::min(z0 + kMacroCells, m_cz);
+                for (int my = 0; my < m_macroDims.y; ++my)
+                    for (int mx = 0; mx < m_macroDims.x; ++mx) {
+                        const int y0 = my * kMacroCells, y1 = std::min(y0 + kMacroCells, m_cy);
+                        const int x0 = mx * kMacroCells, x1 = std::min(x0 + kMacroCells, m_cx);
+                        bool any = false;
+                        // Corner voxels of the macro cell's cells: [x0, x1] etc.
+                        for (int z = z0; z <= z1 && !any; ++z)
+                            for (int y = y0; y <= y1 && !any; ++y) {
+                                const std::size_t base = voxelIndex(0, y, z);
+                                for (int x = x0; x <= x1; ++x)
+                                    any |= inside(base + std::size_t(x));
+                            }
+                        macroOccupied[macroIndex({mx * kMacroCells, my * kMacroCells, int(mz) * kMacroCells})] = any;
+                    }
+            },
+            threads);
+    }
+
+    std::size_t macroIndex(glm::ivec3 cell) const {
+        const glm::ivec3 m = cell / kMacroCells;
+        return std::size_t(m.x) + std::size_t(m_macroDims.x) * (std::size_t(m.y) + std::size_t(m_macroDims.y) * std::size_t(m.z));
     }
 
     std::size_t extract(const SilhouetteView& view, std::vector<SegmentEndpoints>& out, unsigned threads) override {
@@ -193,10 +266,18 @@ public:
             [&](std::size_t c) {
                 auto& segments = chunkSegments[c];
                 segments.clear();
-                std::size_t triangles = 0;
+                if (cones.empty()) {
+                    std::size_t triangles = 0;
+                    for (std::size_t i = chunkStarts[c]; i < chunkStarts[c + 1]; ++i)
+                        triangles += cellSegments(cells[i], eye, view.orthographic, segments);
+                    chunkTriangles[c] = triangles;
+                    return;
+                }
+                // Every cell's triangles count as visited; only the uncertain cells are built.
                 for (std::size_t i = chunkStarts[c]; i < chunkStarts[c + 1]; ++i)
-                    triangles += cellSegments(cells[i], eye, view.orthographic, segments);
-                chunkTriangles[c] = triangles;
+                    if (!cannotHoldSilhouette(cells[i], cones[i], view))
+                        cellSegments(cells[i], eye, view.orthographic, segments);
+                chunkTriangles[c] = chunkTriangleTotal[c];
             },
             threads);
         out.clear();
@@ -222,16 +303,55 @@ public:
         const double tStart = kStartOffsetCells / cellsPerT;
         if (tStart >= tMax)
             return true;
-        const glm::dvec3 start = u0 + tStart * du;
         glm::ivec3 startCell;
-        if (!rayGrid.cellOf(start, du, startCell))
+        if (!rayGrid.cellOf(u0 + tStart * du, du, startCell))
             return true;
         const double tSkip = kSelfSkipCells / cellsPerT;
-        return rayGrid.walk(start, du, tMax - tStart, [&](const CellExit& exit) {
-            if (exit.cell == startCell || exit.t < tSkip)
+        // The walk restarts at every macro cell boundary: an empty macro cell is crossed in one
+        // jump, an occupied one cell by cell. `from` always lies exactly on the wall entered.
+        glm::dvec3 from = u0 + tStart * du;
+        double tFrom = tStart;
+        for (;;) {
+            glm::ivec3 cell;
+            if (!rayGrid.cellOf(from, du, cell))
                 return true;
-            return wallValue(exit) < m_iso;
-        });
+            const glm::ivec3 macro = cell / kMacroCells;
+            int axis = 0;
+            const double tExit = macroOccupied[macroIndex(cell)] ? 0.0 : macroExit(macro, from, du, axis);
+            // (A jump of length 0 would not progress: such a macro cell is walked cell by cell.)
+            if (tExit > 0.0) {
+                if (tFrom + tExit >= tMax)
+                    return true;
+                glm::dvec3 next = from + tExit * du;
+                next[axis] = macroWall(macro, du, axis);
+                from = next;
+                tFrom += tExit;
+                continue;
+            }
+            bool occluded = false, moved = false;
+            CellExit last;
+            rayGrid.walk(from, du, tMax - tFrom, [&](const CellExit& exit) {
+                const double t = tFrom + exit.t;
+                if (exit.cell != startCell && t >= tSkip && wallValue(exit) >= m_iso) {
+                    occluded = true;
+                    return false;
+                }
+                glm::ivec3 next = exit.cell;
+                next[exit.axis] += exit.wall > exit.cell[exit.axis] ? 1 : -1;
+                if (next / kMacroCells != macro) {
+                    last = exit;
+                    moved = true;
+                    return false;
+                }
+                return true;
+            });
+            if (occluded)
+                return false;
+            if (!moved)
+                return true;
+            from = last.point;
+            tFrom += last.t;
+        }
     }
 
 private:
@@ -243,6 +363,107 @@ private:
     int columnBits(std::size_t index) const {
         return int(inside(index)) | int(inside(index + m_sy)) << 1 | int(inside(index + m_sz)) << 2 |
                int(inside(index + m_sy + m_sz)) << 3;
+    }
+
+    // Ray parameter (from `from`) where the ray leaves macro cell `macro`, and through which axis.
+    double macroExit(glm::ivec3 macro, glm::dvec3 from, glm::dvec3 du, int& axis) const {
+        double best = std::numeric_limits<double>::infinity();
+        for (int a = 0; a < 3; ++a) {
+            if (du[a] == 0.0)
+                continue;
+            const double t = (macroWall(macro, du, a) - from[a]) / du[a];
+            if (t < best) {
+                best = t;
+                axis = a;
+            }
+        }
+        return std::max(best, 0.0);
+    }
+    // Grid coordinate of the wall of `macro` that a ray going along du leaves through on `axis`.
+    double macroWall(glm::ivec3 macro, glm::dvec3 du, int axis) const {
+        const int cellsOnAxis = axis == 0 ? m_cx : (axis == 1 ? m_cy : m_cz);
+        const int c = du[axis] > 0.0 ? std::min((macro[axis] + 1) * kMacroCells, cellsOnAxis) : macro[axis] * kMacroCells;
+        return axis < 2 ? double(c) : rayGrid.offset(c);
+    }
+
+    glm::ivec3 cellCoords(std::uint32_t cellIndex) const {
+        const std::size_t index = cellIndex;
+        const int z = int(index / m_sz);
+        const std::size_t rest = index - std::size_t(z) * m_sz;
+        const int y = int(rest / m_sy);
+        return {int(rest - std::size_t(y) * m_sy), y, z};
+    }
+
+    int cellCase(glm::ivec3 p, float v[8]) const {
+        for (int c = 0; c < 8; ++c)
+            v[c] = value(voxelIndex(p.x + kMcCornerOffset[c][0], p.y + kMcCornerOffset[c][1], p.z + kMcCornerOffset[c][2]));
+        return mcCaseIndex(v, m_isoF);
+    }
+
+    std::size_t cellTriangleCount(std::uint32_t cellIndex) const {
+        float v[8];
+        return kMcTriangleCount.count[cellCase(cellCoords(cellIndex), v)];
+    }
+
+    // Centre of cell p in patient mm.
+    glm::dvec3 cellCentre(glm::ivec3 p) const {
+        const double s = 0.5 * (m_offset[std::size_t(p.z)] + m_offset[std::size_t(p.z) + 1]);
+        return m_origin + (p.x + 0.5) * m_stepI + (p.y + 0.5) * m_stepJ + s * m_stack;
+    }
+
+    RayCastSilhouetteCpu::Impl::NormalCone normalCone(std::uint32_t cellIndex) const {
+        const glm::ivec3 p = cellCoords(cellIndex);
+        float v[8];
+        const int cubeCase = cellCase(p, v);
+        glm::vec3 position[12], normal[12];
+        const unsigned edges = cellVertices(p, v, cubeCase, position, normal);
+        glm::dvec3 sum(0.0);
+        for (int e = 0; e < 12; ++e)
+            if (edges & (1u << e))
+                sum += glm::dvec3(normal[e]);
+        NormalCone cone{0.0f, 0.0f, 1.0f, -1.0f, 0.0f}; // the full sphere: never culled
+        const double length = glm::length(sum);
+        if (!(length > 1e-6))
+            return cone;
+        const glm::dvec3 axis = sum / length;
+        double minCos = 1.0;
+        for (int e = 0; e < 12; ++e)
+            if (edges & (1u << e))
+                minCos = std::min(minCos, glm::dot(axis, glm::dvec3(normal[e])) / glm::length(glm::dvec3(normal[e])));
+        const double angle = std::acos(std::clamp(minCos, -1.0, 1.0)) + 1e-4;
+        if (angle >= 0.5 * 3.14159265358979323846)
+            return cone;
+        return {float(axis.x), float(axis.y), float(axis.z), float(std::cos(angle)), float(std::sin(angle))};
+    }
+
+    // True when d = N . (eye - B) has the same sign, with margin, at every point B of the cell
+    // and every normal N of its cone: then none of its triangles has a silhouette segment.
+    bool cannotHoldSilhouette(std::uint32_t cellIndex, const NormalCone& cone, const SilhouetteView& view) const {
+        if (!(cone.cosA > 0.0f))
+            return false;
+        glm::dvec3 w;
+        double rw = 0.0;
+        if (view.orthographic) {
+            w = view.eyeOrDirection;
+        } else {
+            w = view.eyeOrDirection - cellCentre(cellCoords(cellIndex));
+            const double distance = glm::length(w);
+            if (!(distance > 2.0 * m_cellRadius))
+                return false;
+            rw = m_cellRadius / distance;
+        }
+        const double wl = glm::length(w);
+        if (!(wl > 0.0))
+            return false;
+        const double c = glm::dot(glm::dvec3(cone.x, cone.y, cone.z), w) / wl;
+        const double sn = std::sqrt(std::max(0.0, 1.0 - c * c));
+        const double margin = rw + kConeSlack;
+        // min over the cone of N . w^ is cos(theta + alpha), max is cos(theta - alpha).
+        if (c > 0.0 && c * cone.cosA - sn * cone.sinA > margin)
+            return true;
+        if (c < 0.0 && c * cone.cosA + sn * cone.sinA < -margin)
+            return true;
+        return false;
     }
 
     // Bilinear value on the wall the ray leaves through (stored units).
@@ -292,45 +513,34 @@ private:
         return g;
     }
 
-    std::size_t cellSegments(std::uint32_t cellIndex, glm::vec3 eye, bool orthographic,
-                             std::vector<SegmentEndpoints>& out) const {
-        const std::size_t index = cellIndex;
-        const int z = int(index / m_sz);
-        const std::size_t rest = index - std::size_t(z) * m_sz;
-        const int y = int(rest / m_sy);
-        const int x = int(rest - std::size_t(y) * m_sy);
-        float v[8];
-        for (int c = 0; c < 8; ++c)
-            v[c] = value(voxelIndex(x + kMcCornerOffset[c][0], y + kMcCornerOffset[c][1], z + kMcCornerOffset[c][2]));
-        const int cubeCase = mcCaseIndex(v, m_isoF);
-        const int triangles = kMcTriangleCount.count[cubeCase];
-        if (triangles == 0)
-            return 0;
-
+    // The marching-cubes vertices (patient mm) and outward normals of cell p's crossing edges,
+    // as marchingCubes() writes them; returns the edge mask.
+    unsigned cellVertices(glm::ivec3 p, const float v[8], int cubeCase, glm::vec3 position[12],
+                          glm::vec3 normal[12]) const {
         const unsigned edges = kMcEdgeTable[cubeCase];
         McVec3 grad[8];
         unsigned haveGrad = 0;
         auto cornerGradient = [&](int c) -> const McVec3& {
             if (!(haveGrad & (1u << c))) {
-                grad[c] = gradient(x + kMcCornerOffset[c][0], y + kMcCornerOffset[c][1], z + kMcCornerOffset[c][2]);
+                grad[c] = gradient(p.x + kMcCornerOffset[c][0], p.y + kMcCornerOffset[c][1], p.z + kMcCornerOffset[c][2]);
                 haveGrad |= 1u << c;
             }
             return grad[c];
         };
-        glm::vec3 position[12];
-        float distance[12];
         for (int e = 0; e < 12; ++e) {
             if (!(edges & (1u << e)))
                 continue;
             const int c0 = kMcEdgeCorners[e][0], c1 = kMcEdgeCorners[e][1];
             const std::int8_t* owner = kMcEdgeOwner[e];
             const int axis = owner[3];
-            const int vx = x + owner[0], vy = y + owner[1], vz = z + owner[2];
+            const int vx = p.x + owner[0], vy = p.y + owner[1], vz = p.z + owner[2];
             const float a = v[c0], b = v[c1];
             const float t = mcEdgeParameter(a, b, m_iso);
             const McVec3 g = mcTransform(m_normalMatrix, mcLerp(cornerGradient(c0), cornerGradient(c1), t));
-            const glm::dvec3 outward = m_axisDir[axis] * (a >= m_isoF ? 1.0 : -1.0);
-            const McVec3 n = mcOutwardNormal(g, {float(outward.x), float(outward.y), float(outward.z)});
+            McVec3 fallback = m_edgeDirection[axis];
+            if (!(a >= m_isoF))
+                fallback = {-fallback.x, -fallback.y, -fallback.z};
+            const McVec3 n = mcOutwardNormal(g, fallback);
             double px = vx, py = vy;
             double offset = m_offset[std::size_t(vz)];
             if (axis == 0)
@@ -339,16 +549,33 @@ private:
                 py += t;
             else
                 offset += double(t) * (m_offset[std::size_t(vz) + 1] - offset);
-            const glm::dvec3 p = m_origin + px * m_stepI + py * m_stepJ + offset * m_stack;
-            position[e] = glm::vec3(p);
-            distance[e] = silhouetteDistance(position[e], glm::vec3(n.x, n.y, n.z), eye, orthographic);
+            const glm::dvec3 q = m_origin + px * m_stepI + py * m_stepJ + offset * m_stack;
+            position[e] = glm::vec3(q);
+            normal[e] = glm::vec3(n.x, n.y, n.z);
         }
+        return edges;
+    }
+
+    std::size_t cellSegments(std::uint32_t cellIndex, glm::vec3 eye, bool orthographic,
+                             std::vector<SegmentEndpoints>& out) const {
+        const glm::ivec3 p = cellCoords(cellIndex);
+        float v[8];
+        const int cubeCase = cellCase(p, v);
+        const int triangles = kMcTriangleCount.count[cubeCase];
+        if (triangles == 0)
+            return 0;
+        glm::vec3 position[12], normal[12];
+        float distance[12];
+        const unsigned edges = cellVertices(p, v, cubeCase, position, normal);
+        for (int e = 0; e < 12; ++e)
+            if (edges & (1u << e))
+                distance[e] = silhouetteDistance(position[e], normal[e], eye, orthographic);
         const std::int8_t* row = kMcTriTable[cubeCase];
         for (int k = 0; row[k] >= 0; k += 3) {
-            const glm::vec3 p[3] = {position[row[k]], position[row[k + 1]], position[row[k + 2]]};
+            const glm::vec3 q[3] = {position[row[k]], position[row[k + 1]], position[row[k + 2]]};
             const float d[3] = {distance[row[k]], distance[row[k + 1]], distance[row[k + 2]]};
             SegmentEndpoints segment;
-            if (silhouetteSegment(p, d, segment))
+            if (silhouetteSegment(q, d, segment))
                 out.push_back(segment);
         }
         return std::size_t(triangles);
@@ -362,6 +589,9 @@ private:
     glm::dvec3 m_origin{0.0}, m_stepI{0.0}, m_stepJ{0.0}, m_stack{0.0};
     glm::dvec3 m_axisDir[3];
     glm::dvec3 m_cellScale{1.0};
+    McVec3 m_edgeDirection[3] = {};
+    double m_cellRadius = 0.0; // largest centre-to-corner distance of any cell, mm
+    glm::ivec3 m_macroDims{0};
     std::vector<double> m_offset;
     std::vector<float> m_spanK, m_invSpanK;
     float m_invSpanI = 0.5f, m_invSpanJ = 0.5f;
@@ -375,12 +605,12 @@ RayCastSilhouetteCpu::RayCastSilhouetteCpu() = default;
 RayCastSilhouetteCpu::~RayCastSilhouetteCpu() = default;
 
 void RayCastSilhouetteCpu::prepare(const volume::Volume& volume, const volume::BrickGrid& grid, double storedIso,
-                                   unsigned threads) {
+                                   bool withNormalCones, unsigned threads) {
     m_impl = volume::dispatchVoxelType(volume.voxelType(), [&](auto tag) -> std::unique_ptr<Impl> {
         using T = decltype(tag);
         return std::make_unique<Engine<T>>(volume, storedIso);
     });
-    m_impl->findCells(grid, threads);
+    m_impl->findCells(grid, withNormalCones, threads);
 }
 
 bool RayCastSilhouetteCpu::isPrepared() const { return m_impl != nullptr; }

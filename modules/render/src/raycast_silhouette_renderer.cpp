@@ -34,6 +34,7 @@ struct RayCastSilhouetteRenderer::Cache {
     double storedIso = 0.0;
     int brickCells = -1;
     bool valid = false;
+    bool withCones = false;
     std::vector<kernels::SegmentEndpoints> segments;
     std::vector<std::vector<Piece>> chunkPieces; // reused between frames
 };
@@ -83,12 +84,16 @@ SilhouetteFrame RayCastSilhouetteRenderer::render(const Camera& camera, const Si
     frame.lines = PixelMask(camera.width(), camera.height());
 
     auto start = Clock::now();
-    const bool stale = !cache.valid || cache.storedIso != storedIso || cache.brickCells != settings.brickCells;
-    if (stale || settings.mode == ExtractionMode::EveryFrameB) {
+    const bool cachedMode = settings.mode == ExtractionMode::CachedA;
+    const bool stale = !cache.valid || cache.storedIso != storedIso || cache.brickCells != settings.brickCells ||
+                       (cachedMode && !cache.withCones);
+    if (stale || !cachedMode) {
         const glm::ivec3 cells = glm::max(volume.dims() - 1, glm::ivec3(0));
         const int edge = settings.brickCells > 0 ? settings.brickCells : std::max({cells.x, cells.y, cells.z, 1});
         const volume::BrickGrid grid = volume::BrickGrid::build(volume, glm::ivec3(edge));
-        cache.kernel.prepare(volume, grid, storedIso, settings.threads);
+        // Normal cones pay off only when the cells serve several views (mode a).
+        cache.kernel.prepare(volume, grid, storedIso, cachedMode, settings.threads);
+        cache.withCones = cachedMode;
         cache.storedIso = storedIso;
         cache.brickCells = settings.brickCells;
         cache.valid = true;

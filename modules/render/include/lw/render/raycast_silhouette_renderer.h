@@ -19,8 +19,9 @@ namespace lw::render {
 //   settings.testAlongSegment: the point under every step of the line rasterizer (at most one
 //     pixel apart, endpoints included) is tested and only the pixels of visible steps are drawn,
 //     so the visible pieces are exactly part of the line drawn with visibility off.
-// Mode a caches the active cell list (view independent) while the volume, iso-value and brick
-// size stay the same; segments depend on the eye and are found anew for every view.
+// Mode a caches the active cell list (view independent) with a cone around each cell's vertex
+// normals while the volume, iso-value and brick size stay the same; segments depend on the eye
+// and are found anew for every view, skipping the cells whose cone rules a silhouette out.
 // The L variant (brickCells > 0) finds the cells and segments brick by brick and tests them
 // against the whole volume, so its image equals the S variant's.
 class RayCastSilhouetteRenderer final : public SilhouetteRenderer {

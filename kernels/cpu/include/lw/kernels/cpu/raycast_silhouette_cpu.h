@@ -34,8 +34,13 @@ public:
     // The view-independent part (what mode a caches): the cells with mixed corners of the
     // bricks of `grid` whose min/max admit `storedIso`, in brick order. Inside = value >= iso,
     // as in marchingCubes(). `volume` must outlive this object or the next prepare().
+    // withNormalCones (for mode a, where the cells serve many views) also keeps, per cell, a cone
+    // around its vertex normals (20 bytes) so that a view skips the cells that cannot hold a
+    // silhouette; the cull is conservative, the segments are the same with or without it.
+    // Also builds an occupancy grid of 8^3-cell macro cells that lets the visibility rays jump
+    // over empty space.
     void prepare(const volume::Volume& volume, const volume::BrickGrid& grid, double storedIso,
-                 unsigned threads = 0);
+                 bool withNormalCones = true, unsigned threads = 0);
     bool isPrepared() const;
     std::size_t activeCellCount() const;
     std::size_t activeBrickCount() const;
