@@ -17,7 +17,6 @@
 
 #define GL_GLEXT_PROTOTYPES 1
 #include <GL/glcorearb.h>
-
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -37,24 +36,29 @@ lw::render::EglHeadlessContext* g_context = nullptr;
 
 constexpr Rgba8 kWhite{255, 255, 255, 255};
 
-bool isBackground(Rgba8 p) { return p.r == 255 && p.g == 255 && p.b == 255; }
+bool isBackground(Rgba8 p) {
+    return p.r == 255 && p.g == 255 && p.b == 255;
+}
 
 // An icosphere: a subdivided icosahedron pushed onto the sphere, outward normals, counter-clockwise
 // seen from outside (as marching cubes delivers).
 Mesh icosphere(glm::vec3 centre, float radius, int subdivisions) {
     const float t = (1.0f + std::sqrt(5.0f)) / 2.0f;
-    std::vector<glm::vec3> unit{{-1, t, 0}, {1, t, 0}, {-1, -t, 0}, {1, -t, 0}, {0, -1, t}, {0, 1, t},
-                                {0, -1, -t}, {0, 1, -t}, {t, 0, -1}, {t, 0, 1}, {-t, 0, -1}, {-t, 0, 1}};
+    std::vector<glm::vec3> unit{{-1, t, 0}, {1, t, 0}, {-1, -t, 0}, {1, -t, 0},
+                                {0, -1, t}, {0, 1, t}, {0, -1, -t}, {0, 1, -t},
+                                {t, 0, -1}, {t, 0, 1}, {-t, 0, -1}, {-t, 0, 1}};
     for (auto& p : unit)
         p = glm::normalize(p);
-    std::vector<std::uint32_t> tris{0, 11, 5, 0, 5,  1, 0, 1, 7, 0, 7,  10, 0, 10, 11, 1, 5, 9, 5, 11,
-                                    4, 11, 10, 2, 10, 7, 6, 7, 1, 8, 3, 9,  4, 3,  4,  2, 3, 2, 6, 3,
-                                    6, 8,  3,  8, 9,  4, 9, 5, 2, 4, 11, 6, 2, 10, 8,  6, 7, 9, 8, 1};
+    std::vector<std::uint32_t> tris{0, 11, 5, 0, 5,  1,  0,  1,  7,  0,  7, 10, 0, 10, 11,
+                                    1, 5,  9, 5, 11, 4,  11, 10, 2,  10, 7, 6,  7, 1,  8,
+                                    3, 9,  4, 3, 4,  2,  3,  2,  6,  3,  6, 8,  3, 8,  9,
+                                    4, 9,  5, 2, 4,  11, 6,  2,  10, 8,  6, 7,  9, 8,  1};
     for (int level = 0; level < subdivisions; ++level) {
         std::map<std::pair<std::uint32_t, std::uint32_t>, std::uint32_t> midpoints;
         auto midpoint = [&](std::uint32_t a, std::uint32_t b) {
             const auto key = std::minmax(a, b);
-            auto [it, inserted] = midpoints.try_emplace({key.first, key.second}, std::uint32_t(unit.size()));
+            auto [it, inserted] =
+                midpoints.try_emplace({key.first, key.second}, std::uint32_t(unit.size()));
             if (inserted)
                 unit.push_back(glm::normalize(unit[a] + unit[b]));
             return it->second;
@@ -94,13 +98,16 @@ Camera orthoCamera(const Aabb& bounds, int size, double az = 0.0, double el = 0.
 }
 
 // Projected centre and radius (pixels) of a sphere under an orthographic camera.
-std::pair<glm::dvec2, double> projectedDisc(const Camera& camera, glm::dvec3 centre, double radius) {
+std::pair<glm::dvec2, double> projectedDisc(const Camera& camera, glm::dvec3 centre,
+                                            double radius) {
     const glm::dvec2 c = camera.project(centre).pixel;
     const glm::dvec2 r = camera.project(centre + radius * camera.right()).pixel;
     return {c, glm::length(r - c)};
 }
 
-double distanceFrom(glm::dvec2 centre, int x, int y) { return glm::length(glm::dvec2(x + 0.5, y + 0.5) - centre); }
+double distanceFrom(glm::dvec2 centre, int x, int y) {
+    return glm::length(glm::dvec2(x + 0.5, y + 0.5) - centre);
+}
 
 std::filesystem::path outputDir() {
     std::filesystem::path dir = std::filesystem::current_path() / "silhouette_gl_output";
@@ -154,9 +161,11 @@ TEST_F(SilhouetteGl, IsoPanelShadesTheProjectedDisc) {
     EXPECT_GT(inside, 1000u);
     EXPECT_EQ(shadedInside, inside);
     EXPECT_EQ(backgroundOutside, outside);
-    // Shading, not a flat fill: the rim facing away from the light is much darker than the highlight.
+    // Shading, not a flat fill: the rim facing away from the light is much darker than the
+    // highlight.
     EXPECT_GT(brightest - darkest, 80);
-    // The light sits above-left of the eye: the upper-left quadrant is brighter than the lower-right.
+    // The light sits above-left of the eye: the upper-left quadrant is brighter than the
+    // lower-right.
     const Rgba8 upperLeft = image.at(int(centre.x - radius * 0.4), int(centre.y - radius * 0.4));
     const Rgba8 lowerRight = image.at(int(centre.x + radius * 0.4), int(centre.y + radius * 0.4));
     EXPECT_GT(int(upperLeft.g), int(lowerRight.g) + 20);
@@ -185,12 +194,15 @@ TEST_F(SilhouetteGl, SilhouettePanelDrawsARingAtTheProjectedRadius) {
                 if (std::abs(d - radius) > 2.0)
                     ++offRing;
                 const double angle = std::atan2(y + 0.5 - centre.y, x + 0.5 - centre.x);
-                angleCovered[std::size_t(int(std::floor((angle + std::numbers::pi) / (2 * std::numbers::pi) * 180.0)) % 180)] = true;
+                angleCovered[std::size_t(
+                    int(std::floor((angle + std::numbers::pi) / (2 * std::numbers::pi) * 180.0)) %
+                    180)] = true;
             }
         if (HasFailure())
             lw::core::writePng(outputDir() / ("ring_az" + std::to_string(int(az)) + ".png"), image);
         EXPECT_EQ(offRing, 0u) << "line pixels away from the projected radius " << radius;
-        EXPECT_EQ(std::count(angleCovered.begin(), angleCovered.end(), false), 0) << "gaps in the ring";
+        EXPECT_EQ(std::count(angleCovered.begin(), angleCovered.end(), false), 0)
+            << "gaps in the ring";
         // A closed curve: every line pixel has at least two 8-neighbours on the line (a gap leaves
         // two pixels with one).
         std::size_t loose = 0;
@@ -239,7 +251,8 @@ TEST_F(SilhouetteGl, WideLinesAreWider) {
 }
 
 TEST_F(SilhouetteGl, VisibilityHidesTheSphereBehind) {
-    // The eye is at -y (azimuth 0): the small sphere sits behind the big one and projects inside it.
+    // The eye is at -y (azimuth 0): the small sphere sits behind the big one and projects inside
+    // it.
     Mesh scene = icosphere({0, 0, 0}, 1.0f, 4);
     append(scene, icosphere({0, 3.0f, 0}, 0.5f, 4));
     const Camera camera = orthoCamera({{-1, -1, -1}, {1, 3.5, 1}}, 200);
@@ -288,14 +301,16 @@ TEST_F(SilhouetteGl, SegmentCountMatchesTheCpuRule) {
         setup.projection = projection;
         const Camera camera(setup, 96, 96);
         const bool ortho = camera.isOrthographic();
-        const glm::vec3 eyeOrDirection = ortho ? glm::vec3(-camera.forward()) : glm::vec3(camera.eye());
+        const glm::vec3 eyeOrDirection =
+            ortho ? glm::vec3(-camera.forward()) : glm::vec3(camera.eye());
         std::size_t expected = 0;
         for (std::size_t i = 0; i < sphere.indices.size(); i += 3) {
             glm::vec3 p[3];
             float d[3];
             for (int k = 0; k < 3; ++k) {
                 p[k] = sphere.positions[sphere.indices[i + k]];
-                d[k] = lw::kernels::silhouetteDistance(p[k], sphere.normals[sphere.indices[i + k]], eyeOrDirection, ortho);
+                d[k] = lw::kernels::silhouetteDistance(p[k], sphere.normals[sphere.indices[i + k]],
+                                                       eyeOrDirection, ortho);
             }
             lw::kernels::SegmentEndpoints segment;
             expected += lw::kernels::silhouetteSegment(p, d, segment);
@@ -310,7 +325,8 @@ TEST_F(SilhouetteGl, SegmentCountMatchesTheCpuRule) {
             const SilhouetteGlStats stats = m_renderer.render(camera, options);
             EXPECT_EQ(stats.triangles, sphere.triangleCount());
             // GPU and CPU may round a d near zero differently: allow a couple of triangles.
-            EXPECT_NEAR(double(stats.segments), double(expected), 2.0) << (ortho ? "ortho" : "perspective");
+            EXPECT_NEAR(double(stats.segments), double(expected), 2.0)
+                << (ortho ? "ortho" : "perspective");
         }
     }
 }
@@ -409,7 +425,8 @@ TEST_F(SilhouetteGl, GoldenImages) {
     SilhouetteGlOptions hiddenToo;
     hiddenToo.visibility = false;
     hiddenToo.lineWidth = 2.0f;
-    hiddenToo.lineColour = {26 / 255.0f, 51 / 255.0f, 178 / 255.0f, 1.0f}; // exact levels, see above
+    hiddenToo.lineColour = {26 / 255.0f, 51 / 255.0f, 178 / 255.0f,
+                            1.0f}; // exact levels, see above
     const Golden goldens[] = {
         {"gl_spheres_iso", iso, {12, 250}},
         {"gl_spheres_silhouette", silhouette, {0, 250}},
@@ -427,17 +444,20 @@ TEST_F(SilhouetteGl, GoldenImages) {
             std::printf("wrote %s\n", baseline.c_str());
             continue;
         }
-        const auto comparison = lw::core::compareWithBaseline(image, baseline, golden.tolerance,
-                                                              outputDir() / (std::string(golden.name) + ".diff.png"));
+        const auto comparison =
+            lw::core::compareWithBaseline(image, baseline, golden.tolerance,
+                                          outputDir() / (std::string(golden.name) + ".diff.png"));
         EXPECT_TRUE(comparison.matches) << comparison.describe();
     }
-    EXPECT_FALSE(update) << "LINEWORK_UPDATE_BASELINES is set: baselines were rewritten, nothing was compared";
+    EXPECT_FALSE(update)
+        << "LINEWORK_UPDATE_BASELINES is set: baselines were rewritten, nothing was compared";
 }
 
 int main(int argc, char** argv) {
     testing::InitGoogleTest(&argc, argv);
     // Same policy as tests/support/gtest_main.cpp: error-level log messages fail the test.
-    lw::core::setLogSink([](lw::core::LogLevel level, std::string_view category, const std::string& message) {
+    lw::core::setLogSink([](lw::core::LogLevel level, std::string_view category,
+                            const std::string& message) {
         std::fprintf(stderr, "[%.*s] %s\n", int(category.size()), category.data(), message.c_str());
         if (level == lw::core::LogLevel::Error)
             ADD_FAILURE() << "error logged in " << category << ": " << message;

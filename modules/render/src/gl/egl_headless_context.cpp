@@ -1,13 +1,10 @@
-#include "lw/render/gl_context.h"
-
 #include "gl_api.h"
-
 #include "lw/core/error.h"
 #include "lw/core/log.h"
+#include "lw/render/gl_context.h"
 
 #include <EGL/egl.h>
 #include <EGL/eglext.h>
-
 #include <cstring>
 #include <string>
 #include <vector>
@@ -34,38 +31,57 @@ bool hasExtension(const char* list, const char* name) {
 
 std::string eglErrorText(EGLint error) {
     switch (error) {
-    case EGL_SUCCESS: return "EGL_SUCCESS";
-    case EGL_NOT_INITIALIZED: return "EGL_NOT_INITIALIZED";
-    case EGL_BAD_ACCESS: return "EGL_BAD_ACCESS";
-    case EGL_BAD_ALLOC: return "EGL_BAD_ALLOC";
-    case EGL_BAD_ATTRIBUTE: return "EGL_BAD_ATTRIBUTE";
-    case EGL_BAD_CONFIG: return "EGL_BAD_CONFIG";
-    case EGL_BAD_CONTEXT: return "EGL_BAD_CONTEXT";
-    case EGL_BAD_CURRENT_SURFACE: return "EGL_BAD_CURRENT_SURFACE";
-    case EGL_BAD_DISPLAY: return "EGL_BAD_DISPLAY";
-    case EGL_BAD_MATCH: return "EGL_BAD_MATCH";
-    case EGL_BAD_NATIVE_PIXMAP: return "EGL_BAD_NATIVE_PIXMAP";
-    case EGL_BAD_NATIVE_WINDOW: return "EGL_BAD_NATIVE_WINDOW";
-    case EGL_BAD_PARAMETER: return "EGL_BAD_PARAMETER";
-    case EGL_BAD_SURFACE: return "EGL_BAD_SURFACE";
-    case EGL_CONTEXT_LOST: return "EGL_CONTEXT_LOST";
-    default: return "EGL error " + std::to_string(error);
+    case EGL_SUCCESS:
+        return "EGL_SUCCESS";
+    case EGL_NOT_INITIALIZED:
+        return "EGL_NOT_INITIALIZED";
+    case EGL_BAD_ACCESS:
+        return "EGL_BAD_ACCESS";
+    case EGL_BAD_ALLOC:
+        return "EGL_BAD_ALLOC";
+    case EGL_BAD_ATTRIBUTE:
+        return "EGL_BAD_ATTRIBUTE";
+    case EGL_BAD_CONFIG:
+        return "EGL_BAD_CONFIG";
+    case EGL_BAD_CONTEXT:
+        return "EGL_BAD_CONTEXT";
+    case EGL_BAD_CURRENT_SURFACE:
+        return "EGL_BAD_CURRENT_SURFACE";
+    case EGL_BAD_DISPLAY:
+        return "EGL_BAD_DISPLAY";
+    case EGL_BAD_MATCH:
+        return "EGL_BAD_MATCH";
+    case EGL_BAD_NATIVE_PIXMAP:
+        return "EGL_BAD_NATIVE_PIXMAP";
+    case EGL_BAD_NATIVE_WINDOW:
+        return "EGL_BAD_NATIVE_WINDOW";
+    case EGL_BAD_PARAMETER:
+        return "EGL_BAD_PARAMETER";
+    case EGL_BAD_SURFACE:
+        return "EGL_BAD_SURFACE";
+    case EGL_CONTEXT_LOST:
+        return "EGL_CONTEXT_LOST";
+    default:
+        return "EGL error " + std::to_string(error);
     }
 }
 
-std::string eglFailure(const char* call) { return std::string(call) + " failed (" + eglErrorText(eglGetError()) + ")"; }
+std::string eglFailure(const char* call) {
+    return std::string(call) + " failed (" + eglErrorText(eglGetError()) + ")";
+}
 
 std::string glString(GLenum name) {
     const auto* text = reinterpret_cast<const char*>(glGetString(name));
     return text ? text : "";
 }
 
-void APIENTRY debugMessage(GLenum, GLenum type, GLuint, GLenum severity, GLsizei, const GLchar* message,
-                             const void*) {
+void APIENTRY debugMessage(GLenum, GLenum type, GLuint, GLenum severity, GLsizei,
+                           const GLchar* message, const void*) {
     // Driver chatter (performance hints, notifications) stays at debug level; real API errors are
     // also thrown by checkGlError, so a warning is enough here.
     const bool serious = type == GL_DEBUG_TYPE_ERROR || severity == GL_DEBUG_SEVERITY_HIGH;
-    kLog.write(serious ? core::LogLevel::Warning : core::LogLevel::Debug, std::string("GL: ") + message);
+    kLog.write(serious ? core::LogLevel::Warning : core::LogLevel::Debug,
+               std::string("GL: ") + message);
 }
 
 struct Candidate {
@@ -78,10 +94,14 @@ struct Candidate {
 
 const char* eglPlatformName(EglPlatform platform) {
     switch (platform) {
-    case EglPlatform::Device: return "EGL device";
-    case EglPlatform::SurfacelessMesa: return "EGL surfaceless platform";
-    case EglPlatform::SoftwareDevice: return "EGL software device";
-    case EglPlatform::DefaultDisplay: return "EGL default display";
+    case EglPlatform::Device:
+        return "EGL device";
+    case EglPlatform::SurfacelessMesa:
+        return "EGL surfaceless platform";
+    case EglPlatform::SoftwareDevice:
+        return "EGL software device";
+    case EglPlatform::DefaultDisplay:
+        return "EGL default display";
     }
     return "EGL";
 }
@@ -94,7 +114,8 @@ struct EglHeadlessContext::Impl {
     std::string vendor, renderer, version;
 
     // Tries one display; on failure cleans up and returns the reason.
-    bool tryDisplay(const Candidate& candidate, const EglContextOptions& options, std::string& reason) {
+    bool tryDisplay(const Candidate& candidate, const EglContextOptions& options,
+                    std::string& reason) {
         EGLDisplay dpy = candidate.display;
         if (dpy == EGL_NO_DISPLAY) {
             reason = "no display";
@@ -124,9 +145,17 @@ struct EglHeadlessContext::Impl {
         if (!eglBindAPI(EGL_OPENGL_API))
             return fail(eglFailure("eglBindAPI(EGL_OPENGL_API)"));
 
-        const EGLint configAttribs[] = {EGL_SURFACE_TYPE,    EGL_PBUFFER_BIT, EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT,
-                                        EGL_RED_SIZE,        8,               EGL_GREEN_SIZE,      8,
-                                        EGL_BLUE_SIZE,       8,               EGL_NONE};
+        const EGLint configAttribs[] = {EGL_SURFACE_TYPE,
+                                        EGL_PBUFFER_BIT,
+                                        EGL_RENDERABLE_TYPE,
+                                        EGL_OPENGL_BIT,
+                                        EGL_RED_SIZE,
+                                        8,
+                                        EGL_GREEN_SIZE,
+                                        8,
+                                        EGL_BLUE_SIZE,
+                                        8,
+                                        EGL_NONE};
         EGLConfig config = nullptr;
         EGLint configCount = 0;
         if (!eglChooseConfig(dpy, configAttribs, &config, 1, &configCount) || configCount < 1)
@@ -152,7 +181,10 @@ struct EglHeadlessContext::Impl {
             if (context != EGL_NO_CONTEXT)
                 break;
             // append(), not operator+ on a literal: GCC 12 reports a false -Wrestrict for that.
-            contextErrors.append(" ").append(std::to_string(want)).append(".").append(std::to_string(wantMinor));
+            contextErrors.append(" ")
+                .append(std::to_string(want))
+                .append(".")
+                .append(std::to_string(wantMinor));
             contextErrors.append(": ").append(eglErrorText(eglGetError()));
         }
         if (context == EGL_NO_CONTEXT)
@@ -182,11 +214,13 @@ struct EglHeadlessContext::Impl {
     }
 };
 
-EglHeadlessContext::EglHeadlessContext(const EglContextOptions& options) : m_impl(std::make_unique<Impl>()) {
+EglHeadlessContext::EglHeadlessContext(const EglContextOptions& options)
+    : m_impl(std::make_unique<Impl>()) {
     const char* clientExtensions = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
-    auto getPlatformDisplay =
-        reinterpret_cast<PFNEGLGETPLATFORMDISPLAYEXTPROC>(eglGetProcAddress("eglGetPlatformDisplayEXT"));
-    const bool platformBase = getPlatformDisplay && hasExtension(clientExtensions, "EGL_EXT_platform_base");
+    auto getPlatformDisplay = reinterpret_cast<PFNEGLGETPLATFORMDISPLAYEXTPROC>(
+        eglGetProcAddress("eglGetPlatformDisplayEXT"));
+    const bool platformBase =
+        getPlatformDisplay && hasExtension(clientExtensions, "EGL_EXT_platform_base");
 
     // Candidates in order of preference. Hardware devices first (the NVIDIA machine has no window
     // system at all); Mesa lists its software rasterizer as a device too, which we only want
@@ -197,23 +231,27 @@ EglHeadlessContext::EglHeadlessContext(const EglContextOptions& options) : m_imp
     const bool enumeration = hasExtension(clientExtensions, "EGL_EXT_device_enumeration") ||
                              hasExtension(clientExtensions, "EGL_EXT_device_base");
     if (platformBase && enumeration && hasExtension(clientExtensions, "EGL_EXT_platform_device")) {
-        auto queryDevices = reinterpret_cast<PFNEGLQUERYDEVICESEXTPROC>(eglGetProcAddress("eglQueryDevicesEXT"));
-        auto queryDeviceString =
-            reinterpret_cast<PFNEGLQUERYDEVICESTRINGEXTPROC>(eglGetProcAddress("eglQueryDeviceStringEXT"));
+        auto queryDevices =
+            reinterpret_cast<PFNEGLQUERYDEVICESEXTPROC>(eglGetProcAddress("eglQueryDevicesEXT"));
+        auto queryDeviceString = reinterpret_cast<PFNEGLQUERYDEVICESTRINGEXTPROC>(
+            eglGetProcAddress("eglQueryDeviceStringEXT"));
         EGLint count = 0;
         if (queryDevices && queryDevices(0, nullptr, &count) && count > 0) {
             std::vector<EGLDeviceEXT> devices(static_cast<std::size_t>(count));
             queryDevices(count, devices.data(), &count);
             for (EGLint i = 0; i < count; ++i) {
-                const char* deviceExtensions = queryDeviceString ? queryDeviceString(devices[i], EGL_EXTENSIONS) : nullptr;
+                const char* deviceExtensions =
+                    queryDeviceString ? queryDeviceString(devices[i], EGL_EXTENSIONS) : nullptr;
                 const bool isSoftware = hasExtension(deviceExtensions, "EGL_MESA_device_software");
-                Candidate candidate{isSoftware ? EglPlatform::SoftwareDevice : EglPlatform::Device,
-                                    getPlatformDisplay(EGL_PLATFORM_DEVICE_EXT, devices[i], nullptr),
-                                    "EGL device " + std::to_string(i)};
+                Candidate candidate{
+                    isSoftware ? EglPlatform::SoftwareDevice : EglPlatform::Device,
+                    getPlatformDisplay(EGL_PLATFORM_DEVICE_EXT, devices[i], nullptr),
+                    "EGL device " + std::to_string(i)};
                 (isSoftware ? software : hardware).push_back(candidate);
             }
             if (hardware.empty())
-                attempts += "\n  EGL devices: " + std::to_string(count) + " enumerated, none of them hardware";
+                attempts += "\n  EGL devices: " + std::to_string(count) +
+                            " enumerated, none of them hardware";
         } else {
             attempts += "\n  EGL devices: none enumerated";
         }
@@ -222,13 +260,15 @@ EglHeadlessContext::EglHeadlessContext(const EglContextOptions& options) : m_imp
     }
     std::vector<Candidate> candidates = hardware;
     if (platformBase && hasExtension(clientExtensions, "EGL_MESA_platform_surfaceless"))
-        candidates.push_back({EglPlatform::SurfacelessMesa,
-                              getPlatformDisplay(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr),
-                              "EGL surfaceless platform"});
+        candidates.push_back(
+            {EglPlatform::SurfacelessMesa,
+             getPlatformDisplay(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr),
+             "EGL surfaceless platform"});
     else
         attempts += "\n  EGL surfaceless platform: EGL_MESA_platform_surfaceless not offered";
     candidates.insert(candidates.end(), software.begin(), software.end());
-    candidates.push_back({EglPlatform::DefaultDisplay, eglGetDisplay(EGL_DEFAULT_DISPLAY), "EGL_DEFAULT_DISPLAY"});
+    candidates.push_back(
+        {EglPlatform::DefaultDisplay, eglGetDisplay(EGL_DEFAULT_DISPLAY), "EGL_DEFAULT_DISPLAY"});
 
     for (const Candidate& candidate : candidates) {
         std::string reason;
@@ -246,7 +286,8 @@ EglHeadlessContext::EglHeadlessContext(const EglContextOptions& options) : m_imp
         }
         attempts += "\n  " + candidate.name + ": " + reason;
     }
-    throw core::Error("headless OpenGL (EGL)", "no OpenGL 4.x core context could be created:" + attempts);
+    throw core::Error("headless OpenGL (EGL)",
+                      "no OpenGL 4.x core context could be created:" + attempts);
 }
 
 EglHeadlessContext::~EglHeadlessContext() {
@@ -275,9 +316,17 @@ std::string EglHeadlessContext::description() const {
            eglPlatformName(m_impl->platform) + ")";
 }
 
-EglPlatform EglHeadlessContext::platform() const { return m_impl->platform; }
-std::string EglHeadlessContext::vendor() const { return m_impl->vendor; }
-std::string EglHeadlessContext::renderer() const { return m_impl->renderer; }
-std::string EglHeadlessContext::version() const { return m_impl->version; }
+EglPlatform EglHeadlessContext::platform() const {
+    return m_impl->platform;
+}
+std::string EglHeadlessContext::vendor() const {
+    return m_impl->vendor;
+}
+std::string EglHeadlessContext::renderer() const {
+    return m_impl->renderer;
+}
+std::string EglHeadlessContext::version() const {
+    return m_impl->version;
+}
 
 } // namespace lw::render

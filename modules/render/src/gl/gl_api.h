@@ -12,7 +12,6 @@
 #define GL_GLEXT_PROTOTYPES 1
 #endif
 #include <GL/glcorearb.h>
-
 #include <string>
 
 namespace lw::render::gl {

@@ -1,15 +1,13 @@
 #include "lw/render/silhouette_gl_renderer.h"
 
 #include "gl_api.h"
-#include "lw_render_shaders.h"
-
 #include "lw/core/error.h"
 #include "lw/core/log.h"
-
-#include <glm/gtc/type_ptr.hpp>
+#include "lw_render_shaders.h"
 
 #include <algorithm>
 #include <cstdio>
+#include <glm/gtc/type_ptr.hpp>
 #include <string>
 #include <vector>
 
@@ -44,7 +42,8 @@ GLuint compileShader(GLenum type, const std::string& source, const char* name) {
         std::string log(std::size_t(std::max(length, 1)), '\0');
         glGetShaderInfoLog(shader, GLsizei(log.size()), nullptr, log.data());
         glDeleteShader(shader);
-        throw core::Error(std::string("shader ") + name, "compile failed: " + std::string(log.c_str()));
+        throw core::Error(std::string("shader ") + name,
+                          "compile failed: " + std::string(log.c_str()));
     }
     return shader;
 }
@@ -82,7 +81,8 @@ GLuint linkProgram(const std::vector<ShaderSource>& sources, const char* name) {
         std::string log(std::size_t(std::max(length, 1)), '\0');
         glGetProgramInfoLog(program, GLsizei(log.size()), nullptr, log.data());
         glDeleteProgram(program);
-        throw core::Error(std::string("GL program ") + name, "link failed: " + std::string(log.c_str()));
+        throw core::Error(std::string("GL program ") + name,
+                          "link failed: " + std::string(log.c_str()));
     }
     gl::checkGlError(name);
     return program;
@@ -107,7 +107,8 @@ void deleteProgram(GLuint& id) {
 
 // Grows a buffer only when the data does not fit (mode b re-uploads every frame: reallocating
 // then would cost a driver allocation per frame); otherwise overwrites the front part in place.
-void uploadBuffer(GLenum target, GLuint buffer, const void* data, std::size_t bytes, std::size_t& capacityBytes) {
+void uploadBuffer(GLenum target, GLuint buffer, const void* data, std::size_t bytes,
+                  std::size_t& capacityBytes) {
     glBindBuffer(target, buffer);
     if (bytes > capacityBytes) {
         glBufferData(target, GLsizeiptr(bytes), data, GL_DYNAMIC_DRAW);
@@ -144,7 +145,8 @@ private:
 
 SilhouetteGlRenderer::~SilhouetteGlRenderer() {
     if (m_surfaceProgram != 0)
-        kLog.debug("SilhouetteGlRenderer destroyed without release(); its GL objects go with the context");
+        kLog.debug(
+            "SilhouetteGlRenderer destroyed without release(); its GL objects go with the context");
 }
 
 void SilhouetteGlRenderer::initialize() {
@@ -152,19 +154,22 @@ void SilhouetteGlRenderer::initialize() {
         return;
     gl::checkGlError("before SilhouetteGlRenderer::initialize"); // someone else's error is not ours
     try {
-        m_surfaceProgram = linkProgram({{GL_VERTEX_SHADER, gl::shaders::surface_vert, "surface.vert.glsl"},
-                                        {GL_FRAGMENT_SHADER, gl::shaders::surface_frag, "surface.frag.glsl"}},
-                                       "surface");
-        m_lineProgram = linkProgram({{GL_VERTEX_SHADER, gl::shaders::silhouette_vert, "silhouette.vert.glsl"},
-                                     {GL_GEOMETRY_SHADER, gl::shaders::silhouette_geom, "silhouette.geom.glsl"},
-                                     {GL_FRAGMENT_SHADER, gl::shaders::silhouette_frag, "silhouette.frag.glsl"}},
-                                    "silhouette lines");
-        m_wideLineProgram =
-            linkProgram({{GL_VERTEX_SHADER, gl::shaders::silhouette_vert, "silhouette.vert.glsl"},
-                         {GL_GEOMETRY_SHADER, withDefines(gl::shaders::silhouette_geom, "#define LW_WIDE_LINES 1\n"),
-                          "silhouette.geom.glsl (LW_WIDE_LINES)"},
-                         {GL_FRAGMENT_SHADER, gl::shaders::silhouette_frag, "silhouette.frag.glsl"}},
-                        "silhouette wide lines");
+        m_surfaceProgram =
+            linkProgram({{GL_VERTEX_SHADER, gl::shaders::surface_vert, "surface.vert.glsl"},
+                         {GL_FRAGMENT_SHADER, gl::shaders::surface_frag, "surface.frag.glsl"}},
+                        "surface");
+        m_lineProgram = linkProgram(
+            {{GL_VERTEX_SHADER, gl::shaders::silhouette_vert, "silhouette.vert.glsl"},
+             {GL_GEOMETRY_SHADER, gl::shaders::silhouette_geom, "silhouette.geom.glsl"},
+             {GL_FRAGMENT_SHADER, gl::shaders::silhouette_frag, "silhouette.frag.glsl"}},
+            "silhouette lines");
+        m_wideLineProgram = linkProgram(
+            {{GL_VERTEX_SHADER, gl::shaders::silhouette_vert, "silhouette.vert.glsl"},
+             {GL_GEOMETRY_SHADER,
+              withDefines(gl::shaders::silhouette_geom, "#define LW_WIDE_LINES 1\n"),
+              "silhouette.geom.glsl (LW_WIDE_LINES)"},
+             {GL_FRAGMENT_SHADER, gl::shaders::silhouette_frag, "silhouette.frag.glsl"}},
+            "silhouette wide lines");
 
         glGenVertexArrays(1, &m_vertexArray);
         glGenBuffers(1, &m_positionBuffer);
@@ -218,31 +223,37 @@ void SilhouetteGlRenderer::uploadMesh(const Mesh& mesh) {
     uploadMesh(mesh.positions, mesh.normals, mesh.indices);
 }
 
-void SilhouetteGlRenderer::uploadMesh(std::span<const glm::vec3> positions, std::span<const glm::vec3> normals,
+void SilhouetteGlRenderer::uploadMesh(std::span<const glm::vec3> positions,
+                                      std::span<const glm::vec3> normals,
                                       std::span<const std::uint32_t> indices) {
     if (positions.size() != normals.size())
         throw core::Error("GL mesh upload", std::to_string(positions.size()) + " positions but " +
                                                 std::to_string(normals.size()) + " normals");
     if (indices.size() % 3 != 0)
-        throw core::Error("GL mesh upload", std::to_string(indices.size()) + " indices is not a multiple of 3");
+        throw core::Error("GL mesh upload",
+                          std::to_string(indices.size()) + " indices is not a multiple of 3");
     // An index past the end would make the GPU read outside the buffer (undefined, not an error).
     std::uint32_t maxIndex = 0;
     for (std::uint32_t index : indices)
         maxIndex = std::max(maxIndex, index);
     if (!indices.empty() && maxIndex >= positions.size())
-        throw core::Error("GL mesh upload", "index " + std::to_string(maxIndex) + " out of range for " +
+        throw core::Error("GL mesh upload", "index " + std::to_string(maxIndex) +
+                                                " out of range for " +
                                                 std::to_string(positions.size()) + " vertices");
     initialize();
     std::size_t vertexBytes = m_vertexCapacity * sizeof(glm::vec3);
     std::size_t normalBytes = vertexBytes;
-    uploadBuffer(GL_ARRAY_BUFFER, m_positionBuffer, positions.data(), positions.size_bytes(), vertexBytes);
-    uploadBuffer(GL_ARRAY_BUFFER, m_normalBuffer, normals.data(), normals.size_bytes(), normalBytes);
+    uploadBuffer(GL_ARRAY_BUFFER, m_positionBuffer, positions.data(), positions.size_bytes(),
+                 vertexBytes);
+    uploadBuffer(GL_ARRAY_BUFFER, m_normalBuffer, normals.data(), normals.size_bytes(),
+                 normalBytes);
     m_vertexCapacity = std::min(vertexBytes, normalBytes) / sizeof(glm::vec3);
     glBindBuffer(GL_ARRAY_BUFFER, 0);
     // The element buffer binding is vertex array state.
     glBindVertexArray(m_vertexArray);
     std::size_t indexBytes = m_indexCapacity * sizeof(std::uint32_t);
-    uploadBuffer(GL_ELEMENT_ARRAY_BUFFER, m_indexBuffer, indices.data(), indices.size_bytes(), indexBytes);
+    uploadBuffer(GL_ELEMENT_ARRAY_BUFFER, m_indexBuffer, indices.data(), indices.size_bytes(),
+                 indexBytes);
     m_indexCapacity = indexBytes / sizeof(std::uint32_t);
     glBindVertexArray(0);
     m_indexCount = indices.size();
@@ -251,14 +262,16 @@ void SilhouetteGlRenderer::uploadMesh(std::span<const glm::vec3> positions, std:
 
 void SilhouetteGlRenderer::ensureFramebuffer(int width, int height) {
     if (width <= 0 || height <= 0)
-        throw core::Error("GL render target", "invalid size " + std::to_string(width) + "x" + std::to_string(height));
+        throw core::Error("GL render target",
+                          "invalid size " + std::to_string(width) + "x" + std::to_string(height));
     if (m_framebuffer && width == m_width && height == m_height)
         return;
     GLint maxSize = 0;
     glGetIntegerv(GL_MAX_RENDERBUFFER_SIZE, &maxSize);
     if (width > maxSize || height > maxSize)
         throw core::Error("GL render target", std::to_string(width) + "x" + std::to_string(height) +
-                                                  " exceeds the driver's limit of " + std::to_string(maxSize));
+                                                  " exceeds the driver's limit of " +
+                                                  std::to_string(maxSize));
     if (!m_framebuffer)
         glGenFramebuffers(1, &m_framebuffer);
     if (!m_colourTexture)
@@ -279,33 +292,36 @@ void SilhouetteGlRenderer::ensureFramebuffer(int width, int height) {
     glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, m_depthBuffer);
     const GLenum status = glCheckFramebufferStatus(GL_FRAMEBUFFER);
     if (status != GL_FRAMEBUFFER_COMPLETE)
-        throw core::Error("GL render target", "framebuffer incomplete (status 0x" +
-                                                  [&] {
-                                                      char hex[16];
-                                                      std::snprintf(hex, sizeof hex, "%04X", status);
-                                                      return std::string(hex);
-                                                  }() +
-                                                  ")");
+        throw core::Error(
+            "GL render target", "framebuffer incomplete (status 0x" + [&] {
+                char hex[16];
+                std::snprintf(hex, sizeof hex, "%04X", status);
+                return std::string(hex);
+            }() + ")");
     gl::checkGlError("SilhouetteGlRenderer: framebuffer");
     m_width = width;
     m_height = height;
 }
 
-SilhouetteGlStats SilhouetteGlRenderer::render(const Camera& camera, const SilhouetteGlOptions& options) {
+SilhouetteGlStats SilhouetteGlRenderer::render(const Camera& camera,
+                                               const SilhouetteGlOptions& options) {
     const glm::dvec3 toViewer = -camera.forward();
     const glm::vec4 viewer = camera.isOrthographic() ? glm::vec4(glm::vec3(toViewer), 0.0f)
                                                      : glm::vec4(glm::vec3(camera.eye()), 1.0f);
     // A light above and left of the eye, so the shading shows the surface's relief (a pure
     // headlight flattens it).
-    const glm::vec3 light = glm::normalize(glm::vec3(toViewer + 0.45 * camera.up() - 0.30 * camera.right()));
-    return render(camera.viewProjectionMatrixF(), viewer, light, camera.width(), camera.height(), options);
+    const glm::vec3 light =
+        glm::normalize(glm::vec3(toViewer + 0.45 * camera.up() - 0.30 * camera.right()));
+    return render(camera.viewProjectionMatrixF(), viewer, light, camera.width(), camera.height(),
+                  options);
 }
 
 SilhouetteGlStats SilhouetteGlRenderer::render(const glm::mat4& viewProjection, glm::vec4 viewer,
                                                glm::vec3 lightDirection, int width, int height,
                                                const SilhouetteGlOptions& options) {
     if (options.lineWidth <= 0.0f)
-        throw core::Error("silhouette line width", std::to_string(options.lineWidth) + " is not positive");
+        throw core::Error("silhouette line width",
+                          std::to_string(options.lineWidth) + " is not positive");
     initialize();
     const FramebufferBindingGuard bindingGuard;
     ensureFramebuffer(width, height);
@@ -317,7 +333,8 @@ SilhouetteGlStats SilhouetteGlRenderer::render(const glm::mat4& viewProjection, 
     glDisable(GL_SCISSOR_TEST);
     glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
     glDepthMask(GL_TRUE);
-    glClearColor(options.background.r, options.background.g, options.background.b, options.background.a);
+    glClearColor(options.background.r, options.background.g, options.background.b,
+                 options.background.a);
     glClearDepth(1.0);
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
 
@@ -331,11 +348,15 @@ SilhouetteGlStats SilhouetteGlRenderer::render(const glm::mat4& viewProjection, 
     // Pass 1: the surface. The silhouette panel needs it only as the depth to test against.
     if (count > 0 && (iso || options.visibility)) {
         glUseProgram(m_surfaceProgram);
-        glUniformMatrix4fv(uniform(m_surfaceProgram, "uViewProjection"), 1, GL_FALSE, glm::value_ptr(viewProjection));
+        glUniformMatrix4fv(uniform(m_surfaceProgram, "uViewProjection"), 1, GL_FALSE,
+                           glm::value_ptr(viewProjection));
         glUniform4fv(uniform(m_surfaceProgram, "uViewer"), 1, glm::value_ptr(viewer));
-        glUniform3fv(uniform(m_surfaceProgram, "uLightDirection"), 1, glm::value_ptr(lightDirection));
-        glUniform3fv(uniform(m_surfaceProgram, "uFrontColour"), 1, glm::value_ptr(options.frontColour));
-        glUniform3fv(uniform(m_surfaceProgram, "uBackColour"), 1, glm::value_ptr(options.backColour));
+        glUniform3fv(uniform(m_surfaceProgram, "uLightDirection"), 1,
+                     glm::value_ptr(lightDirection));
+        glUniform3fv(uniform(m_surfaceProgram, "uFrontColour"), 1,
+                     glm::value_ptr(options.frontColour));
+        glUniform3fv(uniform(m_surfaceProgram, "uBackColour"), 1,
+                     glm::value_ptr(options.backColour));
         glUniform4fv(uniform(m_surfaceProgram, "uMaterial"), 1, glm::value_ptr(options.material));
         glEnable(GL_DEPTH_TEST);
         glDepthFunc(GL_LESS);
@@ -353,7 +374,8 @@ SilhouetteGlStats SilhouetteGlRenderer::render(const glm::mat4& viewProjection, 
         const bool wide = options.lineWidth > 1.0f;
         const GLuint program = wide ? m_wideLineProgram : m_lineProgram;
         glUseProgram(program);
-        glUniformMatrix4fv(uniform(program, "uViewProjection"), 1, GL_FALSE, glm::value_ptr(viewProjection));
+        glUniformMatrix4fv(uniform(program, "uViewProjection"), 1, GL_FALSE,
+                           glm::value_ptr(viewProjection));
         glUniform4fv(uniform(program, "uViewer"), 1, glm::value_ptr(viewer));
         glUniform1f(uniform(program, "uDepthBias"), options.depthBias);
         glUniform2f(uniform(program, "uViewportSize"), float(width), float(height));
@@ -408,7 +430,8 @@ core::ImageRgba8 SilhouetteGlRenderer::readImage() const {
     return image;
 }
 
-core::ImageRgba8 SilhouetteGlRenderer::renderImage(const Camera& camera, const SilhouetteGlOptions& options) {
+core::ImageRgba8 SilhouetteGlRenderer::renderImage(const Camera& camera,
+                                                   const SilhouetteGlOptions& options) {
     render(camera, options);
     return readImage();
 }

@@ -21,10 +21,11 @@ public:
 
 // Which EGL display a headless context came from.
 enum class EglPlatform {
-    Device,            // EGL_EXT_platform_device: a GPU without a window system (NVIDIA)
-    SurfacelessMesa,   // EGL_MESA_platform_surfaceless (Mesa: llvmpipe or a GPU; NVIDIA offers it too)
-    SoftwareDevice,    // a device that Mesa enumerates as software (EGL_MESA_device_software)
-    DefaultDisplay,    // EGL_DEFAULT_DISPLAY, the last resort
+    Device,          // EGL_EXT_platform_device: a GPU without a window system (NVIDIA)
+    SurfacelessMesa, // EGL_MESA_platform_surfaceless (Mesa: llvmpipe or a GPU; NVIDIA offers it
+                     // too)
+    SoftwareDevice,  // a device that Mesa enumerates as software (EGL_MESA_device_software)
+    DefaultDisplay,  // EGL_DEFAULT_DISPLAY, the last resort
 };
 
 const char* eglPlatformName(EglPlatform platform);

@@ -17,10 +17,9 @@
 #include "lw/render/camera.h"
 #include "lw/render/iso_surface.h"
 
-#include <glm/glm.hpp>
-
 #include <cstddef>
 #include <cstdint>
+#include <glm/glm.hpp>
 #include <span>
 
 namespace lw::render {
@@ -39,8 +38,8 @@ struct SilhouetteGlOptions {
     float lineWidth = 1.0f;  // pixels; above 1 the segments are drawn as screen-space quads
     glm::vec4 lineColour{0.0f, 0.0f, 0.0f, 1.0f};
     glm::vec4 background{1.0f, 1.0f, 1.0f, 1.0f};
-    glm::vec3 frontColour{0.93f, 0.89f, 0.80f}; // bone
-    glm::vec3 backColour{0.55f, 0.35f, 0.35f};  // inside of a surface cut by the volume border
+    glm::vec3 frontColour{0.93f, 0.89f, 0.80f};     // bone
+    glm::vec3 backColour{0.55f, 0.35f, 0.35f};      // inside of a surface cut by the volume border
     glm::vec4 material{0.15f, 0.80f, 0.25f, 32.0f}; // ambient, diffuse, specular, shininess
     // Pass 1 is pushed back by glPolygonOffset(factor, units) so the lines, which lie exactly on
     // the surface, win the depth test where they are visible; depthBias (NDC) pulls the lines
@@ -83,8 +82,9 @@ public:
     SilhouetteGlStats render(const Camera& camera, const SilhouetteGlOptions& options = {});
     // Same with explicit matrices: `viewer` is the eye (w = 1) or, for an orthographic camera, the
     // unit direction toward the viewer (w = 0); `lightDirection` points toward the light.
-    SilhouetteGlStats render(const glm::mat4& viewProjection, glm::vec4 viewer, glm::vec3 lightDirection,
-                             int width, int height, const SilhouetteGlOptions& options = {});
+    SilhouetteGlStats render(const glm::mat4& viewProjection, glm::vec4 viewer,
+                             glm::vec3 lightDirection, int width, int height,
+                             const SilhouetteGlOptions& options = {});
 
     // The last frame as RGBA8, top row first.
     core::ImageRgba8 readImage() const;
