@@ -11,6 +11,8 @@ namespace lw::cli {
 int runInfo(const std::vector<std::string>& args, std::ostream& out);
 int runBenchImport(const std::vector<std::string>& args, std::ostream& out);
 int runRender(const std::vector<std::string>& args, std::ostream& out);
+int runPhantom(const std::vector<std::string>& args, std::ostream& out);
+int runBenchMc(const std::vector<std::string>& args, std::ostream& out);
 int runAccuracy(const std::vector<std::string>& args, std::ostream& out);
 
 } // namespace lw::cli

@@ -20,6 +20,11 @@ commands:
   bench-import PATH [--repeat N] [--json]
                               scan a DICOM input and load all its volumes N times (default 5);
                               prints the median time and slices/s
+  phantom --size N|NXxNYxNZ [--kind ct|sphere] -o OUT.nrrd
+                              the deterministic benchmark phantom (tools/phantom.py); prints
+                              its checksums (sum, voxels above 300.5)
+  bench-mc [--size N|NXxNYxNZ] [--kind ct|sphere] [--chunks off|auto|N] [--repeat R] [--iso HU]
+                              marching cubes on the phantom: median ms, triangles
   accuracy [--methods 1,2,3] [--sizes 32,64,256] [--shapes sphere,...] [--backend cpu|cuda|auto] [--json]
                               the paper's Table 5 measured: recall/precision (1 px) of each
                               method (S and L) against analytic contours
@@ -48,6 +53,8 @@ int main(int argc, char** argv) {
         {"info", lw::cli::runInfo},
         {"bench-import", lw::cli::runBenchImport},
         {"render", lw::cli::runRender},
+        {"phantom", lw::cli::runPhantom},
+        {"bench-mc", lw::cli::runBenchMc},
         {"accuracy", lw::cli::runAccuracy},
     };
     const auto command = commands.find(args[0]);
