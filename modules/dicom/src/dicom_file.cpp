@@ -242,6 +242,7 @@ void loadDicomFile(const std::filesystem::path& path, DcmFileFormat& file, bool 
     // TransferSyntaxUID); a wrong guess parses into nonsense, so the other plausible
     // encodings are tried before giving up. Good files succeed on the first attempt.
     OFCondition firstStatus;
+    bool parsedSomething = false; // a DICOM stream, but without the attributes an image needs
     for (E_TransferSyntax guess : {EXS_Unknown, EXS_LittleEndianExplicit, EXS_LittleEndianImplicit,
                                    EXS_BigEndianExplicit}) {
         file.clear();
@@ -262,6 +263,8 @@ void loadDicomFile(const std::filesystem::path& path, DcmFileFormat& file, bool 
             firstStatus = status;
         if (status.good() && looksLikeDicom(file))
             return;
+        if (status.good() && (file.getMetaInfo()->card() > 0 || file.getDataset()->card() > 0))
+            parsedSomething = true;
         if (status.bad())
             break; // another guess cannot fix a broken or truncated stream
     }
@@ -272,6 +275,9 @@ void loadDicomFile(const std::filesystem::path& path, DcmFileFormat& file, bool 
                                        : std::string(firstStatus.text());
         throw core::Error(path.string(), "cannot parse DICOM: " + detail);
     }
+    if (parsedSomething)
+        throw core::Error(path.string(), "DICOM data without SOPClassUID, SOPInstanceUID or Rows: "
+                                         "not an image object (or its encoding cannot be determined)");
     throw core::Error(path.string(), "not a DICOM file (no recognisable DICOM attributes)");
 }
 
