@@ -164,17 +164,29 @@ void reportFrame(const render::SilhouetteFrame& frame, std::ostream& out) {
 // frame is a new view (mode a then measures what the goal asks: a new view, mesh cached).
 void repeatFrames(render::SilhouetteRenderer& renderer, render::Camera camera, const RenderRequest& request,
                   std::ostream& out) {
-    std::vector<double> totals;
+    std::vector<double> totals, extract, silhouette, visibility, draw;
     for (int i = 1; i <= request.repeat; ++i) {
         camera.setView(camera.setup().azimuthDeg + 1.0, camera.setup().elevationDeg);
-        totals.push_back(renderer.render(camera, request.settings).times.totalMs());
+        const render::StageTimes times = renderer.render(camera, request.settings).times;
+        totals.push_back(times.totalMs());
+        extract.push_back(times.extractMs);
+        silhouette.push_back(times.silhouetteMs);
+        visibility.push_back(times.visibilityMs);
+        draw.push_back(times.drawMs);
     }
     if (totals.empty())
         return;
-    std::sort(totals.begin(), totals.end());
-    char line[128];
-    std::snprintf(line, sizeof line, "median of %d new views: %.1f ms (min %.1f, max %.1f)\n", request.repeat,
-                  totals[totals.size() / 2], totals.front(), totals.back());
+    auto median = [](std::vector<double>& values) {
+        std::sort(values.begin(), values.end());
+        return values[values.size() / 2];
+    };
+    const double middle = median(totals);
+    char line[256];
+    std::snprintf(line, sizeof line,
+                  "median of %d new views: %.1f ms (min %.1f, max %.1f); stages: extract %.1f silhouette %.1f "
+                  "visibility %.1f draw %.1f\n",
+                  request.repeat, middle, totals.front(), totals.back(), median(extract), median(silhouette),
+                  median(visibility), median(draw));
     out << line;
 }
 

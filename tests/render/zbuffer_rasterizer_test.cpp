@@ -22,8 +22,8 @@ ScreenVertices makeVertices(const std::vector<glm::dvec2>& points, const std::ve
     ScreenVertices v;
     v.resize(points.size());
     for (std::size_t i = 0; i < points.size(); ++i) {
-        v.x[i] = std::int32_t(std::lround(points[i].x * double(kSubpixelScale)));
-        v.y[i] = std::int32_t(std::lround(points[i].y * double(kSubpixelScale)));
+        v.xy[i] = {std::int32_t(std::lround(points[i].x * double(kSubpixelScale))),
+                   std::int32_t(std::lround(points[i].y * double(kSubpixelScale)))};
         v.key[i] = keys.empty() ? 1.0f : keys[i];
         v.invW[i] = 1.0f;
         v.facing[i] = 1.0f;

@@ -2,6 +2,7 @@
 // images of the silhouette and the shaded panel.
 #include "lw/core/image_compare.h"
 #include "lw/core/png_io.h"
+#include "lw/kernels/cpu/zbuffer_rasterizer_cpu.h"
 #include "lw/render/analytic_shapes.h"
 #include "lw/render/contour_score.h"
 #include "lw/render/phantom.h"
@@ -135,6 +136,39 @@ TEST(ZBufferSilhouette, VisibilityHidesContourBehindFrontSphere) {
         // The front sphere's outline is there either way.
         EXPECT_GT(on.lines.count(), std::size_t(4.0 * frontRadius));
         EXPECT_GT(off.lines.count(), on.lines.count());
+    }
+}
+
+TEST(ZBufferSilhouette, BackFaceCullingLeavesClosedSurfaceDepthUnchanged) {
+    // The renderer culls back faces when the surface does not reach the volume's border; on a
+    // closed mesh that must not change a single depth value.
+    const TorusShape torus({0, 0, 0}, glm::normalize(glm::dvec3(0.3, -0.5, 1.0)));
+    const lw::volume::Volume volume = sampleShape(torus, 56);
+    const Mesh mesh = extractIsoSurface(volume, kShapeIso);
+    ASSERT_GT(mesh.triangleCount(), 1000u);
+    for (const Projection projection : {Projection::Perspective, Projection::Orthographic}) {
+        const Camera camera = cameraFor(volume, 40.0, 25.0, projection, 160);
+        lw::kernels::cpu::ViewTransform view;
+        view.viewProjection = camera.viewProjectionMatrix();
+        view.width = camera.width();
+        view.height = camera.height();
+        view.orthographic = camera.isOrthographic();
+        view.eye = camera.eye();
+        view.toViewer = -camera.forward();
+        lw::kernels::cpu::ScreenVertices screen;
+        lw::kernels::cpu::projectVertices(mesh.positions.data(), mesh.normals.data(), mesh.vertexCount(), view, screen);
+        lw::kernels::cpu::DepthBuffer all, culled;
+        all.reset(160, 160);
+        culled.reset(160, 160);
+        lw::kernels::cpu::drawTrianglesDepth(screen, mesh.indices.data(), mesh.triangleCount(), all, 2, false);
+        lw::kernels::cpu::drawTrianglesDepth(screen, mesh.indices.data(), mesh.triangleCount(), culled, 2, true);
+        std::size_t covered = 0, differ = 0;
+        for (std::size_t i = 0; i < 160u * 160u; ++i) {
+            covered += all.bits()[i] != 0;
+            differ += all.bits()[i] != culled.bits()[i];
+        }
+        EXPECT_GT(covered, 2000u);
+        EXPECT_EQ(differ, 0u) << "ortho " << camera.isOrthographic();
     }
 }
 

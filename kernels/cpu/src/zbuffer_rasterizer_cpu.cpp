@@ -23,21 +23,39 @@ std::size_t chunkCount(std::size_t items, std::size_t perChunk) { return (items 
 
 } // namespace
 
-bool projectPoint(const ViewTransform& view, glm::dvec3 world, glm::dvec2& pixel, float& key, float* invW) {
-    const glm::dvec4 clip = view.viewProjection * glm::dvec4(world, 1.0);
-    if (!(clip.w > 0.0))
+namespace {
+
+// Round half away from zero without a libm call (the default x86-64 target has no roundsd).
+inline std::int32_t roundToInt(double v) { return std::int32_t(v + (v >= 0.0 ? 0.5 : -0.5)); }
+
+inline bool projectInline(const ViewTransform& view, const glm::dvec3& world, glm::dvec2& pixel, float& key,
+                          float& invW) {
+    const glm::dmat4& m = view.viewProjection;
+    const double cw = m[0][3] * world.x + m[1][3] * world.y + m[2][3] * world.z + m[3][3];
+    if (!(cw > 0.0))
         return false;
-    const double w = 1.0 / clip.w;
-    pixel = {0.5 * (clip.x * w + 1.0) * view.width, 0.5 * (1.0 - clip.y * w) * view.height};
-    key = float(1.0 - clip.z * w);
-    if (invW)
-        *invW = float(w);
+    const double w = 1.0 / cw;
+    const double cx = m[0][0] * world.x + m[1][0] * world.y + m[2][0] * world.z + m[3][0];
+    const double cy = m[0][1] * world.x + m[1][1] * world.y + m[2][1] * world.z + m[3][1];
+    const double cz = m[0][2] * world.x + m[1][2] * world.y + m[2][2] * world.z + m[3][2];
+    pixel = {0.5 * (cx * w + 1.0) * view.width, 0.5 * (1.0 - cy * w) * view.height};
+    key = float(1.0 - cz * w);
+    invW = float(w);
     return true;
 }
 
+} // namespace
+
+bool projectPoint(const ViewTransform& view, glm::dvec3 world, glm::dvec2& pixel, float& key, float* invW) {
+    float w = 0.0f;
+    const bool ok = projectInline(view, world, pixel, key, w);
+    if (invW)
+        *invW = w;
+    return ok;
+}
+
 void ScreenVertices::resize(std::size_t count) {
-    x.resize(count);
-    y.resize(count);
+    xy.resize(count);
     key.resize(count);
     invW.resize(count);
     facing.resize(count);
@@ -54,10 +72,11 @@ void projectVertices(const glm::vec3* positions, const glm::vec3* normals, std::
             for (std::size_t i = chunk * kVerticesPerChunk; i < end; ++i) {
                 glm::dvec2 pixel;
                 float key = 0.0f, invW = 0.0f;
-                const bool ok = projectPoint(view, glm::dvec3(positions[i]), pixel, key, &invW) &&
+                const bool ok = projectInline(view, glm::dvec3(positions[i]), pixel, key, invW) &&
                                 std::abs(pixel.x) < kMaxPixelCoordinate && std::abs(pixel.y) < kMaxPixelCoordinate;
-                out.x[i] = ok ? std::int32_t(std::lround(pixel.x * double(kSubpixelScale))) : kInvalidVertex;
-                out.y[i] = ok ? std::int32_t(std::lround(pixel.y * double(kSubpixelScale))) : kInvalidVertex;
+                out.xy[i] = ok ? glm::ivec2(roundToInt(pixel.x * double(kSubpixelScale)),
+                                            roundToInt(pixel.y * double(kSubpixelScale)))
+                               : glm::ivec2(kInvalidVertex);
                 out.key[i] = key;
                 out.invW[i] = invW;
                 out.facing[i] = silhouetteDistance(positions[i], normals[i], eyeOrDirection, view.orthographic);
@@ -89,7 +108,7 @@ float DepthBuffer::keyAt(std::size_t index) const {
 }
 
 void drawTrianglesDepth(const ScreenVertices& vertices, const std::uint32_t* indices, std::size_t triangleCount,
-                        DepthBuffer& depth, unsigned threads) {
+                        DepthBuffer& depth, unsigned threads, bool cullBackFaces) {
     const int width = depth.width(), height = depth.height();
     volume::parallelFor(
         chunkCount(triangleCount, kTrianglesPerChunk),
@@ -97,9 +116,112 @@ void drawTrianglesDepth(const ScreenVertices& vertices, const std::uint32_t* ind
             const std::size_t end = std::min(triangleCount, (chunk + 1) * kTrianglesPerChunk);
             for (std::size_t t = chunk * kTrianglesPerChunk; t < end; ++t) {
                 const std::uint32_t* tri = indices + 3 * t;
-                forEachCoveredPixel(vertices, tri[0], tri[1], tri[2], width, height, [&](int x, int y, float key) {
-                    depth.writeMax(std::size_t(y) * std::size_t(width) + std::size_t(x), key);
-                });
+                forEachCoveredPixel(
+                    vertices, tri[0], tri[1], tri[2], width, height,
+                    [&](int x, int y, float key) { depth.writeMax(std::size_t(y) * std::size_t(width) + std::size_t(x), key); },
+                    cullBackFaces);
+            }
+        },
+        threads);
+}
+
+void buildClusters(const glm::vec3* positions, const std::uint32_t* indices, std::uint32_t first, std::uint32_t count,
+                   std::vector<TriangleCluster>& out) {
+    for (std::uint32_t begin = first; begin < first + count; begin += kTrianglesPerCluster) {
+        TriangleCluster cluster;
+        cluster.first = begin;
+        cluster.count = std::min(kTrianglesPerCluster, first + count - begin);
+        cluster.min = cluster.max = positions[indices[3 * std::size_t(begin)]];
+        for (std::size_t i = 3 * std::size_t(begin); i < 3 * (std::size_t(begin) + cluster.count); ++i) {
+            cluster.min = glm::min(cluster.min, positions[indices[i]]);
+            cluster.max = glm::max(cluster.max, positions[indices[i]]);
+        }
+        out.push_back(cluster);
+    }
+}
+
+void TileMask::markAroundLines(const DepthBuffer& lines, unsigned threads) {
+    const int width = lines.width(), height = lines.height();
+    m_tilesX = (width + (1 << kTileBits) - 1) >> kTileBits;
+    m_tilesY = (height + (1 << kTileBits) - 1) >> kTileBits;
+    m_needed.assign(std::size_t(m_tilesX) * std::size_t(m_tilesY), 0);
+    // One tile row per work item, so no two threads write the same byte... except the rows a
+    // 3x3 neighbourhood reaches across: writes of the value 1 are idempotent, done atomically.
+    volume::parallelFor(
+        std::size_t(m_tilesY),
+        [&](std::size_t tileRow) {
+            const int yEnd = std::min(height, int(tileRow + 1) << kTileBits);
+            for (int y = int(tileRow) << kTileBits; y < yEnd; ++y)
+                for (int x = 0; x < width; ++x) {
+                    if (lines.bits()[std::size_t(y) * std::size_t(width) + std::size_t(x)] == 0)
+                        continue;
+                    for (int ny = std::max(0, y - 1); ny <= std::min(height - 1, y + 1); ++ny)
+                        for (int nx = std::max(0, x - 1); nx <= std::min(width - 1, x + 1); ++nx) {
+                            std::atomic_ref<std::uint8_t> cell(
+                                m_needed[std::size_t(ny >> kTileBits) * std::size_t(m_tilesX) + std::size_t(nx >> kTileBits)]);
+                            cell.store(1, std::memory_order_relaxed);
+                        }
+                }
+        },
+        threads);
+}
+
+bool TileMask::any(int tx0, int ty0, int tx1, int ty1) const {
+    tx0 = std::max(tx0, 0);
+    ty0 = std::max(ty0, 0);
+    tx1 = std::min(tx1, m_tilesX - 1);
+    ty1 = std::min(ty1, m_tilesY - 1);
+    for (int ty = ty0; ty <= ty1; ++ty)
+        for (int tx = tx0; tx <= tx1; ++tx)
+            if (m_needed[std::size_t(ty) * std::size_t(m_tilesX) + std::size_t(tx)])
+                return true;
+    return false;
+}
+
+std::size_t TileMask::count() const { return std::size_t(std::count(m_needed.begin(), m_needed.end(), 1)); }
+
+void drawClustersDepth(const ScreenVertices& vertices, const std::uint32_t* indices, const TriangleCluster* clusters,
+                       std::size_t clusterCount, const ViewTransform& view, const TileMask& needed, DepthBuffer& depth,
+                       unsigned threads, bool cullBackFaces) {
+    const int width = depth.width(), height = depth.height();
+    constexpr std::size_t kClustersPerChunk = 64;
+    volume::parallelFor(
+        chunkCount(clusterCount, kClustersPerChunk),
+        [&](std::size_t chunk) {
+            const std::size_t end = std::min(clusterCount, (chunk + 1) * kClustersPerChunk);
+            for (std::size_t c = chunk * kClustersPerChunk; c < end; ++c) {
+                const TriangleCluster& cluster = clusters[c];
+                // The projected box: its 8 corners bound the projection of everything inside as
+                // long as all lie in front of the eye; otherwise draw the cluster unconditionally.
+                double x0 = 1e300, y0 = 1e300, x1 = -1e300, y1 = -1e300;
+                for (int corner = 0; corner < 8; ++corner) {
+                    const glm::dvec3 p((corner & 1) ? cluster.max.x : cluster.min.x,
+                                       (corner & 2) ? cluster.max.y : cluster.min.y,
+                                       (corner & 4) ? cluster.max.z : cluster.min.z);
+                    glm::dvec2 pixel;
+                    float key = 0.0f, invW = 0.0f;
+                    if (!projectInline(view, p, pixel, key, invW)) {
+                        x0 = y0 = -1e300;
+                        x1 = y1 = 1e300;
+                        break;
+                    }
+                    x0 = std::min(x0, pixel.x);
+                    y0 = std::min(y0, pixel.y);
+                    x1 = std::max(x1, pixel.x);
+                    y1 = std::max(y1, pixel.y);
+                }
+                // One pixel of slack covers the snapping of vertices to 1/256 pixel.
+                auto tile = [](double v) { return int(std::clamp(std::floor(v), -1.0, 1e6)) >> TileMask::kTileBits; };
+                if (!needed.any(tile(x0 - 1.0), tile(y0 - 1.0), tile(x1 + 1.0), tile(y1 + 1.0)))
+                    continue;
+                const std::uint32_t* tri = indices + 3 * std::size_t(cluster.first);
+                for (std::uint32_t t = 0; t < cluster.count; ++t, tri += 3)
+                    forEachCoveredPixel(
+                        vertices, tri[0], tri[1], tri[2], width, height,
+                        [&](int x, int y, float key) {
+                            depth.writeMax(std::size_t(y) * std::size_t(width) + std::size_t(x), key);
+                        },
+                        cullBackFaces);
             }
         },
         threads);
@@ -156,8 +278,9 @@ void findSilhouetteSegments(const glm::vec3* positions, const ScreenVertices& ve
                 if (!silhouetteSegment(p, d, ends))
                     continue;
                 ScreenSegment segment;
-                if (!projectPoint(view, glm::dvec3(ends.a), segment.a, segment.keyA) ||
-                    !projectPoint(view, glm::dvec3(ends.b), segment.b, segment.keyB))
+                float invW = 0.0f;
+                if (!projectInline(view, glm::dvec3(ends.a), segment.a, segment.keyA, invW) ||
+                    !projectInline(view, glm::dvec3(ends.b), segment.b, segment.keyB, invW))
                     continue;
                 local.push_back(segment);
             }
@@ -186,7 +309,8 @@ void drawSegmentsDepth(const ScreenSegment* segments, std::size_t count, DepthBu
                 for (int i = 0; i <= stepCount; ++i) {
                     const double t = stepCount == 0 ? 0.0 : double(i) / double(stepCount);
                     const glm::dvec2 p = segment.a + t * delta;
-                    const int x = int(std::floor(p.x)), y = int(std::floor(p.y));
+                    // floor() without a libm call; p is bounded, so the int conversion is exact.
+                    const int x = int(p.x) - (p.x < double(int(p.x))), y = int(p.y) - (p.y < double(int(p.y)));
                     if (x < 0 || y < 0 || x >= width || y >= height)
                         continue;
                     const float key = float(double(segment.keyA) + t * (double(segment.keyB) - double(segment.keyA)));

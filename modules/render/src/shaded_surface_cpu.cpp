@@ -45,7 +45,7 @@ core::ImageRgba8 shadeSurfaceCpu(const Mesh& mesh, const Camera& camera, const S
                 const glm::dvec2 p(x + 0.5, y + 0.5);
                 glm::dvec2 v[3];
                 for (int i = 0; i < 3; ++i)
-                    v[i] = glm::dvec2(screen.x[tri[i]], screen.y[tri[i]]) * scale;
+                    v[i] = glm::dvec2(screen.xy[tri[i]]) * scale;
                 const double area = (v[1].y - v[0].y) * (v[2].x - v[0].x) - (v[1].x - v[0].x) * (v[2].y - v[0].y);
                 auto edge = [&](const glm::dvec2& a, const glm::dvec2& b) {
                     return (b.y - a.y) * (p.x - a.x) - (b.x - a.x) * (p.y - a.y);

@@ -59,6 +59,31 @@ private:
     glm::ivec3 m_cells{1};
 };
 
+// True when a voxel on the volume's border is inside (>= iso): only then can the surface be cut
+// open by the border. Marching cubes gives a watertight mesh otherwise, and on a closed surface
+// back faces are always hidden behind front faces, so the depth pass may cull them (half the work).
+bool surfaceTouchesBorder(const volume::Volume& volume, double storedIso) {
+    const glm::ivec3 d = volume.dims();
+    return volume::dispatchVoxelType(volume.voxelType(), [&](auto zero) {
+        using T = decltype(zero);
+        const T* voxels = volume.dataAs<T>();
+        auto inside = [&](int x, int y, int z) { return double(voxels[volume.index(x, y, z)]) >= storedIso; };
+        for (int z = 0; z < d.z; ++z) {
+            const bool zFace = z == 0 || z == d.z - 1;
+            for (int y = 0; y < d.y; ++y) {
+                if (zFace || y == 0 || y == d.y - 1) {
+                    for (int x = 0; x < d.x; ++x)
+                        if (inside(x, y, z))
+                            return true;
+                } else if (inside(0, y, z) || inside(d.x - 1, y, z)) {
+                    return true;
+                }
+            }
+        }
+        return false;
+    });
+}
+
 } // namespace
 
 struct ZBufferSilhouetteRenderer::State {
@@ -67,6 +92,7 @@ struct ZBufferSilhouetteRenderer::State {
     bool meshValid = false;
     double meshIso = std::numeric_limits<double>::quiet_NaN();
     int meshBrickCells = -1;
+    bool meshClosed = false; // the surface does not reach the volume's border
 
     // L variant: the mesh's triangles regrouped by brick, and where each brick starts.
     std::vector<std::uint32_t> brickIndices;
@@ -74,11 +100,33 @@ struct ZBufferSilhouetteRenderer::State {
     std::vector<std::size_t> brickCounts; // scratch for the counting sort
     std::vector<std::uint32_t> triangleBrick;
 
+    // Triangle clusters of the index buffer in use (per brick in the L variant) and where each
+    // brick's clusters start.
+    std::vector<kernels::cpu::TriangleCluster> clusters;
+    std::vector<std::size_t> brickClusterStarts;
+    kernels::cpu::TileMask needed;
+
     kernels::cpu::ScreenVertices screen;
     kernels::cpu::DepthBuffer surfaceDepth; // zbuffer1
     kernels::cpu::DepthBuffer lineDepth;    // zbuffer2
     kernels::cpu::SegmentScratch scratch;
     std::vector<kernels::cpu::ScreenSegment> segments;
+
+    void buildClusters(bool chunked) {
+        clusters.clear();
+        brickClusterStarts.assign(1, 0);
+        if (!chunked) {
+            kernels::cpu::buildClusters(mesh.positions.data(), mesh.indices.data(), 0, std::uint32_t(mesh.triangleCount()),
+                                        clusters);
+            brickClusterStarts.push_back(clusters.size());
+            return;
+        }
+        for (std::size_t b = 0; b + 1 < brickStarts.size(); ++b) {
+            kernels::cpu::buildClusters(mesh.positions.data(), brickIndices.data(), std::uint32_t(brickStarts[b]),
+                                        std::uint32_t(brickStarts[b + 1] - brickStarts[b]), clusters);
+            brickClusterStarts.push_back(clusters.size());
+        }
+    }
 
     void partitionByBrick(int brickCells) {
         const glm::ivec3 cells = glm::max(volume->dims() - 1, glm::ivec3(1));
@@ -141,6 +189,8 @@ SilhouetteFrame ZBufferSilhouetteRenderer::render(const Camera& camera, const Si
         extractIsoSurface(*s.volume, settings.isoReal, options, s.mesh);
         if (settings.brickCells > 0)
             s.partitionByBrick(settings.brickCells);
+        s.buildClusters(settings.brickCells > 0);
+        s.meshClosed = !surfaceTouchesBorder(*s.volume, s.volume->valueMapping().toStored(settings.isoReal));
         s.meshValid = true;
         s.meshIso = settings.isoReal;
         s.meshBrickCells = settings.brickCells;
@@ -162,7 +212,9 @@ SilhouetteFrame ZBufferSilhouetteRenderer::render(const Camera& camera, const Si
     s.lineDepth.reset(width, height, threads);
     frame.times.drawMs += msSince(start);
 
-    // One pass per brick (the whole mesh is the one-brick case); both buffers accumulate.
+    // One pass per brick (the whole mesh is the one-brick case); both buffers accumulate. The
+    // silhouette pass runs first so the depth pass can skip the clusters that cannot reach a
+    // pixel the colour pass compares against: zbuffer1 is exact wherever it is read.
     const bool chunked = settings.brickCells > 0;
     const std::uint32_t* indices = chunked ? s.brickIndices.data() : s.mesh.indices.data();
     const std::size_t passes = chunked ? s.brickStarts.size() - 1 : 1;
@@ -172,21 +224,26 @@ SilhouetteFrame ZBufferSilhouetteRenderer::render(const Camera& camera, const Si
         const std::size_t count = chunked ? s.brickStarts[pass + 1] - first : frame.triangles;
         if (count == 0)
             continue;
-        const std::uint32_t* passIndices = indices + 3 * first;
-        if (settings.visibility) {
-            start = Clock::now();
-            kernels::cpu::drawTrianglesDepth(s.screen, passIndices, count, s.surfaceDepth, threads);
-            frame.times.visibilityMs += msSince(start);
-        }
         start = Clock::now();
         const std::size_t before = s.segments.size();
-        kernels::cpu::findSilhouetteSegments(s.mesh.positions.data(), s.screen, passIndices, count, view, s.scratch,
-                                             s.segments, threads);
+        kernels::cpu::findSilhouetteSegments(s.mesh.positions.data(), s.screen, indices + 3 * first, count, view,
+                                             s.scratch, s.segments, threads);
         frame.times.silhouetteMs += msSince(start);
 
         start = Clock::now();
         kernels::cpu::drawSegmentsDepth(s.segments.data() + before, s.segments.size() - before, s.lineDepth, threads);
         frame.times.drawMs += msSince(start);
+    }
+    if (settings.visibility) {
+        start = Clock::now();
+        s.needed.markAroundLines(s.lineDepth, threads);
+        for (std::size_t pass = 0; pass < passes; ++pass) {
+            const std::size_t firstCluster = s.brickClusterStarts[pass];
+            kernels::cpu::drawClustersDepth(s.screen, indices, s.clusters.data() + firstCluster,
+                                            s.brickClusterStarts[pass + 1] - firstCluster, view, s.needed,
+                                            s.surfaceDepth, threads, s.meshClosed);
+        }
+        frame.times.visibilityMs += msSince(start);
     }
     frame.segments = s.segments.size();
 

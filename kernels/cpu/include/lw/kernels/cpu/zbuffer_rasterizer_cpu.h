@@ -46,14 +46,15 @@ bool projectPoint(const ViewTransform& view, glm::dvec3 world, glm::dvec2& pixel
 
 // Per-vertex screen data, structure of arrays so the triangle loop touches only what it uses.
 struct ScreenVertices {
-    std::vector<std::int32_t> x; // fixed point (1/256 px), kInvalidVertex when not projectable
-    std::vector<std::int32_t> y;
+    // Fixed-point position (1/256 px), x and y side by side so the triangle loop loads one cache
+    // line per vertex; x == kInvalidVertex when the vertex could not be projected.
+    std::vector<glm::ivec2> xy;
     std::vector<float> key;    // depth key (see above)
     std::vector<float> invW;   // 1 / clip w, for perspective-correct attribute interpolation
     std::vector<float> facing; // Burns' d at the vertex (>= 0: front-facing)
 
     void resize(std::size_t count);
-    std::size_t size() const { return x.size(); }
+    std::size_t size() const { return xy.size(); }
 };
 
 // Projects `count` vertices and evaluates Burns' d with their normals, on `threads` threads.
@@ -91,12 +92,15 @@ private:
 };
 
 // Calls fn(px, py, key) for every pixel centre covered by the triangle (a, b, c) under the
-// top-left rule, key interpolated linearly in screen space. Either winding; degenerate and
-// invalid triangles cover nothing.
+// top-left rule, key interpolated linearly in screen space. Either winding, unless
+// `cullBackFaces`: then triangles that are clockwise on screen (back-facing for a mesh wound
+// counter-clockwise seen from outside) cover nothing. Degenerate and invalid triangles cover nothing.
 template <typename Fn>
-inline void forEachCoveredPixel(const ScreenVertices& v, std::uint32_t a, std::uint32_t b, std::uint32_t c,
-                                int width, int height, Fn&& fn) {
-    std::int64_t x0 = v.x[a], y0 = v.y[a], x1 = v.x[b], y1 = v.y[b], x2 = v.x[c], y2 = v.y[c];
+[[gnu::always_inline]] inline void forEachCoveredPixel(const ScreenVertices& v, std::uint32_t a, std::uint32_t b,
+                                                       std::uint32_t c, int width, int height, Fn&& fn,
+                                                       bool cullBackFaces = false) {
+    const glm::ivec2 pa = v.xy[a], pb = v.xy[b], pc = v.xy[c];
+    std::int64_t x0 = pa.x, y0 = pa.y, x1 = pb.x, y1 = pb.y, x2 = pc.x, y2 = pc.y;
     if (x0 == kInvalidVertex || x1 == kInvalidVertex || x2 == kInvalidVertex)
         return;
     // The pixel-centre grid: centre i sits at i * 256 + 128. Most triangles of a fine mesh hold
@@ -117,7 +121,7 @@ inline void forEachCoveredPixel(const ScreenVertices& v, std::uint32_t a, std::u
     // Edge function of a -> b at p: (b.y - a.y)(p.x - a.x) - (b.x - a.x)(p.y - a.y); with y down
     // it is positive on the interior of a triangle whose area E_01(v2) is positive.
     std::int64_t area = (y1 - y0) * (x2 - x0) - (x1 - x0) * (y2 - y0);
-    if (area == 0)
+    if (area == 0 || (area < 0 && cullBackFaces))
         return;
     float k0 = v.key[a], k1 = v.key[b], k2 = v.key[c];
     if (area < 0) {
@@ -165,9 +169,50 @@ inline void forEachCoveredPixel(const ScreenVertices& v, std::uint32_t a, std::u
     }
 }
 
-// zbuffer1: every triangle's depth (indices: three per triangle).
+// zbuffer1: every triangle's depth (indices: three per triangle). `cullBackFaces` is only exact
+// for a closed surface, where a back face always lies behind a front face on the same pixel.
 void drawTrianglesDepth(const ScreenVertices& vertices, const std::uint32_t* indices, std::size_t triangleCount,
-                        DepthBuffer& depth, unsigned threads = 0);
+                        DepthBuffer& depth, unsigned threads = 0, bool cullBackFaces = false);
+
+// A run of consecutive triangles (marching cubes emits them cell by cell, so a run is spatially
+// compact) with the box around its vertices. Built once per mesh; per frame the box's projection
+// tells whether the run can touch any pixel that the colour pass will look at.
+struct TriangleCluster {
+    std::uint32_t first = 0; // triangle index into the index buffer the cluster was built from
+    std::uint32_t count = 0;
+    glm::vec3 min{0.0f};
+    glm::vec3 max{0.0f};
+};
+inline constexpr std::uint32_t kTrianglesPerCluster = 256;
+
+// Appends the clusters of triangles [first, first + count) of `indices` (never crossing `first`
+// or the end, so per-brick ranges keep their own clusters).
+void buildClusters(const glm::vec3* positions, const std::uint32_t* indices, std::uint32_t first, std::uint32_t count,
+                   std::vector<TriangleCluster>& out);
+
+// Which 8 x 8 pixel tiles the colour pass reads: the tiles under every segment pixel's 3x3
+// neighbourhood (resolveSilhouette compares against those surface depths only).
+class TileMask {
+public:
+    static constexpr int kTileBits = 3;
+    void markAroundLines(const DepthBuffer& lines, unsigned threads = 0);
+    int tilesX() const { return m_tilesX; }
+    int tilesY() const { return m_tilesY; }
+    bool any(int tx0, int ty0, int tx1, int ty1) const; // inclusive, clamped
+    std::size_t count() const;
+
+private:
+    int m_tilesX = 0;
+    int m_tilesY = 0;
+    std::vector<std::uint8_t> m_needed;
+};
+
+// zbuffer1 where the colour pass needs it: draws the clusters whose projected box overlaps a
+// needed tile (all of their triangles, so every pixel of a needed tile gets exactly the depth
+// drawTrianglesDepth would give it); other pixels stay empty.
+void drawClustersDepth(const ScreenVertices& vertices, const std::uint32_t* indices, const TriangleCluster* clusters,
+                       std::size_t clusterCount, const ViewTransform& view, const TileMask& needed, DepthBuffer& depth,
+                       unsigned threads = 0, bool cullBackFaces = false);
 
 // The nearest triangle per pixel, packed as (key bits << 32) | (triangle index + 1) and kept by
 // an atomic max, so equal depths resolve to the larger index whatever the thread order. 0 = empty.
