@@ -31,6 +31,8 @@
 
 #include <algorithm>
 #include <charconv>
+#include <cmath>
+#include <cstdlib>
 #include <cstdio>
 #include <memory>
 #include <optional>
@@ -77,7 +79,7 @@ struct Row {
     render::ContourScore score;
 };
 
-// The view of every accuracy image: oblique, so no shape is seen along a symmetry axis.
+// The default view of the accuracy images: oblique, so no shape is seen along a symmetry axis.
 constexpr double kAzimuth = 30.0;
 constexpr double kElevation = 20.0;
 constexpr double kPixelsPerVoxel = 2.0;
@@ -85,10 +87,10 @@ constexpr double kPixelsPerVoxel = 2.0;
 } // namespace
 
 int runAccuracy(const std::vector<std::string>& args, std::ostream& out) {
-    const Arguments arguments(args, {"json"}, {"backend", "methods", "sizes", "shapes"});
+    const Arguments arguments(args, {"json"}, {"backend", "methods", "sizes", "shapes", "view"});
     if (!arguments.positionals().empty())
         throw core::Error("accuracy", "usage: accuracy [--backend cpu|cuda|auto] [--methods 1,2,3] "
-                                      "[--sizes 32,64,256] [--shapes sphere,...] [--json]");
+                                      "[--sizes 32,64,256] [--shapes sphere,...] [--view AZ,EL] [--json]");
     const std::string backend = arguments.option("backend", "auto");
     if (backend != "cpu" && backend != "cuda" && backend != "auto")
         throw core::Error("--backend " + backend, "expected cpu, cuda or auto");
@@ -103,6 +105,18 @@ int runAccuracy(const std::vector<std::string>& args, std::ostream& out) {
     const std::vector<std::string> shapes =
         arguments.option("shapes") ? splitList(*arguments.option("shapes")) : render::analyticShapeNames();
     const bool json = arguments.flag("json");
+    double azimuth = kAzimuth, elevation = kElevation;
+    if (const auto view = arguments.option("view")) {
+        const auto parts = splitList(*view);
+        char* end0 = nullptr;
+        char* end1 = nullptr;
+        if (parts.size() == 2) {
+            azimuth = std::strtod(parts[0].c_str(), &end0);
+            elevation = std::strtod(parts[1].c_str(), &end1);
+        }
+        if (parts.size() != 2 || *end0 != '\0' || *end1 != '\0' || std::abs(elevation) > 90.0)
+            throw core::Error("--view " + *view, "expected AZ,EL in degrees with |EL| <= 90");
+    }
     auto wants = [&](int m) { return std::find(methods.begin(), methods.end(), m) != methods.end(); };
 
     std::vector<std::string> notes;
@@ -136,8 +150,8 @@ int runAccuracy(const std::vector<std::string>& args, std::ostream& out) {
             const volume::Volume volume = render::sampleShape(*shape, n);
             render::CameraSetup setup;
             setup.bounds = shape->bounds();
-            setup.azimuthDeg = kAzimuth;
-            setup.elevationDeg = kElevation;
+            setup.azimuthDeg = azimuth;
+            setup.elevationDeg = elevation;
             const int side =
                 render::Camera::squareSizeForVoxelCoverage(setup, volume.geometry().spacingI(), kPixelsPerVoxel);
             const render::Camera camera(setup, side, side);
@@ -217,7 +231,7 @@ int runAccuracy(const std::vector<std::string>& args, std::ostream& out) {
         core::JsonWriter writer;
         writer.beginObject();
         writer.field("backend", backendUsed);
-        writer.field("azimuth", kAzimuth).field("elevation", kElevation);
+        writer.field("azimuth", azimuth).field("elevation", elevation);
         writer.field("pixels_per_voxel", kPixelsPerVoxel).field("tolerance_px", 1);
         writer.key("notes").beginArray();
         for (const auto& note : notes)
@@ -240,7 +254,7 @@ int runAccuracy(const std::vector<std::string>& args, std::ostream& out) {
 
     char line[256];
     std::snprintf(line, sizeof line, "accuracy (backend %s, view az %g el %g, %g px per voxel, 1 px tolerance)\n",
-                  backendUsed.c_str(), kAzimuth, kElevation, kPixelsPerVoxel);
+                  backendUsed.c_str(), azimuth, elevation, kPixelsPerVoxel);
     out << line;
     std::snprintf(line, sizeof line, "%-6s %-7s %-10s %-13s %5s %6s %8s %9s\n", "method", "variant", "visibility",
                   "shape", "size", "image", "recall", "precision");

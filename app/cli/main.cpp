@@ -25,7 +25,8 @@ commands:
                               its checksums (sum, voxels above 300.5)
   bench-mc [--size N|NXxNYxNZ] [--kind ct|sphere] [--chunks off|auto|N] [--repeat R] [--iso HU]
                               marching cubes on the phantom: median ms, triangles
-  accuracy [--methods 1,2,3] [--sizes 32,64,256] [--shapes sphere,...] [--backend cpu|cuda|auto] [--json]
+  accuracy [--methods 1,2,3] [--sizes 32,64,256] [--shapes sphere,...] [--view AZ,EL]
+           [--backend cpu|cuda|auto] [--json]
                               the paper's Table 5 measured: recall/precision (1 px) of each
                               method (S and L) against analytic contours
   render INPUT [--series UID] --iso HU --method 1|2|3 [--chunks off|auto|N] [--mode a|b]

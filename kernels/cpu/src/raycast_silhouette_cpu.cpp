@@ -19,6 +19,13 @@ namespace {
 constexpr std::size_t kChunkCells = 2048;
 constexpr double kStartOffsetCells = 1e-4;
 constexpr double kSelfSkipCells = 1.0;
+// Grazing zone: up to this many cell widths from the start a wall occludes only when its value is
+// inside by more than kGrazeFraction of the spread of its four corner values (about that fraction
+// of a cell deep). A silhouette ray runs tangent to the surface, and on flat stretches it stays
+// within a hair of the trilinear surface for several cells, where the difference between the
+// linear mesh and the trilinear field alone would hide it.
+constexpr double kGrazeCells = 4.0;
+constexpr double kGrazeFraction = 0.1;
 // Empty-space skipping for the visibility rays: macro cells of this many cells per axis that hold
 // no inside voxel cannot occlude (a bilinear wall value is a convex combination of its corners).
 constexpr int kMacroCells = 8;
@@ -307,6 +314,7 @@ public:
         if (!rayGrid.cellOf(u0 + tStart * du, du, startCell))
             return true;
         const double tSkip = kSelfSkipCells / cellsPerT;
+        const double tGraze = kGrazeCells / cellsPerT;
         // The walk restarts at every macro cell boundary: an empty macro cell is crossed in one
         // jump, an occupied one cell by cell. `from` always lies exactly on the wall entered.
         glm::dvec3 from = u0 + tStart * du;
@@ -332,7 +340,7 @@ public:
             CellExit last;
             rayGrid.walk(from, du, tMax - tFrom, [&](const CellExit& exit) {
                 const double t = tFrom + exit.t;
-                if (exit.cell != startCell && t >= tSkip && wallValue(exit) >= m_iso) {
+                if (exit.cell != startCell && t >= tSkip && occludes(exit, t < tGraze)) {
                     occluded = true;
                     return false;
                 }
@@ -467,7 +475,13 @@ private:
     }
 
     // Bilinear value on the wall the ray leaves through (stored units).
-    double wallValue(const CellExit& exit) const {
+    bool occludes(const CellExit& exit, bool grazing) const {
+        double spread = 0.0;
+        const double v = wallValue(exit, spread);
+        return grazing ? v - m_iso > kGrazeFraction * spread : v >= m_iso;
+    }
+
+    double wallValue(const CellExit& exit, double& spread) const {
         const int a = exit.axis, b = (a + 1) % 3, c = (a + 2) % 3;
         auto fraction = [&](int axis) {
             const double f = axis == 2 ? rayGrid.sliceFraction(exit.point.z, exit.cell.z)
@@ -481,6 +495,7 @@ private:
         const std::size_t i00 = voxelIndex(v.x, v.y, v.z);
         const std::size_t sb = stride[b], sc = stride[c];
         const double v00 = value(i00), v10 = value(i00 + sb), v01 = value(i00 + sc), v11 = value(i00 + sb + sc);
+        spread = std::max(std::max(v00, v10), std::max(v01, v11)) - std::min(std::min(v00, v10), std::min(v01, v11));
         return (1.0 - fc) * ((1.0 - fb) * v00 + fb * v10) + fc * ((1.0 - fb) * v01 + fb * v11);
     }
 
