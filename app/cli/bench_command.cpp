@@ -1,0 +1,492 @@
+// `linework-cli bench`: the paper's Table 1 (marching cubes) and Tables 2-4 (methods 1/2/3 x S/L
+// x mode a/b x visibility on/off) on the benchmark phantom or a volume file, plus peak memory.
+#include "arguments.h"
+#include "commands.h"
+#include "lw/core/error.h"
+#include "lw/core/json_writer.h"
+#include "lw/core/log.h"
+#include "lw/render/aabb.h"
+#include "lw/render/camera.h"
+#include "lw/render/iso_surface.h"
+#include "lw/render/phantom.h"
+#include "lw/render/renderer_factory.h"
+#include "lw/volume/volume_reader.h"
+
+#include <algorithm>
+#include <charconv>
+#include <chrono>
+#include <cstdio>
+#include <fstream>
+#include <memory>
+#include <optional>
+#include <ostream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace lw::cli {
+namespace {
+
+constexpr core::LogCategory kLog("lw.cli");
+
+constexpr const char* kBenchUsage =
+    "usage: bench [--sizes 32,256,512,512x512x1024] [--input FILE --iso HU] [--backend "
+    "cpu|cuda|auto] "
+    "[--methods mc,1,2,3] [--variants S,L] [--modes a,b] [--repeat N] [--image WxH] [--threads N] "
+    "[--peak-memory-of METHOD,VARIANT] [--json]";
+
+// The paper's view of the tables: a fixed oblique view, so the silhouette is neither a
+// symmetric front view nor empty; every timed run turns it by kViewStepDeg so that mode a
+// measures a genuinely new view with the extraction cached.
+constexpr double kAzimuthDeg = 30.0;
+constexpr double kElevationDeg = 20.0;
+constexpr double kViewStepDeg = 1.0;
+
+using Clock = std::chrono::steady_clock;
+
+double msSince(Clock::time_point start) {
+    return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+}
+
+std::vector<std::string> splitList(const std::string& text) {
+    std::vector<std::string> parts;
+    std::stringstream stream(text);
+    std::string part;
+    while (std::getline(stream, part, ','))
+        parts.push_back(part);
+    return parts;
+}
+
+// "N" or "NXxNYxNZ" with positive integers.
+glm::ivec3 parseDims(const std::string& text, const std::string& option) {
+    std::vector<int> parts;
+    const char* p = text.data();
+    const char* end = text.data() + text.size();
+    while (p < end) {
+        int value = 0;
+        const auto [next, error] = std::from_chars(p, end, value);
+        if (error != std::errc() || value < 2)
+            break;
+        parts.push_back(value);
+        p = next;
+        if (p < end && *p == 'x')
+            ++p;
+        else
+            break;
+    }
+    if (p != end || (parts.size() != 1 && parts.size() != 3))
+        throw core::Error(option + " " + text, "expected N or NXxNYxNZ with integers >= 2");
+    return parts.size() == 1 ? glm::ivec3(parts[0]) : glm::ivec3(parts[0], parts[1], parts[2]);
+}
+
+std::string dimsText(glm::ivec3 d) {
+    return std::to_string(d.x) + "x" + std::to_string(d.y) + "x" + std::to_string(d.z);
+}
+
+double median(std::vector<double> values) {
+    if (values.empty())
+        return 0.0;
+    std::sort(values.begin(), values.end());
+    const std::size_t n = values.size();
+    return n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
+}
+
+// A field of /proc/self/status in bytes (VmHWM: peak resident set, VmRSS: current); 0 where
+// the file or field is missing (not Linux).
+std::size_t procStatusBytes(const std::string& field) {
+    std::ifstream status("/proc/self/status");
+    std::string line;
+    while (std::getline(status, line)) {
+        if (line.rfind(field + ":", 0) == 0) {
+            std::istringstream values(line.substr(field.size() + 1));
+            std::size_t kib = 0;
+            values >> kib;
+            return kib * 1024;
+        }
+    }
+    return 0;
+}
+
+double mib(std::size_t bytes) {
+    return double(bytes) / (1024.0 * 1024.0);
+}
+
+struct BenchVolume {
+    std::string label;
+    volume::Volume volume;
+    double iso = render::kPhantomBoneIso;
+};
+
+struct Row {
+    std::string method; // "1", "2", "3" or "mc"
+    std::string variant;
+    std::string mode;               // empty for mc (it always extracts)
+    std::optional<bool> visibility; // none for mc
+    std::string backend;
+    std::string volume;
+    int brickCells = 0;
+    double msMedian = 0.0;
+    double msMin = 0.0;
+    std::size_t triangles = 0;
+    std::size_t segments = 0;
+    render::StageTimes stages; // median of each stage over the runs
+    int runs = 0;
+    std::string skipped; // why the row did not run; empty when it did
+};
+
+struct Plan {
+    std::vector<std::string> methods; // in order, "mc" and "1".."3"
+    std::vector<std::string> variants;
+    std::vector<std::string> modes;
+    std::vector<bool> visibilities{true, false};
+    render::Backend backend = render::Backend::Auto;
+    int repeat = 5;
+    glm::ivec2 image{1024, 1024};
+    unsigned threads = 0;
+};
+
+int brickCellsFor(const std::string& variant, const volume::Volume& volume) {
+    return variant == "L" ? render::parseChunks("auto", volume.dims()) : 0;
+}
+
+// Marching cubes alone (Table 1): the brick grid is built once, as a viewer does for one
+// volume, and the extraction is timed; the same path as `bench-mc`.
+Row benchMarchingCubes(const BenchVolume& input, const std::string& variant, const Plan& plan) {
+    Row row;
+    row.method = "mc";
+    row.variant = variant;
+    row.backend = "cpu";
+    row.volume = input.label;
+    render::IsoSurfaceOptions options;
+    options.brickCells = row.brickCells = brickCellsFor(variant, input.volume);
+    options.threads = plan.threads;
+    const render::IsoSurfaceExtractor extractor(input.volume, options);
+    render::Mesh mesh;
+    extractor.extract(input.iso, mesh); // warm-up: first-touch faults of the output buffers
+    std::vector<double> times;
+    for (int i = 0; i < plan.repeat; ++i) {
+        const auto start = Clock::now();
+        extractor.extract(input.iso, mesh);
+        times.push_back(msSince(start));
+    }
+    row.msMedian = median(times);
+    row.msMin = *std::min_element(times.begin(), times.end());
+    row.stages.extractMs = row.msMedian;
+    row.triangles = mesh.triangleCount();
+    row.runs = plan.repeat;
+    return row;
+}
+
+// One configuration of a silhouette method: a warm-up frame at the base view (in mode a it
+// fills the cache; its triangles and segments are the row's), then `repeat` frames, each one
+// kViewStepDeg further round.
+Row benchConfiguration(render::SilhouetteRenderer& renderer, const BenchVolume& input,
+                       const std::string& variant, const std::string& mode, bool visibility,
+                       const Plan& plan) {
+    Row row;
+    row.method = std::to_string(int(renderer.method()));
+    row.variant = variant;
+    row.mode = mode;
+    row.visibility = visibility;
+    row.backend = std::string(renderer.backendName());
+    row.volume = input.label;
+
+    render::SilhouetteSettings settings;
+    settings.isoReal = input.iso;
+    settings.brickCells = row.brickCells = brickCellsFor(variant, input.volume);
+    settings.mode =
+        mode == "a" ? render::ExtractionMode::CachedA : render::ExtractionMode::EveryFrameB;
+    settings.visibility = visibility;
+    settings.threads = plan.threads;
+
+    render::CameraSetup setup;
+    setup.bounds = render::volumeBounds(input.volume);
+    setup.azimuthDeg = kAzimuthDeg;
+    setup.elevationDeg = kElevationDeg;
+    setup.projection = render::Projection::Perspective;
+    render::Camera camera(setup, plan.image.x, plan.image.y);
+
+    const render::SilhouetteFrame first = renderer.render(camera, settings);
+    row.triangles = first.triangles;
+    row.segments = first.segments;
+
+    std::vector<double> totals, extract, silhouette, visibilityTimes, draw;
+    for (int i = 1; i <= plan.repeat; ++i) {
+        camera.setView(kAzimuthDeg + i * kViewStepDeg, kElevationDeg);
+        const auto start = Clock::now();
+        const render::SilhouetteFrame frame = renderer.render(camera, settings);
+        totals.push_back(msSince(start));
+        extract.push_back(frame.times.extractMs);
+        silhouette.push_back(frame.times.silhouetteMs);
+        visibilityTimes.push_back(frame.times.visibilityMs);
+        draw.push_back(frame.times.drawMs);
+    }
+    row.msMedian = median(totals);
+    row.msMin = *std::min_element(totals.begin(), totals.end());
+    row.stages = {median(extract), median(silhouette), median(visibilityTimes), median(draw)};
+    row.runs = plan.repeat;
+    return row;
+}
+
+void benchVolume(const BenchVolume& input, const Plan& plan, std::vector<Row>& rows,
+                 std::vector<std::string>& notes) {
+    for (const std::string& method : plan.methods) {
+        if (method == "mc") {
+            for (const std::string& variant : plan.variants)
+                rows.push_back(benchMarchingCubes(input, variant, plan));
+            continue;
+        }
+        std::unique_ptr<render::SilhouetteRenderer> renderer;
+        std::string skipped;
+        try {
+            std::string note;
+            renderer = render::createSilhouetteRenderer(
+                render::parseSilhouetteMethod(method, "--methods"), plan.backend, &note);
+            if (!note.empty() && std::find(notes.begin(), notes.end(), note) == notes.end())
+                notes.push_back(note);
+            renderer->setVolume(input.volume);
+        } catch (const core::Error& error) {
+            // Only an unavailable method is skipped (no GL context); anything else is a failure.
+            if (method != "1")
+                throw;
+            skipped = error.what();
+            kLog.warning("bench: method 1 skipped: " + skipped);
+        }
+        for (const std::string& variant : plan.variants)
+            for (const std::string& mode : plan.modes)
+                for (const bool visibility : plan.visibilities) {
+                    if (renderer) {
+                        rows.push_back(
+                            benchConfiguration(*renderer, input, variant, mode, visibility, plan));
+                        continue;
+                    }
+                    Row row;
+                    row.method = method;
+                    row.variant = variant;
+                    row.mode = mode;
+                    row.visibility = visibility;
+                    row.backend = "gl";
+                    row.volume = input.label;
+                    row.brickCells = brickCellsFor(variant, input.volume);
+                    row.skipped = skipped;
+                    rows.push_back(row);
+                }
+    }
+}
+
+void writeJsonRow(core::JsonWriter& writer, const Row& row) {
+    writer.beginObject();
+    if (row.method == "mc")
+        writer.field("method", "mc");
+    else
+        writer.field("method", std::stoi(row.method));
+    writer.field("variant", row.variant);
+    writer.key("mode");
+    row.mode.empty() ? writer.null() : writer.value(row.mode);
+    writer.key("visibility");
+    row.visibility ? writer.value(*row.visibility ? "on" : "off") : writer.null();
+    writer.field("backend", row.backend)
+        .field("volume", row.volume)
+        .field("brick_cells", row.brickCells);
+    writer.key("ms_median");
+    row.skipped.empty() ? writer.value(row.msMedian) : writer.null();
+    writer.key("ms_min");
+    row.skipped.empty() ? writer.value(row.msMin) : writer.null();
+    writer.field("triangles", row.triangles).field("segments", row.segments);
+    writer.key("stages").beginObject();
+    writer.field("extract", row.stages.extractMs).field("silhouette", row.stages.silhouetteMs);
+    writer.field("visibility", row.stages.visibilityMs).field("draw", row.stages.drawMs);
+    writer.endObject();
+    writer.field("runs", row.runs);
+    if (!row.skipped.empty())
+        writer.field("skipped", row.skipped);
+    writer.endObject();
+}
+
+void writeTextRow(std::ostream& out, const Row& row) {
+    char line[512];
+    const char* visibility = !row.visibility ? "-" : *row.visibility ? "on" : "off";
+    if (!row.skipped.empty()) {
+        std::snprintf(line, sizeof line, "%-6s %-7s %-4s %-4s %-5s %-14s skipped: %s\n",
+                      row.method.c_str(), row.variant.c_str(),
+                      row.mode.empty() ? "-" : row.mode.c_str(), visibility, row.backend.c_str(),
+                      row.volume.c_str(), row.skipped.c_str());
+    } else {
+        std::snprintf(
+            line, sizeof line,
+            "%-6s %-7s %-4s %-4s %-5s %-14s %9.1f %9.1f %10zu %9zu %8.1f %8.1f %8.1f %8.1f\n",
+            row.method.c_str(), row.variant.c_str(), row.mode.empty() ? "-" : row.mode.c_str(),
+            visibility, row.backend.c_str(), row.volume.c_str(), row.msMedian, row.msMin,
+            row.triangles, row.segments, row.stages.extractMs, row.stages.silhouetteMs,
+            row.stages.visibilityMs, row.stages.drawMs);
+    }
+    out << line;
+}
+
+std::vector<std::string> parseChoiceList(const std::string& text, const std::string& option,
+                                         const std::vector<std::string>& allowed) {
+    std::vector<std::string> values;
+    for (const std::string& part : splitList(text)) {
+        if (std::find(allowed.begin(), allowed.end(), part) == allowed.end()) {
+            std::string expected;
+            for (const std::string& a : allowed)
+                expected += (expected.empty() ? "" : ", ") + a;
+            throw core::Error(option + " " + text, "'" + part + "' is not one of " + expected);
+        }
+        if (std::find(values.begin(), values.end(), part) == values.end())
+            values.push_back(part);
+    }
+    if (values.empty())
+        throw core::Error(option, "the list is empty");
+    return values;
+}
+
+} // namespace
+
+int runBench(const std::vector<std::string>& args, std::ostream& out) {
+    const Arguments arguments(args, {"json"},
+                              {"sizes", "input", "iso", "backend", "methods", "variants", "modes",
+                               "repeat", "image", "threads", "peak-memory-of"});
+    if (!arguments.positionals().empty())
+        throw core::Error("bench", std::string("takes no positional arguments; ") + kBenchUsage);
+    const bool json = arguments.flag("json");
+
+    Plan plan;
+    plan.backend = render::parseBackend(arguments.option("backend", "auto"));
+    if (plan.backend == render::Backend::Cuda)
+        render::createSilhouetteRenderer(render::SilhouetteMethod::ZBuffer,
+                                         plan.backend); // throws: not built
+    plan.methods = parseChoiceList(arguments.option("methods", "mc,1,2,3"), "--methods",
+                                   {"mc", "1", "2", "3"});
+    plan.variants = parseChoiceList(arguments.option("variants", "S,L"), "--variants", {"S", "L"});
+    plan.modes = parseChoiceList(arguments.option("modes", "a,b"), "--modes", {"a", "b"});
+    const double repeat = arguments.number("repeat", 5);
+    if (repeat < 1 || repeat != double(int(repeat)))
+        throw core::Error("--repeat", "expected a whole number >= 1");
+    plan.repeat = int(repeat);
+    plan.threads = unsigned(std::max(0.0, arguments.number("threads", 0)));
+    if (const auto image = arguments.option("image")) {
+        const auto x = image->find('x');
+        int width = 0, height = 0;
+        const char* end = image->data() + image->size();
+        const bool valid =
+            x != std::string::npos &&
+            std::from_chars(image->data(), image->data() + x, width).ptr == image->data() + x &&
+            std::from_chars(image->data() + x + 1, end, height).ptr == end;
+        if (!valid || width < 2 || height < 2 || width > 16384 || height > 16384)
+            throw core::Error("--image " + *image, "expected WxH between 2 and 16384");
+        plan.image = {width, height};
+    }
+
+    std::optional<std::string> peakMethod;
+    if (const auto peak = arguments.option("peak-memory-of")) {
+        const std::vector<std::string> parts = splitList(*peak);
+        if (parts.size() != 2)
+            throw core::Error("--peak-memory-of " + *peak, "expected METHOD,VARIANT, e.g. 3,L");
+        plan.methods = parseChoiceList(parts[0], "--peak-memory-of", {"mc", "1", "2", "3"});
+        plan.variants = parseChoiceList(parts[1], "--peak-memory-of", {"S", "L"});
+        peakMethod = *peak;
+    }
+
+    // Volumes: the phantom at each size, or the given file (one volume).
+    std::vector<std::string> volumeSpecs;
+    const auto input = arguments.option("input");
+    if (input) {
+        if (arguments.option("sizes"))
+            throw core::Error("bench", "--input and --sizes exclude each other");
+        if (!arguments.option("iso"))
+            throw core::Error("--input " + *input,
+                              "needs --iso HU (the iso-value of the surface to extract)");
+        volumeSpecs.push_back(*input);
+    } else {
+        volumeSpecs = splitList(arguments.option("sizes", "32,256"));
+        if (volumeSpecs.empty())
+            throw core::Error("--sizes", "the list is empty");
+        for (const std::string& size : volumeSpecs)
+            parseDims(size, "--sizes"); // fail before the first (possibly long) run
+    }
+    if (peakMethod && volumeSpecs.size() != 1)
+        throw core::Error("--peak-memory-of",
+                          "measures one volume per process: give one size or --input");
+
+    // The process before any volume exists: what the peak is compared with.
+    const std::size_t baselineRss = procStatusBytes("VmRSS");
+    std::size_t volumeBytes = 0;
+    std::vector<Row> rows;
+    std::vector<std::string> notes;
+    for (const std::string& spec : volumeSpecs) {
+        BenchVolume bench{
+            .label = {}, .volume = {}, .iso = arguments.number("iso", render::kPhantomBoneIso)};
+        if (input) {
+            bench.volume = volume::readVolumeFile(spec);
+            bench.label = spec;
+        } else {
+            const glm::ivec3 dims = parseDims(spec, "--sizes");
+            bench.volume = render::makePhantom(dims, render::PhantomKind::Ct, plan.threads);
+            bench.label = "phantom " + dimsText(dims);
+        }
+        volumeBytes = std::max(volumeBytes, bench.volume.byteSize());
+        kLog.info("bench: " + bench.label + " (" + dimsText(bench.volume.dims()) + ")");
+        benchVolume(bench, plan, rows, notes);
+    }
+    const std::size_t peakRss = procStatusBytes("VmHWM");
+    // Over the volume and the process's own start-up footprint: what the methods added.
+    const double extraBytes = double(peakRss) - double(baselineRss) - double(volumeBytes);
+    const double extraPercent = volumeBytes ? 100.0 * extraBytes / double(volumeBytes) : 0.0;
+
+    if (json) {
+        core::JsonWriter writer;
+        writer.beginObject();
+        writer.field("view", "az " + std::to_string(int(kAzimuthDeg)) + " el " +
+                                 std::to_string(int(kElevationDeg)) + " perspective, +" +
+                                 std::to_string(int(kViewStepDeg)) + " deg az per run");
+        writer.field("image", std::to_string(plan.image.x) + "x" + std::to_string(plan.image.y));
+        writer.field("repeat", plan.repeat);
+        writer.key("notes").beginArray();
+        for (const std::string& note : notes)
+            writer.value(note);
+        writer.endArray();
+        writer.key("rows").beginArray();
+        for (const Row& row : rows)
+            writeJsonRow(writer, row);
+        writer.endArray();
+        writer.key("memory").beginObject();
+        if (peakMethod)
+            writer.field("configuration", *peakMethod);
+        writer.field("peak_rss_mib", mib(peakRss)).field("baseline_rss_mib", mib(baselineRss));
+        writer.field("volume_mib", mib(volumeBytes))
+            .field("extra_over_volume_percent", extraPercent);
+        writer.endObject();
+        writer.endObject();
+        out << writer.str() << "\n";
+        return 0;
+    }
+
+    char line[512];
+    std::snprintf(line, sizeof line,
+                  "bench: view az %g el %g perspective (+%g deg per run), image %dx%d, median of "
+                  "%d runs after a "
+                  "warm-up\n",
+                  kAzimuthDeg, kElevationDeg, kViewStepDeg, plan.image.x, plan.image.y,
+                  plan.repeat);
+    out << line;
+    std::snprintf(line, sizeof line,
+                  "%-6s %-7s %-4s %-4s %-5s %-14s %9s %9s %10s %9s %8s %8s %8s %8s\n", "method",
+                  "variant", "mode", "vis", "back", "volume", "ms_median", "ms_min", "triangles",
+                  "segments", "extract", "silh", "visib", "draw");
+    out << line;
+    for (const Row& row : rows)
+        writeTextRow(out, row);
+    for (const std::string& note : notes)
+        out << "note: " << note << "\n";
+    std::snprintf(line, sizeof line,
+                  "peak memory%s%s: %.1f MiB (VmHWM); start-up %.1f MiB, volume %.1f MiB, extra "
+                  "%.1f%% of the "
+                  "volume\n",
+                  peakMethod ? " of " : "", peakMethod ? peakMethod->c_str() : "", mib(peakRss),
+                  mib(baselineRss), mib(volumeBytes), extraPercent);
+    out << line;
+    return 0;
+}
+
+} // namespace lw::cli

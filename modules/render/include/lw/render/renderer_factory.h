@@ -1,0 +1,31 @@
+#pragma once
+
+// Picks the implementation of a silhouette method for a requested back-end, so the CLI, the GUI
+// and the benchmarks do not each repeat the choice (DESIGN.md: one interface, chosen at run time).
+
+#include "lw/render/silhouette_renderer.h"
+
+#include <memory>
+#include <string>
+#include <string_view>
+
+namespace lw::render {
+
+enum class Backend { Cpu, Cuda, Auto };
+
+// "1" | "2" | "3"; throws core::Error naming `option` (e.g. "--method") otherwise.
+SilhouetteMethod parseSilhouetteMethod(std::string_view text, std::string_view option = "--method");
+// "cpu" | "cuda" | "auto"; throws core::Error naming `option` otherwise.
+Backend parseBackend(std::string_view text, std::string_view option = "--backend");
+std::string_view backendName(Backend backend);
+
+// Method 1 -> the GL adapter (GeometryShaderSilhouetteRenderer on a headless EGL context),
+// method 2 -> RayCastSilhouetteRenderer, method 3 -> ZBufferSilhouetteRenderer.
+// Backend::Cuda throws core::Error until the CUDA back-end exists; Backend::Auto falls back to
+// the CPU and says so in `backendNote` (if given) and in the lw.render log. Throws
+// core::Error("method 1", "no OpenGL context: <reason>") when GL is not built or EGL fails.
+std::unique_ptr<SilhouetteRenderer> createSilhouetteRenderer(SilhouetteMethod method,
+                                                             Backend requested = Backend::Auto,
+                                                             std::string* backendNote = nullptr);
+
+} // namespace lw::render
