@@ -14,5 +14,6 @@ int runRender(const std::vector<std::string>& args, std::ostream& out);
 int runPhantom(const std::vector<std::string>& args, std::ostream& out);
 int runBenchMc(const std::vector<std::string>& args, std::ostream& out);
 int runAccuracy(const std::vector<std::string>& args, std::ostream& out);
+int runBench(const std::vector<std::string>& args, std::ostream& out);
 
 } // namespace lw::cli
