@@ -1,0 +1,246 @@
+// `linework-cli bench --json` as the benchmark page uses it: the output parses as JSON and every
+// row carries the keys docs/BENCHMARKS.md is written from, with plausible values.
+#include <cctype>
+#include <cstdio>
+#include <cstdlib>
+#include <gtest/gtest.h>
+#include <map>
+#include <memory>
+#include <set>
+#include <stdexcept>
+#include <string>
+#include <sys/wait.h>
+#include <vector>
+
+namespace {
+
+struct CliResult {
+    int exitCode = -1;
+    std::string out;
+};
+
+CliResult runCli(const std::string& arguments) {
+    CliResult result;
+    const std::string command =
+        std::string("\"") + LINEWORK_CLI_PATH + "\" " + arguments + " 2>/dev/null";
+    FILE* pipe = popen(command.c_str(), "r");
+    if (!pipe)
+        return result;
+    char buffer[4096];
+    std::size_t n = 0;
+    while ((n = std::fread(buffer, 1, sizeof buffer, pipe)) > 0)
+        result.out.append(buffer, n);
+    const int status = pclose(pipe);
+    result.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    return result;
+}
+
+// Just enough JSON (RFC 8259 without \u escapes) to check the output really parses: a malformed
+// document throws instead of being searched for substrings.
+struct Json {
+    enum class Kind { Null, Bool, Number, String, Array, Object } kind = Kind::Null;
+    bool boolean = false;
+    double number = 0.0;
+    std::string string;
+    std::vector<Json> array;
+    std::map<std::string, Json> object;
+
+    const Json& at(const std::string& key) const {
+        const auto it = object.find(key);
+        if (it == object.end())
+            throw std::runtime_error("missing key " + key);
+        return it->second;
+    }
+};
+
+class JsonParser {
+public:
+    explicit JsonParser(const std::string& text) : m_text(text) {}
+    Json parseDocument() {
+        Json value = parseValue();
+        skipSpace();
+        if (m_pos != m_text.size())
+            fail("trailing characters");
+        return value;
+    }
+
+private:
+    [[noreturn]] void fail(const std::string& what) const {
+        throw std::runtime_error("JSON: " + what + " at offset " + std::to_string(m_pos));
+    }
+    void skipSpace() {
+        while (m_pos < m_text.size() && std::isspace(static_cast<unsigned char>(m_text[m_pos])))
+            ++m_pos;
+    }
+    bool consume(const std::string& token) {
+        if (m_text.compare(m_pos, token.size(), token) != 0)
+            return false;
+        m_pos += token.size();
+        return true;
+    }
+    void expect(char c) {
+        skipSpace();
+        if (m_pos >= m_text.size() || m_text[m_pos] != c)
+            fail(std::string("expected '") + c + "'");
+        ++m_pos;
+    }
+    std::string parseString() {
+        expect('"');
+        std::string out;
+        while (m_pos < m_text.size() && m_text[m_pos] != '"') {
+            char c = m_text[m_pos++];
+            if (c == '\\') {
+                if (m_pos >= m_text.size())
+                    fail("bad escape");
+                const char e = m_text[m_pos++];
+                c = e == 'n'   ? '\n'
+                    : e == 't' ? '\t'
+                    : e == 'r' ? '\r'
+                    : e == 'b' ? '\b'
+                    : e == 'f' ? '\f'
+                               : e;
+                if (e == 'u')
+                    fail("\\u escapes are not expected here");
+            }
+            out += c;
+        }
+        if (m_pos >= m_text.size())
+            fail("unterminated string");
+        ++m_pos;
+        return out;
+    }
+    Json parseValue() {
+        skipSpace();
+        if (m_pos >= m_text.size())
+            fail("unexpected end");
+        Json value;
+        const char c = m_text[m_pos];
+        if (c == '{') {
+            value.kind = Json::Kind::Object;
+            ++m_pos;
+            skipSpace();
+            if (consume("}"))
+                return value;
+            do {
+                const std::string key = parseString();
+                expect(':');
+                if (!value.object.emplace(key, parseValue()).second)
+                    fail("duplicate key " + key);
+                skipSpace();
+            } while (consume(","));
+            expect('}');
+        } else if (c == '[') {
+            value.kind = Json::Kind::Array;
+            ++m_pos;
+            skipSpace();
+            if (consume("]"))
+                return value;
+            do {
+                value.array.push_back(parseValue());
+                skipSpace();
+            } while (consume(","));
+            expect(']');
+        } else if (c == '"') {
+            value.kind = Json::Kind::String;
+            value.string = parseString();
+        } else if (consume("true") || consume("false")) {
+            value.kind = Json::Kind::Bool;
+            value.boolean = m_text[m_pos - 1] == 'e' && m_text[m_pos - 2] == 'u';
+        } else if (consume("null")) {
+            value.kind = Json::Kind::Null;
+        } else {
+            std::size_t used = 0;
+            try {
+                value.number = std::stod(m_text.substr(m_pos, 64), &used);
+            } catch (const std::exception&) {
+                fail("bad value");
+            }
+            value.kind = Json::Kind::Number;
+            m_pos += used;
+        }
+        return value;
+    }
+
+    const std::string& m_text;
+    std::size_t m_pos = 0;
+};
+
+Json parseJson(const std::string& text) {
+    return JsonParser(text).parseDocument();
+}
+
+TEST(BenchCommand, JsonParserRejectsMalformedText) {
+    EXPECT_THROW(parseJson("{\"rows\": [1, 2,]}"), std::runtime_error);
+    EXPECT_THROW(parseJson("{\"a\": 1} x"), std::runtime_error);
+    EXPECT_EQ(parseJson("{\"a\": [true, null, -1.5e2]}").at("a").array[2].number, -150.0);
+}
+
+TEST(BenchCommand, JsonRowsCarryTheKeys) {
+    const CliResult result = runCli("bench --sizes 32 --repeat 1 --methods 2,3 --json");
+    ASSERT_EQ(result.exitCode, 0) << result.out;
+    Json document;
+    ASSERT_NO_THROW(document = parseJson(result.out)) << result.out;
+    const Json& rows = document.at("rows");
+    ASSERT_EQ(rows.kind, Json::Kind::Array);
+    // methods 2, 3 x S, L x mode a, b x visibility on, off
+    ASSERT_EQ(rows.array.size(), 16u) << result.out;
+    std::set<std::string> configurations;
+    for (const Json& row : rows.array) {
+        for (const char* key : {"method", "variant", "mode", "visibility", "backend", "volume",
+                                "ms_median", "triangles", "segments", "stages", "runs"})
+            ASSERT_NO_THROW(row.at(key)) << key;
+        const double method = row.at("method").number;
+        EXPECT_TRUE(method == 2 || method == 3);
+        EXPECT_EQ(row.at("backend").string, "cpu");
+        EXPECT_EQ(row.at("volume").string, "phantom 32x32x32");
+        EXPECT_EQ(row.at("ms_median").kind, Json::Kind::Number);
+        EXPECT_GT(row.at("ms_median").number, 0.0);
+        EXPECT_GT(row.at("triangles").number, 1000.0);
+        EXPECT_GT(row.at("segments").number, 100.0);
+        EXPECT_EQ(row.at("runs").number, 1.0);
+        for (const char* stage : {"extract", "silhouette", "visibility", "draw"})
+            EXPECT_GE(row.at("stages").at(stage).number, 0.0) << stage;
+        const std::string variant = row.at("variant").string;
+        EXPECT_TRUE(variant == "S" || variant == "L") << variant;
+        EXPECT_EQ(row.at("brick_cells").number > 0, variant == "L");
+        configurations.insert(std::to_string(int(method)) + variant + row.at("mode").string +
+                              row.at("visibility").string);
+    }
+    EXPECT_EQ(configurations.size(), 16u) << "every configuration exactly once";
+    EXPECT_GT(document.at("memory").at("peak_rss_mib").number, 0.0);
+}
+
+TEST(BenchCommand, MarchingCubesRowAndPeakMemoryOfOneConfiguration) {
+    const CliResult mc = runCli("bench --sizes 32 --repeat 1 --methods mc --json");
+    ASSERT_EQ(mc.exitCode, 0) << mc.out;
+    const Json rows = parseJson(mc.out).at("rows");
+    ASSERT_EQ(rows.array.size(), 2u);
+    EXPECT_EQ(rows.array[0].at("method").string, "mc");
+    EXPECT_EQ(rows.array[0].at("triangles").number, rows.array[1].at("triangles").number)
+        << "S == L";
+
+    const CliResult peak =
+        runCli("bench --sizes 32 --repeat 1 --peak-memory-of 3,L --image 64x64 --json");
+    ASSERT_EQ(peak.exitCode, 0) << peak.out;
+    const Json document = parseJson(peak.out);
+    ASSERT_EQ(document.at("rows").array.size(), 4u) << "3 L: modes a, b x visibility on, off only";
+    for (const Json& row : document.at("rows").array) {
+        EXPECT_EQ(row.at("method").number, 3.0);
+        EXPECT_EQ(row.at("variant").string, "L");
+    }
+    const Json& memory = document.at("memory");
+    EXPECT_EQ(memory.at("configuration").string, "3,L");
+    EXPECT_NEAR(memory.at("volume_mib").number, 32.0 * 32 * 32 * 2 / (1024 * 1024), 1e-9);
+    EXPECT_GE(memory.at("peak_rss_mib").number, memory.at("baseline_rss_mib").number);
+}
+
+TEST(BenchCommand, BadOptionsFailWithAUsageError) {
+    EXPECT_EQ(runCli("bench --sizes 32 --backend cuda").exitCode, 1) << "CUDA is not built yet";
+    EXPECT_EQ(runCli("bench --sizes 32 --methods 4").exitCode, 1);
+    EXPECT_EQ(runCli("bench --sizes 0").exitCode, 1);
+    EXPECT_EQ(runCli("bench --sizes 32 --repeat 0").exitCode, 1);
+    EXPECT_EQ(runCli("bench --sizes 32,48 --peak-memory-of 3,L").exitCode, 1);
+    EXPECT_EQ(runCli("bench --input /nonexistent.nrrd").exitCode, 1) << "--input needs --iso";
+}
+
+} // namespace

@@ -1,0 +1,77 @@
+// The renderer factory and its option parsers: the right implementation per method, and errors
+// that name the option and the reason (CUDA not built, unknown values, no GL).
+#include "lw/core/error.h"
+#include "lw/core/log.h"
+#include "lw/render/renderer_factory.h"
+
+#include <gtest/gtest.h>
+#include <string>
+
+namespace lw::render {
+namespace {
+
+std::string errorOf(auto&& call) {
+    try {
+        call();
+    } catch (const core::Error& error) {
+        return error.what();
+    }
+    return {};
+}
+
+TEST(RendererFactory, ParsesMethodsAndBackends) {
+    EXPECT_EQ(parseSilhouetteMethod("1"), SilhouetteMethod::GeometryShader);
+    EXPECT_EQ(parseSilhouetteMethod("2"), SilhouetteMethod::RayCastVisibility);
+    EXPECT_EQ(parseSilhouetteMethod("3"), SilhouetteMethod::ZBuffer);
+    EXPECT_EQ(parseBackend("cpu"), Backend::Cpu);
+    EXPECT_EQ(parseBackend("cuda"), Backend::Cuda);
+    EXPECT_EQ(parseBackend("auto"), Backend::Auto);
+    EXPECT_EQ(backendName(Backend::Cuda), "cuda");
+}
+
+TEST(RendererFactory, BadValuesNameTheOption) {
+    const std::string method = errorOf([] { parseSilhouetteMethod("4", "--methods"); });
+    EXPECT_NE(method.find("--methods 4"), std::string::npos) << method;
+    EXPECT_NE(method.find("1, 2 or 3"), std::string::npos) << method;
+    EXPECT_FALSE(errorOf([] { parseSilhouetteMethod(""); }).empty());
+    EXPECT_FALSE(errorOf([] { parseSilhouetteMethod("12"); }).empty());
+    const std::string backend = errorOf([] { parseBackend("gpu"); });
+    EXPECT_NE(backend.find("--backend gpu"), std::string::npos) << backend;
+    EXPECT_NE(backend.find("cpu, cuda or auto"), std::string::npos) << backend;
+}
+
+TEST(RendererFactory, CudaIsNotBuiltYet) {
+    for (const SilhouetteMethod method :
+         {SilhouetteMethod::RayCastVisibility, SilhouetteMethod::ZBuffer}) {
+        const std::string message =
+            errorOf([&] { createSilhouetteRenderer(method, Backend::Cuda); });
+        EXPECT_NE(message.find("--backend cuda"), std::string::npos) << message;
+        EXPECT_NE(message.find("CUDA backend is not built yet"), std::string::npos) << message;
+    }
+}
+
+TEST(RendererFactory, CpuMethodsAndTheAutoNote) {
+    std::string note = "stale";
+    auto m2 = createSilhouetteRenderer(SilhouetteMethod::RayCastVisibility, Backend::Cpu, &note);
+    ASSERT_NE(m2, nullptr);
+    EXPECT_EQ(m2->method(), SilhouetteMethod::RayCastVisibility);
+    EXPECT_EQ(m2->backendName(), "cpu");
+    EXPECT_TRUE(note.empty()) << "an explicit backend needs no note";
+
+    auto m3 = createSilhouetteRenderer(SilhouetteMethod::ZBuffer, Backend::Auto, &note);
+    ASSERT_NE(m3, nullptr);
+    EXPECT_EQ(m3->method(), SilhouetteMethod::ZBuffer);
+    EXPECT_EQ(m3->backendName(), "cpu");
+    EXPECT_EQ(note, "auto: no CUDA backend in this build, using CPU");
+}
+
+#if !LINEWORK_GL
+TEST(RendererFactory, Method1WithoutGlSaysWhy) {
+    const std::string message =
+        errorOf([] { createSilhouetteRenderer(SilhouetteMethod::GeometryShader, Backend::Cpu); });
+    EXPECT_NE(message.find("no OpenGL context"), std::string::npos) << message;
+}
+#endif
+
+} // namespace
+} // namespace lw::render
