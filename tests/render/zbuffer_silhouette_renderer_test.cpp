@@ -172,6 +172,51 @@ TEST(ZBufferSilhouette, BackFaceCullingLeavesClosedSurfaceDepthUnchanged) {
     }
 }
 
+TEST(ZBufferSilhouette, LazyDepthPassIsExactWhereTheColourPassReads) {
+    // drawClustersDepth skips clusters and triangles that cannot reach a pixel next to a segment;
+    // at those pixels the depth must equal the full pass bit for bit.
+    const TorusShape torus({0, 0, 0}, glm::normalize(glm::dvec3(0.6, -0.2, 1.0)));
+    const lw::volume::Volume volume = sampleShape(torus, 64);
+    const Mesh mesh = extractIsoSurface(volume, kShapeIso);
+    const Camera camera = cameraFor(volume, 20.0, 35.0, Projection::Perspective, 200);
+    lw::kernels::cpu::ViewTransform view;
+    view.viewProjection = camera.viewProjectionMatrix();
+    view.width = view.height = 200;
+    view.eye = camera.eye();
+    view.toViewer = -camera.forward();
+    lw::kernels::cpu::ScreenVertices screen;
+    lw::kernels::cpu::projectVertices(mesh.positions.data(), mesh.normals.data(), mesh.vertexCount(), view, screen);
+    lw::kernels::cpu::SegmentScratch scratch;
+    std::vector<lw::kernels::cpu::ScreenSegment> segments;
+    lw::kernels::cpu::findSilhouetteSegments(mesh.positions.data(), screen, mesh.indices.data(), mesh.triangleCount(),
+                                             view, scratch, segments);
+    lw::kernels::cpu::DepthBuffer lines, full, lazy;
+    lines.reset(200, 200);
+    full.reset(200, 200);
+    lazy.reset(200, 200);
+    lw::kernels::cpu::drawSegmentsDepth(segments.data(), segments.size(), lines);
+    lw::kernels::cpu::TileMask needed;
+    needed.markAroundLines(lines);
+    std::vector<lw::kernels::cpu::TriangleCluster> clusters;
+    lw::kernels::cpu::buildClusters(mesh.positions.data(), mesh.indices.data(), 0, std::uint32_t(mesh.triangleCount()),
+                                    clusters);
+    lw::kernels::cpu::drawTrianglesDepth(screen, mesh.indices.data(), mesh.triangleCount(), full);
+    lw::kernels::cpu::drawClustersDepth(screen, mesh.indices.data(), clusters.data(), clusters.size(), view, needed,
+                                        lazy);
+    std::size_t neededPixels = 0, mismatches = 0, skipped = 0;
+    for (std::size_t i = 0; i < 200u * 200u; ++i) {
+        if (needed.pixels()[i]) {
+            ++neededPixels;
+            mismatches += full.bits()[i] != lazy.bits()[i];
+        } else {
+            skipped += full.bits()[i] != 0 && lazy.bits()[i] == 0;
+        }
+    }
+    EXPECT_GT(neededPixels, 500u);
+    EXPECT_EQ(mismatches, 0u);
+    EXPECT_GT(skipped, 1000u) << "the lazy pass should leave most of the surface undrawn";
+}
+
 std::filesystem::path outputDir() {
     const std::filesystem::path dir = std::filesystem::path(LINEWORK_TEST_OUTPUT_DIR) / "zbuffer";
     std::filesystem::create_directories(dir);

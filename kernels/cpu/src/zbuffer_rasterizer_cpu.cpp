@@ -145,6 +145,7 @@ void TileMask::markAroundLines(const DepthBuffer& lines, unsigned threads) {
     m_tilesX = (width + (1 << kTileBits) - 1) >> kTileBits;
     m_tilesY = (height + (1 << kTileBits) - 1) >> kTileBits;
     m_needed.assign(std::size_t(m_tilesX) * std::size_t(m_tilesY), 0);
+    m_pixels.assign(std::size_t(width) * std::size_t(height), 0);
     // One tile row per work item, so no two threads write the same byte... except the rows a
     // 3x3 neighbourhood reaches across: writes of the value 1 are idempotent, done atomically.
     volume::parallelFor(
@@ -157,6 +158,8 @@ void TileMask::markAroundLines(const DepthBuffer& lines, unsigned threads) {
                         continue;
                     for (int ny = std::max(0, y - 1); ny <= std::min(height - 1, y + 1); ++ny)
                         for (int nx = std::max(0, x - 1); nx <= std::min(width - 1, x + 1); ++nx) {
+                            std::atomic_ref<std::uint8_t>(m_pixels[std::size_t(ny) * std::size_t(width) + std::size_t(nx)])
+                                .store(1, std::memory_order_relaxed);
                             std::atomic_ref<std::uint8_t> cell(
                                 m_needed[std::size_t(ny >> kTileBits) * std::size_t(m_tilesX) + std::size_t(nx >> kTileBits)]);
                             cell.store(1, std::memory_order_relaxed);
@@ -221,7 +224,7 @@ void drawClustersDepth(const ScreenVertices& vertices, const std::uint32_t* indi
                         [&](int x, int y, float key) {
                             depth.writeMax(std::size_t(y) * std::size_t(width) + std::size_t(x), key);
                         },
-                        cullBackFaces);
+                        cullBackFaces, needed.pixels());
             }
         },
         threads);

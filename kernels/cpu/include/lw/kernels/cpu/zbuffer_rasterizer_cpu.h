@@ -98,7 +98,8 @@ private:
 template <typename Fn>
 [[gnu::always_inline]] inline void forEachCoveredPixel(const ScreenVertices& v, std::uint32_t a, std::uint32_t b,
                                                        std::uint32_t c, int width, int height, Fn&& fn,
-                                                       bool cullBackFaces = false) {
+                                                       bool cullBackFaces = false,
+                                                       const std::uint8_t* pixelFilter = nullptr) {
     const glm::ivec2 pa = v.xy[a], pb = v.xy[b], pc = v.xy[c];
     std::int64_t x0 = pa.x, y0 = pa.y, x1 = pb.x, y1 = pb.y, x2 = pc.x, y2 = pc.y;
     if (x0 == kInvalidVertex || x1 == kInvalidVertex || x2 == kInvalidVertex)
@@ -118,6 +119,19 @@ template <typename Fn>
     j1 = std::min<std::int64_t>(j1, height - 1);
     if (i0 > i1 || j0 > j1)
         return;
+    if (pixelFilter) {
+        // Only pixels the caller will read matter; most triangles cover one or two pixels, so
+        // checking the box is far cheaper than setting the triangle up.
+        bool wanted = false;
+        for (std::int64_t j = j0; j <= j1 && !wanted; ++j)
+            for (std::int64_t i = i0; i <= i1; ++i)
+                if (pixelFilter[j * width + i]) {
+                    wanted = true;
+                    break;
+                }
+        if (!wanted)
+            return;
+    }
     // Edge function of a -> b at p: (b.y - a.y)(p.x - a.x) - (b.x - a.x)(p.y - a.y); with y down
     // it is positive on the interior of a triangle whose area E_01(v2) is positive.
     std::int64_t area = (y1 - y0) * (x2 - x0) - (x1 - x0) * (y2 - y0);
@@ -200,16 +214,19 @@ public:
     int tilesY() const { return m_tilesY; }
     bool any(int tx0, int ty0, int tx1, int ty1) const; // inclusive, clamped
     std::size_t count() const;
+    // The same at pixel level: 1 for every pixel in a segment pixel's 3x3 neighbourhood.
+    const std::uint8_t* pixels() const { return m_pixels.data(); }
 
 private:
     int m_tilesX = 0;
     int m_tilesY = 0;
     std::vector<std::uint8_t> m_needed;
+    std::vector<std::uint8_t> m_pixels;
 };
 
 // zbuffer1 where the colour pass needs it: draws the clusters whose projected box overlaps a
-// needed tile (all of their triangles, so every pixel of a needed tile gets exactly the depth
-// drawTrianglesDepth would give it); other pixels stay empty.
+// needed tile and, in them, the triangles whose pixel box holds a needed pixel, so every needed
+// pixel gets exactly the depth drawTrianglesDepth would give it; other pixels may stay empty.
 void drawClustersDepth(const ScreenVertices& vertices, const std::uint32_t* indices, const TriangleCluster* clusters,
                        std::size_t clusterCount, const ViewTransform& view, const TileMask& needed, DepthBuffer& depth,
                        unsigned threads = 0, bool cullBackFaces = false);
