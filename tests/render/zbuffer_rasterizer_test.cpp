@@ -27,6 +27,7 @@ ScreenVertices makeVertices(const std::vector<glm::dvec2>& points, const std::ve
         v.key[i] = keys.empty() ? 1.0f : keys[i];
         v.invW[i] = 1.0f;
         v.facing[i] = 1.0f;
+        v.front[i] = 1;
     }
     return v;
 }

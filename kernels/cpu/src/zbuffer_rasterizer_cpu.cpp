@@ -59,6 +59,7 @@ void ScreenVertices::resize(std::size_t count) {
     key.resize(count);
     invW.resize(count);
     facing.resize(count);
+    front.resize(count);
 }
 
 void projectVertices(const glm::vec3* positions, const glm::vec3* normals, std::size_t count,
@@ -80,6 +81,7 @@ void projectVertices(const glm::vec3* positions, const glm::vec3* normals, std::
                 out.key[i] = key;
                 out.invW[i] = invW;
                 out.facing[i] = silhouetteDistance(positions[i], normals[i], eyeOrDirection, view.orthographic);
+                out.front[i] = out.facing[i] >= 0.0f ? 1 : 0;
             }
         },
         threads);
@@ -271,11 +273,11 @@ void findSilhouetteSegments(const glm::vec3* positions, const ScreenVertices& ve
             const std::size_t end = std::min(triangleCount, (chunk + 1) * kTrianglesPerChunk);
             for (std::size_t t = chunk * kTrianglesPerChunk; t < end; ++t) {
                 const std::uint32_t* tri = indices + 3 * t;
-                const float d[3] = {vertices.facing[tri[0]], vertices.facing[tri[1]], vertices.facing[tri[2]]};
                 // Cheap sign test first: almost every triangle is entirely front- or back-facing.
-                const bool f0 = d[0] >= 0.0f, f1 = d[1] >= 0.0f, f2 = d[2] >= 0.0f;
-                if (f0 == f1 && f1 == f2)
+                const unsigned sides = unsigned(vertices.front[tri[0]]) + vertices.front[tri[1]] + vertices.front[tri[2]];
+                if (sides == 0 || sides == 3)
                     continue;
+                const float d[3] = {vertices.facing[tri[0]], vertices.facing[tri[1]], vertices.facing[tri[2]]};
                 const glm::vec3 p[3] = {positions[tri[0]], positions[tri[1]], positions[tri[2]]};
                 SegmentEndpoints ends;
                 if (!silhouetteSegment(p, d, ends))

@@ -100,10 +100,8 @@ struct ZBufferSilhouetteRenderer::State {
     std::vector<std::size_t> brickCounts; // scratch for the counting sort
     std::vector<std::uint32_t> triangleBrick;
 
-    // Triangle clusters of the index buffer in use (per brick in the L variant) and where each
-    // brick's clusters start.
+    // Triangle clusters of the index buffer in use (never straddling a brick in the L variant).
     std::vector<kernels::cpu::TriangleCluster> clusters;
-    std::vector<std::size_t> brickClusterStarts;
     kernels::cpu::TileMask needed;
 
     kernels::cpu::ScreenVertices screen;
@@ -114,18 +112,14 @@ struct ZBufferSilhouetteRenderer::State {
 
     void buildClusters(bool chunked) {
         clusters.clear();
-        brickClusterStarts.assign(1, 0);
         if (!chunked) {
             kernels::cpu::buildClusters(mesh.positions.data(), mesh.indices.data(), 0, std::uint32_t(mesh.triangleCount()),
                                         clusters);
-            brickClusterStarts.push_back(clusters.size());
             return;
         }
-        for (std::size_t b = 0; b + 1 < brickStarts.size(); ++b) {
+        for (std::size_t b = 0; b + 1 < brickStarts.size(); ++b)
             kernels::cpu::buildClusters(mesh.positions.data(), brickIndices.data(), std::uint32_t(brickStarts[b]),
                                         std::uint32_t(brickStarts[b + 1] - brickStarts[b]), clusters);
-            brickClusterStarts.push_back(clusters.size());
-        }
     }
 
     void partitionByBrick(int brickCells) {
@@ -212,37 +206,29 @@ SilhouetteFrame ZBufferSilhouetteRenderer::render(const Camera& camera, const Si
     s.lineDepth.reset(width, height, threads);
     frame.times.drawMs += msSince(start);
 
-    // One pass per brick (the whole mesh is the one-brick case); both buffers accumulate. The
-    // silhouette pass runs first so the depth pass can skip the clusters that cannot reach a
-    // pixel the colour pass compares against: zbuffer1 is exact wherever it is read.
+    // The L variant's index buffer holds the triangles grouped brick by brick, and the passes walk
+    // it in that order into the same buffers, so bricks go through serially; the work list is
+    // shared across brick borders because starting threads per brick costs more than a small
+    // brick takes. Both buffers keep per-pixel maxima, so S and L give identical images.
+    // The silhouette pass runs first so the depth pass can skip the clusters and triangles that
+    // cannot reach a pixel the colour pass compares against: zbuffer1 is exact wherever it is read.
     const bool chunked = settings.brickCells > 0;
     const std::uint32_t* indices = chunked ? s.brickIndices.data() : s.mesh.indices.data();
-    const std::size_t passes = chunked ? s.brickStarts.size() - 1 : 1;
     s.segments.clear();
-    for (std::size_t pass = 0; pass < passes; ++pass) {
-        const std::size_t first = chunked ? s.brickStarts[pass] : 0;
-        const std::size_t count = chunked ? s.brickStarts[pass + 1] - first : frame.triangles;
-        if (count == 0)
-            continue;
-        start = Clock::now();
-        const std::size_t before = s.segments.size();
-        kernels::cpu::findSilhouetteSegments(s.mesh.positions.data(), s.screen, indices + 3 * first, count, view,
-                                             s.scratch, s.segments, threads);
-        frame.times.silhouetteMs += msSince(start);
+    start = Clock::now();
+    kernels::cpu::findSilhouetteSegments(s.mesh.positions.data(), s.screen, indices, frame.triangles, view, s.scratch,
+                                         s.segments, threads);
+    frame.times.silhouetteMs += msSince(start);
 
-        start = Clock::now();
-        kernels::cpu::drawSegmentsDepth(s.segments.data() + before, s.segments.size() - before, s.lineDepth, threads);
-        frame.times.drawMs += msSince(start);
-    }
+    start = Clock::now();
+    kernels::cpu::drawSegmentsDepth(s.segments.data(), s.segments.size(), s.lineDepth, threads);
+    frame.times.drawMs += msSince(start);
+
     if (settings.visibility) {
         start = Clock::now();
         s.needed.markAroundLines(s.lineDepth, threads);
-        for (std::size_t pass = 0; pass < passes; ++pass) {
-            const std::size_t firstCluster = s.brickClusterStarts[pass];
-            kernels::cpu::drawClustersDepth(s.screen, indices, s.clusters.data() + firstCluster,
-                                            s.brickClusterStarts[pass + 1] - firstCluster, view, s.needed,
-                                            s.surfaceDepth, threads, s.meshClosed);
-        }
+        kernels::cpu::drawClustersDepth(s.screen, indices, s.clusters.data(), s.clusters.size(), view, s.needed,
+                                        s.surfaceDepth, threads, s.meshClosed);
         frame.times.visibilityMs += msSince(start);
     }
     frame.segments = s.segments.size();

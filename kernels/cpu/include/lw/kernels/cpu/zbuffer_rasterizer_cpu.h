@@ -52,6 +52,7 @@ struct ScreenVertices {
     std::vector<float> key;    // depth key (see above)
     std::vector<float> invW;   // 1 / clip w, for perspective-correct attribute interpolation
     std::vector<float> facing; // Burns' d at the vertex (>= 0: front-facing)
+    std::vector<std::uint8_t> front; // facing >= 0, one byte so the segment pass reads little
 
     void resize(std::size_t count);
     std::size_t size() const { return xy.size(); }
