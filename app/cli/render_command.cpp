@@ -1,7 +1,6 @@
 // `linework-cli render`: one view of an iso-surface and/or its silhouette as a PNG.
 #include "arguments.h"
 #include "commands.h"
-
 #include "lw/core/error.h"
 #include "lw/core/log.h"
 #include "lw/core/png_io.h"
@@ -19,8 +18,8 @@
 #define LW_CLI_HAVE_METHOD2 0
 #endif
 
-#if defined(LINEWORK_GL) && LINEWORK_GL && __has_include("lw/render/silhouette_gl_renderer.h") && \
-    __has_include("lw/render/gl_context.h")
+#if defined(LINEWORK_GL) && LINEWORK_GL &&                                                         \
+    __has_include("lw/render/silhouette_gl_renderer.h") && __has_include("lw/render/gl_context.h")
 #include "lw/render/gl_context.h"
 #include "lw/render/silhouette_gl_renderer.h"
 #define LW_CLI_HAVE_METHOD1 1
@@ -48,10 +47,12 @@ constexpr core::LogCategory kLog("lw.cli");
 
 constexpr const char* kRenderUsage =
     "usage: render INPUT [--series UID] --iso HU --method 1|2|3 [--chunks off|auto|N] [--mode a|b] "
-    "[--visibility on|off] [--view AZ,EL] [--camera perspective|ortho] [--size WxH] [--panel iso|silhouette|both] "
+    "[--visibility on|off] [--view AZ,EL] [--camera perspective|ortho] [--size WxH] [--panel "
+    "iso|silhouette|both] "
     "[--backend cpu|cuda|auto] -o OUT.png";
 
-std::vector<double> parseNumbers(const std::string& text, char separator, const std::string& subject) {
+std::vector<double> parseNumbers(const std::string& text, char separator,
+                                 const std::string& subject) {
     std::vector<double> values;
     std::stringstream stream(text);
     std::string part;
@@ -67,8 +68,9 @@ std::vector<double> parseNumbers(const std::string& text, char separator, const 
 
 glm::ivec2 parseImageSize(const std::string& text) {
     const std::vector<double> values = parseNumbers(text, 'x', "--size " + text);
-    if (values.size() != 2 || values[0] < 1 || values[1] < 1 || values[0] > 16384 || values[1] > 16384 ||
-        values[0] != double(int(values[0])) || values[1] != double(int(values[1])))
+    if (values.size() != 2 || values[0] < 1 || values[1] < 1 || values[0] > 16384 ||
+        values[1] > 16384 || values[0] != double(int(values[0])) ||
+        values[1] != double(int(values[1])))
         throw core::Error("--size " + text, "expected WxH with whole numbers between 1 and 16384");
     return {int(values[0]), int(values[1])};
 }
@@ -82,9 +84,14 @@ volume::Volume loadPhantom(const std::string& spec) {
         render::parsePhantomKind(colon == std::string::npos ? "ct" : body.substr(colon + 1));
     const std::vector<double> parts = parseNumbers(sizeText, 'x', spec);
     if ((parts.size() != 1 && parts.size() != 3) ||
-        std::any_of(parts.begin(), parts.end(), [](double v) { return v < 2 || v > 4096 || v != double(int(v)); }))
-        throw core::Error(spec, "expected phantom:N or phantom:NXxNYxNZ (2..4096) with an optional :ct or :sphere");
-    const glm::ivec3 dims = parts.size() == 1 ? glm::ivec3(int(parts[0])) : glm::ivec3(int(parts[0]), int(parts[1]), int(parts[2]));
+        std::any_of(parts.begin(), parts.end(),
+                    [](double v) { return v < 2 || v > 4096 || v != double(int(v)); }))
+        throw core::Error(
+            spec,
+            "expected phantom:N or phantom:NXxNYxNZ (2..4096) with an optional :ct or :sphere");
+    const glm::ivec3 dims = parts.size() == 1
+                                ? glm::ivec3(int(parts[0]))
+                                : glm::ivec3(int(parts[0]), int(parts[1]), int(parts[2]));
     return render::makePhantom(dims, kind);
 }
 
@@ -111,10 +118,13 @@ volume::Volume loadDicom(const std::string& path, const std::optional<std::strin
         if (!plan || candidate.slices.size() > plan->slices.size())
             plan = &candidate;
     if (!plan)
-        throw core::Error(path, "series " + chosen->seriesInstanceUid + " holds no volume that can be assembled");
+        throw core::Error(path, "series " + chosen->seriesInstanceUid +
+                                    " holds no volume that can be assembled");
     if (plan->dims.z < 2)
-        throw core::Error(path, "series " + chosen->seriesInstanceUid + " has a single slice; an iso-surface needs two");
-    kLog.info("rendering series " + chosen->seriesInstanceUid + " (" + std::to_string(plan->slices.size()) + " slices)");
+        throw core::Error(path, "series " + chosen->seriesInstanceUid +
+                                    " has a single slice; an iso-surface needs two");
+    kLog.info("rendering series " + chosen->seriesInstanceUid + " (" +
+              std::to_string(plan->slices.size()) + " slices)");
     return dicom::loadVolume(*chosen, *plan);
 }
 #endif
@@ -123,7 +133,8 @@ volume::Volume loadInput(const std::string& input, const std::optional<std::stri
     if (input.rfind("phantom:", 0) == 0)
         return loadPhantom(input);
 #ifdef LINEWORK_HAVE_DICOM
-    if (dicom::looksLikeDicomInput(input) || volume::detectVolumeFormat(input) == volume::VolumeFormat::Unknown)
+    if (dicom::looksLikeDicomInput(input) ||
+        volume::detectVolumeFormat(input) == volume::VolumeFormat::Unknown)
         return loadDicom(input, seriesUid);
 #else
     if (seriesUid)
@@ -152,18 +163,20 @@ struct RenderedPanels {
 
 void reportFrame(const render::SilhouetteFrame& frame, std::ostream& out) {
     char line[256];
-    std::snprintf(line, sizeof line,
-                  "triangles %zu, segments %zu, silhouette pixels %zu; ms: extract %.1f silhouette %.1f "
-                  "visibility %.1f draw %.1f total %.1f\n",
-                  frame.triangles, frame.segments, frame.lines.count(), frame.times.extractMs, frame.times.silhouetteMs,
-                  frame.times.visibilityMs, frame.times.drawMs, frame.times.totalMs());
+    std::snprintf(
+        line, sizeof line,
+        "triangles %zu, segments %zu, silhouette pixels %zu; ms: extract %.1f silhouette %.1f "
+        "visibility %.1f draw %.1f total %.1f\n",
+        frame.triangles, frame.segments, frame.lines.count(), frame.times.extractMs,
+        frame.times.silhouetteMs, frame.times.visibilityMs, frame.times.drawMs,
+        frame.times.totalMs());
     out << line;
 }
 
 // Renders the same view `repeat` more times, turning the view by a degree each time so every
 // frame is a new view (mode a then measures what the goal asks: a new view, mesh cached).
-void repeatFrames(render::SilhouetteRenderer& renderer, render::Camera camera, const RenderRequest& request,
-                  std::ostream& out) {
+void repeatFrames(render::SilhouetteRenderer& renderer, render::Camera camera,
+                  const RenderRequest& request, std::ostream& out) {
     std::vector<double> totals, extract, silhouette, visibility, draw;
     for (int i = 1; i <= request.repeat; ++i) {
         camera.setView(camera.setup().azimuthDeg + 1.0, camera.setup().elevationDeg);
@@ -183,15 +196,16 @@ void repeatFrames(render::SilhouetteRenderer& renderer, render::Camera camera, c
     const double middle = median(totals);
     char line[256];
     std::snprintf(line, sizeof line,
-                  "median of %d new views: %.1f ms (min %.1f, max %.1f); stages: extract %.1f silhouette %.1f "
+                  "median of %d new views: %.1f ms (min %.1f, max %.1f); stages: extract %.1f "
+                  "silhouette %.1f "
                   "visibility %.1f draw %.1f\n",
-                  request.repeat, middle, totals.front(), totals.back(), median(extract), median(silhouette),
-                  median(visibility), median(draw));
+                  request.repeat, middle, totals.front(), totals.back(), median(extract),
+                  median(silhouette), median(visibility), median(draw));
     out << line;
 }
 
-RenderedPanels renderCpu(const volume::Volume& volume, const render::Camera& camera, const RenderRequest& request,
-                         std::ostream& out) {
+RenderedPanels renderCpu(const volume::Volume& volume, const render::Camera& camera,
+                         const RenderRequest& request, std::ostream& out) {
     RenderedPanels panels;
     std::unique_ptr<render::SilhouetteRenderer> renderer;
     render::ZBufferSilhouetteRenderer* zbuffer = nullptr;
@@ -233,14 +247,15 @@ RenderedPanels renderCpu(const volume::Volume& volume, const render::Camera& cam
 }
 
 #if LW_CLI_HAVE_METHOD1
-RenderedPanels renderGl(const volume::Volume& volume, const render::Camera& camera, const RenderRequest& request,
-                        std::ostream& out) {
+RenderedPanels renderGl(const volume::Volume& volume, const render::Camera& camera,
+                        const RenderRequest& request, std::ostream& out) {
     render::EglHeadlessContext context;
     kLog.info("method 1 on " + context.description());
     render::IsoSurfaceOptions extractOptions;
     extractOptions.brickCells = request.settings.brickCells;
     extractOptions.threads = request.settings.threads;
-    const render::Mesh mesh = render::extractIsoSurface(volume, request.settings.isoReal, extractOptions);
+    const render::Mesh mesh =
+        render::extractIsoSurface(volume, request.settings.isoReal, extractOptions);
     render::SilhouetteGlRenderer gl;
     RenderedPanels panels;
     try {
@@ -269,8 +284,8 @@ RenderedPanels renderGl(const volume::Volume& volume, const render::Camera& came
 
 int runRender(const std::vector<std::string>& args, std::ostream& out) {
     const Arguments arguments(args, {},
-                              {"series", "iso", "method", "chunks", "mode", "visibility", "view", "camera", "size",
-                               "panel", "backend", "threads", "repeat"});
+                              {"series", "iso", "method", "chunks", "mode", "visibility", "view",
+                               "camera", "size", "panel", "backend", "threads", "repeat"});
     if (arguments.positionals().size() != 1)
         throw core::Error("render", std::string("expects exactly one INPUT; ") + kRenderUsage);
     const auto output = arguments.option("output");
@@ -287,7 +302,8 @@ int runRender(const std::vector<std::string>& args, std::ostream& out) {
     const std::string mode = arguments.option("mode", "a");
     if (mode != "a" && mode != "b")
         throw core::Error("--mode " + mode, "expected a or b");
-    request.settings.mode = mode == "a" ? render::ExtractionMode::CachedA : render::ExtractionMode::EveryFrameB;
+    request.settings.mode =
+        mode == "a" ? render::ExtractionMode::CachedA : render::ExtractionMode::EveryFrameB;
     const std::string visibility = arguments.option("visibility", "on");
     if (visibility != "on" && visibility != "off")
         throw core::Error("--visibility " + visibility, "expected on or off");
@@ -318,7 +334,8 @@ int runRender(const std::vector<std::string>& args, std::ostream& out) {
     const std::string projection = arguments.option("camera", "perspective");
     if (projection != "perspective" && projection != "ortho")
         throw core::Error("--camera " + projection, "expected perspective or ortho");
-    setup.projection = projection == "ortho" ? render::Projection::Orthographic : render::Projection::Perspective;
+    setup.projection =
+        projection == "ortho" ? render::Projection::Orthographic : render::Projection::Perspective;
     const glm::ivec2 size = parseImageSize(arguments.option("size", "512x512"));
 
 #if !LW_CLI_HAVE_METHOD1
@@ -334,7 +351,8 @@ int runRender(const std::vector<std::string>& args, std::ostream& out) {
         throw core::Error("render", std::string("needs --iso HU; ") + kRenderUsage);
     request.settings.isoReal = arguments.number("iso", 0.0);
     const volume::Volume volume = loadInput(input, arguments.option("series"));
-    request.settings.brickCells = render::parseChunks(arguments.option("chunks", "off"), volume.dims());
+    request.settings.brickCells =
+        render::parseChunks(arguments.option("chunks", "off"), volume.dims());
     setup.bounds = render::volumeBounds(volume);
     const render::Camera camera(setup, size.x, size.y);
 

@@ -1,24 +1,25 @@
 // `linework-cli render` as a user runs it: the PNG exists with the requested size and shows lines.
 #include "lw/core/png_io.h"
 
-#include <gtest/gtest.h>
-
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <gtest/gtest.h>
 #include <string>
 #include <sys/wait.h>
 
 namespace {
 
 int runCli(const std::string& arguments) {
-    const std::string command = std::string("\"") + LINEWORK_CLI_PATH + "\" " + arguments + " >/dev/null 2>&1";
+    const std::string command =
+        std::string("\"") + LINEWORK_CLI_PATH + "\" " + arguments + " >/dev/null 2>&1";
     const int status = std::system(command.c_str());
     return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
 
 std::filesystem::path outputPath(const std::string& name) {
-    const std::filesystem::path dir = std::filesystem::path(LINEWORK_TEST_OUTPUT_DIR) / "render_command";
+    const std::filesystem::path dir =
+        std::filesystem::path(LINEWORK_TEST_OUTPUT_DIR) / "render_command";
     std::filesystem::create_directories(dir);
     const std::filesystem::path path = dir / name;
     std::filesystem::remove(path);
@@ -36,7 +37,8 @@ std::size_t darkPixels(const lw::core::ImageRgba8& image, int x0, int x1) {
 
 TEST(RenderCommand, PhantomSilhouetteHasRequestedSize) {
     const auto out = outputPath("phantom64.png");
-    ASSERT_EQ(runCli("render phantom:64 --iso 300.5 --method 3 --size 160x120 --view 30,10 --backend cpu -o '" +
+    ASSERT_EQ(runCli("render phantom:64 --iso 300.5 --method 3 --size 160x120 --view 30,10 "
+                     "--backend cpu -o '" +
                      out.string() + "'"),
               0);
     ASSERT_TRUE(std::filesystem::exists(out));
@@ -48,8 +50,10 @@ TEST(RenderCommand, PhantomSilhouetteHasRequestedSize) {
 
 TEST(RenderCommand, BothPanelsSideBySideChunkedOrtho) {
     const auto out = outputPath("both.png");
-    ASSERT_EQ(runCli("render phantom:48 --iso 300.5 --method 3 --chunks 16 --mode b --camera ortho --panel both "
-                     "--size 100x80 -o '" + out.string() + "'"),
+    ASSERT_EQ(runCli("render phantom:48 --iso 300.5 --method 3 --chunks 16 --mode b --camera ortho "
+                     "--panel both "
+                     "--size 100x80 -o '" +
+                     out.string() + "'"),
               0);
     const lw::core::ImageRgba8 image = lw::core::readPng(out);
     ASSERT_EQ(image.width(), 200);
@@ -65,10 +69,13 @@ TEST(RenderCommand, BothPanelsSideBySideChunkedOrtho) {
 
 TEST(RenderCommand, RejectsBadRequests) {
     const auto out = outputPath("never.png");
-    EXPECT_EQ(runCli("render phantom:32 --iso 300.5 --method 3 --backend cuda -o '" + out.string() + "'"), 1);
+    EXPECT_EQ(
+        runCli("render phantom:32 --iso 300.5 --method 3 --backend cuda -o '" + out.string() + "'"),
+        1);
     EXPECT_EQ(runCli("render phantom:32 --iso 300.5 --method 4 -o '" + out.string() + "'"), 1);
     EXPECT_EQ(runCli("render phantom:32 --iso 300.5 --size 0x10 -o '" + out.string() + "'"), 1);
-    EXPECT_EQ(runCli("render phantom:32 --method 3 -o '" + out.string() + "'"), 1) << "--iso is required";
+    EXPECT_EQ(runCli("render phantom:32 --method 3 -o '" + out.string() + "'"), 1)
+        << "--iso is required";
     EXPECT_EQ(runCli("render /nonexistent/volume.nrrd --iso 300.5 -o '" + out.string() + "'"), 1);
     EXPECT_FALSE(std::filesystem::exists(out));
 }

@@ -1,9 +1,8 @@
 // Method 3's software rasterizer: coverage under the top-left rule, depth keys, segments.
 #include "lw/kernels/cpu/zbuffer_rasterizer_cpu.h"
 
-#include <gtest/gtest.h>
-
 #include <cmath>
+#include <gtest/gtest.h>
 #include <random>
 #include <set>
 #include <utility>
@@ -18,7 +17,8 @@ using lw::kernels::cpu::ScreenSegment;
 using lw::kernels::cpu::ScreenVertices;
 
 // Vertices given in continuous pixel coordinates, snapped as projectVertices does.
-ScreenVertices makeVertices(const std::vector<glm::dvec2>& points, const std::vector<float>& keys = {}) {
+ScreenVertices makeVertices(const std::vector<glm::dvec2>& points,
+                            const std::vector<float>& keys = {}) {
     ScreenVertices v;
     v.resize(points.size());
     for (std::size_t i = 0; i < points.size(); ++i) {
@@ -32,10 +32,12 @@ ScreenVertices makeVertices(const std::vector<glm::dvec2>& points, const std::ve
     return v;
 }
 
-std::set<std::pair<int, int>> covered(const ScreenVertices& v, std::uint32_t a, std::uint32_t b, std::uint32_t c,
-                                      int width = 16, int height = 16) {
+std::set<std::pair<int, int>> covered(const ScreenVertices& v, std::uint32_t a, std::uint32_t b,
+                                      std::uint32_t c, int width = 16, int height = 16) {
     std::set<std::pair<int, int>> pixels;
-    forEachCoveredPixel(v, a, b, c, width, height, [&](int x, int y, float) { pixels.insert({x, y}); });
+    forEachCoveredPixel(v, a, b, c, width, height, [&](int x, int y, float) {
+        pixels.insert({x, y});
+    });
     return pixels;
 }
 
@@ -65,7 +67,8 @@ TEST(ZBufferRasterizer, RightAndBottomEdgesExcluded) {
 }
 
 TEST(ZBufferRasterizer, DegenerateAndOffscreenTrianglesCoverNothing) {
-    const ScreenVertices v = makeVertices({{0.5, 0.5}, {3.5, 3.5}, {6.5, 6.5}, {-9.0, -9.0}, {-5.0, -9.0}, {-9.0, -5.0}});
+    const ScreenVertices v = makeVertices(
+        {{0.5, 0.5}, {3.5, 3.5}, {6.5, 6.5}, {-9.0, -9.0}, {-5.0, -9.0}, {-9.0, -5.0}});
     EXPECT_TRUE(covered(v, 0, 1, 2).empty());
     EXPECT_TRUE(covered(v, 3, 4, 5).empty());
 }
@@ -82,7 +85,8 @@ TEST(ZBufferRasterizer, SharedEdgesNeitherGapNorOverlap) {
     for (int j = 0; j <= kCells; ++j)
         for (int i = 0; i <= kCells; ++i) {
             const bool border = i == 0 || j == 0 || i == kCells || j == kCells;
-            const double dx = border ? 0.0 : 0.5 * jitter(random), dy = border ? 0.0 : 0.5 * jitter(random);
+            const double dx = border ? 0.0 : 0.5 * jitter(random),
+                         dy = border ? 0.0 : 0.5 * jitter(random);
             points.push_back({1.0 + i * kStep + dx, 1.0 + j * kStep + dy});
         }
     const ScreenVertices v = makeVertices(points);
@@ -90,19 +94,23 @@ TEST(ZBufferRasterizer, SharedEdgesNeitherGapNorOverlap) {
     auto vertex = [](int i, int j) { return std::uint32_t(j * (kCells + 1) + i); };
     for (int j = 0; j < kCells; ++j)
         for (int i = 0; i < kCells; ++i) {
-            const std::uint32_t a = vertex(i, j), b = vertex(i + 1, j), c = vertex(i + 1, j + 1), d = vertex(i, j + 1);
+            const std::uint32_t a = vertex(i, j), b = vertex(i + 1, j), c = vertex(i + 1, j + 1),
+                                d = vertex(i, j + 1);
             const std::uint32_t tris[2][3] = {{a, b, c}, {a, c, d}};
             const std::uint32_t other[2][3] = {{a, b, d}, {b, c, d}};
             for (const auto& t : coin(random) ? tris : other)
-                forEachCoveredPixel(v, t[0], t[1], t[2], kSize, kSize,
-                                    [&](int x, int y, float) { ++count[std::size_t(y * kSize + x)]; });
+                forEachCoveredPixel(v, t[0], t[1], t[2], kSize, kSize, [&](int x, int y, float) {
+                    ++count[std::size_t(y * kSize + x)];
+                });
         }
-    // The outer rectangle [1, 1 + kCells*kStep] has its left/top edges on integers, away from centres.
+    // The outer rectangle [1, 1 + kCells*kStep] has its left/top edges on integers, away from
+    // centres.
     for (int y = 0; y < kSize; ++y)
         for (int x = 0; x < kSize; ++x) {
             const bool inside = x + 0.5 > 1.0 && x + 0.5 < 1.0 + kCells * kStep && y + 0.5 > 1.0 &&
                                 y + 0.5 < 1.0 + kCells * kStep;
-            EXPECT_EQ(count[std::size_t(y * kSize + x)], inside ? 1 : 0) << "pixel " << x << "," << y;
+            EXPECT_EQ(count[std::size_t(y * kSize + x)], inside ? 1 : 0)
+                << "pixel " << x << "," << y;
         }
 }
 
@@ -115,8 +123,9 @@ TEST(ZBufferRasterizer, DepthKeyIsInterpolatedAndNearestWins) {
     });
 
     // Two overlapping squares at different depths, drawn on two threads: the nearer key stays.
-    ScreenVertices quads = makeVertices({{0, 0}, {10, 0}, {10, 10}, {0, 10}, {5, 5}, {15, 5}, {15, 15}, {5, 15}},
-                                        {0.5f, 0.5f, 0.5f, 0.5f, 0.8f, 0.8f, 0.8f, 0.8f});
+    ScreenVertices quads =
+        makeVertices({{0, 0}, {10, 0}, {10, 10}, {0, 10}, {5, 5}, {15, 5}, {15, 15}, {5, 15}},
+                     {0.5f, 0.5f, 0.5f, 0.5f, 0.8f, 0.8f, 0.8f, 0.8f});
     const std::vector<std::uint32_t> indices = {0, 1, 2, 0, 2, 3, 4, 5, 6, 4, 6, 7};
     DepthBuffer depth;
     depth.reset(16, 16);
@@ -129,7 +138,8 @@ TEST(ZBufferRasterizer, DepthKeyIsInterpolatedAndNearestWins) {
 
 TEST(ZBufferRasterizer, SegmentsUseLineStepsAndResolveAgainstSurface) {
     // A horizontal segment across a surface square: visible where it is in front, hidden behind.
-    ScreenVertices quad = makeVertices({{0, 0}, {16, 0}, {16, 16}, {0, 16}}, {0.6f, 0.6f, 0.6f, 0.6f});
+    ScreenVertices quad =
+        makeVertices({{0, 0}, {16, 0}, {16, 16}, {0, 16}}, {0.6f, 0.6f, 0.6f, 0.6f});
     const std::vector<std::uint32_t> indices = {0, 1, 2, 0, 2, 3};
     DepthBuffer surface, lines;
     surface.reset(32, 32);

@@ -10,17 +10,17 @@
 #include "lw/render/true_contour.h"
 #include "lw/render/zbuffer_silhouette_renderer.h"
 
-#include <gtest/gtest.h>
-
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <gtest/gtest.h>
 
 namespace {
 
 using namespace lw::render;
 
-Camera cameraFor(const lw::volume::Volume& volume, double az, double el, Projection projection, int size) {
+Camera cameraFor(const lw::volume::Volume& volume, double az, double el, Projection projection,
+                 int size) {
     CameraSetup setup;
     setup.bounds = volumeBounds(volume);
     setup.azimuthDeg = az;
@@ -55,9 +55,12 @@ TEST(ZBufferSilhouette, SphereContourWithinOnePixelOfTruth) {
         for (const int bricks : {0, 16}) {
             const SilhouetteFrame frame = renderer.render(camera, settingsFor(kShapeIso, bricks));
             ASSERT_GT(frame.segments, 100u);
-            const ContourScore score = scoreContours(frame.lines, trueContourMask(sphere, camera), 1);
-            EXPECT_GE(score.recall, 0.99) << "bricks " << bricks << " ortho " << camera.isOrthographic();
-            EXPECT_GE(score.precision, 0.99) << "bricks " << bricks << " ortho " << camera.isOrthographic();
+            const ContourScore score =
+                scoreContours(frame.lines, trueContourMask(sphere, camera), 1);
+            EXPECT_GE(score.recall, 0.99)
+                << "bricks " << bricks << " ortho " << camera.isOrthographic();
+            EXPECT_GE(score.precision, 0.99)
+                << "bricks " << bricks << " ortho " << camera.isOrthographic();
         }
     }
 }
@@ -71,8 +74,10 @@ TEST(ZBufferSilhouette, ChunkedEqualsWholeAndModesAgree) {
     for (const double az : {0.0, 70.0, 200.0}) {
         for (const bool visibility : {true, false}) {
             const Camera camera = cameraFor(phantom, az, 15.0, Projection::Perspective, 256);
-            const SilhouetteFrame a = whole.render(camera, settingsFor(kPhantomBoneIso, 0, visibility));
-            const SilhouetteFrame b = chunked.render(camera, settingsFor(kPhantomBoneIso, 16, visibility));
+            const SilhouetteFrame a =
+                whole.render(camera, settingsFor(kPhantomBoneIso, 0, visibility));
+            const SilhouetteFrame b =
+                chunked.render(camera, settingsFor(kPhantomBoneIso, 16, visibility));
             SilhouetteSettings modeB = settingsFor(kPhantomBoneIso, 8, visibility);
             modeB.mode = ExtractionMode::EveryFrameB;
             modeB.threads = 1;
@@ -97,7 +102,9 @@ TEST(ZBufferSilhouette, ChunkedEqualsWholeAndModesAgree) {
 class TwoSpheres final : public AnalyticShape {
 public:
     std::string name() const override { return "two spheres"; }
-    double value(glm::dvec3 p) const override { return std::max(m_front.value(p), m_back.value(p)); }
+    double value(glm::dvec3 p) const override {
+        return std::max(m_front.value(p), m_back.value(p));
+    }
     glm::dvec3 gradient(glm::dvec3 p) const override {
         return m_front.value(p) >= m_back.value(p) ? m_front.gradient(p) : m_back.gradient(p);
     }
@@ -124,7 +131,8 @@ TEST(ZBufferSilhouette, VisibilityHidesContourBehindFrontSphere) {
         std::size_t n = 0;
         for (int y = 0; y < mask.height(); ++y)
             for (int x = 0; x < mask.width(); ++x)
-                if (mask.get(x, y) && glm::distance(glm::dvec2(x + 0.5, y + 0.5), centre) < backRadius + 2.0)
+                if (mask.get(x, y) &&
+                    glm::distance(glm::dvec2(x + 0.5, y + 0.5), centre) < backRadius + 2.0)
                     ++n;
         return n;
     };
@@ -132,7 +140,8 @@ TEST(ZBufferSilhouette, VisibilityHidesContourBehindFrontSphere) {
         const SilhouetteFrame on = renderer.render(camera, settingsFor(kShapeIso, bricks, true));
         const SilhouetteFrame off = renderer.render(camera, settingsFor(kShapeIso, bricks, false));
         EXPECT_EQ(countNearBack(on.lines), 0u);
-        EXPECT_GT(countNearBack(off.lines), std::size_t(4.0 * backRadius)) << "the back contour, drawn";
+        EXPECT_GT(countNearBack(off.lines), std::size_t(4.0 * backRadius))
+            << "the back contour, drawn";
         // The front sphere's outline is there either way.
         EXPECT_GT(on.lines.count(), std::size_t(4.0 * frontRadius));
         EXPECT_GT(off.lines.count(), on.lines.count());
@@ -156,12 +165,15 @@ TEST(ZBufferSilhouette, BackFaceCullingLeavesClosedSurfaceDepthUnchanged) {
         view.eye = camera.eye();
         view.toViewer = -camera.forward();
         lw::kernels::cpu::ScreenVertices screen;
-        lw::kernels::cpu::projectVertices(mesh.positions.data(), mesh.normals.data(), mesh.vertexCount(), view, screen);
+        lw::kernels::cpu::projectVertices(mesh.positions.data(), mesh.normals.data(),
+                                          mesh.vertexCount(), view, screen);
         lw::kernels::cpu::DepthBuffer all, culled;
         all.reset(160, 160);
         culled.reset(160, 160);
-        lw::kernels::cpu::drawTrianglesDepth(screen, mesh.indices.data(), mesh.triangleCount(), all, 2, false);
-        lw::kernels::cpu::drawTrianglesDepth(screen, mesh.indices.data(), mesh.triangleCount(), culled, 2, true);
+        lw::kernels::cpu::drawTrianglesDepth(screen, mesh.indices.data(), mesh.triangleCount(), all,
+                                             2, false);
+        lw::kernels::cpu::drawTrianglesDepth(screen, mesh.indices.data(), mesh.triangleCount(),
+                                             culled, 2, true);
         std::size_t covered = 0, differ = 0;
         for (std::size_t i = 0; i < 160u * 160u; ++i) {
             covered += all.bits()[i] != 0;
@@ -185,11 +197,12 @@ TEST(ZBufferSilhouette, LazyDepthPassIsExactWhereTheColourPassReads) {
     view.eye = camera.eye();
     view.toViewer = -camera.forward();
     lw::kernels::cpu::ScreenVertices screen;
-    lw::kernels::cpu::projectVertices(mesh.positions.data(), mesh.normals.data(), mesh.vertexCount(), view, screen);
+    lw::kernels::cpu::projectVertices(mesh.positions.data(), mesh.normals.data(),
+                                      mesh.vertexCount(), view, screen);
     lw::kernels::cpu::SegmentScratch scratch;
     std::vector<lw::kernels::cpu::ScreenSegment> segments;
-    lw::kernels::cpu::findSilhouetteSegments(mesh.positions.data(), screen, mesh.indices.data(), mesh.triangleCount(),
-                                             view, scratch, segments);
+    lw::kernels::cpu::findSilhouetteSegments(mesh.positions.data(), screen, mesh.indices.data(),
+                                             mesh.triangleCount(), view, scratch, segments);
     lw::kernels::cpu::DepthBuffer lines, full, lazy;
     lines.reset(200, 200);
     full.reset(200, 200);
@@ -198,11 +211,11 @@ TEST(ZBufferSilhouette, LazyDepthPassIsExactWhereTheColourPassReads) {
     lw::kernels::cpu::TileMask needed;
     needed.markAroundLines(lines);
     std::vector<lw::kernels::cpu::TriangleCluster> clusters;
-    lw::kernels::cpu::buildClusters(mesh.positions.data(), mesh.indices.data(), 0, std::uint32_t(mesh.triangleCount()),
-                                    clusters);
+    lw::kernels::cpu::buildClusters(mesh.positions.data(), mesh.indices.data(), 0,
+                                    std::uint32_t(mesh.triangleCount()), clusters);
     lw::kernels::cpu::drawTrianglesDepth(screen, mesh.indices.data(), mesh.triangleCount(), full);
-    lw::kernels::cpu::drawClustersDepth(screen, mesh.indices.data(), clusters.data(), clusters.size(), view, needed,
-                                        lazy);
+    lw::kernels::cpu::drawClustersDepth(screen, mesh.indices.data(), clusters.data(),
+                                        clusters.size(), view, needed, lazy);
     std::size_t neededPixels = 0, mismatches = 0, skipped = 0;
     for (std::size_t i = 0; i < 200u * 200u; ++i) {
         if (needed.pixels()[i]) {
@@ -225,16 +238,19 @@ std::filesystem::path outputDir() {
 
 void expectMatchesBaseline(const lw::core::ImageRgba8& image, const std::string& name,
                            lw::core::ImageTolerance tolerance) {
-    const std::filesystem::path baseline = std::filesystem::path(LINEWORK_RENDER_BASELINES) / (name + ".png");
+    const std::filesystem::path baseline =
+        std::filesystem::path(LINEWORK_RENDER_BASELINES) / (name + ".png");
     const std::filesystem::path diff = outputDir() / (name + ".diff.png");
     if (!std::filesystem::exists(baseline)) {
         // A new baseline is reviewed by a person, never written by the test into the sources.
         const std::filesystem::path actual = outputDir() / (name + ".actual.png");
         lw::core::writePng(actual, image);
-        ADD_FAILURE() << "baseline " << baseline << " is missing; review " << actual << " and copy it there";
+        ADD_FAILURE() << "baseline " << baseline << " is missing; review " << actual
+                      << " and copy it there";
         return;
     }
-    const lw::core::ImageComparison result = lw::core::compareWithBaseline(image, baseline, tolerance, diff);
+    const lw::core::ImageComparison result =
+        lw::core::compareWithBaseline(image, baseline, tolerance, diff);
     EXPECT_TRUE(result.matches) << name << ": " << result.describe() << " (diff: " << diff << ")";
 }
 
@@ -246,9 +262,10 @@ TEST(ZBufferSilhouette, GoldenPhantomSilhouetteAndShadedPanel) {
     const SilhouetteFrame frame = renderer.render(camera, settingsFor(kPhantomBoneIso));
     // A few pixels may flip where a segment grazes a pixel border (float rounding differs
     // between compilers); a real regression moves hundreds.
-    expectMatchesBaseline(frame.lines.toImage({0, 0, 0, 255}, {255, 255, 255, 255}), "zbuffer_phantom64_silhouette",
-                          {0, 30});
-    expectMatchesBaseline(shadeSurfaceCpu(renderer.mesh(), camera), "zbuffer_phantom64_shaded", {6, 60});
+    expectMatchesBaseline(frame.lines.toImage({0, 0, 0, 255}, {255, 255, 255, 255}),
+                          "zbuffer_phantom64_silhouette", {0, 30});
+    expectMatchesBaseline(shadeSurfaceCpu(renderer.mesh(), camera), "zbuffer_phantom64_shaded",
+                          {6, 60});
 }
 
 TEST(ZBufferSilhouette, ShadedPanelLightsFacingSurfaceBrightest) {

@@ -19,17 +19,21 @@ constexpr std::size_t kRowsPerChunk = 16;
 // without overflow risk; such vertices only occur with a camera that does not frame the data.
 constexpr double kMaxPixelCoordinate = 1 << 20;
 
-std::size_t chunkCount(std::size_t items, std::size_t perChunk) { return (items + perChunk - 1) / perChunk; }
+std::size_t chunkCount(std::size_t items, std::size_t perChunk) {
+    return (items + perChunk - 1) / perChunk;
+}
 
 } // namespace
 
 namespace {
 
 // Round half away from zero without a libm call (the default x86-64 target has no roundsd).
-inline std::int32_t roundToInt(double v) { return std::int32_t(v + (v >= 0.0 ? 0.5 : -0.5)); }
+inline std::int32_t roundToInt(double v) {
+    return std::int32_t(v + (v >= 0.0 ? 0.5 : -0.5));
+}
 
-inline bool projectInline(const ViewTransform& view, const glm::dvec3& world, glm::dvec2& pixel, float& key,
-                          float& invW) {
+inline bool projectInline(const ViewTransform& view, const glm::dvec3& world, glm::dvec2& pixel,
+                          float& key, float& invW) {
     const glm::dmat4& m = view.viewProjection;
     const double cw = m[0][3] * world.x + m[1][3] * world.y + m[2][3] * world.z + m[3][3];
     if (!(cw > 0.0))
@@ -46,7 +50,8 @@ inline bool projectInline(const ViewTransform& view, const glm::dvec3& world, gl
 
 } // namespace
 
-bool projectPoint(const ViewTransform& view, glm::dvec3 world, glm::dvec2& pixel, float& key, float* invW) {
+bool projectPoint(const ViewTransform& view, glm::dvec3 world, glm::dvec2& pixel, float& key,
+                  float* invW) {
     float w = 0.0f;
     const bool ok = projectInline(view, world, pixel, key, w);
     if (invW)
@@ -74,13 +79,15 @@ void projectVertices(const glm::vec3* positions, const glm::vec3* normals, std::
                 glm::dvec2 pixel;
                 float key = 0.0f, invW = 0.0f;
                 const bool ok = projectInline(view, glm::dvec3(positions[i]), pixel, key, invW) &&
-                                std::abs(pixel.x) < kMaxPixelCoordinate && std::abs(pixel.y) < kMaxPixelCoordinate;
+                                std::abs(pixel.x) < kMaxPixelCoordinate &&
+                                std::abs(pixel.y) < kMaxPixelCoordinate;
                 out.xy[i] = ok ? glm::ivec2(roundToInt(pixel.x * double(kSubpixelScale)),
                                             roundToInt(pixel.y * double(kSubpixelScale)))
                                : glm::ivec2(kInvalidVertex);
                 out.key[i] = key;
                 out.invW[i] = invW;
-                out.facing[i] = silhouetteDistance(positions[i], normals[i], eyeOrDirection, view.orthographic);
+                out.facing[i] =
+                    silhouetteDistance(positions[i], normals[i], eyeOrDirection, view.orthographic);
                 out.front[i] = out.facing[i] >= 0.0f ? 1 : 0;
             }
         },
@@ -98,7 +105,8 @@ void DepthBuffer::reset(int width, int height, unsigned threads) {
         [&](std::size_t chunk) {
             const std::size_t begin = chunk * kRowsPerChunk * std::size_t(m_width);
             const std::size_t end = std::min(count, begin + kRowsPerChunk * std::size_t(m_width));
-            std::fill(m_bits.begin() + std::ptrdiff_t(begin), m_bits.begin() + std::ptrdiff_t(end), 0u);
+            std::fill(m_bits.begin() + std::ptrdiff_t(begin), m_bits.begin() + std::ptrdiff_t(end),
+                      0u);
         },
         threads);
 }
@@ -109,8 +117,9 @@ float DepthBuffer::keyAt(std::size_t index) const {
     return key;
 }
 
-void drawTrianglesDepth(const ScreenVertices& vertices, const std::uint32_t* indices, std::size_t triangleCount,
-                        DepthBuffer& depth, unsigned threads, bool cullBackFaces) {
+void drawTrianglesDepth(const ScreenVertices& vertices, const std::uint32_t* indices,
+                        std::size_t triangleCount, DepthBuffer& depth, unsigned threads,
+                        bool cullBackFaces) {
     const int width = depth.width(), height = depth.height();
     volume::parallelFor(
         chunkCount(triangleCount, kTrianglesPerChunk),
@@ -120,21 +129,24 @@ void drawTrianglesDepth(const ScreenVertices& vertices, const std::uint32_t* ind
                 const std::uint32_t* tri = indices + 3 * t;
                 forEachCoveredPixel(
                     vertices, tri[0], tri[1], tri[2], width, height,
-                    [&](int x, int y, float key) { depth.writeMax(std::size_t(y) * std::size_t(width) + std::size_t(x), key); },
+                    [&](int x, int y, float key) {
+                        depth.writeMax(std::size_t(y) * std::size_t(width) + std::size_t(x), key);
+                    },
                     cullBackFaces);
             }
         },
         threads);
 }
 
-void buildClusters(const glm::vec3* positions, const std::uint32_t* indices, std::uint32_t first, std::uint32_t count,
-                   std::vector<TriangleCluster>& out) {
+void buildClusters(const glm::vec3* positions, const std::uint32_t* indices, std::uint32_t first,
+                   std::uint32_t count, std::vector<TriangleCluster>& out) {
     for (std::uint32_t begin = first; begin < first + count; begin += kTrianglesPerCluster) {
         TriangleCluster cluster;
         cluster.first = begin;
         cluster.count = std::min(kTrianglesPerCluster, first + count - begin);
         cluster.min = cluster.max = positions[indices[3 * std::size_t(begin)]];
-        for (std::size_t i = 3 * std::size_t(begin); i < 3 * (std::size_t(begin) + cluster.count); ++i) {
+        for (std::size_t i = 3 * std::size_t(begin); i < 3 * (std::size_t(begin) + cluster.count);
+             ++i) {
             cluster.min = glm::min(cluster.min, positions[indices[i]]);
             cluster.max = glm::max(cluster.max, positions[indices[i]]);
         }
@@ -160,10 +172,12 @@ void TileMask::markAroundLines(const DepthBuffer& lines, unsigned threads) {
                         continue;
                     for (int ny = std::max(0, y - 1); ny <= std::min(height - 1, y + 1); ++ny)
                         for (int nx = std::max(0, x - 1); nx <= std::min(width - 1, x + 1); ++nx) {
-                            std::atomic_ref<std::uint8_t>(m_pixels[std::size_t(ny) * std::size_t(width) + std::size_t(nx)])
+                            std::atomic_ref<std::uint8_t>(
+                                m_pixels[std::size_t(ny) * std::size_t(width) + std::size_t(nx)])
                                 .store(1, std::memory_order_relaxed);
                             std::atomic_ref<std::uint8_t> cell(
-                                m_needed[std::size_t(ny >> kTileBits) * std::size_t(m_tilesX) + std::size_t(nx >> kTileBits)]);
+                                m_needed[std::size_t(ny >> kTileBits) * std::size_t(m_tilesX) +
+                                         std::size_t(nx >> kTileBits)]);
                             cell.store(1, std::memory_order_relaxed);
                         }
                 }
@@ -183,10 +197,13 @@ bool TileMask::any(int tx0, int ty0, int tx1, int ty1) const {
     return false;
 }
 
-std::size_t TileMask::count() const { return std::size_t(std::count(m_needed.begin(), m_needed.end(), 1)); }
+std::size_t TileMask::count() const {
+    return std::size_t(std::count(m_needed.begin(), m_needed.end(), 1));
+}
 
-void drawClustersDepth(const ScreenVertices& vertices, const std::uint32_t* indices, const TriangleCluster* clusters,
-                       std::size_t clusterCount, const ViewTransform& view, const TileMask& needed, DepthBuffer& depth,
+void drawClustersDepth(const ScreenVertices& vertices, const std::uint32_t* indices,
+                       const TriangleCluster* clusters, std::size_t clusterCount,
+                       const ViewTransform& view, const TileMask& needed, DepthBuffer& depth,
                        unsigned threads, bool cullBackFaces) {
     const int width = depth.width(), height = depth.height();
     constexpr std::size_t kClustersPerChunk = 64;
@@ -216,7 +233,9 @@ void drawClustersDepth(const ScreenVertices& vertices, const std::uint32_t* indi
                     y1 = std::max(y1, pixel.y);
                 }
                 // One pixel of slack covers the snapping of vertices to 1/256 pixel.
-                auto tile = [](double v) { return int(std::clamp(std::floor(v), -1.0, 1e6)) >> TileMask::kTileBits; };
+                auto tile = [](double v) {
+                    return int(std::clamp(std::floor(v), -1.0, 1e6)) >> TileMask::kTileBits;
+                };
                 if (!needed.any(tile(x0 - 1.0), tile(y0 - 1.0), tile(x1 + 1.0), tile(y1 + 1.0)))
                     continue;
                 const std::uint32_t* tri = indices + 3 * std::size_t(cluster.first);
@@ -224,7 +243,8 @@ void drawClustersDepth(const ScreenVertices& vertices, const std::uint32_t* indi
                     forEachCoveredPixel(
                         vertices, tri[0], tri[1], tri[2], width, height,
                         [&](int x, int y, float key) {
-                            depth.writeMax(std::size_t(y) * std::size_t(width) + std::size_t(x), key);
+                            depth.writeMax(std::size_t(y) * std::size_t(width) + std::size_t(x),
+                                           key);
                         },
                         cullBackFaces, needed.pixels());
             }
@@ -232,8 +252,9 @@ void drawClustersDepth(const ScreenVertices& vertices, const std::uint32_t* indi
         threads);
 }
 
-void drawTrianglesNearest(const ScreenVertices& vertices, const std::uint32_t* indices, std::size_t triangleCount,
-                          std::uint32_t firstTriangle, std::vector<std::uint64_t>& nearest, int width, int height,
+void drawTrianglesNearest(const ScreenVertices& vertices, const std::uint32_t* indices,
+                          std::size_t triangleCount, std::uint32_t firstTriangle,
+                          std::vector<std::uint64_t>& nearest, int width, int height,
                           unsigned threads) {
     nearest.resize(std::size_t(std::max(width, 0)) * std::size_t(std::max(height, 0)));
     volume::parallelFor(
@@ -243,24 +264,29 @@ void drawTrianglesNearest(const ScreenVertices& vertices, const std::uint32_t* i
             for (std::size_t t = chunk * kTrianglesPerChunk; t < end; ++t) {
                 const std::uint32_t* tri = indices + 3 * t;
                 const std::uint64_t id = std::uint64_t(firstTriangle) + t + 1;
-                forEachCoveredPixel(vertices, tri[0], tri[1], tri[2], width, height, [&](int x, int y, float key) {
-                    if (!(key > 0.0f))
-                        return; // outside the near/far range: the packed order needs positive keys
-                    std::uint32_t bits;
-                    std::memcpy(&bits, &key, sizeof bits);
-                    const std::uint64_t packed = (std::uint64_t(bits) << 32) | id;
-                    std::atomic_ref<std::uint64_t> cell(nearest[std::size_t(y) * std::size_t(width) + std::size_t(x)]);
-                    std::uint64_t old = cell.load(std::memory_order_relaxed);
-                    while (old < packed && !cell.compare_exchange_weak(old, packed, std::memory_order_relaxed)) {
-                    }
-                });
+                forEachCoveredPixel(
+                    vertices, tri[0], tri[1], tri[2], width, height, [&](int x, int y, float key) {
+                        if (!(key > 0.0f))
+                            return; // outside the near/far range: the packed order needs positive
+                                    // keys
+                        std::uint32_t bits;
+                        std::memcpy(&bits, &key, sizeof bits);
+                        const std::uint64_t packed = (std::uint64_t(bits) << 32) | id;
+                        std::atomic_ref<std::uint64_t> cell(
+                            nearest[std::size_t(y) * std::size_t(width) + std::size_t(x)]);
+                        std::uint64_t old = cell.load(std::memory_order_relaxed);
+                        while (old < packed && !cell.compare_exchange_weak(
+                                                   old, packed, std::memory_order_relaxed)) {
+                        }
+                    });
             }
         },
         threads);
 }
 
-void findSilhouetteSegments(const glm::vec3* positions, const ScreenVertices& vertices, const std::uint32_t* indices,
-                            std::size_t triangleCount, const ViewTransform& view, SegmentScratch& scratch,
+void findSilhouetteSegments(const glm::vec3* positions, const ScreenVertices& vertices,
+                            const std::uint32_t* indices, std::size_t triangleCount,
+                            const ViewTransform& view, SegmentScratch& scratch,
                             std::vector<ScreenSegment>& out, unsigned threads) {
     const std::size_t chunks = chunkCount(triangleCount, kTrianglesPerChunk);
     if (scratch.chunks.size() < chunks)
@@ -274,10 +300,12 @@ void findSilhouetteSegments(const glm::vec3* positions, const ScreenVertices& ve
             for (std::size_t t = chunk * kTrianglesPerChunk; t < end; ++t) {
                 const std::uint32_t* tri = indices + 3 * t;
                 // Cheap sign test first: almost every triangle is entirely front- or back-facing.
-                const unsigned sides = unsigned(vertices.front[tri[0]]) + vertices.front[tri[1]] + vertices.front[tri[2]];
+                const unsigned sides = unsigned(vertices.front[tri[0]]) + vertices.front[tri[1]] +
+                                       vertices.front[tri[2]];
                 if (sides == 0 || sides == 3)
                     continue;
-                const float d[3] = {vertices.facing[tri[0]], vertices.facing[tri[1]], vertices.facing[tri[2]]};
+                const float d[3] = {vertices.facing[tri[0]], vertices.facing[tri[1]],
+                                    vertices.facing[tri[2]]};
                 const glm::vec3 p[3] = {positions[tri[0]], positions[tri[1]], positions[tri[2]]};
                 SegmentEndpoints ends;
                 if (!silhouetteSegment(p, d, ends))
@@ -295,7 +323,8 @@ void findSilhouetteSegments(const glm::vec3* positions, const ScreenVertices& ve
         out.insert(out.end(), scratch.chunks[chunk].begin(), scratch.chunks[chunk].end());
 }
 
-void drawSegmentsDepth(const ScreenSegment* segments, std::size_t count, DepthBuffer& lines, unsigned threads) {
+void drawSegmentsDepth(const ScreenSegment* segments, std::size_t count, DepthBuffer& lines,
+                       unsigned threads) {
     const int width = lines.width(), height = lines.height();
     constexpr std::size_t kSegmentsPerChunk = 4096;
     volume::parallelFor(
@@ -315,10 +344,12 @@ void drawSegmentsDepth(const ScreenSegment* segments, std::size_t count, DepthBu
                     const double t = stepCount == 0 ? 0.0 : double(i) / double(stepCount);
                     const glm::dvec2 p = segment.a + t * delta;
                     // floor() without a libm call; p is bounded, so the int conversion is exact.
-                    const int x = int(p.x) - (p.x < double(int(p.x))), y = int(p.y) - (p.y < double(int(p.y)));
+                    const int x = int(p.x) - (p.x < double(int(p.x))),
+                              y = int(p.y) - (p.y < double(int(p.y)));
                     if (x < 0 || y < 0 || x >= width || y >= height)
                         continue;
-                    const float key = float(double(segment.keyA) + t * (double(segment.keyB) - double(segment.keyA)));
+                    const float key = float(double(segment.keyA) +
+                                            t * (double(segment.keyB) - double(segment.keyA)));
                     // Keys <= 0 lie beyond the far plane; they would read as "empty".
                     lines.writeMax(std::size_t(y) * std::size_t(width) + std::size_t(x),
                                    std::max(key, 1e-30f));
@@ -328,13 +359,14 @@ void drawSegmentsDepth(const ScreenSegment* segments, std::size_t count, DepthBu
         threads);
 }
 
-void resolveSilhouette(const DepthBuffer& surface, const DepthBuffer& lines, float epsilon, bool visibility,
-                       std::uint8_t* mask, unsigned threads) {
+void resolveSilhouette(const DepthBuffer& surface, const DepthBuffer& lines, float epsilon,
+                       bool visibility, std::uint8_t* mask, unsigned threads) {
     const int width = lines.width(), height = lines.height();
     volume::parallelFor(
         chunkCount(std::size_t(height), kRowsPerChunk),
         [&](std::size_t chunk) {
-            const int yEnd = int(std::min<std::size_t>(std::size_t(height), (chunk + 1) * kRowsPerChunk));
+            const int yEnd =
+                int(std::min<std::size_t>(std::size_t(height), (chunk + 1) * kRowsPerChunk));
             for (int y = int(chunk * kRowsPerChunk); y < yEnd; ++y) {
                 for (int x = 0; x < width; ++x) {
                     const std::size_t index = std::size_t(y) * std::size_t(width) + std::size_t(x);
@@ -348,7 +380,8 @@ void resolveSilhouette(const DepthBuffer& surface, const DepthBuffer& lines, flo
                         continue;
                     }
                     float farthest = surface.keyAt(index);
-                    for (int ny = std::max(0, y - 1); ny <= std::min(height - 1, y + 1) && farthest > 0.0f; ++ny)
+                    for (int ny = std::max(0, y - 1);
+                         ny <= std::min(height - 1, y + 1) && farthest > 0.0f; ++ny)
                         for (int nx = std::max(0, x - 1); nx <= std::min(width - 1, x + 1); ++nx)
                             farthest = std::min(farthest, surface.at(nx, ny));
                     mask[index] = lineKey >= farthest - epsilon ? 1 : 0;

@@ -1,9 +1,8 @@
 #include "lw/render/shaded_surface_cpu.h"
 
-#include "view_transform.h"
-
 #include "lw/kernels/cpu/zbuffer_rasterizer_cpu.h"
 #include "lw/volume/parallel.h"
+#include "view_transform.h"
 
 #include <algorithm>
 #include <cmath>
@@ -12,18 +11,19 @@
 
 namespace lw::render {
 
-core::ImageRgba8 shadeSurfaceCpu(const Mesh& mesh, const Camera& camera, const SurfaceShading& shading) {
+core::ImageRgba8 shadeSurfaceCpu(const Mesh& mesh, const Camera& camera,
+                                 const SurfaceShading& shading) {
     const int width = camera.width(), height = camera.height();
     core::ImageRgba8 image(width, height, shading.background);
     if (mesh.isEmpty() || width == 0 || height == 0)
         return image;
     const kernels::cpu::ViewTransform view = toViewTransform(camera);
     kernels::cpu::ScreenVertices screen;
-    kernels::cpu::projectVertices(mesh.positions.data(), mesh.normals.data(), mesh.vertexCount(), view, screen,
-                                  shading.threads);
+    kernels::cpu::projectVertices(mesh.positions.data(), mesh.normals.data(), mesh.vertexCount(),
+                                  view, screen, shading.threads);
     std::vector<std::uint64_t> nearest(std::size_t(width) * std::size_t(height), 0);
-    kernels::cpu::drawTrianglesNearest(screen, mesh.indices.data(), mesh.triangleCount(), 0, nearest, width, height,
-                                       shading.threads);
+    kernels::cpu::drawTrianglesNearest(screen, mesh.indices.data(), mesh.triangleCount(), 0,
+                                       nearest, width, height, shading.threads);
 
     const double scale = 1.0 / double(kernels::cpu::kSubpixelScale);
     auto channel = [](double base, double lit, double highlight) {
@@ -35,7 +35,8 @@ core::ImageRgba8 shadeSurfaceCpu(const Mesh& mesh, const Camera& camera, const S
             const int y = int(row);
             core::Rgba8* out = image.row(y);
             for (int x = 0; x < width; ++x) {
-                const std::uint64_t packed = nearest[std::size_t(y) * std::size_t(width) + std::size_t(x)];
+                const std::uint64_t packed =
+                    nearest[std::size_t(y) * std::size_t(width) + std::size_t(x)];
                 if (packed == 0)
                     continue;
                 const std::uint32_t triangle = std::uint32_t(packed & 0xffffffffu) - 1;
@@ -46,11 +47,13 @@ core::ImageRgba8 shadeSurfaceCpu(const Mesh& mesh, const Camera& camera, const S
                 glm::dvec2 v[3];
                 for (int i = 0; i < 3; ++i)
                     v[i] = glm::dvec2(screen.xy[tri[i]]) * scale;
-                const double area = (v[1].y - v[0].y) * (v[2].x - v[0].x) - (v[1].x - v[0].x) * (v[2].y - v[0].y);
+                const double area =
+                    (v[1].y - v[0].y) * (v[2].x - v[0].x) - (v[1].x - v[0].x) * (v[2].y - v[0].y);
                 auto edge = [&](const glm::dvec2& a, const glm::dvec2& b) {
                     return (b.y - a.y) * (p.x - a.x) - (b.x - a.x) * (p.y - a.y);
                 };
-                double w[3] = {edge(v[1], v[2]) / area, edge(v[2], v[0]) / area, edge(v[0], v[1]) / area};
+                double w[3] = {edge(v[1], v[2]) / area, edge(v[2], v[0]) / area,
+                               edge(v[0], v[1]) / area};
                 double sum = 0.0;
                 for (int i = 0; i < 3; ++i) {
                     w[i] = std::max(w[i], 0.0) * double(screen.invW[tri[i]]);
@@ -72,7 +75,8 @@ core::ImageRgba8 shadeSurfaceCpu(const Mesh& mesh, const Camera& camera, const S
                     facing = -facing; // two-sided: inner faces seen through a cut-open surface
                 const double lit = shading.ambient + shading.diffuse * facing;
                 const double highlight = shading.specular * std::pow(facing, shading.shininess);
-                out[x] = {channel(shading.surface.r, lit, highlight), channel(shading.surface.g, lit, highlight),
+                out[x] = {channel(shading.surface.r, lit, highlight),
+                          channel(shading.surface.g, lit, highlight),
                           channel(shading.surface.b, lit, highlight), 255};
             }
         },

@@ -1,9 +1,8 @@
 #include "lw/render/zbuffer_silhouette_renderer.h"
 
-#include "view_transform.h"
-
 #include "lw/core/error.h"
 #include "lw/kernels/cpu/zbuffer_rasterizer_cpu.h"
+#include "view_transform.h"
 
 #include <algorithm>
 #include <chrono>
@@ -27,7 +26,8 @@ double msSince(Clock::time_point start) {
 class CellLocator {
 public:
     explicit CellLocator(const volume::Volume& volume) : m_geometry(volume.geometry()) {
-        const glm::dmat3 columns(m_geometry.spacingI() * m_geometry.axisI(), m_geometry.spacingJ() * m_geometry.axisJ(),
+        const glm::dmat3 columns(m_geometry.spacingI() * m_geometry.axisI(),
+                                 m_geometry.spacingJ() * m_geometry.axisJ(),
                                  m_geometry.stackAxis());
         m_inverse = glm::inverse(columns);
         m_cells = glm::max(volume.dims() - 1, glm::ivec3(1));
@@ -40,7 +40,8 @@ public:
         if (offsets.size() >= 2) {
             // Uneven slices: the stack coordinate is piecewise linear in k.
             const auto upper = std::upper_bound(offsets.begin(), offsets.end(), q.z);
-            const auto k0 = std::clamp<std::ptrdiff_t>(upper - offsets.begin() - 1, 0, std::ptrdiff_t(offsets.size()) - 2);
+            const auto k0 = std::clamp<std::ptrdiff_t>(upper - offsets.begin() - 1, 0,
+                                                       std::ptrdiff_t(offsets.size()) - 2);
             const double gap = offsets[std::size_t(k0) + 1] - offsets[std::size_t(k0)];
             k = double(k0) + (gap != 0.0 ? (q.z - offsets[std::size_t(k0)]) / gap : 0.0);
         } else {
@@ -67,7 +68,9 @@ bool surfaceTouchesBorder(const volume::Volume& volume, double storedIso) {
     return volume::dispatchVoxelType(volume.voxelType(), [&](auto zero) {
         using T = decltype(zero);
         const T* voxels = volume.dataAs<T>();
-        auto inside = [&](int x, int y, int z) { return double(voxels[volume.index(x, y, z)]) >= storedIso; };
+        auto inside = [&](int x, int y, int z) {
+            return double(voxels[volume.index(x, y, z)]) >= storedIso;
+        };
         for (int z = 0; z < d.z; ++z) {
             const bool zFace = z == 0 || z == d.z - 1;
             for (int y = 0; y < d.y; ++y) {
@@ -113,19 +116,21 @@ struct ZBufferSilhouetteRenderer::State {
     void buildClusters(bool chunked) {
         clusters.clear();
         if (!chunked) {
-            kernels::cpu::buildClusters(mesh.positions.data(), mesh.indices.data(), 0, std::uint32_t(mesh.triangleCount()),
-                                        clusters);
+            kernels::cpu::buildClusters(mesh.positions.data(), mesh.indices.data(), 0,
+                                        std::uint32_t(mesh.triangleCount()), clusters);
             return;
         }
         for (std::size_t b = 0; b + 1 < brickStarts.size(); ++b)
-            kernels::cpu::buildClusters(mesh.positions.data(), brickIndices.data(), std::uint32_t(brickStarts[b]),
-                                        std::uint32_t(brickStarts[b + 1] - brickStarts[b]), clusters);
+            kernels::cpu::buildClusters(
+                mesh.positions.data(), brickIndices.data(), std::uint32_t(brickStarts[b]),
+                std::uint32_t(brickStarts[b + 1] - brickStarts[b]), clusters);
     }
 
     void partitionByBrick(int brickCells) {
         const glm::ivec3 cells = glm::max(volume->dims() - 1, glm::ivec3(1));
         const glm::ivec3 grid = (cells + brickCells - 1) / brickCells;
-        const std::size_t brickCount = std::size_t(grid.x) * std::size_t(grid.y) * std::size_t(grid.z);
+        const std::size_t brickCount =
+            std::size_t(grid.x) * std::size_t(grid.y) * std::size_t(grid.z);
         const std::size_t triangles = mesh.triangleCount();
         const CellLocator locator(*volume);
         triangleBrick.resize(triangles);
@@ -133,10 +138,13 @@ struct ZBufferSilhouetteRenderer::State {
         for (std::size_t t = 0; t < triangles; ++t) {
             const std::uint32_t* tri = mesh.indices.data() + 3 * t;
             const glm::dvec3 centroid =
-                (glm::dvec3(mesh.positions[tri[0]]) + glm::dvec3(mesh.positions[tri[1]]) + glm::dvec3(mesh.positions[tri[2]])) /
+                (glm::dvec3(mesh.positions[tri[0]]) + glm::dvec3(mesh.positions[tri[1]]) +
+                 glm::dvec3(mesh.positions[tri[2]])) /
                 3.0;
             const glm::ivec3 b = locator.cellOf(centroid) / brickCells;
-            const std::size_t brick = std::size_t(b.x) + std::size_t(grid.x) * (std::size_t(b.y) + std::size_t(grid.y) * std::size_t(b.z));
+            const std::size_t brick =
+                std::size_t(b.x) +
+                std::size_t(grid.x) * (std::size_t(b.y) + std::size_t(grid.y) * std::size_t(b.z));
             triangleBrick[t] = std::uint32_t(brick);
             ++brickCounts[brick];
         }
@@ -161,9 +169,12 @@ void ZBufferSilhouetteRenderer::setVolume(const volume::Volume& volume) {
     m_state->meshValid = false;
 }
 
-const Mesh& ZBufferSilhouetteRenderer::mesh() const { return m_state->mesh; }
+const Mesh& ZBufferSilhouetteRenderer::mesh() const {
+    return m_state->mesh;
+}
 
-SilhouetteFrame ZBufferSilhouetteRenderer::render(const Camera& camera, const SilhouetteSettings& settings) {
+SilhouetteFrame ZBufferSilhouetteRenderer::render(const Camera& camera,
+                                                  const SilhouetteSettings& settings) {
     State& s = *m_state;
     if (!s.volume)
         throw core::Error("method 3 (z-buffer)", "no volume bound: call setVolume first");
@@ -172,8 +183,8 @@ SilhouetteFrame ZBufferSilhouetteRenderer::render(const Camera& camera, const Si
     const unsigned threads = settings.threads;
     SilhouetteFrame frame;
 
-    const bool reuse = settings.mode == ExtractionMode::CachedA && s.meshValid && s.meshIso == settings.isoReal &&
-                       s.meshBrickCells == settings.brickCells;
+    const bool reuse = settings.mode == ExtractionMode::CachedA && s.meshValid &&
+                       s.meshIso == settings.isoReal && s.meshBrickCells == settings.brickCells;
     if (!reuse) {
         const auto start = Clock::now();
         s.meshValid = false;
@@ -184,7 +195,8 @@ SilhouetteFrame ZBufferSilhouetteRenderer::render(const Camera& camera, const Si
         if (settings.brickCells > 0)
             s.partitionByBrick(settings.brickCells);
         s.buildClusters(settings.brickCells > 0);
-        s.meshClosed = !surfaceTouchesBorder(*s.volume, s.volume->valueMapping().toStored(settings.isoReal));
+        s.meshClosed =
+            !surfaceTouchesBorder(*s.volume, s.volume->valueMapping().toStored(settings.isoReal));
         s.meshValid = true;
         s.meshIso = settings.isoReal;
         s.meshBrickCells = settings.brickCells;
@@ -196,8 +208,8 @@ SilhouetteFrame ZBufferSilhouetteRenderer::render(const Camera& camera, const Si
     const int width = camera.width(), height = camera.height();
 
     auto start = Clock::now();
-    kernels::cpu::projectVertices(s.mesh.positions.data(), s.mesh.normals.data(), s.mesh.vertexCount(), view,
-                                  s.screen, threads);
+    kernels::cpu::projectVertices(s.mesh.positions.data(), s.mesh.normals.data(),
+                                  s.mesh.vertexCount(), view, s.screen, threads);
     frame.times.silhouetteMs += msSince(start);
 
     start = Clock::now();
@@ -216,8 +228,8 @@ SilhouetteFrame ZBufferSilhouetteRenderer::render(const Camera& camera, const Si
     const std::uint32_t* indices = chunked ? s.brickIndices.data() : s.mesh.indices.data();
     s.segments.clear();
     start = Clock::now();
-    kernels::cpu::findSilhouetteSegments(s.mesh.positions.data(), s.screen, indices, frame.triangles, view, s.scratch,
-                                         s.segments, threads);
+    kernels::cpu::findSilhouetteSegments(s.mesh.positions.data(), s.screen, indices,
+                                         frame.triangles, view, s.scratch, s.segments, threads);
     frame.times.silhouetteMs += msSince(start);
 
     start = Clock::now();
@@ -227,8 +239,8 @@ SilhouetteFrame ZBufferSilhouetteRenderer::render(const Camera& camera, const Si
     if (settings.visibility) {
         start = Clock::now();
         s.needed.markAroundLines(s.lineDepth, threads);
-        kernels::cpu::drawClustersDepth(s.screen, indices, s.clusters.data(), s.clusters.size(), view, s.needed,
-                                        s.surfaceDepth, threads, s.meshClosed);
+        kernels::cpu::drawClustersDepth(s.screen, indices, s.clusters.data(), s.clusters.size(),
+                                        view, s.needed, s.surfaceDepth, threads, s.meshClosed);
         frame.times.visibilityMs += msSince(start);
     }
     frame.segments = s.segments.size();

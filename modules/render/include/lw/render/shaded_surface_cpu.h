@@ -23,6 +23,7 @@ struct SurfaceShading {
 
 // Lit mesh on the camera's viewport, top row first. Back faces (seen through a surface cut open
 // by the volume's border) are lit two-sided.
-core::ImageRgba8 shadeSurfaceCpu(const Mesh& mesh, const Camera& camera, const SurfaceShading& shading = {});
+core::ImageRgba8 shadeSurfaceCpu(const Mesh& mesh, const Camera& camera,
+                                 const SurfaceShading& shading = {});
 
 } // namespace lw::render

@@ -14,13 +14,12 @@
 //     linearly in screen space is perspective-correct for both projections. This is the paper's
 //     "inverted depth" that makes atomicMax keep the nearest fragment.
 
-#include <glm/glm.hpp>
-
 #include <algorithm>
 #include <atomic>
 #include <climits>
 #include <cstddef>
 #include <cstdint>
+#include <glm/glm.hpp>
 #include <vector>
 
 namespace lw::kernels::cpu {
@@ -36,22 +35,23 @@ struct ViewTransform {
     int width = 0;
     int height = 0;
     bool orthographic = false;
-    glm::dvec3 eye{0.0};         // perspective: Burns' d = N . (eye - P)
-    glm::dvec3 toViewer{0.0};    // orthographic: d = N . toViewer
+    glm::dvec3 eye{0.0};      // perspective: Burns' d = N . (eye - P)
+    glm::dvec3 toViewer{0.0}; // orthographic: d = N . toViewer
 };
 
 // One projected point: continuous pixel coordinates and the depth key. Returns false when the
 // point is behind the eye plane.
-bool projectPoint(const ViewTransform& view, glm::dvec3 world, glm::dvec2& pixel, float& key, float* invW = nullptr);
+bool projectPoint(const ViewTransform& view, glm::dvec3 world, glm::dvec2& pixel, float& key,
+                  float* invW = nullptr);
 
 // Per-vertex screen data, structure of arrays so the triangle loop touches only what it uses.
 struct ScreenVertices {
     // Fixed-point position (1/256 px), x and y side by side so the triangle loop loads one cache
     // line per vertex; x == kInvalidVertex when the vertex could not be projected.
     std::vector<glm::ivec2> xy;
-    std::vector<float> key;    // depth key (see above)
-    std::vector<float> invW;   // 1 / clip w, for perspective-correct attribute interpolation
-    std::vector<float> facing; // Burns' d at the vertex (>= 0: front-facing)
+    std::vector<float> key;          // depth key (see above)
+    std::vector<float> invW;         // 1 / clip w, for perspective-correct attribute interpolation
+    std::vector<float> facing;       // Burns' d at the vertex (>= 0: front-facing)
     std::vector<std::uint8_t> front; // facing >= 0, one byte so the segment pass reads little
 
     void resize(std::size_t count);
@@ -71,7 +71,9 @@ public:
     void reset(int width, int height, unsigned threads = 0);
     int width() const { return m_width; }
     int height() const { return m_height; }
-    float at(int x, int y) const { return keyAt(std::size_t(y) * std::size_t(m_width) + std::size_t(x)); }
+    float at(int x, int y) const {
+        return keyAt(std::size_t(y) * std::size_t(m_width) + std::size_t(x));
+    }
     float keyAt(std::size_t index) const;
     std::uint32_t* bits() { return m_bits.data(); }
     const std::uint32_t* bits() const { return m_bits.data(); }
@@ -95,12 +97,13 @@ private:
 // Calls fn(px, py, key) for every pixel centre covered by the triangle (a, b, c) under the
 // top-left rule, key interpolated linearly in screen space. Either winding, unless
 // `cullBackFaces`: then triangles that are clockwise on screen (back-facing for a mesh wound
-// counter-clockwise seen from outside) cover nothing. Degenerate and invalid triangles cover nothing.
+// counter-clockwise seen from outside) cover nothing. Degenerate and invalid triangles cover
+// nothing.
 template <typename Fn>
-[[gnu::always_inline]] inline void forEachCoveredPixel(const ScreenVertices& v, std::uint32_t a, std::uint32_t b,
-                                                       std::uint32_t c, int width, int height, Fn&& fn,
-                                                       bool cullBackFaces = false,
-                                                       const std::uint8_t* pixelFilter = nullptr) {
+[[gnu::always_inline]] inline void
+forEachCoveredPixel(const ScreenVertices& v, std::uint32_t a, std::uint32_t b, std::uint32_t c,
+                    int width, int height, Fn&& fn, bool cullBackFaces = false,
+                    const std::uint8_t* pixelFilter = nullptr) {
     const glm::ivec2 pa = v.xy[a], pb = v.xy[b], pc = v.xy[c];
     std::int64_t x0 = pa.x, y0 = pa.y, x1 = pb.x, y1 = pb.y, x2 = pc.x, y2 = pc.y;
     if (x0 == kInvalidVertex || x1 == kInvalidVertex || x2 == kInvalidVertex)
@@ -148,7 +151,8 @@ template <typename Fn>
     // Top-left rule (y down, this winding): an edge is "left" when it runs downward (dy > 0),
     // "top" when horizontal and running to the left (dy == 0, dx < 0). Centres exactly on such an
     // edge are inside; on the other edges they are outside (bias -1 on the integer function).
-    auto bias = [](std::int64_t ax, std::int64_t ay, std::int64_t bx, std::int64_t by) -> std::int64_t {
+    auto bias = [](std::int64_t ax, std::int64_t ay, std::int64_t bx,
+                   std::int64_t by) -> std::int64_t {
         const std::int64_t dx = bx - ax, dy = by - ay;
         return (dy > 0 || (dy == 0 && dx < 0)) ? 0 : -1;
     };
@@ -171,7 +175,8 @@ template <typename Fn>
         std::int64_t w0 = row0, w1 = row1, w2 = row2;
         for (std::int64_t i = i0; i <= i1; ++i) {
             if ((w0 | w1 | w2) >= 0) {
-                const float key = float(keyOrigin + double(i - i0) * keyStepX + double(j - j0) * keyStepY);
+                const float key =
+                    float(keyOrigin + double(i - i0) * keyStepX + double(j - j0) * keyStepY);
                 fn(int(i), int(j), key);
             }
             w0 += stepX0;
@@ -186,8 +191,9 @@ template <typename Fn>
 
 // zbuffer1: every triangle's depth (indices: three per triangle). `cullBackFaces` is only exact
 // for a closed surface, where a back face always lies behind a front face on the same pixel.
-void drawTrianglesDepth(const ScreenVertices& vertices, const std::uint32_t* indices, std::size_t triangleCount,
-                        DepthBuffer& depth, unsigned threads = 0, bool cullBackFaces = false);
+void drawTrianglesDepth(const ScreenVertices& vertices, const std::uint32_t* indices,
+                        std::size_t triangleCount, DepthBuffer& depth, unsigned threads = 0,
+                        bool cullBackFaces = false);
 
 // A run of consecutive triangles (marching cubes emits them cell by cell, so a run is spatially
 // compact) with the box around its vertices. Built once per mesh; per frame the box's projection
@@ -202,8 +208,8 @@ inline constexpr std::uint32_t kTrianglesPerCluster = 256;
 
 // Appends the clusters of triangles [first, first + count) of `indices` (never crossing `first`
 // or the end, so per-brick ranges keep their own clusters).
-void buildClusters(const glm::vec3* positions, const std::uint32_t* indices, std::uint32_t first, std::uint32_t count,
-                   std::vector<TriangleCluster>& out);
+void buildClusters(const glm::vec3* positions, const std::uint32_t* indices, std::uint32_t first,
+                   std::uint32_t count, std::vector<TriangleCluster>& out);
 
 // Which 8 x 8 pixel tiles the colour pass reads: the tiles under every segment pixel's 3x3
 // neighbourhood (resolveSilhouette compares against those surface depths only).
@@ -228,14 +234,16 @@ private:
 // zbuffer1 where the colour pass needs it: draws the clusters whose projected box overlaps a
 // needed tile and, in them, the triangles whose pixel box holds a needed pixel, so every needed
 // pixel gets exactly the depth drawTrianglesDepth would give it; other pixels may stay empty.
-void drawClustersDepth(const ScreenVertices& vertices, const std::uint32_t* indices, const TriangleCluster* clusters,
-                       std::size_t clusterCount, const ViewTransform& view, const TileMask& needed, DepthBuffer& depth,
+void drawClustersDepth(const ScreenVertices& vertices, const std::uint32_t* indices,
+                       const TriangleCluster* clusters, std::size_t clusterCount,
+                       const ViewTransform& view, const TileMask& needed, DepthBuffer& depth,
                        unsigned threads = 0, bool cullBackFaces = false);
 
 // The nearest triangle per pixel, packed as (key bits << 32) | (triangle index + 1) and kept by
 // an atomic max, so equal depths resolve to the larger index whatever the thread order. 0 = empty.
-void drawTrianglesNearest(const ScreenVertices& vertices, const std::uint32_t* indices, std::size_t triangleCount,
-                          std::uint32_t firstTriangle, std::vector<std::uint64_t>& nearest, int width, int height,
+void drawTrianglesNearest(const ScreenVertices& vertices, const std::uint32_t* indices,
+                          std::size_t triangleCount, std::uint32_t firstTriangle,
+                          std::vector<std::uint64_t>& nearest, int width, int height,
                           unsigned threads = 0);
 
 // A silhouette segment on screen: continuous pixel coordinates and depth keys of its ends.
@@ -253,13 +261,15 @@ struct SegmentScratch {
 
 // Burns' segment of every triangle whose vertices' d values differ in sign (facing from
 // projectVertices), projected; appended to `out` in triangle order (deterministic).
-void findSilhouetteSegments(const glm::vec3* positions, const ScreenVertices& vertices, const std::uint32_t* indices,
-                            std::size_t triangleCount, const ViewTransform& view, SegmentScratch& scratch,
+void findSilhouetteSegments(const glm::vec3* positions, const ScreenVertices& vertices,
+                            const std::uint32_t* indices, std::size_t triangleCount,
+                            const ViewTransform& view, SegmentScratch& scratch,
                             std::vector<ScreenSegment>& out, unsigned threads = 0);
 
 // zbuffer2: each segment's depth along the pixels that lw::render::rasterizeLine would set (one
 // pixel per step along the major axis), the nearest segment kept per pixel.
-void drawSegmentsDepth(const ScreenSegment* segments, std::size_t count, DepthBuffer& lines, unsigned threads = 0);
+void drawSegmentsDepth(const ScreenSegment* segments, std::size_t count, DepthBuffer& lines,
+                       unsigned threads = 0);
 
 // The colour pass. A pixel holding a segment is drawn when visibility is off, or when the
 // segment is not behind the surface:
@@ -269,7 +279,7 @@ void drawSegmentsDepth(const ScreenSegment* segments, std::size_t count, DepthBu
 // sqrt(2 R s) with the curvature radius R and the screen distance s), whereas across the contour
 // a neighbour sees the background or the surface behind the fold. An occluder that covers the
 // whole neighbourhood hides the segment. mask: width * height bytes, 1 = silhouette.
-void resolveSilhouette(const DepthBuffer& surface, const DepthBuffer& lines, float epsilon, bool visibility,
-                       std::uint8_t* mask, unsigned threads = 0);
+void resolveSilhouette(const DepthBuffer& surface, const DepthBuffer& lines, float epsilon,
+                       bool visibility, std::uint8_t* mask, unsigned threads = 0);
 
 } // namespace lw::kernels::cpu
