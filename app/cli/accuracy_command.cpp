@@ -3,7 +3,6 @@
 // contour traced from the analytic function (true_contour.h), with a 1 pixel tolerance.
 #include "arguments.h"
 #include "commands.h"
-
 #include "lw/core/error.h"
 #include "lw/core/json_writer.h"
 #include "lw/render/analytic_shapes.h"
@@ -20,8 +19,8 @@
 #define LW_ACCURACY_HAVE_METHOD3 0
 #endif
 
-#if defined(LINEWORK_GL) && LINEWORK_GL && __has_include("lw/render/silhouette_gl_renderer.h") && \
-    __has_include("lw/render/gl_context.h")
+#if defined(LINEWORK_GL) && LINEWORK_GL &&                                                         \
+    __has_include("lw/render/silhouette_gl_renderer.h") && __has_include("lw/render/gl_context.h")
 #include "lw/render/gl_context.h"
 #include "lw/render/silhouette_gl_renderer.h"
 #define LW_ACCURACY_HAVE_METHOD1 1
@@ -32,8 +31,8 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
-#include <cstdlib>
 #include <cstdio>
+#include <cstdlib>
 #include <memory>
 #include <optional>
 #include <ostream>
@@ -61,7 +60,8 @@ std::vector<int> parseIntList(const std::string& option, const std::string& text
         const auto [end, error] = std::from_chars(part.data(), part.data() + part.size(), value);
         if (error != std::errc() || end != part.data() + part.size() || value < minimum)
             throw core::Error("--" + option + " " + text,
-                              "expected a comma-separated list of integers >= " + std::to_string(minimum));
+                              "expected a comma-separated list of integers >= " +
+                                  std::to_string(minimum));
         values.push_back(value);
     }
     if (values.empty())
@@ -89,21 +89,25 @@ constexpr double kPixelsPerVoxel = 2.0;
 int runAccuracy(const std::vector<std::string>& args, std::ostream& out) {
     const Arguments arguments(args, {"json"}, {"backend", "methods", "sizes", "shapes", "view"});
     if (!arguments.positionals().empty())
-        throw core::Error("accuracy", "usage: accuracy [--backend cpu|cuda|auto] [--methods 1,2,3] "
-                                      "[--sizes 32,64,256] [--shapes sphere,...] [--view AZ,EL] [--json]");
+        throw core::Error("accuracy",
+                          "usage: accuracy [--backend cpu|cuda|auto] [--methods 1,2,3] "
+                          "[--sizes 32,64,256] [--shapes sphere,...] [--view AZ,EL] [--json]");
     const std::string backend = arguments.option("backend", "auto");
     if (backend != "cpu" && backend != "cuda" && backend != "auto")
         throw core::Error("--backend " + backend, "expected cpu, cuda or auto");
     if (backend == "cuda")
-        throw core::Error("--backend cuda", "this build has no CUDA implementation of the silhouette methods");
+        throw core::Error("--backend cuda",
+                          "this build has no CUDA implementation of the silhouette methods");
     const std::string backendUsed = "cpu"; // auto: no CUDA silhouette back-end in this build
-    const std::vector<int> methods = parseIntList("methods", arguments.option("methods", "1,2,3"), 1);
+    const std::vector<int> methods =
+        parseIntList("methods", arguments.option("methods", "1,2,3"), 1);
     for (int m : methods)
         if (m > 3)
             throw core::Error("--methods", "methods are 1, 2 and 3");
     const std::vector<int> sizes = parseIntList("sizes", arguments.option("sizes", "32,64,256"), 8);
-    const std::vector<std::string> shapes =
-        arguments.option("shapes") ? splitList(*arguments.option("shapes")) : render::analyticShapeNames();
+    const std::vector<std::string> shapes = arguments.option("shapes")
+                                                ? splitList(*arguments.option("shapes"))
+                                                : render::analyticShapeNames();
     const bool json = arguments.flag("json");
     double azimuth = kAzimuth, elevation = kElevation;
     if (const auto view = arguments.option("view")) {
@@ -117,7 +121,9 @@ int runAccuracy(const std::vector<std::string>& args, std::ostream& out) {
         if (parts.size() != 2 || *end0 != '\0' || *end1 != '\0' || std::abs(elevation) > 90.0)
             throw core::Error("--view " + *view, "expected AZ,EL in degrees with |EL| <= 90");
     }
-    auto wants = [&](int m) { return std::find(methods.begin(), methods.end(), m) != methods.end(); };
+    auto wants = [&](int m) {
+        return std::find(methods.begin(), methods.end(), m) != methods.end();
+    };
 
     std::vector<std::string> notes;
 #if LW_ACCURACY_HAVE_METHOD1
@@ -131,7 +137,8 @@ int runAccuracy(const std::vector<std::string>& args, std::ostream& out) {
         } catch (const core::Error& error) {
             glRenderer.reset();
             glContext.reset();
-            notes.push_back(std::string("method 1 skipped: no OpenGL context (") + error.what() + ")");
+            notes.push_back(std::string("method 1 skipped: no OpenGL context (") + error.what() +
+                            ")");
         }
     }
 #else
@@ -152,14 +159,15 @@ int runAccuracy(const std::vector<std::string>& args, std::ostream& out) {
             setup.bounds = shape->bounds();
             setup.azimuthDeg = azimuth;
             setup.elevationDeg = elevation;
-            const int side =
-                render::Camera::squareSizeForVoxelCoverage(setup, volume.geometry().spacingI(), kPixelsPerVoxel);
+            const int side = render::Camera::squareSizeForVoxelCoverage(
+                setup, volume.geometry().spacingI(), kPixelsPerVoxel);
             const render::Camera camera(setup, side, side);
             const render::PixelMask truth = render::trueContourMask(*shape, camera);
             // L: a 4 x 4 x 4 brick schedule, so chunking is exercised at every size.
             const int brickCells = std::max(4, (n - 1 + 3) / 4);
 
-            auto add = [&](int method, bool chunked, const std::string& visibility, const render::PixelMask& drawn) {
+            auto add = [&](int method, bool chunked, const std::string& visibility,
+                           const render::PixelMask& drawn) {
                 Row row;
                 row.method = method;
                 row.variant = chunked ? "L" : "S";
@@ -179,7 +187,8 @@ int runAccuracy(const std::vector<std::string>& args, std::ostream& out) {
                 if (glRenderer) {
                     render::IsoSurfaceOptions options;
                     options.brickCells = settings.brickCells;
-                    const render::Mesh mesh = render::extractIsoSurface(volume, render::kShapeIso, options);
+                    const render::Mesh mesh =
+                        render::extractIsoSurface(volume, render::kShapeIso, options);
                     glRenderer->uploadMesh(mesh);
                     render::SilhouetteGlOptions gl;
                     gl.panel = render::GlPanel::Silhouette;
@@ -240,10 +249,15 @@ int runAccuracy(const std::vector<std::string>& args, std::ostream& out) {
         writer.key("rows").beginArray();
         for (const Row& row : rows) {
             writer.beginObject();
-            writer.field("method", row.method).field("variant", row.variant).field("visibility", row.visibility);
+            writer.field("method", row.method)
+                .field("variant", row.variant)
+                .field("visibility", row.visibility);
             writer.field("backend", backendUsed).field("shape", row.shape).field("size", row.size);
-            writer.field("image", row.image).field("recall", row.score.recall).field("precision", row.score.precision);
-            writer.field("true_pixels", row.score.truePixels).field("drawn_pixels", row.score.drawnPixels);
+            writer.field("image", row.image)
+                .field("recall", row.score.recall)
+                .field("precision", row.score.precision);
+            writer.field("true_pixels", row.score.truePixels)
+                .field("drawn_pixels", row.score.drawnPixels);
             writer.endObject();
         }
         writer.endArray();
@@ -253,16 +267,17 @@ int runAccuracy(const std::vector<std::string>& args, std::ostream& out) {
     }
 
     char line[256];
-    std::snprintf(line, sizeof line, "accuracy (backend %s, view az %g el %g, %g px per voxel, 1 px tolerance)\n",
+    std::snprintf(line, sizeof line,
+                  "accuracy (backend %s, view az %g el %g, %g px per voxel, 1 px tolerance)\n",
                   backendUsed.c_str(), azimuth, elevation, kPixelsPerVoxel);
     out << line;
-    std::snprintf(line, sizeof line, "%-6s %-7s %-10s %-13s %5s %6s %8s %9s\n", "method", "variant", "visibility",
-                  "shape", "size", "image", "recall", "precision");
+    std::snprintf(line, sizeof line, "%-6s %-7s %-10s %-13s %5s %6s %8s %9s\n", "method", "variant",
+                  "visibility", "shape", "size", "image", "recall", "precision");
     out << line;
     for (const Row& row : rows) {
         std::snprintf(line, sizeof line, "%-6d %-7s %-10s %-13s %5d %6d %8.4f %9.4f\n", row.method,
-                      row.variant.c_str(), row.visibility.c_str(), row.shape.c_str(), row.size, row.image,
-                      row.score.recall, row.score.precision);
+                      row.variant.c_str(), row.visibility.c_str(), row.shape.c_str(), row.size,
+                      row.image, row.score.recall, row.score.precision);
         out << line;
     }
     for (const auto& note : notes)

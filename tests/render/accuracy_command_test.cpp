@@ -1,10 +1,9 @@
 // `linework-cli accuracy` end to end: JSON rows for every requested method x variant, scores that
 // are real numbers in [0, 1] and meet the goal on an easy case, and usage errors rejected.
-#include <gtest/gtest.h>
-
 #include <array>
 #include <cstdio>
 #include <cstdlib>
+#include <gtest/gtest.h>
 #include <memory>
 #include <regex>
 #include <string>
@@ -18,7 +17,8 @@ struct CliResult {
 };
 
 CliResult runCli(const std::string& arguments) {
-    const std::string command = std::string("\"") + LINEWORK_CLI_PATH + "\" " + arguments + " 2>/dev/null";
+    const std::string command =
+        std::string("\"") + LINEWORK_CLI_PATH + "\" " + arguments + " 2>/dev/null";
     CliResult result;
     FILE* pipe = popen(command.c_str(), "r");
     if (!pipe)
@@ -36,9 +36,11 @@ TEST(AccuracyCommand, JsonRowsForMethod2SAndLOnTheSphere) {
     const CliResult r = runCli("accuracy --methods 2 --sizes 32 --shapes sphere,torus --json");
     ASSERT_EQ(r.status, 0) << r.out;
     // One row per variant (S, L) x visibility rule (endpoints, along) x shape.
-    const std::regex row(R"re(\{\s*"method": 2,\s*"variant": "([SL])",\s*"visibility": "(endpoints|along)",\s*"backend": "cpu",\s*"shape": "(sphere|torus)",\s*"size": 32,\s*"image": (\d+),\s*"recall": ([0-9.e+-]+),\s*"precision": ([0-9.e+-]+))re");
+    const std::regex row(
+        R"re(\{\s*"method": 2,\s*"variant": "([SL])",\s*"visibility": "(endpoints|along)",\s*"backend": "cpu",\s*"shape": "(sphere|torus)",\s*"size": 32,\s*"image": (\d+),\s*"recall": ([0-9.e+-]+),\s*"precision": ([0-9.e+-]+))re");
     int rows = 0;
-    for (auto it = std::sregex_iterator(r.out.begin(), r.out.end(), row); it != std::sregex_iterator(); ++it) {
+    for (auto it = std::sregex_iterator(r.out.begin(), r.out.end(), row);
+         it != std::sregex_iterator(); ++it) {
         ++rows;
         const double recall = std::stod((*it)[5]);
         const double precision = std::stod((*it)[6]);
@@ -55,7 +57,8 @@ TEST(AccuracyCommand, JsonRowsForMethod2SAndLOnTheSphere) {
 }
 
 TEST(AccuracyCommand, HumanReadableTable) {
-    const CliResult r = runCli("accuracy --methods 2 --sizes 16 --shapes superquadric --view -40,30");
+    const CliResult r =
+        runCli("accuracy --methods 2 --sizes 16 --shapes superquadric --view -40,30");
     ASSERT_EQ(r.status, 0);
     EXPECT_NE(r.out.find("az -40 el 30"), std::string::npos) << r.out;
     EXPECT_NE(r.out.find("superquadric"), std::string::npos);

@@ -1,6 +1,6 @@
-// Methods 1 (GL geometry shader), 2 (ray-cast visibility) and 3 (z-buffer, when built) draw the same
-// visible silhouette: >= 99% of either's pixels lie within 1 px of the other's. Own main: without an
-// OpenGL 4.x context the binary exits with the SKIP code instead of passing untested.
+// Methods 1 (GL geometry shader), 2 (ray-cast visibility) and 3 (z-buffer, when built) draw the
+// same visible silhouette: >= 99% of either's pixels lie within 1 px of the other's. Own main:
+// without an OpenGL 4.x context the binary exits with the SKIP code instead of passing untested.
 #include "lw/core/error.h"
 #include "lw/core/log.h"
 #include "lw/render/analytic_shapes.h"
@@ -17,16 +17,16 @@
 #define LW_TEST_HAVE_METHOD3 0
 #endif
 
-#include <gtest/gtest.h>
-
 #include <cstdio>
+#include <gtest/gtest.h>
 #include <memory>
 #include <string>
 
 namespace lw::render {
 namespace {
 
-PixelMask glSilhouette(SilhouetteGlRenderer& gl, const volume::Volume& v, const Camera& camera, int brickCells) {
+PixelMask glSilhouette(SilhouetteGlRenderer& gl, const volume::Volume& v, const Camera& camera,
+                       int brickCells) {
     IsoSurfaceOptions options;
     options.brickCells = brickCells;
     gl.uploadMesh(extractIsoSurface(v, kShapeIso, options));
@@ -82,7 +82,8 @@ TEST(SilhouetteMethodsAgree, Method2AndMethod1AndMethod3) {
 
 int main(int argc, char** argv) {
     testing::InitGoogleTest(&argc, argv);
-    lw::core::setLogSink([](lw::core::LogLevel level, std::string_view category, const std::string& message) {
+    lw::core::setLogSink([](lw::core::LogLevel level, std::string_view category,
+                            const std::string& message) {
         std::fprintf(stderr, "[%.*s] %s\n", int(category.size()), category.data(), message.c_str());
         if (level == lw::core::LogLevel::Error)
             ADD_FAILURE() << "error logged in " << category << ": " << message;

@@ -15,10 +15,9 @@
 #define LW_TEST_HAVE_METHOD3 0
 #endif
 
-#include <gtest/gtest.h>
-
 #include <algorithm>
 #include <cmath>
+#include <gtest/gtest.h>
 #include <random>
 #include <tuple>
 #include <vector>
@@ -33,7 +32,8 @@ volume::Volume makeGrid(glm::ivec3 dims, volume::VolumeGeometry geometry = {}) {
     return volume::Volume(dims, volume::VoxelType::Float32, std::move(geometry));
 }
 
-std::vector<CellExit> walkAll(const VoxelRayGrid& grid, glm::dvec3 start, glm::dvec3 dir, double tMax = INFINITY) {
+std::vector<CellExit> walkAll(const VoxelRayGrid& grid, glm::dvec3 start, glm::dvec3 dir,
+                              double tMax = INFINITY) {
     std::vector<CellExit> exits;
     grid.walk(start, dir, tMax, [&](const CellExit& e) {
         exits.push_back(e);
@@ -136,7 +136,8 @@ TEST(VoxelRayGrid, UnevenTiltedStackWallsAtSliceOffsets) {
     const glm::dvec3 axisI(1, 0, 0), axisJ(0, 1, 0);
     // Uneven gaps (1, 2, 3 mm) and a tilt: each slice shifted in y by 0.3 mm per mm.
     const std::vector<glm::dvec3> positions = {{0, 0, 0}, {0, 0.3, 1}, {0, 0.9, 3}, {0, 1.8, 6}};
-    const auto geometry = volume::VolumeGeometry::fromSlicePositions(axisI, axisJ, 1.0, 1.0, positions);
+    const auto geometry =
+        volume::VolumeGeometry::fromSlicePositions(axisI, axisJ, 1.0, 1.0, positions);
     const volume::Volume v = makeGrid({4, 4, 4}, geometry);
     const VoxelRayGrid grid(v);
     // Grid coordinates round-trip through patient space, and slice k sits at s = offset(k).
@@ -243,8 +244,8 @@ TEST(RayCastSilhouette, SegmentsEqualTheMarchingCubesMeshSegments) {
                 positions.push_back(g.origin() + glm::dvec3(0.0, 0.2 * s, s));
                 s += g.spacingI() * (k % 3 == 0 ? 1.4 : 0.9);
             }
-            v.setGeometry(volume::VolumeGeometry::fromSlicePositions({1, 0, 0}, {0, 1, 0}, g.spacingI(),
-                                                                      g.spacingJ(), positions));
+            v.setGeometry(volume::VolumeGeometry::fromSlicePositions(
+                {1, 0, 0}, {0, 1, 0}, g.spacingI(), g.spacingJ(), positions));
         }
         const Camera camera = shapeCamera(sphere, v, 40.0, 25.0);
         const Mesh mesh = extractIsoSurface(v, kShapeIso);
@@ -256,8 +257,8 @@ TEST(RayCastSilhouette, SegmentsEqualTheMarchingCubesMeshSegments) {
         const auto actual = rendererSegments(renderer);
         ASSERT_GT(expected.size(), 100u);
         EXPECT_EQ(frame.segments, expected.size());
-        EXPECT_TRUE(actual == expected) << "geometry " << geometryCase << ": " << actual.size() << " vs "
-                                        << expected.size() << " segments";
+        EXPECT_TRUE(actual == expected) << "geometry " << geometryCase << ": " << actual.size()
+                                        << " vs " << expected.size() << " segments";
     }
 }
 
@@ -345,7 +346,8 @@ TEST(RayCastSilhouette, NormalConeCullKeepsEverySegment) {
     const volume::Volume v = sampleShape(blobs, 40);
     for (const Projection projection : {Projection::Perspective, Projection::Orthographic})
         for (int view = 0; view < 6; ++view) {
-            const Camera camera = shapeCamera(blobs, v, -170.0 + 61.0 * view, -60.0 + 23.0 * view, projection);
+            const Camera camera =
+                shapeCamera(blobs, v, -170.0 + 61.0 * view, -60.0 + 23.0 * view, projection);
             RayCastSilhouetteRenderer cached, everyFrame;
             cached.setVolume(v);
             everyFrame.setVolume(v);
@@ -355,7 +357,8 @@ TEST(RayCastSilhouette, NormalConeCullKeepsEverySegment) {
             const SilhouetteFrame b = everyFrame.render(camera, settings);
             ASSERT_GT(b.segments, 50u);
             EXPECT_EQ(a.triangles, b.triangles);
-            EXPECT_TRUE(rendererSegments(cached) == rendererSegments(everyFrame)) << "view " << view;
+            EXPECT_TRUE(rendererSegments(cached) == rendererSegments(everyFrame))
+                << "view " << view;
             EXPECT_TRUE(a.lines == b.lines) << "view " << view;
         }
 }

@@ -41,8 +41,8 @@ struct SpreadTables {
     std::uint8_t upper[16];
 };
 constexpr std::uint8_t spread(int column, int c00, int c10, int c01, int c11) {
-    return std::uint8_t(((column & 1) << c00) | (((column >> 1) & 1) << c10) | (((column >> 2) & 1) << c01) |
-                        (((column >> 3) & 1) << c11));
+    return std::uint8_t(((column & 1) << c00) | (((column >> 1) & 1) << c10) |
+                        (((column >> 2) & 1) << c01) | (((column >> 3) & 1) << c11));
 }
 constexpr SpreadTables makeSpread() {
     SpreadTables t{};
@@ -64,8 +64,8 @@ struct RayCastSilhouetteCpu::Impl {
     virtual bool visible(glm::dvec3 point, const SilhouetteView& view) const = 0;
 
     VoxelRayGrid rayGrid;
-    std::vector<std::uint32_t> cells;      // voxel index of each active cell's lowest corner
-    std::vector<std::size_t> chunkStarts;  // chunk c = cells [chunkStarts[c], chunkStarts[c + 1])
+    std::vector<std::uint32_t> cells;     // voxel index of each active cell's lowest corner
+    std::vector<std::size_t> chunkStarts; // chunk c = cells [chunkStarts[c], chunkStarts[c + 1])
     std::size_t activeBricks = 0;
     // Per active cell (mode a only): a cone holding every vertex normal of the cell, so a view
     // skips the cells whose normals cannot straddle the view direction.
@@ -135,17 +135,20 @@ public:
             slope = m_offset.back() - m_offset.front() >= 0.0 ? 1.0 : -1.0;
         m_axisDir[2] = glm::normalize(glm::dvec3(g.stackAxis())) * slope;
         for (int a = 0; a < 3; ++a)
-            m_edgeDirection[a] = {float(m_axisDir[a].x), float(m_axisDir[a].y), float(m_axisDir[a].z)};
+            m_edgeDirection[a] = {float(m_axisDir[a].x), float(m_axisDir[a].y),
+                                  float(m_axisDir[a].z)};
         for (int k = 0; k + 1 < m_nz; ++k) {
             const double gap = m_offset[std::size_t(k) + 1] - m_offset[std::size_t(k)];
             for (int corner = 0; corner < 8; ++corner) {
-                const glm::dvec3 d = ((corner & 1) ? 0.5 : -0.5) * m_stepI + ((corner & 2) ? 0.5 : -0.5) * m_stepJ +
+                const glm::dvec3 d = ((corner & 1) ? 0.5 : -0.5) * m_stepI +
+                                     ((corner & 2) ? 0.5 : -0.5) * m_stepJ +
                                      ((corner & 4) ? 0.5 : -0.5) * gap * m_stack;
                 m_cellRadius = std::max(m_cellRadius, glm::length(d));
             }
         }
         // Cell widths in grid units (i, j, s), for the self-occlusion distance.
-        m_cellScale = glm::dvec3(1.0, 1.0, m_nz > 1 ? std::abs(m_offset.back() - m_offset.front()) / m_cz : 1.0);
+        m_cellScale = glm::dvec3(
+            1.0, 1.0, m_nz > 1 ? std::abs(m_offset.back() - m_offset.front()) / m_cz : 1.0);
         if (!(m_cellScale.z > 0.0))
             m_cellScale.z = 1.0;
     }
@@ -191,16 +194,19 @@ public:
                 rowState.resize(std::size_t(2 * rowsY));
                 for (int dz = 0; dz < 2; ++dz)
                     for (int r = 0; r < rowsY; ++r) {
-                        const T* row = m_voxels + voxelIndex(brick.cellBegin.x, brick.cellBegin.y + r, z + dz);
+                        const T* row =
+                            m_voxels + voxelIndex(brick.cellBegin.x, brick.cellBegin.y + r, z + dz);
                         int n = 0;
                         for (int x = 0; x < width; ++x)
                             n += int(float(row[x]) >= m_isoF);
-                        rowState[std::size_t(dz * rowsY + r)] = std::uint8_t(n == 0 ? 0 : (n == width ? 1 : 2));
+                        rowState[std::size_t(dz * rowsY + r)] =
+                            std::uint8_t(n == 0 ? 0 : (n == width ? 1 : 2));
                     }
                 for (int y = brick.cellBegin.y; y < brick.cellEnd.y; ++y) {
                     const int r = y - brick.cellBegin.y;
                     const std::uint8_t s0 = rowState[std::size_t(r)];
-                    if (s0 != 2 && rowState[std::size_t(r + 1)] == s0 && rowState[std::size_t(rowsY + r)] == s0 &&
+                    if (s0 != 2 && rowState[std::size_t(r + 1)] == s0 &&
+                        rowState[std::size_t(rowsY + r)] == s0 &&
                         rowState[std::size_t(rowsY + r + 1)] == s0)
                         continue;
                     const std::size_t base = voxelIndex(0, y, z);
@@ -254,7 +260,9 @@ public:
     void buildMacroGrid(unsigned threads) {
         const glm::ivec3 cellsPerAxis(std::max(m_cx, 0), std::max(m_cy, 0), std::max(m_cz, 0));
         m_macroDims = (cellsPerAxis + kMacroCells - 1) / kMacroCells;
-        macroOccupied.assign(std::size_t(m_macroDims.x) * std::size_t(m_macroDims.y) * std::size_t(m_macroDims.z), 0);
+        macroOccupied.assign(std::size_t(m_macroDims.x) * std::size_t(m_macroDims.y) *
+                                 std::size_t(m_macroDims.z),
+                             0);
         volume::parallelFor(
             std::size_t(m_macroDims.z),
             [&](std::size_t mz) {
@@ -271,7 +279,8 @@ public:
                                 for (int x = x0; x <= x1; ++x)
                                     any |= inside(base + std::size_t(x));
                             }
-                        macroOccupied[macroIndex({mx * kMacroCells, my * kMacroCells, int(mz) * kMacroCells})] = any;
+                        macroOccupied[macroIndex(
+                            {mx * kMacroCells, my * kMacroCells, int(mz) * kMacroCells})] = any;
                     }
             },
             threads);
@@ -279,10 +288,13 @@ public:
 
     std::size_t macroIndex(glm::ivec3 cell) const {
         const glm::ivec3 m = cell / kMacroCells;
-        return std::size_t(m.x) + std::size_t(m_macroDims.x) * (std::size_t(m.y) + std::size_t(m_macroDims.y) * std::size_t(m.z));
+        return std::size_t(m.x) +
+               std::size_t(m_macroDims.x) *
+                   (std::size_t(m.y) + std::size_t(m_macroDims.y) * std::size_t(m.z));
     }
 
-    std::size_t extract(const SilhouetteView& view, std::vector<SegmentEndpoints>& out, unsigned threads) override {
+    std::size_t extract(const SilhouetteView& view, std::vector<SegmentEndpoints>& out,
+                        unsigned threads) override {
         const std::size_t chunks = chunkStarts.size() - 1;
         if (chunkSegments.size() < chunks)
             chunkSegments.resize(chunks);
@@ -320,7 +332,8 @@ public:
     }
 
     bool visible(glm::dvec3 point, const SilhouetteView& view) const override {
-        const glm::dvec3 toward = view.orthographic ? view.eyeOrDirection : view.eyeOrDirection - point;
+        const glm::dvec3 toward =
+            view.orthographic ? view.eyeOrDirection : view.eyeOrDirection - point;
         const double tMax = view.orthographic ? std::numeric_limits<double>::infinity() : 1.0;
         const glm::dvec3 u0 = rayGrid.toGrid(point);
         const glm::dvec3 du = rayGrid.directionToGrid(toward);
@@ -345,7 +358,8 @@ public:
                 return true;
             const glm::ivec3 macro = cell / kMacroCells;
             int axis = 0;
-            const double tExit = macroOccupied[macroIndex(cell)] ? 0.0 : macroExit(macro, from, du, axis);
+            const double tExit =
+                macroOccupied[macroIndex(cell)] ? 0.0 : macroExit(macro, from, du, axis);
             // (A jump of length 0 would not progress: such a macro cell is walked cell by cell.)
             if (tExit > 0.0) {
                 if (tFrom + tExit >= tMax)
@@ -389,8 +403,8 @@ private:
     float value(std::size_t index) const { return float(m_voxels[index]); }
     bool inside(std::size_t index) const { return value(index) >= m_isoF; }
     int columnBits(std::size_t index) const {
-        return int(inside(index)) | int(inside(index + m_sy)) << 1 | int(inside(index + m_sz)) << 2 |
-               int(inside(index + m_sy + m_sz)) << 3;
+        return int(inside(index)) | int(inside(index + m_sy)) << 1 |
+               int(inside(index + m_sz)) << 2 | int(inside(index + m_sy + m_sz)) << 3;
     }
 
     // Ray parameter (from `from`) where the ray leaves macro cell `macro`, and through which axis.
@@ -410,7 +424,8 @@ private:
     // Grid coordinate of the wall of `macro` that a ray going along du leaves through on `axis`.
     double macroWall(glm::ivec3 macro, glm::dvec3 du, int axis) const {
         const int cellsOnAxis = axis == 0 ? m_cx : (axis == 1 ? m_cy : m_cz);
-        const int c = du[axis] > 0.0 ? std::min((macro[axis] + 1) * kMacroCells, cellsOnAxis) : macro[axis] * kMacroCells;
+        const int c = du[axis] > 0.0 ? std::min((macro[axis] + 1) * kMacroCells, cellsOnAxis)
+                                     : macro[axis] * kMacroCells;
         return axis < 2 ? double(c) : rayGrid.offset(c);
     }
 
@@ -424,7 +439,8 @@ private:
 
     int cellCase(glm::ivec3 p, float v[8]) const {
         for (int c = 0; c < 8; ++c)
-            v[c] = value(voxelIndex(p.x + kMcCornerOffset[c][0], p.y + kMcCornerOffset[c][1], p.z + kMcCornerOffset[c][2]));
+            v[c] = value(voxelIndex(p.x + kMcCornerOffset[c][0], p.y + kMcCornerOffset[c][1],
+                                    p.z + kMcCornerOffset[c][2]));
         return mcCaseIndex(v, m_isoF);
     }
 
@@ -457,16 +473,19 @@ private:
         double minCos = 1.0;
         for (int e = 0; e < 12; ++e)
             if (edges & (1u << e))
-                minCos = std::min(minCos, glm::dot(axis, glm::dvec3(normal[e])) / glm::length(glm::dvec3(normal[e])));
+                minCos = std::min(minCos, glm::dot(axis, glm::dvec3(normal[e])) /
+                                              glm::length(glm::dvec3(normal[e])));
         const double angle = std::acos(std::clamp(minCos, -1.0, 1.0)) + 1e-4;
         if (angle >= 0.5 * 3.14159265358979323846)
             return cone;
-        return {float(axis.x), float(axis.y), float(axis.z), float(std::cos(angle)), float(std::sin(angle))};
+        return {float(axis.x), float(axis.y), float(axis.z), float(std::cos(angle)),
+                float(std::sin(angle))};
     }
 
     // True when d = N . (eye - B) has the same sign, with margin, at every point B of the cell
     // and every normal N of its cone: then none of its triangles has a silhouette segment.
-    bool cannotHoldSilhouette(std::uint32_t cellIndex, const NormalCone& cone, const SilhouetteView& view) const {
+    bool cannotHoldSilhouette(std::uint32_t cellIndex, const NormalCone& cone,
+                              const SilhouetteView& view) const {
         if (!(cone.cosA > 0.0f))
             return false;
         glm::dvec3 w;
@@ -514,8 +533,10 @@ private:
         const std::size_t stride[3] = {1, m_sy, m_sz};
         const std::size_t i00 = voxelIndex(v.x, v.y, v.z);
         const std::size_t sb = stride[b], sc = stride[c];
-        const double v00 = value(i00), v10 = value(i00 + sb), v01 = value(i00 + sc), v11 = value(i00 + sb + sc);
-        spread = std::max(std::max(v00, v10), std::max(v01, v11)) - std::min(std::min(v00, v10), std::min(v01, v11));
+        const double v00 = value(i00), v10 = value(i00 + sb), v01 = value(i00 + sc),
+                     v11 = value(i00 + sb + sc);
+        spread = std::max(std::max(v00, v10), std::max(v01, v11)) -
+                 std::min(std::min(v00, v10), std::min(v01, v11));
         return (1.0 - fc) * ((1.0 - fb) * v00 + fb * v10) + fc * ((1.0 - fb) * v01 + fb * v11);
     }
 
@@ -524,7 +545,8 @@ private:
     McVec3 gradient(int x, int y, int z) const {
         const std::size_t i = voxelIndex(x, y, z);
         if (x > 0 && x < m_cx && y > 0 && y < m_cy && z > 0 && z < m_cz) {
-            return {(value(i + 1) - value(i - 1)) * m_invSpanI, (value(i + m_sy) - value(i - m_sy)) * m_invSpanJ,
+            return {(value(i + 1) - value(i - 1)) * m_invSpanI,
+                    (value(i + m_sy) - value(i - m_sy)) * m_invSpanJ,
                     (value(i + m_sz) - value(i - m_sz)) * m_invSpanK[std::size_t(z)]};
         }
         const float c = value(i);
@@ -532,13 +554,15 @@ private:
         if (x > 0 && x < m_cx)
             g.x = mcDerivative(value(i - 1), value(i + 1), m_spanI);
         else if (m_nx > 1)
-            g.x = x == 0 ? mcDerivative(c, value(i + 1), m_edgeSpanI) : mcDerivative(value(i - 1), c, m_edgeSpanI);
+            g.x = x == 0 ? mcDerivative(c, value(i + 1), m_edgeSpanI)
+                         : mcDerivative(value(i - 1), c, m_edgeSpanI);
         else
             g.x = 0.0f;
         if (y > 0 && y < m_cy)
             g.y = mcDerivative(value(i - m_sy), value(i + m_sy), m_spanJ);
         else if (m_ny > 1)
-            g.y = y == 0 ? mcDerivative(c, value(i + m_sy), m_edgeSpanJ) : mcDerivative(value(i - m_sy), c, m_edgeSpanJ);
+            g.y = y == 0 ? mcDerivative(c, value(i + m_sy), m_edgeSpanJ)
+                         : mcDerivative(value(i - m_sy), c, m_edgeSpanJ);
         else
             g.y = 0.0f;
         const int z0 = std::max(z - 1, 0), z1 = std::min(z + 1, m_cz);
@@ -557,7 +581,8 @@ private:
         unsigned haveGrad = 0;
         auto cornerGradient = [&](int c) -> const McVec3& {
             if (!(haveGrad & (1u << c))) {
-                grad[c] = gradient(p.x + kMcCornerOffset[c][0], p.y + kMcCornerOffset[c][1], p.z + kMcCornerOffset[c][2]);
+                grad[c] = gradient(p.x + kMcCornerOffset[c][0], p.y + kMcCornerOffset[c][1],
+                                   p.z + kMcCornerOffset[c][2]);
                 haveGrad |= 1u << c;
             }
             return grad[c];
@@ -571,7 +596,8 @@ private:
             const int vx = p.x + owner[0], vy = p.y + owner[1], vz = p.z + owner[2];
             const float a = v[c0], b = v[c1];
             const float t = mcEdgeParameter(a, b, m_iso);
-            const McVec3 g = mcTransform(m_normalMatrix, mcLerp(cornerGradient(c0), cornerGradient(c1), t));
+            const McVec3 g =
+                mcTransform(m_normalMatrix, mcLerp(cornerGradient(c0), cornerGradient(c1), t));
             McVec3 fallback = m_edgeDirection[axis];
             if (!(a >= m_isoF))
                 fallback = {-fallback.x, -fallback.y, -fallback.z};
@@ -639,8 +665,8 @@ private:
 RayCastSilhouetteCpu::RayCastSilhouetteCpu() = default;
 RayCastSilhouetteCpu::~RayCastSilhouetteCpu() = default;
 
-void RayCastSilhouetteCpu::prepare(const volume::Volume& volume, const volume::BrickGrid& grid, double storedIso,
-                                   bool withNormalCones, unsigned threads) {
+void RayCastSilhouetteCpu::prepare(const volume::Volume& volume, const volume::BrickGrid& grid,
+                                   double storedIso, bool withNormalCones, unsigned threads) {
     m_impl = volume::dispatchVoxelType(volume.voxelType(), [&](auto tag) -> std::unique_ptr<Impl> {
         using T = decltype(tag);
         return std::make_unique<Engine<T>>(volume, storedIso);
@@ -648,12 +674,21 @@ void RayCastSilhouetteCpu::prepare(const volume::Volume& volume, const volume::B
     m_impl->findCells(grid, withNormalCones, threads);
 }
 
-bool RayCastSilhouetteCpu::isPrepared() const { return m_impl != nullptr; }
-std::size_t RayCastSilhouetteCpu::activeCellCount() const { return m_impl ? m_impl->cells.size() : 0; }
-std::size_t RayCastSilhouetteCpu::activeBrickCount() const { return m_impl ? m_impl->activeBricks : 0; }
-double RayCastSilhouetteCpu::selfSkipCells() { return kSelfSkipCells; }
+bool RayCastSilhouetteCpu::isPrepared() const {
+    return m_impl != nullptr;
+}
+std::size_t RayCastSilhouetteCpu::activeCellCount() const {
+    return m_impl ? m_impl->cells.size() : 0;
+}
+std::size_t RayCastSilhouetteCpu::activeBrickCount() const {
+    return m_impl ? m_impl->activeBricks : 0;
+}
+double RayCastSilhouetteCpu::selfSkipCells() {
+    return kSelfSkipCells;
+}
 
-std::size_t RayCastSilhouetteCpu::extractSegments(const SilhouetteView& view, std::vector<SegmentEndpoints>& out,
+std::size_t RayCastSilhouetteCpu::extractSegments(const SilhouetteView& view,
+                                                  std::vector<SegmentEndpoints>& out,
                                                   unsigned threads) {
     if (!m_impl) {
         out.clear();

@@ -47,7 +47,9 @@ void RayCastSilhouetteRenderer::setVolume(const volume::Volume& volume) {
     m_cache = std::make_unique<Cache>();
 }
 
-std::size_t RayCastSilhouetteRenderer::activeCellCount() const { return m_cache->kernel.activeCellCount(); }
+std::size_t RayCastSilhouetteRenderer::activeCellCount() const {
+    return m_cache->kernel.activeCellCount();
+}
 
 std::vector<RayCastSilhouetteRenderer::Segment> RayCastSilhouetteRenderer::lastSegments() const {
     std::vector<Segment> out;
@@ -70,7 +72,8 @@ bool RayCastSilhouetteRenderer::isPointVisible(const Camera& camera, glm::dvec3 
     return m_cache->kernel.isVisible(point, viewOf(camera));
 }
 
-SilhouetteFrame RayCastSilhouetteRenderer::render(const Camera& camera, const SilhouetteSettings& settings) {
+SilhouetteFrame RayCastSilhouetteRenderer::render(const Camera& camera,
+                                                  const SilhouetteSettings& settings) {
     if (!m_volume)
         throw core::Error("method 2", "no volume bound (setVolume)");
     const volume::Volume& volume = *m_volume;
@@ -85,11 +88,12 @@ SilhouetteFrame RayCastSilhouetteRenderer::render(const Camera& camera, const Si
 
     auto start = Clock::now();
     const bool cachedMode = settings.mode == ExtractionMode::CachedA;
-    const bool stale = !cache.valid || cache.storedIso != storedIso || cache.brickCells != settings.brickCells ||
-                       (cachedMode && !cache.withCones);
+    const bool stale = !cache.valid || cache.storedIso != storedIso ||
+                       cache.brickCells != settings.brickCells || (cachedMode && !cache.withCones);
     if (stale || !cachedMode) {
         const glm::ivec3 cells = glm::max(volume.dims() - 1, glm::ivec3(0));
-        const int edge = settings.brickCells > 0 ? settings.brickCells : std::max({cells.x, cells.y, cells.z, 1});
+        const int edge = settings.brickCells > 0 ? settings.brickCells
+                                                 : std::max({cells.x, cells.y, cells.z, 1});
         const volume::BrickGrid grid = volume::BrickGrid::build(volume, glm::ivec3(edge));
         // Normal cones pay off only when the cells serve several views (mode a).
         cache.kernel.prepare(volume, grid, storedIso, cachedMode, settings.threads);
@@ -129,7 +133,8 @@ SilhouetteFrame RayCastSilhouetteRenderer::render(const Camera& camera, const Si
                     // steps, at most a pixel apart), drawing exactly the pixels whose step is
                     // visible: the visible pieces are then pixel for pixel part of the full line.
                     const glm::dvec2 delta = pb - pa;
-                    const int count = int(std::ceil(std::max(std::abs(delta.x), std::abs(delta.y))));
+                    const int count =
+                        int(std::ceil(std::max(std::abs(delta.x), std::abs(delta.y))));
                     for (int s = 0; s <= count; ++s) {
                         const double t = count == 0 ? 0.0 : double(s) / double(count);
                         if (cache.kernel.isVisible(a + t * (b - a), view)) {

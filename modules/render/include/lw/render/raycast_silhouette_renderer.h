@@ -2,9 +2,8 @@
 
 #include "lw/render/silhouette_renderer.h"
 
-#include <glm/glm.hpp>
-
 #include <cstddef>
+#include <glm/glm.hpp>
 #include <memory>
 #include <vector>
 

@@ -8,10 +8,9 @@
 #include "lw/volume/bricks.h"
 #include "lw/volume/volume.h"
 
-#include <glm/glm.hpp>
-
 #include <cstddef>
 #include <cstdint>
+#include <glm/glm.hpp>
 #include <memory>
 #include <vector>
 

@@ -4,7 +4,8 @@
 // visibility test of method 2.
 //
 // Grid coordinates u = (i, j, s): i and j are the fractional voxel indices and s the distance
-// along the stack axis from slice 0 (mm). With M = [spacingI * axisI | spacingJ * axisJ | stackAxis]
+// along the stack axis from slice 0 (mm). With M = [spacingI * axisI | spacingJ * axisJ |
+// stackAxis]
 //   patient = origin + M u
 // holds for every geometry VolumeGeometry describes, tilted (sheared) and unevenly spaced stacks
 // included, because the slice offset is the only non-linear part of index -> patient and s is
@@ -13,10 +14,9 @@
 
 #include "lw/volume/volume.h"
 
-#include <glm/glm.hpp>
-
 #include <algorithm>
 #include <cmath>
+#include <glm/glm.hpp>
 #include <limits>
 #include <vector>
 
@@ -24,10 +24,10 @@ namespace lw::kernels::cpu {
 
 // Where the walk crossed a cell wall.
 struct CellExit {
-    glm::ivec3 cell{0};   // the cell being left: it spans voxels cell .. cell + 1
-    int axis = 0;         // 0, 1, 2: the wall is perpendicular to i, j or s
-    int wall = 0;         // voxel plane of the wall along `axis` (cell[axis] or cell[axis] + 1)
-    double t = 0.0;       // ray parameter of the exit point
+    glm::ivec3 cell{0};    // the cell being left: it spans voxels cell .. cell + 1
+    int axis = 0;          // 0, 1, 2: the wall is perpendicular to i, j or s
+    int wall = 0;          // voxel plane of the wall along `axis` (cell[axis] or cell[axis] + 1)
+    double t = 0.0;        // ray parameter of the exit point
     glm::dvec3 point{0.0}; // grid coordinates of the exit point
 };
 
@@ -56,7 +56,9 @@ public:
     glm::ivec3 dims() const { return m_dims; }
     glm::ivec3 cellCount() const { return glm::max(m_dims - 1, glm::ivec3(0)); }
     glm::dvec3 toGrid(glm::dvec3 patient) const { return m_toGrid * (patient - m_origin); }
-    glm::dvec3 directionToGrid(glm::dvec3 patientDirection) const { return m_toGrid * patientDirection; }
+    glm::dvec3 directionToGrid(glm::dvec3 patientDirection) const {
+        return m_toGrid * patientDirection;
+    }
     glm::dvec3 toPatient(glm::dvec3 grid) const { return m_origin + m_toPatient * grid; }
     double offset(int k) const { return m_offsets[std::size_t(k)]; }
     // Fractional slice index of grid coordinate s inside slab k (k .. k+1).
@@ -83,8 +85,9 @@ public:
         if (!(u.z >= m_offsets.front() && u.z <= m_offsets.back()))
             return false;
         // First wall strictly above s (or at s when walking down).
-        const auto it = direction.z < 0.0 ? std::lower_bound(m_offsets.begin(), m_offsets.end(), u.z)
-                                          : std::upper_bound(m_offsets.begin(), m_offsets.end(), u.z);
+        const auto it = direction.z < 0.0
+                            ? std::lower_bound(m_offsets.begin(), m_offsets.end(), u.z)
+                            : std::upper_bound(m_offsets.begin(), m_offsets.end(), u.z);
         const int k = int(it - m_offsets.begin()) - 1;
         if (k < 0 || k >= cells.z)
             return false;
@@ -113,7 +116,8 @@ public:
         }
         auto wall = [&](int a, int c) { return a < 2 ? double(c) : m_offsets[std::size_t(c)]; };
         for (int a = 0; a < 3; ++a)
-            next[a] = step[a] == 0 ? kInf : (wall(a, cell[a] + (step[a] > 0 ? 1 : 0)) - start[a]) * inv[a];
+            next[a] = step[a] == 0 ? kInf
+                                   : (wall(a, cell[a] + (step[a] > 0 ? 1 : 0)) - start[a]) * inv[a];
         for (;;) {
             int axis = 0;
             if (next[1] < next[axis])
@@ -136,7 +140,8 @@ public:
             cell[axis] += step[axis];
             if (cell[axis] < 0 || cell[axis] >= cells[axis])
                 return true;
-            next[axis] = (wall(axis, cell[axis] + (step[axis] > 0 ? 1 : 0)) - start[axis]) * inv[axis];
+            next[axis] =
+                (wall(axis, cell[axis] + (step[axis] > 0 ? 1 : 0)) - start[axis]) * inv[axis];
         }
     }
 
