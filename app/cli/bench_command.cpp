@@ -307,10 +307,23 @@ void writeTextRow(std::ostream& out, const Row& row) {
     char line[512];
     const char* visibility = !row.visibility ? "-" : *row.visibility ? "on" : "off";
     if (!row.skipped.empty()) {
-        std::snprintf(line, sizeof line, "%-6s %-7s %-4s %-4s %-5s %-14s skipped: %s\n",
-                      row.method.c_str(), row.variant.c_str(),
-                      row.mode.empty() ? "-" : row.mode.c_str(), visibility, row.backend.c_str(),
-                      row.volume.c_str(), row.skipped.c_str());
+        // The EGL reason lists one platform per line; a table row keeps it on one.
+        std::string reason;
+        for (const char c : row.skipped) {
+            if (c == '\n')
+                reason += ";";
+            else if (!(c == ' ' && !reason.empty() &&
+                       (reason.back() == ' ' || reason.back() == ';')))
+                reason += c;
+            if (c == '\n')
+                reason += ' ';
+        }
+        std::snprintf(line, sizeof line,
+                      "%-6s %-7s %-4s %-4s %-5s %-14s skipped: ", row.method.c_str(),
+                      row.variant.c_str(), row.mode.empty() ? "-" : row.mode.c_str(), visibility,
+                      row.backend.c_str(), row.volume.c_str());
+        out << line << reason << "\n"; // the reason may be longer than `line`
+        return;
     } else {
         std::snprintf(
             line, sizeof line,

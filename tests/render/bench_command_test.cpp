@@ -19,10 +19,10 @@ struct CliResult {
     std::string out;
 };
 
-CliResult runCli(const std::string& arguments) {
+CliResult runCli(const std::string& arguments, const std::string& environment = {}) {
     CliResult result;
     const std::string command =
-        std::string("\"") + LINEWORK_CLI_PATH + "\" " + arguments + " 2>/dev/null";
+        environment + std::string("\"") + LINEWORK_CLI_PATH + "\" " + arguments + " 2>/dev/null";
     FILE* pipe = popen(command.c_str(), "r");
     if (!pipe)
         return result;
@@ -232,6 +232,26 @@ TEST(BenchCommand, MarchingCubesRowAndPeakMemoryOfOneConfiguration) {
     EXPECT_EQ(memory.at("configuration").string, "3,L");
     EXPECT_NEAR(memory.at("volume_mib").number, 32.0 * 32 * 32 * 2 / (1024 * 1024), 1e-9);
     EXPECT_GE(memory.at("peak_rss_mib").number, memory.at("baseline_rss_mib").number);
+}
+
+TEST(BenchCommand, MethodWithoutGlIsReportedAsSkipped) {
+    // glvnd then finds no EGL vendor, as on a machine without a GL driver.
+    const CliResult result =
+        runCli("bench --sizes 32 --repeat 1 --methods 1,3 --variants S --modes a --json",
+               "__EGL_VENDOR_LIBRARY_FILENAMES=/nonexistent/egl_vendor.json ");
+    ASSERT_EQ(result.exitCode, 0) << result.out;
+    const Json rows = parseJson(result.out).at("rows");
+    ASSERT_EQ(rows.array.size(), 4u) << "method 1's rows are reported, not dropped";
+    for (const Json& row : rows.array) {
+        if (row.at("method").number == 1) {
+            EXPECT_EQ(row.at("ms_median").kind, Json::Kind::Null);
+            EXPECT_NE(row.at("skipped").string.find("no OpenGL context"), std::string::npos)
+                << row.at("skipped").string;
+        } else {
+            EXPECT_GT(row.at("ms_median").number, 0.0);
+            EXPECT_EQ(row.object.count("skipped"), 0u);
+        }
+    }
 }
 
 TEST(BenchCommand, BadOptionsFailWithAUsageError) {
