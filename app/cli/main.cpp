@@ -29,12 +29,6 @@ commands:
            [--backend cpu|cuda|auto] [--json]
                               the paper's Table 5 measured: recall/precision (1 px) of each
                               method (S and L) against analytic contours
-  bench [--sizes 32,256,512,512x512x1024] [--input FILE --iso HU] [--backend cpu|cuda|auto]
-        [--methods mc,1,2,3] [--variants S,L] [--modes a,b] [--repeat N] [--image WxH]
-        [--peak-memory-of METHOD,VARIANT] [--json]
-                              the paper's Tables 1-4: median ms of marching cubes and of each
-                              method x S/L x mode a/b x visibility on/off (default phantom
-                              32,256, 1024x1024, 5 runs), stage times, peak memory (VmHWM)
   render INPUT [--series UID] --iso HU --method 1|2|3 [--chunks off|auto|N] [--mode a|b]
          [--visibility on|off] [--view AZ,EL] [--camera perspective|ortho] [--size WxH]
          [--panel iso|silhouette|both] [--backend cpu|cuda|auto] [--repeat N] [--threads N] -o OUT.png
