@@ -32,6 +32,42 @@ constexpr int kMacroCells = 8;
 // Slack of the normal-cone cull, relative to |eye - cell centre|: float round-off of d = N . V
 // (relative 1e-6 at most) must never turn a culled cell into one with a segment.
 constexpr double kConeSlack = 1e-4;
+constexpr std::uint16_t kConeNever = 0xffff;
+constexpr double kConeAngleStep = 0.5 * 3.14159265358979323846 / 65534.0;
+
+// cos and sin of every quantised cone angle, so the per-view cull needs no trigonometry.
+struct ConeTrig {
+    std::vector<float> cosA, sinA;
+    ConeTrig() : cosA(65535), sinA(65535) {
+        for (int q = 0; q < 65535; ++q) {
+            cosA[std::size_t(q)] = float(std::cos(q * kConeAngleStep));
+            sinA[std::size_t(q)] = float(std::sin(q * kConeAngleStep));
+        }
+    }
+};
+const ConeTrig& coneTrig() {
+    static const ConeTrig trig;
+    return trig;
+}
+
+// Octahedral mapping of a unit vector to two values in [-1, 1] and back.
+glm::dvec2 octEncode(glm::dvec3 n) {
+    const double l1 = std::abs(n.x) + std::abs(n.y) + std::abs(n.z);
+    glm::dvec2 p(n.x / l1, n.y / l1);
+    if (n.z < 0.0)
+        p = glm::dvec2((1.0 - std::abs(p.y)) * (p.x >= 0.0 ? 1.0 : -1.0),
+                       (1.0 - std::abs(p.x)) * (p.y >= 0.0 ? 1.0 : -1.0));
+    return p;
+}
+glm::dvec3 octDecode(double x, double y) {
+    glm::dvec3 v(x, y, 1.0 - std::abs(x) - std::abs(y));
+    if (v.z < 0.0) {
+        const double vx = v.x;
+        v.x = (1.0 - std::abs(v.y)) * (vx >= 0.0 ? 1.0 : -1.0);
+        v.y = (1.0 - std::abs(vx)) * (v.y >= 0.0 ? 1.0 : -1.0);
+    }
+    return glm::normalize(v);
+}
 
 // Inside bits of the four voxels (x,y,z), (x,y+1,z), (x,y,z+1), (x,y+1,z+1) spread onto the
 // corner bits of a cell's lower-x (0, 3, 4, 7) or upper-x (1, 2, 5, 6) face (diagram in
@@ -59,8 +95,7 @@ constexpr SpreadTables kSpread = makeSpread();
 struct RayCastSilhouetteCpu::Impl {
     virtual ~Impl() = default;
     virtual void findCells(const volume::BrickGrid& grid, bool withCones, unsigned threads) = 0;
-    virtual std::size_t extract(const SilhouetteView& view, std::vector<SegmentEndpoints>& out,
-                                unsigned threads) = 0;
+    virtual std::size_t extract(const SilhouetteView& view, unsigned threads) = 0;
     virtual bool visible(glm::dvec3 point, const SilhouetteView& view) const = 0;
 
     VoxelRayGrid rayGrid;
@@ -68,15 +103,21 @@ struct RayCastSilhouetteCpu::Impl {
     std::vector<std::size_t> chunkStarts; // chunk c = cells [chunkStarts[c], chunkStarts[c + 1])
     std::size_t activeBricks = 0;
     // Per active cell (mode a only): a cone holding every vertex normal of the cell, so a view
-    // skips the cells whose normals cannot straddle the view direction.
+    // skips the cells whose normals cannot straddle the view direction. 8 bytes, because on a
+    // 512 x 512 x 1024 CT there are millions of active cells: the axis octahedron-encoded in two
+    // int16, the half angle in units of kConeAngleStep rounded up (kConeNever: never culled).
+    // The stored angle is measured from the decoded axis, so the cone stays conservative.
     struct NormalCone {
-        float x, y, z; // unit axis
-        float cosA, sinA;
+        std::int16_t u = 0, v = 0;
+        std::uint16_t angle = 0xffff;
+        std::uint16_t unused = 0;
     };
+    static_assert(sizeof(NormalCone) == 8);
     std::vector<NormalCone> cones;
     std::vector<std::uint8_t> macroOccupied; // per macro cell: holds a voxel >= iso
     // Per-chunk outputs, kept between frames so a new view allocates nothing once warm.
     std::vector<std::vector<SegmentEndpoints>> chunkSegments;
+    std::size_t usedChunks = 0; // chunks of the last extract (chunkSegments may hold more)
     std::vector<std::size_t> chunkTriangles;
     std::vector<std::size_t> chunkTriangleTotal; // with cones: triangles of every cell of the chunk
     std::vector<std::vector<std::uint32_t>> unitCells;
@@ -293,8 +334,7 @@ public:
                    (std::size_t(m.y) + std::size_t(m_macroDims.y) * std::size_t(m.z));
     }
 
-    std::size_t extract(const SilhouetteView& view, std::vector<SegmentEndpoints>& out,
-                        unsigned threads) override {
+    std::size_t extract(const SilhouetteView& view, unsigned threads) override {
         const std::size_t chunks = chunkStarts.size() - 1;
         if (chunkSegments.size() < chunks)
             chunkSegments.resize(chunks);
@@ -319,15 +359,10 @@ public:
                 chunkTriangles[c] = chunkTriangleTotal[c];
             },
             threads);
-        out.clear();
-        std::size_t total = 0, triangles = 0;
-        for (std::size_t c = 0; c < chunks; ++c) {
-            total += chunkSegments[c].size();
-            triangles += chunkTriangles[c];
-        }
-        out.reserve(total);
+        usedChunks = chunks;
+        std::size_t triangles = 0;
         for (std::size_t c = 0; c < chunks; ++c)
-            out.insert(out.end(), chunkSegments[c].begin(), chunkSegments[c].end());
+            triangles += chunkTriangles[c];
         return triangles;
     }
 
@@ -465,29 +500,35 @@ private:
         for (int e = 0; e < 12; ++e)
             if (edges & (1u << e))
                 sum += glm::dvec3(normal[e]);
-        NormalCone cone{0.0f, 0.0f, 1.0f, -1.0f, 0.0f}; // the full sphere: never culled
+        NormalCone cone; // angle kConeNever: never culled
         const double length = glm::length(sum);
         if (!(length > 1e-6))
             return cone;
-        const glm::dvec3 axis = sum / length;
+        const glm::dvec2 oct = octEncode(sum / length);
+        cone.u = std::int16_t(std::lround(oct.x * 32767.0));
+        cone.v = std::int16_t(std::lround(oct.y * 32767.0));
+        const glm::dvec3 axis = octDecode(cone.u / 32767.0, cone.v / 32767.0);
         double minCos = 1.0;
         for (int e = 0; e < 12; ++e)
             if (edges & (1u << e))
                 minCos = std::min(minCos, glm::dot(axis, glm::dvec3(normal[e])) /
                                               glm::length(glm::dvec3(normal[e])));
-        const double angle = std::acos(std::clamp(minCos, -1.0, 1.0)) + 1e-4;
-        if (angle >= 0.5 * 3.14159265358979323846)
+        // Slack for the float decode at view time and the float cos/sin table.
+        const double angle = std::acos(std::clamp(minCos, -1.0, 1.0)) + 1e-5;
+        const double steps = std::ceil(angle / kConeAngleStep);
+        if (!(steps < 65534.0))
             return cone;
-        return {float(axis.x), float(axis.y), float(axis.z), float(std::cos(angle)),
-                float(std::sin(angle))};
+        cone.angle = std::uint16_t(steps);
+        return cone;
     }
 
     // True when d = N . (eye - B) has the same sign, with margin, at every point B of the cell
     // and every normal N of its cone: then none of its triangles has a silhouette segment.
     bool cannotHoldSilhouette(std::uint32_t cellIndex, const NormalCone& cone,
                               const SilhouetteView& view) const {
-        if (!(cone.cosA > 0.0f))
+        if (cone.angle >= kConeNever - 1)
             return false;
+        const double cosA = coneTrig().cosA[cone.angle], sinA = coneTrig().sinA[cone.angle];
         glm::dvec3 w;
         double rw = 0.0;
         if (view.orthographic) {
@@ -502,13 +543,13 @@ private:
         const double wl = glm::length(w);
         if (!(wl > 0.0))
             return false;
-        const double c = glm::dot(glm::dvec3(cone.x, cone.y, cone.z), w) / wl;
+        const double c = glm::dot(octDecode(cone.u / 32767.0, cone.v / 32767.0), w) / wl;
         const double sn = std::sqrt(std::max(0.0, 1.0 - c * c));
         const double margin = rw + kConeSlack;
         // min over the cone of N . w^ is cos(theta + alpha), max is cos(theta - alpha).
-        if (c > 0.0 && c * cone.cosA - sn * cone.sinA > margin)
+        if (c > 0.0 && c * cosA - sn * sinA > margin)
             return true;
-        if (c < 0.0 && c * cone.cosA + sn * cone.sinA < -margin)
+        if (c < 0.0 && c * cosA + sn * sinA < -margin)
             return true;
         return false;
     }
@@ -687,14 +728,34 @@ double RayCastSilhouetteCpu::selfSkipCells() {
     return kSelfSkipCells;
 }
 
+std::size_t RayCastSilhouetteCpu::extractSegments(const SilhouetteView& view, unsigned threads) {
+    return m_impl ? m_impl->extract(view, threads) : 0;
+}
+
+std::size_t RayCastSilhouetteCpu::segmentChunkCount() const {
+    return m_impl ? m_impl->usedChunks : 0;
+}
+
+const std::vector<SegmentEndpoints>& RayCastSilhouetteCpu::segmentChunk(std::size_t chunk) const {
+    return m_impl->chunkSegments[chunk];
+}
+
+std::size_t RayCastSilhouetteCpu::segmentCount() const {
+    std::size_t n = 0;
+    for (std::size_t c = 0; c < segmentChunkCount(); ++c)
+        n += m_impl->chunkSegments[c].size();
+    return n;
+}
+
 std::size_t RayCastSilhouetteCpu::extractSegments(const SilhouetteView& view,
                                                   std::vector<SegmentEndpoints>& out,
                                                   unsigned threads) {
-    if (!m_impl) {
-        out.clear();
-        return 0;
-    }
-    return m_impl->extract(view, out, threads);
+    const std::size_t triangles = extractSegments(view, threads);
+    out.clear();
+    out.reserve(segmentCount());
+    for (std::size_t c = 0; c < segmentChunkCount(); ++c)
+        out.insert(out.end(), segmentChunk(c).begin(), segmentChunk(c).end());
+    return triangles;
 }
 
 bool RayCastSilhouetteCpu::isVisible(glm::dvec3 patientPoint, const SilhouetteView& view) const {

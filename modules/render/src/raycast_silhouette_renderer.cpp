@@ -18,15 +18,6 @@ double msSince(Clock::time_point start) {
     return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
 }
 
-// Segments per visibility work item: big enough to amortise the hand-out, small enough to
-// balance rays of very different lengths.
-constexpr std::size_t kVisibilityChunk = 256;
-
-struct Piece {
-    glm::dvec2 a;
-    glm::dvec2 b;
-};
-
 } // namespace
 
 struct RayCastSilhouetteRenderer::Cache {
@@ -35,8 +26,12 @@ struct RayCastSilhouetteRenderer::Cache {
     int brickCells = -1;
     bool valid = false;
     bool withCones = false;
-    std::vector<kernels::SegmentEndpoints> segments;
-    std::vector<std::vector<Piece>> chunkPieces; // reused between frames
+    // Per segment chunk of the kernel, reused between frames: the projected lines to draw
+    // (pairs of float pixel points) and, along segments, the single pixels of visible steps.
+    // Projected points are rounded to float once, and every mode draws from the rounded
+    // values, so a visible piece is pixel for pixel part of the line drawn with visibility off.
+    std::vector<std::vector<glm::vec2>> chunkLines;
+    std::vector<std::vector<glm::ivec2>> chunkDots;
 };
 
 RayCastSilhouetteRenderer::RayCastSilhouetteRenderer() : m_cache(std::make_unique<Cache>()) {}
@@ -53,9 +48,11 @@ std::size_t RayCastSilhouetteRenderer::activeCellCount() const {
 
 std::vector<RayCastSilhouetteRenderer::Segment> RayCastSilhouetteRenderer::lastSegments() const {
     std::vector<Segment> out;
-    out.reserve(m_cache->segments.size());
-    for (const auto& s : m_cache->segments)
-        out.push_back({s.a, s.b});
+    const auto& kernel = m_cache->kernel;
+    out.reserve(kernel.segmentCount());
+    for (std::size_t c = 0; c < kernel.segmentChunkCount(); ++c)
+        for (const auto& s : kernel.segmentChunk(c))
+            out.push_back({s.a, s.b});
     return out;
 }
 
@@ -106,40 +103,46 @@ SilhouetteFrame RayCastSilhouetteRenderer::render(const Camera& camera,
 
     start = Clock::now();
     const kernels::cpu::SilhouetteView view = viewOf(camera);
-    frame.triangles = cache.kernel.extractSegments(view, cache.segments, settings.threads);
-    frame.segments = cache.segments.size();
+    frame.triangles = cache.kernel.extractSegments(view, settings.threads);
+    frame.segments = cache.kernel.segmentCount();
     frame.times.silhouetteMs = msSince(start);
 
     start = Clock::now();
-    const std::size_t chunks = (cache.segments.size() + kVisibilityChunk - 1) / kVisibilityChunk;
-    if (cache.chunkPieces.size() < chunks)
-        cache.chunkPieces.resize(chunks);
+    const std::size_t chunks = cache.kernel.segmentChunkCount();
+    if (cache.chunkLines.size() < chunks) {
+        cache.chunkLines.resize(chunks);
+        cache.chunkDots.resize(chunks);
+    }
+    auto pixelOf = [&](glm::dvec3 p) { return glm::vec2(camera.project(p).pixel); };
     volume::parallelFor(
         chunks,
         [&](std::size_t c) {
-            auto& pieces = cache.chunkPieces[c];
-            pieces.clear();
-            const std::size_t end = std::min(cache.segments.size(), (c + 1) * kVisibilityChunk);
-            for (std::size_t i = c * kVisibilityChunk; i < end; ++i) {
-                const glm::dvec3 a(cache.segments[i].a), b(cache.segments[i].b);
-                const glm::dvec2 pa = camera.project(a).pixel, pb = camera.project(b).pixel;
+            auto& lines = cache.chunkLines[c];
+            auto& dots = cache.chunkDots[c];
+            lines.clear();
+            dots.clear();
+            for (const kernels::SegmentEndpoints& segment : cache.kernel.segmentChunk(c)) {
+                const glm::dvec3 a(segment.a), b(segment.b);
                 if (!settings.visibility) {
-                    pieces.push_back({pa, pb});
+                    lines.push_back(pixelOf(a));
+                    lines.push_back(pixelOf(b));
                 } else if (!settings.testAlongSegment) {
-                    if (cache.kernel.isVisible(a, view) && cache.kernel.isVisible(b, view))
-                        pieces.push_back({pa, pb});
+                    if (cache.kernel.isVisible(a, view) && cache.kernel.isVisible(b, view)) {
+                        lines.push_back(pixelOf(a));
+                        lines.push_back(pixelOf(b));
+                    }
                 } else {
-                    // One test per step of the line rasterizer (rasterizeLine's own parameter
-                    // steps, at most a pixel apart), drawing exactly the pixels whose step is
-                    // visible: the visible pieces are then pixel for pixel part of the full line.
+                    // One test per step of rasterizeLine (at most a pixel apart), with its own
+                    // arithmetic, keeping exactly the pixels whose step is visible.
+                    const glm::dvec2 pa(pixelOf(a)), pb(pixelOf(b));
                     const glm::dvec2 delta = pb - pa;
                     const int count =
                         int(std::ceil(std::max(std::abs(delta.x), std::abs(delta.y))));
-                    for (int s = 0; s <= count; ++s) {
-                        const double t = count == 0 ? 0.0 : double(s) / double(count);
+                    for (int step = 0; step <= count; ++step) {
+                        const double t = count == 0 ? 0.0 : double(step) / double(count);
                         if (cache.kernel.isVisible(a + t * (b - a), view)) {
                             const glm::dvec2 q = pa + t * delta;
-                            pieces.push_back({q, q});
+                            dots.push_back({int(std::floor(q.x)), int(std::floor(q.y))});
                         }
                     }
                 }
@@ -150,9 +153,14 @@ SilhouetteFrame RayCastSilhouetteRenderer::render(const Camera& camera,
 
     // Drawing is serial: a pass over the pieces is cheap and needs no atomic pixel writes.
     start = Clock::now();
-    for (std::size_t c = 0; c < chunks; ++c)
-        for (const Piece& piece : cache.chunkPieces[c])
-            rasterizeLine(frame.lines, piece.a, piece.b);
+    for (std::size_t c = 0; c < chunks; ++c) {
+        const auto& lines = cache.chunkLines[c];
+        for (std::size_t i = 0; i + 1 < lines.size(); i += 2)
+            rasterizeLine(frame.lines, glm::dvec2(lines[i]), glm::dvec2(lines[i + 1]));
+        for (const glm::ivec2 dot : cache.chunkDots[c])
+            if (frame.lines.contains(dot.x, dot.y))
+                frame.lines.set(dot.x, dot.y);
+    }
     frame.times.drawMs = msSince(start);
     return frame;
 }

@@ -48,6 +48,14 @@ public:
     // patient mm, cell by cell in brick order. The triangles, vertices and normals are those of
     // marchingCubes() bit for bit (same shared expressions, same evaluation order), so the
     // segments equal the ones computed from its mesh. Returns the number of triangles visited.
+    std::size_t extractSegments(const SilhouetteView& view, unsigned threads = 0);
+    // The segments of the last extractSegments() in work chunks (never straddling a brick), in
+    // brick then cell order. Kept in place rather than concatenated: on a 512 x 512 x 1024 CT a
+    // copy would cost as much memory as the segments themselves.
+    std::size_t segmentChunkCount() const;
+    const std::vector<SegmentEndpoints>& segmentChunk(std::size_t chunk) const;
+    std::size_t segmentCount() const;
+    // Convenience (tests, tools): extractSegments() and the segments in one flat list.
     std::size_t extractSegments(const SilhouetteView& view, std::vector<SegmentEndpoints>& out,
                                 unsigned threads = 0);
 
