@@ -170,7 +170,7 @@ int runAccuracy(const std::vector<std::string>& args, std::ostream& out) {
                            const render::PixelMask& drawn) {
                 Row row;
                 row.method = method;
-                row.variant = chunked ? "L" : "S";
+                row.variant.assign(1, chunked ? 'L' : 'S'); // (assign of a literal trips GCC 12's -Wrestrict)
                 row.visibility = visibility;
                 row.shape = shapeName;
                 row.size = n;

@@ -304,8 +304,9 @@ TEST(RayCastSilhouette, VisibilityOffIsASupersetOfOn) {
         EXPECT_LT(on.lines.count(), off.lines.count()) << "hidden contours must be removed";
         for (int y = 0; y < on.lines.height(); ++y)
             for (int x = 0; x < on.lines.width(); ++x)
-                if (on.lines.get(x, y))
+                if (on.lines.get(x, y)) {
                     ASSERT_TRUE(off.lines.get(x, y)) << x << "," << y;
+                }
         EXPECT_EQ(on.segments, off.segments);
     }
 }
