@@ -12,11 +12,13 @@ work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 
 ge="$data/dicom/ct_head_ge_hispeed_tilt_varspacing"
-philips="$data/dicom/ct_headphantom_philips_dicomdir_export/DICOM/S21610/S2010"
+philips="$data/dicom/ct_headphantom_philips_dicomdir_export/DICOM/S21610/S2010"    # tilted
+philips_flat="$data/dicom/ct_headphantom_philips_dicomdir_export/DICOM/S21570/S2010" # no tilt
 # JPEG-LS copies made here so both tools read the same compressed bytes.
-mkdir -p "$work/ge_jls" "$work/philips_jls" "$work/philips"
+mkdir -p "$work/ge_jls" "$work/philips_jls" "$work/philips" "$work/philips_flat"
 for f in "$ge"/*.dcm; do dcmcjpls --encode-lossless "$f" "$work/ge_jls/$(basename "$f")"; done
 # The Philips folder also holds a DIRFILE (a DICOMDIR); copy only the images.
+for f in "$philips_flat"/I*; do cp "$f" "$work/philips_flat/"; done
 for f in "$philips"/I*; do cp "$f" "$work/philips/"; dcmcjpls --encode-lossless "$f" "$work/philips_jls/$(basename "$f")"; done
 
 median_ms() { sort -n | awk '{a[NR]=$1} END {print (NR%2 ? a[(NR+1)/2] : (a[NR/2]+a[NR/2+1])/2)}'; }
@@ -40,11 +42,19 @@ time_linework() { # median ms of scan + assemble + decode, from bench-import --j
 
 echo "| series | slices | dcm2niix ms | dcm2niix slices/s | linework ms | linework slices/s |"
 echo "|---|---|---|---|---|---|"
-for entry in "GE head CT, uncompressed:$ge" "GE head CT, JPEG-LS lossless:$work/ge_jls" \
+# dcm2niix resamples gantry-tilted series (linework keeps them sheared, without resampling), so
+# the untilted Philips series is the like-for-like comparison. Debian's dcm2niix is built
+# without JPEG-LS: on those rows it fails fast and converts nothing (marked "n/a").
+for entry in "Philips head phantom 5 mm, no tilt, uncompressed:$work/philips_flat" "GE head CT, uncompressed:$ge" "GE head CT, JPEG-LS lossless:$work/ge_jls" \
              "Philips head phantom, uncompressed:$work/philips" "Philips head phantom, JPEG-LS lossless:$work/philips_jls"; do
   name=${entry%%:*}; dir=${entry#*:}
   n=$(ls "$dir" | wc -l)
-  d=$(time_dcm2niix "$dir"); l=$(time_linework "$dir")
+  l=$(time_linework "$dir")
+  if dcm2niix -z n -b n -o "$work" -f probe "$dir" 2>&1 | grep -q "No valid DICOM images"; then
+    printf '| %s | %d | n/a (cannot decode) | n/a | %s | %.0f |\n' "$name" "$n" "$l" "$(echo "$n*1000/$l" | bc -l)"
+    continue
+  fi
+  d=$(time_dcm2niix "$dir")
   printf '| %s | %d | %s | %.0f | %s | %.0f |\n' "$name" "$n" "$d" "$(echo "$n*1000/$d" | bc -l)" \
          "$l" "$(echo "$n*1000/$l" | bc -l)"
 done
