@@ -2,60 +2,31 @@
 // available silhouette method draws them, and the drawing is scored against the true occluding
 // contour traced from the analytic function (true_contour.h), with a 1 pixel tolerance.
 #include "arguments.h"
+#include "cli_inputs.h"
 #include "commands.h"
 #include "lw/core/error.h"
 #include "lw/core/json_writer.h"
 #include "lw/render/analytic_shapes.h"
 #include "lw/render/camera.h"
 #include "lw/render/contour_score.h"
-#include "lw/render/iso_surface.h"
-#include "lw/render/raycast_silhouette_renderer.h"
+#include "lw/render/renderer_factory.h"
 #include "lw/render/true_contour.h"
-
-#if __has_include("lw/render/zbuffer_silhouette_renderer.h")
-#include "lw/render/zbuffer_silhouette_renderer.h"
-#define LW_ACCURACY_HAVE_METHOD3 1
-#else
-#define LW_ACCURACY_HAVE_METHOD3 0
-#endif
-
-#if defined(LINEWORK_GL) && LINEWORK_GL &&                                                         \
-    __has_include("lw/render/silhouette_gl_renderer.h") && __has_include("lw/render/gl_context.h")
-#include "lw/render/gl_context.h"
-#include "lw/render/silhouette_gl_renderer.h"
-#define LW_ACCURACY_HAVE_METHOD1 1
-#else
-#define LW_ACCURACY_HAVE_METHOD1 0
-#endif
 
 #include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
 #include <memory>
-#include <optional>
 #include <ostream>
-#include <sstream>
 #include <string>
 #include <vector>
 
 namespace lw::cli {
 namespace {
 
-std::vector<std::string> splitList(const std::string& text) {
-    std::vector<std::string> parts;
-    std::stringstream stream(text);
-    std::string part;
-    while (std::getline(stream, part, ','))
-        if (!part.empty())
-            parts.push_back(part);
-    return parts;
-}
-
 std::vector<int> parseIntList(const std::string& option, const std::string& text, int minimum) {
     std::vector<int> values;
-    for (const std::string& part : splitList(text)) {
+    for (const std::string& part : splitList(text, ',', false)) {
         int value = 0;
         const auto [end, error] = std::from_chars(part.data(), part.data() + part.size(), value);
         if (error != std::errc() || end != part.data() + part.size() || value < minimum)
@@ -92,13 +63,8 @@ int runAccuracy(const std::vector<std::string>& args, std::ostream& out) {
         throw core::Error("accuracy",
                           "usage: accuracy [--backend cpu|cuda|auto] [--methods 1,2,3] "
                           "[--sizes 32,64,256] [--shapes sphere,...] [--view AZ,EL] [--json]");
-    const std::string backend = arguments.option("backend", "auto");
-    if (backend != "cpu" && backend != "cuda" && backend != "auto")
-        throw core::Error("--backend " + backend, "expected cpu, cuda or auto");
-    if (backend == "cuda")
-        throw core::Error("--backend cuda",
-                          "this build has no CUDA implementation of the silhouette methods");
-    const std::string backendUsed = "cpu"; // auto: no CUDA silhouette back-end in this build
+    const render::Backend backend = render::parseBackend(arguments.option("backend", "auto"));
+    const std::string backendUsed(render::backendName(render::resolveBackend(backend)));
     const std::vector<int> methods =
         parseIntList("methods", arguments.option("methods", "1,2,3"), 1);
     for (int m : methods)
@@ -106,49 +72,36 @@ int runAccuracy(const std::vector<std::string>& args, std::ostream& out) {
             throw core::Error("--methods", "methods are 1, 2 and 3");
     const std::vector<int> sizes = parseIntList("sizes", arguments.option("sizes", "32,64,256"), 8);
     const std::vector<std::string> shapes = arguments.option("shapes")
-                                                ? splitList(*arguments.option("shapes"))
+                                                ? splitList(*arguments.option("shapes"), ',', false)
                                                 : render::analyticShapeNames();
     const bool json = arguments.flag("json");
     double azimuth = kAzimuth, elevation = kElevation;
     if (const auto view = arguments.option("view")) {
-        const auto parts = splitList(*view);
-        char* end0 = nullptr;
-        char* end1 = nullptr;
-        if (parts.size() == 2) {
-            azimuth = std::strtod(parts[0].c_str(), &end0);
-            elevation = std::strtod(parts[1].c_str(), &end1);
-        }
-        if (parts.size() != 2 || *end0 != '\0' || *end1 != '\0' || std::abs(elevation) > 90.0)
+        const glm::dvec2 parsed = parseView(*view);
+        if (std::abs(parsed.y) > 90.0)
             throw core::Error("--view " + *view, "expected AZ,EL in degrees with |EL| <= 90");
+        azimuth = parsed.x;
+        elevation = parsed.y;
     }
     auto wants = [&](int m) {
         return std::find(methods.begin(), methods.end(), m) != methods.end();
     };
 
+    // One renderer per method, bound to each sampled volume in turn; only method 1 may be missing
+    // (no OpenGL context), and then it is skipped with a note.
     std::vector<std::string> notes;
-#if LW_ACCURACY_HAVE_METHOD1
-    std::unique_ptr<render::EglHeadlessContext> glContext;
-    std::unique_ptr<render::SilhouetteGlRenderer> glRenderer;
-    if (wants(1)) {
+    std::unique_ptr<render::SilhouetteRenderer> renderers[4];
+    for (int m = 1; m <= 3; ++m) {
+        if (!wants(m))
+            continue;
         try {
-            glContext = std::make_unique<render::EglHeadlessContext>();
-            glRenderer = std::make_unique<render::SilhouetteGlRenderer>();
-            glRenderer->initialize();
+            renderers[m] = render::createSilhouetteRenderer(render::SilhouetteMethod(m), backend);
         } catch (const core::Error& error) {
-            glRenderer.reset();
-            glContext.reset();
-            notes.push_back(std::string("method 1 skipped: no OpenGL context (") + error.what() +
-                            ")");
+            if (m != 1)
+                throw;
+            notes.push_back("method 1 skipped: " + error.reason());
         }
     }
-#else
-    if (wants(1))
-        notes.push_back("method 1 skipped: this build has no GL renderer (EGL/OpenGL not found)");
-#endif
-#if !LW_ACCURACY_HAVE_METHOD3
-    if (wants(3))
-        notes.push_back("method 3 skipped: this build has no z-buffer renderer");
-#endif
 
     std::vector<Row> rows;
     for (const std::string& shapeName : shapes) {
@@ -170,7 +123,8 @@ int runAccuracy(const std::vector<std::string>& args, std::ostream& out) {
                            const render::PixelMask& drawn) {
                 Row row;
                 row.method = method;
-                row.variant.assign(1, chunked ? 'L' : 'S'); // (assign of a literal trips GCC 12's -Wrestrict)
+                row.variant.assign(
+                    1, chunked ? 'L' : 'S'); // (assign of a literal trips GCC 12's -Wrestrict)
                 row.visibility = visibility;
                 row.shape = shapeName;
                 row.size = n;
@@ -183,46 +137,24 @@ int runAccuracy(const std::vector<std::string>& args, std::ostream& out) {
                 render::SilhouetteSettings settings;
                 settings.isoReal = render::kShapeIso;
                 settings.brickCells = chunked ? brickCells : 0;
-#if LW_ACCURACY_HAVE_METHOD1
-                if (glRenderer) {
-                    render::IsoSurfaceOptions options;
-                    options.brickCells = settings.brickCells;
-                    const render::Mesh mesh =
-                        render::extractIsoSurface(volume, render::kShapeIso, options);
-                    glRenderer->uploadMesh(mesh);
-                    render::SilhouetteGlOptions gl;
-                    gl.panel = render::GlPanel::Silhouette;
-                    gl.background = {0.0f, 0.0f, 0.0f, 1.0f};
-                    gl.lineColour = {1.0f, 1.0f, 1.0f, 1.0f};
-                    const core::ImageRgba8 image = glRenderer->renderImage(camera, gl);
-                    add(1, chunked, "on", render::PixelMask::fromImage(image, {0, 0, 0, 255}));
-                }
-#endif
-                if (wants(2)) {
-                    render::RayCastSilhouetteRenderer renderer;
+                for (int m = 1; m <= 3; ++m) {
+                    if (!renderers[m])
+                        continue;
+                    render::SilhouetteRenderer& renderer = *renderers[m];
                     renderer.setVolume(volume);
+                    if (m != 2) {
+                        add(m, chunked, "on", renderer.render(camera, settings).lines);
+                        continue;
+                    }
                     settings.testAlongSegment = false;
                     add(2, chunked, "endpoints", renderer.render(camera, settings).lines);
                     settings.testAlongSegment = true;
                     add(2, chunked, "along", renderer.render(camera, settings).lines);
                     settings.testAlongSegment = false;
                 }
-#if LW_ACCURACY_HAVE_METHOD3
-                if (wants(3)) {
-                    render::ZBufferSilhouetteRenderer renderer;
-                    renderer.setVolume(volume);
-                    add(3, chunked, "on", renderer.render(camera, settings).lines);
-                }
-#endif
             }
         }
     }
-#if LW_ACCURACY_HAVE_METHOD1
-    if (glRenderer) {
-        glRenderer->release();
-        glRenderer.reset();
-    }
-#endif
 
     std::sort(rows.begin(), rows.end(), [](const Row& a, const Row& b) {
         if (a.method != b.method)

@@ -1,6 +1,7 @@
 // `linework-cli bench`: the paper's Table 1 (marching cubes) and Tables 2-4 (methods 1/2/3 x S/L
 // x mode a/b x visibility on/off) on the benchmark phantom or a volume file, plus peak memory.
 #include "arguments.h"
+#include "cli_inputs.h"
 #include "commands.h"
 #include "lw/core/error.h"
 #include "lw/core/json_writer.h"
@@ -13,7 +14,6 @@
 #include "lw/volume/volume_reader.h"
 
 #include <algorithm>
-#include <charconv>
 #include <chrono>
 #include <cstdio>
 #include <fstream>
@@ -46,41 +46,6 @@ using Clock = std::chrono::steady_clock;
 
 double msSince(Clock::time_point start) {
     return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-}
-
-std::vector<std::string> splitList(const std::string& text) {
-    std::vector<std::string> parts;
-    std::stringstream stream(text);
-    std::string part;
-    while (std::getline(stream, part, ','))
-        parts.push_back(part);
-    return parts;
-}
-
-// "N" or "NXxNYxNZ" with positive integers.
-glm::ivec3 parseDims(const std::string& text, const std::string& option) {
-    std::vector<int> parts;
-    const char* p = text.data();
-    const char* end = text.data() + text.size();
-    while (p < end) {
-        int value = 0;
-        const auto [next, error] = std::from_chars(p, end, value);
-        if (error != std::errc() || value < 2)
-            break;
-        parts.push_back(value);
-        p = next;
-        if (p < end && *p == 'x')
-            ++p;
-        else
-            break;
-    }
-    if (p != end || (parts.size() != 1 && parts.size() != 3))
-        throw core::Error(option + " " + text, "expected N or NXxNYxNZ with integers >= 2");
-    return parts.size() == 1 ? glm::ivec3(parts[0]) : glm::ivec3(parts[0], parts[1], parts[2]);
-}
-
-std::string dimsText(glm::ivec3 d) {
-    return std::to_string(d.x) + "x" + std::to_string(d.y) + "x" + std::to_string(d.z);
 }
 
 double median(std::vector<double> values) {
@@ -366,9 +331,7 @@ int runBench(const std::vector<std::string>& args, std::ostream& out) {
 
     Plan plan;
     plan.backend = render::parseBackend(arguments.option("backend", "auto"));
-    if (plan.backend == render::Backend::Cuda)
-        render::createSilhouetteRenderer(render::SilhouetteMethod::ZBuffer,
-                                         plan.backend); // throws: not built
+    render::resolveBackend(plan.backend); // fail before the first run: CUDA is not built yet
     plan.methods = parseChoiceList(arguments.option("methods", "mc,1,2,3"), "--methods",
                                    {"mc", "1", "2", "3"});
     plan.variants = parseChoiceList(arguments.option("variants", "S,L"), "--variants", {"S", "L"});
@@ -378,18 +341,8 @@ int runBench(const std::vector<std::string>& args, std::ostream& out) {
         throw core::Error("--repeat", "expected a whole number >= 1");
     plan.repeat = int(repeat);
     plan.threads = unsigned(std::max(0.0, arguments.number("threads", 0)));
-    if (const auto image = arguments.option("image")) {
-        const auto x = image->find('x');
-        int width = 0, height = 0;
-        const char* end = image->data() + image->size();
-        const bool valid =
-            x != std::string::npos &&
-            std::from_chars(image->data(), image->data() + x, width).ptr == image->data() + x &&
-            std::from_chars(image->data() + x + 1, end, height).ptr == end;
-        if (!valid || width < 2 || height < 2 || width > 16384 || height > 16384)
-            throw core::Error("--image " + *image, "expected WxH between 2 and 16384");
-        plan.image = {width, height};
-    }
+    if (const auto image = arguments.option("image"))
+        plan.image = parseImageSize("--image", *image, 2);
 
     std::optional<std::string> peakMethod;
     if (const auto peak = arguments.option("peak-memory-of")) {
@@ -416,7 +369,7 @@ int runBench(const std::vector<std::string>& args, std::ostream& out) {
         if (volumeSpecs.empty())
             throw core::Error("--sizes", "the list is empty");
         for (const std::string& size : volumeSpecs)
-            parseDims(size, "--sizes"); // fail before the first (possibly long) run
+            parseDimsOption("--sizes", size, 2); // fail before the first (possibly long) run
     }
     if (peakMethod && volumeSpecs.size() != 1)
         throw core::Error("--peak-memory-of",
@@ -434,7 +387,7 @@ int runBench(const std::vector<std::string>& args, std::ostream& out) {
             bench.volume = volume::readVolumeFile(spec);
             bench.label = spec;
         } else {
-            const glm::ivec3 dims = parseDims(spec, "--sizes");
+            const glm::ivec3 dims = parseDimsOption("--sizes", spec, 2);
             bench.volume = render::makePhantom(dims, render::PhantomKind::Ct, plan.threads);
             bench.label = "phantom " + dimsText(dims);
         }

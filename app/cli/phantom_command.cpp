@@ -1,5 +1,6 @@
 // `phantom` writes the benchmark phantom; `bench-mc` times marching cubes on it.
 #include "arguments.h"
+#include "cli_inputs.h"
 #include "commands.h"
 #include "lw/core/error.h"
 #include "lw/render/iso_surface.h"
@@ -7,7 +8,6 @@
 #include "lw/volume/volume_reader.h"
 
 #include <algorithm>
-#include <charconv>
 #include <chrono>
 #include <cstdio>
 #include <ctime>
@@ -16,32 +16,6 @@
 
 namespace lw::cli {
 namespace {
-
-// "N" or "NXxNYxNZ".
-glm::ivec3 parseSize(const std::string& text) {
-    std::vector<int> parts;
-    const char* p = text.data();
-    const char* end = text.data() + text.size();
-    while (p < end) {
-        int value = 0;
-        const auto [next, error] = std::from_chars(p, end, value);
-        if (error != std::errc() || value < 1)
-            break;
-        parts.push_back(value);
-        p = next;
-        if (p < end && *p == 'x')
-            ++p;
-        else
-            break;
-    }
-    if (p != end || (parts.size() != 1 && parts.size() != 3))
-        throw core::Error("--size " + text, "expected N or NXxNYxNZ with positive integers");
-    return parts.size() == 1 ? glm::ivec3(parts[0]) : glm::ivec3(parts[0], parts[1], parts[2]);
-}
-
-std::string sizeText(glm::ivec3 d) {
-    return std::to_string(d.x) + "x" + std::to_string(d.y) + "x" + std::to_string(d.z);
-}
 
 // CPU time of the whole process: on a shared, loaded machine it says what the work cost
 // even when the wall clock does not.
@@ -64,7 +38,7 @@ int runPhantom(const std::vector<std::string>& args, std::ostream& out) {
     if (!size || !output || !arguments.positionals().empty())
         throw core::Error("phantom",
                           "usage: phantom --size N|NXxNYxNZ [--kind ct|sphere] -o OUT.nrrd");
-    const glm::ivec3 dims = parseSize(*size);
+    const glm::ivec3 dims = parseDimsOption("--size", *size, 1);
     const render::PhantomKind kind = render::parsePhantomKind(arguments.option("kind", "ct"));
     const auto start = std::chrono::steady_clock::now();
     const volume::Volume phantom =
@@ -74,7 +48,7 @@ int runPhantom(const std::vector<std::string>& args, std::ostream& out) {
     volume::writeNrrd(*output, phantom);
     char line[256];
     std::snprintf(line, sizeof line, "gen %s %s via linework: %.2fs sum=%lld above_iso=%lld\n",
-                  std::string(render::phantomKindName(kind)).c_str(), sizeText(dims).c_str(),
+                  std::string(render::phantomKindName(kind)).c_str(), dimsText(dims).c_str(),
                   seconds, static_cast<long long>(checksum.sum),
                   static_cast<long long>(checksum.above));
     out << line;
@@ -83,7 +57,7 @@ int runPhantom(const std::vector<std::string>& args, std::ostream& out) {
 
 int runBenchMc(const std::vector<std::string>& args, std::ostream& out) {
     const Arguments arguments(args, {}, {"size", "kind", "chunks", "repeat", "iso", "threads"});
-    const glm::ivec3 dims = parseSize(arguments.option("size", "256"));
+    const glm::ivec3 dims = parseDimsOption("--size", arguments.option("size", "256"), 1);
     const render::PhantomKind kind = render::parsePhantomKind(arguments.option("kind", "ct"));
     const int repeat = std::max(1, int(arguments.number("repeat", 10)));
     const double iso = arguments.number("iso", render::kPhantomBoneIso);
@@ -123,7 +97,7 @@ int runBenchMc(const std::vector<std::string>& args, std::ostream& out) {
         "runs (CPU %.1f ms per run, all threads); triangles=%zu vertices=%zu; brick min/max %.1f "
         "ms; "
         "phantom generated in %.2f s\n",
-        std::string(render::phantomKindName(kind)).c_str(), sizeText(dims).c_str(), iso,
+        std::string(render::phantomKindName(kind)).c_str(), dimsText(dims).c_str(), iso,
         chunks.c_str(), options.brickCells, stats.activeBricks, stats.totalBricks, median,
         times.front(), repeat, cpuMs, mesh.triangleCount(), mesh.vertexCount(),
         brickSeconds * 1000.0, generateSeconds);

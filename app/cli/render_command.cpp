@@ -1,49 +1,26 @@
 // `linework-cli render`: one view of an iso-surface and/or its silhouette as a PNG.
 #include "arguments.h"
+#include "cli_inputs.h"
 #include "commands.h"
 #include "lw/core/error.h"
-#include "lw/core/log.h"
 #include "lw/core/png_io.h"
 #include "lw/render/camera.h"
 #include "lw/render/iso_surface.h"
-#include "lw/render/phantom.h"
+#include "lw/render/renderer_factory.h"
 #include "lw/render/shaded_surface_cpu.h"
 #include "lw/render/zbuffer_silhouette_renderer.h"
-#include "lw/volume/volume_reader.h"
 
-#if __has_include("lw/render/raycast_silhouette_renderer.h")
-#include "lw/render/raycast_silhouette_renderer.h"
-#define LW_CLI_HAVE_METHOD2 1
-#else
-#define LW_CLI_HAVE_METHOD2 0
-#endif
-
-#if defined(LINEWORK_GL) && LINEWORK_GL &&                                                         \
-    __has_include("lw/render/silhouette_gl_renderer.h") && __has_include("lw/render/gl_context.h")
-#include "lw/render/gl_context.h"
-#include "lw/render/silhouette_gl_renderer.h"
-#define LW_CLI_HAVE_METHOD1 1
-#else
-#define LW_CLI_HAVE_METHOD1 0
-#endif
-
-#ifdef LINEWORK_HAVE_DICOM
-#include "lw/dicom/dicom_scanner.h"
-#include "lw/dicom/volume_assembler.h"
+#if LINEWORK_GL
+#include "lw/render/geometry_shader_silhouette_renderer.h"
 #endif
 
 #include <algorithm>
-#include <charconv>
-#include <chrono>
 #include <cstdio>
 #include <memory>
 #include <ostream>
-#include <sstream>
 
 namespace lw::cli {
 namespace {
-
-constexpr core::LogCategory kLog("lw.cli");
 
 constexpr const char* kRenderUsage =
     "usage: render INPUT [--series UID] --iso HU --method 1|2|3 [--chunks off|auto|N] [--mode a|b] "
@@ -51,105 +28,14 @@ constexpr const char* kRenderUsage =
     "iso|silhouette|both] "
     "[--backend cpu|cuda|auto] -o OUT.png";
 
-std::vector<double> parseNumbers(const std::string& text, char separator,
-                                 const std::string& subject) {
-    std::vector<double> values;
-    std::stringstream stream(text);
-    std::string part;
-    while (std::getline(stream, part, separator)) {
-        double value = 0.0;
-        const auto [end, error] = std::from_chars(part.data(), part.data() + part.size(), value);
-        if (part.empty() || error != std::errc() || end != part.data() + part.size())
-            throw core::Error(subject, "'" + part + "' is not a number");
-        values.push_back(value);
-    }
-    return values;
-}
-
-glm::ivec2 parseImageSize(const std::string& text) {
-    const std::vector<double> values = parseNumbers(text, 'x', "--size " + text);
-    if (values.size() != 2 || values[0] < 1 || values[1] < 1 || values[0] > 16384 ||
-        values[1] > 16384 || values[0] != double(int(values[0])) ||
-        values[1] != double(int(values[1])))
-        throw core::Error("--size " + text, "expected WxH with whole numbers between 1 and 16384");
-    return {int(values[0]), int(values[1])};
-}
-
-// phantom:N, phantom:NXxNYxNZ, optionally followed by :ct or :sphere.
-volume::Volume loadPhantom(const std::string& spec) {
-    const std::string body = spec.substr(std::string("phantom:").size());
-    const auto colon = body.find(':');
-    const std::string sizeText = body.substr(0, colon);
-    const render::PhantomKind kind =
-        render::parsePhantomKind(colon == std::string::npos ? "ct" : body.substr(colon + 1));
-    const std::vector<double> parts = parseNumbers(sizeText, 'x', spec);
-    if ((parts.size() != 1 && parts.size() != 3) ||
-        std::any_of(parts.begin(), parts.end(),
-                    [](double v) { return v < 2 || v > 4096 || v != double(int(v)); }))
-        throw core::Error(
-            spec,
-            "expected phantom:N or phantom:NXxNYxNZ (2..4096) with an optional :ct or :sphere");
-    const glm::ivec3 dims = parts.size() == 1
-                                ? glm::ivec3(int(parts[0]))
-                                : glm::ivec3(int(parts[0]), int(parts[1]), int(parts[2]));
-    return render::makePhantom(dims, kind);
-}
-
-#ifdef LINEWORK_HAVE_DICOM
-volume::Volume loadDicom(const std::string& path, const std::optional<std::string>& seriesUid) {
-    const dicom::DicomIndex index = dicom::scanDicom(path);
-    const dicom::SeriesInfo* chosen = nullptr;
-    if (seriesUid) {
-        chosen = index.findSeries(*seriesUid);
-        if (!chosen)
-            throw core::Error(path, "no series with UID " + *seriesUid);
-    } else {
-        // The series with the most slices: in a CT study that is the diagnostic volume, not a
-        // scout or a dose report.
-        for (const dicom::SeriesInfo* series : index.allSeries())
-            if (!chosen || series->instances.size() > chosen->instances.size())
-                chosen = series;
-        if (!chosen)
-            throw core::Error(path, "no DICOM series found");
-    }
-    const dicom::SeriesAssembly assembly = dicom::planVolumes(*chosen);
-    const dicom::VolumePlan* plan = nullptr;
-    for (const dicom::VolumePlan& candidate : assembly.volumes)
-        if (!plan || candidate.slices.size() > plan->slices.size())
-            plan = &candidate;
-    if (!plan)
-        throw core::Error(path, "series " + chosen->seriesInstanceUid +
-                                    " holds no volume that can be assembled");
-    if (plan->dims.z < 2)
-        throw core::Error(path, "series " + chosen->seriesInstanceUid +
-                                    " has a single slice; an iso-surface needs two");
-    kLog.info("rendering series " + chosen->seriesInstanceUid + " (" +
-              std::to_string(plan->slices.size()) + " slices)");
-    return dicom::loadVolume(*chosen, *plan);
-}
-#endif
-
-volume::Volume loadInput(const std::string& input, const std::optional<std::string>& seriesUid) {
-    if (input.rfind("phantom:", 0) == 0)
-        return loadPhantom(input);
-#ifdef LINEWORK_HAVE_DICOM
-    if (dicom::looksLikeDicomInput(input) ||
-        volume::detectVolumeFormat(input) == volume::VolumeFormat::Unknown)
-        return loadDicom(input, seriesUid);
-#else
-    if (seriesUid)
-        throw core::Error("--series", "this build reads no DICOM (LINEWORK_DICOM off)");
-#endif
-    return volume::readVolumeFile(input);
-}
-
 // Lines black on white, like the GL renderer's defaults and a printed report.
 core::ImageRgba8 maskToImage(const render::PixelMask& mask) {
     return mask.toImage({0, 0, 0, 255}, {255, 255, 255, 255});
 }
 
 struct RenderRequest {
-    int method = 3;
+    render::SilhouetteMethod method = render::SilhouetteMethod::ZBuffer;
+    render::Backend backend = render::Backend::Auto;
     render::SilhouetteSettings settings;
     bool wantIso = false;
     bool wantSilhouette = true;
@@ -204,81 +90,45 @@ void repeatFrames(render::SilhouetteRenderer& renderer, render::Camera camera,
     out << line;
 }
 
-RenderedPanels renderCpu(const volume::Volume& volume, const render::Camera& camera,
-                         const RenderRequest& request, std::ostream& out) {
-    RenderedPanels panels;
-    std::unique_ptr<render::SilhouetteRenderer> renderer;
-    render::ZBufferSilhouetteRenderer* zbuffer = nullptr;
-    if (request.method == 3) {
-        auto owned = std::make_unique<render::ZBufferSilhouetteRenderer>();
-        zbuffer = owned.get();
-        renderer = std::move(owned);
-    } else {
-#if LW_CLI_HAVE_METHOD2
-        renderer = std::make_unique<render::RayCastSilhouetteRenderer>();
-#else
-        throw core::Error("--method 2", "method 2 is not available in this build");
+// The shaded iso-surface for the same view: method 1 shades it in GL; methods 2 and 3 on the CPU,
+// method 3 from the mesh its silhouette frame extracted so both panels show the same surface.
+core::ImageRgba8 renderIsoPanel(render::SilhouetteRenderer& renderer, const volume::Volume& volume,
+                                const render::Camera& camera, const RenderRequest& request) {
+#if LINEWORK_GL
+    if (auto* gl = dynamic_cast<render::GeometryShaderSilhouetteRenderer*>(&renderer))
+        return gl->renderIsoPanel(camera, request.settings);
 #endif
+    render::Mesh extracted;
+    const render::Mesh* mesh = &extracted;
+    const auto* zbuffer = dynamic_cast<const render::ZBufferSilhouetteRenderer*>(&renderer);
+    if (zbuffer && request.wantSilhouette) {
+        mesh = &zbuffer->mesh();
+    } else {
+        render::IsoSurfaceOptions options;
+        options.brickCells = request.settings.brickCells;
+        options.threads = request.settings.threads;
+        extracted = render::extractIsoSurface(volume, request.settings.isoReal, options);
     }
-    renderer->setVolume(volume);
-    if (request.wantSilhouette) {
-        const render::SilhouetteFrame frame = renderer->render(camera, request.settings);
-        reportFrame(frame, out);
-        repeatFrames(*renderer, camera, request, out);
-        panels.silhouette = maskToImage(frame.lines);
-    }
-    if (request.wantIso) {
-        render::Mesh extracted;
-        const render::Mesh* mesh = nullptr;
-        if (zbuffer && request.wantSilhouette) {
-            mesh = &zbuffer->mesh();
-        } else {
-            render::IsoSurfaceOptions options;
-            options.brickCells = request.settings.brickCells;
-            options.threads = request.settings.threads;
-            extracted = render::extractIsoSurface(volume, request.settings.isoReal, options);
-            mesh = &extracted;
-        }
-        render::SurfaceShading shading;
-        shading.threads = request.settings.threads;
-        panels.iso = render::shadeSurfaceCpu(*mesh, camera, shading);
-    }
-    return panels;
+    render::SurfaceShading shading;
+    shading.threads = request.settings.threads;
+    return render::shadeSurfaceCpu(*mesh, camera, shading);
 }
 
-#if LW_CLI_HAVE_METHOD1
-RenderedPanels renderGl(const volume::Volume& volume, const render::Camera& camera,
-                        const RenderRequest& request, std::ostream& out) {
-    render::EglHeadlessContext context;
-    kLog.info("method 1 on " + context.description());
-    render::IsoSurfaceOptions extractOptions;
-    extractOptions.brickCells = request.settings.brickCells;
-    extractOptions.threads = request.settings.threads;
-    const render::Mesh mesh =
-        render::extractIsoSurface(volume, request.settings.isoReal, extractOptions);
-    render::SilhouetteGlRenderer gl;
+RenderedPanels renderPanels(render::SilhouetteRenderer& renderer, const volume::Volume& volume,
+                            const render::Camera& camera, const RenderRequest& request,
+                            std::ostream& out) {
     RenderedPanels panels;
-    try {
-        gl.uploadMesh(mesh);
-        render::SilhouetteGlOptions options;
-        options.visibility = request.settings.visibility;
-        if (request.wantSilhouette) {
-            options.panel = render::GlPanel::Silhouette;
-            panels.silhouette = gl.renderImage(camera, options);
-        }
-        if (request.wantIso) {
-            options.panel = render::GlPanel::Iso;
-            panels.iso = gl.renderImage(camera, options);
-        }
-        out << "triangles " << mesh.triangleCount() << " (method 1, GL)\n";
-    } catch (...) {
-        gl.release();
-        throw;
+    renderer.setVolume(volume);
+    if (request.wantSilhouette) {
+        const render::SilhouetteFrame frame = renderer.render(camera, request.settings);
+        reportFrame(frame, out);
+        repeatFrames(renderer, camera, request, out);
+        panels.silhouette = maskToImage(frame.lines);
     }
-    gl.release();
+    if (request.wantIso)
+        panels.iso = renderIsoPanel(renderer, volume, camera, request);
     return panels;
 }
-#endif
 
 } // namespace
 
@@ -294,10 +144,8 @@ int runRender(const std::vector<std::string>& args, std::ostream& out) {
     const std::string input = arguments.positionals()[0];
 
     RenderRequest request;
-    const std::string methodText = arguments.option("method", "3");
-    if (methodText != "1" && methodText != "2" && methodText != "3")
-        throw core::Error("--method " + methodText, "expected 1, 2 or 3");
-    request.method = methodText[0] - '0';
+    request.method = render::parseSilhouetteMethod(arguments.option("method", "3"));
+    request.backend = render::parseBackend(arguments.option("backend", "auto"));
 
     const std::string mode = arguments.option("mode", "a");
     if (mode != "a" && mode != "b")
@@ -317,52 +165,31 @@ int runRender(const std::vector<std::string>& args, std::ostream& out) {
     request.wantIso = panel != "silhouette";
     request.wantSilhouette = panel != "iso";
 
-    const std::string backend = arguments.option("backend", "auto");
-    if (backend == "cuda")
-        throw core::Error("--backend cuda", "CUDA backend not built");
-    if (backend != "cpu" && backend != "auto")
-        throw core::Error("--backend " + backend, "expected cpu, cuda or auto");
-    if (backend == "auto" && request.method != 1)
-        kLog.info("backend auto: CUDA backend not built, rendering on the CPU");
-
     render::CameraSetup setup;
-    const std::vector<double> view = parseNumbers(arguments.option("view", "0,0"), ',', "--view");
-    if (view.size() != 2)
-        throw core::Error("--view", "expected AZ,EL in degrees");
-    setup.azimuthDeg = view[0];
-    setup.elevationDeg = view[1];
+    const glm::dvec2 view = parseView(arguments.option("view", "0,0"));
+    setup.azimuthDeg = view.x;
+    setup.elevationDeg = view.y;
     const std::string projection = arguments.option("camera", "perspective");
     if (projection != "perspective" && projection != "ortho")
         throw core::Error("--camera " + projection, "expected perspective or ortho");
     setup.projection =
         projection == "ortho" ? render::Projection::Orthographic : render::Projection::Perspective;
-    const glm::ivec2 size = parseImageSize(arguments.option("size", "512x512"));
-
-#if !LW_CLI_HAVE_METHOD1
-    if (request.method == 1)
-        throw core::Error("--method 1", "method 1 is not available in this build (no OpenGL/EGL)");
-#endif
-#if !LW_CLI_HAVE_METHOD2
-    if (request.method == 2)
-        throw core::Error("--method 2", "method 2 is not available in this build");
-#endif
+    const glm::ivec2 size = parseImageSize("--size", arguments.option("size", "512x512"), 1);
 
     if (!arguments.option("iso"))
         throw core::Error("render", std::string("needs --iso HU; ") + kRenderUsage);
     request.settings.isoReal = arguments.number("iso", 0.0);
-    const volume::Volume volume = loadInput(input, arguments.option("series"));
+    volume::Volume volume; // declared first: the renderer holds it and must not outlive it
+    // Before the input is read, so an unavailable method or back-end fails at once.
+    const std::unique_ptr<render::SilhouetteRenderer> renderer =
+        render::createSilhouetteRenderer(request.method, request.backend);
+    volume = loadInput(input, arguments.option("series"));
     request.settings.brickCells =
         render::parseChunks(arguments.option("chunks", "off"), volume.dims());
     setup.bounds = render::volumeBounds(volume);
     const render::Camera camera(setup, size.x, size.y);
 
-    RenderedPanels panels;
-#if LW_CLI_HAVE_METHOD1
-    if (request.method == 1)
-        panels = renderGl(volume, camera, request, out);
-    else
-#endif
-        panels = renderCpu(volume, camera, request, out);
+    RenderedPanels panels = renderPanels(*renderer, volume, camera, request, out);
 
     core::ImageRgba8 image;
     if (request.wantIso && request.wantSilhouette) {

@@ -1,40 +1,20 @@
 // `linework-cli accuracy` end to end: JSON rows for every requested method x variant, scores that
 // are real numbers in [0, 1] and meet the goal on an easy case, and usage errors rejected.
-#include <array>
-#include <cstdio>
-#include <cstdlib>
+#include "cli_runner.h"
+
 #include <gtest/gtest.h>
 #include <memory>
 #include <regex>
 #include <string>
-#include <sys/wait.h>
 
 namespace {
 
-struct CliResult {
-    int status = -1;
-    std::string out;
-};
-
-CliResult runCli(const std::string& arguments) {
-    const std::string command =
-        std::string("\"") + LINEWORK_CLI_PATH + "\" " + arguments + " 2>/dev/null";
-    CliResult result;
-    FILE* pipe = popen(command.c_str(), "r");
-    if (!pipe)
-        return result;
-    std::array<char, 4096> buffer;
-    std::size_t n;
-    while ((n = std::fread(buffer.data(), 1, buffer.size(), pipe)) > 0)
-        result.out.append(buffer.data(), n);
-    const int status = pclose(pipe);
-    result.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    return result;
-}
+using lw::test::CliResult;
+using lw::test::runCli;
 
 TEST(AccuracyCommand, JsonRowsForMethod2SAndLOnTheSphere) {
     const CliResult r = runCli("accuracy --methods 2 --sizes 32 --shapes sphere,torus --json");
-    ASSERT_EQ(r.status, 0) << r.out;
+    ASSERT_EQ(r.exitCode, 0) << r.out;
     // One row per variant (S, L) x visibility rule (endpoints, along) x shape.
     const std::regex row(
         R"re(\{\s*"method": 2,\s*"variant": "([SL])",\s*"visibility": "(endpoints|along)",\s*"backend": "cpu",\s*"shape": "(sphere|torus)",\s*"size": 32,\s*"image": (\d+),\s*"recall": ([0-9.e+-]+),\s*"precision": ([0-9.e+-]+))re");
@@ -59,18 +39,18 @@ TEST(AccuracyCommand, JsonRowsForMethod2SAndLOnTheSphere) {
 TEST(AccuracyCommand, HumanReadableTable) {
     const CliResult r =
         runCli("accuracy --methods 2 --sizes 16 --shapes superquadric --view -40,30");
-    ASSERT_EQ(r.status, 0);
+    ASSERT_EQ(r.exitCode, 0);
     EXPECT_NE(r.out.find("az -40 el 30"), std::string::npos) << r.out;
     EXPECT_NE(r.out.find("superquadric"), std::string::npos);
     EXPECT_NE(r.out.find("recall"), std::string::npos);
 }
 
 TEST(AccuracyCommand, RejectsBadArguments) {
-    EXPECT_EQ(runCli("accuracy --methods 4").status, 1);
-    EXPECT_EQ(runCli("accuracy --sizes 4").status, 1);
-    EXPECT_EQ(runCli("accuracy --shapes cube --sizes 16").status, 1);
-    EXPECT_EQ(runCli("accuracy --view 10").status, 1);
-    EXPECT_EQ(runCli("accuracy --backend opencl").status, 1);
+    EXPECT_EQ(runCli("accuracy --methods 4").exitCode, 1);
+    EXPECT_EQ(runCli("accuracy --sizes 4").exitCode, 1);
+    EXPECT_EQ(runCli("accuracy --shapes cube --sizes 16").exitCode, 1);
+    EXPECT_EQ(runCli("accuracy --view 10").exitCode, 1);
+    EXPECT_EQ(runCli("accuracy --backend opencl").exitCode, 1);
 }
 
 } // namespace

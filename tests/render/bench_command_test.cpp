@@ -1,39 +1,20 @@
 // `linework-cli bench --json` as the benchmark page uses it: the output parses as JSON and every
 // row carries the keys docs/BENCHMARKS.md is written from, with plausible values.
+#include "cli_runner.h"
+
 #include <cctype>
-#include <cstdio>
-#include <cstdlib>
 #include <gtest/gtest.h>
 #include <map>
 #include <memory>
 #include <set>
 #include <stdexcept>
 #include <string>
-#include <sys/wait.h>
 #include <vector>
 
 namespace {
 
-struct CliResult {
-    int exitCode = -1;
-    std::string out;
-};
-
-CliResult runCli(const std::string& arguments, const std::string& environment = {}) {
-    CliResult result;
-    const std::string command =
-        environment + std::string("\"") + LINEWORK_CLI_PATH + "\" " + arguments + " 2>/dev/null";
-    FILE* pipe = popen(command.c_str(), "r");
-    if (!pipe)
-        return result;
-    char buffer[4096];
-    std::size_t n = 0;
-    while ((n = std::fread(buffer, 1, sizeof buffer, pipe)) > 0)
-        result.out.append(buffer, n);
-    const int status = pclose(pipe);
-    result.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    return result;
-}
+using lw::test::CliResult;
+using lw::test::runCli;
 
 // Just enough JSON (RFC 8259 without \u escapes) to check the output really parses: a malformed
 // document throws instead of being searched for substrings.

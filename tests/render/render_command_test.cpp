@@ -1,20 +1,16 @@
 // `linework-cli render` as a user runs it: the PNG exists with the requested size and shows lines.
+#include "cli_runner.h"
 #include "lw/core/png_io.h"
 
-#include <cstdio>
-#include <cstdlib>
 #include <filesystem>
 #include <gtest/gtest.h>
 #include <string>
-#include <sys/wait.h>
 
 namespace {
 
+// The exit code alone: these tests look at the PNG, not at what the command prints.
 int runCli(const std::string& arguments) {
-    const std::string command =
-        std::string("\"") + LINEWORK_CLI_PATH + "\" " + arguments + " >/dev/null 2>&1";
-    const int status = std::system(command.c_str());
-    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    return lw::test::runCli(arguments).exitCode;
 }
 
 std::filesystem::path outputPath(const std::string& name) {

@@ -48,18 +48,26 @@ std::string_view backendName(Backend backend) {
     return "?";
 }
 
-std::unique_ptr<SilhouetteRenderer>
-createSilhouetteRenderer(SilhouetteMethod method, Backend requested, std::string* backendNote) {
+Backend resolveBackend(Backend requested, std::string* backendNote) {
     if (requested == Backend::Cuda)
         throw core::Error("--backend cuda", "the CUDA backend is not built yet");
-    if (requested == Backend::Auto) {
-        const std::string note = "auto: no CUDA backend in this build, using CPU";
-        kLog.info(note);
-        if (backendNote)
-            *backendNote = note;
-    } else if (backendNote) {
-        backendNote->clear();
+    if (backendNote) {
+        if (requested == Backend::Auto)
+            *backendNote = "auto: no CUDA backend in this build, using CPU";
+        else
+            backendNote->clear();
     }
+    return Backend::Cpu;
+}
+
+std::unique_ptr<SilhouetteRenderer>
+createSilhouetteRenderer(SilhouetteMethod method, Backend requested, std::string* backendNote) {
+    std::string note;
+    resolveBackend(requested, &note);
+    if (!note.empty())
+        kLog.info(note);
+    if (backendNote)
+        *backendNote = note;
     switch (method) {
     case SilhouetteMethod::GeometryShader:
 #if LINEWORK_GL

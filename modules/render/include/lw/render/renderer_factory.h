@@ -19,11 +19,15 @@ SilhouetteMethod parseSilhouetteMethod(std::string_view text, std::string_view o
 Backend parseBackend(std::string_view text, std::string_view option = "--backend");
 std::string_view backendName(Backend backend);
 
+// The back-end a request runs on: Cpu for Cpu and for Auto (Auto says so in `backendNote`, if
+// given; an explicit choice clears it). Throws core::Error for Cuda until the CUDA back-end
+// exists. Commands call it up front to fail before any work.
+Backend resolveBackend(Backend requested, std::string* backendNote = nullptr);
+
 // Method 1 -> the GL adapter (GeometryShaderSilhouetteRenderer on a headless EGL context),
 // method 2 -> RayCastSilhouetteRenderer, method 3 -> ZBufferSilhouetteRenderer.
-// Backend::Cuda throws core::Error until the CUDA back-end exists; Backend::Auto falls back to
-// the CPU and says so in `backendNote` (if given) and in the lw.render log. Throws
-// core::Error("method 1", "no OpenGL context: <reason>") when GL is not built or EGL fails.
+// The back-end as resolveBackend() chooses it; Backend::Auto's note also goes to the lw.render log.
+// Throws core::Error("method 1", "no OpenGL context: <reason>") when GL is not built or EGL fails.
 std::unique_ptr<SilhouetteRenderer> createSilhouetteRenderer(SilhouetteMethod method,
                                                              Backend requested = Backend::Auto,
                                                              std::string* backendNote = nullptr);

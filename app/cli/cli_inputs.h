@@ -1,0 +1,40 @@
+#pragma once
+
+// What several sub-commands read from their arguments the same way: lists, sizes, views and the
+// input volume. Arguments (arguments.h) splits the command line; these give the values meaning.
+
+#include "lw/volume/volume.h"
+
+#include <glm/glm.hpp>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace lw::cli {
+
+// "a,b,c" -> {"a", "b", "c"}; empty parts are kept unless `keepEmpty` is false.
+std::vector<std::string> splitList(const std::string& text, char separator = ',',
+                                   bool keepEmpty = true);
+// Numbers separated by `separator`; throws core::Error(subject, ...) naming a part that is not one.
+std::vector<double> parseNumbers(const std::string& text, char separator,
+                                 const std::string& subject);
+
+// "N" or "NXxNYxNZ", each a whole number in [minimum, maximum]; nullopt otherwise.
+std::optional<glm::ivec3> parseDims(std::string_view text, int minimum, int maximum = 1 << 30);
+// parseDims for an option's value; throws core::Error("OPTION TEXT", ...) when it does not parse.
+glm::ivec3 parseDimsOption(const std::string& option, const std::string& text, int minimum);
+// "NXxNYxNZ".
+std::string dimsText(glm::ivec3 dims);
+
+// "WxH" with whole numbers in [minimum, 16384]; throws core::Error("OPTION TEXT", ...) otherwise.
+glm::ivec2 parseImageSize(const std::string& option, const std::string& text, int minimum);
+// "--view AZ,EL" in degrees: {azimuth, elevation}; throws core::Error otherwise.
+glm::dvec2 parseView(const std::string& text);
+
+// The INPUT of `render`: phantom:N | phantom:NXxNYxNZ (optionally :ct or :sphere), a volume
+// file (NRRD, NIfTI, PVM, raw), or, in a DICOM build, a DICOM folder / DICOMDIR / file, where
+// `seriesUid` picks the series (default: the one with the most slices).
+volume::Volume loadInput(const std::string& input, const std::optional<std::string>& seriesUid);
+
+} // namespace lw::cli
