@@ -9,9 +9,12 @@
 #include "lw/render/shaded_surface_cpu.h"
 #include "lw/render/true_contour.h"
 #include "lw/render/zbuffer_silhouette_renderer.h"
+#include "lw/volume/bricks.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <gtest/gtest.h>
 
@@ -95,6 +98,71 @@ TEST(ZBufferSilhouette, ChunkedEqualsWholeAndModesAgree) {
     EXPECT_EQ(whole.render(camera, settingsFor(kPhantomBoneIso)).times.extractMs, 0.0);
     EXPECT_GT(whole.render(camera, settingsFor(kPhantomBoneIso + 100.0)).times.extractMs, 0.0)
         << "a new iso-value must re-extract";
+}
+
+// The L variant draws brick by brick from BrickSurfaceExtractor; its triangles must be the whole
+// mesh's, vertex bits included (positions and normals), on a CT phantom (integer voxels) and on a
+// tilted stack with uneven gaps (float voxels, every geometry term of the vertex expressions).
+using TriangleBits = std::array<std::uint32_t, 18>;
+
+TriangleBits triangleBits(const glm::vec3* positions, const glm::vec3* normals,
+                          const std::uint32_t* tri) {
+    TriangleBits bits{};
+    for (int v = 0; v < 3; ++v) {
+        std::memcpy(&bits[std::size_t(v) * 6], &positions[tri[v]], sizeof(glm::vec3));
+        std::memcpy(&bits[std::size_t(v) * 6 + 3], &normals[tri[v]], sizeof(glm::vec3));
+    }
+    return bits;
+}
+
+void expectBrickSurfacesEqualWholeMesh(const lw::volume::Volume& volume, double isoReal,
+                                       int brickCells) {
+    const Mesh whole = extractIsoSurface(volume, isoReal);
+    std::vector<TriangleBits> expected, actual;
+    for (std::size_t t = 0; t < whole.triangleCount(); ++t)
+        expected.push_back(triangleBits(whole.positions.data(), whole.normals.data(),
+                                        whole.indices.data() + 3 * t));
+    const double storedIso = volume.valueMapping().toStored(isoReal);
+    const auto grid = lw::volume::BrickGrid::build(volume, glm::ivec3(brickCells));
+    const lw::kernels::cpu::BrickSurfaceExtractor extractor(volume, storedIso);
+    lw::kernels::cpu::BrickSurface surface;
+    for (const int b : grid.activeBricks(storedIso)) {
+        extractor.extract(grid.bricks()[std::size_t(b)], surface);
+        for (std::size_t t = 0; t < surface.triangleCount(); ++t)
+            actual.push_back(triangleBits(surface.positions.data(), surface.normals.data(),
+                                          surface.indices.data() + 3 * t));
+    }
+    ASSERT_GT(expected.size(), 1000u);
+    std::sort(expected.begin(), expected.end());
+    std::sort(actual.begin(), actual.end());
+    EXPECT_TRUE(expected == actual)
+        << expected.size() << " whole, " << actual.size() << " from bricks of " << brickCells;
+}
+
+TEST(ZBufferSilhouette, BrickSurfacesEqualWholeMesh) {
+    const lw::volume::Volume phantom = makePhantom(glm::ivec3(64, 56, 48), PhantomKind::Ct);
+    for (const int cells : {7, 16, 64})
+        expectBrickSurfacesEqualWholeMesh(phantom, kPhantomBoneIso, cells);
+
+    std::vector<glm::dvec3> slices;
+    double zPos = 0.0;
+    for (int k = 0; k < 30; ++k) {
+        slices.push_back({0.3, 0.47 * zPos, zPos - 5.0});
+        zPos += (k % 3 == 0) ? 1.6 : 0.8;
+    }
+    const auto geometry =
+        lw::volume::VolumeGeometry::fromSlicePositions({1, 0, 0}, {0, 1, 0}, 0.7, 0.9, slices);
+    const glm::ivec3 dims(44, 60, 30);
+    lw::volume::Volume tilted(dims, lw::volume::VoxelType::Float32, geometry);
+    const glm::dvec3 centre = geometry.indexToPatient({21.5, 30.0, 14.5});
+    for (int z = 0; z < dims.z; ++z)
+        for (int y = 0; y < dims.y; ++y)
+            for (int x = 0; x < dims.x; ++x)
+                tilted.dataAs<float>()[tilted.index(x, y, z)] = float(
+                    11.0 - glm::length(geometry.indexToPatient({double(x), double(y), double(z)}) -
+                                       centre));
+    for (const int cells : {5, 13})
+        expectBrickSurfacesEqualWholeMesh(tilted, 0.0, cells);
 }
 
 // A big sphere in front of a small one: seen from the front (az 0 looks along +y), the small

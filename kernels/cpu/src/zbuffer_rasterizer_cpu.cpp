@@ -1,11 +1,14 @@
 #include "lw/kernels/cpu/zbuffer_rasterizer_cpu.h"
 
+#include "lw/kernels/marching_cubes.h"
 #include "lw/kernels/silhouette_segment.h"
 #include "lw/volume/parallel.h"
 
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <limits>
+#include <type_traits>
 
 namespace lw::kernels::cpu {
 namespace {
@@ -389,6 +392,244 @@ void resolveSilhouette(const DepthBuffer& surface, const DepthBuffer& lines, flo
             }
         },
         threads);
+}
+
+// ---- BrickSurfaceExtractor ---------------------------------------------------------------------
+// The per-vertex expressions below (gradient, edge parameter, normal, position) are those of the
+// marching-cubes kernel (marching_cubes_cpu.cpp) term for term, so a vertex comes out with the same
+// bits whichever of the two computes it; the test "BrickSurfacesEqualWholeMesh" checks it.
+
+BrickSurfaceExtractor::BrickSurfaceExtractor(const volume::Volume& volume, double storedIso)
+    : m_volume(volume), m_iso(storedIso), m_isoF(insideThreshold(storedIso)) {
+    const glm::ivec3 d = volume.dims();
+    m_nx = d.x;
+    m_ny = d.y;
+    m_nz = d.z;
+    m_cx = m_nx - 1;
+    m_cy = m_ny - 1;
+    m_cz = m_nz - 1;
+    m_sy = std::size_t(m_nx);
+    m_sz = std::size_t(m_nx) * std::size_t(m_ny);
+    const auto& g = volume.geometry();
+    m_origin = g.origin();
+    m_stepI = g.spacingI() * g.axisI();
+    m_stepJ = g.spacingJ() * g.axisJ();
+    m_stack = g.stackAxis();
+    m_offset.resize(std::size_t(std::max(m_nz, 0)));
+    for (int k = 0; k < m_nz; ++k)
+        m_offset[std::size_t(k)] = g.sliceOffset(double(k));
+    m_spanK.resize(m_offset.size());
+    for (int k = 0; k < m_nz; ++k)
+        m_spanK[std::size_t(k)] = float(m_offset[std::size_t(std::min(k + 1, m_nz - 1))] -
+                                        m_offset[std::size_t(std::max(k - 1, 0))]);
+    const glm::dmat3 frame(g.axisI(), g.axisJ(), g.stackAxis());
+    const glm::dmat3 invT = glm::inverse(glm::transpose(frame));
+    for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 3; ++c)
+            m_normalMatrix[r * 3 + c] = float(invT[c][r]);
+    m_invSpanK.resize(m_spanK.size());
+    for (std::size_t k = 0; k < m_spanK.size(); ++k)
+        m_invSpanK[k] = m_spanK[k] > 0.0f ? 1.0f / m_spanK[k] : 0.0f;
+    m_spanI = float(2.0 * g.spacingI());
+    m_invSpanI = 1.0f / m_spanI;
+    m_invSpanJ = float(1.0 / (2.0 * g.spacingJ()));
+    m_spanJ = float(2.0 * g.spacingJ());
+    m_edgeSpanI = float(g.spacingI());
+    m_edgeSpanJ = float(g.spacingJ());
+    glm::dvec3 axisDir[3];
+    axisDir[0] = glm::normalize(glm::dvec3(g.axisI()));
+    axisDir[1] = glm::normalize(glm::dvec3(g.axisJ()));
+    double slope = 1.0;
+    if (m_nz > 1)
+        slope = m_offset.back() - m_offset.front() >= 0.0 ? 1.0 : -1.0;
+    axisDir[2] = glm::normalize(glm::dvec3(g.stackAxis())) * slope;
+    for (int a = 0; a < 3; ++a) {
+        m_edgeDirection[a][0] = float(axisDir[a].x);
+        m_edgeDirection[a][1] = float(axisDir[a].y);
+        m_edgeDirection[a][2] = float(axisDir[a].z);
+    }
+}
+
+void BrickSurfaceExtractor::extract(const volume::Brick& brick, BrickSurface& out) const {
+    volume::dispatchVoxelType(m_volume.voxelType(), [&](auto tag) {
+        using T = decltype(tag);
+        extractTyped<T>(brick, out);
+        return 0;
+    });
+}
+
+template <typename T>
+void BrickSurfaceExtractor::extractTyped(const volume::Brick& brick, BrickSurface& out) const {
+    out.positions.clear();
+    out.normals.clear();
+    out.indices.clear();
+    const glm::ivec3 cb = brick.cellBegin, ce = brick.cellEnd;
+    if (m_cx < 1 || m_cy < 1 || m_cz < 1 || glm::any(glm::lessThanEqual(ce, cb)))
+        return;
+    const T* voxels = m_volume.dataAs<T>();
+    T threshold{};
+    if constexpr (std::is_integral_v<T>) {
+        const double c = std::ceil(m_iso);
+        threshold = T(std::clamp(c, double(std::numeric_limits<T>::lowest()),
+                                 double(std::numeric_limits<T>::max())));
+    } else {
+        threshold = T(m_isoF);
+    }
+    auto voxelIndex = [&](int x, int y, int z) {
+        return std::size_t(x) + m_sy * std::size_t(y) + m_sz * std::size_t(z);
+    };
+    auto value = [&](std::size_t i) { return float(voxels[i]); };
+    auto gradient = [&](int x, int y, int z) -> McVec3 {
+        const std::size_t i = voxelIndex(x, y, z);
+        if (x > 0 && x < m_cx && y > 0 && y < m_cy && z > 0 && z < m_cz) {
+            return {(value(i + 1) - value(i - 1)) * m_invSpanI,
+                    (value(i + m_sy) - value(i - m_sy)) * m_invSpanJ,
+                    (value(i + m_sz) - value(i - m_sz)) * m_invSpanK[std::size_t(z)]};
+        }
+        const float c = value(i);
+        McVec3 g;
+        if (x > 0 && x < m_cx)
+            g.x = mcDerivative(value(i - 1), value(i + 1), m_spanI);
+        else if (m_nx > 1)
+            g.x = x == 0 ? mcDerivative(c, value(i + 1), m_edgeSpanI)
+                         : mcDerivative(value(i - 1), c, m_edgeSpanI);
+        else
+            g.x = 0.0f;
+        if (y > 0 && y < m_cy)
+            g.y = mcDerivative(value(i - m_sy), value(i + m_sy), m_spanJ);
+        else if (m_ny > 1)
+            g.y = y == 0 ? mcDerivative(c, value(i + m_sy), m_edgeSpanJ)
+                         : mcDerivative(value(i - m_sy), c, m_edgeSpanJ);
+        else
+            g.y = 0.0f;
+        const int z0 = std::max(z - 1, 0), z1 = std::min(z + 1, m_cz);
+        const float lo = z0 == z ? c : value(i - m_sz);
+        const float hi = z1 == z ? c : value(i + m_sz);
+        g.z = mcDerivative(lo, hi, m_spanK[std::size_t(z)]);
+        return g;
+    };
+    auto writeVertex = [&](int x, int y, int z, int axis, const McVec3& ga, const McVec3& gb) {
+        const std::size_t i = voxelIndex(x, y, z);
+        const std::size_t step = axis == 0 ? 1 : (axis == 1 ? m_sy : m_sz);
+        const float a = value(i), b = value(i + step);
+        const float t = mcEdgeParameter(a, b, m_iso);
+        const McVec3 g = mcTransform(m_normalMatrix, mcLerp(ga, gb, t));
+        McVec3 fallback{m_edgeDirection[axis][0], m_edgeDirection[axis][1],
+                        m_edgeDirection[axis][2]};
+        if (!(a >= m_isoF))
+            fallback = {-fallback.x, -fallback.y, -fallback.z};
+        const McVec3 n = mcOutwardNormal(g, fallback);
+        double px = x, py = y;
+        double offset = m_offset[std::size_t(z)];
+        if (axis == 0)
+            px += t;
+        else if (axis == 1)
+            py += t;
+        else
+            offset += double(t) * (m_offset[std::size_t(z) + 1] - offset);
+        const glm::dvec3 p = m_origin + px * m_stepI + py * m_stepJ + offset * m_stack;
+        out.positions.push_back(glm::vec3(p));
+        out.normals.push_back(glm::vec3(n.x, n.y, n.z));
+    };
+
+    // The brick's corner voxels [cb, ce], classified once; each voxel row remembers whether it is
+    // uniform, so the vertex and cell passes skip rows (and cell rows) without a crossing.
+    const int bx = ce.x - cb.x + 1, by = ce.y - cb.y + 1, bz = ce.z - cb.z + 1;
+    const std::size_t sy = std::size_t(bx), sz = std::size_t(bx) * std::size_t(by);
+    const std::size_t count = sz * std::size_t(bz);
+    out.inside.resize(count);
+    out.rowState.resize(std::size_t(by) * std::size_t(bz));
+    for (int lz = 0; lz < bz; ++lz)
+        for (int ly = 0; ly < by; ++ly) {
+            const T* row = voxels + voxelIndex(cb.x, cb.y + ly, cb.z + lz);
+            std::uint8_t* dst = out.inside.data() + sy * std::size_t(ly) + sz * std::size_t(lz);
+            std::uint8_t any = 0, all = 1;
+            for (int x = 0; x < bx; ++x) {
+                const std::uint8_t in = row[x] >= threshold ? 1 : 0;
+                dst[x] = in;
+                any |= in;
+                all &= in;
+            }
+            out.rowState[std::size_t(ly) + std::size_t(by) * std::size_t(lz)] =
+                all ? 1 : (any ? 2 : 0);
+        }
+    auto rowState = [&](int ly, int lz) {
+        return out.rowState[std::size_t(ly) + std::size_t(by) * std::size_t(lz)];
+    };
+
+    // Vertices: every crossing edge between two corner voxels of the brick.
+    for (auto& ids : out.edgeIds)
+        if (ids.size() < count)
+            ids.resize(count);
+    std::uint32_t id = 0;
+    for (int lz = 0; lz < bz; ++lz)
+        for (int ly = 0; ly < by; ++ly) {
+            const std::uint8_t state = rowState(ly, lz);
+            const bool hasY = ly + 1 < by, hasZ = lz + 1 < bz;
+            if (state != 2 && (!hasY || rowState(ly + 1, lz) == state) &&
+                (!hasZ || rowState(ly, lz + 1) == state))
+                continue;
+            const int y = cb.y + ly, z = cb.z + lz;
+            const std::size_t base = sy * std::size_t(ly) + sz * std::size_t(lz);
+            const std::uint8_t* in = out.inside.data() + base;
+            for (int lx = 0; lx < bx; ++lx) {
+                const std::uint8_t a = in[lx];
+                const bool crossX = lx + 1 < bx && in[lx + 1] != a;
+                const bool crossY = hasY && in[std::size_t(lx) + sy] != a;
+                const bool crossZ = hasZ && in[std::size_t(lx) + sz] != a;
+                if (!(crossX || crossY || crossZ))
+                    continue;
+                const int x = cb.x + lx;
+                const McVec3 here = gradient(x, y, z);
+                if (crossX) {
+                    out.edgeIds[0][base + std::size_t(lx)] = id++;
+                    writeVertex(x, y, z, 0, here, gradient(x + 1, y, z));
+                }
+                if (crossY) {
+                    out.edgeIds[1][base + std::size_t(lx)] = id++;
+                    writeVertex(x, y, z, 1, here, gradient(x, y + 1, z));
+                }
+                if (crossZ) {
+                    out.edgeIds[2][base + std::size_t(lx)] = id++;
+                    writeVertex(x, y, z, 2, here, gradient(x, y, z + 1));
+                }
+            }
+        }
+
+    // Triangles: the cells of the brick, corners in the table's diagram order.
+    std::size_t cornerOffset[8];
+    for (int c = 0; c < 8; ++c) {
+        static constexpr int kCorner[8][3] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0},
+                                              {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}};
+        cornerOffset[c] = std::size_t(kCorner[c][0]) + std::size_t(kCorner[c][1]) * sy +
+                          std::size_t(kCorner[c][2]) * sz;
+    }
+    std::size_t edgeOffset[12];
+    for (int e = 0; e < 12; ++e)
+        edgeOffset[e] = std::size_t(kMcEdgeOwner[e][0]) + std::size_t(kMcEdgeOwner[e][1]) * sy +
+                        std::size_t(kMcEdgeOwner[e][2]) * sz;
+    for (int lz = 0; lz + 1 < bz; ++lz)
+        for (int ly = 0; ly + 1 < by; ++ly) {
+            const std::uint8_t state = rowState(ly, lz);
+            if (state != 2 && rowState(ly + 1, lz) == state && rowState(ly, lz + 1) == state &&
+                rowState(ly + 1, lz + 1) == state)
+                continue;
+            const std::size_t base = sy * std::size_t(ly) + sz * std::size_t(lz);
+            const std::uint8_t* in = out.inside.data() + base;
+            for (int lx = 0; lx + 1 < bx; ++lx) {
+                const std::uint8_t* corner = in + lx;
+                int cubeCase = 0;
+                for (int c = 0; c < 8; ++c)
+                    cubeCase |= int(corner[cornerOffset[c]]) << c;
+                if (cubeCase == 0 || cubeCase == 255)
+                    continue;
+                const std::int8_t* edges = kMcTriTable[cubeCase];
+                const std::size_t cell = base + std::size_t(lx);
+                for (int e = 0; edges[e] >= 0; ++e)
+                    out.indices.push_back(
+                        out.edgeIds[kMcEdgeOwner[edges[e]][3]][cell + edgeOffset[edges[e]]]);
+            }
+        }
 }
 
 } // namespace lw::kernels::cpu

@@ -2,12 +2,15 @@
 
 #include "lw/core/error.h"
 #include "lw/kernels/cpu/zbuffer_rasterizer_cpu.h"
+#include "lw/volume/bricks.h"
+#include "lw/volume/parallel.h"
 #include "view_transform.h"
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <mutex>
 #include <optional>
 
 namespace lw::render {
@@ -18,47 +21,6 @@ using Clock = std::chrono::steady_clock;
 double msSince(Clock::time_point start) {
     return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
 }
-
-// The brick a triangle came from, found from its centroid: a marching-cubes triangle's vertices
-// lie on the edges of one cell, so the centroid lies in that cell. The mapping only decides which
-// brick's pass draws the triangle; any partition gives the same buffers (per-pixel maxima do not
-// depend on order), so a centroid on a cell face is harmless.
-class CellLocator {
-public:
-    explicit CellLocator(const volume::Volume& volume) : m_geometry(volume.geometry()) {
-        const glm::dmat3 columns(m_geometry.spacingI() * m_geometry.axisI(),
-                                 m_geometry.spacingJ() * m_geometry.axisJ(),
-                                 m_geometry.stackAxis());
-        m_inverse = glm::inverse(columns);
-        m_cells = glm::max(volume.dims() - 1, glm::ivec3(1));
-    }
-
-    glm::ivec3 cellOf(glm::dvec3 patient) const {
-        const glm::dvec3 q = m_inverse * (patient - m_geometry.origin());
-        const auto& offsets = m_geometry.sliceOffsets();
-        double k = 0.0;
-        if (offsets.size() >= 2) {
-            // Uneven slices: the stack coordinate is piecewise linear in k.
-            const auto upper = std::upper_bound(offsets.begin(), offsets.end(), q.z);
-            const auto k0 = std::clamp<std::ptrdiff_t>(upper - offsets.begin() - 1, 0,
-                                                       std::ptrdiff_t(offsets.size()) - 2);
-            const double gap = offsets[std::size_t(k0) + 1] - offsets[std::size_t(k0)];
-            k = double(k0) + (gap != 0.0 ? (q.z - offsets[std::size_t(k0)]) / gap : 0.0);
-        } else {
-            const double step = m_geometry.sliceStep();
-            k = step != 0.0 ? q.z / step : 0.0;
-        }
-        auto cell = [](double v, int count) {
-            return std::clamp(int(std::floor(v)), 0, count - 1);
-        };
-        return {cell(q.x, m_cells.x), cell(q.y, m_cells.y), cell(k, m_cells.z)};
-    }
-
-private:
-    const volume::VolumeGeometry& m_geometry;
-    glm::dmat3 m_inverse{1.0};
-    glm::ivec3 m_cells{1};
-};
 
 // True when a voxel on the volume's border is inside (>= iso): only then can the surface be cut
 // open by the border. Marching cubes gives a watertight mesh otherwise, and on a closed surface
@@ -97,11 +59,24 @@ struct ZBufferSilhouetteRenderer::State {
     int meshBrickCells = -1;
     bool meshClosed = false; // the surface does not reach the volume's border
 
-    // L variant: the mesh's triangles regrouped by brick, and where each brick starts.
-    std::vector<std::uint32_t> brickIndices;
-    std::vector<std::size_t> brickStarts; // triangle offsets, one more than the brick count
-    std::vector<std::size_t> brickCounts; // scratch for the counting sort
-    std::vector<std::uint32_t> triangleBrick;
+    // L variant: only the brick grid (min/max per brick, one scan of the volume) and the
+    // per-worker scratch of one brick's geometry survive a frame.
+    volume::BrickGrid grid;
+    int gridBrickCells = -1;
+    double closedIso = std::numeric_limits<double>::quiet_NaN(); // meshClosed is for this iso
+    struct BrickWorker {
+        kernels::cpu::BrickSurface surface;
+        kernels::cpu::ScreenVertices screen;
+        kernels::cpu::SegmentScratch scratch;
+        std::vector<kernels::cpu::ScreenSegment> segments;
+        std::size_t triangles = 0, segmentCount = 0;
+        double extractMs = 0, silhouetteMs = 0, drawMs = 0, visibilityMs = 0;
+    };
+    std::vector<std::unique_ptr<BrickWorker>> workers;
+    // Set by the last frame, for mesh() on demand after an L frame.
+    double lastIso = std::numeric_limits<double>::quiet_NaN();
+    int lastBrickCells = 0;
+    unsigned lastThreads = 0;
 
     // Triangle clusters of the index buffer in use (never straddling a brick in the L variant).
     std::vector<kernels::cpu::TriangleCluster> clusters;
@@ -113,52 +88,26 @@ struct ZBufferSilhouetteRenderer::State {
     kernels::cpu::SegmentScratch scratch;
     std::vector<kernels::cpu::ScreenSegment> segments;
 
-    void buildClusters(bool chunked) {
+    void buildClusters() {
         clusters.clear();
-        if (!chunked) {
-            kernels::cpu::buildClusters(mesh.positions.data(), mesh.indices.data(), 0,
-                                        std::uint32_t(mesh.triangleCount()), clusters);
-            return;
-        }
-        for (std::size_t b = 0; b + 1 < brickStarts.size(); ++b)
-            kernels::cpu::buildClusters(
-                mesh.positions.data(), brickIndices.data(), std::uint32_t(brickStarts[b]),
-                std::uint32_t(brickStarts[b + 1] - brickStarts[b]), clusters);
+        kernels::cpu::buildClusters(mesh.positions.data(), mesh.indices.data(), 0,
+                                    std::uint32_t(mesh.triangleCount()), clusters);
     }
 
-    void partitionByBrick(int brickCells) {
-        const glm::ivec3 cells = glm::max(volume->dims() - 1, glm::ivec3(1));
-        const glm::ivec3 grid = (cells + brickCells - 1) / brickCells;
-        const std::size_t brickCount =
-            std::size_t(grid.x) * std::size_t(grid.y) * std::size_t(grid.z);
-        const std::size_t triangles = mesh.triangleCount();
-        const CellLocator locator(*volume);
-        triangleBrick.resize(triangles);
-        brickCounts.assign(brickCount, 0);
-        for (std::size_t t = 0; t < triangles; ++t) {
-            const std::uint32_t* tri = mesh.indices.data() + 3 * t;
-            const glm::dvec3 centroid =
-                (glm::dvec3(mesh.positions[tri[0]]) + glm::dvec3(mesh.positions[tri[1]]) +
-                 glm::dvec3(mesh.positions[tri[2]])) /
-                3.0;
-            const glm::ivec3 b = locator.cellOf(centroid) / brickCells;
-            const std::size_t brick =
-                std::size_t(b.x) +
-                std::size_t(grid.x) * (std::size_t(b.y) + std::size_t(grid.y) * std::size_t(b.z));
-            triangleBrick[t] = std::uint32_t(brick);
-            ++brickCounts[brick];
-        }
-        brickStarts.assign(brickCount + 1, 0);
-        for (std::size_t b = 0; b < brickCount; ++b)
-            brickStarts[b + 1] = brickStarts[b] + brickCounts[b];
-        brickIndices.resize(mesh.indices.size());
-        std::fill(brickCounts.begin(), brickCounts.end(), 0);
-        for (std::size_t t = 0; t < triangles; ++t) {
-            const std::size_t brick = triangleBrick[t];
-            const std::size_t slot = brickStarts[brick] + brickCounts[brick]++;
-            std::copy_n(mesh.indices.data() + 3 * t, 3, brickIndices.data() + 3 * slot);
-        }
+    // The L variant keeps no whole-mesh buffers (an earlier S frame may have left them).
+    void releaseMesh() {
+        meshValid = false;
+        mesh = Mesh();
+        clusters = {};
+        screen = kernels::cpu::ScreenVertices();
+        segments = {};
+        scratch = kernels::cpu::SegmentScratch();
     }
+
+    void renderChunked(const Camera& camera, const SilhouetteSettings& settings,
+                       SilhouetteFrame& frame);
+    void colourPass(const Camera& camera, const SilhouetteSettings& settings,
+                    SilhouetteFrame& frame);
 };
 
 ZBufferSilhouetteRenderer::ZBufferSilhouetteRenderer() : m_state(std::make_unique<State>()) {}
@@ -170,7 +119,18 @@ void ZBufferSilhouetteRenderer::setVolume(const volume::Volume& volume) {
 }
 
 const Mesh& ZBufferSilhouetteRenderer::mesh() const {
-    return m_state->mesh;
+    State& s = *m_state;
+    if (!s.meshValid && s.volume && s.lastBrickCells > 0) {
+        // After an L frame: the whole mesh only now, for a caller that asks for it.
+        IsoSurfaceOptions options;
+        options.brickCells = s.lastBrickCells;
+        options.threads = s.lastThreads;
+        extractIsoSurface(*s.volume, s.lastIso, options, s.mesh);
+        s.meshValid = true;
+        s.meshIso = s.lastIso;
+        s.meshBrickCells = s.lastBrickCells;
+    }
+    return s.mesh;
 }
 
 SilhouetteFrame ZBufferSilhouetteRenderer::render(const Camera& camera,
@@ -183,20 +143,26 @@ SilhouetteFrame ZBufferSilhouetteRenderer::render(const Camera& camera,
     const unsigned threads = settings.threads;
     SilhouetteFrame frame;
 
+    s.lastIso = settings.isoReal;
+    s.lastBrickCells = settings.brickCells;
+    s.lastThreads = threads;
+    if (settings.brickCells > 0) {
+        s.renderChunked(camera, settings, frame);
+        return frame;
+    }
+
     const bool reuse = settings.mode == ExtractionMode::CachedA && s.meshValid &&
                        s.meshIso == settings.isoReal && s.meshBrickCells == settings.brickCells;
     if (!reuse) {
         const auto start = Clock::now();
         s.meshValid = false;
         IsoSurfaceOptions options;
-        options.brickCells = settings.brickCells;
         options.threads = threads;
         extractIsoSurface(*s.volume, settings.isoReal, options, s.mesh);
-        if (settings.brickCells > 0)
-            s.partitionByBrick(settings.brickCells);
-        s.buildClusters(settings.brickCells > 0);
+        s.buildClusters();
         s.meshClosed =
             !surfaceTouchesBorder(*s.volume, s.volume->valueMapping().toStored(settings.isoReal));
+        s.closedIso = settings.isoReal;
         s.meshValid = true;
         s.meshIso = settings.isoReal;
         s.meshBrickCells = settings.brickCells;
@@ -218,14 +184,9 @@ SilhouetteFrame ZBufferSilhouetteRenderer::render(const Camera& camera,
     s.lineDepth.reset(width, height, threads);
     frame.times.drawMs += msSince(start);
 
-    // The L variant's index buffer holds the triangles grouped brick by brick, and the passes walk
-    // it in that order into the same buffers, so bricks go through serially; the work list is
-    // shared across brick borders because starting threads per brick costs more than a small
-    // brick takes. Both buffers keep per-pixel maxima, so S and L give identical images.
     // The silhouette pass runs first so the depth pass can skip the clusters and triangles that
     // cannot reach a pixel the colour pass compares against: zbuffer1 is exact wherever it is read.
-    const bool chunked = settings.brickCells > 0;
-    const std::uint32_t* indices = chunked ? s.brickIndices.data() : s.mesh.indices.data();
+    const std::uint32_t* indices = s.mesh.indices.data();
     s.segments.clear();
     start = Clock::now();
     kernels::cpu::findSilhouetteSegments(s.mesh.positions.data(), s.screen, indices,
@@ -245,24 +206,147 @@ SilhouetteFrame ZBufferSilhouetteRenderer::render(const Camera& camera,
     }
     frame.segments = s.segments.size();
 
+    s.colourPass(camera, settings, frame);
+    return frame;
+}
+
+// The L variant: one brick's geometry at a time per worker. Each active brick (min/max admit the
+// iso-value) is extracted, its silhouette segments go into zbuffer2 and its triangles into
+// zbuffer1, and its geometry is dropped before the worker takes the next brick; the colour pass
+// runs once. Both buffers keep per-pixel maxima and a brick's vertices are bit-identical to the
+// whole mesh's, so the image equals S's. Memory: the volume, the two buffers and one brick's
+// surface per worker. Time: the extraction runs every frame, mode a included (caching the mesh
+// would defeat the purpose), and zbuffer1 is drawn in full, because the segments that decide which
+// tiles the colour pass reads are only complete after the last brick. L trades time for memory.
+void ZBufferSilhouetteRenderer::State::renderChunked(const Camera& camera,
+                                                     const SilhouetteSettings& settings,
+                                                     SilhouetteFrame& frame) {
+    const unsigned threads = settings.threads == 0 ? volume::workerCount() : settings.threads;
+    releaseMesh();
+    const auto& mapping = volume->valueMapping();
+    if (mapping.slope == 0.0)
+        throw core::Error("iso-surface", "the volume's value mapping has slope 0");
+    if (mapping.slope < 0.0)
+        throw core::Error("iso-surface",
+                          "a negative rescale slope is not supported (inside would flip)");
+    const double storedIso = mapping.toStored(settings.isoReal);
+
+    auto start = Clock::now();
+    if (gridBrickCells != settings.brickCells) {
+        grid = volume::BrickGrid::build(*volume, glm::ivec3(settings.brickCells));
+        gridBrickCells = settings.brickCells;
+    }
+    if (!(closedIso == settings.isoReal)) {
+        meshClosed = !surfaceTouchesBorder(*volume, storedIso);
+        closedIso = settings.isoReal;
+    }
+    const std::vector<int> active = grid.activeBricks(storedIso);
+    const kernels::cpu::BrickSurfaceExtractor extractor(*volume, storedIso);
+    const double setupMs = msSince(start);
+
+    const kernels::cpu::ViewTransform view = toViewTransform(camera);
     start = Clock::now();
+    if (settings.visibility)
+        surfaceDepth.reset(camera.width(), camera.height(), threads);
+    lineDepth.reset(camera.width(), camera.height(), threads);
+    const double clearMs = msSince(start);
+
+    // Bricks are handed out dynamically; a worker's scratch is checked out for one brick at a time.
+    const std::size_t workerCount =
+        std::min<std::size_t>(threads, std::max<std::size_t>(active.size(), 1));
+    while (workers.size() < workerCount)
+        workers.push_back(std::make_unique<BrickWorker>());
+    std::vector<BrickWorker*> idle;
+    for (std::size_t w = 0; w < workerCount; ++w) {
+        BrickWorker& worker = *workers[w];
+        worker.triangles = worker.segmentCount = 0;
+        worker.extractMs = worker.silhouetteMs = worker.drawMs = worker.visibilityMs = 0.0;
+        idle.push_back(&worker);
+    }
+    std::mutex idleMutex;
+    start = Clock::now();
+    volume::parallelFor(
+        active.size(),
+        [&](std::size_t i) {
+            BrickWorker* worker = nullptr;
+            {
+                std::lock_guard lock(idleMutex);
+                worker = idle.back();
+                idle.pop_back();
+            }
+            BrickWorker& w = *worker;
+            auto t = Clock::now();
+            extractor.extract(grid.bricks()[std::size_t(active[i])], w.surface);
+            w.extractMs += msSince(t);
+            const std::size_t triangles = w.surface.triangleCount();
+            if (triangles > 0) {
+                t = Clock::now();
+                kernels::cpu::projectVertices(w.surface.positions.data(), w.surface.normals.data(),
+                                              w.surface.positions.size(), view, w.screen, 1);
+                w.segments.clear();
+                kernels::cpu::findSilhouetteSegments(w.surface.positions.data(), w.screen,
+                                                     w.surface.indices.data(), triangles, view,
+                                                     w.scratch, w.segments, 1);
+                w.silhouetteMs += msSince(t);
+                t = Clock::now();
+                kernels::cpu::drawSegmentsDepth(w.segments.data(), w.segments.size(), lineDepth, 1);
+                w.drawMs += msSince(t);
+                if (settings.visibility) {
+                    t = Clock::now();
+                    kernels::cpu::drawTrianglesDepth(w.screen, w.surface.indices.data(), triangles,
+                                                     surfaceDepth, 1, meshClosed);
+                    w.visibilityMs += msSince(t);
+                }
+                w.triangles += triangles;
+                w.segmentCount += w.segments.size();
+            }
+            std::lock_guard lock(idleMutex);
+            idle.push_back(worker);
+        },
+        threads);
+    const double loopMs = msSince(start);
+
+    // Stage times: the workers' summed times, scaled to the loop's wall time.
+    double extractMs = 0, silhouetteMs = 0, drawMs = 0, visibilityMs = 0;
+    for (std::size_t w = 0; w < workerCount; ++w) {
+        const BrickWorker& worker = *workers[w];
+        frame.triangles += worker.triangles;
+        frame.segments += worker.segmentCount;
+        extractMs += worker.extractMs;
+        silhouetteMs += worker.silhouetteMs;
+        drawMs += worker.drawMs;
+        visibilityMs += worker.visibilityMs;
+    }
+    const double busy = extractMs + silhouetteMs + drawMs + visibilityMs;
+    const double scale = busy > 0.0 ? loopMs / busy : 0.0;
+    frame.times.extractMs = setupMs + extractMs * scale;
+    frame.times.silhouetteMs = silhouetteMs * scale;
+    frame.times.drawMs = clearMs + drawMs * scale;
+    frame.times.visibilityMs = visibilityMs * scale;
+    colourPass(camera, settings, frame);
+}
+
+void ZBufferSilhouetteRenderer::State::colourPass(const Camera& camera,
+                                                  const SilhouetteSettings& settings,
+                                                  SilhouetteFrame& frame) {
+    const int width = camera.width(), height = camera.height();
+    const auto start = Clock::now();
     float epsilon = 0.0f;
     if (settings.visibility) {
         // Depth-key range of the volume's box for this camera.
-        const Aabb box = volumeBounds(*s.volume);
+        const Aabb box = volumeBounds(*volume);
         double lo = std::numeric_limits<double>::infinity(), hi = -lo;
         for (int i = 0; i < 8; ++i) {
             const double key = 1.0 - camera.project(box.corner(i)).ndcDepth;
             lo = std::min(lo, key);
             hi = std::max(hi, key);
         }
-        epsilon = float(kRelativeDepthEpsilon * (hi - lo));
+        epsilon = float(ZBufferSilhouetteRenderer::kRelativeDepthEpsilon * (hi - lo));
     }
     frame.lines = PixelMask(width, height);
-    kernels::cpu::resolveSilhouette(s.surfaceDepth, s.lineDepth, epsilon, settings.visibility,
-                                    frame.lines.pixels().data(), threads);
+    kernels::cpu::resolveSilhouette(surfaceDepth, lineDepth, epsilon, settings.visibility,
+                                    frame.lines.pixels().data(), settings.threads);
     frame.times.drawMs += msSince(start);
-    return frame;
 }
 
 } // namespace lw::render

@@ -6,10 +6,13 @@
 //   silhouette   Burns' segment of every triangle from the per-vertex normals, into zbuffer2
 //                (nearest segment per pixel, atomic max on the inverted depth as in the paper)
 //   colour pass  silhouette where zbuffer2 is not behind zbuffer1 (see resolveSilhouette)
-// Chunked (settings.brickCells > 0): the triangles are partitioned by the brick of the cell they
-// came from and the bricks go through the depth and silhouette passes one after the other into
-// the same buffers; the colour pass runs once. Because both buffers keep a per-pixel maximum,
-// the result is identical to the whole-volume pass.
+// Chunked (settings.brickCells > 0), the paper's L variant for memory-limited devices: no mesh is
+// kept. Each active brick (its min/max admit the iso-value) is extracted on its own, its
+// silhouette segments drawn into zbuffer2 and its triangles into zbuffer1, and its geometry dropped
+// before the next brick (one brick in flight per worker thread); the colour pass runs once. The
+// brick's vertices are bit-identical to the whole mesh's and both buffers keep per-pixel maxima, so
+// the image is identical to the whole-volume pass. L trades time for memory: it re-extracts every
+// frame, mode a included (only the brick grid is cached).
 
 #include "lw/render/iso_surface.h"
 #include "lw/render/silhouette_renderer.h"
@@ -31,7 +34,8 @@ public:
     SilhouetteFrame render(const Camera& camera, const SilhouetteSettings& settings) override;
 
     // The mesh of the last frame (cached in mode a); empty before the first frame. The shaded
-    // iso-surface panel draws this one, so both panels show the same surface.
+    // iso-surface panel draws this one, so both panels show the same surface. After an L frame
+    // the whole mesh is extracted here, on the first call (L frames themselves never hold it).
     const Mesh& mesh() const;
 
     // Depth tolerance of the colour pass as a share of the depth-key range of the volume's box
