@@ -52,32 +52,13 @@ struct Unit {
     std::vector<std::uint8_t> cellCase;
 };
 
-// Spread a column of four inside bits (y,z), (y+1,z), (y,z+1), (y+1,z+1) onto the corner bits
-// of the cell's lower-x (0, 3, 4, 7) or upper-x (1, 2, 5, 6) face.
-constexpr std::uint8_t spread(int column, int c00, int c10, int c01, int c11) {
-    return std::uint8_t(((column & 1) << c00) | (((column >> 1) & 1) << c10) |
-                        (((column >> 2) & 1) << c01) | (((column >> 3) & 1) << c11));
-}
-struct SpreadTables {
-    std::uint8_t lower[16];
-    std::uint8_t upper[16];
-};
-constexpr SpreadTables makeSpread() {
-    SpreadTables t{};
-    for (int c = 0; c < 16; ++c) {
-        t.lower[c] = spread(c, 0, 3, 4, 7);
-        t.upper[c] = spread(c, 1, 2, 5, 6);
-    }
-    return t;
-}
-constexpr SpreadTables kSpread = makeSpread();
-
 template <typename T> class Extractor {
 public:
     Extractor(const volume::Volume& volume, const volume::BrickGrid& grid, double iso,
               McOutput& out)
         : m_volume(volume), m_grid(grid), m_voxels(volume.dataAs<T>()), m_iso(iso),
-          m_isoF(insideThreshold(iso)), m_out(out) {
+          m_isoF(insideThreshold(iso)), m_out(out), m_dims(makeGridDims(volume.dims())),
+          m_voxelGrid(voxelGridSetup(volume)), m_gradient{m_voxels, m_voxelGrid.spans()} {
         // Compare in the voxel type: exact, and it lets the row scan vectorise. For integer
         // voxels, v >= iso  <=>  v >= ceil(iso); the caller only runs us when some brick has
         // min < iso <= max, so ceil(iso) is a value of T.
@@ -88,64 +69,14 @@ public:
         } else {
             m_threshold = m_isoF;
         }
-        const glm::ivec3 d = volume.dims();
-        m_nx = d.x;
-        m_ny = d.y;
-        m_nz = d.z;
-        m_cx = m_nx - 1;
-        m_cy = m_ny - 1;
-        m_cz = m_nz - 1;
-        m_sy = std::size_t(m_nx);
-        m_sz = std::size_t(m_nx) * std::size_t(m_ny);
         m_gx = grid.gridSize().x;
         m_brickCells = grid.brickCells();
-
-        const auto& g = volume.geometry();
-        m_origin = g.origin();
-        m_stepI = g.spacingI() * g.axisI();
-        m_stepJ = g.spacingJ() * g.axisJ();
-        m_stack = g.stackAxis();
-        m_offset.resize(std::size_t(m_nz));
-        for (int k = 0; k < m_nz; ++k)
-            m_offset[std::size_t(k)] = g.sliceOffset(double(k));
-        // Real distance between the neighbours used for d/ds at slice k (uneven gaps).
-        m_spanK.resize(std::size_t(m_nz));
-        for (int k = 0; k < m_nz; ++k)
-            m_spanK[std::size_t(k)] = float(m_offset[std::size_t(std::min(k + 1, m_nz - 1))] -
-                                            m_offset[std::size_t(std::max(k - 1, 0))]);
-        // Derivatives are taken in the oblique frame (axisI, axisJ, stackAxis) with real
-        // distances: d/du over the in-plane spacing, d/ds over the actual slice offsets of the
-        // neighbours (uneven gaps). The patient gradient is M^-T (du, dw, ds) with M the frame's
-        // columns -- the same as J(k)^-T applied to the index-space gradient.
-        const glm::dmat3 frame(g.axisI(), g.axisJ(), g.stackAxis());
-        const glm::dmat3 invT = glm::inverse(glm::transpose(frame));
-        for (int r = 0; r < 3; ++r)
-            for (int c = 0; c < 3; ++c)
-                m_normalMatrix[r * 3 + c] = float(invT[c][r]);
-        m_invSpanK.resize(m_spanK.size());
-        for (std::size_t k = 0; k < m_spanK.size(); ++k)
-            m_invSpanK[k] = m_spanK[k] > 0.0f ? 1.0f / m_spanK[k] : 0.0f;
-        m_spanI = float(2.0 * g.spacingI());
-        m_invSpanI = 1.0f / m_spanI;
-        m_invSpanJ = float(1.0 / (2.0 * g.spacingJ()));
-        m_spanJ = float(2.0 * g.spacingJ());
-        m_edgeSpanI = float(g.spacingI());
-        m_edgeSpanJ = float(g.spacingJ());
-        m_axisDir[0] = glm::normalize(glm::dvec3(g.axisI()));
-        m_axisDir[1] = glm::normalize(glm::dvec3(g.axisJ()));
-        double slope = 1.0;
-        if (m_nz > 1)
-            slope = m_offset.back() - m_offset.front() >= 0.0 ? 1.0 : -1.0;
-        m_axisDir[2] = glm::normalize(glm::dvec3(g.stackAxis())) * slope;
-        for (int a = 0; a < 3; ++a)
-            m_edgeDirection[a] = {float(m_axisDir[a].x), float(m_axisDir[a].y),
-                                  float(m_axisDir[a].z)};
     }
 
     McResult run(unsigned threads) {
         McResult result;
         result.totalBricks = m_grid.bricks().size();
-        if (m_cx < 1 || m_cy < 1 || m_cz < 1 || result.totalBricks == 0) {
+        if (m_dims.cx < 1 || m_dims.cy < 1 || m_dims.cz < 1 || result.totalBricks == 0) {
             clearOutput();
             return result;
         }
@@ -158,8 +89,10 @@ public:
         makeUnits(active, threads == 0 ? volume::workerCount() : threads);
         result.workUnits = m_units.size();
 
-        m_vertexOffset.assign(std::size_t(m_nz) * std::size_t(m_ny) * std::size_t(m_gx), 0u);
-        m_triangleOffset.assign(std::size_t(m_cz) * std::size_t(m_cy) * std::size_t(m_gx), 0u);
+        m_vertexOffset.assign(std::size_t(m_dims.nz) * std::size_t(m_dims.ny) * std::size_t(m_gx),
+                              0u);
+        m_triangleOffset.assign(std::size_t(m_dims.cz) * std::size_t(m_dims.cy) * std::size_t(m_gx),
+                                0u);
         volume::parallelFor(
             m_units.size(), [&](std::size_t u) { countUnit(m_units[u]); }, threads);
 
@@ -221,7 +154,7 @@ private:
 
     bool inside(std::size_t index) const { return m_voxels[index] >= m_threshold; }
     std::size_t voxelIndex(int x, int y, int z) const {
-        return std::size_t(x) + m_sy * std::size_t(y) + m_sz * std::size_t(z);
+        return std::size_t(x) + m_dims.sy * std::size_t(y) + m_dims.sz * std::size_t(z);
     }
 
     const RowInfo& row(const Unit& unit, int y, int z) const {
@@ -242,8 +175,8 @@ private:
         const auto& brick = m_grid.bricks()[std::size_t(unit.brick)];
         const glm::ivec3 cb = brick.cellBegin, ce = brick.cellEnd;
         const int bx = cb.x / m_brickCells.x;
-        unit.rowY1 = std::min(ce.y + 1, m_ny - 1);
-        unit.rowZ1 = std::min(unit.z1 + 1, m_nz - 1);
+        unit.rowY1 = std::min(ce.y + 1, m_dims.ny - 1);
+        unit.rowZ1 = std::min(unit.z1 + 1, m_dims.nz - 1);
         const int width = unit.rowY1 - cb.y + 1;
         unit.rows.resize(std::size_t(width) * std::size_t(unit.rowZ1 - unit.z0 + 1));
 
@@ -276,26 +209,28 @@ private:
                     info;
             }
 
-        const int ownXEnd = ce.x == m_cx ? m_nx : ce.x;
-        const int ownYEnd = ce.y == m_cy ? m_ny : ce.y;
-        const int ownZEnd = unit.z1 == m_cz ? m_nz : unit.z1;
+        const int ownXEnd = ce.x == m_dims.cx ? m_dims.nx : ce.x;
+        const int ownYEnd = ce.y == m_dims.cy ? m_dims.ny : ce.y;
+        const int ownZEnd = unit.z1 == m_dims.cz ? m_dims.nz : unit.z1;
         for (int z = unit.z0; z < ownZEnd; ++z)
             for (int y = cb.y; y < ownYEnd; ++y) {
                 const RowInfo& r = row(unit, y, z);
                 std::uint32_t n = r.xCross;
                 const std::size_t base = voxelIndex(0, y, z);
                 int lo, hi;
-                if (y + 1 < m_ny) {
+                if (y + 1 < m_dims.ny) {
                     differingRange(r, row(unit, y + 1, z), cb.x, ownXEnd, lo, hi);
                     for (int x = lo; x < hi; ++x)
-                        n += inside(base + std::size_t(x)) != inside(base + m_sy + std::size_t(x));
+                        n += inside(base + std::size_t(x)) !=
+                             inside(base + m_dims.sy + std::size_t(x));
                 }
-                if (z + 1 < m_nz) {
+                if (z + 1 < m_dims.nz) {
                     differingRange(r, row(unit, y, z + 1), cb.x, ownXEnd, lo, hi);
                     for (int x = lo; x < hi; ++x)
-                        n += inside(base + std::size_t(x)) != inside(base + m_sz + std::size_t(x));
+                        n += inside(base + std::size_t(x)) !=
+                             inside(base + m_dims.sz + std::size_t(x));
                 }
-                m_vertexOffset[(std::size_t(z) * std::size_t(m_ny) + std::size_t(y)) *
+                m_vertexOffset[(std::size_t(z) * std::size_t(m_dims.ny) + std::size_t(y)) *
                                    std::size_t(m_gx) +
                                std::size_t(bx)] = n;
             }
@@ -311,7 +246,7 @@ private:
                 int column = columnBits(base + std::size_t(lo));
                 for (int x = lo; x < hi; ++x) {
                     const int next = columnBits(base + std::size_t(x) + 1);
-                    const int cubeCase = kSpread.lower[column] | kSpread.upper[next];
+                    const int cubeCase = mcCaseFromColumns(column, next);
                     column = next;
                     if (cubeCase == 0 || cubeCase == 255)
                         continue;
@@ -322,7 +257,7 @@ private:
                 cellRow.end = std::uint32_t(unit.cellX.size());
                 if (cellRow.end > cellRow.begin)
                     unit.cellRows.push_back(cellRow);
-                m_triangleOffset[(std::size_t(z) * std::size_t(m_cy) + std::size_t(y)) *
+                m_triangleOffset[(std::size_t(z) * std::size_t(m_dims.cy) + std::size_t(y)) *
                                      std::size_t(m_gx) +
                                  std::size_t(bx)] = n;
             }
@@ -330,8 +265,8 @@ private:
 
     // Inside bits of voxels (x,y,z), (x,y+1,z), (x,y,z+1), (x,y+1,z+1).
     int columnBits(std::size_t index) const {
-        return int(inside(index)) | int(inside(index + m_sy)) << 1 |
-               int(inside(index + m_sz)) << 2 | int(inside(index + m_sy + m_sz)) << 3;
+        return mcColumnBits([this](std::size_t i) { return inside(i); }, index, m_dims.sy,
+                            m_dims.sz);
     }
 
     // Cells [lo, hi) of cell row (y, z) that can have mixed corners; false when none.
@@ -386,15 +321,16 @@ private:
     void layerIds(const Unit& unit, glm::ivec3 cb, glm::ivec3 ce, int z, LayerIds& ids) {
         const int bx = cb.x / m_brickCells.x;
         const int width = ce.x - cb.x + 1;
-        const bool nextSegment = ce.x < m_cx; // voxel ce.x starts the next brick column's segment
-        const int ownXEnd = ce.x == m_cx ? m_nx : ce.x;
-        const int ownYEnd = ce.y == m_cy ? m_ny : ce.y;
-        const int ownZEnd = unit.z1 == m_cz ? m_nz : unit.z1;
+        const bool nextSegment =
+            ce.x < m_dims.cx; // voxel ce.x starts the next brick column's segment
+        const int ownXEnd = ce.x == m_dims.cx ? m_dims.nx : ce.x;
+        const int ownYEnd = ce.y == m_dims.cy ? m_dims.ny : ce.y;
+        const int ownZEnd = unit.z1 == m_dims.cz ? m_dims.nz : unit.z1;
         const bool ownLayer = z < ownZEnd;
-        const bool hasZ = z + 1 < m_nz;
+        const bool hasZ = z + 1 < m_dims.nz;
         for (int y = cb.y; y <= ce.y; ++y) {
             const RowInfo& r = row(unit, y, z);
-            const bool hasY = y + 1 < m_ny;
+            const bool hasY = y + 1 < m_dims.ny;
             int lo = r.xl, hi = r.xr;
             int l2, h2;
             if (hasY) {
@@ -414,7 +350,7 @@ private:
             if (lo >= hi)
                 continue;
             const std::size_t segment =
-                (std::size_t(z) * std::size_t(m_ny) + std::size_t(y)) * std::size_t(m_gx) +
+                (std::size_t(z) * std::size_t(m_dims.ny) + std::size_t(y)) * std::size_t(m_gx) +
                 std::size_t(bx);
             std::uint32_t id = m_vertexOffset[segment];
             const bool ownRow = ownLayer && y < ownYEnd;
@@ -445,7 +381,7 @@ private:
                     }
                     return gradientHere;
                 };
-                if (x + 1 < m_nx && a != inside(index + 1)) {
+                if (x + 1 < m_dims.nx && a != inside(index + 1)) {
                     if (x < ce.x)
                         idsX[x] = id;
                     if (own) {
@@ -455,13 +391,13 @@ private:
                     }
                     ++id;
                 }
-                if (hasY && a != inside(index + m_sy)) {
+                if (hasY && a != inside(index + m_dims.sy)) {
                     idsY[x] = id;
                     if (own)
                         writeVertex(x, y, z, 1, id, here(), gradient(x, y + 1, z));
                     ++id;
                 }
-                if (hasZ && a != inside(index + m_sz)) {
+                if (hasZ && a != inside(index + m_dims.sz)) {
                     idsZ[x] = id;
                     if (own)
                         writeVertex(x, y, z, 2, id, here(), gradient(x, y, z + 1));
@@ -479,9 +415,10 @@ private:
         for (; cursor < unit.cellRows.size() && unit.cellRows[cursor].z == z; ++cursor) {
             const CellRow& cellRow = unit.cellRows[cursor];
             const int y = cellRow.y;
-            std::size_t t = m_triangleOffset[(std::size_t(z) * std::size_t(m_cy) + std::size_t(y)) *
-                                                 std::size_t(m_gx) +
-                                             std::size_t(bx)];
+            std::size_t t =
+                m_triangleOffset[(std::size_t(z) * std::size_t(m_dims.cy) + std::size_t(y)) *
+                                     std::size_t(m_gx) +
+                                 std::size_t(bx)];
             const std::size_t rowOffset = std::size_t(y - cb.y) * std::size_t(width);
             for (std::uint32_t c = cellRow.begin; c < cellRow.end; ++c) {
                 const int cubeCase = unit.cellCase[c];
@@ -501,62 +438,18 @@ private:
 
     float value(std::size_t index) const { return float(m_voxels[index]); }
 
-    // Gradient in the (axisI, axisJ, stackAxis) frame, per mm.
-    McVec3 gradient(int x, int y, int z) const {
-        const std::size_t i = voxelIndex(x, y, z);
-        if (x > 0 && x < m_cx && y > 0 && y < m_cy && z > 0 && z < m_cz) {
-            // Interior: central differences everywhere, no boundary cases.
-            return {(value(i + 1) - value(i - 1)) * m_invSpanI,
-                    (value(i + m_sy) - value(i - m_sy)) * m_invSpanJ,
-                    (value(i + m_sz) - value(i - m_sz)) * m_invSpanK[std::size_t(z)]};
-        }
-        const float c = value(i);
-        McVec3 g;
-        if (x > 0 && x < m_cx)
-            g.x = mcDerivative(value(i - 1), value(i + 1), m_spanI);
-        else if (m_nx > 1)
-            g.x = x == 0 ? mcDerivative(c, value(i + 1), m_edgeSpanI)
-                         : mcDerivative(value(i - 1), c, m_edgeSpanI);
-        else
-            g.x = 0.0f;
-        if (y > 0 && y < m_cy)
-            g.y = mcDerivative(value(i - m_sy), value(i + m_sy), m_spanJ);
-        else if (m_ny > 1)
-            g.y = y == 0 ? mcDerivative(c, value(i + m_sy), m_edgeSpanJ)
-                         : mcDerivative(value(i - m_sy), c, m_edgeSpanJ);
-        else
-            g.y = 0.0f;
-        const int z0 = std::max(z - 1, 0), z1 = std::min(z + 1, m_cz);
-        const float lo = z0 == z ? c : value(i - m_sz);
-        const float hi = z1 == z ? c : value(i + m_sz);
-        g.z = mcDerivative(lo, hi, m_spanK[std::size_t(z)]);
-        return g;
-    }
+    McVec3 gradient(int x, int y, int z) const { return m_gradient.gradient(x, y, z); }
 
     // ga/gb: gradients at the edge's lower and upper voxel.
     void writeVertex(int x, int y, int z, int axis, std::uint32_t id, const McVec3& ga,
                      const McVec3& gb) {
         const std::size_t i = voxelIndex(x, y, z);
-        const std::size_t step = axis == 0 ? 1 : (axis == 1 ? m_sy : m_sz);
+        const std::size_t step = axis == 0 ? 1 : (axis == 1 ? m_dims.sy : m_dims.sz);
         const float a = value(i), b = value(i + step);
-        const float t = mcEdgeParameter(a, b, m_iso);
-        const McVec3 g = mcTransform(m_normalMatrix, mcLerp(ga, gb, t));
-        McVec3 fallback = m_edgeDirection[axis];
-        if (!(a >= m_isoF))
-            fallback = {-fallback.x, -fallback.y, -fallback.z};
-        const McVec3 n = mcOutwardNormal(g, fallback);
-
-        double px = x, py = y;
-        double offset = m_offset[std::size_t(z)];
-        if (axis == 0)
-            px += t;
-        else if (axis == 1)
-            py += t;
-        else
-            offset += double(t) * (m_offset[std::size_t(z) + 1] - offset);
-        const glm::dvec3 p = m_origin + px * m_stepI + py * m_stepJ + offset * m_stack;
-        m_out.positions[id] = glm::vec3(p);
-        m_out.normals[id] = glm::vec3(n.x, n.y, n.z);
+        const McVertex v =
+            mcEdgeVertex(m_voxelGrid.frame(), x, y, z, axis, a, b, ga, gb, m_iso, m_isoF);
+        m_out.positions[id] = glm::vec3(v.position.x, v.position.y, v.position.z);
+        m_out.normals[id] = glm::vec3(v.normal.x, v.normal.y, v.normal.z);
     }
 
     const volume::Volume& m_volume;
@@ -566,18 +459,11 @@ private:
     float m_isoF;
     T m_threshold{};
     McOutput& m_out;
-    int m_nx = 0, m_ny = 0, m_nz = 0, m_cx = 0, m_cy = 0, m_cz = 0, m_gx = 1;
-    std::size_t m_sy = 0, m_sz = 0;
+    GridDims m_dims;
+    int m_gx = 1;
     glm::ivec3 m_brickCells{1};
-    glm::dvec3 m_origin{0.0}, m_stepI{0.0}, m_stepJ{0.0}, m_stack{0.0};
-    glm::dvec3 m_axisDir[3];
-    McVec3 m_edgeDirection[3] =
-        {}; // patient direction of +x/+y/+z edges: the zero-gradient fallback
-    std::vector<double> m_offset;
-    std::vector<float> m_spanK, m_invSpanK;
-    float m_invSpanI = 0.5f, m_invSpanJ = 0.5f;
-    float m_normalMatrix[9] = {};
-    float m_spanI = 2.0f, m_spanJ = 2.0f, m_edgeSpanI = 1.0f, m_edgeSpanJ = 1.0f;
+    VoxelGridSetup m_voxelGrid; // declared after m_voxels: m_gradient points into both
+    VoxelGradientSampler<T> m_gradient;
     std::vector<Unit> m_units;
     std::vector<std::uint32_t> m_vertexOffset;   // per (z, y, brick column): count, then offset
     std::vector<std::uint32_t> m_triangleOffset; // per cell (z, y, brick column)

@@ -1,6 +1,7 @@
 #include "lw/kernels/cpu/raycast_silhouette_cpu.h"
 
 #include "lw/core/error.h"
+#include "lw/kernels/cpu/marching_cubes_cpu.h"
 #include "lw/kernels/marching_cubes.h"
 #include "lw/volume/parallel.h"
 
@@ -69,27 +70,6 @@ glm::dvec3 octDecode(double x, double y) {
     return glm::normalize(v);
 }
 
-// Inside bits of the four voxels (x,y,z), (x,y+1,z), (x,y,z+1), (x,y+1,z+1) spread onto the
-// corner bits of a cell's lower-x (0, 3, 4, 7) or upper-x (1, 2, 5, 6) face (diagram in
-// marching_cubes_tables.h), so a row of cells is classified with four reads per cell.
-struct SpreadTables {
-    std::uint8_t lower[16];
-    std::uint8_t upper[16];
-};
-constexpr std::uint8_t spread(int column, int c00, int c10, int c01, int c11) {
-    return std::uint8_t(((column & 1) << c00) | (((column >> 1) & 1) << c10) |
-                        (((column >> 2) & 1) << c01) | (((column >> 3) & 1) << c11));
-}
-constexpr SpreadTables makeSpread() {
-    SpreadTables t{};
-    for (int c = 0; c < 16; ++c) {
-        t.lower[c] = spread(c, 0, 3, 4, 7);
-        t.upper[c] = spread(c, 1, 2, 5, 6);
-    }
-    return t;
-}
-constexpr SpreadTables kSpread = makeSpread();
-
 } // namespace
 
 struct RayCastSilhouetteCpu::Impl {
@@ -128,68 +108,27 @@ namespace {
 template <typename T> class Engine final : public RayCastSilhouetteCpu::Impl {
 public:
     Engine(const volume::Volume& volume, double iso)
-        : m_voxels(volume.dataAs<T>()), m_iso(iso), m_isoF(insideThreshold(iso)) {
+        : m_voxels(volume.dataAs<T>()), m_iso(iso), m_isoF(insideThreshold(iso)),
+          m_dims(makeGridDims(volume.dims())),
+          // The same set-up as marchingCubes(): bit-identical vertices and normals need
+          // identical inputs to the shared expressions.
+          m_voxelGrid(voxelGridSetup(volume)), m_gradient{m_voxels, m_voxelGrid.spans()},
+          m_offset(m_voxelGrid.sliceOffsets()) {
         rayGrid = VoxelRayGrid(volume);
-        const glm::ivec3 d = volume.dims();
-        m_nx = d.x;
-        m_ny = d.y;
-        m_nz = d.z;
-        m_cx = m_nx - 1;
-        m_cy = m_ny - 1;
-        m_cz = m_nz - 1;
-        m_sy = std::size_t(m_nx);
-        m_sz = std::size_t(m_nx) * std::size_t(m_ny);
 
-        // The frame, spans and fallback directions exactly as marchingCubes() sets them up:
-        // bit-identical vertices and normals need identical inputs to the shared expressions.
-        const auto& g = volume.geometry();
-        m_origin = g.origin();
-        m_stepI = g.spacingI() * g.axisI();
-        m_stepJ = g.spacingJ() * g.axisJ();
-        m_stack = g.stackAxis();
-        m_offset.resize(std::size_t(std::max(m_nz, 1)));
-        for (int k = 0; k < m_nz; ++k)
-            m_offset[std::size_t(k)] = g.sliceOffset(double(k));
-        const glm::dmat3 frame(g.axisI(), g.axisJ(), g.stackAxis());
-        const glm::dmat3 invT = glm::inverse(glm::transpose(frame));
-        for (int r = 0; r < 3; ++r)
-            for (int c = 0; c < 3; ++c)
-                m_normalMatrix[r * 3 + c] = float(invT[c][r]);
-        m_spanK.resize(m_offset.size());
-        m_invSpanK.resize(m_offset.size());
-        for (int k = 0; k < m_nz; ++k) {
-            const std::size_t kk = std::size_t(k);
-            m_spanK[kk] = float(m_offset[std::size_t(std::min(k + 1, m_nz - 1))] -
-                                m_offset[std::size_t(std::max(k - 1, 0))]);
-            m_invSpanK[kk] = m_spanK[kk] > 0.0f ? 1.0f / m_spanK[kk] : 0.0f;
-        }
-        m_spanI = float(2.0 * g.spacingI());
-        m_spanJ = float(2.0 * g.spacingJ());
-        m_invSpanI = 1.0f / m_spanI;
-        m_invSpanJ = float(1.0 / (2.0 * g.spacingJ()));
-        m_edgeSpanI = float(g.spacingI());
-        m_edgeSpanJ = float(g.spacingJ());
-        m_axisDir[0] = glm::normalize(glm::dvec3(g.axisI()));
-        m_axisDir[1] = glm::normalize(glm::dvec3(g.axisJ()));
-        double slope = 1.0;
-        if (m_nz > 1)
-            slope = m_offset.back() - m_offset.front() >= 0.0 ? 1.0 : -1.0;
-        m_axisDir[2] = glm::normalize(glm::dvec3(g.stackAxis())) * slope;
-        for (int a = 0; a < 3; ++a)
-            m_edgeDirection[a] = {float(m_axisDir[a].x), float(m_axisDir[a].y),
-                                  float(m_axisDir[a].z)};
-        for (int k = 0; k + 1 < m_nz; ++k) {
+        for (int k = 0; k + 1 < m_dims.nz; ++k) {
             const double gap = m_offset[std::size_t(k) + 1] - m_offset[std::size_t(k)];
             for (int corner = 0; corner < 8; ++corner) {
-                const glm::dvec3 d = ((corner & 1) ? 0.5 : -0.5) * m_stepI +
-                                     ((corner & 2) ? 0.5 : -0.5) * m_stepJ +
-                                     ((corner & 4) ? 0.5 : -0.5) * gap * m_stack;
+                const glm::dvec3 d = ((corner & 1) ? 0.5 : -0.5) * m_voxelGrid.stepI() +
+                                     ((corner & 2) ? 0.5 : -0.5) * m_voxelGrid.stepJ() +
+                                     ((corner & 4) ? 0.5 : -0.5) * gap * m_voxelGrid.stack();
                 m_cellRadius = std::max(m_cellRadius, glm::length(d));
             }
         }
         // Cell widths in grid units (i, j, s), for the self-occlusion distance.
         m_cellScale = glm::dvec3(
-            1.0, 1.0, m_nz > 1 ? std::abs(m_offset.back() - m_offset.front()) / m_cz : 1.0);
+            1.0, 1.0,
+            m_dims.nz > 1 ? std::abs(m_offset.back() - m_offset.front()) / m_dims.cz : 1.0);
         if (!(m_cellScale.z > 0.0))
             m_cellScale.z = 1.0;
     }
@@ -200,9 +139,9 @@ public:
         chunkStarts.assign(1, 0);
         activeBricks = 0;
         buildMacroGrid(threads);
-        if (m_cx < 1 || m_cy < 1 || m_cz < 1)
+        if (m_dims.cx < 1 || m_dims.cy < 1 || m_dims.cz < 1)
             return;
-        if (voxelIndex(m_cx, m_cy, m_cz) > std::numeric_limits<std::uint32_t>::max())
+        if (voxelIndex(m_dims.cx, m_dims.cy, m_dims.cz) > std::numeric_limits<std::uint32_t>::max())
             throw core::Error("method 2", "volumes of more than 2^32 voxels are not supported");
         const std::vector<int> active = grid.activeBricks(m_iso);
         activeBricks = active.size();
@@ -254,7 +193,7 @@ public:
                     int column = columnBits(base + std::size_t(brick.cellBegin.x));
                     for (int x = brick.cellBegin.x; x < brick.cellEnd.x; ++x) {
                         const int next = columnBits(base + std::size_t(x) + 1);
-                        const int cubeCase = kSpread.lower[column] | kSpread.upper[next];
+                        const int cubeCase = mcCaseFromColumns(column, next);
                         column = next;
                         if (cubeCase != 0 && cubeCase != 255)
                             list.push_back(std::uint32_t(base + std::size_t(x)));
@@ -299,7 +238,8 @@ public:
     }
 
     void buildMacroGrid(unsigned threads) {
-        const glm::ivec3 cellsPerAxis(std::max(m_cx, 0), std::max(m_cy, 0), std::max(m_cz, 0));
+        const glm::ivec3 cellsPerAxis(std::max(m_dims.cx, 0), std::max(m_dims.cy, 0),
+                                      std::max(m_dims.cz, 0));
         m_macroDims = (cellsPerAxis + kMacroCells - 1) / kMacroCells;
         macroOccupied.assign(std::size_t(m_macroDims.x) * std::size_t(m_macroDims.y) *
                                  std::size_t(m_macroDims.z),
@@ -307,11 +247,11 @@ public:
         volume::parallelFor(
             std::size_t(m_macroDims.z),
             [&](std::size_t mz) {
-                const int z0 = int(mz) * kMacroCells, z1 = std::min(z0 + kMacroCells, m_cz);
+                const int z0 = int(mz) * kMacroCells, z1 = std::min(z0 + kMacroCells, m_dims.cz);
                 for (int my = 0; my < m_macroDims.y; ++my)
                     for (int mx = 0; mx < m_macroDims.x; ++mx) {
-                        const int y0 = my * kMacroCells, y1 = std::min(y0 + kMacroCells, m_cy);
-                        const int x0 = mx * kMacroCells, x1 = std::min(x0 + kMacroCells, m_cx);
+                        const int y0 = my * kMacroCells, y1 = std::min(y0 + kMacroCells, m_dims.cy);
+                        const int x0 = mx * kMacroCells, x1 = std::min(x0 + kMacroCells, m_dims.cx);
                         bool any = false;
                         // Corner voxels of the macro cell's cells: [x0, x1] etc.
                         for (int z = z0; z <= z1 && !any; ++z)
@@ -433,13 +373,13 @@ public:
 
 private:
     std::size_t voxelIndex(int x, int y, int z) const {
-        return std::size_t(x) + m_sy * std::size_t(y) + m_sz * std::size_t(z);
+        return std::size_t(x) + m_dims.sy * std::size_t(y) + m_dims.sz * std::size_t(z);
     }
     float value(std::size_t index) const { return float(m_voxels[index]); }
     bool inside(std::size_t index) const { return value(index) >= m_isoF; }
     int columnBits(std::size_t index) const {
-        return int(inside(index)) | int(inside(index + m_sy)) << 1 |
-               int(inside(index + m_sz)) << 2 | int(inside(index + m_sy + m_sz)) << 3;
+        return mcColumnBits([this](std::size_t i) { return inside(i); }, index, m_dims.sy,
+                            m_dims.sz);
     }
 
     // Ray parameter (from `from`) where the ray leaves macro cell `macro`, and through which axis.
@@ -458,7 +398,7 @@ private:
     }
     // Grid coordinate of the wall of `macro` that a ray going along du leaves through on `axis`.
     double macroWall(glm::ivec3 macro, glm::dvec3 du, int axis) const {
-        const int cellsOnAxis = axis == 0 ? m_cx : (axis == 1 ? m_cy : m_cz);
+        const int cellsOnAxis = axis == 0 ? m_dims.cx : (axis == 1 ? m_dims.cy : m_dims.cz);
         const int c = du[axis] > 0.0 ? std::min((macro[axis] + 1) * kMacroCells, cellsOnAxis)
                                      : macro[axis] * kMacroCells;
         return axis < 2 ? double(c) : rayGrid.offset(c);
@@ -466,10 +406,10 @@ private:
 
     glm::ivec3 cellCoords(std::uint32_t cellIndex) const {
         const std::size_t index = cellIndex;
-        const int z = int(index / m_sz);
-        const std::size_t rest = index - std::size_t(z) * m_sz;
-        const int y = int(rest / m_sy);
-        return {int(rest - std::size_t(y) * m_sy), y, z};
+        const int z = int(index / m_dims.sz);
+        const std::size_t rest = index - std::size_t(z) * m_dims.sz;
+        const int y = int(rest / m_dims.sy);
+        return {int(rest - std::size_t(y) * m_dims.sy), y, z};
     }
 
     int cellCase(glm::ivec3 p, float v[8]) const {
@@ -487,7 +427,8 @@ private:
     // Centre of cell p in patient mm.
     glm::dvec3 cellCentre(glm::ivec3 p) const {
         const double s = 0.5 * (m_offset[std::size_t(p.z)] + m_offset[std::size_t(p.z) + 1]);
-        return m_origin + (p.x + 0.5) * m_stepI + (p.y + 0.5) * m_stepJ + s * m_stack;
+        return m_voxelGrid.origin() + (p.x + 0.5) * m_voxelGrid.stepI() +
+               (p.y + 0.5) * m_voxelGrid.stepJ() + s * m_voxelGrid.stack();
     }
 
     RayCastSilhouetteCpu::Impl::NormalCone normalCone(std::uint32_t cellIndex) const {
@@ -571,7 +512,7 @@ private:
         const double fb = fraction(b), fc = fraction(c);
         glm::ivec3 v = exit.cell;
         v[a] = exit.wall;
-        const std::size_t stride[3] = {1, m_sy, m_sz};
+        const std::size_t stride[3] = {1, m_dims.sy, m_dims.sz};
         const std::size_t i00 = voxelIndex(v.x, v.y, v.z);
         const std::size_t sb = stride[b], sc = stride[c];
         const double v00 = value(i00), v10 = value(i00 + sb), v01 = value(i00 + sc),
@@ -579,38 +520,6 @@ private:
         spread = std::max(std::max(v00, v10), std::max(v01, v11)) -
                  std::min(std::min(v00, v10), std::min(v01, v11));
         return (1.0 - fc) * ((1.0 - fb) * v00 + fb * v10) + fc * ((1.0 - fb) * v01 + fb * v11);
-    }
-
-    // marchingCubes()'s gradient, expression for expression (the interior fast path multiplies
-    // by the inverse span, the border divides): identical floats give identical normals.
-    McVec3 gradient(int x, int y, int z) const {
-        const std::size_t i = voxelIndex(x, y, z);
-        if (x > 0 && x < m_cx && y > 0 && y < m_cy && z > 0 && z < m_cz) {
-            return {(value(i + 1) - value(i - 1)) * m_invSpanI,
-                    (value(i + m_sy) - value(i - m_sy)) * m_invSpanJ,
-                    (value(i + m_sz) - value(i - m_sz)) * m_invSpanK[std::size_t(z)]};
-        }
-        const float c = value(i);
-        McVec3 g;
-        if (x > 0 && x < m_cx)
-            g.x = mcDerivative(value(i - 1), value(i + 1), m_spanI);
-        else if (m_nx > 1)
-            g.x = x == 0 ? mcDerivative(c, value(i + 1), m_edgeSpanI)
-                         : mcDerivative(value(i - 1), c, m_edgeSpanI);
-        else
-            g.x = 0.0f;
-        if (y > 0 && y < m_cy)
-            g.y = mcDerivative(value(i - m_sy), value(i + m_sy), m_spanJ);
-        else if (m_ny > 1)
-            g.y = y == 0 ? mcDerivative(c, value(i + m_sy), m_edgeSpanJ)
-                         : mcDerivative(value(i - m_sy), c, m_edgeSpanJ);
-        else
-            g.y = 0.0f;
-        const int z0 = std::max(z - 1, 0), z1 = std::min(z + 1, m_cz);
-        const float lo = z0 == z ? c : value(i - m_sz);
-        const float hi = z1 == z ? c : value(i + m_sz);
-        g.z = mcDerivative(lo, hi, m_spanK[std::size_t(z)]);
-        return g;
     }
 
     // The marching-cubes vertices (patient mm) and outward normals of cell p's crossing edges,
@@ -622,8 +531,9 @@ private:
         unsigned haveGrad = 0;
         auto cornerGradient = [&](int c) -> const McVec3& {
             if (!(haveGrad & (1u << c))) {
-                grad[c] = gradient(p.x + kMcCornerOffset[c][0], p.y + kMcCornerOffset[c][1],
-                                   p.z + kMcCornerOffset[c][2]);
+                grad[c] =
+                    m_gradient.gradient(p.x + kMcCornerOffset[c][0], p.y + kMcCornerOffset[c][1],
+                                        p.z + kMcCornerOffset[c][2]);
                 haveGrad |= 1u << c;
             }
             return grad[c];
@@ -636,24 +546,11 @@ private:
             const int axis = owner[3];
             const int vx = p.x + owner[0], vy = p.y + owner[1], vz = p.z + owner[2];
             const float a = v[c0], b = v[c1];
-            const float t = mcEdgeParameter(a, b, m_iso);
-            const McVec3 g =
-                mcTransform(m_normalMatrix, mcLerp(cornerGradient(c0), cornerGradient(c1), t));
-            McVec3 fallback = m_edgeDirection[axis];
-            if (!(a >= m_isoF))
-                fallback = {-fallback.x, -fallback.y, -fallback.z};
-            const McVec3 n = mcOutwardNormal(g, fallback);
-            double px = vx, py = vy;
-            double offset = m_offset[std::size_t(vz)];
-            if (axis == 0)
-                px += t;
-            else if (axis == 1)
-                py += t;
-            else
-                offset += double(t) * (m_offset[std::size_t(vz) + 1] - offset);
-            const glm::dvec3 q = m_origin + px * m_stepI + py * m_stepJ + offset * m_stack;
-            position[e] = glm::vec3(q);
-            normal[e] = glm::vec3(n.x, n.y, n.z);
+            const McVertex vertex =
+                mcEdgeVertex(m_voxelGrid.frame(), vx, vy, vz, axis, a, b, cornerGradient(c0),
+                             cornerGradient(c1), m_iso, m_isoF);
+            position[e] = glm::vec3(vertex.position.x, vertex.position.y, vertex.position.z);
+            normal[e] = glm::vec3(vertex.normal.x, vertex.normal.y, vertex.normal.z);
         }
         return edges;
     }
@@ -686,19 +583,13 @@ private:
     const T* m_voxels;
     double m_iso;
     float m_isoF;
-    int m_nx = 0, m_ny = 0, m_nz = 0, m_cx = 0, m_cy = 0, m_cz = 0;
-    std::size_t m_sy = 0, m_sz = 0;
-    glm::dvec3 m_origin{0.0}, m_stepI{0.0}, m_stepJ{0.0}, m_stack{0.0};
-    glm::dvec3 m_axisDir[3];
+    GridDims m_dims;
+    VoxelGridSetup m_voxelGrid; // after m_voxels: m_gradient points into both
+    VoxelGradientSampler<T> m_gradient;
+    const std::vector<double>& m_offset; // per slice, along the stack axis
     glm::dvec3 m_cellScale{1.0};
-    McVec3 m_edgeDirection[3] = {};
     double m_cellRadius = 0.0; // largest centre-to-corner distance of any cell, mm
     glm::ivec3 m_macroDims{0};
-    std::vector<double> m_offset;
-    std::vector<float> m_spanK, m_invSpanK;
-    float m_invSpanI = 0.5f, m_invSpanJ = 0.5f;
-    float m_normalMatrix[9] = {};
-    float m_spanI = 2.0f, m_spanJ = 2.0f, m_edgeSpanI = 1.0f, m_edgeSpanJ = 1.0f;
 };
 
 } // namespace

@@ -7,6 +7,7 @@
 #include "lw/kernels/marching_cubes_tables.h"
 
 #include <cmath>
+#include <cstddef>
 
 namespace lw::kernels {
 
@@ -74,6 +75,69 @@ LW_HOST_DEVICE inline McVec3 mcOutwardNormal(McVec3 gradient, McVec3 fallback) {
         return fallback;
     const float inv = -1.0f / std::sqrt(len2);
     return {gradient.x * inv, gradient.y * inv, gradient.z * inv};
+}
+
+// Inside bits of the voxel column (x,y,z), (x,y+1,z), (x,y,z+1), (x,y+1,z+1) starting at voxel
+// `index`, for kMcColumnSpread; `inside(i)` classifies voxel i (each caller compares in the way
+// that is fastest for its voxel type; all agree with mcInside).
+template <typename Inside>
+LW_HOST_DEVICE inline int mcColumnBits(const Inside& inside, std::size_t index, std::size_t sy,
+                                       std::size_t sz) {
+    return int(inside(index)) | int(inside(index + sy)) << 1 | int(inside(index + sz)) << 2 |
+           int(inside(index + sy + sz)) << 3;
+}
+
+// Case of a cell from the columns (mcColumnBits) at its lower-x and upper-x voxels.
+LW_HOST_DEVICE inline int mcCaseFromColumns(int lower, int upper) {
+    return kMcColumnSpread.lower[lower] | kMcColumnSpread.upper[upper];
+}
+
+// Where the voxel grid lies in patient space, as plain values a kernel can take by value: grid
+// point (x, y, k) sits at origin + x * stepI + y * stepJ + sliceOffset[k] * stack (mm).
+struct McGridFrame {
+    double origin[3], stepI[3], stepJ[3], stack[3];
+    const double* sliceOffset; // per slice, along stack (uneven gaps allowed)
+    // Row-major M^-T with M = (axisI, axisJ, stackAxis): turns a gradient in the oblique frame
+    // into the patient gradient.
+    float normalMatrix[9];
+    // Patient direction of the +x/+y/+z edges (+z along increasing offsets): the normal of a
+    // flat plateau exactly at the iso-value, see mcOutwardNormal.
+    McVec3 edgeDirection[3];
+};
+
+struct McVertex {
+    McVec3 position; // patient mm
+    McVec3 normal;   // unit, outward
+};
+
+// The marching-cubes vertex on the edge that leaves voxel (x, y, z) along `axis`: `a`/`b` are the
+// values and `ga`/`gb` the gradients (oblique frame, see VoxelGradientSampler) at its lower and
+// upper voxel. Marching cubes and method 2 both place their vertices here, bit-identically.
+LW_HOST_DEVICE inline McVertex mcEdgeVertex(const McGridFrame& frame, int x, int y, int z, int axis,
+                                            float a, float b, const McVec3& ga, const McVec3& gb,
+                                            double iso, float isoF) {
+    const float t = mcEdgeParameter(a, b, iso);
+    const McVec3 g = mcTransform(frame.normalMatrix, mcLerp(ga, gb, t));
+    McVec3 fallback = frame.edgeDirection[axis];
+    if (!mcInside(a, isoF))
+        fallback = {-fallback.x, -fallback.y, -fallback.z};
+    McVertex vertex;
+    vertex.normal = mcOutwardNormal(g, fallback);
+
+    double px = x, py = y;
+    double offset = frame.sliceOffset[z];
+    if (axis == 0)
+        px += t;
+    else if (axis == 1)
+        py += t;
+    else
+        offset += double(t) * (frame.sliceOffset[z + 1] - offset);
+    double p[3];
+    for (int c = 0; c < 3; ++c)
+        p[c] =
+            frame.origin[c] + px * frame.stepI[c] + py * frame.stepJ[c] + offset * frame.stack[c];
+    vertex.position = {float(p[0]), float(p[1]), float(p[2])};
+    return vertex;
 }
 
 } // namespace lw::kernels

@@ -368,4 +368,29 @@ constexpr McTriangleCounts makeMcTriangleCounts() {
 // Triangles per case, so the counting pass needs no walk over the rows of kMcTriTable.
 LW_MC_TABLE_STORAGE McTriangleCounts kMcTriangleCount = makeMcTriangleCounts();
 
+// Row-wise classification: the inside bits of the four voxels (x,y,z), (x,y+1,z), (x,y,z+1),
+// (x,y+1,z+1) form a "column" (bits 0..3 in that order, see mcColumnBits). A cell's case is its
+// lower-x column spread onto corners 0, 3, 4, 7 or'ed with its upper-x column spread onto
+// corners 1, 2, 5, 6, so a row of cells is classified with four reads per cell.
+struct McColumnSpread {
+    std::uint8_t lower[16];
+    std::uint8_t upper[16];
+};
+
+constexpr std::uint8_t mcSpreadColumn(int column, int c00, int c10, int c01, int c11) {
+    return std::uint8_t(((column & 1) << c00) | (((column >> 1) & 1) << c10) |
+                        (((column >> 2) & 1) << c01) | (((column >> 3) & 1) << c11));
+}
+
+constexpr McColumnSpread makeMcColumnSpread() {
+    McColumnSpread t{};
+    for (int c = 0; c < 16; ++c) {
+        t.lower[c] = mcSpreadColumn(c, 0, 3, 4, 7);
+        t.upper[c] = mcSpreadColumn(c, 1, 2, 5, 6);
+    }
+    return t;
+}
+
+LW_MC_TABLE_STORAGE McColumnSpread kMcColumnSpread = makeMcColumnSpread();
+
 } // namespace lw::kernels

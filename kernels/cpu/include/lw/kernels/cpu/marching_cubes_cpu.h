@@ -1,11 +1,13 @@
 #pragma once
 
+#include "lw/kernels/voxel_grid.h"
 #include "lw/volume/bricks.h"
 #include "lw/volume/volume.h"
 
 #include <cstddef>
 #include <cstdint>
 #include <glm/glm.hpp>
+#include <utility>
 #include <vector>
 
 namespace lw::kernels::cpu {
@@ -39,5 +41,17 @@ struct McOutput {
 // give bit-identical meshes.
 McResult marchingCubes(const volume::Volume& volume, const volume::BrickGrid& grid,
                        double storedIso, McOutput& out, unsigned threads = 0);
+
+// The grid set-up (derivative spans, patient frame) that marchingCubes() uses for `volume`.
+// Method 2 builds its vertices from the same one, which is what makes them bit-identical.
+inline VoxelGridSetup voxelGridSetup(const volume::Volume& volume) {
+    const volume::VolumeGeometry& g = volume.geometry();
+    const int nz = volume.dims().z;
+    std::vector<double> sliceOffsets(std::size_t(nz > 0 ? nz : 0));
+    for (int k = 0; k < nz; ++k)
+        sliceOffsets[std::size_t(k)] = g.sliceOffset(double(k));
+    return VoxelGridSetup(volume.dims(), g.origin(), g.axisI(), g.axisJ(), g.stackAxis(),
+                          g.spacingI(), g.spacingJ(), std::move(sliceOffsets));
+}
 
 } // namespace lw::kernels::cpu

@@ -1,0 +1,171 @@
+#pragma once
+
+// The voxel grid as marching cubes sees it: per-axis derivative spans, the gradient behind the
+// vertex normals, and (host side) their set-up from the volume geometry. Method 2 rebuilds the
+// marching-cubes vertices cell by cell and must reproduce them bit for bit, so marching cubes,
+// method 2 and the CUDA backend all take these from this one definition.
+
+#include "lw/kernels/host_device.h"
+#include "lw/kernels/marching_cubes.h"
+
+#include <cstddef>
+#include <glm/glm.hpp>
+#include <utility>
+#include <vector>
+
+namespace lw::kernels {
+
+// Voxel dims, cell dims (voxels - 1 per axis) and the voxel strides of +y and +z.
+struct GridDims {
+    int nx = 0, ny = 0, nz = 0;
+    int cx = 0, cy = 0, cz = 0;
+    std::size_t sy = 0, sz = 0;
+};
+
+inline GridDims makeGridDims(glm::ivec3 voxels) {
+    GridDims d;
+    d.nx = voxels.x;
+    d.ny = voxels.y;
+    d.nz = voxels.z;
+    d.cx = d.nx - 1;
+    d.cy = d.ny - 1;
+    d.cz = d.nz - 1;
+    d.sy = std::size_t(d.nx);
+    d.sz = std::size_t(d.nx) * std::size_t(d.ny);
+    return d;
+}
+
+// The real distances (mm) a derivative divides by, per axis. In-plane the central difference
+// spans two spacings and the one-sided one at a face one spacing; across slices the span is the
+// actual distance between the neighbouring slices (uneven gaps), one gap at the first and last
+// slice. Plain values and pointers, so it can be copied to a device.
+struct GridSpans {
+    GridDims dims;
+    float spanI = 2.0f, spanJ = 2.0f;
+    // The interior fast path multiplies by these instead of dividing; invSpanJ is rounded from
+    // double, invSpanI from the float span (as first written: keep, the normals depend on it).
+    float invSpanI = 0.5f, invSpanJ = 0.5f;
+    float edgeSpanI = 1.0f, edgeSpanJ = 1.0f;
+    const float* spanK = nullptr;    // per slice
+    const float* invSpanK = nullptr; // per slice, 0 where spanK is 0
+};
+
+// Host side: GridSpans and McGridFrame of a volume, from its geometry (VolumeGeometry's values:
+// kernels/common does not see lw::volume) and the offset of each slice along the stack axis.
+// Owns the per-slice tables they point into, so it is neither copied nor moved.
+class VoxelGridSetup {
+public:
+    VoxelGridSetup(glm::ivec3 dims, glm::dvec3 origin, glm::dvec3 axisI, glm::dvec3 axisJ,
+                   glm::dvec3 stackAxis, double spacingI, double spacingJ,
+                   std::vector<double> sliceOffsets)
+        : m_origin(origin), m_stepI(spacingI * axisI), m_stepJ(spacingJ * axisJ),
+          m_stack(stackAxis), m_offset(std::move(sliceOffsets)) {
+        const int nz = dims.z;
+        m_offset.resize(std::size_t(nz > 1 ? nz : 1));
+        m_spans.dims = makeGridDims(dims);
+        // Real distance between the neighbours used for d/ds at slice k (uneven gaps).
+        m_spanK.resize(m_offset.size());
+        m_invSpanK.resize(m_offset.size());
+        for (int k = 0; k < nz; ++k) {
+            const std::size_t kk = std::size_t(k);
+            m_spanK[kk] = float(m_offset[std::size_t(k + 1 < nz ? k + 1 : nz - 1)] -
+                                m_offset[std::size_t(k > 0 ? k - 1 : 0)]);
+            m_invSpanK[kk] = m_spanK[kk] > 0.0f ? 1.0f / m_spanK[kk] : 0.0f;
+        }
+        m_spans.spanI = float(2.0 * spacingI);
+        m_spans.spanJ = float(2.0 * spacingJ);
+        m_spans.invSpanI = 1.0f / m_spans.spanI;
+        m_spans.invSpanJ = float(1.0 / (2.0 * spacingJ));
+        m_spans.edgeSpanI = float(spacingI);
+        m_spans.edgeSpanJ = float(spacingJ);
+        m_spans.spanK = m_spanK.data();
+        m_spans.invSpanK = m_invSpanK.data();
+
+        for (int c = 0; c < 3; ++c) {
+            m_frame.origin[c] = m_origin[c];
+            m_frame.stepI[c] = m_stepI[c];
+            m_frame.stepJ[c] = m_stepJ[c];
+            m_frame.stack[c] = m_stack[c];
+        }
+        m_frame.sliceOffset = m_offset.data();
+        // Derivatives are taken in the oblique frame (axisI, axisJ, stackAxis) with real
+        // distances; the patient gradient is M^-T (du, dw, ds) with M the frame's columns --
+        // the same as J(k)^-T applied to the index-space gradient.
+        const glm::dmat3 frame(axisI, axisJ, stackAxis);
+        const glm::dmat3 invT = glm::inverse(glm::transpose(frame));
+        for (int r = 0; r < 3; ++r)
+            for (int c = 0; c < 3; ++c)
+                m_frame.normalMatrix[r * 3 + c] = float(invT[c][r]);
+        glm::dvec3 axisDir[3];
+        axisDir[0] = glm::normalize(axisI);
+        axisDir[1] = glm::normalize(axisJ);
+        double slope = 1.0;
+        if (nz > 1)
+            slope = m_offset.back() - m_offset.front() >= 0.0 ? 1.0 : -1.0;
+        axisDir[2] = glm::normalize(stackAxis) * slope;
+        for (int a = 0; a < 3; ++a)
+            m_frame.edgeDirection[a] = {float(axisDir[a].x), float(axisDir[a].y),
+                                        float(axisDir[a].z)};
+    }
+    VoxelGridSetup(const VoxelGridSetup&) = delete;
+    VoxelGridSetup& operator=(const VoxelGridSetup&) = delete;
+
+    const GridSpans& spans() const { return m_spans; }
+    const McGridFrame& frame() const { return m_frame; }
+    // Per slice; at least one entry.
+    const std::vector<double>& sliceOffsets() const { return m_offset; }
+    glm::dvec3 origin() const { return m_origin; }
+    glm::dvec3 stepI() const { return m_stepI; } // spacingI * axisI
+    glm::dvec3 stepJ() const { return m_stepJ; } // spacingJ * axisJ
+    glm::dvec3 stack() const { return m_stack; } // stackAxis
+
+private:
+    glm::dvec3 m_origin, m_stepI, m_stepJ, m_stack;
+    std::vector<double> m_offset;
+    std::vector<float> m_spanK, m_invSpanK;
+    GridSpans m_spans;
+    McGridFrame m_frame{};
+};
+
+// Gradient of the voxel field at grid points, in the oblique (axisI, axisJ, stackAxis) frame,
+// per mm: central differences inside, one-sided at the faces.
+template <typename T> struct VoxelGradientSampler {
+    const T* voxels = nullptr;
+    GridSpans spans;
+
+    LW_HOST_DEVICE float value(std::size_t index) const { return float(voxels[index]); }
+
+    LW_HOST_DEVICE McVec3 gradient(int x, int y, int z) const {
+        const int cx = spans.dims.cx, cy = spans.dims.cy, cz = spans.dims.cz;
+        const std::size_t sy = spans.dims.sy, sz = spans.dims.sz;
+        const std::size_t i = std::size_t(x) + sy * std::size_t(y) + sz * std::size_t(z);
+        if (x > 0 && x < cx && y > 0 && y < cy && z > 0 && z < cz) {
+            // Interior: central differences everywhere, no boundary cases.
+            return {(value(i + 1) - value(i - 1)) * spans.invSpanI,
+                    (value(i + sy) - value(i - sy)) * spans.invSpanJ,
+                    (value(i + sz) - value(i - sz)) * spans.invSpanK[std::size_t(z)]};
+        }
+        const float c = value(i);
+        McVec3 g;
+        if (x > 0 && x < cx)
+            g.x = mcDerivative(value(i - 1), value(i + 1), spans.spanI);
+        else if (spans.dims.nx > 1)
+            g.x = x == 0 ? mcDerivative(c, value(i + 1), spans.edgeSpanI)
+                         : mcDerivative(value(i - 1), c, spans.edgeSpanI);
+        else
+            g.x = 0.0f;
+        if (y > 0 && y < cy)
+            g.y = mcDerivative(value(i - sy), value(i + sy), spans.spanJ);
+        else if (spans.dims.ny > 1)
+            g.y = y == 0 ? mcDerivative(c, value(i + sy), spans.edgeSpanJ)
+                         : mcDerivative(value(i - sy), c, spans.edgeSpanJ);
+        else
+            g.y = 0.0f;
+        const float lo = z > 0 ? value(i - sz) : c;
+        const float hi = z < cz ? value(i + sz) : c;
+        g.z = mcDerivative(lo, hi, spans.spanK[std::size_t(z)]);
+        return g;
+    }
+};
+
+} // namespace lw::kernels
