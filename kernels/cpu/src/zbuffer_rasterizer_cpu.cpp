@@ -458,6 +458,29 @@ void BrickSurfaceExtractor::extract(const volume::Brick& brick, BrickSurface& ou
     });
 }
 
+namespace {
+
+// True when the 9 bytes rows[r][x .. x + 8] of every row given are all 0 or all 1 (the same value
+// throughout): the 8 cells (or voxels) starting at x then hold no crossing. Null rows are ignored.
+inline bool uniformBlock(const std::uint8_t* const rows[4], std::size_t x) {
+    constexpr std::uint64_t kOnes = 0x0101010101010101ull;
+    std::uint64_t any = 0, all = kOnes;
+    unsigned anyTail = 0, allTail = 1;
+    for (int r = 0; r < 4; ++r) {
+        if (!rows[r])
+            continue;
+        std::uint64_t word;
+        std::memcpy(&word, rows[r] + x, sizeof word);
+        any |= word;
+        all &= word;
+        anyTail |= rows[r][x + 8];
+        allTail &= rows[r][x + 8];
+    }
+    return (any == 0 && anyTail == 0) || (all == kOnes && allTail == 1);
+}
+
+} // namespace
+
 template <typename T>
 void BrickSurfaceExtractor::extractTyped(const volume::Brick& brick, BrickSurface& out) const {
     out.positions.clear();
@@ -572,7 +595,13 @@ void BrickSurfaceExtractor::extractTyped(const volume::Brick& brick, BrickSurfac
             const int y = cb.y + ly, z = cb.z + lz;
             const std::size_t base = sy * std::size_t(ly) + sz * std::size_t(lz);
             const std::uint8_t* in = out.inside.data() + base;
+            const std::uint8_t* const block[4] = {in, hasY ? in + sy : nullptr,
+                                                  hasZ ? in + sz : nullptr, nullptr};
             for (int lx = 0; lx < bx; ++lx) {
+                if ((lx & 7) == 0 && lx + 8 < bx && uniformBlock(block, std::size_t(lx))) {
+                    lx += 7;
+                    continue;
+                }
                 const std::uint8_t a = in[lx];
                 const bool crossX = lx + 1 < bx && in[lx + 1] != a;
                 const bool crossY = hasY && in[std::size_t(lx) + sy] != a;
@@ -616,7 +645,12 @@ void BrickSurfaceExtractor::extractTyped(const volume::Brick& brick, BrickSurfac
                 continue;
             const std::size_t base = sy * std::size_t(ly) + sz * std::size_t(lz);
             const std::uint8_t* in = out.inside.data() + base;
+            const std::uint8_t* const block[4] = {in, in + sy, in + sz, in + sy + sz};
             for (int lx = 0; lx + 1 < bx; ++lx) {
+                if ((lx & 7) == 0 && lx + 8 < bx && uniformBlock(block, std::size_t(lx))) {
+                    lx += 7;
+                    continue;
+                }
                 const std::uint8_t* corner = in + lx;
                 int cubeCase = 0;
                 for (int c = 0; c < 8; ++c)
