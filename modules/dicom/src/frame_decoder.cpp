@@ -1,6 +1,5 @@
 #include "dicom_dcmtk.h"
 #include "dicom_file.h"
-#include "jpegls_decoder.h"
 
 #include "lw/core/error.h"
 #include "lw/core/log.h"
@@ -126,7 +125,6 @@ struct FrameDecoder::Impl {
     const Uint16* words16 = nullptr;
     std::size_t byteLength = 0;
     std::vector<char> jpeg2000Buffer; // GDCM's output, owned here
-    std::vector<std::uint16_t> jpegLsBuffer; // CharLS's output (all frames), owned here
 
     int bitsStored = 0; // effective: may follow the codestream where the header is wrong
     int highBit = 0;
@@ -140,7 +138,6 @@ struct FrameDecoder::Impl {
     void load(int frame);
     void loadJpeg2000(int frame, DcmPixelData& pixelData, E_TransferSyntax xfer);
     void loadWithGdcm(int frame);
-    bool loadJpegLsWithCharls(DcmPixelData& pixelData, E_TransferSyntax xfer);
 };
 
 void FrameDecoder::Impl::load(int frame) {
@@ -162,12 +159,6 @@ void FrameDecoder::Impl::load(int frame) {
     if (xferInfo.isEncapsulated() || isJpeg2000(syntaxUid)) {
         if (isJpeg2000(syntaxUid)) {
             loadJpeg2000(frame, *pixelData, xfer);
-            loaded = true;
-            return;
-        }
-        // JPEG-LS: the system CharLS first (fast, no symbol clash, see jpegls_decoder.h); where it
-        // is missing or refuses the data, DCMTK's codec, or GDCM's where DCMTK's is unsafe.
-        if (isJpegLs(syntaxUid) && loadJpegLsWithCharls(*pixelData, xfer)) {
             loaded = true;
             return;
         }
@@ -224,124 +215,6 @@ void FrameDecoder::Impl::loadJpeg2000(int frame, DcmPixelData& pixelData, E_Tran
         }
     }
     loadWithGdcm(frame);
-}
-
-// The compressed bytes of each frame, straight from the encapsulated pixel data (nothing is
-// decoded by DCMTK). Item 0 of the sequence is the basic offset table; a frame may span several
-// fragments. Empty when the frames cannot be told apart (the caller then falls back).
-static std::vector<std::vector<Uint8>> jpegLsFrames(DcmPixelData& pixelData, E_TransferSyntax xfer,
-                                                    int numberOfFrames, std::string& why) {
-    DcmPixelSequence* sequence = nullptr;
-    if (pixelData.getEncapsulatedRepresentation(xfer, nullptr, sequence).bad() || !sequence) {
-        why = "no encapsulated pixel data";
-        return {};
-    }
-    const unsigned long items = sequence->card();
-    if (items < 2) {
-        why = "no fragments";
-        return {};
-    }
-    struct Fragment {
-        const Uint8* data;
-        std::size_t size;
-        std::size_t offset; // of its item tag, from the first fragment's: as the offset table counts
-    };
-    std::vector<Fragment> fragments;
-    std::size_t offset = 0;
-    for (unsigned long i = 1; i < items; ++i) {
-        DcmPixelItem* item = nullptr;
-        Uint8* bytes = nullptr;
-        if (sequence->getItem(item, i).bad() || !item) {
-            why = "cannot read fragment " + std::to_string(i);
-            return {};
-        }
-        const std::size_t size = item->getLength();
-        if (size > 0 && (item->getUint8Array(bytes).bad() || !bytes)) {
-            why = "cannot read fragment " + std::to_string(i);
-            return {};
-        }
-        fragments.push_back({bytes, size, offset});
-        offset += 8 + size;
-    }
-
-    // Which fragment starts each frame: the offset table where it has one entry per frame,
-    // one fragment per frame where the counts match, all fragments for a single frame.
-    std::vector<std::size_t> firstFragment;
-    if (numberOfFrames == 1) {
-        firstFragment = {0};
-    } else {
-        DcmPixelItem* table = nullptr;
-        Uint8* tableBytes = nullptr;
-        if (sequence->getItem(table, 0).good() && table && table->getLength() == 4u * Uint32(numberOfFrames) &&
-            table->getUint8Array(tableBytes).good() && tableBytes) {
-            std::size_t next = 0;
-            for (int f = 0; f < numberOfFrames; ++f) {
-                const std::size_t at = std::size_t(tableBytes[4 * f]) | std::size_t(tableBytes[4 * f + 1]) << 8 |
-                                       std::size_t(tableBytes[4 * f + 2]) << 16 |
-                                       std::size_t(tableBytes[4 * f + 3]) << 24;
-                while (next < fragments.size() && fragments[next].offset < at)
-                    ++next;
-                if (next >= fragments.size() || fragments[next].offset != at ||
-                    (!firstFragment.empty() && next <= firstFragment.back())) {
-                    firstFragment.clear();
-                    break;
-                }
-                firstFragment.push_back(next);
-            }
-        }
-        if (firstFragment.empty() && fragments.size() == std::size_t(numberOfFrames))
-            for (int f = 0; f < numberOfFrames; ++f)
-                firstFragment.push_back(std::size_t(f));
-        if (firstFragment.empty()) {
-            why = std::to_string(fragments.size()) + " fragments for " + std::to_string(numberOfFrames) +
-                  " frames and no usable offset table";
-            return {};
-        }
-    }
-
-    std::vector<std::vector<Uint8>> frames(firstFragment.size());
-    for (std::size_t f = 0; f < firstFragment.size(); ++f) {
-        const std::size_t end = f + 1 < firstFragment.size() ? firstFragment[f + 1] : fragments.size();
-        std::size_t total = 0;
-        for (std::size_t i = firstFragment[f]; i < end; ++i)
-            total += fragments[i].size;
-        frames[f].reserve(total);
-        for (std::size_t i = firstFragment[f]; i < end; ++i)
-            if (fragments[i].size > 0)
-                frames[f].insert(frames[f].end(), fragments[i].data, fragments[i].data + fragments[i].size);
-    }
-    return frames;
-}
-
-bool FrameDecoder::Impl::loadJpegLsWithCharls(DcmPixelData& pixelData, E_TransferSyntax xfer) {
-    if (!jpegls::available())
-        return false;
-    const std::size_t frameCount = std::size_t(std::max(info.numberOfFrames, 1));
-    std::string why;
-    const auto frames = jpegLsFrames(pixelData, xfer, int(frameCount), why);
-    const std::size_t pixels = std::size_t(info.rows) * std::size_t(info.columns);
-    const std::size_t frameBytes = pixels * std::size_t(info.bitsAllocated / 8);
-    if (!frames.empty()) {
-        std::vector<std::uint16_t> buffer((frameCount * frameBytes + 1) / 2);
-        auto* out = reinterpret_cast<std::uint8_t*>(buffer.data());
-        for (std::size_t f = 0; f < frames.size() && why.empty(); ++f) {
-            why = jpegls::decodeFrame(frames[f].data(), frames[f].size(), info.rows, info.columns,
-                                      info.bitsAllocated, out + f * frameBytes);
-            if (!why.empty())
-                why = "frame " + std::to_string(f + 1) + ": " + why;
-        }
-        if (why.empty()) {
-            jpegLsBuffer = std::move(buffer);
-            byteLength = frameCount * frameBytes;
-            if (info.bitsAllocated == 16)
-                words16 = jpegLsBuffer.data();
-            else
-                bytes8 = reinterpret_cast<const Uint8*>(jpegLsBuffer.data());
-            return true;
-        }
-    }
-    kLog.debug(info.path + ": JPEG-LS through CharLS failed (" + why + "); trying DCMTK / GDCM");
-    return false;
 }
 
 void FrameDecoder::Impl::loadWithGdcm(int frame) {
