@@ -50,7 +50,8 @@ for entry in "Philips head phantom 5 mm, no tilt, uncompressed:$work/philips_fla
   name=${entry%%:*}; dir=${entry#*:}
   n=$(ls "$dir" | wc -l)
   l=$(time_linework "$dir")
-  if dcm2niix -z n -b n -o "$work" -f probe "$dir" 2>&1 | grep -q "No valid DICOM images"; then
+  probe=$(dcm2niix -z n -b n -o "$work" -f probe "$dir" 2>&1 || true)
+  if grep -q "No valid DICOM images" <<<"$probe"; then
     printf '| %s | %d | n/a (cannot decode) | n/a | %s | %.0f |\n' "$name" "$n" "$l" "$(echo "$n*1000/$l" | bc -l)"
     continue
   fi
