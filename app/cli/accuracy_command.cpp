@@ -43,6 +43,7 @@ std::vector<int> parseIntList(const std::string& option, const std::string& text
 struct Row {
     int method = 0;
     std::string variant;    // S or L
+    std::string backend;    // the renderer's: cpu, gl (cuda later)
     std::string visibility; // on | endpoints | along
     std::string shape;
     int size = 0;
@@ -123,6 +124,7 @@ int runAccuracy(const std::vector<std::string>& args, std::ostream& out) {
                            const render::PixelMask& drawn) {
                 Row row;
                 row.method = method;
+                row.backend = std::string(renderers[method]->backendName()); // method 1 is "gl"
                 row.variant.assign(
                     1, chunked ? 'L' : 'S'); // (assign of a literal trips GCC 12's -Wrestrict)
                 row.visibility = visibility;
@@ -184,7 +186,7 @@ int runAccuracy(const std::vector<std::string>& args, std::ostream& out) {
             writer.field("method", row.method)
                 .field("variant", row.variant)
                 .field("visibility", row.visibility);
-            writer.field("backend", backendUsed).field("shape", row.shape).field("size", row.size);
+            writer.field("backend", row.backend).field("shape", row.shape).field("size", row.size);
             writer.field("image", row.image)
                 .field("recall", row.score.recall)
                 .field("precision", row.score.precision);
