@@ -2,7 +2,9 @@
 // images of the silhouette and the shaded panel.
 #include "lw/core/image_compare.h"
 #include "lw/core/png_io.h"
+#include "lw/kernels/cpu/marching_cubes_cpu.h"
 #include "lw/kernels/cpu/zbuffer_rasterizer_cpu.h"
+#include "lw/kernels/marching_cubes_tables.h"
 #include "lw/render/analytic_shapes.h"
 #include "lw/render/contour_score.h"
 #include "lw/render/phantom.h"
@@ -17,6 +19,7 @@
 #include <cstring>
 #include <filesystem>
 #include <gtest/gtest.h>
+#include <string>
 
 namespace {
 
@@ -100,9 +103,10 @@ TEST(ZBufferSilhouette, ChunkedEqualsWholeAndModesAgree) {
         << "a new iso-value must re-extract";
 }
 
-// The L variant draws brick by brick from BrickSurfaceExtractor; its triangles must be the whole
-// mesh's, vertex bits included (positions and normals), on a CT phantom (integer voxels) and on a
-// tilted stack with uneven gaps (float voxels, every geometry term of the vertex expressions).
+// The L variant draws brick by brick from BrickSurfaceExtractor (marching_cubes_cpu.h); its
+// triangles must be the whole mesh's, vertex bits included (positions and normals), on a CT phantom
+// (integer voxels) and on a tilted stack with uneven gaps (float voxels, every geometry term of the
+// vertex expressions).
 using TriangleBits = std::array<std::uint32_t, 18>;
 
 TriangleBits triangleBits(const glm::vec3* positions, const glm::vec3* normals,
@@ -163,6 +167,43 @@ TEST(ZBufferSilhouette, BrickSurfacesEqualWholeMesh) {
                                        centre));
     for (const int cells : {5, 13})
         expectBrickSurfacesEqualWholeMesh(tilted, 0.0, cells);
+}
+
+// A brick covering the whole volume numbers its edges in marchingCubes()'s global order, so its
+// surface is the mesh byte for byte, indices included: every cube case (2x2x2 volumes, which
+// also exercise the column-based case lookup) and a phantom.
+void expectOneBrickSurfaceIsTheMesh(const lw::volume::Volume& volume, double isoReal,
+                                    const std::string& what) {
+    const Mesh whole = extractIsoSurface(volume, isoReal);
+    const double storedIso = volume.valueMapping().toStored(isoReal);
+    const auto grid = lw::volume::BrickGrid::build(volume, volume.dims());
+    ASSERT_EQ(grid.bricks().size(), 1u) << what;
+    const lw::kernels::cpu::BrickSurfaceExtractor extractor(volume, storedIso);
+    lw::kernels::cpu::BrickSurface surface;
+    extractor.extract(grid.bricks()[0], surface);
+    ASSERT_EQ(surface.positions.size(), whole.positions.size()) << what;
+    EXPECT_EQ(std::memcmp(surface.positions.data(), whole.positions.data(),
+                          whole.positions.size() * sizeof(glm::vec3)),
+              0)
+        << what;
+    EXPECT_EQ(std::memcmp(surface.normals.data(), whole.normals.data(),
+                          whole.normals.size() * sizeof(glm::vec3)),
+              0)
+        << what;
+    EXPECT_TRUE(surface.indices == whole.indices) << what;
+}
+
+TEST(ZBufferSilhouette, OneBrickSurfaceIsTheWholeMesh) {
+    for (int c = 0; c < 256; ++c) {
+        lw::volume::Volume cube(glm::ivec3(2), lw::volume::VoxelType::Float32);
+        for (int k = 0; k < 8; ++k) {
+            const auto* o = lw::kernels::kMcCornerOffset[k];
+            cube.dataAs<float>()[cube.index(o[0], o[1], o[2])] = (c >> k) & 1 ? 1.0f : 0.0f;
+        }
+        expectOneBrickSurfaceIsTheMesh(cube, 0.5, "case " + std::to_string(c));
+    }
+    const lw::volume::Volume phantom = makePhantom(glm::ivec3(40, 36, 32), PhantomKind::Ct);
+    expectOneBrickSurfaceIsTheMesh(phantom, kPhantomBoneIso, "phantom");
 }
 
 // A big sphere in front of a small one: seen from the front (az 0 looks along +y), the small

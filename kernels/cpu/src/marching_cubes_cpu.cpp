@@ -6,7 +6,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <type_traits>
 
 // Two passes over (brick, slab) work units, like flying edges: pass 1 classifies rows and
 // counts vertices per row segment and triangles per cell-row segment; an exclusive prefix sum
@@ -58,17 +57,8 @@ public:
               McOutput& out)
         : m_volume(volume), m_grid(grid), m_voxels(volume.dataAs<T>()), m_iso(iso),
           m_isoF(insideThreshold(iso)), m_out(out), m_dims(makeGridDims(volume.dims())),
+          m_threshold(voxelInsideThreshold<T>(iso)),
           m_voxelGrid(voxelGridSetup(volume)), m_gradient{m_voxels, m_voxelGrid.spans()} {
-        // Compare in the voxel type: exact, and it lets the row scan vectorise. For integer
-        // voxels, v >= iso  <=>  v >= ceil(iso); the caller only runs us when some brick has
-        // min < iso <= max, so ceil(iso) is a value of T.
-        if constexpr (std::is_integral_v<T>) {
-            const double c = std::ceil(iso);
-            m_threshold = T(std::clamp(c, double(std::numeric_limits<T>::lowest()),
-                                       double(std::numeric_limits<T>::max())));
-        } else {
-            m_threshold = m_isoF;
-        }
         m_gx = grid.gridSize().x;
         m_brickCells = grid.brickCells();
     }
@@ -436,18 +426,13 @@ private:
         }
     }
 
-    float value(std::size_t index) const { return float(m_voxels[index]); }
-
     McVec3 gradient(int x, int y, int z) const { return m_gradient.gradient(x, y, z); }
 
     // ga/gb: gradients at the edge's lower and upper voxel.
     void writeVertex(int x, int y, int z, int axis, std::uint32_t id, const McVec3& ga,
                      const McVec3& gb) {
-        const std::size_t i = voxelIndex(x, y, z);
-        const std::size_t step = axis == 0 ? 1 : (axis == 1 ? m_dims.sy : m_dims.sz);
-        const float a = value(i), b = value(i + step);
         const McVertex v =
-            mcEdgeVertex(m_voxelGrid.frame(), x, y, z, axis, a, b, ga, gb, m_iso, m_isoF);
+            m_gradient.edgeVertex(m_voxelGrid.frame(), x, y, z, axis, ga, gb, m_iso, m_isoF);
         m_out.positions[id] = glm::vec3(v.position.x, v.position.y, v.position.z);
         m_out.normals[id] = glm::vec3(v.normal.x, v.normal.y, v.normal.z);
     }
@@ -457,9 +442,9 @@ private:
     const T* m_voxels;
     double m_iso;
     float m_isoF;
-    T m_threshold{};
     McOutput& m_out;
     GridDims m_dims;
+    T m_threshold{};
     int m_gx = 1;
     glm::ivec3 m_brickCells{1};
     VoxelGridSetup m_voxelGrid; // declared after m_voxels: m_gradient points into both

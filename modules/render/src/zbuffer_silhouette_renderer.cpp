@@ -1,6 +1,7 @@
 #include "lw/render/zbuffer_silhouette_renderer.h"
 
 #include "lw/core/error.h"
+#include "lw/kernels/cpu/marching_cubes_cpu.h"
 #include "lw/kernels/cpu/zbuffer_rasterizer_cpu.h"
 #include "lw/volume/bricks.h"
 #include "lw/volume/parallel.h"

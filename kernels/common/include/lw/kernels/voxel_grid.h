@@ -166,6 +166,17 @@ template <typename T> struct VoxelGradientSampler {
         g.z = mcDerivative(lo, hi, spans.spanK[std::size_t(z)]);
         return g;
     }
+
+    // mcEdgeVertex of the edge leaving voxel (x, y, z) along `axis`, with its end values read
+    // here; ga/gb are gradient() at the edge's lower and upper voxel (callers reuse them).
+    LW_HOST_DEVICE McVertex edgeVertex(const McGridFrame& frame, int x, int y, int z, int axis,
+                                       const McVec3& ga, const McVec3& gb, double iso,
+                                       float isoF) const {
+        const std::size_t i =
+            std::size_t(x) + spans.dims.sy * std::size_t(y) + spans.dims.sz * std::size_t(z);
+        const std::size_t step = axis == 0 ? 1 : (axis == 1 ? spans.dims.sy : spans.dims.sz);
+        return mcEdgeVertex(frame, x, y, z, axis, value(i), value(i + step), ga, gb, iso, isoF);
+    }
 };
 
 } // namespace lw::kernels

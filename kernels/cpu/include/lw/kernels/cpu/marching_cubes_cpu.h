@@ -4,9 +4,13 @@
 #include "lw/volume/bricks.h"
 #include "lw/volume/volume.h"
 
+#include <algorithm>
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <glm/glm.hpp>
+#include <limits>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -53,5 +57,55 @@ inline VoxelGridSetup voxelGridSetup(const volume::Volume& volume) {
     return VoxelGridSetup(volume.dims(), g.origin(), g.axisI(), g.axisJ(), g.stackAxis(),
                           g.spacingI(), g.spacingJ(), std::move(sliceOffsets));
 }
+
+// The inside test `value >= iso` done in the voxel type T: exact, and it lets row scans
+// vectorise. For integer voxels v >= iso  <=>  v >= ceil(iso) (clamped to T's range: callers
+// only classify when some brick has min < iso <= max); for float voxels insideThreshold(iso).
+template <typename T> T voxelInsideThreshold(double iso) {
+    if constexpr (std::is_integral_v<T>) {
+        const double c = std::ceil(iso);
+        return T(std::clamp(c, double(std::numeric_limits<T>::lowest()),
+                            double(std::numeric_limits<T>::max())));
+    } else {
+        return T(insideThreshold(iso));
+    }
+}
+
+// Marching cubes of one brick at a time, for method 3's L variant (the paper's chunked method 3
+// exists for devices whose memory cannot hold the whole mesh). The surface of one brick's cells:
+// the same triangles (same corner order, hence the same winding) with bit-identical vertex
+// positions and normals as marchingCubes() gives for those cells -- both take the grid set-up,
+// gradient and edge vertex from voxel_grid.h / marching_cubes.h -- so per-pixel maxima drawn
+// from it equal those of the whole mesh. Only the numbering differs: indices are brick-local,
+// and a vertex on a face shared with a neighbour brick is computed by both.
+struct BrickSurface {
+    std::vector<glm::vec3> positions;
+    std::vector<glm::vec3> normals;
+    std::vector<std::uint32_t> indices;
+    // Scratch over the brick's corner voxels, reused from brick to brick.
+    std::vector<std::uint8_t> inside;
+    std::vector<std::uint8_t> rowState; // per voxel row: 0 all outside, 1 all inside, 2 mixed
+    std::vector<std::uint32_t> edgeIds[3];
+
+    std::size_t triangleCount() const { return indices.size() / 3; }
+};
+
+class BrickSurfaceExtractor {
+public:
+    // `storedIso` in stored units; inside = value >= iso (as marchingCubes). The volume must
+    // outlive the extractor. Cheap to construct (per-slice tables only).
+    BrickSurfaceExtractor(const volume::Volume& volume, double storedIso);
+    // Replaces `out`'s geometry with the surface of `brick`'s cells (single-threaded: callers
+    // run several bricks side by side).
+    void extract(const volume::Brick& brick, BrickSurface& out) const;
+
+private:
+    template <typename T> void extractTyped(const volume::Brick& brick, BrickSurface& out) const;
+
+    const volume::Volume& m_volume;
+    double m_iso;
+    float m_isoF;
+    VoxelGridSetup m_voxelGrid;
+};
 
 } // namespace lw::kernels::cpu

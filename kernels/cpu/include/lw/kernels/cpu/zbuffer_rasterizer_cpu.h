@@ -14,9 +14,6 @@
 //     linearly in screen space is perspective-correct for both projections. This is the paper's
 //     "inverted depth" that makes atomicMax keep the nearest fragment.
 
-#include "lw/volume/bricks.h"
-#include "lw/volume/volume.h"
-
 #include <algorithm>
 #include <atomic>
 #include <climits>
@@ -284,49 +281,5 @@ void drawSegmentsDepth(const ScreenSegment* segments, std::size_t count, DepthBu
 // whole neighbourhood hides the segment. mask: width * height bytes, 1 = silhouette.
 void resolveSilhouette(const DepthBuffer& surface, const DepthBuffer& lines, float epsilon,
                        bool visibility, std::uint8_t* mask, unsigned threads = 0);
-
-// The L variant's geometry, one brick at a time (the paper's chunked method 3 exists for devices
-// whose memory cannot hold the whole mesh). The surface of one brick's cells: the same triangles
-// (same corner order, hence the same winding) with bit-identical vertex positions and normals as
-// marchingCubes() gives for those cells, so the depth and silhouette buffers, which keep per-pixel
-// maxima, come out identical to the whole-mesh pass. Only the numbering differs: indices are
-// brick-local, and a vertex on a face shared with a neighbour brick is computed by both.
-struct BrickSurface {
-    std::vector<glm::vec3> positions;
-    std::vector<glm::vec3> normals;
-    std::vector<std::uint32_t> indices;
-    // Scratch over the brick's corner voxels, reused from brick to brick.
-    std::vector<std::uint8_t> inside;
-    std::vector<std::uint8_t> rowState; // per voxel row: 0 all outside, 1 all inside, 2 mixed
-    std::vector<std::uint32_t> edgeIds[3];
-
-    std::size_t triangleCount() const { return indices.size() / 3; }
-};
-
-class BrickSurfaceExtractor {
-public:
-    // `storedIso` in stored units; inside = value >= iso (as marchingCubes). The volume must
-    // outlive the extractor. Cheap to construct (per-slice tables only).
-    BrickSurfaceExtractor(const volume::Volume& volume, double storedIso);
-    // Replaces `out`'s geometry with the surface of `brick`'s cells (single-threaded: callers
-    // run several bricks side by side).
-    void extract(const volume::Brick& brick, BrickSurface& out) const;
-
-private:
-    template <typename T> void extractTyped(const volume::Brick& brick, BrickSurface& out) const;
-
-    const volume::Volume& m_volume;
-    double m_iso;
-    float m_isoF;
-    int m_nx = 0, m_ny = 0, m_nz = 0, m_cx = 0, m_cy = 0, m_cz = 0;
-    std::size_t m_sy = 0, m_sz = 0;
-    glm::dvec3 m_origin{0.0}, m_stepI{0.0}, m_stepJ{0.0}, m_stack{0.0};
-    float m_edgeDirection[3][3] = {};
-    float m_normalMatrix[9] = {};
-    std::vector<double> m_offset;
-    std::vector<float> m_spanK, m_invSpanK;
-    float m_invSpanI = 0.5f, m_invSpanJ = 0.5f;
-    float m_spanI = 2.0f, m_spanJ = 2.0f, m_edgeSpanI = 1.0f, m_edgeSpanJ = 1.0f;
-};
 
 } // namespace lw::kernels::cpu
