@@ -53,8 +53,15 @@ cmake --build "$build_dir" --parallel "$jobs"
 
 demo=resources/demo/ct_head_ge_tilt
 if [ "$command" = run ]; then
-  # The main job. Until the review GUI exists it is the study summary of the demo CT.
-  exec "$build_dir/app/cli/linework-cli" info "$demo"
+  # The main job: the demo study's summary, then its side-by-side review (shaded bone surface
+  # left, silhouette right, one camera) as a PNG. The review GUI takes this place once it exists.
+  cli="$build_dir/app/cli/linework-cli"
+  "$cli" info "$demo"
+  mkdir -p out
+  "$cli" render "$demo" --iso 400 --method 3 --panel both --view 30,20 --size 900x900 \
+         -o out/demo_review.png
+  echo "linework: the review is in $root/out/demo_review.png"
+  exit 0
 fi
 
 # Tests: GL and GUI tests need a display; give them a virtual one when there is none.
