@@ -73,6 +73,18 @@ int paeth(int a, int b, int c) {
     return pb <= pc ? b : c;
 }
 
+// The value PNG filter `type` (0 none, 1 sub, 2 up, 3 average, 4 Paeth) predicts from the
+// left (a), upper (b) and upper-left (c) bytes; encoder and decoder must agree on it exactly.
+int filterPredictor(int type, int a, int b, int c) {
+    switch (type) {
+    case 1: return a;
+    case 2: return b;
+    case 3: return (a + b) / 2;
+    case 4: return paeth(a, b, c);
+    default: return 0;
+    }
+}
+
 // Filters one row with filter `type`; `prev` is the unfiltered previous row (zeros for row 0).
 void filterRow(int type, const std::uint8_t* row, const std::uint8_t* prev, std::size_t length,
                int bpp, std::uint8_t* out) {
@@ -80,25 +92,7 @@ void filterRow(int type, const std::uint8_t* row, const std::uint8_t* prev, std:
         const int a = i >= std::size_t(bpp) ? row[i - bpp] : 0;
         const int b = prev[i];
         const int c = i >= std::size_t(bpp) ? prev[i - bpp] : 0;
-        int predictor = 0;
-        switch (type) {
-        case 0:
-            predictor = 0;
-            break;
-        case 1:
-            predictor = a;
-            break;
-        case 2:
-            predictor = b;
-            break;
-        case 3:
-            predictor = (a + b) / 2;
-            break;
-        case 4:
-            predictor = paeth(a, b, c);
-            break;
-        }
-        out[i] = static_cast<std::uint8_t>(row[i] - predictor);
+        out[i] = static_cast<std::uint8_t>(row[i] - filterPredictor(type, a, b, c));
     }
 }
 
@@ -296,24 +290,7 @@ ImageRgba8 decodePng(const std::byte* data, std::size_t size, const std::string&
             const int a = i >= std::size_t(channels) ? row[i - channels] : 0;
             const int b = prev[i];
             const int c = i >= std::size_t(channels) ? prev[i - channels] : 0;
-            int predictor = 0;
-            switch (type) {
-            case 1:
-                predictor = a;
-                break;
-            case 2:
-                predictor = b;
-                break;
-            case 3:
-                predictor = (a + b) / 2;
-                break;
-            case 4:
-                predictor = paeth(a, b, c);
-                break;
-            default:
-                break;
-            }
-            row[i] = static_cast<std::uint8_t>(in[i] + predictor);
+            row[i] = static_cast<std::uint8_t>(in[i] + filterPredictor(type, a, b, c));
         }
         Rgba8* out = image.row(static_cast<int>(y));
         for (std::uint32_t x = 0; x < width; ++x) {
