@@ -1,24 +1,21 @@
 // Method 1 behind the SilhouetteRenderer interface (GL adapter): mode a caches the mesh, S == L,
-// visibility off draws a superset of on, and the counts match the mesh. Own main: without an
-// OpenGL 4.x context the binary exits with the SKIP code instead of passing untested.
+// visibility off draws a superset of on, and the counts match the mesh. Linked with
+// lw_gtest_main_gl: without an OpenGL 4.x context the binary exits with the SKIP code instead of
+// passing untested.
+#include "gl_test_context.h"
 #include "lw/core/error.h"
-#include "lw/core/log.h"
 #include "lw/render/aabb.h"
 #include "lw/render/camera.h"
 #include "lw/render/geometry_shader_silhouette_renderer.h"
-#include "lw/render/gl_context.h"
 #include "lw/render/iso_surface.h"
 #include "lw/render/phantom.h"
 #include "lw/render/renderer_factory.h"
 
-#include <cstdio>
 #include <gtest/gtest.h>
 #include <memory>
 
 namespace lw::render {
 namespace {
-
-GlContext* g_context = nullptr;
 
 // The benchmark phantom is small enough here and has what the checks need: several bones
 // (contours hidden behind others) and bricks that split the surface.
@@ -45,7 +42,7 @@ SilhouetteSettings settings(ExtractionMode mode, int brickCells = 0, bool visibi
 }
 
 TEST(GeometryShaderSilhouetteRenderer, ModeAReusesTheMeshModeBExtractsEveryFrame) {
-    GeometryShaderSilhouetteRenderer renderer(*g_context);
+    GeometryShaderSilhouetteRenderer renderer(lw::test::glContext());
     renderer.setVolume(phantom());
     const SilhouetteFrame first = renderer.render(camera(), settings(ExtractionMode::CachedA));
     EXPECT_GT(first.times.extractMs, 0.0);
@@ -67,7 +64,7 @@ TEST(GeometryShaderSilhouetteRenderer, ModeAReusesTheMeshModeBExtractsEveryFrame
 }
 
 TEST(GeometryShaderSilhouetteRenderer, CountsMatchTheMeshAndLinesAreDrawn) {
-    GeometryShaderSilhouetteRenderer renderer(*g_context);
+    GeometryShaderSilhouetteRenderer renderer(lw::test::glContext());
     renderer.setVolume(phantom());
     const SilhouetteFrame frame = renderer.render(camera(), settings(ExtractionMode::CachedA));
     const Mesh mesh = extractIsoSurface(phantom(), kPhantomBoneIso);
@@ -83,7 +80,7 @@ TEST(GeometryShaderSilhouetteRenderer, CountsMatchTheMeshAndLinesAreDrawn) {
 }
 
 TEST(GeometryShaderSilhouetteRenderer, ChunkedAndWholeGiveIdenticalMasks) {
-    GeometryShaderSilhouetteRenderer renderer(*g_context);
+    GeometryShaderSilhouetteRenderer renderer(lw::test::glContext());
     renderer.setVolume(phantom());
     for (const ExtractionMode mode : {ExtractionMode::CachedA, ExtractionMode::EveryFrameB}) {
         for (const bool visibility : {true, false}) {
@@ -99,7 +96,7 @@ TEST(GeometryShaderSilhouetteRenderer, ChunkedAndWholeGiveIdenticalMasks) {
 }
 
 TEST(GeometryShaderSilhouetteRenderer, VisibilityOffIsASupersetOfOn) {
-    GeometryShaderSilhouetteRenderer renderer(*g_context);
+    GeometryShaderSilhouetteRenderer renderer(lw::test::glContext());
     renderer.setVolume(phantom());
     const SilhouetteFrame on =
         renderer.render(camera(), settings(ExtractionMode::CachedA, 0, true));
@@ -116,7 +113,7 @@ TEST(GeometryShaderSilhouetteRenderer, VisibilityOffIsASupersetOfOn) {
 }
 
 TEST(GeometryShaderSilhouetteRenderer, IsoPanelIsShadedForTheSameCamera) {
-    GeometryShaderSilhouetteRenderer renderer(*g_context);
+    GeometryShaderSilhouetteRenderer renderer(lw::test::glContext());
     renderer.setVolume(phantom());
     const core::ImageRgba8 iso =
         renderer.renderIsoPanel(camera(), settings(ExtractionMode::CachedA));
@@ -135,7 +132,7 @@ TEST(GeometryShaderSilhouetteRenderer, IsoPanelIsShadedForTheSameCamera) {
 }
 
 TEST(GeometryShaderSilhouetteRenderer, RenderBeforeSetVolumeThrows) {
-    GeometryShaderSilhouetteRenderer renderer(*g_context);
+    GeometryShaderSilhouetteRenderer renderer(lw::test::glContext());
     EXPECT_THROW(renderer.render(camera(), settings(ExtractionMode::CachedA)), core::Error);
 }
 
@@ -148,30 +145,8 @@ TEST(GeometryShaderSilhouetteRenderer, FactoryGivesTheGlAdapterForMethod1) {
     renderer->setVolume(phantom());
     const SilhouetteFrame frame = renderer->render(camera(), settings(ExtractionMode::CachedA));
     EXPECT_GT(frame.lines.count(), 200u);
-    g_context->makeCurrent(); // the factory's renderer made its own context current
+    lw::test::glContext().makeCurrent(); // the factory's renderer made its own context current
 }
 
 } // namespace
 } // namespace lw::render
-
-int main(int argc, char** argv) {
-    testing::InitGoogleTest(&argc, argv);
-    // Same policy as tests/support/gtest_main.cpp: error-level log messages fail the test.
-    lw::core::setLogSink([](lw::core::LogLevel level, std::string_view category,
-                            const std::string& message) {
-        std::fprintf(stderr, "[%.*s] %s\n", int(category.size()), category.data(), message.c_str());
-        if (level == lw::core::LogLevel::Error)
-            ADD_FAILURE() << "error logged in " << category << ": " << message;
-    });
-    std::unique_ptr<lw::render::EglHeadlessContext> context;
-    try {
-        context = std::make_unique<lw::render::EglHeadlessContext>();
-    } catch (const lw::core::Error& error) {
-        std::printf("SKIP: no headless OpenGL context: %s\n", error.what());
-        return LINEWORK_SKIP_CODE;
-    }
-    lw::render::g_context = context.get();
-    const int result = RUN_ALL_TESTS();
-    lw::render::g_context = nullptr;
-    return result;
-}

@@ -1,11 +1,9 @@
 // Methods 1 (GL geometry shader), 2 (ray-cast visibility) and 3 (z-buffer, when built) draw the
-// same visible silhouette: >= 99% of either's pixels lie within 1 px of the other's. Own main:
-// without an OpenGL 4.x context the binary exits with the SKIP code instead of passing untested.
-#include "lw/core/error.h"
-#include "lw/core/log.h"
+// same visible silhouette: >= 99% of either's pixels lie within 1 px of the other's. Linked
+// with lw_gtest_main_gl: without an OpenGL 4.x context the binary exits with the SKIP code
+// instead of passing untested.
 #include "lw/render/analytic_shapes.h"
 #include "lw/render/contour_score.h"
-#include "lw/render/gl_context.h"
 #include "lw/render/iso_surface.h"
 #include "lw/render/raycast_silhouette_renderer.h"
 #include "lw/render/silhouette_gl_renderer.h"
@@ -17,9 +15,7 @@
 #define LW_TEST_HAVE_METHOD3 0
 #endif
 
-#include <cstdio>
 #include <gtest/gtest.h>
-#include <memory>
 #include <string>
 
 namespace lw::render {
@@ -79,21 +75,3 @@ TEST(SilhouetteMethodsAgree, Method2AndMethod1AndMethod3) {
 
 } // namespace
 } // namespace lw::render
-
-int main(int argc, char** argv) {
-    testing::InitGoogleTest(&argc, argv);
-    lw::core::setLogSink([](lw::core::LogLevel level, std::string_view category,
-                            const std::string& message) {
-        std::fprintf(stderr, "[%.*s] %s\n", int(category.size()), category.data(), message.c_str());
-        if (level == lw::core::LogLevel::Error)
-            ADD_FAILURE() << "error logged in " << category << ": " << message;
-    });
-    std::unique_ptr<lw::render::EglHeadlessContext> context;
-    try {
-        context = std::make_unique<lw::render::EglHeadlessContext>();
-    } catch (const lw::core::Error& error) {
-        std::printf("SKIP: no headless OpenGL context: %s\n", error.what());
-        return LINEWORK_SKIP_CODE;
-    }
-    return RUN_ALL_TESTS();
-}

@@ -1,16 +1,15 @@
 // Method 1's GL pipeline on a headless EGL context (llvmpipe here and in CI, NVIDIA on the GPU
-// machine). The binary has its own main: without an OpenGL 4.x context it exits with the SKIP
-// code, so a machine without GL reports SKIP rather than a PASS that tested nothing.
+// machine). Linked with lw_gtest_main_gl: without an OpenGL 4.x context the binary exits with the
+// SKIP code, so a machine without GL reports SKIP rather than a PASS that tested nothing.
 
 #include "lw/core/error.h"
 #include "lw/core/image_compare.h"
-#include "lw/core/log.h"
 #include "lw/core/png_io.h"
 #include "lw/kernels/silhouette_segment.h"
 #include "lw/render/camera.h"
-#include "lw/render/gl_context.h"
 #include "lw/render/iso_surface.h"
 #include "lw/render/silhouette_gl_renderer.h"
+#include "gl_test_context.h"
 #include "test_support.h"
 
 #include <gtest/gtest.h>
@@ -22,7 +21,6 @@
 #include <cstdlib>
 #include <filesystem>
 #include <map>
-#include <memory>
 #include <numbers>
 #include <utility>
 
@@ -31,8 +29,6 @@ using lw::core::ImageRgba8;
 using lw::core::Rgba8;
 
 namespace {
-
-lw::render::EglHeadlessContext* g_context = nullptr;
 
 constexpr Rgba8 kWhite{255, 255, 255, 255};
 
@@ -117,7 +113,7 @@ std::filesystem::path outputDir() {
 
 class SilhouetteGl : public testing::Test {
 protected:
-    void SetUp() override { g_context->makeCurrent(); }
+    void SetUp() override { lw::test::glContext().makeCurrent(); }
     void TearDown() override { m_renderer.release(); }
     SilhouetteGlRenderer m_renderer;
 };
@@ -125,11 +121,11 @@ protected:
 } // namespace
 
 TEST(GlContext, ReportsRenderer) {
-    ASSERT_NE(g_context, nullptr);
-    EXPECT_FALSE(g_context->renderer().empty());
-    EXPECT_FALSE(g_context->version().empty());
-    EXPECT_NE(g_context->description().find(g_context->renderer()), std::string::npos);
-    std::printf("GL context: %s\n", g_context->description().c_str());
+    const EglHeadlessContext& context = lw::test::glContext();
+    EXPECT_FALSE(context.renderer().empty());
+    EXPECT_FALSE(context.version().empty());
+    EXPECT_NE(context.description().find(context.renderer()), std::string::npos);
+    std::printf("GL context: %s\n", context.description().c_str());
 }
 
 TEST_F(SilhouetteGl, IsoPanelShadesTheProjectedDisc) {
@@ -451,26 +447,4 @@ TEST_F(SilhouetteGl, GoldenImages) {
     }
     EXPECT_FALSE(update)
         << "LINEWORK_UPDATE_BASELINES is set: baselines were rewritten, nothing was compared";
-}
-
-int main(int argc, char** argv) {
-    testing::InitGoogleTest(&argc, argv);
-    // Same policy as tests/support/gtest_main.cpp: error-level log messages fail the test.
-    lw::core::setLogSink([](lw::core::LogLevel level, std::string_view category,
-                            const std::string& message) {
-        std::fprintf(stderr, "[%.*s] %s\n", int(category.size()), category.data(), message.c_str());
-        if (level == lw::core::LogLevel::Error)
-            ADD_FAILURE() << "error logged in " << category << ": " << message;
-    });
-    std::unique_ptr<EglHeadlessContext> context;
-    try {
-        context = std::make_unique<EglHeadlessContext>();
-    } catch (const lw::core::Error& error) {
-        std::printf("SKIP: no headless OpenGL context: %s\n", error.what());
-        return LINEWORK_SKIP_CODE;
-    }
-    g_context = context.get();
-    const int result = RUN_ALL_TESTS();
-    g_context = nullptr;
-    return result;
 }

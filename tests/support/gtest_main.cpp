@@ -1,7 +1,6 @@
 // gtest main for Linework. Error-level log messages fail the running test (DESIGN.md: errors at
 // error level fail tests). With LINEWORK_TEST_REQUIRES_DATA the binary exits with the SKIP code
-// when ../shared/data is missing.
-#include "lw/core/log.h"
+// when ../shared/data is missing. GL tests use gtest_main_gl.cpp instead.
 #include "test_support.h"
 
 #include <gtest/gtest.h>
@@ -16,11 +15,6 @@ int main(int argc, char** argv) {
         return LINEWORK_SKIP_CODE;
     }
 #endif
-    lw::core::setLogSink([](lw::core::LogLevel level, std::string_view category,
-                            const std::string& message) {
-        std::fprintf(stderr, "[%.*s] %s\n", int(category.size()), category.data(), message.c_str());
-        if (level == lw::core::LogLevel::Error)
-            ADD_FAILURE() << "error logged in " << category << ": " << message;
-    });
+    lw::test::installFailingLogSink();
     return RUN_ALL_TESTS();
 }

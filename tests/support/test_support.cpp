@@ -1,10 +1,24 @@
 #include "test_support.h"
 
+#include "lw/core/log.h"
+
+#include <gtest/gtest.h>
+
+#include <cstdio>
 #include <cstdlib>
 #include <random>
 #include <string>
 
 namespace lw::test {
+
+void installFailingLogSink() {
+    lw::core::setLogSink([](lw::core::LogLevel level, std::string_view category,
+                            const std::string& message) {
+        std::fprintf(stderr, "[%.*s] %s\n", int(category.size()), category.data(), message.c_str());
+        if (level == lw::core::LogLevel::Error)
+            ADD_FAILURE() << "error logged in " << category << ": " << message;
+    });
+}
 
 std::optional<std::filesystem::path> sharedDataDir() {
     std::filesystem::path dir = LINEWORK_DEFAULT_SHARED_DATA;

@@ -5,6 +5,9 @@
 
 namespace lw::test {
 
+// Error-level log messages fail the running test (DESIGN.md: errors at error level fail tests);
+// every message is echoed to stderr. Installed by the gtest mains before RUN_ALL_TESTS.
+void installFailingLogSink();
 // ../shared/data (or $LINEWORK_SHARED_DATA) when it exists.
 std::optional<std::filesystem::path> sharedDataDir();
 // The source tree (for tests/data and resources/).
