@@ -167,6 +167,9 @@ void writeDicomJson(const std::string& path, const dicom::DicomIndex& index,
                 else
                     w.null();
                 w.field("instances", series.instances.size());
+                if (series.referencedFiles > 0) // read from a DICOMDIR
+                    w.field("referenced_files", series.referencedFiles)
+                        .field("missing_files", series.missingFiles);
                 w.key("volumes").beginArray();
                 for (const auto& plan : report.assembly.volumes)
                     writeVolumeJson(w, plan);
@@ -210,8 +213,11 @@ void writeDicomText(const std::string& path, const dicom::DicomIndex& index,
                 const SeriesReport& report = reports[next++];
                 out << "    series " << optionalNumber(series.seriesNumber) << "  "
                     << series.modality << "  '" << series.description << "'  "
-                    << series.instances.size() << " instances\n"
-                    << "      uid " << series.seriesInstanceUid << "\n";
+                    << series.instances.size() << " instances";
+                if (series.missingFiles > 0)
+                    out << " (" << series.missingFiles << " of " << series.referencedFiles
+                        << " files the DICOMDIR references are missing)";
+                out << "\n      uid " << series.seriesInstanceUid << "\n";
                 for (const auto& plan : report.assembly.volumes) {
                     const auto s = plan.geometry.spacing();
                     out << "      volume " << plan.dims.x << " x " << plan.dims.y << " x "

@@ -69,8 +69,22 @@ TEST(DicomScannerData, PhilipsExportRootDicomdir) {
     EXPECT_EQ(index.errors.size(), 338u);
     EXPECT_EQ(index.instanceCount(), 95u);
     EXPECT_EQ(studyCount(index), 2u);
-    // 9 series listed; the held-back S2020, S2030 and S3010 have no file at all.
-    EXPECT_EQ(index.seriesCount(), 6u);
+    // 9 series listed; the held-back S2020, S2030 and S3010 have no file at all: they are
+    // listed from the DICOMDIR's records, with no instances and all their files missing.
+    EXPECT_EQ(index.seriesCount(), 9u);
+    std::size_t emptySeries = 0, missingFiles = 0;
+    for (const auto* series : index.allSeries()) {
+        missingFiles += series->missingFiles;
+        EXPECT_EQ(series->referencedFiles, series->instances.size() + series->missingFiles)
+            << series->seriesInstanceUid;
+        if (series->instances.empty()) {
+            ++emptySeries;
+            EXPECT_EQ(series->missingFiles, series->referencedFiles);
+            EXPECT_EQ(series->modality, "CT");
+        }
+    }
+    EXPECT_EQ(emptySeries, 3u);
+    EXPECT_EQ(missingFiles, 338u);
     EXPECT_TRUE(std::any_of(index.warnings.begin(), index.warnings.end(), [](const std::string& w) {
         return w.find("lists 9 series; 3 of them") != std::string::npos;
     }));

@@ -158,6 +158,17 @@ private:
     std::unordered_map<std::string, std::map<std::string, std::string>> m_listings;
 };
 
+struct ListedSeries {
+    std::string patientId, patientName;
+    std::string studyInstanceUid, studyId, studyDescription, studyDate, studyTime;
+    std::string modality, description;
+    std::optional<int> seriesNumber;
+    std::size_t referenced = 0;
+    std::size_t missing = 0;
+};
+
+enum class Reference { None, Present, Missing, Nested, Rejected };
+
 struct DicomdirState {
     fs::path root;          // the file-set root: the folder of the DICOMDIR the scan started at
     fs::path canonicalRoot; // for the containment check after symlinks are resolved
@@ -168,9 +179,17 @@ struct DicomdirState {
     std::vector<std::string> warnings;
     std::set<std::string> listedSeries;
     std::set<std::string> listedStudies;
+    // What the SERIES records say, with the PATIENT and STUDY records before them, so series
+    // whose files are all missing still appear in the index (a CD with a series held back).
+    std::map<std::string, ListedSeries> listedSeriesRecords;
+    bool recordsInOrder = true; // every file's records run PATIENT, STUDY, SERIES, IMAGE...
     CaseInsensitiveResolver resolver;
     core::Progress* progress = nullptr;
 };
+
+template <typename T> std::tuple<bool, T> optionalKey(const std::optional<T>& value) {
+    return {!value.has_value(), value.value_or(T{})};
+}
 
 std::string getString(DcmItem& item, const DcmTagKey& key) {
     OFString value;
@@ -218,16 +237,17 @@ std::optional<std::vector<std::string>> splitFileId(const std::string& id) {
 
 void walkDicomdir(const fs::path& dicomdir, DicomdirState& state, int depth, bool topLevel);
 
-void handleReference(DcmItem& record, const fs::path& dicomdir, DicomdirState& state, int depth) {
+Reference handleReference(DcmItem& record, const fs::path& dicomdir, DicomdirState& state,
+                          int depth) {
     const std::string id = getString(record, DCM_ReferencedFileID);
     if (id.empty())
-        return;
+        return Reference::None;
     const auto components = splitFileId(id);
     if (!components) {
         state.errors.push_back({(dicomdir.parent_path() / id).string(),
                                 "ReferencedFileID '" + id + "' in " + dicomdir.string() +
                                     " leaves the file-set root " + state.root.string()});
-        return;
+        return Reference::Rejected;
     }
     fs::path lexical = state.root;
     for (const auto& c : *components)
@@ -241,24 +261,25 @@ void handleReference(DcmItem& record, const fs::path& dicomdir, DicomdirState& s
     if (!resolved) {
         if (state.seenFiles.insert(lexical.lexically_normal()).second)
             state.errors.push_back({lexical.string(), kMissingReason});
-        return;
+        return Reference::Missing;
     }
     if (!isInside(canonicalOrAbsolute(*resolved), state.canonicalRoot)) {
         state.errors.push_back(
             {resolved->string(), "referenced by " + dicomdir.string() +
                                      " but resolves (through a link) outside the file-set root " +
                                      state.root.string()});
-        return;
+        return Reference::Rejected;
     }
     const std::string classInFile = trim(getString(record, DCM_ReferencedSOPClassUIDInFile));
     const bool nested = classInFile == UID_MediaStorageDirectoryStorage ||
                         (classInFile.empty() && safeIsDicomdir(*resolved));
     if (nested) {
         walkDicomdir(*resolved, state, depth + 1, false);
-        return;
+        return Reference::Nested;
     }
     if (state.seenFiles.insert(resolved->lexically_normal()).second)
         state.files.push_back(*resolved);
+    return Reference::Present;
 }
 
 void walkDicomdir(const fs::path& dicomdir, DicomdirState& state, int depth, bool topLevel) {
@@ -295,6 +316,12 @@ void walkDicomdir(const fs::path& dicomdir, DicomdirState& state, int depth, boo
     // The records are walked as a flat list rather than through the offset links: the offsets
     // are often absent, stale after copying, or the records reordered, while every record that
     // matters carries its ReferencedFileID. The hierarchy comes from the image headers.
+    // The order of the records gives the context of a SERIES record (the PATIENT and STUDY
+    // before it); it is used only for series without any readable file, and only when this
+    // file's records come in the usual top-down order.
+    ListedSeries context;
+    std::string currentSeries;
+    bool sawPatient = false, sawStudy = false;
     const unsigned long count = records->card();
     for (unsigned long i = 0; i < count; ++i) {
         DcmItem* record = records->getItem(i);
@@ -304,14 +331,100 @@ void walkDicomdir(const fs::path& dicomdir, DicomdirState& state, int depth, boo
         if (record->findAndGetUint16(DCM_RecordInUseFlag, inUse).good() && inUse == 0)
             continue; // deleted record (retired mechanism, still found on old media)
         const std::string type = trim(getString(*record, DCM_DirectoryRecordType));
-        if (type == "SERIES") {
-            if (auto uid = trim(getString(*record, DCM_SeriesInstanceUID)); !uid.empty())
-                state.listedSeries.insert(uid);
+        if (type == "PATIENT") {
+            sawPatient = true;
+            sawStudy = false;
+            currentSeries.clear();
+            context.patientId = trim(getString(*record, DCM_PatientID));
+            context.patientName = trim(getString(*record, DCM_PatientName));
         } else if (type == "STUDY") {
-            if (auto uid = trim(getString(*record, DCM_StudyInstanceUID)); !uid.empty())
-                state.listedStudies.insert(uid);
+            state.recordsInOrder = state.recordsInOrder && sawPatient;
+            sawStudy = true;
+            currentSeries.clear();
+            context.studyInstanceUid = trim(getString(*record, DCM_StudyInstanceUID));
+            context.studyId = trim(getString(*record, DCM_StudyID));
+            context.studyDescription = trim(getString(*record, DCM_StudyDescription));
+            context.studyDate = trim(getString(*record, DCM_StudyDate));
+            context.studyTime = trim(getString(*record, DCM_StudyTime));
+            if (!context.studyInstanceUid.empty())
+                state.listedStudies.insert(context.studyInstanceUid);
+        } else if (type == "SERIES") {
+            state.recordsInOrder = state.recordsInOrder && sawStudy;
+            currentSeries = trim(getString(*record, DCM_SeriesInstanceUID));
+            if (!currentSeries.empty()) {
+                state.listedSeries.insert(currentSeries);
+                ListedSeries listed = context;
+                listed.modality = trim(getString(*record, DCM_Modality));
+                listed.description = trim(getString(*record, DCM_SeriesDescription));
+                Sint32 number = 0;
+                if (record->findAndGetSint32(DCM_SeriesNumber, number).good())
+                    listed.seriesNumber = int(number);
+                state.listedSeriesRecords.try_emplace(currentSeries, std::move(listed));
+            }
         }
-        handleReference(*record, dicomdir, state, depth);
+        const Reference reference = handleReference(*record, dicomdir, state, depth);
+        if (!currentSeries.empty() &&
+            (reference == Reference::Present || reference == Reference::Missing)) {
+            ListedSeries& listed = state.listedSeriesRecords[currentSeries];
+            ++listed.referenced;
+            if (reference == Reference::Missing)
+                ++listed.missing;
+        }
+    }
+}
+
+// Adds the series a DICOMDIR lists but whose files are all missing, as empty series under their
+// study and patient, and records how many referenced files each listed series lacks.
+void addListedSeries(DicomIndex& index, const DicomdirState& state) {
+    for (const auto& [uid, listed] : state.listedSeriesRecords) {
+        if (listed.referenced == 0)
+            continue; // a series record without image records: nothing to say about it
+        for (auto& patient : index.patients)
+            for (auto& study : patient.studies)
+                for (auto& series : study.series)
+                    if (series.seriesInstanceUid == uid) {
+                        series.referencedFiles = listed.referenced;
+                        series.missingFiles = listed.missing;
+                    }
+        if (index.findSeries(uid) != nullptr || !state.recordsInOrder)
+            continue;
+        auto patient =
+            std::find_if(index.patients.begin(), index.patients.end(),
+                         [&](const PatientInfo& p) { return p.patientId == listed.patientId; });
+        if (patient == index.patients.end()) {
+            PatientInfo added;
+            added.patientId = listed.patientId;
+            added.name = listed.patientName;
+            index.patients.push_back(std::move(added));
+            patient = index.patients.end() - 1;
+        }
+        auto study =
+            std::find_if(patient->studies.begin(), patient->studies.end(), [&](const StudyInfo& s) {
+                return s.studyInstanceUid == listed.studyInstanceUid;
+            });
+        if (study == patient->studies.end()) {
+            StudyInfo added;
+            added.studyInstanceUid = listed.studyInstanceUid;
+            added.studyId = listed.studyId;
+            added.description = listed.studyDescription;
+            added.date = listed.studyDate;
+            added.time = listed.studyTime;
+            patient->studies.push_back(std::move(added));
+            study = patient->studies.end() - 1;
+        }
+        SeriesInfo series;
+        series.seriesInstanceUid = uid;
+        series.modality = listed.modality;
+        series.description = listed.description;
+        series.seriesNumber = listed.seriesNumber;
+        series.referencedFiles = listed.referenced;
+        series.missingFiles = listed.missing;
+        const auto position =
+            std::find_if(study->series.begin(), study->series.end(), [&](const SeriesInfo& s) {
+                return std::tuple(optionalKey(series.seriesNumber), series.seriesInstanceUid) <
+                       std::tuple(optionalKey(s.seriesNumber), s.seriesInstanceUid);
+            });
+        study->series.insert(position, std::move(series));
     }
 }
 
@@ -391,9 +504,6 @@ HeaderResults readHeaders(const std::vector<fs::path>& files, core::Progress* pr
 }
 
 // Optional numbers sort before "missing" so that numbered series come first.
-template <typename T> std::tuple<bool, T> optionalKey(const std::optional<T>& value) {
-    return {!value.has_value(), value.value_or(T{})};
-}
 
 void setIfEmpty(std::string& target, const std::string& value) {
     if (target.empty())
@@ -527,9 +637,12 @@ DicomIndex scanDicomdir(const fs::path& dicomdir, core::Progress* progress) {
     finishIndex(index, state.files, progress);
 
     std::size_t seriesWithoutFiles = 0;
-    for (const auto& uid : state.listedSeries)
-        if (index.findSeries(uid) == nullptr)
+    for (const auto& uid : state.listedSeries) {
+        const SeriesInfo* series = index.findSeries(uid);
+        if (series == nullptr || series->instances.empty())
             ++seriesWithoutFiles;
+    }
+    addListedSeries(index, state);
     if (seriesWithoutFiles > 0)
         index.warnings.push_back("DICOMDIR lists " + std::to_string(state.listedSeries.size()) +
                                  " series; " + std::to_string(seriesWithoutFiles) +

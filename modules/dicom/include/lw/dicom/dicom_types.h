@@ -69,6 +69,10 @@ struct SeriesInfo {
     std::string description;
     std::optional<int> seriesNumber;
     std::vector<InstanceInfo> instances;
+    // From a DICOMDIR only: image files its records reference, and how many of them are missing.
+    // A series whose files are all missing is listed with no instances.
+    std::size_t referencedFiles = 0;
+    std::size_t missingFiles = 0;
 };
 
 struct StudyInfo {
