@@ -364,6 +364,29 @@ TEST(VolumeAssembler, SingleSliceWithoutPosition) {
     expectSliceValues(v, 0, slicePixels(0));
 }
 
+TEST(VolumeAssembler, SeparateFilesWithoutPositionAreNotStacked) {
+    // Two single-frame images of one series, neither with a position: nothing says they form a
+    // stack, so each becomes its own one-slice volume, labelled with its file.
+    lw::test::TempDir dir;
+    const std::string uid = dt::makeTestUid();
+    std::vector<std::filesystem::path> files;
+    for (int k = 0; k < 2; ++k) {
+        dt::TestSlice s = baseSlice(uid);
+        s.position.reset();
+        s.pixels = slicePixels(k);
+        s.instanceNumber = k + 1;
+        files.push_back(dir / ("image" + std::to_string(k) + ".dcm"));
+        dt::writeTestSlice(files.back(), s);
+    }
+    const SeriesInfo series = readSeries(files);
+    const SeriesAssembly assembly = planVolumes(series);
+    ASSERT_EQ(assembly.volumes.size(), 2u);
+    for (int k = 0; k < 2; ++k) {
+        EXPECT_EQ(assembly.volumes[k].dims, glm::ivec3(kSize, kSize, 1));
+        EXPECT_NE(assembly.volumes[k].label.find("image"), std::string::npos) << assembly.volumes[k].label;
+    }
+}
+
 TEST(VolumeAssembler, CancellationThroughProgress) {
     lw::test::TempDir dir;
     std::vector<double> zs(24);

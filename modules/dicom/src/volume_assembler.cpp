@@ -7,6 +7,7 @@
 #include "lw/volume/parallel.h"
 
 #include <algorithm>
+#include <filesystem>
 #include <cmath>
 #include <cstdio>
 #include <functional>
@@ -75,13 +76,17 @@ struct GroupKey {
     double slope = 1.0;
     double intercept = 0.0;
     bool hasPosition = true;
+    // Frames without a position are stacked only within one file (a classic multi-frame object):
+    // nothing says that separate files without positions belong to one stack, and stacking two
+    // unrelated images with an assumed spacing would be a volume made up.
+    std::optional<std::size_t> unplacedInstance;
 
     bool matches(const GroupKey& other) const {
         return rows == other.rows && columns == other.columns && sameOrientation(orientation, other.orientation) &&
                sameSpacing(spacing, other.spacing) && frameType == other.frameType &&
                std::abs(slope - other.slope) <= 1e-6 * std::max({1.0, std::abs(slope)}) &&
                std::abs(intercept - other.intercept) <= 1e-6 * std::max({1.0, std::abs(intercept)}) &&
-               hasPosition == other.hasPosition;
+               hasPosition == other.hasPosition && unplacedInstance == other.unplacedInstance;
     }
 };
 
@@ -96,6 +101,8 @@ GroupKey keyOf(const FrameRef& f) {
     key.slope = f.frameInfo->rescaleSlope;
     key.intercept = f.frameInfo->rescaleIntercept;
     key.hasPosition = f.frameInfo->position.has_value();
+    if (!key.hasPosition)
+        key.unplacedInstance = f.instance;
     return key;
 }
 
@@ -406,6 +413,8 @@ void labelGroups(std::vector<Group>& groups) {
             parts.push_back("rescale " + formatNumber(g.key.slope) + "/" + formatNumber(g.key.intercept));
         if (placed && !g.key.hasPosition)
             parts.push_back("without position");
+        if (!g.key.hasPosition && groups.size() > 1)
+            parts.push_back("file " + std::filesystem::path(g.frames.front().info->path).filename().string());
         if (!g.label.empty())
             parts.push_back(g.label);
         std::string label;
