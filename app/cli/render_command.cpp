@@ -186,7 +186,8 @@ int runRender(const std::vector<std::string>& args, std::ostream& out) {
     volume = loadInput(input, arguments.option("series"));
     request.settings.brickCells =
         render::parseChunks(arguments.option("chunks", "off"), volume.dims());
-    setup.bounds = render::volumeBounds(volume);
+    // Frame the surface, not the field of view around it.
+    setup.bounds = render::surfaceBounds(volume, request.settings.isoReal);
     const render::Camera camera(setup, size.x, size.y);
 
     RenderedPanels panels = renderPanels(*renderer, volume, camera, request, out);

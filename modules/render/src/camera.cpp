@@ -1,12 +1,14 @@
 #include "lw/render/camera.h"
 
 #include "lw/core/error.h"
+#include "lw/volume/bricks.h"
 #include "lw/volume/volume.h"
 
 #include <algorithm>
 #include <cmath>
 #include <glm/gtc/matrix_transform.hpp>
 #include <numbers>
+#include <optional>
 #include <string>
 
 namespace lw::render {
@@ -29,6 +31,27 @@ Aabb volumeBounds(const volume::Volume& volume) {
         box.extend(geometry.indexToPatient(
             {(i & 1) ? last.x : 0.0, (i & 2) ? last.y : 0.0, (i & 4) ? last.z : 0.0}));
     return box;
+}
+
+Aabb surfaceBounds(const volume::Volume& volume, double isoReal) {
+    const auto grid = volume::BrickGrid::build(volume, glm::ivec3(16));
+    const auto& geometry = volume.geometry();
+    const double storedIso = volume.valueMapping().toStored(isoReal);
+    std::optional<Aabb> box;
+    for (const int index : grid.activeBricks(storedIso)) {
+        const volume::Brick& brick = grid.bricks()[std::size_t(index)];
+        for (int i = 0; i < 8; ++i) {
+            const glm::ivec3 corner{(i & 1) ? brick.cellEnd.x : brick.cellBegin.x,
+                                    (i & 2) ? brick.cellEnd.y : brick.cellBegin.y,
+                                    (i & 4) ? brick.cellEnd.z : brick.cellBegin.z};
+            const glm::dvec3 p = geometry.indexToPatient(glm::dvec3(corner));
+            if (box)
+                box->extend(p);
+            else
+                box = Aabb::around(p);
+        }
+    }
+    return box ? *box : volumeBounds(volume);
 }
 
 Camera::Camera() {

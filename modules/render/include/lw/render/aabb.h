@@ -37,4 +37,9 @@ struct Aabb {
 // stacks: the grid's extreme points are its corners).
 Aabb volumeBounds(const volume::Volume& volume);
 
+// The patient-space box of the part of the volume that can hold the iso-surface at `isoReal`
+// (real units): the union of the bricks whose min/max admit it. Frames the surface rather than
+// the scanner's field of view full of air; the whole volume's box when no brick does.
+Aabb surfaceBounds(const volume::Volume& volume, double isoReal);
+
 } // namespace lw::render
