@@ -204,3 +204,32 @@ TEST(Camera, VolumeBoundsFollowTheGeometry) {
     expectNear(flippedBox.max, {10, 20, 37});
     EXPECT_THROW(volumeBounds(Volume()), lw::core::Error);
 }
+
+TEST(Camera, SurfaceBoundsFrameTheSurfaceNotTheAir) {
+    // 64^3 of "air" (-1000) with a bright 6^3 block near one corner, 2 mm voxels, rescaled like CT.
+    using lw::volume::Volume;
+    Volume v({64, 64, 64}, lw::volume::VoxelType::Int16,
+             lw::volume::VolumeGeometry::regular({-10, 20, 30}, {2, 2, 2}));
+    v.setValueMapping({1.0, -1024.0});
+    auto* voxels = v.dataAs<std::int16_t>();
+    for (std::size_t i = 0; i < v.voxelCount(); ++i)
+        voxels[i] = 24; // -1000 HU
+    for (int z = 50; z < 56; ++z)
+        for (int y = 4; y < 10; ++y)
+            for (int x = 40; x < 46; ++x)
+                voxels[v.index(x, y, z)] = 1524; // +500 HU
+    const lw::render::Aabb all = lw::render::volumeBounds(v);
+    const lw::render::Aabb surface = lw::render::surfaceBounds(v, 300.0);
+    // The block's voxels, in mm, lie inside the surface box...
+    EXPECT_LE(surface.min.x, -10 + 2 * 40.0);
+    EXPECT_GE(surface.max.x, -10 + 2 * 45.0);
+    EXPECT_LE(surface.min.z, 30 + 2 * 50.0);
+    EXPECT_GE(surface.max.z, 30 + 2 * 55.0);
+    // ...which is far smaller than the volume's (at most two 16-cell bricks per axis).
+    EXPECT_LE(surface.size().x, 2 * 32.0 + 1e-9);
+    EXPECT_LT(surface.radius(), 0.5 * all.radius());
+    // No brick can hold an iso-value above every voxel: the whole volume is framed.
+    const lw::render::Aabb none = lw::render::surfaceBounds(v, 3000.0);
+    EXPECT_EQ(none.min, all.min);
+    EXPECT_EQ(none.max, all.max);
+}
