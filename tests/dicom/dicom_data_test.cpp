@@ -99,6 +99,24 @@ TEST(DicomData, GeHeadTiltAndVariableSpacing) {
     EXPECT_GT(range.max, 1000.0);
 }
 
+TEST(DicomData, DemoStudyIsALosslessCopyOfTheGeSeries) {
+    // resources/demo ships the GE series recompressed with JPEG-LS lossless (its README says
+    // so): the assembled volumes must match voxel for voxel, and the geometry exactly.
+    const SeriesInfo original = seriesOf(filesIn(dataDir() / "dicom/ct_head_ge_hispeed_tilt_varspacing"));
+    const SeriesInfo demo = seriesOf(filesIn(lw::test::sourceDir() / "resources/demo/ct_head_ge_tilt"));
+    for (const auto& instance : demo.instances)
+        EXPECT_EQ(instance.transferSyntaxUid, "1.2.840.10008.1.2.4.80") << instance.path;
+    const SeriesAssembly a = planVolumes(original), b = planVolumes(demo);
+    ASSERT_EQ(a.volumes.size(), 1u);
+    ASSERT_EQ(b.volumes.size(), 1u);
+    const volume::Volume va = loadVolume(original, a.volumes[0]);
+    const volume::Volume vb = loadVolume(demo, b.volumes[0]);
+    EXPECT_EQ(va.dims(), vb.dims());
+    EXPECT_TRUE(bytesOf(va) == bytesOf(vb)) << "demo voxels differ from the original series";
+    for (int k = 0; k < va.dims().z; ++k)
+        EXPECT_EQ(va.geometry().indexToPatient({0, 0, double(k)}), vb.geometry().indexToPatient({0, 0, double(k)}));
+}
+
 TEST(DicomData, Wg04LosslessEncodingsMatchUncompressed) {
     const fs::path dir = dataDir() / "dicom/ct_single_slices_nema_wg04_compression";
     for (const std::string ct : {"CT1", "CT2"}) {

@@ -69,3 +69,17 @@ TEST(CliInfo, NothingUsableExitsWithOne) {
     EXPECT_NE(test::compact(result.out).find("a.txt\",\"reason\""), std::string::npos)
         << result.out;
 }
+
+TEST(CliInfo, BundledDemoStudyLoadsOnAFreshClone) {
+    // The main job's input ships in resources/: it must work without ../shared/data.
+    const auto demo = test::sourceDir() / "resources/demo/ct_head_ge_tilt";
+    const auto result = test::runCli("info " + test::quoted(demo.string()) + " --json");
+    ASSERT_EQ(result.exitCode, 0) << result.out;
+    const std::string json = test::compact(result.out);
+    EXPECT_NE(json.find("\"dims\":[512,512,28]"), std::string::npos) << result.out;
+    EXPECT_NE(json.find("\"uneven_gaps\":true"), std::string::npos) << result.out;
+    EXPECT_NE(json.find("\"errors\":[]"), std::string::npos) << result.out;
+    const auto tilt = json.find("\"tilt_deg\":");
+    ASSERT_NE(tilt, std::string::npos);
+    EXPECT_NEAR(std::stod(json.substr(tilt + 11, 12)), 18.5, 0.5) << result.out;
+}
