@@ -16,6 +16,7 @@
 
 #define GL_GLEXT_PROTOTYPES 1
 #include <GL/glcorearb.h>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -285,6 +286,48 @@ TEST_F(SilhouetteGl, VisibilityHidesTheSphereBehind) {
     EXPECT_GT(double(bigOff), 0.9 * bigCircumference);
     EXPECT_GT(double(smallOff), 0.9 * smallCircumference);
     EXPECT_EQ(otherOff, 0u);
+}
+
+// Drawing piece by piece (method 1's L): clear(), then per piece its surface in the background
+// colour + depth and its lines writing depth, without clearing. Either order gives the one-draw
+// image: the sphere behind drawn first has its hidden contour painted over by the front one's
+// surface; drawn last, its contour is rejected by the front one's depth.
+TEST_F(SilhouetteGl, PieceByPieceInEitherOrderEqualsOneDraw) {
+    const Mesh front = icosphere({0, 0, 0}, 1.0f, 4);
+    const Mesh back = icosphere({0.6f, 3.0f, 0.3f}, 0.7f, 4);
+    Mesh scene = front;
+    append(scene, back);
+    const Camera camera = orthoCamera({{-1, -1, -1}, {1.5, 3.7, 1.2}}, 200, 10.0, 15.0);
+    for (const bool visibility : {true, false}) {
+        SilhouetteGlOptions options;
+        options.visibility = visibility;
+        options.countSegments = true;
+        m_renderer.uploadMesh(scene);
+        const SilhouetteGlStats wholeStats = m_renderer.render(camera, options);
+        const ImageRgba8 whole = m_renderer.readImage();
+        options.clear = false;
+        options.surfaceInBackground = true;
+        options.linesWriteDepth = true;
+        for (const bool backFirst : {true, false}) {
+            m_renderer.clearMesh();
+            EXPECT_EQ(m_renderer.triangleCount(), 0u);
+            m_renderer.clear(camera.width(), camera.height(), options.background);
+            std::size_t segments = 0;
+            for (const Mesh* piece : backFirst ? std::array{&back, &front}
+                                               : std::array{&front, &back}) {
+                m_renderer.uploadMesh(*piece);
+                segments += m_renderer.render(camera, options).segments;
+            }
+            EXPECT_EQ(segments, wholeStats.segments);
+            const ImageRgba8 pieces = m_renderer.readImage();
+            std::size_t differing = 0;
+            for (int y = 0; y < whole.height(); ++y)
+                for (int x = 0; x < whole.width(); ++x)
+                    differing += isBackground(whole.at(x, y)) != isBackground(pieces.at(x, y));
+            EXPECT_EQ(differing, 0u) << "visibility " << visibility << ", back first "
+                                     << backFirst;
+        }
+    }
 }
 
 TEST_F(SilhouetteGl, SegmentCountMatchesTheCpuRule) {

@@ -3,9 +3,12 @@
 #include "gl_api.h"
 #include "lw/core/error.h"
 #include "lw/core/log.h"
+#include "lw/kernels/cpu/marching_cubes_cpu.h"
 #include "lw/render/gl_context.h"
 #include "lw/render/silhouette_gl_renderer.h"
+#include "lw/volume/bricks.h"
 
+#include <algorithm>
 #include <chrono>
 #include <optional>
 
@@ -34,6 +37,20 @@ struct GeometryShaderSilhouetteRenderer::State {
     // What the uploaded mesh was extracted with; empty when there is none (or the volume changed).
     std::optional<double> meshIso;
     int meshBrickCells = 0;
+    GeometryShaderFrameStats stats;
+
+    // L variant: the brick grid (per-brick min/max: small) is all that mode a keeps between
+    // frames; the one brick's surface is scratch reused from brick to brick.
+    volume::BrickGrid grid;
+    int gridBrickCells = 0; // 0: no grid for the current volume
+    kernels::cpu::BrickSurface brick;
+
+    // Drops the whole mesh (CPU and GPU) so that an L frame holds one brick at a time.
+    void dropWholeMesh() {
+        meshIso.reset();
+        mesh = Mesh{};
+        gl.clearMesh();
+    }
 
     // Extracts and uploads when `force` or the cached mesh was made with other settings;
     // returns the time spent (0 when the cache was used).
@@ -83,6 +100,12 @@ void GeometryShaderSilhouetteRenderer::setVolume(const volume::Volume& volume) {
     m_state->volume = &volume;
     m_state->meshIso.reset();
     m_state->mesh = Mesh{};
+    m_state->gridBrickCells = 0;
+    m_state->grid = volume::BrickGrid{};
+}
+
+const GeometryShaderFrameStats& GeometryShaderSilhouetteRenderer::lastFrameStats() const {
+    return m_state->stats;
 }
 
 const Mesh& GeometryShaderSilhouetteRenderer::mesh() const {
@@ -95,6 +118,8 @@ std::string GeometryShaderSilhouetteRenderer::contextDescription() const {
 
 SilhouetteFrame GeometryShaderSilhouetteRenderer::render(const Camera& camera,
                                                          const SilhouetteSettings& settings) {
+    if (settings.brickCells > 0)
+        return renderBricks(camera, settings);
     State& s = *m_state;
     s.context->makeCurrent();
     SilhouetteFrame frame;
@@ -115,6 +140,98 @@ SilhouetteFrame GeometryShaderSilhouetteRenderer::render(const Camera& camera,
     frame.times.drawMs = msSince(start);
     frame.triangles = stats.triangles;
     frame.segments = stats.segments;
+    s.stats = {};
+    s.stats.bricksDrawn = stats.triangles > 0 ? 1 : 0;
+    s.stats.peakUploadedTriangles = s.gl.triangleCount();
+    return frame;
+}
+
+std::vector<std::size_t>
+GeometryShaderSilhouetteRenderer::brickTriangleCounts(const volume::Volume& volume, double isoReal,
+                                                      int brickCells) {
+    if (brickCells <= 0)
+        throw core::Error("brick triangle counts", "brickCells must be positive");
+    const double storedIso = volume.valueMapping().toStored(isoReal);
+    const volume::BrickGrid grid = volume::BrickGrid::build(volume, glm::ivec3(brickCells));
+    const kernels::cpu::BrickSurfaceExtractor extractor(volume, storedIso);
+    kernels::cpu::BrickSurface surface;
+    std::vector<std::size_t> counts;
+    for (const int index : grid.activeBricks(storedIso)) {
+        extractor.extract(grid.bricks()[std::size_t(index)], surface);
+        counts.push_back(surface.triangleCount());
+    }
+    return counts;
+}
+
+SilhouetteFrame GeometryShaderSilhouetteRenderer::renderBricks(const Camera& camera,
+                                                               const SilhouetteSettings& settings) {
+    State& s = *m_state;
+    if (!s.volume)
+        throw core::Error("method 1", "render called before setVolume");
+    const auto& mapping = s.volume->valueMapping();
+    if (mapping.slope == 0.0)
+        throw core::Error("iso-surface", "the volume's value mapping has slope 0");
+    if (mapping.slope < 0.0)
+        throw core::Error("iso-surface",
+                          "a negative rescale slope is not supported (inside would flip)");
+    const double storedIso = mapping.toStored(settings.isoReal);
+    s.context->makeCurrent();
+    s.dropWholeMesh(); // no-op after the first L frame
+    s.stats = {};
+    SilhouetteFrame frame;
+
+    // The brick grid: kept in mode a, rebuilt in mode b (as S's mode b rebuilds its extractor).
+    auto start = Clock::now();
+    if (settings.mode == ExtractionMode::EveryFrameB || s.gridBrickCells != settings.brickCells) {
+        s.gridBrickCells = 0;
+        s.grid = volume::BrickGrid::build(*s.volume, glm::ivec3(settings.brickCells));
+        s.gridBrickCells = settings.brickCells;
+    }
+    const std::vector<int> active = s.grid.activeBricks(storedIso);
+    const kernels::cpu::BrickSurfaceExtractor extractor(*s.volume, storedIso);
+    frame.times.extractMs += msSince(start);
+
+    SilhouetteGlOptions options;
+    options.panel = GlPanel::Silhouette;
+    options.visibility = settings.visibility;
+    options.lineColour = {0.0f, 0.0f, 0.0f, 1.0f};
+    options.background = {1.0f, 1.0f, 1.0f, 1.0f};
+    options.countSegments = true;
+    options.clear = false;
+    options.surfaceInBackground = true;
+    options.linesWriteDepth = true;
+
+    glFinish();
+    start = Clock::now();
+    s.gl.clear(camera.width(), camera.height(), options.background);
+    glFinish();
+    frame.times.drawMs += msSince(start);
+    for (const int index : active) {
+        // Extract and upload one brick (billed to extraction, as S's upload is) ...
+        start = Clock::now();
+        extractor.extract(s.grid.bricks()[std::size_t(index)], s.brick);
+        const std::size_t triangles = s.brick.triangleCount();
+        if (triangles > 0) {
+            s.gl.uploadMesh(s.brick.positions, s.brick.normals, s.brick.indices);
+            glFinish();
+        }
+        frame.times.extractMs += msSince(start);
+        if (triangles == 0)
+            continue;
+        // ... then draw it over the frame so far: its surface (depth + background colour), then
+        // its silhouette lines.
+        start = Clock::now();
+        const SilhouetteGlStats stats = s.gl.render(camera, options);
+        glFinish();
+        frame.times.drawMs += msSince(start);
+        frame.triangles += stats.triangles;
+        frame.segments += stats.segments;
+        s.stats.peakUploadedTriangles = std::max(s.stats.peakUploadedTriangles, triangles);
+        ++s.stats.bricksDrawn;
+    }
+    start = Clock::now();
+    frame.lines = PixelMask::fromImage(s.gl.readImage(), kBackground);
+    frame.times.drawMs += msSince(start);
     return frame;
 }
 

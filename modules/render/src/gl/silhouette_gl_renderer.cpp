@@ -260,6 +260,37 @@ void SilhouetteGlRenderer::uploadMesh(std::span<const glm::vec3> positions,
     gl::checkGlError("SilhouetteGlRenderer::uploadMesh");
 }
 
+void SilhouetteGlRenderer::clearMesh() {
+    if (!isInitialized())
+        return;
+    glBindBuffer(GL_ARRAY_BUFFER, m_positionBuffer);
+    glBufferData(GL_ARRAY_BUFFER, 0, nullptr, GL_DYNAMIC_DRAW);
+    glBindBuffer(GL_ARRAY_BUFFER, m_normalBuffer);
+    glBufferData(GL_ARRAY_BUFFER, 0, nullptr, GL_DYNAMIC_DRAW);
+    glBindBuffer(GL_ARRAY_BUFFER, 0);
+    glBindVertexArray(m_vertexArray);
+    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, m_indexBuffer);
+    glBufferData(GL_ELEMENT_ARRAY_BUFFER, 0, nullptr, GL_DYNAMIC_DRAW);
+    glBindVertexArray(0);
+    m_vertexCapacity = m_indexCapacity = m_indexCount = 0;
+    gl::checkGlError("SilhouetteGlRenderer::clearMesh");
+}
+
+void SilhouetteGlRenderer::clear(int width, int height, glm::vec4 background) {
+    initialize();
+    const FramebufferBindingGuard bindingGuard;
+    ensureFramebuffer(width, height);
+    glBindFramebuffer(GL_FRAMEBUFFER, m_framebuffer);
+    glViewport(0, 0, width, height);
+    glDisable(GL_SCISSOR_TEST);
+    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    glDepthMask(GL_TRUE);
+    glClearColor(background.r, background.g, background.b, background.a);
+    glClearDepth(1.0);
+    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    gl::checkGlError("SilhouetteGlRenderer::clear");
+}
+
 void SilhouetteGlRenderer::ensureFramebuffer(int width, int height) {
     if (width <= 0 || height <= 0)
         throw core::Error("GL render target",
@@ -333,10 +364,12 @@ SilhouetteGlStats SilhouetteGlRenderer::render(const glm::mat4& viewProjection, 
     glDisable(GL_SCISSOR_TEST);
     glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
     glDepthMask(GL_TRUE);
-    glClearColor(options.background.r, options.background.g, options.background.b,
-                 options.background.a);
-    glClearDepth(1.0);
-    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    if (options.clear) {
+        glClearColor(options.background.r, options.background.g, options.background.b,
+                     options.background.a);
+        glClearDepth(1.0);
+        glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    }
 
     SilhouetteGlStats stats;
     stats.triangles = triangleCount();
@@ -358,11 +391,15 @@ SilhouetteGlStats SilhouetteGlRenderer::render(const glm::mat4& viewProjection, 
         glUniform3fv(uniform(m_surfaceProgram, "uBackColour"), 1,
                      glm::value_ptr(options.backColour));
         glUniform4fv(uniform(m_surfaceProgram, "uMaterial"), 1, glm::value_ptr(options.material));
+        const bool flat = !iso && options.surfaceInBackground;
+        glUniform1i(uniform(m_surfaceProgram, "uFlat"), flat ? 1 : 0);
+        glUniform4fv(uniform(m_surfaceProgram, "uFlatColour"), 1,
+                     glm::value_ptr(options.background));
         glEnable(GL_DEPTH_TEST);
         glDepthFunc(GL_LESS);
         glEnable(GL_POLYGON_OFFSET_FILL);
         glPolygonOffset(options.polygonOffsetFactor, options.polygonOffsetUnits);
-        if (!iso)
+        if (!iso && !flat)
             glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
         glDrawElements(GL_TRIANGLES, count, GL_UNSIGNED_INT, nullptr);
         glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
@@ -389,7 +426,8 @@ SilhouetteGlStats SilhouetteGlRenderer::render(const glm::mat4& viewProjection, 
         }
         // Lines do not change the depth buffer: a contour must not hide another one behind it
         // that the surface itself leaves visible.
-        glDepthMask(GL_FALSE);
+        // (Drawing piece by piece, the line depth is kept: see SilhouetteGlOptions.)
+        glDepthMask(!iso && options.visibility && options.linesWriteDepth ? GL_TRUE : GL_FALSE);
         if (options.countSegments)
             glBeginQuery(GL_PRIMITIVES_GENERATED, m_segmentQuery);
         glDrawElements(GL_TRIANGLES, count, GL_UNSIGNED_INT, nullptr);

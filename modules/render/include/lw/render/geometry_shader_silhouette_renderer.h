@@ -11,11 +11,19 @@
 // drawMs = both GL passes, glFinish'ed so the GPU work is inside the interval, plus read-back and
 // mask conversion.
 //
-// L variant (settings.brickCells > 0): the extraction runs brick by brick, and because marching
-// cubes orders the mesh canonically the mesh is identical to the S variant's. The bricks are not
-// drawn one by one: the mesh does not record which brick a triangle came from, and a z-buffer
-// draw of the same triangles in any grouping gives the same image, so L = chunked extraction +
-// one draw.
+// L variant (settings.brickCells > 0), the paper's chunked method 1 for volumes whose mesh does
+// not fit in memory: the bricks of a volume::BrickGrid that may hold the surface are processed
+// serially, one brick's geometry held at a time on the CPU and the GPU. Each brick's surface
+// (kernels::cpu::BrickSurfaceExtractor: the whole mesh's triangles of that brick, bit-identical
+// vertices) is uploaded, its surface drawn into depth and, in the background colour, into colour
+// (polygon offset as in S), then its silhouette lines depth-tested, writing their depth. A later
+// nearer surface paints over an earlier hidden line and an earlier nearer surface or line rejects
+// a later one, so the mask equals S's whatever the brick order (SilhouetteGlOptions). Visibility
+// off: lines only, no depth test. L trades time for memory: even in mode a it caches nothing big
+// (only the brick grid's per-brick min/max) and re-extracts every active brick every frame;
+// mode b also rebuilds the grid. extractMs = grid + per-brick extraction and upload; drawMs =
+// clear + per-brick draws + read-back. An L frame frees the whole mesh (mesh() is then empty);
+// renderIsoPanel() still extracts and draws the whole mesh.
 //
 // Only built with LINEWORK_GL=1 (src/gl/); use createSilhouetteRenderer() to get one portably.
 
@@ -23,13 +31,21 @@
 #include "lw/render/iso_surface.h"
 #include "lw/render/silhouette_renderer.h"
 
+#include <cstddef>
 #include <memory>
 #include <string>
+#include <vector>
 
 namespace lw::render {
 
 class GlContext;
 class SilhouetteGlRenderer;
+
+// What the last render() held and drew (S: the whole mesh as one "brick").
+struct GeometryShaderFrameStats {
+    std::size_t peakUploadedTriangles = 0; // most triangles in the GL buffers at once
+    std::size_t bricksDrawn = 0;           // bricks with triangles, uploaded and drawn
+};
 
 class GeometryShaderSilhouetteRenderer final : public SilhouetteRenderer {
 public:
@@ -50,12 +66,20 @@ public:
     // cached mesh does not match them), RGBA8 top row first: `render --panel both`'s left half.
     core::ImageRgba8 renderIsoPanel(const Camera& camera, const SilhouetteSettings& settings);
 
-    // The mesh of the last frame (cached in mode a); empty before the first frame.
+    // The mesh of the last S frame or iso panel (cached in mode a); empty before the first frame
+    // and after an L frame.
     const Mesh& mesh() const;
+    const GeometryShaderFrameStats& lastFrameStats() const;
+    // The triangle count of each brick that may hold the surface, in the order an L frame
+    // with `brickCells` draws them (the same per-brick extraction; for checks and tooling).
+    static std::vector<std::size_t> brickTriangleCounts(const volume::Volume& volume,
+                                                        double isoReal, int brickCells);
     // "vendor | renderer | version" of the context in use.
     std::string contextDescription() const;
 
 private:
+    SilhouetteFrame renderBricks(const Camera& camera, const SilhouetteSettings& settings);
+
     struct State;
     std::unique_ptr<State> m_state;
 };

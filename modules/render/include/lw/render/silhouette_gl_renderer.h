@@ -48,6 +48,19 @@ struct SilhouetteGlOptions {
     float polygonOffsetUnits = 4.0f;
     float depthBias = 0.0f;
     bool countSegments = false; // query how many segments the geometry shader emitted
+    // Drawing a mesh in pieces (method 1's L variant: one brick uploaded at a time). With
+    // clear = false render() draws over the last frame instead of clearing it (the caller starts
+    // the frame with clear(); the size must stay the same). On the silhouette panel,
+    // surfaceInBackground makes pass 1 write the background colour as well as depth, and
+    // linesWriteDepth makes pass 2 write its depth: a later piece's nearer surface then paints
+    // over an earlier piece's hidden line, an earlier nearer surface or line rejects a later
+    // piece's fragments, and the pieces give exactly the image of the whole mesh in one draw
+    // (a pixel ends black iff its nearest line fragment is <= its nearest offset surface
+    // fragment, whatever the order). Only for a uniform line colour (a nearer line hides a
+    // farther one at the same pixel).
+    bool clear = true;
+    bool surfaceInBackground = false;
+    bool linesWriteDepth = false;
 };
 
 struct SilhouetteGlStats {
@@ -76,6 +89,12 @@ public:
     void uploadMesh(std::span<const glm::vec3> positions, std::span<const glm::vec3> normals,
                     std::span<const std::uint32_t> indices);
     std::size_t triangleCount() const { return m_indexCount / 3; }
+    // Frees the mesh buffers' storage (the buffers stay; the next upload allocates what it needs),
+    // e.g. before drawing piece by piece after a whole mesh was uploaded.
+    void clearMesh();
+    // Starts a frame of `width` x `height` (the framebuffer object recreated only when the size
+    // changes): colour = background, depth = 1. For render() with options.clear = false.
+    void clear(int width, int height, glm::vec4 background);
 
     // Renders the uploaded mesh with the camera's matrices into the framebuffer object, sized to
     // the camera's viewport (recreated only when the size changes).
