@@ -46,14 +46,18 @@ IsoSurfaceExtractor::~IsoSurfaceExtractor() {
     delete m_impl;
 }
 
-void IsoSurfaceExtractor::extract(double isoReal, Mesh& mesh, IsoSurfaceStats* stats) const {
-    const auto& mapping = m_volume.valueMapping();
+double storedIsoValue(const volume::Volume& volume, double isoReal) {
+    const auto& mapping = volume.valueMapping();
     if (mapping.slope == 0.0)
         throw core::Error("iso-surface", "the volume's value mapping has slope 0");
     if (mapping.slope < 0.0)
         throw core::Error("iso-surface",
                           "a negative rescale slope is not supported (inside would flip)");
-    const double storedIso = mapping.toStored(isoReal);
+    return mapping.toStored(isoReal);
+}
+
+void IsoSurfaceExtractor::extract(double isoReal, Mesh& mesh, IsoSurfaceStats* stats) const {
+    const double storedIso = storedIsoValue(m_volume, isoReal);
 
     kernels::cpu::McOutput out;
     out.positions = std::move(mesh.positions);

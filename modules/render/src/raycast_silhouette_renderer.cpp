@@ -2,6 +2,7 @@
 
 #include "lw/core/error.h"
 #include "lw/kernels/cpu/raycast_silhouette_cpu.h"
+#include "lw/render/iso_surface.h"
 #include "lw/render/line_raster.h"
 #include "lw/volume/bricks.h"
 #include "lw/volume/parallel.h"
@@ -74,10 +75,7 @@ SilhouetteFrame RayCastSilhouetteRenderer::render(const Camera& camera,
     if (!m_volume)
         throw core::Error("method 2", "no volume bound (setVolume)");
     const volume::Volume& volume = *m_volume;
-    const auto& mapping = volume.valueMapping();
-    if (!(mapping.slope > 0.0))
-        throw core::Error("method 2", "the volume's value mapping needs a positive slope");
-    const double storedIso = mapping.toStored(settings.isoReal);
+    const double storedIso = storedIsoValue(volume, settings.isoReal);
     Cache& cache = *m_cache;
 
     SilhouetteFrame frame;

@@ -224,13 +224,7 @@ void ZBufferSilhouetteRenderer::State::renderChunked(const Camera& camera,
                                                      SilhouetteFrame& frame) {
     const unsigned threads = settings.threads == 0 ? volume::workerCount() : settings.threads;
     releaseMesh();
-    const auto& mapping = volume->valueMapping();
-    if (mapping.slope == 0.0)
-        throw core::Error("iso-surface", "the volume's value mapping has slope 0");
-    if (mapping.slope < 0.0)
-        throw core::Error("iso-surface",
-                          "a negative rescale slope is not supported (inside would flip)");
-    const double storedIso = mapping.toStored(settings.isoReal);
+    const double storedIso = storedIsoValue(*volume, settings.isoReal);
 
     auto start = Clock::now();
     if (gridBrickCells != settings.brickCells) {

@@ -168,13 +168,7 @@ SilhouetteFrame GeometryShaderSilhouetteRenderer::renderBricks(const Camera& cam
     State& s = *m_state;
     if (!s.volume)
         throw core::Error("method 1", "render called before setVolume");
-    const auto& mapping = s.volume->valueMapping();
-    if (mapping.slope == 0.0)
-        throw core::Error("iso-surface", "the volume's value mapping has slope 0");
-    if (mapping.slope < 0.0)
-        throw core::Error("iso-surface",
-                          "a negative rescale slope is not supported (inside would flip)");
-    const double storedIso = mapping.toStored(settings.isoReal);
+    const double storedIso = storedIsoValue(*s.volume, settings.isoReal);
     s.context->makeCurrent();
     s.dropWholeMesh(); // no-op after the first L frame
     s.stats = {};

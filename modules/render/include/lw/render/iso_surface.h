@@ -55,6 +55,11 @@ private:
     Impl* m_impl; // the brick grid; kernels types stay out of this header
 };
 
+// The iso-value in the volume's stored units, for the kernels (which compare stored voxels).
+// Throws core::Error for a value mapping with slope 0, or a negative slope, which would flip
+// inside and outside (inside = value >= iso).
+double storedIsoValue(const volume::Volume& volume, double isoReal);
+
 // Brick edge length the "auto" chunking picks for a volume.
 int autoBrickCells(glm::ivec3 dims);
 
