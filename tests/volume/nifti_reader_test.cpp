@@ -3,6 +3,7 @@
 #include "lw/core/error.h"
 #include "lw/volume/volume_reader.h"
 #include "test_support.h"
+#include "volume_test_checks.h"
 #include "volume_test_files.h"
 
 #include <cmath>
@@ -14,20 +15,8 @@ namespace {
 
 using namespace testfiles;
 
-void expectNear(glm::dvec3 a, glm::dvec3 b, double tol = 1e-6) {
-    EXPECT_NEAR(a.x, b.x, tol);
-    EXPECT_NEAR(a.y, b.y, tol);
-    EXPECT_NEAR(a.z, b.z, tol);
-}
+constexpr double kTolerance = 1e-6;
 
-template <typename F> void expectError(F&& read, const std::string& needle) {
-    try {
-        read();
-        FAIL() << "expected an error containing '" << needle << "'";
-    } catch (const core::Error& e) {
-        EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << e.what();
-    }
-}
 
 std::vector<std::int16_t> ct(std::size_t n) {
     std::vector<std::int16_t> v(n);
@@ -58,13 +47,13 @@ TEST(NiftiReader, SingleFileWithSformAndScaling) {
     ASSERT_EQ(v.voxelType(), VoxelType::Int16);
     ASSERT_EQ(v.dims(), glm::ivec3(4, 3, 2));
     EXPECT_EQ(std::memcmp(v.data(), encode(values, false).data(), v.byteSize()), 0);
-    expectNear(v.geometry().spacing(), {0.5, 0.5, 2.0});
+    expectNear(v.geometry().spacing(), {0.5, 0.5, 2.0}, kTolerance);
     // LPS = (-x, -y, z) of RAS.
-    expectNear(v.geometry().origin(), {-90, 126, -72});
-    expectNear(v.geometry().axisI(), {1, 0, 0});
-    expectNear(v.geometry().axisJ(), {0, -1, 0});
-    expectNear(v.geometry().stackAxis(), {0, 0, 1});
-    expectNear(v.geometry().indexToPatient({2, 2, 1}), {-89, 125, -70});
+    expectNear(v.geometry().origin(), {-90, 126, -72}, kTolerance);
+    expectNear(v.geometry().axisI(), {1, 0, 0}, kTolerance);
+    expectNear(v.geometry().axisJ(), {0, -1, 0}, kTolerance);
+    expectNear(v.geometry().stackAxis(), {0, 0, 1}, kTolerance);
+    expectNear(v.geometry().indexToPatient({2, 2, 1}), {-89, 125, -70}, kTolerance);
     EXPECT_DOUBLE_EQ(v.valueMapping().slope, 2.0);
     EXPECT_DOUBLE_EQ(v.valueMapping().intercept, -10.0);
     EXPECT_DOUBLE_EQ(v.realRange().min, 2.0 * -1024 - 10);
@@ -75,7 +64,7 @@ TEST(NiftiReader, SingleFileWithSformAndScaling) {
     writeFile(dir / "ct.nii.gz", gzipBytes(concat(niftiHeader(spec), encode(values, false))));
     const Volume g = readVolumeFile(dir / "ct.nii.gz");
     EXPECT_EQ(std::memcmp(g.data(), v.data(), v.byteSize()), 0);
-    expectNear(g.geometry().origin(), v.geometry().origin());
+    expectNear(g.geometry().origin(), v.geometry().origin(), kTolerance);
 }
 
 TEST(NiftiReader, BigEndianUInt16WithQform) {
@@ -99,12 +88,12 @@ TEST(NiftiReader, BigEndianUInt16WithQform) {
     for (std::size_t i = 0; i < values.size(); ++i)
         ASSERT_EQ(v.dataAs<std::uint16_t>()[i], values[i]);
     EXPECT_TRUE(v.valueMapping().isIdentity());
-    expectNear(v.geometry().spacing(), {0.8, 0.9, 3.0});
+    expectNear(v.geometry().spacing(), {0.8, 0.9, 3.0}, kTolerance);
     // RAS axes (-1,0,0), (0,-1,0), (0,0,-1) -> LPS (1,0,0), (0,1,0), (0,0,-1).
-    expectNear(v.geometry().axisI(), {1, 0, 0});
-    expectNear(v.geometry().axisJ(), {0, 1, 0});
-    expectNear(v.geometry().stackAxis(), {0, 0, -1});
-    expectNear(v.geometry().origin(), {-10, -20, 30});
+    expectNear(v.geometry().axisI(), {1, 0, 0}, kTolerance);
+    expectNear(v.geometry().axisJ(), {0, 1, 0}, kTolerance);
+    expectNear(v.geometry().stackAxis(), {0, 0, -1}, kTolerance);
+    expectNear(v.geometry().origin(), {-10, -20, 30}, kTolerance);
 }
 
 TEST(NiftiReader, PixdimOnlyGeometry) {
@@ -116,8 +105,8 @@ TEST(NiftiReader, PixdimOnlyGeometry) {
     spec.pixdim = {1.5f, -2.0f, 4.0f}; // sign ignored for spacing
     writeFile(dir / "p.nii", concat(niftiHeader(spec), Bytes{1, 2, 3, 4, 5, 6, 7, 8}));
     const Volume v = readNifti(dir / "p.nii");
-    expectNear(v.geometry().spacing(), {1.5, 2.0, 4.0});
-    expectNear(v.geometry().axisI(), {-1, 0, 0});
+    expectNear(v.geometry().spacing(), {1.5, 2.0, 4.0}, kTolerance);
+    expectNear(v.geometry().axisI(), {-1, 0, 0}, kTolerance);
     EXPECT_EQ(v.storedValue(1, 1, 1), 8);
 }
 
@@ -137,7 +126,7 @@ TEST(NiftiReader, HdrImgPairAndGzippedImage) {
         ASSERT_EQ(v.voxelType(), VoxelType::Float32);
         for (std::size_t i = 0; i < values.size(); ++i)
             ASSERT_EQ(v.dataAs<float>()[i], values[i]);
-        expectNear(v.geometry().origin(), {-90, 126, -72});
+        expectNear(v.geometry().origin(), {-90, 126, -72}, kTolerance);
     }
     std::filesystem::remove(dir / "pair.img");
     expectError([&] { readNifti(dir / "pair.hdr"); }, "pair.img");

@@ -3,6 +3,7 @@
 #include "lw/core/error.h"
 #include "lw/volume/volume_reader.h"
 #include "test_support.h"
+#include "volume_test_checks.h"
 #include "volume_test_files.h"
 
 #include <gtest/gtest.h>
@@ -13,15 +14,6 @@ namespace {
 
 using namespace testfiles;
 using namespace std::string_literals;
-
-template <typename F> void expectError(F&& read, const std::string& needle) {
-    try {
-        read();
-        FAIL() << "expected an error containing '" << needle << "'";
-    } catch (const core::Error& e) {
-        EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << e.what();
-    }
-}
 
 // Smooth-ish data with plateaus (zero residual runs) and noise (full-width runs).
 Bytes pattern(std::size_t n, unsigned seed) {

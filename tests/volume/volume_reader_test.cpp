@@ -2,6 +2,7 @@
 #include "lw/core/error.h"
 #include "lw/volume/volume_reader.h"
 #include "test_support.h"
+#include "volume_test_checks.h"
 #include "volume_test_files.h"
 
 #include <cmath>
@@ -12,6 +13,8 @@ namespace lw::volume {
 namespace {
 
 using namespace testfiles;
+
+constexpr double kTolerance = 1e-9;
 
 std::vector<std::int16_t> rampInt16(std::size_t n) {
     std::vector<std::int16_t> v(n);
@@ -28,21 +31,6 @@ template <typename T> void expectVoxels(const Volume& volume, const std::vector<
         ASSERT_EQ(p[i], expected[i]) << "voxel " << i;
 }
 
-void expectNear(glm::dvec3 a, glm::dvec3 b, double tol = 1e-9) {
-    EXPECT_NEAR(a.x, b.x, tol);
-    EXPECT_NEAR(a.y, b.y, tol);
-    EXPECT_NEAR(a.z, b.z, tol);
-}
-
-// Runs `read` and requires a core::Error whose text contains `needle`.
-template <typename F> void expectError(F&& read, const std::string& needle) {
-    try {
-        read();
-        FAIL() << "expected an error containing '" << needle << "'";
-    } catch (const core::Error& e) {
-        EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << e.what();
-    }
-}
 
 // ---------------------------------------------------------------- raw
 
@@ -58,7 +46,7 @@ TEST(RawReader, LittleEndianWithHeaderSkipAndSpacing) {
     const Volume v = readRawVolume(dir / "v.raw", o);
     EXPECT_EQ(v.dims(), glm::ivec3(5, 4, 3));
     expectVoxels(v, values);
-    expectNear(v.geometry().spacing(), {0.5, 0.6, 2.0});
+    expectNear(v.geometry().spacing(), {0.5, 0.6, 2.0}, kTolerance);
 }
 
 TEST(RawReader, BigEndianUInt16AndFloat) {
@@ -119,9 +107,9 @@ TEST(NrrdReader, AttachedRawWithSpaceDirectionsAndOrigin) {
     writeFile(dir / "a.nrrd", concat(toBytes(h), encode(values, false)));
     const Volume v = readNrrd(dir / "a.nrrd");
     expectVoxels(v, values);
-    expectNear(v.geometry().spacing(), {0.5, 0.75, 2.5});
-    expectNear(v.geometry().origin(), {-10, 20.5, 30});
-    expectNear(v.geometry().indexToPatient({1, 2, 1}), {-9.5, 22.0, 32.5});
+    expectNear(v.geometry().spacing(), {0.5, 0.75, 2.5}, kTolerance);
+    expectNear(v.geometry().origin(), {-10, 20.5, 30}, kTolerance);
+    expectNear(v.geometry().indexToPatient({1, 2, 1}), {-9.5, 22.0, 32.5}, kTolerance);
     EXPECT_EQ(v.description(), "test volume");
     // Same through the dispatcher.
     EXPECT_EQ(detectVolumeFormat(dir / "a.nrrd"), VolumeFormat::Nrrd);
@@ -135,11 +123,11 @@ TEST(NrrdReader, RasSpaceIsConvertedToLps) {
                                      "space origin: (1,2,3)\nencoding: raw\n");
     writeFile(dir / "ras.nrrd", concat(toBytes(h), Bytes{0, 1, 2, 3, 4, 5, 6, 7}));
     const Volume v = readNrrd(dir / "ras.nrrd");
-    expectNear(v.geometry().origin(), {-1, -2, 3});
-    expectNear(v.geometry().axisI(), {-1, 0, 0});
-    expectNear(v.geometry().axisJ(), {0, -1, 0});
-    expectNear(v.geometry().stackAxis(), {0, 0, 1});
-    expectNear(v.geometry().spacing(), {2, 3, 4});
+    expectNear(v.geometry().origin(), {-1, -2, 3}, kTolerance);
+    expectNear(v.geometry().axisI(), {-1, 0, 0}, kTolerance);
+    expectNear(v.geometry().axisJ(), {0, -1, 0}, kTolerance);
+    expectNear(v.geometry().stackAxis(), {0, 0, 1}, kTolerance);
+    expectNear(v.geometry().spacing(), {2, 3, 4}, kTolerance);
     EXPECT_EQ(v.storedValue(1, 1, 1), 7);
 }
 
@@ -154,7 +142,7 @@ TEST(NrrdReader, GzipBigEndianFloatAndSpacings) {
     writeFile(dir / "g.nrrd", concat(toBytes(h), gzipBytes(encode(values, true))));
     const Volume v = readNrrd(dir / "g.nrrd");
     expectVoxels(v, values);
-    expectNear(v.geometry().spacing(), {1.25, 1.0, 3.0}); // NaN: unknown -> 1
+    expectNear(v.geometry().spacing(), {1.25, 1.0, 3.0}, kTolerance); // NaN: unknown -> 1
 }
 
 TEST(NrrdReader, TypeSpellingsAndConversions) {
