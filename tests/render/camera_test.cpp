@@ -233,3 +233,73 @@ TEST(Camera, SurfaceBoundsFrameTheSurfaceNotTheAir) {
     EXPECT_EQ(none.min, all.min);
     EXPECT_EQ(none.max, all.max);
 }
+
+TEST(Camera, RollTurnsTheScreenAboutTheViewAxis) {
+    for (auto projection : {Projection::Perspective, Projection::Orthographic}) {
+        CameraSetup setup = setupFor(projection, 30.0, 20.0);
+        const Camera plain(setup, 400, 400);
+        setup.rollDeg = 90.0;
+        const Camera rolled(setup, 400, 400);
+        // The camera turned counter-clockwise by 90 degrees: its up points to the old screen
+        // left, so the picture turns clockwise.
+        expectNear(rolled.up(), -plain.right());
+        expectNear(rolled.right(), plain.up());
+        expectNear(rolled.forward(), plain.forward());
+        // A point to the plain view's right now projects below the centre.
+        const glm::dvec3 p = plain.target() + 10.0 * plain.right();
+        EXPECT_GT(plain.project(p).pixel.x, 200.0 + 1.0);
+        EXPECT_NEAR(rolled.project(p).pixel.x, 200.0, 1e-6);
+        EXPECT_GT(rolled.project(p).pixel.y, 200.0 + 1.0);
+    }
+}
+
+TEST(Camera, ZoomMagnifiesAboutTheCentre) {
+    for (auto projection : {Projection::Perspective, Projection::Orthographic}) {
+        CameraSetup setup = setupFor(projection, -40.0, 10.0);
+        const Camera fitted(setup, 300, 200);
+        setup.zoom = 2.0;
+        const Camera zoomed(setup, 300, 200);
+        const glm::dvec3 p = fitted.target() + 7.0 * fitted.right() - 3.0 * fitted.up();
+        const glm::dvec2 a = fitted.project(p).pixel - glm::dvec2(150, 100);
+        const glm::dvec2 b = zoomed.project(p).pixel - glm::dvec2(150, 100);
+        EXPECT_NEAR(b.x, 2.0 * a.x, 1e-6);
+        EXPECT_NEAR(b.y, 2.0 * a.y, 1e-6);
+        EXPECT_DOUBLE_EQ(zoomed.nearPlane(), fitted.nearPlane());
+    }
+    CameraSetup bad = setupFor(Projection::Perspective, 0, 0);
+    bad.zoom = 0.0;
+    EXPECT_THROW(Camera(bad, 10, 10), lw::core::Error);
+}
+
+TEST(Camera, PanMovesTheTargetAcrossTheScreenNotInDepth) {
+    for (auto projection : {Projection::Perspective, Projection::Orthographic}) {
+        CameraSetup setup = setupFor(projection, 120.0, -35.0);
+        const Camera fitted(setup, 256, 256);
+        setup.pan = {0.5, 0.0};
+        const Camera panned(setup, 256, 256);
+        // The box centre moves half the half-width (= a quarter of the screen) to the left.
+        const ProjectedPoint centre = panned.project(setup.bounds.center());
+        EXPECT_NEAR(centre.pixel.x, 128.0 - 64.0, 1e-6);
+        EXPECT_NEAR(centre.pixel.y, 128.0, 1e-6);
+        EXPECT_NEAR(centre.depth, fitted.project(setup.bounds.center()).depth, 1e-6);
+    }
+}
+
+TEST(Camera, UnprojectInvertsProject) {
+    std::mt19937 random(7);
+    std::uniform_real_distribution<double> coordinate(-20.0, 20.0);
+    for (auto projection : {Projection::Perspective, Projection::Orthographic}) {
+        CameraSetup setup = setupFor(projection, 75.0, 70.0);
+        setup.rollDeg = 15.0;
+        setup.zoom = 1.7;
+        setup.pan = {-0.2, 0.3};
+        const Camera camera(setup, 640, 480);
+        for (int i = 0; i < 20; ++i) {
+            const glm::dvec3 p =
+                setup.bounds.center() +
+                glm::dvec3(coordinate(random), coordinate(random), coordinate(random));
+            const ProjectedPoint projected = camera.project(p);
+            expectNear(camera.unproject(projected.pixel, projected.ndcDepth), p, 1e-6);
+        }
+    }
+}

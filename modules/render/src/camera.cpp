@@ -91,6 +91,8 @@ void Camera::update() {
         throw core::Error("camera", "field of view must lie in (0, 179) degrees");
     if (!(m_setup.margin >= 0.0))
         throw core::Error("camera", "margin must not be negative");
+    if (!(m_setup.zoom > 0.0) || !std::isfinite(m_setup.zoom))
+        throw core::Error("camera", "zoom must be a positive number");
 
     m_target = m_setup.bounds.center();
     // A degenerate (point or flat) box still needs a finite view.
@@ -101,6 +103,13 @@ void Camera::update() {
     m_forward = -toEye;
     m_up = glm::dvec3{-std::sin(az) * std::sin(el), std::cos(az) * std::sin(el), std::cos(el)};
     m_right = glm::cross(m_forward, m_up);
+    if (m_setup.rollDeg != 0.0) {
+        // Turning the screen counter-clockwise turns its axes the same way about the view axis.
+        const double roll = radians(m_setup.rollDeg);
+        const glm::dvec3 up = std::cos(roll) * m_up - std::sin(roll) * m_right;
+        m_right = std::cos(roll) * m_right + std::sin(roll) * m_up;
+        m_up = up;
+    }
 
     const double aspect = double(m_width) / double(m_height);
     const double grow = 1.0 + m_setup.margin;
@@ -117,8 +126,8 @@ void Camera::update() {
             }
             halfH = std::max({v, u / aspect, radius * 1e-6}) * grow;
         }
-        m_halfHeight = halfH;
-        m_halfWidth = halfH * aspect;
+        m_halfHeight = halfH / m_setup.zoom;
+        m_halfWidth = halfH * aspect / m_setup.zoom;
         m_distance = 2.0 * radius;
         m_near = 0.5 * radius;
         m_far = 3.5 * radius;
@@ -137,12 +146,16 @@ void Camera::update() {
             }
             distance = std::max(distance, 1.05 * radius);
         }
-        m_halfWidth = tanX;
-        m_halfHeight = tanY;
+        m_halfWidth = tanX / m_setup.zoom;
+        m_halfHeight = tanY / m_setup.zoom;
         m_distance = distance;
         m_near = std::max(distance - 1.01 * radius, 1e-3 * radius);
         m_far = distance + 1.01 * radius;
     }
+    // Pan in units of the fitted half-height at the target (zoom applied: a drag across the
+    // screen moves the surface by the same share of the screen at any zoom).
+    const double halfHeightAtTarget = isOrthographic() ? m_halfHeight : m_distance * m_halfHeight;
+    m_target += (m_right * m_setup.pan.x + m_up * m_setup.pan.y) * halfHeightAtTarget;
     m_eye = m_target - m_forward * m_distance;
 }
 
@@ -190,6 +203,18 @@ Ray Camera::rayThroughPoint(glm::dvec2 pixel) const {
         return {m_eye + m_right * (ndcX * m_halfWidth) + m_up * (ndcY * m_halfHeight), m_forward};
     return {m_eye, glm::normalize(m_forward + m_right * (ndcX * m_halfWidth) +
                                   m_up * (ndcY * m_halfHeight))};
+}
+
+glm::dvec3 Camera::unproject(glm::dvec2 pixel, double ndcDepth) const {
+    const Ray ray = rayThroughPoint(pixel);
+    // Invert project()'s ndcDepth(z) for the eye-space depth z along the view axis.
+    double z = 0.0;
+    if (isOrthographic())
+        z = 0.5 * (ndcDepth * (m_far - m_near) + m_far + m_near);
+    else
+        z = 2.0 * m_far * m_near / ((m_far + m_near) - ndcDepth * (m_far - m_near));
+    // The ray reaches view depth z after z / cos(angle to the view axis).
+    return ray.at(z / glm::dot(ray.direction, m_forward));
 }
 
 double Camera::pixelFootprint(double depth) const {

@@ -40,6 +40,14 @@ struct CameraSetup {
     double fovYDeg = 30.0; // perspective only
     double margin = 0.05;  // free border, relative to the fitted extent
     FitMode fit = FitMode::Sphere;
+    // Interactive adjustments on top of the fitted view (the GUI's trackball, pan and zoom;
+    // renders from the CLI leave them at their defaults):
+    double rollDeg = 0.0; // camera turned counter-clockwise about the view axis (picture clockwise)
+    double zoom = 1.0;    // > 1 magnifies: the fitted extent divided by zoom
+    // The look-at point moved across the screen, in units of the fitted half-height at the
+    // target (x to screen right, y to screen up). Perpendicular to the view axis, so the depth of
+    // the box and with it the near and far planes stay as fitted.
+    glm::dvec2 pan{0.0};
 };
 
 struct Ray {
@@ -97,6 +105,10 @@ public:
     Ray rayThroughPoint(glm::dvec2 pixel) const;
     // The ray through the centre of pixel (px, py), top row first.
     Ray rayThroughPixel(int px, int py) const { return rayThroughPoint({px + 0.5, py + 0.5}); }
+
+    // The patient point at continuous pixel coordinates and normalised device depth (as a depth
+    // buffer stores it, mapped from [0, 1] to [-1, 1]): the inverse of project().
+    glm::dvec3 unproject(glm::dvec2 pixel, double ndcDepth) const;
 
     // Size of one pixel in mm on the plane at `depth` in front of the eye (constant for ortho).
     double pixelFootprint(double depth) const;
