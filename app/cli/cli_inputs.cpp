@@ -1,72 +1,12 @@
 #include "cli_inputs.h"
 
 #include "lw/core/error.h"
-#include "lw/core/log.h"
-#include "lw/render/phantom.h"
-#include "lw/volume/volume_reader.h"
-
-#ifdef LINEWORK_HAVE_DICOM
-#include "lw/dicom/dicom_scanner.h"
-#include "lw/dicom/volume_assembler.h"
-#endif
+#include "lw/input/open_input.h"
 
 #include <charconv>
 #include <sstream>
 
 namespace lw::cli {
-namespace {
-
-constexpr core::LogCategory kLog("lw.cli");
-
-// phantom:N, phantom:NXxNYxNZ, optionally followed by :ct or :sphere.
-volume::Volume loadPhantom(const std::string& spec) {
-    const std::string body = spec.substr(std::string("phantom:").size());
-    const auto colon = body.find(':');
-    const render::PhantomKind kind =
-        render::parsePhantomKind(colon == std::string::npos ? "ct" : body.substr(colon + 1));
-    const std::optional<glm::ivec3> dims = parseDims(body.substr(0, colon), 2, 4096);
-    if (!dims)
-        throw core::Error(
-            spec,
-            "expected phantom:N or phantom:NXxNYxNZ (2..4096) with an optional :ct or :sphere");
-    return render::makePhantom(*dims, kind);
-}
-
-#ifdef LINEWORK_HAVE_DICOM
-volume::Volume loadDicom(const std::string& path, const std::optional<std::string>& seriesUid) {
-    const dicom::DicomIndex index = dicom::scanDicom(path);
-    const dicom::SeriesInfo* chosen = nullptr;
-    if (seriesUid) {
-        chosen = index.findSeries(*seriesUid);
-        if (!chosen)
-            throw core::Error(path, "no series with UID " + *seriesUid);
-    } else {
-        // The series with the most slices: in a CT study that is the diagnostic volume, not a
-        // scout or a dose report.
-        for (const dicom::SeriesInfo* series : index.allSeries())
-            if (!chosen || series->instances.size() > chosen->instances.size())
-                chosen = series;
-        if (!chosen)
-            throw core::Error(path, "no DICOM series found");
-    }
-    const dicom::SeriesAssembly assembly = dicom::planVolumes(*chosen);
-    const dicom::VolumePlan* plan = nullptr;
-    for (const dicom::VolumePlan& candidate : assembly.volumes)
-        if (!plan || candidate.slices.size() > plan->slices.size())
-            plan = &candidate;
-    if (!plan)
-        throw core::Error(path, "series " + chosen->seriesInstanceUid +
-                                    " holds no volume that can be assembled");
-    if (plan->dims.z < 2)
-        throw core::Error(path, "series " + chosen->seriesInstanceUid +
-                                    " has a single slice; an iso-surface needs two");
-    kLog.info("rendering series " + chosen->seriesInstanceUid + " (" +
-              std::to_string(plan->slices.size()) + " slices)");
-    return dicom::loadVolume(*chosen, *plan);
-}
-#endif
-
-} // namespace
 
 std::vector<std::string> splitList(const std::string& text, char separator, bool keepEmpty) {
     std::vector<std::string> parts;
@@ -144,17 +84,9 @@ glm::dvec2 parseView(const std::string& text) {
 }
 
 volume::Volume loadInput(const std::string& input, const std::optional<std::string>& seriesUid) {
-    if (input.rfind("phantom:", 0) == 0)
-        return loadPhantom(input);
-#ifdef LINEWORK_HAVE_DICOM
-    if (dicom::looksLikeDicomInput(input) ||
-        volume::detectVolumeFormat(input) == volume::VolumeFormat::Unknown)
-        return loadDicom(input, seriesUid);
-#else
-    if (seriesUid)
-        throw core::Error("--series", "this build reads no DICOM (LINEWORK_DICOM off)");
-#endif
-    return volume::readVolumeFile(input);
+    input::OpenOptions options;
+    options.seriesUid = seriesUid;
+    return input::openInput(input, options).volume;
 }
 
 } // namespace lw::cli

@@ -32,7 +32,8 @@ glm::ivec2 parseImageSize(const std::string& option, const std::string& text, in
 // "--view AZ,EL" in degrees: {azimuth, elevation}; throws core::Error otherwise.
 glm::dvec2 parseView(const std::string& text);
 
-// The INPUT of `render`: phantom:N | phantom:NXxNYxNZ (optionally :ct or :sphere), a volume
+// The INPUT of `render` (lw::input::openInput, shared with the GUI): phantom:N | phantom:NXxNYxNZ
+// (optionally :ct or :sphere), a volume
 // file (NRRD, NIfTI, PVM, raw), or, in a DICOM build, a DICOM folder / DICOMDIR / file, where
 // `seriesUid` picks the series (default: the one with the most slices).
 volume::Volume loadInput(const std::string& input, const std::optional<std::string>& seriesUid);

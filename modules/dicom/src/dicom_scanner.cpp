@@ -731,6 +731,30 @@ DicomIndex scanDicom(const fs::path& path, core::Progress* progress) {
     return index;
 }
 
+DicomIndex scanDicomFiles(const std::vector<fs::path>& files, core::Progress* progress) {
+    DicomIndex index;
+    std::vector<fs::path> present;
+    present.reserve(files.size());
+    for (const fs::path& file : files) {
+        std::error_code ec;
+        if (fs::is_regular_file(file, ec))
+            present.push_back(file);
+        else
+            index.errors.push_back({file.string(), ec ? ec.message() : "file is missing"});
+    }
+    if (!files.empty())
+        index.root = files.front().parent_path();
+    std::vector<FileError> missing = std::move(index.errors);
+    index.errors.clear();
+    std::sort(present.begin(), present.end());
+    finishIndex(index, present, progress);
+    index.filesExamined = files.size();
+    index.errors.insert(index.errors.begin(), missing.begin(), missing.end());
+    std::stable_sort(index.errors.begin(), index.errors.end(),
+                     [](const FileError& a, const FileError& b) { return a.file < b.file; });
+    return index;
+}
+
 bool looksLikeDicomInput(const fs::path& path) {
     std::error_code ec;
     if (fs::is_directory(path, ec))

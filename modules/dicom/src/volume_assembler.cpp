@@ -534,4 +534,17 @@ volume::Volume loadVolume(const SeriesInfo& series, const VolumePlan& plan, core
     return result;
 }
 
+volume::Volume loadSlice(const SeriesInfo& series, const VolumePlan& plan, std::size_t sliceIndex,
+                         core::Progress* progress) {
+    if (sliceIndex >= plan.slices.size())
+        throw core::Error(series.seriesInstanceUid,
+                          "slice " + std::to_string(sliceIndex) + " is outside the volume plan (" +
+                              std::to_string(plan.slices.size()) + " slices)");
+    VolumePlan one = plan;
+    one.slices = {plan.slices[sliceIndex]};
+    one.dims.z = 1;
+    one.geometry = plan.geometry.subStack(int(sliceIndex), 1);
+    return loadVolume(series, one, progress);
+}
+
 } // namespace lw::dicom

@@ -33,6 +33,8 @@ public:
     void report(double fraction, const std::string& message);
 
     bool isCancelled() const noexcept { return m_cancel && m_cancel->isCancelled(); }
+    // The token this progress watches, for a sub-progress that reports into this one.
+    std::shared_ptr<const CancelToken> cancelToken() const { return m_cancel; }
     // Throws Cancelled when cancellation was requested.
     void throwIfCancelled() const;
 

@@ -32,6 +32,12 @@ struct DicomIndex {
 // itself cannot be used; per-file problems land in DicomIndex::errors.
 DicomIndex scanDicom(const std::filesystem::path& path, core::Progress* progress = nullptr);
 
+// Reads the headers of exactly these files (on all cores), as a folder scan would: the study
+// database reopens a series from its stored file list this way. A file that no longer exists or
+// cannot be read lands in DicomIndex::errors with the reason ("file is missing" when gone).
+DicomIndex scanDicomFiles(const std::vector<std::filesystem::path>& files,
+                          core::Progress* progress = nullptr);
+
 // True when `path` looks like DICOM input: a folder, a DICOMDIR or a file with the DICM magic.
 bool looksLikeDicomInput(const std::filesystem::path& path);
 

@@ -50,4 +50,10 @@ SeriesAssembly planVolumes(const SeriesInfo& series);
 volume::Volume loadVolume(const SeriesInfo& series, const VolumePlan& plan,
                           core::Progress* progress = nullptr);
 
+// Decodes one slice of a plan (0-based along the stack) into a volume of dims (x, y, 1) with the
+// plan's value mapping and that slice's geometry: thumbnails and previews without decoding the
+// series. Throws core::Error naming the file, or the series for an index out of range.
+volume::Volume loadSlice(const SeriesInfo& series, const VolumePlan& plan, std::size_t sliceIndex,
+                         core::Progress* progress = nullptr);
+
 } // namespace lw::dicom

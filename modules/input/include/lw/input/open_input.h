@@ -1,0 +1,43 @@
+#pragma once
+
+// One way to open what a user points at, for the CLI and the GUI alike (issue 6): a DICOM
+// folder, DICOMDIR or file (DICOM builds), a volume file (NRRD, NIfTI, PVM, raw by extension),
+// or the benchmark phantom ("phantom:N", "phantom:NXxNYxNZ", optionally ":ct" or ":sphere").
+
+#include "lw/core/progress.h"
+#include "lw/volume/volume.h"
+
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace lw::input {
+
+struct OpenOptions {
+    // DICOM: the series to open; default the one with the most slices (in a CT study the
+    // diagnostic volume, not a scout or a dose report).
+    std::optional<std::string> seriesUid;
+};
+
+struct OpenedVolume {
+    volume::Volume volume;
+    std::string source;                // the path or phantom spec
+    std::string seriesUid;             // DICOM only
+    std::string description;           // one line for titles and logs
+    std::vector<std::string> warnings; // tilt, uneven gaps, missing slices, files that failed
+};
+
+// Throws core::Error naming the path and the reason; core::Cancelled when `progress` is
+// cancelled. Progress: DICOM scanning the first 20 %, decoding the rest.
+OpenedVolume openInput(const std::string& path, const OpenOptions& options = {},
+                       core::Progress* progress = nullptr);
+
+// The files of one DICOM series as the study database stores them. Files that have gone missing
+// make it fail with their count and the first few paths. Throws in a build without DICOM.
+OpenedVolume openDicomFiles(const std::vector<std::filesystem::path>& files,
+                            const OpenOptions& options = {}, core::Progress* progress = nullptr);
+
+bool isDicomBuild();
+
+} // namespace lw::input
