@@ -1,0 +1,76 @@
+#include "review/render_scheduler.h"
+
+#include <QMetaObject>
+#include <QPointer>
+
+namespace lw::gui {
+
+RenderScheduler::RenderScheduler(std::shared_ptr<const volume::Volume> volume, QObject* parent)
+    : QObject(parent), m_worker(std::make_shared<RenderWorker>(std::move(volume))) {
+    m_thread.setObjectName("lw.render.worker");
+    m_threadContext = new QObject;
+    m_threadContext->moveToThread(&m_thread);
+    connect(&m_thread, &QThread::finished, m_threadContext, &QObject::deleteLater);
+    m_thread.start();
+}
+
+RenderScheduler::~RenderScheduler() {
+    m_waiting.reset();
+    if (m_running)
+        m_running->cancel->cancel();
+    // The worker's renderers are released on its own thread (a headless GL context belongs to
+    // the thread that made it); the queued call runs after the one in flight.
+    std::shared_ptr<RenderWorker> worker = m_worker;
+    QMetaObject::invokeMethod(
+        m_threadContext, [worker] { worker->release(); }, Qt::BlockingQueuedConnection);
+    m_thread.quit();
+    m_thread.wait();
+}
+
+std::uint64_t RenderScheduler::request(FrameRequest request) {
+    request.id = ++m_nextId;
+    if (m_running) {
+        if (m_running->iso != request.iso ||
+            m_running->settingsGeneration != request.settingsGeneration)
+            m_running->cancel->cancel();
+        m_waiting = std::move(request);
+        return m_nextId;
+    }
+    dispatch(std::move(request));
+    return m_nextId;
+}
+
+void RenderScheduler::dispatch(FrameRequest request) {
+    m_running = Running{request.iso, request.settingsGeneration, request.cancel};
+    emit busyChanged(true);
+    QPointer<RenderScheduler> self(this);
+    std::shared_ptr<RenderWorker> worker = m_worker;
+    QMetaObject::invokeMethod(
+        m_threadContext,
+        [self, worker, request = std::move(request)] {
+            auto result = std::make_shared<const FrameResult>(worker->run(request));
+            QMetaObject::invokeMethod(
+                self.data(),
+                [self, result] {
+                    if (self)
+                        self->finished(result);
+                },
+                Qt::QueuedConnection);
+        },
+        Qt::QueuedConnection);
+}
+
+void RenderScheduler::finished(std::shared_ptr<const FrameResult> result) {
+    m_running.reset();
+    if (m_waiting) {
+        FrameRequest next = std::move(*m_waiting);
+        m_waiting.reset();
+        dispatch(std::move(next));
+    } else {
+        emit busyChanged(false);
+    }
+    if (!result->cancelled)
+        emit frameReady(result);
+}
+
+} // namespace lw::gui

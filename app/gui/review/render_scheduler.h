@@ -1,0 +1,48 @@
+#pragma once
+
+// Feeds RenderWorker on its own thread: at most one request runs, at most one waits (the newest
+// replaces an older waiting one), and a request for another iso-value or other settings cancels
+// the running one. Results arrive on the UI thread through frameReady().
+
+#include "review/render_worker.h"
+
+#include <QObject>
+#include <QThread>
+#include <memory>
+#include <optional>
+
+namespace lw::gui {
+
+class RenderScheduler : public QObject {
+    Q_OBJECT
+public:
+    explicit RenderScheduler(std::shared_ptr<const volume::Volume> volume,
+                             QObject* parent = nullptr);
+    ~RenderScheduler() override;
+
+    // Queues `request` (its id is assigned here and returned).
+    std::uint64_t request(FrameRequest request);
+    bool isBusy() const { return m_running.has_value(); }
+
+signals:
+    void frameReady(std::shared_ptr<const lw::gui::FrameResult> result);
+    void busyChanged(bool busy);
+
+private:
+    void dispatch(FrameRequest request);
+    void finished(std::shared_ptr<const FrameResult> result);
+
+    std::shared_ptr<RenderWorker> m_worker;
+    QThread m_thread;
+    QObject* m_threadContext = nullptr; // lives in m_thread; queued calls run there
+    std::uint64_t m_nextId = 0;
+    struct Running {
+        double iso;
+        std::uint64_t settingsGeneration;
+        std::shared_ptr<core::CancelToken> cancel;
+    };
+    std::optional<Running> m_running;
+    std::optional<FrameRequest> m_waiting;
+};
+
+} // namespace lw::gui

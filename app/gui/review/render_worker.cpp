@@ -1,0 +1,123 @@
+#include "review/render_worker.h"
+
+#include "lw/core/error.h"
+#include "lw/render/zbuffer_silhouette_renderer.h"
+
+#include <QObject>
+#include <chrono>
+#include <new>
+
+namespace lw::gui {
+namespace {
+
+double millisecondsSince(std::chrono::steady_clock::time_point start) {
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+        .count();
+}
+
+} // namespace
+
+RenderWorker::RenderWorker(std::shared_ptr<const volume::Volume> volume)
+    : m_volume(std::move(volume)) {}
+
+RenderWorker::~RenderWorker() = default;
+
+void RenderWorker::release() {
+    m_renderer.reset();
+    m_extractor.reset();
+    m_mesh.reset();
+}
+
+FrameResult RenderWorker::run(const FrameRequest& request) {
+    FrameResult result;
+    result.id = request.id;
+    result.settingsGeneration = request.settingsGeneration;
+    result.iso = request.iso;
+    result.camera = request.camera;
+    result.method = request.method;
+    result.brickCells = request.settings.brickCells;
+    try {
+        if (request.cancel->isCancelled())
+            throw core::Cancelled();
+        if (request.wantSilhouette)
+            renderSilhouette(request, result);
+        if (request.cancel->isCancelled())
+            throw core::Cancelled();
+        if (request.wantMesh)
+            extractMesh(request, result);
+    } catch (const core::Cancelled&) {
+        result.cancelled = true;
+    } catch (const core::Error& error) {
+        result.error = QString::fromStdString(error.what());
+    } catch (const std::bad_alloc&) {
+        result.error = QObject::tr("out of memory at iso-value %1 HU: choose a higher iso-value "
+                                   "or chunking (settings)")
+                           .arg(request.iso);
+        release();
+    } catch (const std::exception& error) {
+        result.error = QObject::tr("internal error: %1").arg(error.what());
+    }
+    return result;
+}
+
+render::SilhouetteRenderer& RenderWorker::rendererFor(const FrameRequest& request,
+                                                      FrameResult& result) {
+    if (!m_renderer || m_renderer->method() != request.method ||
+        m_rendererBackend != request.backend) {
+        m_renderer.reset();
+        std::string note;
+        m_renderer = render::createSilhouetteRenderer(request.method, request.backend, &note);
+        m_renderer->setVolume(*m_volume);
+        m_rendererBackend = request.backend;
+        m_backendNote = QString::fromStdString(note);
+    }
+    result.backend = QString::fromUtf8(m_renderer->backendName().data(),
+                                       qsizetype(m_renderer->backendName().size()));
+    result.backendNote = m_backendNote;
+    return *m_renderer;
+}
+
+void RenderWorker::renderSilhouette(const FrameRequest& request, FrameResult& result) {
+    render::SilhouetteSettings settings = request.settings;
+    settings.isoReal = request.iso;
+    render::SilhouetteRenderer& renderer = rendererFor(request, result);
+    result.silhouette = renderer.render(request.camera, settings);
+    // Method 3 S keeps the mesh it rasterised: the iso panel shows exactly that surface and
+    // marching cubes does not run twice for one iso-value.
+    auto* zbuffer = dynamic_cast<render::ZBufferSilhouetteRenderer*>(&renderer);
+    if (zbuffer && request.wantMesh && settings.brickCells == 0) {
+        const auto start = std::chrono::steady_clock::now();
+        m_mesh = std::make_shared<const render::Mesh>(zbuffer->mesh());
+        m_meshIso = request.iso;
+        result.mesh = m_mesh;
+        result.meshMs = millisecondsSince(start);
+    }
+}
+
+void RenderWorker::extractMesh(const FrameRequest& request, FrameResult& result) {
+    if (result.mesh)
+        return;
+    if (m_mesh && m_meshIso == request.iso && !request.forceExtract) {
+        result.mesh = m_mesh;
+        return;
+    }
+    const auto start = std::chrono::steady_clock::now();
+    // The iso panel's mesh is the same whatever the brick schedule (canonical order), so the
+    // extractor keeps one brick grid and reuses it across iso-values.
+    const int bricks = request.settings.brickCells;
+    if (!m_extractor || m_extractorBricks != bricks) {
+        render::IsoSurfaceOptions options;
+        options.brickCells = bricks;
+        options.threads = request.settings.threads;
+        m_extractor = std::make_unique<render::IsoSurfaceExtractor>(*m_volume, options);
+        m_extractorBricks = bricks;
+    }
+    auto mesh = std::make_shared<render::Mesh>();
+    m_extractor->extract(request.iso, *mesh);
+    m_mesh = std::move(mesh);
+    m_meshIso = request.iso;
+    result.mesh = m_mesh;
+    result.meshMs = millisecondsSince(start);
+}
+
+} // namespace lw::gui

@@ -1,0 +1,80 @@
+#pragma once
+
+// The review's work that can take longer than a frame: marching cubes for the iso panel and the
+// CPU silhouette methods (2, 3, and method 1's chunked variant on a headless context). It runs
+// on one worker thread, one request at a time; RenderScheduler (render_scheduler.h) feeds it and
+// keeps the UI thread free.
+
+#include "lw/core/progress.h"
+#include "lw/render/camera.h"
+#include "lw/render/iso_surface.h"
+#include "lw/render/renderer_factory.h"
+#include "lw/render/silhouette_renderer.h"
+#include "lw/volume/volume.h"
+
+#include <QString>
+#include <cstdint>
+#include <memory>
+#include <optional>
+
+namespace lw::gui {
+
+struct FrameRequest {
+    std::uint64_t id = 0;
+    std::uint64_t settingsGeneration = 0; // results of older settings are dropped
+    double iso = 0.0;
+    bool wantMesh = false;       // the iso panel (and method 1 S) need the mesh at `iso`
+    bool forceExtract = false;   // mode b: extract again even if the mesh is cached
+    bool wantSilhouette = false; // render the silhouette here (methods 2, 3, method 1 L)
+    render::SilhouetteMethod method = render::SilhouetteMethod::ZBuffer;
+    render::Backend backend = render::Backend::Auto;
+    render::SilhouetteSettings settings;
+    render::Camera camera;
+    std::shared_ptr<core::CancelToken> cancel = std::make_shared<core::CancelToken>();
+};
+
+struct FrameResult {
+    std::uint64_t id = 0;
+    std::uint64_t settingsGeneration = 0;
+    double iso = 0.0;
+    render::Camera camera;
+    std::shared_ptr<const render::Mesh> mesh; // set when the request wanted one
+    double meshMs = 0.0;
+    std::optional<render::SilhouetteFrame> silhouette;
+    render::SilhouetteMethod method = render::SilhouetteMethod::ZBuffer;
+    int brickCells = 0;
+    QString backend; // the back-end that actually ran
+    QString backendNote;
+    QString error; // empty on success
+    bool cancelled = false;
+};
+
+class RenderWorker {
+public:
+    explicit RenderWorker(std::shared_ptr<const volume::Volume> volume);
+    ~RenderWorker();
+    RenderWorker(const RenderWorker&) = delete;
+    RenderWorker& operator=(const RenderWorker&) = delete;
+
+    // On the worker thread only. Never throws: errors and cancellation come back in the result.
+    FrameResult run(const FrameRequest& request);
+    // Drops renderers and caches (on the worker thread, before it stops: a headless GL context
+    // belongs to the thread that made it).
+    void release();
+
+private:
+    void renderSilhouette(const FrameRequest& request, FrameResult& result);
+    void extractMesh(const FrameRequest& request, FrameResult& result);
+    render::SilhouetteRenderer& rendererFor(const FrameRequest& request, FrameResult& result);
+
+    std::shared_ptr<const volume::Volume> m_volume;
+    std::unique_ptr<render::IsoSurfaceExtractor> m_extractor;
+    int m_extractorBricks = -1;
+    std::unique_ptr<render::SilhouetteRenderer> m_renderer;
+    render::Backend m_rendererBackend = render::Backend::Auto;
+    QString m_backendNote;
+    std::shared_ptr<const render::Mesh> m_mesh;
+    double m_meshIso = 0.0;
+};
+
+} // namespace lw::gui

@@ -1,0 +1,314 @@
+#include "review/review_widget.h"
+
+#include "lw/core/error.h"
+#include "lw/render/renderer_factory.h"
+#include "review/iso_control.h"
+#include "review/render_scheduler.h"
+#include "review/review_panel.h"
+
+#include <QHBoxLayout>
+#include <QLabel>
+#include <QLocale>
+#include <QSignalBlocker>
+#include <QSplitter>
+#include <QToolButton>
+#include <QVBoxLayout>
+#include <algorithm>
+#include <cmath>
+
+namespace lw::gui {
+namespace {
+
+QString count(std::size_t value) {
+    return QLocale().toString(qulonglong(value));
+}
+
+QString ms(double value) {
+    return QString::number(value, 'f', value < 10.0 ? 1 : 0);
+}
+
+} // namespace
+
+ReviewWidget::ReviewWidget(ReviewSource source, const ReviewSettings& settings, QWidget* parent)
+    : QWidget(parent), m_source(std::move(source)), m_settings(settings) {
+    setObjectName("reviewWidget");
+    m_camera.setBounds(m_source.bounds);
+    m_camera.setProjection(settings.projection);
+    m_isoPanel = new ReviewPanel(PanelKind::Iso, m_camera);
+    m_silhouettePanel = new ReviewPanel(PanelKind::Silhouette, m_camera);
+    m_isoControl = new IsoControl;
+    m_isoControl->setObjectName("isoControl");
+    m_statusLine = new QLabel;
+    m_statusLine->setObjectName("reviewStatus");
+    m_statusLine->setTextInteractionFlags(Qt::TextSelectableByMouse);
+    // A long status must not widen the window: it is cut at the window's edge instead.
+    m_statusLine->setSizePolicy(QSizePolicy::Ignored, QSizePolicy::Preferred);
+    m_errorLine = new QLabel;
+    m_errorLine->setObjectName("reviewError");
+    m_errorLine->setWordWrap(true);
+    m_errorLine->setStyleSheet("QLabel { background: #f8d7da; color: #721c24; padding: 4px; }");
+    m_errorLine->hide();
+    m_warningLine = new QLabel(m_source.warnings.join(QStringLiteral(" · ")));
+    m_warningLine->setObjectName("reviewWarnings");
+    m_warningLine->setWordWrap(true);
+    m_warningLine->setSizePolicy(QSizePolicy::Ignored, QSizePolicy::Preferred);
+    m_warningLine->setStyleSheet("QLabel { background: #fff3cd; color: #856404; padding: 4px; }");
+    m_warningLine->setVisible(!m_source.warnings.isEmpty());
+
+    auto* splitter = new QSplitter(Qt::Horizontal);
+    splitter->addWidget(m_isoPanel);
+    splitter->addWidget(m_silhouettePanel);
+    splitter->setChildrenCollapsible(false);
+    auto* layout = new QVBoxLayout(this);
+    layout->addWidget(makeViewBar());
+    layout->addWidget(m_warningLine);
+    layout->addWidget(m_errorLine);
+    layout->addWidget(splitter, 1);
+    layout->addWidget(m_isoControl);
+    layout->addWidget(m_statusLine);
+
+    m_scheduler = std::make_unique<RenderScheduler>(m_source.volume);
+    connect(m_scheduler.get(), &RenderScheduler::frameReady, this, &ReviewWidget::takeFrame);
+    connect(&m_camera, &CameraController::changed, this, [this] { requestFrame(false); });
+    connect(m_isoControl, &IsoControl::isoChanged, this, &ReviewWidget::setIso);
+    for (ReviewPanel* panel : {m_isoPanel, m_silhouettePanel}) {
+        connect(panel, &ReviewPanel::glFailed, this, &ReviewWidget::showError);
+        connect(panel, &ReviewPanel::painted, this, [this, panel](double milliseconds) {
+            (panel == m_isoPanel ? m_status.isoPaintMs : m_status.silhouettePaintMs) = milliseconds;
+            if (panel == m_silhouettePanel && methodOneInPanel())
+                m_status.segments = panel->lastSegmentCount();
+            updateStatusLine();
+        });
+    }
+    m_isoControl->setVolumeRange(m_source.range, m_source.histogram);
+    m_isoControl->setPresets(settings.presets);
+    {
+        // The first frame is requested once, by applySettings, at the initial iso-value.
+        const QSignalBlocker blocker(m_isoControl);
+        m_isoControl->setIso(m_source.initialIso);
+    }
+    m_iso = m_isoControl->iso();
+    applySettings(settings);
+}
+
+ReviewWidget::~ReviewWidget() = default;
+
+QWidget* ReviewWidget::makeViewBar() {
+    auto* bar = new QWidget;
+    auto* layout = new QHBoxLayout(bar);
+    layout->setContentsMargins(0, 0, 0, 0);
+    const std::pair<StandardView, QString> views[] = {
+        {StandardView::Anterior, tr("A")}, {StandardView::Posterior, tr("P")},
+        {StandardView::Left, tr("L")},     {StandardView::Right, tr("R")},
+        {StandardView::Superior, tr("S")}, {StandardView::Inferior, tr("I")}};
+    const QStringList names{tr("Anterior"), tr("Posterior"), tr("Left"),
+                            tr("Right"),    tr("Superior"),  tr("Inferior")};
+    for (const auto& [view, label] : views) {
+        auto* button = new QToolButton;
+        button->setText(label);
+        button->setToolTip(tr("%1 view").arg(names[int(view)]));
+        button->setObjectName("view" + names[int(view)]);
+        connect(button, &QToolButton::clicked, this,
+                [this, view = view] { setStandardView(view); });
+        layout->addWidget(button);
+    }
+    auto* reset = new QToolButton;
+    reset->setText(tr("Reset"));
+    reset->setToolTip(tr("Reset the camera (Home)"));
+    connect(reset, &QToolButton::clicked, this, &ReviewWidget::resetCamera);
+    layout->addWidget(reset);
+    auto* hint = new QLabel(tr("Drag: rotate · Shift/middle drag: pan · wheel/right drag: zoom · "
+                               "Ctrl drag: roll"));
+    hint->setEnabled(false);
+    layout->addWidget(hint, 1, Qt::AlignRight);
+    return bar;
+}
+
+bool ReviewWidget::methodOneInPanel() const {
+    return m_settings.method == render::SilhouetteMethod::GeometryShader && brickCells() == 0;
+}
+
+int ReviewWidget::brickCells() const {
+    return m_settings.brickCellsFor(m_source.volume->dims(), m_source.volume->byteSize());
+}
+
+bool ReviewWidget::isBusy() const {
+    return m_scheduler->isBusy();
+}
+
+void ReviewWidget::applySettings(const ReviewSettings& settings) {
+    m_settings = settings;
+    ++m_settingsGeneration;
+    m_camera.setProjection(settings.projection);
+    m_isoPanel->setAppearance(settings);
+    m_silhouettePanel->setAppearance(settings);
+    m_silhouettePanel->setGlSilhouette(methodOneInPanel());
+    m_silhouettePanel->setImage({});
+    m_isoPanel->setOverlay({});
+    m_isoControl->setPresets(settings.presets);
+    if (methodOneInPanel() && m_isoPanel->hasMesh() && m_meshCurrent)
+        m_silhouettePanel->setMesh(nullptr);
+    m_meshCurrent = false; // the new settings' first frame brings the mesh again
+    requestFrame(true);
+}
+
+void ReviewWidget::setIso(double iso) {
+    if (m_isoControl->iso() != iso) {
+        m_isoControl->setIso(iso); // comes back through isoChanged
+        return;
+    }
+    m_iso = iso;
+    m_meshCurrent = false;
+    requestFrame(true);
+}
+
+void ReviewWidget::setStandardView(StandardView view) {
+    m_camera.setStandardView(view);
+}
+
+void ReviewWidget::resetCamera() {
+    m_camera.reset();
+}
+
+void ReviewWidget::requestFrame(bool newIso) {
+    if (!m_scheduler)
+        return;
+    const bool modeB = m_settings.mode == render::ExtractionMode::EveryFrameB;
+    FrameRequest request;
+    request.settingsGeneration = m_settingsGeneration;
+    request.iso = m_iso;
+    request.method = m_settings.method;
+    request.backend = m_settings.backend;
+    request.settings.brickCells = brickCells();
+    request.settings.mode = m_settings.mode;
+    request.settings.visibility = m_settings.visibility;
+    request.settings.testAlongSegment = m_settings.testAlongSegment;
+    request.settings.isoReal = m_iso;
+    request.wantSilhouette = !methodOneInPanel();
+    request.wantMesh = newIso || !m_meshCurrent || (modeB && methodOneInPanel());
+    request.forceExtract = modeB && methodOneInPanel() && !newIso;
+    if (!request.wantMesh && !request.wantSilhouette)
+        return; // method 1 S in mode a: the panels redraw the cached mesh themselves
+    const QSize size = m_silhouettePanel->renderSize();
+    request.camera = m_camera.camera(size.width(), size.height());
+    m_scheduler->request(std::move(request));
+}
+
+void ReviewWidget::takeFrame(const std::shared_ptr<const FrameResult>& result) {
+    // A result for an iso-value or settings already moved on is stale: drop it. One for an
+    // older camera is still the best picture there is until the newer one arrives.
+    if (result->settingsGeneration != m_settingsGeneration || result->iso != m_iso)
+        return;
+    if (!result->error.isEmpty()) {
+        showError(result->error);
+        return;
+    }
+    m_errorLine->hide();
+    m_status.backend = result->backend.isEmpty() ? QStringLiteral("gl") : result->backend;
+    m_status.brickCells = result->brickCells;
+    ++m_status.framesShown;
+    if (result->mesh) {
+        m_isoPanel->setMesh(result->mesh);
+        m_silhouettePanel->setMesh(methodOneInPanel() ? result->mesh : nullptr);
+        m_meshCurrent = true;
+        m_status.triangles = result->mesh->triangleCount();
+        m_status.isoShown = result->iso;
+        if (result->meshMs > 0.0 || !result->silhouette)
+            m_status.extractMs = result->meshMs;
+        const bool empty = result->mesh->isEmpty();
+        const QString none = tr("No surface at %1 HU").arg(result->iso);
+        m_isoPanel->setMessage(empty ? none : QString());
+        m_silhouettePanel->setMessage(empty ? none : QString());
+    }
+    if (result->silhouette)
+        showSilhouette(*result);
+    updateStatusLine();
+    emit frameShown();
+}
+
+void ReviewWidget::showSilhouette(const FrameResult& result) {
+    const render::SilhouetteFrame& frame = *result.silhouette;
+    m_status.segments = frame.segments;
+    m_status.silhouettePixels = frame.lines.count();
+    m_status.silhouetteTimes = frame.times;
+    if (!result.mesh)
+        m_status.triangles = std::max(m_status.triangles, frame.triangles);
+    m_silhouettePanel->setImage(silhouetteImage(frame.lines, false));
+    m_isoPanel->setOverlay(m_settings.silhouetteOnIso ? silhouetteImage(frame.lines, true)
+                                                      : QImage());
+}
+
+QImage ReviewWidget::silhouetteImage(const render::PixelMask& lines, bool transparent) const {
+    // Line widths above one pixel widen the CPU methods' one-pixel lines by a square dilation.
+    const int radius = int((m_settings.lineWidth - 1.0) / 2.0 + 0.5);
+    const render::PixelMask mask = radius > 0 ? lines.dilated(radius) : lines;
+    QImage image(mask.width(), mask.height(), QImage::Format_ARGB32);
+    const QRgb line = m_settings.lineColour.rgb();
+    const QRgb background = transparent ? qRgba(0, 0, 0, 0) : m_settings.background.rgb();
+    const auto& pixels = mask.pixels();
+    for (int y = 0; y < mask.height(); ++y) {
+        auto* row = reinterpret_cast<QRgb*>(image.scanLine(y));
+        const std::uint8_t* source = pixels.data() + std::size_t(y) * std::size_t(mask.width());
+        for (int x = 0; x < mask.width(); ++x)
+            row[x] = source[x] ? line : background;
+    }
+    return image;
+}
+
+void ReviewWidget::showError(const QString& message) {
+    m_errorLine->setText(message);
+    m_errorLine->show();
+}
+
+QString ReviewWidget::errorText() const {
+    return m_errorLine->isVisible() ? m_errorLine->text() : QString();
+}
+
+QString ReviewWidget::statusText() const {
+    const bool chunked = m_status.brickCells > 0;
+    const render::StageTimes& t = m_status.silhouetteTimes;
+    QString text = tr("Method %1 · %2 · mode %3 · %4")
+                       .arg(int(m_settings.method))
+                       .arg(chunked ? tr("L (%1-cell bricks)").arg(m_status.brickCells) : tr("S"))
+                       .arg(m_settings.mode == render::ExtractionMode::CachedA ? "a" : "b")
+                       .arg(m_status.backend.toUpper());
+    text += tr(" · marching cubes %1 ms").arg(ms(m_status.extractMs));
+    if (methodOneInPanel()) {
+        text += tr(" · GL iso %1 ms, silhouette %2 ms")
+                    .arg(ms(m_status.isoPaintMs), ms(m_status.silhouettePaintMs));
+    } else {
+        text += tr(" · silhouette: extract %1, segments %2, visibility %3, draw %4 ms")
+                    .arg(ms(t.extractMs), ms(t.silhouetteMs), ms(t.visibilityMs), ms(t.drawMs));
+        text += tr(" · GL iso %1 ms").arg(ms(m_status.isoPaintMs));
+    }
+    text += tr(" · %1 triangles · %2 segments")
+                .arg(count(m_status.triangles), count(m_status.segments));
+    return text;
+}
+
+void ReviewWidget::updateStatusLine() {
+    m_statusLine->setText(statusText());
+    emit statusChanged();
+}
+
+std::pair<QImage, QImage> ReviewWidget::renderPanels(QSize size) {
+    QImage iso = m_isoPanel->renderImage(size);
+    QImage silhouette;
+    if (methodOneInPanel()) {
+        silhouette = m_silhouettePanel->renderImage(size);
+    } else {
+        auto renderer = render::createSilhouetteRenderer(m_settings.method, m_settings.backend);
+        renderer->setVolume(*m_source.volume);
+        render::SilhouetteSettings settings;
+        settings.isoReal = m_iso;
+        settings.brickCells = brickCells();
+        settings.visibility = m_settings.visibility;
+        settings.testAlongSegment = m_settings.testAlongSegment;
+        const render::SilhouetteFrame frame =
+            renderer->render(m_camera.camera(size.width(), size.height()), settings);
+        silhouette = silhouetteImage(frame.lines, false);
+    }
+    return {iso, silhouette};
+}
+
+} // namespace lw::gui

@@ -1,0 +1,115 @@
+#pragma once
+
+// The review of one volume: the shaded iso-surface left, its silhouette right, one camera for
+// both, the iso-value control below and a status line with what each stage cost. Owns the
+// render scheduler (worker thread); the UI thread only uploads, draws and reacts.
+
+#include "lw/render/aabb.h"
+#include "lw/volume/volume.h"
+#include "review/camera_controller.h"
+#include "settings/review_settings.h"
+
+#include <QImage>
+#include <QStringList>
+#include <QWidget>
+#include <cstdint>
+#include <memory>
+#include <optional>
+
+class QLabel;
+
+namespace lw::gui {
+
+class IsoControl;
+class RenderScheduler;
+class ReviewPanel;
+struct FrameResult;
+
+// What a review needs of an opened volume; the loader computes the scans off the UI thread.
+struct ReviewSource {
+    std::shared_ptr<const volume::Volume> volume;
+    QString title;        // patient / series / dims, for the tab and reports
+    QString seriesUid;    // empty for non-DICOM input
+    QStringList warnings; // tilt, uneven gaps, missing slices, files that failed
+    render::Aabb bounds;  // the surface at the initial iso-value (camera framing)
+    volume::ValueRange range;
+    volume::Histogram histogram;
+    double initialIso = 400.0;
+};
+
+// Counts and times of what the panels show now, for the status line and tests.
+struct ReviewStatus {
+    std::size_t triangles = 0;
+    std::size_t segments = 0;
+    std::size_t silhouettePixels = 0;
+    double isoShown = 0.0; // the iso-value of the mesh on screen
+    double extractMs = 0.0;
+    render::StageTimes silhouetteTimes;
+    double isoPaintMs = 0.0;
+    double silhouettePaintMs = 0.0;
+    int brickCells = 0;
+    QString backend;
+    std::uint64_t framesShown = 0; // results taken from the worker
+};
+
+class ReviewWidget : public QWidget {
+    Q_OBJECT
+public:
+    ReviewWidget(ReviewSource source, const ReviewSettings& settings, QWidget* parent = nullptr);
+    ~ReviewWidget() override;
+
+    const ReviewSource& source() const { return m_source; }
+    CameraController& camera() { return m_camera; }
+    ReviewPanel& isoPanel() { return *m_isoPanel; }
+    ReviewPanel& silhouettePanel() { return *m_silhouettePanel; }
+    IsoControl& isoControl() { return *m_isoControl; }
+    const ReviewSettings& settings() const { return m_settings; }
+    const ReviewStatus& status() const { return m_status; }
+    QString statusText() const;
+    QString errorText() const;
+    double iso() const { return m_iso; }
+    // True while the worker has work (tests wait for it to settle).
+    bool isBusy() const;
+
+    // Both panels re-rendered at `size` (not scaled), the silhouette with the chosen method on
+    // the calling thread. Throws core::Error when a renderer fails.
+    std::pair<QImage, QImage> renderPanels(QSize size);
+
+public slots:
+    void applySettings(const lw::gui::ReviewSettings& settings);
+    void setIso(double iso);
+    void setStandardView(lw::gui::StandardView view);
+    void resetCamera();
+
+signals:
+    void statusChanged();
+    void frameShown();
+
+private:
+    QWidget* makeViewBar();
+    void requestFrame(bool newIso);
+    void takeFrame(const std::shared_ptr<const FrameResult>& result);
+    void showSilhouette(const FrameResult& result);
+    void showError(const QString& message);
+    void updateStatusLine();
+    bool methodOneInPanel() const;
+    int brickCells() const;
+    QImage silhouetteImage(const render::PixelMask& lines, bool transparent) const;
+
+    ReviewSource m_source;
+    ReviewSettings m_settings;
+    std::uint64_t m_settingsGeneration = 1;
+    double m_iso = 0.0;
+    bool m_meshCurrent = false; // the panels hold the mesh at m_iso
+    CameraController m_camera;
+    ReviewPanel* m_isoPanel = nullptr;
+    ReviewPanel* m_silhouettePanel = nullptr;
+    IsoControl* m_isoControl = nullptr;
+    QLabel* m_statusLine = nullptr;
+    QLabel* m_errorLine = nullptr;
+    QLabel* m_warningLine = nullptr;
+    std::unique_ptr<RenderScheduler> m_scheduler;
+    ReviewStatus m_status;
+};
+
+} // namespace lw::gui

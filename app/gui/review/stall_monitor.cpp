@@ -1,0 +1,41 @@
+#include "review/stall_monitor.h"
+
+#include <algorithm>
+
+namespace lw::gui {
+
+StallMonitor::StallMonitor(int intervalMs, QObject* parent)
+    : QObject(parent), m_intervalMs(intervalMs) {
+    m_timer.setTimerType(Qt::PreciseTimer);
+    m_timer.setInterval(intervalMs);
+    connect(&m_timer, &QTimer::timeout, this, &StallMonitor::tick);
+}
+
+void StallMonitor::start() {
+    m_longestMs = 0.0;
+    m_stalls.clear();
+    m_clock.start();
+    m_lastNs = 0;
+    m_timer.start();
+}
+
+void StallMonitor::stop() {
+    m_timer.stop();
+}
+
+int StallMonitor::stallsOver(double thresholdMs) const {
+    return int(std::count_if(m_stalls.begin(), m_stalls.end(),
+                             [thresholdMs](double ms) { return ms > thresholdMs; }));
+}
+
+void StallMonitor::tick() {
+    const qint64 now = m_clock.nsecsElapsed();
+    const double lateMs = double(now - m_lastNs) / 1e6 - m_intervalMs;
+    m_lastNs = now;
+    if (lateMs > m_intervalMs) {
+        m_stalls.append(lateMs);
+        m_longestMs = std::max(m_longestMs, lateMs);
+    }
+}
+
+} // namespace lw::gui

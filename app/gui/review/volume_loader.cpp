@@ -1,0 +1,115 @@
+#include "review/volume_loader.h"
+
+#include "lw/core/error.h"
+#include "lw/core/progress.h"
+#include "lw/input/open_input.h"
+
+#include <QMetaObject>
+#include <QPointer>
+#include <QThreadPool>
+#include <algorithm>
+#include <filesystem>
+#include <new>
+
+namespace lw::gui {
+
+VolumeLoader::VolumeLoader(QObject* parent) : QObject(parent) {}
+
+VolumeLoader::~VolumeLoader() {
+    cancel();
+}
+
+ReviewSource VolumeLoader::load(const LoadRequest& request, core::Progress* progress) {
+    input::OpenOptions options;
+    if (!request.seriesUid.isEmpty())
+        options.seriesUid = request.seriesUid.toStdString();
+    input::OpenedVolume opened;
+    if (!request.files.isEmpty()) {
+        std::vector<std::filesystem::path> files;
+        for (const QString& file : request.files)
+            files.emplace_back(file.toStdString());
+        opened = input::openDicomFiles(files, options, progress);
+    } else {
+        opened = input::openInput(request.path.toStdString(), options, progress);
+    }
+    if (progress)
+        progress->throwIfCancelled();
+    if (opened.volume.dims().z < 2)
+        throw core::Error(opened.source, "a single slice holds no iso-surface; a review needs "
+                                         "at least two slices");
+    ReviewSource source;
+    source.title = QString::fromStdString(opened.description);
+    source.seriesUid = QString::fromStdString(opened.seriesUid);
+    for (const std::string& warning : opened.warnings)
+        source.warnings << QString::fromStdString(warning);
+    source.range = opened.volume.realRange();
+    source.histogram = opened.volume.histogram(256);
+    source.initialIso = std::clamp(request.iso, source.range.min, source.range.max);
+    if (request.iso < source.range.min || request.iso > source.range.max)
+        source.initialIso = 0.5 * (source.range.min + source.range.max);
+    source.bounds = render::surfaceBounds(opened.volume, source.initialIso);
+    source.volume = std::make_shared<const volume::Volume>(std::move(opened.volume));
+    return source;
+}
+
+void VolumeLoader::start(const LoadRequest& request) {
+    cancel();
+    auto token = std::make_shared<core::CancelToken>();
+    m_cancel = token;
+    QPointer<VolumeLoader> self(this);
+    // Results and progress hop back to the UI thread; a loader destroyed meanwhile gets none.
+    auto post = [self](auto function) {
+        QMetaObject::invokeMethod(
+            self.data(),
+            [self, function] {
+                if (self)
+                    function(*self);
+            },
+            Qt::QueuedConnection);
+    };
+    QThreadPool::globalInstance()->start([request, token, post] {
+        core::Progress progress(
+            [post](double fraction, const std::string& message) {
+                post([fraction, text = QString::fromStdString(message)](VolumeLoader& loader) {
+                    emit loader.progress(fraction, text);
+                });
+            },
+            token);
+        try {
+            auto source = std::make_shared<ReviewSource>(load(request, &progress));
+            post([source, token](VolumeLoader& loader) {
+                if (loader.m_cancel == token) {
+                    loader.m_cancel.reset();
+                    emit loader.loaded(source);
+                }
+            });
+        } catch (const core::Cancelled&) {
+            post([token](VolumeLoader& loader) {
+                if (loader.m_cancel == token)
+                    loader.m_cancel.reset();
+                if (!loader.m_cancel) // a newer load is not running
+                    emit loader.cancelled();
+            });
+        } catch (const std::bad_alloc&) {
+            post([token](VolumeLoader& loader) {
+                if (loader.m_cancel == token)
+                    loader.m_cancel.reset();
+                emit loader.failed(tr("out of memory while loading the volume"));
+            });
+        } catch (const std::exception& error) {
+            post([token, reason = QString::fromStdString(error.what())](VolumeLoader& loader) {
+                if (loader.m_cancel == token)
+                    loader.m_cancel.reset();
+                emit loader.failed(reason);
+            });
+        }
+    });
+}
+
+void VolumeLoader::cancel() {
+    if (m_cancel)
+        m_cancel->cancel();
+    m_cancel.reset();
+}
+
+} // namespace lw::gui

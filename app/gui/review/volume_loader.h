@@ -1,0 +1,51 @@
+#pragma once
+
+// Opens a path or a stored series off the UI thread (lw::input, the same code as the CLI), then
+// scans what the review needs (value range, histogram, the surface's box for the camera), with
+// progress and cancel. Results come back on the UI thread.
+
+#include "review/review_widget.h"
+
+#include <QObject>
+#include <QString>
+#include <QStringList>
+#include <memory>
+
+namespace lw::core {
+class CancelToken;
+class Progress;
+} // namespace lw::core
+
+namespace lw::gui {
+
+struct LoadRequest {
+    QString path;       // a path for lw::input::openInput (folder, DICOMDIR, file, phantom:N)
+    QStringList files;  // or the files of one stored series (lw::input::openDicomFiles)
+    QString seriesUid;  // optional: which series
+    double iso = 400.0; // the initial iso-value (clamped to the volume's range)
+};
+
+class VolumeLoader : public QObject {
+    Q_OBJECT
+public:
+    explicit VolumeLoader(QObject* parent = nullptr);
+    ~VolumeLoader() override;
+
+    void start(const LoadRequest& request);
+    void cancel();
+    bool isRunning() const { return m_cancel != nullptr; }
+
+    // The whole load on the calling thread (worker threads and the CLI-like paths of tests).
+    static ReviewSource load(const LoadRequest& request, core::Progress* progress);
+
+signals:
+    void progress(double fraction, const QString& message);
+    void loaded(std::shared_ptr<lw::gui::ReviewSource> source);
+    void failed(const QString& reason);
+    void cancelled();
+
+private:
+    std::shared_ptr<core::CancelToken> m_cancel;
+};
+
+} // namespace lw::gui

@@ -1,0 +1,128 @@
+#include "settings/review_settings.h"
+
+#include "lw/render/iso_surface.h"
+
+#include <QObject>
+#include <QSettings>
+#include <algorithm>
+
+namespace lw::gui {
+namespace {
+
+// QSettings keys; one group so the review's settings are easy to find and reset.
+constexpr const char* kGroup = "review";
+
+int clampInt(const QVariant& value, int low, int high, int fallback) {
+    bool ok = false;
+    const int number = value.toInt(&ok);
+    return ok ? std::clamp(number, low, high) : fallback;
+}
+
+QColor colourOr(const QVariant& value, QColor fallback) {
+    const QColor colour(value.toString());
+    return colour.isValid() ? colour : fallback;
+}
+
+QList<IsoPreset> readPresets(QSettings& settings) {
+    QList<IsoPreset> presets;
+    const int count = settings.beginReadArray("presets");
+    for (int i = 0; i < count; ++i) {
+        settings.setArrayIndex(i);
+        bool ok = false;
+        const double hu = settings.value("hu").toDouble(&ok);
+        const QString name = settings.value("name").toString().trimmed();
+        if (ok && !name.isEmpty())
+            presets.append({name, hu});
+    }
+    settings.endArray();
+    return presets.isEmpty() ? ReviewSettings::defaultPresets() : presets;
+}
+
+} // namespace
+
+QList<IsoPreset> ReviewSettings::defaultPresets() {
+    // Bone at 400 HU keeps the skull and spine closed on typical head and body CT; skin at
+    // -500 HU sits between air (-1000) and soft tissue (~0-60).
+    return {{QStringLiteral("Bone"), 400.0}, {QStringLiteral("Skin"), -500.0}};
+}
+
+ReviewSettings ReviewSettings::load(QSettings& settings) {
+    ReviewSettings s;
+    settings.beginGroup(kGroup);
+    s.method = render::SilhouetteMethod(clampInt(settings.value("method"), 1, 3, int(s.method)));
+    s.chunking = Chunking(clampInt(settings.value("chunking"), 0, 2, int(s.chunking)));
+    s.fixedBrickCells = clampInt(settings.value("brickCells"), 8, 1024, s.fixedBrickCells);
+    s.memoryBudgetMiB = clampInt(settings.value("memoryBudgetMiB"), 64, 1 << 20, s.memoryBudgetMiB);
+    s.mode = settings.value("mode", "a").toString() == "b" ? render::ExtractionMode::EveryFrameB
+                                                           : render::ExtractionMode::CachedA;
+    s.visibility = settings.value("visibility", s.visibility).toBool();
+    s.testAlongSegment = settings.value("alongSegment", s.testAlongSegment).toBool();
+    s.lineWidth = std::clamp(settings.value("lineWidth", s.lineWidth).toDouble(), 1.0, 8.0);
+    s.lineColour = colourOr(settings.value("lineColour"), s.lineColour);
+    s.background = colourOr(settings.value("background"), s.background);
+    s.silhouetteOnIso = settings.value("silhouetteOnIso", s.silhouetteOnIso).toBool();
+    s.projection = settings.value("projection").toString() == "ortho"
+                       ? render::Projection::Orthographic
+                       : render::Projection::Perspective;
+    const QString backend = settings.value("backend", "auto").toString();
+    s.backend = backend == "cpu"    ? render::Backend::Cpu
+                : backend == "cuda" ? render::Backend::Cuda
+                                    : render::Backend::Auto;
+    s.presets = readPresets(settings);
+    settings.endGroup();
+    return s;
+}
+
+void ReviewSettings::save(QSettings& settings) const {
+    settings.beginGroup(kGroup);
+    settings.setValue("method", int(method));
+    settings.setValue("chunking", int(chunking));
+    settings.setValue("brickCells", fixedBrickCells);
+    settings.setValue("memoryBudgetMiB", memoryBudgetMiB);
+    settings.setValue("mode", mode == render::ExtractionMode::EveryFrameB ? "b" : "a");
+    settings.setValue("visibility", visibility);
+    settings.setValue("alongSegment", testAlongSegment);
+    settings.setValue("lineWidth", lineWidth);
+    settings.setValue("lineColour", lineColour.name());
+    settings.setValue("background", background.name());
+    settings.setValue("silhouetteOnIso", silhouetteOnIso);
+    settings.setValue("projection",
+                      projection == render::Projection::Orthographic ? "ortho" : "perspective");
+    settings.setValue("backend", QString::fromUtf8(render::backendName(backend).data()));
+    settings.beginWriteArray("presets", int(presets.size()));
+    for (int i = 0; i < presets.size(); ++i) {
+        settings.setArrayIndex(i);
+        settings.setValue("name", presets[i].name);
+        settings.setValue("hu", presets[i].hu);
+    }
+    settings.endArray();
+    settings.endGroup();
+}
+
+int ReviewSettings::brickCellsFor(glm::ivec3 dims, std::size_t bytes) const {
+    switch (chunking) {
+    case Chunking::Off:
+        return 0;
+    case Chunking::Fixed:
+        return fixedBrickCells;
+    case Chunking::Auto:
+        break;
+    }
+    const double wholePathBytes = 2.0 * double(bytes);
+    return wholePathBytes > double(memoryBudgetMiB) * 1024.0 * 1024.0 ? render::autoBrickCells(dims)
+                                                                      : 0;
+}
+
+QString methodName(render::SilhouetteMethod method) {
+    switch (method) {
+    case render::SilhouetteMethod::GeometryShader:
+        return QObject::tr("Method 1: marching cubes + geometry shader");
+    case render::SilhouetteMethod::RayCastVisibility:
+        return QObject::tr("Method 2: silhouette only + ray-cast visibility");
+    case render::SilhouetteMethod::ZBuffer:
+        return QObject::tr("Method 3: own z-buffer rasterizer");
+    }
+    return {};
+}
+
+} // namespace lw::gui

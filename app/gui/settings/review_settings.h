@@ -1,0 +1,59 @@
+#pragma once
+
+// What the settings page chooses and the review applies live: method, chunking, memory budget,
+// mode, visibility, lines, background, projection, back-end and the iso presets. Stored with
+// QSettings (the tests point QSettings at a temporary directory).
+
+#include "lw/render/camera.h"
+#include "lw/render/renderer_factory.h"
+#include "lw/render/silhouette_renderer.h"
+
+#include <QColor>
+#include <QList>
+#include <QString>
+#include <cstddef>
+#include <glm/glm.hpp>
+
+class QSettings;
+
+namespace lw::gui {
+
+enum class Chunking { Off, Auto, Fixed };
+
+struct IsoPreset {
+    QString name;
+    double hu = 0.0;
+    friend bool operator==(const IsoPreset&, const IsoPreset&) = default;
+};
+
+struct ReviewSettings {
+    render::SilhouetteMethod method = render::SilhouetteMethod::ZBuffer;
+    Chunking chunking = Chunking::Auto;
+    int fixedBrickCells = 64;   // Chunking::Fixed
+    int memoryBudgetMiB = 2048; // Chunking::Auto goes chunked (L) above this
+    render::ExtractionMode mode = render::ExtractionMode::CachedA;
+    bool visibility = true;
+    bool testAlongSegment = false; // method 2: along the segment, not only its endpoints
+    double lineWidth = 1.0;        // pixels
+    QColor lineColour = QColor(0, 0, 0);
+    QColor background = QColor(255, 255, 255);
+    bool silhouetteOnIso = false;
+    render::Projection projection = render::Projection::Perspective;
+    render::Backend backend = render::Backend::Auto;
+    QList<IsoPreset> presets = defaultPresets();
+
+    static QList<IsoPreset> defaultPresets();
+    static ReviewSettings load(QSettings& settings);
+    void save(QSettings& settings) const;
+
+    // Cells per brick for a volume of `dims` and `bytes` under these settings: 0 = whole
+    // volume (S). Auto goes chunked when the whole-volume path would not fit the budget: the
+    // volume plus a mesh that, on CT, peaks near the volume's own size (BENCHMARKS.md).
+    int brickCellsFor(glm::ivec3 dims, std::size_t bytes) const;
+
+    friend bool operator==(const ReviewSettings&, const ReviewSettings&) = default;
+};
+
+QString methodName(render::SilhouetteMethod method);
+
+} // namespace lw::gui

@@ -1,0 +1,282 @@
+#include "settings/settings_dialog.h"
+
+#include "lw/core/error.h"
+
+#include <QButtonGroup>
+#include <QCheckBox>
+#include <QColorDialog>
+#include <QComboBox>
+#include <QDialogButtonBox>
+#include <QDoubleSpinBox>
+#include <QFormLayout>
+#include <QHBoxLayout>
+#include <QHeaderView>
+#include <QLabel>
+#include <QPushButton>
+#include <QRadioButton>
+#include <QSettings>
+#include <QSpinBox>
+#include <QTabWidget>
+#include <QTableWidget>
+#include <QVBoxLayout>
+
+namespace lw::gui {
+namespace {
+
+void showColour(QPushButton* button, const QColor& colour) {
+    button->setText(colour.name());
+    button->setStyleSheet(QStringLiteral("background-color: %1; color: %2")
+                              .arg(colour.name(), colour.lightness() < 128 ? "white" : "black"));
+}
+
+// Why CUDA cannot be chosen on this machine, or an empty string when it can.
+QString cudaUnavailableReason() {
+    try {
+        render::resolveBackend(render::Backend::Cuda);
+        return {};
+    } catch (const core::Error& error) {
+        return QString::fromStdString(error.what());
+    }
+}
+
+} // namespace
+
+SettingsDialog::SettingsDialog(const ReviewSettings& settings, QWidget* parent)
+    : QDialog(parent), m_settings(settings) {
+    setWindowTitle(tr("Linework settings"));
+    setObjectName("settingsDialog");
+    auto* tabs = new QTabWidget(this);
+    tabs->addTab(makeMethodPage(), tr("Method"));
+    tabs->addTab(makeAppearancePage(), tr("Appearance"));
+    tabs->addTab(makePresetPage(), tr("Iso presets"));
+
+    auto* buttons =
+        new QDialogButtonBox(QDialogButtonBox::Close | QDialogButtonBox::RestoreDefaults);
+    connect(buttons, &QDialogButtonBox::rejected, this, &QDialog::accept);
+    connect(buttons->button(QDialogButtonBox::RestoreDefaults), &QPushButton::clicked, this,
+            [this] {
+                setSettings(ReviewSettings{});
+                readControls();
+            });
+    auto* layout = new QVBoxLayout(this);
+    layout->addWidget(tabs);
+    layout->addWidget(buttons);
+    showSettings();
+}
+
+void SettingsDialog::setSettings(const ReviewSettings& settings) {
+    m_settings = settings;
+    showSettings();
+}
+
+QWidget* SettingsDialog::makeMethodPage() {
+    auto* page = new QWidget;
+    auto* form = new QFormLayout(page);
+
+    auto* methods = new QVBoxLayout;
+    m_method = new QButtonGroup(page);
+    for (auto method :
+         {render::SilhouetteMethod::GeometryShader, render::SilhouetteMethod::RayCastVisibility,
+          render::SilhouetteMethod::ZBuffer}) {
+        auto* button = new QRadioButton(methodName(method));
+        button->setObjectName(QStringLiteral("method%1").arg(int(method)));
+        m_method->addButton(button, int(method));
+        methods->addWidget(button);
+    }
+    form->addRow(tr("Silhouette method:"), methods);
+
+    m_chunking = new QComboBox;
+    m_chunking->setObjectName("chunking");
+    m_chunking->addItems({tr("Off: whole volume (S)"), tr("Auto: chunked above the memory budget"),
+                          tr("Fixed brick size (L)")});
+    form->addRow(tr("Chunking:"), m_chunking);
+    m_brickCells = new QSpinBox;
+    m_brickCells->setObjectName("brickCells");
+    m_brickCells->setRange(8, 1024);
+    m_brickCells->setSuffix(tr(" cells per brick"));
+    form->addRow(tr("Brick size:"), m_brickCells);
+    m_memoryBudget = new QSpinBox;
+    m_memoryBudget->setRange(64, 1 << 20);
+    m_memoryBudget->setSingleStep(256);
+    m_memoryBudget->setSuffix(tr(" MiB"));
+    form->addRow(tr("Memory budget:"), m_memoryBudget);
+
+    m_mode = new QComboBox;
+    m_mode->setObjectName("mode");
+    m_mode->addItems({tr("a: extract when the iso-value changes"), tr("b: extract every frame")});
+    form->addRow(tr("Mode:"), m_mode);
+    m_visibility = new QCheckBox(tr("Hide occluded silhouette lines"));
+    form->addRow(tr("Visibility:"), m_visibility);
+    m_alongSegment = new QCheckBox(tr("Test along each segment (method 2), not only its ends"));
+    form->addRow(QString(), m_alongSegment);
+
+    auto* backends = new QHBoxLayout;
+    m_backend = new QButtonGroup(page);
+    const QStringList names{tr("CPU"), tr("CUDA"), tr("Auto")};
+    for (auto backend : {render::Backend::Cpu, render::Backend::Cuda, render::Backend::Auto}) {
+        auto* button = new QRadioButton(names[int(backend)]);
+        m_backend->addButton(button, int(backend));
+        backends->addWidget(button);
+    }
+    form->addRow(tr("Back-end:"), backends);
+    m_backendNote = new QLabel;
+    m_backendNote->setWordWrap(true);
+    const QString reason = cudaUnavailableReason();
+    if (!reason.isEmpty()) {
+        m_backend->button(int(render::Backend::Cuda))->setEnabled(false);
+        m_backend->button(int(render::Backend::Cuda))->setToolTip(reason);
+        m_backendNote->setText(tr("CUDA is not available: %1").arg(reason));
+    }
+    form->addRow(QString(), m_backendNote);
+
+    connect(m_method, &QButtonGroup::idClicked, this, [this] { readControls(); });
+    connect(m_backend, &QButtonGroup::idClicked, this, [this] { readControls(); });
+    for (QComboBox* box : {m_chunking, m_mode})
+        connect(box, &QComboBox::currentIndexChanged, this, [this] { readControls(); });
+    for (QSpinBox* box : {m_brickCells, m_memoryBudget})
+        connect(box, &QSpinBox::valueChanged, this, [this] { readControls(); });
+    for (QCheckBox* box : {m_visibility, m_alongSegment})
+        connect(box, &QCheckBox::toggled, this, [this] { readControls(); });
+    return page;
+}
+
+QWidget* SettingsDialog::makeAppearancePage() {
+    auto* page = new QWidget;
+    auto* form = new QFormLayout(page);
+    m_lineWidth = new QDoubleSpinBox;
+    m_lineWidth->setRange(1.0, 8.0);
+    m_lineWidth->setSingleStep(0.5);
+    m_lineWidth->setSuffix(tr(" px"));
+    form->addRow(tr("Line width:"), m_lineWidth);
+    m_lineColour = new QPushButton;
+    form->addRow(tr("Line colour:"), m_lineColour);
+    m_background = new QPushButton;
+    form->addRow(tr("Background:"), m_background);
+    m_silhouetteOnIso = new QCheckBox(tr("Draw the silhouette over the iso-surface panel too"));
+    form->addRow(tr("Overlay:"), m_silhouetteOnIso);
+    m_projection = new QComboBox;
+    m_projection->addItems({tr("Perspective"), tr("Orthographic")});
+    form->addRow(tr("Projection:"), m_projection);
+
+    connect(m_lineWidth, &QDoubleSpinBox::valueChanged, this, [this] { readControls(); });
+    connect(m_silhouetteOnIso, &QCheckBox::toggled, this, [this] { readControls(); });
+    connect(m_projection, &QComboBox::currentIndexChanged, this, [this] { readControls(); });
+    connect(m_lineColour, &QPushButton::clicked, this,
+            [this] { pickColour(m_settings.lineColour, m_lineColour); });
+    connect(m_background, &QPushButton::clicked, this,
+            [this] { pickColour(m_settings.background, m_background); });
+    return page;
+}
+
+QWidget* SettingsDialog::makePresetPage() {
+    auto* page = new QWidget;
+    auto* layout = new QVBoxLayout(page);
+    m_presets = new QTableWidget(0, 2);
+    m_presets->setObjectName("presetTable");
+    m_presets->setHorizontalHeaderLabels({tr("Name"), tr("Iso-value (HU)")});
+    m_presets->horizontalHeader()->setStretchLastSection(true);
+    layout->addWidget(m_presets);
+    auto* buttons = new QHBoxLayout;
+    auto* add = new QPushButton(tr("Add"));
+    auto* remove = new QPushButton(tr("Remove"));
+    buttons->addWidget(add);
+    buttons->addWidget(remove);
+    buttons->addStretch();
+    layout->addLayout(buttons);
+    connect(add, &QPushButton::clicked, this, [this] {
+        m_settings.presets.append({tr("Preset %1").arg(m_settings.presets.size() + 1), 0.0});
+        showSettings();
+        readControls();
+    });
+    connect(remove, &QPushButton::clicked, this, [this] {
+        const int row = m_presets->currentRow();
+        if (row >= 0 && m_settings.presets.size() > 1) {
+            m_settings.presets.removeAt(row);
+            showSettings();
+            readControls();
+        }
+    });
+    connect(m_presets, &QTableWidget::cellChanged, this, [this] { readControls(); });
+    return page;
+}
+
+void SettingsDialog::showSettings() {
+    m_updating = true;
+    m_method->button(int(m_settings.method))->setChecked(true);
+    m_chunking->setCurrentIndex(int(m_settings.chunking));
+    m_brickCells->setValue(m_settings.fixedBrickCells);
+    m_memoryBudget->setValue(m_settings.memoryBudgetMiB);
+    m_mode->setCurrentIndex(m_settings.mode == render::ExtractionMode::EveryFrameB ? 1 : 0);
+    m_visibility->setChecked(m_settings.visibility);
+    m_alongSegment->setChecked(m_settings.testAlongSegment);
+    m_backend->button(int(m_settings.backend))->setChecked(true);
+    m_lineWidth->setValue(m_settings.lineWidth);
+    showColour(m_lineColour, m_settings.lineColour);
+    showColour(m_background, m_settings.background);
+    m_silhouetteOnIso->setChecked(m_settings.silhouetteOnIso);
+    m_projection->setCurrentIndex(m_settings.projection == render::Projection::Orthographic);
+    m_presets->setRowCount(int(m_settings.presets.size()));
+    for (int row = 0; row < m_settings.presets.size(); ++row) {
+        m_presets->setItem(row, 0, new QTableWidgetItem(m_settings.presets[row].name));
+        m_presets->setItem(row, 1,
+                           new QTableWidgetItem(QString::number(m_settings.presets[row].hu)));
+    }
+    updateEnabledControls();
+    m_updating = false;
+}
+
+void SettingsDialog::readControls() {
+    if (m_updating)
+        return;
+    ReviewSettings s = m_settings;
+    s.method = render::SilhouetteMethod(m_method->checkedId());
+    s.chunking = Chunking(m_chunking->currentIndex());
+    s.fixedBrickCells = m_brickCells->value();
+    s.memoryBudgetMiB = m_memoryBudget->value();
+    s.mode = m_mode->currentIndex() == 1 ? render::ExtractionMode::EveryFrameB
+                                         : render::ExtractionMode::CachedA;
+    s.visibility = m_visibility->isChecked();
+    s.testAlongSegment = m_alongSegment->isChecked();
+    s.backend = render::Backend(m_backend->checkedId());
+    s.lineWidth = m_lineWidth->value();
+    s.silhouetteOnIso = m_silhouetteOnIso->isChecked();
+    s.projection = m_projection->currentIndex() == 1 ? render::Projection::Orthographic
+                                                     : render::Projection::Perspective;
+    QList<IsoPreset> presets;
+    for (int row = 0; row < m_presets->rowCount(); ++row) {
+        const QTableWidgetItem* name = m_presets->item(row, 0);
+        const QTableWidgetItem* value = m_presets->item(row, 1);
+        bool ok = false;
+        const double hu = value ? value->text().toDouble(&ok) : 0.0;
+        if (name && ok && !name->text().trimmed().isEmpty())
+            presets.append({name->text().trimmed(), hu});
+    }
+    if (!presets.isEmpty())
+        s.presets = presets;
+    updateEnabledControls();
+    if (s == m_settings)
+        return;
+    m_settings = s;
+    QSettings store;
+    m_settings.save(store);
+    emit settingsChanged(m_settings);
+}
+
+void SettingsDialog::pickColour(QColor& colour, QPushButton* button) {
+    const QColor chosen = QColorDialog::getColor(colour, this, tr("Choose a colour"));
+    if (!chosen.isValid())
+        return;
+    colour = chosen;
+    showColour(button, chosen);
+    QSettings store;
+    m_settings.save(store);
+    emit settingsChanged(m_settings);
+}
+
+void SettingsDialog::updateEnabledControls() {
+    m_brickCells->setEnabled(m_chunking->currentIndex() == int(Chunking::Fixed));
+    m_memoryBudget->setEnabled(m_chunking->currentIndex() == int(Chunking::Auto));
+    m_alongSegment->setEnabled(m_method->checkedId() == 2 && m_visibility->isChecked());
+}
+
+} // namespace lw::gui

@@ -1,0 +1,60 @@
+#pragma once
+
+// The settings page: every change is applied at once to the open review (settingsChanged) and
+// stored in QSettings; Close keeps what is set, "Restore defaults" resets it.
+
+#include "settings/review_settings.h"
+
+#include <QDialog>
+
+class QButtonGroup;
+class QCheckBox;
+class QComboBox;
+class QDoubleSpinBox;
+class QLabel;
+class QPushButton;
+class QSpinBox;
+class QTableWidget;
+
+namespace lw::gui {
+
+class SettingsDialog : public QDialog {
+    Q_OBJECT
+public:
+    explicit SettingsDialog(const ReviewSettings& settings, QWidget* parent = nullptr);
+
+    ReviewSettings settings() const { return m_settings; }
+    void setSettings(const ReviewSettings& settings);
+
+signals:
+    void settingsChanged(const lw::gui::ReviewSettings& settings);
+
+private:
+    QWidget* makeMethodPage();
+    QWidget* makeAppearancePage();
+    QWidget* makePresetPage();
+    void showSettings();
+    void readControls();
+    void pickColour(QColor& colour, QPushButton* button);
+    void updateEnabledControls();
+
+    ReviewSettings m_settings;
+    bool m_updating = false;
+    QButtonGroup* m_method = nullptr;
+    QComboBox* m_chunking = nullptr;
+    QSpinBox* m_brickCells = nullptr;
+    QSpinBox* m_memoryBudget = nullptr;
+    QComboBox* m_mode = nullptr;
+    QCheckBox* m_visibility = nullptr;
+    QCheckBox* m_alongSegment = nullptr;
+    QDoubleSpinBox* m_lineWidth = nullptr;
+    QPushButton* m_lineColour = nullptr;
+    QPushButton* m_background = nullptr;
+    QCheckBox* m_silhouetteOnIso = nullptr;
+    QComboBox* m_projection = nullptr;
+    QButtonGroup* m_backend = nullptr;
+    QLabel* m_backendNote = nullptr;
+    QTableWidget* m_presets = nullptr;
+};
+
+} // namespace lw::gui

@@ -1,0 +1,89 @@
+#pragma once
+
+// Shared set-up for the Qt GUI tests (label gui): real widgets on a real X server (xvfb-run in
+// the test command), settings and data directories isolated in a temporary folder, the GL
+// format the workstation asks for, and SKIP (exit 77) when there is no display.
+
+#include <QApplication>
+#include <QImage>
+#include <QStandardPaths>
+#include <QSurfaceFormat>
+#include <QTemporaryDir>
+#include <QTest>
+#include <cstdio>
+#include <cstdlib>
+#include <optional>
+#include <string>
+
+namespace lw::test {
+
+constexpr int kGuiSkipCode = 77;
+
+// Where ../shared/data is (LINEWORK_SHARED_DATA from CTest), or an empty string.
+inline QString sharedDataPath() {
+    const char* path = std::getenv("LINEWORK_SHARED_DATA");
+    if (!path || !QFileInfo::exists(QString::fromLocal8Bit(path)))
+        return {};
+    return QString::fromLocal8Bit(path);
+}
+
+inline QString sourcePath() {
+    const char* path = std::getenv("LINEWORK_SOURCE_DIR");
+    return path ? QString::fromLocal8Bit(path) : QString();
+}
+
+// Pixels of `image` whose colour differs from `background` by more than `tolerance` in a channel.
+inline int pixelsDifferentFrom(const QImage& image, QColor background, int tolerance = 8) {
+    const QImage rgb = image.convertToFormat(QImage::Format_RGB32);
+    int count = 0;
+    for (int y = 0; y < rgb.height(); ++y) {
+        const auto* row = reinterpret_cast<const QRgb*>(rgb.constScanLine(y));
+        for (int x = 0; x < rgb.width(); ++x)
+            if (std::abs(qRed(row[x]) - background.red()) > tolerance ||
+                std::abs(qGreen(row[x]) - background.green()) > tolerance ||
+                std::abs(qBlue(row[x]) - background.blue()) > tolerance)
+                ++count;
+    }
+    return count;
+}
+
+// Runs a Qt Test class the way the workstation starts: isolated settings and data folders, an
+// OpenGL 4.5 core default format, SKIP without a display.
+template <typename TestClass> int runGuiTest(int argc, char** argv, bool needsData = false) {
+    if (std::getenv("DISPLAY") == nullptr && std::getenv("WAYLAND_DISPLAY") == nullptr) {
+        std::fprintf(stderr, "SKIP: no display (run under xvfb-run)\n");
+        return kGuiSkipCode;
+    }
+    if (needsData && sharedDataPath().isEmpty()) {
+        std::fprintf(stderr, "SKIP: ../shared/data is missing\n");
+        return kGuiSkipCode;
+    }
+    QTemporaryDir home;
+    // Settings, the study database and caches go to the temporary folder, never the user's.
+    qputenv("XDG_CONFIG_HOME", (home.path() + "/config").toLocal8Bit());
+    qputenv("XDG_DATA_HOME", (home.path() + "/data").toLocal8Bit());
+    qputenv("XDG_CACHE_HOME", (home.path() + "/cache").toLocal8Bit());
+    qputenv("QT_QPA_PLATFORM", "xcb");
+    QStandardPaths::setTestModeEnabled(true);
+    QSurfaceFormat format;
+    format.setVersion(4, 5);
+    format.setProfile(QSurfaceFormat::CoreProfile);
+    format.setDepthBufferSize(24);
+    QSurfaceFormat::setDefaultFormat(format);
+    QApplication app(argc, argv);
+    QApplication::setOrganizationName("LineworkTest");
+    QApplication::setApplicationName("linework-test");
+    TestClass test;
+    return QTest::qExec(&test, argc, argv);
+}
+
+} // namespace lw::test
+
+#define LW_GUI_TEST_MAIN(TestClass)                                                                \
+    int main(int argc, char** argv) {                                                              \
+        return lw::test::runGuiTest<TestClass>(argc, argv);                                        \
+    }
+#define LW_GUI_DATA_TEST_MAIN(TestClass)                                                           \
+    int main(int argc, char** argv) {                                                              \
+        return lw::test::runGuiTest<TestClass>(argc, argv, true);                                  \
+    }

@@ -1,0 +1,282 @@
+// The review window on real widgets: both panels draw, the iso slider re-extracts, method and
+// chunking switch the right panel, the cameras are linked, export sizes and picking work, and a
+// screenshot of the window matches its baseline.
+#include "gui_test_support.h"
+#include "lw/core/image_compare.h"
+#include "lw/core/png_io.h"
+#include "review/iso_control.h"
+#include "review/review_panel.h"
+#include "review/review_widget.h"
+#include "review/volume_loader.h"
+
+#include <QDoubleSpinBox>
+#include <QLabel>
+#include <QPainter>
+#include <QSlider>
+#include <QtTest>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+
+using namespace lw::gui;
+
+namespace {
+
+ReviewSource phantomSource(const QString& spec, double iso) {
+    LoadRequest request;
+    request.path = spec;
+    request.iso = iso;
+    return VolumeLoader::load(request, nullptr);
+}
+
+// Waits until the worker is idle and at least `frames` results have been shown.
+bool waitSettled(ReviewWidget& review, std::uint64_t frames = 1, int timeoutMs = 60000) {
+    QElapsedTimer timer;
+    timer.start();
+    while (timer.elapsed() < timeoutMs) {
+        QTest::qWait(20);
+        if (!review.isBusy() && review.status().framesShown >= frames)
+            return true;
+    }
+    return false;
+}
+
+ReviewSettings settingsFor(int method, Chunking chunking) {
+    ReviewSettings settings;
+    settings.method = lw::render::SilhouetteMethod(method);
+    settings.chunking = chunking;
+    settings.fixedBrickCells = 16;
+    return settings;
+}
+
+lw::core::ImageRgba8 toCoreImage(const QImage& image) {
+    const QImage rgba = image.convertToFormat(QImage::Format_RGBA8888);
+    lw::core::ImageRgba8 result(rgba.width(), rgba.height());
+    for (int y = 0; y < rgba.height(); ++y)
+        std::memcpy(result.row(y), rgba.constScanLine(y), std::size_t(rgba.width()) * 4);
+    return result;
+}
+
+} // namespace
+
+class ReviewTest : public QObject {
+    Q_OBJECT
+private slots:
+    void panelsDraw_data();
+    void panelsDraw();
+    void isoSliderChangesTheSurface();
+    void newerIsoWinsOverOlder();
+    void methodAndChunkingSwitchTheRightPanel();
+    void camerasAreLinked();
+    void panelsReRenderAtAnySize();
+    void pickingFindsTheSphereSurface();
+    void windowMatchesBaseline();
+};
+
+void ReviewTest::panelsDraw_data() {
+    QTest::addColumn<int>("method");
+    QTest::addColumn<int>("chunking");
+    for (int method = 1; method <= 3; ++method) {
+        QTest::addRow("method %d S", method) << method << int(Chunking::Off);
+        QTest::addRow("method %d L", method) << method << int(Chunking::Fixed);
+    }
+}
+
+void ReviewTest::panelsDraw() {
+    QFETCH(int, method);
+    QFETCH(int, chunking);
+    ReviewWidget review(phantomSource("phantom:64", 300.5),
+                        settingsFor(method, Chunking(chunking)));
+    review.resize(1000, 640);
+    review.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&review));
+    QVERIFY(waitSettled(review));
+    QTest::qWait(50);
+    QVERIFY2(review.errorText().isEmpty(), qPrintable(review.errorText()));
+
+    const QImage iso = review.isoPanel().grabFramebuffer();
+    const QImage silhouette = review.silhouettePanel().grabFramebuffer();
+    const int area = iso.width() * iso.height();
+    const int surfacePixels = lw::test::pixelsDifferentFrom(iso, Qt::white);
+    QVERIFY2(surfacePixels > area / 20, qPrintable(QString::number(surfacePixels)));
+    const int linePixels = lw::test::pixelsDifferentFrom(silhouette, Qt::white, 100);
+    QVERIFY2(linePixels > 300 && linePixels < area / 4, qPrintable(QString::number(linePixels)));
+    QVERIFY(review.status().triangles > 1000);
+    QVERIFY(review.statusText().contains(QString("Method %1").arg(method)));
+    QCOMPARE(review.statusText().contains(" L ("), chunking == int(Chunking::Fixed));
+    QCOMPARE(review.silhouettePanel().glSilhouette(),
+             method == 1 && chunking == int(Chunking::Off));
+}
+
+void ReviewTest::isoSliderChangesTheSurface() {
+    ReviewWidget review(phantomSource("phantom:64", 300.5), settingsFor(3, Chunking::Off));
+    review.resize(900, 600);
+    review.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&review));
+    QVERIFY(waitSettled(review));
+    const std::size_t before = review.status().triangles;
+    auto* slider = review.findChild<QSlider*>("isoSlider");
+    QVERIFY(slider);
+    slider->setValue(-300); // soft tissue shell instead of bone
+    QVERIFY(waitSettled(review, review.status().framesShown + 1));
+    QCOMPARE(review.status().isoShown, -300.0);
+    QVERIFY(review.status().triangles != before);
+    QCOMPARE(review.findChild<QDoubleSpinBox*>("isoSpin")->value(), -300.0);
+}
+
+void ReviewTest::newerIsoWinsOverOlder() {
+    ReviewWidget review(phantomSource("phantom:96", 300.5), settingsFor(3, Chunking::Off));
+    review.resize(900, 600);
+    review.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&review));
+    QVERIFY(waitSettled(review));
+    // A drag: many values in a row; only the last one may end up on screen.
+    for (int hu = 200; hu <= 700; hu += 50)
+        review.setIso(hu);
+    QVERIFY(waitSettled(review, review.status().framesShown + 1));
+    QTest::qWait(200);
+    QVERIFY(!review.isBusy());
+    QCOMPARE(review.status().isoShown, 700.0);
+    QCOMPARE(review.iso(), 700.0);
+}
+
+void ReviewTest::methodAndChunkingSwitchTheRightPanel() {
+    ReviewWidget review(phantomSource("phantom:64", 300.5), settingsFor(3, Chunking::Off));
+    review.resize(900, 600);
+    review.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&review));
+    QVERIFY(waitSettled(review));
+    const QImage method3 = review.silhouettePanel().grabFramebuffer();
+
+    review.applySettings(settingsFor(2, Chunking::Off));
+    QVERIFY(waitSettled(review, review.status().framesShown + 1));
+    QVERIFY(review.statusText().startsWith("Method 2"));
+    const QImage method2 = review.silhouettePanel().grabFramebuffer();
+    QVERIFY(method2 != method3); // another method draws other pixels
+
+    review.applySettings(settingsFor(1, Chunking::Off));
+    QVERIFY(waitSettled(review, review.status().framesShown + 1));
+    QVERIFY(review.silhouettePanel().glSilhouette());
+    QTest::qWait(100);
+    QVERIFY(lw::test::pixelsDifferentFrom(review.silhouettePanel().grabFramebuffer(), Qt::white,
+                                          100) > 300);
+
+    review.applySettings(settingsFor(1, Chunking::Fixed));
+    QVERIFY(waitSettled(review, review.status().framesShown + 1));
+    QVERIFY(!review.silhouettePanel().glSilhouette()); // L runs on the worker's context
+    QVERIFY(review.statusText().contains(" L (16-cell bricks)"));
+}
+
+void ReviewTest::camerasAreLinked() {
+    ReviewWidget review(phantomSource("phantom:64", 300.5), settingsFor(3, Chunking::Off));
+    review.resize(900, 600);
+    review.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&review));
+    QVERIFY(waitSettled(review));
+    const QImage isoBefore = review.isoPanel().grabFramebuffer();
+    const QImage silhouetteBefore = review.silhouettePanel().grabFramebuffer();
+    // Drag on the iso panel: the silhouette panel must follow.
+    ReviewPanel& panel = review.isoPanel();
+    const QPoint centre = panel.rect().center();
+    QTest::mousePress(&panel, Qt::LeftButton, {}, centre);
+    QMouseEvent move(QEvent::MouseMove, QPointF(centre + QPoint(120, 0)),
+                     panel.mapToGlobal(QPointF(centre + QPoint(120, 0))), Qt::NoButton,
+                     Qt::LeftButton, {});
+    QApplication::sendEvent(&panel, &move);
+    QTest::mouseRelease(&panel, Qt::LeftButton, {}, centre + QPoint(120, 0));
+    QVERIFY(waitSettled(review, review.status().framesShown + 1));
+    QVERIFY(review.camera().cameraSetup().azimuthDeg != 0.0);
+    QVERIFY(review.isoPanel().grabFramebuffer() != isoBefore);
+    QVERIFY(review.silhouettePanel().grabFramebuffer() != silhouetteBefore);
+
+    review.setStandardView(StandardView::Left);
+    QCOMPARE(review.camera().cameraSetup().azimuthDeg, 90.0);
+}
+
+void ReviewTest::panelsReRenderAtAnySize() {
+    for (int method : {1, 3}) {
+        ReviewWidget review(phantomSource("phantom:64", 300.5), settingsFor(method, Chunking::Off));
+        review.resize(800, 500);
+        review.show();
+        QVERIFY(QTest::qWaitForWindowExposed(&review));
+        QVERIFY(waitSettled(review));
+        QTest::qWait(50);
+        const auto [iso, silhouette] = review.renderPanels(QSize(1234, 567));
+        QCOMPARE(iso.size(), QSize(1234, 567));
+        QCOMPARE(silhouette.size(), QSize(1234, 567));
+        QVERIFY(lw::test::pixelsDifferentFrom(iso, Qt::white) > 1234 * 567 / 50);
+        QVERIFY(lw::test::pixelsDifferentFrom(silhouette, Qt::white, 100) > 500);
+    }
+}
+
+void ReviewTest::pickingFindsTheSphereSurface() {
+    // The sphere phantom: iso 0 HU at 0.6 of the half-extent, 1 mm voxels around the origin.
+    const int n = 64;
+    const double radius = 0.6 * (n - 1) / 2.0;
+    ReviewWidget review(phantomSource(QString("phantom:%1:sphere").arg(n), 0.0),
+                        settingsFor(3, Chunking::Off));
+    review.resize(800, 500);
+    review.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&review));
+    QVERIFY(waitSettled(review));
+    QTest::qWait(50);
+    ReviewPanel& panel = review.isoPanel();
+    const QPoint centre = panel.rect().center();
+    for (QPoint offset : {QPoint(0, 0), QPoint(40, -30), QPoint(-30, 15)}) {
+        const auto point = panel.pickPatientPoint(centre + offset);
+        QVERIFY(point.has_value());
+        QVERIFY2(std::abs(glm::length(*point) - radius) < 0.3,
+                 qPrintable(QString::number(glm::length(*point))));
+        QVERIFY(point->y < 0.0); // the anterior half faces the viewer
+    }
+    QVERIFY(!panel.pickPatientPoint(QPoint(2, 2)).has_value()); // background
+}
+
+void ReviewTest::windowMatchesBaseline() {
+    ReviewWidget review(phantomSource("phantom:64", 300.5), settingsFor(3, Chunking::Off));
+    review.resize(1000, 640);
+    review.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&review));
+    QVERIFY(waitSettled(review));
+    review.setStandardView(StandardView::Anterior);
+    QVERIFY(waitSettled(review, review.status().framesShown + 1));
+    QTest::qWait(100);
+    // The whole review as the user sees it; the status line's timings change from run to run,
+    // so its text is blanked out before comparing.
+    QImage shot = review.grab().toImage().convertToFormat(QImage::Format_RGB32);
+    auto* status = review.findChild<QLabel*>("reviewStatus");
+    QVERIFY(status);
+    QPainter painter(&shot);
+    painter.fillRect(QRect(status->mapTo(&review, QPoint(0, 0)), status->size()), Qt::white);
+    // QWidget::grab misses what a QOpenGLWidget paints with QPainter over GL; take each panel's
+    // framebuffer as the screen shows it.
+    for (ReviewPanel* panel : {&review.isoPanel(), &review.silhouettePanel()})
+        painter.drawImage(panel->mapTo(&review, QPoint(0, 0)), panel->grabFramebuffer());
+    painter.end();
+    QCOMPARE(shot.size(), QSize(1000, 640));
+
+    const std::filesystem::path baseline =
+        std::filesystem::path(lw::test::sourcePath().toStdString()) /
+        "tests/gui/baselines/review_phantom64_method3.png";
+    const std::filesystem::path diff =
+        std::filesystem::current_path() / "review_phantom64_method3.diff.png";
+    if (qEnvironmentVariableIsSet("LINEWORK_UPDATE_BASELINES")) {
+        lw::core::writePng(baseline.string(), toCoreImage(shot), lw::core::PngFormat::Rgb);
+        QSKIP("baseline written");
+    }
+    QVERIFY(lw::test::pixelsDifferentFrom(shot, Qt::white) > shot.width() * shot.height() / 20);
+    QVERIFY2(std::filesystem::exists(baseline),
+             qPrintable("missing baseline " + QString::fromStdString(baseline.string()) +
+                        ": run with LINEWORK_UPDATE_BASELINES=1 once and look at it"));
+    // Tolerance relative to the content: 1 % of the pixels may differ by more than 24 levels
+    // (llvmpipe rasterises a shared edge either way depending on thread tiling).
+    lw::core::ImageTolerance tolerance;
+    tolerance.channelTolerance = 24;
+    tolerance.maxBadPixels = std::size_t(shot.width() * shot.height() / 100);
+    const auto comparison =
+        lw::core::compareWithBaseline(toCoreImage(shot), baseline, tolerance, diff);
+    QVERIFY2(comparison.matches, comparison.describe().c_str());
+}
+
+LW_GUI_TEST_MAIN(ReviewTest)
+#include "review_test.moc"
