@@ -11,10 +11,12 @@
 #include <QAbstractButton>
 #include <QApplication>
 #include <QDir>
+#include <QDragEnterEvent>
 #include <QFile>
 #include <QFileInfo>
 #include <QLineEdit>
 #include <QMessageBox>
+#include <QMimeData>
 #include <QProgressBar>
 #include <QPushButton>
 #include <QSignalSpy>
@@ -23,6 +25,7 @@
 #include <QTest>
 #include <QTimer>
 #include <QTreeView>
+#include <QUrl>
 #include <memory>
 
 using namespace lw;
@@ -269,6 +272,21 @@ private slots:
         QTest::keyClick(tree(), Qt::Key_Return);
         QCOMPARE(open.size(), 1);
         QCOMPARE(open.at(0).at(0).toString(), uid);
+    }
+
+    void dropAFolderImportsIt() {
+        StudyBrowser& browser = openBrowser();
+        QSignalSpy finished(&browser, &StudyBrowser::importFinished);
+        QMimeData mime;
+        mime.setUrls({QUrl::fromLocalFile(dataPath(kGeTilt))});
+        QDragEnterEvent enter(QPoint(50, 50), Qt::CopyAction, &mime, Qt::LeftButton,
+                              Qt::NoModifier);
+        QApplication::sendEvent(&browser, &enter);
+        QVERIFY(enter.isAccepted());
+        QDropEvent drop(QPointF(50, 50), Qt::CopyAction, &mime, Qt::LeftButton, Qt::NoModifier);
+        QApplication::sendEvent(&browser, &drop);
+        QVERIFY(finished.wait(kImportTimeoutMs));
+        QCOMPARE(browser.model().seriesRowCount(), 1);
     }
 
     void unusableDatabaseIsShownNotFatal() {
