@@ -41,8 +41,9 @@ bool waitSettled(ReviewWidget& review, std::uint64_t frames = 1, int timeoutMs =
     return false;
 }
 
-ReviewSettings settingsFor(int method, Chunking chunking) {
+ReviewSettings settingsFor(int method, Chunking chunking, PanelGl panelGl = PanelGl::Auto) {
     ReviewSettings settings;
+    settings.panelGl = panelGl;
     settings.method = lw::render::SilhouetteMethod(method);
     settings.chunking = chunking;
     settings.fixedBrickCells = 16;
@@ -69,6 +70,7 @@ private slots:
     void methodAndChunkingSwitchTheRightPanel();
     void camerasAreLinked();
     void panelsReRenderAtAnySize();
+    void pickingFindsTheSphereSurface_data();
     void pickingFindsTheSphereSurface();
     void windowMatchesBaseline();
 };
@@ -76,17 +78,23 @@ private slots:
 void ReviewTest::panelsDraw_data() {
     QTest::addColumn<int>("method");
     QTest::addColumn<int>("chunking");
-    for (int method = 1; method <= 3; ++method) {
-        QTest::addRow("method %d S", method) << method << int(Chunking::Off);
-        QTest::addRow("method %d L", method) << method << int(Chunking::Fixed);
-    }
+    QTest::addColumn<int>("panelGl");
+    for (auto [panelGl, where] : {std::pair{PanelGl::InPanels, "GL in panels"},
+                                  std::pair{PanelGl::OnWorker, "GL on worker"}})
+        for (int method = 1; method <= 3; ++method) {
+            QTest::addRow("method %d S, %s", method, where)
+                << method << int(Chunking::Off) << int(panelGl);
+            QTest::addRow("method %d L, %s", method, where)
+                << method << int(Chunking::Fixed) << int(panelGl);
+        }
 }
 
 void ReviewTest::panelsDraw() {
     QFETCH(int, method);
     QFETCH(int, chunking);
+    QFETCH(int, panelGl);
     ReviewWidget review(phantomSource("phantom:64", 300.5),
-                        settingsFor(method, Chunking(chunking)));
+                        settingsFor(method, Chunking(chunking), PanelGl(panelGl)));
     review.resize(1000, 640);
     review.show();
     QVERIFY(QTest::qWaitForWindowExposed(&review));
@@ -104,8 +112,10 @@ void ReviewTest::panelsDraw() {
     QVERIFY(review.status().triangles > 1000);
     QVERIFY(review.statusText().contains(QString("Method %1").arg(method)));
     QCOMPARE(review.statusText().contains(" L ("), chunking == int(Chunking::Fixed));
-    QCOMPARE(review.silhouettePanel().glSilhouette(),
-             method == 1 && chunking == int(Chunking::Off));
+    const bool inPanels = PanelGl(panelGl) == PanelGl::InPanels;
+    QCOMPARE(review.isoPanel().usesGl(), inPanels);
+    QCOMPARE(review.silhouettePanel().usesGl(),
+             method == 1 && chunking == int(Chunking::Off) && inPanels);
 }
 
 void ReviewTest::isoSliderChangesTheSurface() {
@@ -154,16 +164,16 @@ void ReviewTest::methodAndChunkingSwitchTheRightPanel() {
     const QImage method2 = review.silhouettePanel().grabFramebuffer();
     QVERIFY(method2 != method3); // another method draws other pixels
 
-    review.applySettings(settingsFor(1, Chunking::Off));
+    review.applySettings(settingsFor(1, Chunking::Off, PanelGl::InPanels));
     QVERIFY(waitSettled(review, review.status().framesShown + 1));
-    QVERIFY(review.silhouettePanel().glSilhouette());
+    QVERIFY(review.silhouettePanel().usesGl());
     QTest::qWait(100);
     QVERIFY(lw::test::pixelsDifferentFrom(review.silhouettePanel().grabFramebuffer(), Qt::white,
                                           100) > 300);
 
-    review.applySettings(settingsFor(1, Chunking::Fixed));
+    review.applySettings(settingsFor(1, Chunking::Fixed, PanelGl::InPanels));
     QVERIFY(waitSettled(review, review.status().framesShown + 1));
-    QVERIFY(!review.silhouettePanel().glSilhouette()); // L runs on the worker's context
+    QVERIFY(!review.silhouettePanel().usesGl()); // L runs on the worker's context
     QVERIFY(review.statusText().contains(" L (16-cell bricks)"));
 }
 
@@ -194,14 +204,22 @@ void ReviewTest::camerasAreLinked() {
 }
 
 void ReviewTest::panelsReRenderAtAnySize() {
-    for (int method : {1, 3}) {
-        ReviewWidget review(phantomSource("phantom:64", 300.5), settingsFor(method, Chunking::Off));
+    for (auto [method, panelGl] :
+         {std::pair{1, PanelGl::InPanels}, std::pair{3, PanelGl::InPanels},
+          std::pair{1, PanelGl::OnWorker}, std::pair{3, PanelGl::OnWorker}}) {
+        ReviewWidget review(phantomSource("phantom:64", 300.5),
+                            settingsFor(method, Chunking::Off, panelGl));
         review.resize(800, 500);
         review.show();
         QVERIFY(QTest::qWaitForWindowExposed(&review));
         QVERIFY(waitSettled(review));
         QTest::qWait(50);
-        const auto [iso, silhouette] = review.renderPanels(QSize(1234, 567));
+        QImage iso, silhouette;
+        try {
+            std::tie(iso, silhouette) = review.renderPanels(QSize(1234, 567));
+        } catch (const std::exception& error) {
+            QFAIL(error.what());
+        }
         QCOMPARE(iso.size(), QSize(1234, 567));
         QCOMPARE(silhouette.size(), QSize(1234, 567));
         QVERIFY(lw::test::pixelsDifferentFrom(iso, Qt::white) > 1234 * 567 / 50);
@@ -209,12 +227,19 @@ void ReviewTest::panelsReRenderAtAnySize() {
     }
 }
 
+void ReviewTest::pickingFindsTheSphereSurface_data() {
+    QTest::addColumn<int>("panelGl");
+    QTest::addRow("GL in panels") << int(PanelGl::InPanels);
+    QTest::addRow("GL on worker") << int(PanelGl::OnWorker);
+}
+
 void ReviewTest::pickingFindsTheSphereSurface() {
     // The sphere phantom: iso 0 HU at 0.6 of the half-extent, 1 mm voxels around the origin.
     const int n = 64;
     const double radius = 0.6 * (n - 1) / 2.0;
+    QFETCH(int, panelGl);
     ReviewWidget review(phantomSource(QString("phantom:%1:sphere").arg(n), 0.0),
-                        settingsFor(3, Chunking::Off));
+                        settingsFor(3, Chunking::Off, PanelGl(panelGl)));
     review.resize(800, 500);
     review.show();
     QVERIFY(QTest::qWaitForWindowExposed(&review));

@@ -3,8 +3,13 @@
 #include "lw/core/error.h"
 #include "lw/render/zbuffer_silhouette_renderer.h"
 
+#if LINEWORK_GL
+#include "lw/render/geometry_shader_silhouette_renderer.h"
+#endif
+
 #include <QObject>
 #include <chrono>
+#include <cstring>
 #include <new>
 
 namespace lw::gui {
@@ -23,6 +28,14 @@ RenderWorker::RenderWorker(std::shared_ptr<const volume::Volume> volume)
 RenderWorker::~RenderWorker() = default;
 
 void RenderWorker::release() {
+    if (m_isoGl && m_glContext) {
+        m_glContext->makeCurrent();
+        m_isoGl->release();
+    }
+    m_isoGl.reset();
+    m_glContext.reset();
+    m_uploadedMesh = nullptr;
+    m_uploadedMeshOwner.reset();
     m_renderer.reset();
     m_extractor.reset();
     m_mesh.reset();
@@ -43,8 +56,12 @@ FrameResult RenderWorker::run(const FrameRequest& request) {
             renderSilhouette(request, result);
         if (request.cancel->isCancelled())
             throw core::Cancelled();
-        if (request.wantMesh)
+        if (request.wantMesh || request.wantIsoImage)
             extractMesh(request, result);
+        if (request.cancel->isCancelled())
+            throw core::Cancelled();
+        if (request.wantIsoImage)
+            renderIsoImage(request, result);
     } catch (const core::Cancelled&) {
         result.cancelled = true;
     } catch (const core::Error& error) {
@@ -82,21 +99,67 @@ void RenderWorker::renderSilhouette(const FrameRequest& request, FrameResult& re
     settings.isoReal = request.iso;
     render::SilhouetteRenderer& renderer = rendererFor(request, result);
     result.silhouette = renderer.render(request.camera, settings);
-    // Method 3 S keeps the mesh it rasterised: the iso panel shows exactly that surface and
-    // marching cubes does not run twice for one iso-value.
-    auto* zbuffer = dynamic_cast<render::ZBufferSilhouetteRenderer*>(&renderer);
-    if (zbuffer && request.wantMesh && settings.brickCells == 0) {
-        const auto start = std::chrono::steady_clock::now();
-        m_mesh = std::make_shared<const render::Mesh>(zbuffer->mesh());
-        m_meshIso = request.iso;
-        result.mesh = m_mesh;
-        result.meshMs = millisecondsSince(start);
+    keepRendererMesh(request, result);
+}
+
+// Methods 1 and 3 (S) keep the mesh they drew: the iso panel shows exactly that surface and
+// marching cubes does not run twice for one iso-value.
+void RenderWorker::keepRendererMesh(const FrameRequest& request, FrameResult& result) {
+    if (!(request.wantMesh || request.wantIsoImage) || request.settings.brickCells != 0)
+        return;
+    const render::Mesh* mesh = nullptr;
+    if (auto* zbuffer = dynamic_cast<render::ZBufferSilhouetteRenderer*>(m_renderer.get()))
+        mesh = &zbuffer->mesh();
+#if LINEWORK_GL
+    if (auto* gl = dynamic_cast<render::GeometryShaderSilhouetteRenderer*>(m_renderer.get()))
+        mesh = &gl->mesh();
+#endif
+    if (!mesh)
+        return;
+    if (m_mesh && m_meshIso == request.iso &&
+        request.settings.mode == render::ExtractionMode::CachedA)
+        return; // mode a: the renderer drew the mesh it has already handed out
+    const auto start = std::chrono::steady_clock::now();
+    m_mesh = std::make_shared<const render::Mesh>(*mesh);
+    m_meshIso = request.iso;
+    result.mesh = m_mesh;
+    result.meshMs = millisecondsSince(start);
+}
+
+void RenderWorker::renderIsoImage(const FrameRequest& request, FrameResult& result) {
+#if LINEWORK_GL
+    const auto start = std::chrono::steady_clock::now();
+    if (!m_glContext) {
+        m_glContext = std::make_unique<render::EglHeadlessContext>();
+        m_isoGl = std::make_unique<render::SilhouetteGlRenderer>();
     }
+    m_glContext->makeCurrent();
+    const std::shared_ptr<const render::Mesh> mesh = result.mesh ? result.mesh : m_mesh;
+    if (mesh && mesh.get() != m_uploadedMesh) {
+        m_isoGl->uploadMesh(*mesh);
+        m_uploadedMesh = mesh.get();
+        m_uploadedMeshOwner = mesh;
+    }
+    const core::ImageRgba8 image = m_isoGl->renderImage(request.isoCamera, request.isoOptions);
+    QImage picture(image.width(), image.height(), QImage::Format_RGBA8888);
+    for (int y = 0; y < image.height(); ++y)
+        std::memcpy(picture.scanLine(y), image.row(y), std::size_t(image.width()) * 4);
+    result.isoImage = std::move(picture);
+    result.isoDepth = m_isoGl->readDepth();
+    result.isoCamera = request.isoCamera;
+    result.isoRenderMs = millisecondsSince(start);
+#else
+    (void)request;
+    (void)result;
+    throw core::Error("iso panel", "this build has no OpenGL");
+#endif
 }
 
 void RenderWorker::extractMesh(const FrameRequest& request, FrameResult& result) {
     if (result.mesh)
         return;
+    if (m_mesh && m_meshIso == request.iso && !request.forceExtract && !request.wantMesh)
+        return; // the iso image re-draws the mesh it has
     if (m_mesh && m_meshIso == request.iso && !request.forceExtract) {
         result.mesh = m_mesh;
         return;

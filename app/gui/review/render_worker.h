@@ -7,11 +7,14 @@
 
 #include "lw/core/progress.h"
 #include "lw/render/camera.h"
+#include "lw/render/gl_context.h"
 #include "lw/render/iso_surface.h"
 #include "lw/render/renderer_factory.h"
+#include "lw/render/silhouette_gl_renderer.h"
 #include "lw/render/silhouette_renderer.h"
 #include "lw/volume/volume.h"
 
+#include <QImage>
 #include <QString>
 #include <cstdint>
 #include <memory>
@@ -26,6 +29,12 @@ struct FrameRequest {
     bool wantMesh = false;       // the iso panel (and method 1 S) need the mesh at `iso`
     bool forceExtract = false;   // mode b: extract again even if the mesh is cached
     bool wantSilhouette = false; // render the silhouette here (methods 2, 3, method 1 L)
+    // Render the shaded iso panel here too, on the worker's own headless GL context (the same
+    // shaders as the panel's): used where the panels' GL is a software rasterizer, whose
+    // vertex work would otherwise stall the UI thread.
+    bool wantIsoImage = false;
+    render::Camera isoCamera;
+    render::SilhouetteGlOptions isoOptions;
     render::SilhouetteMethod method = render::SilhouetteMethod::ZBuffer;
     render::Backend backend = render::Backend::Auto;
     render::SilhouetteSettings settings;
@@ -41,6 +50,10 @@ struct FrameResult {
     std::shared_ptr<const render::Mesh> mesh; // set when the request wanted one
     double meshMs = 0.0;
     std::optional<render::SilhouetteFrame> silhouette;
+    QImage isoImage;             // when the request wanted it
+    std::vector<float> isoDepth; // its depth buffer, top row first (picking)
+    render::Camera isoCamera;
+    double isoRenderMs = 0.0;
     render::SilhouetteMethod method = render::SilhouetteMethod::ZBuffer;
     int brickCells = 0;
     QString backend; // the back-end that actually ran
@@ -66,6 +79,8 @@ private:
     void renderSilhouette(const FrameRequest& request, FrameResult& result);
     void extractMesh(const FrameRequest& request, FrameResult& result);
     render::SilhouetteRenderer& rendererFor(const FrameRequest& request, FrameResult& result);
+    void renderIsoImage(const FrameRequest& request, FrameResult& result);
+    void keepRendererMesh(const FrameRequest& request, FrameResult& result);
 
     std::shared_ptr<const volume::Volume> m_volume;
     std::unique_ptr<render::IsoSurfaceExtractor> m_extractor;
@@ -75,6 +90,11 @@ private:
     QString m_backendNote;
     std::shared_ptr<const render::Mesh> m_mesh;
     double m_meshIso = 0.0;
+    // The worker's own GL for the iso panel (made on this thread at first use).
+    std::unique_ptr<render::GlContext> m_glContext;
+    std::unique_ptr<render::SilhouetteGlRenderer> m_isoGl;
+    const render::Mesh* m_uploadedMesh = nullptr;
+    std::shared_ptr<const render::Mesh> m_uploadedMeshOwner;
 };
 
 } // namespace lw::gui

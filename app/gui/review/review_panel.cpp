@@ -8,6 +8,7 @@
 #include <QMouseEvent>
 #include <QOpenGLContext>
 #include <QOpenGLExtraFunctions>
+#include <QOpenGLFunctions>
 #include <QPainter>
 #include <QWheelEvent>
 #include <cmath>
@@ -55,13 +56,18 @@ void ReviewPanel::initializeGL() {
         context(), &QOpenGLContext::aboutToBeDestroyed, this, [this] { releaseGl(); },
         Qt::DirectConnection);
     m_meshUploaded = false;
-    try {
-        m_gl.initialize();
-    } catch (const core::Error& error) {
-        m_glBroken = true;
-        m_message = tr("OpenGL failed: %1").arg(error.what());
-        emit glFailed(m_message);
-    }
+    const auto* renderer =
+        reinterpret_cast<const char*>(context()->functions()->glGetString(GL_RENDERER));
+    m_glRenderer = QString::fromLatin1(renderer ? renderer : "unknown");
+    // Software rasterizers do the vertex work on the CPU, inside the draw call on this thread.
+    m_softwareGl = m_glRenderer.contains("llvmpipe", Qt::CaseInsensitive) ||
+                   m_glRenderer.contains("softpipe", Qt::CaseInsensitive) ||
+                   m_glRenderer.contains("software", Qt::CaseInsensitive) ||
+                   m_glRenderer.contains("swr", Qt::CaseInsensitive);
+    m_glKnown = true;
+    // The engine's shaders are compiled at the first GL draw (not at all when the worker draws:
+    // on llvmpipe that compile alone holds the UI thread for ~100 ms).
+    emit glReady();
 }
 
 void ReviewPanel::setMesh(std::shared_ptr<const render::Mesh> mesh) {
@@ -70,9 +76,18 @@ void ReviewPanel::setMesh(std::shared_ptr<const render::Mesh> mesh) {
     update();
 }
 
-void ReviewPanel::setGlSilhouette(bool enabled) {
-    m_glSilhouette = enabled;
+void ReviewPanel::setUseGl(bool enabled) {
+    m_useGl = enabled;
     update();
+}
+
+void ReviewPanel::setDepth(std::vector<float> depth, const render::Camera& camera) {
+    m_depth = std::move(depth);
+    m_depthCamera = camera;
+}
+
+void ReviewPanel::resizeGL(int, int) {
+    emit resized();
 }
 
 void ReviewPanel::setImage(const QImage& image) {
@@ -102,20 +117,20 @@ QSize ReviewPanel::renderSize() const {
 }
 
 bool ReviewPanel::drawsGl() const {
-    return !m_glBroken && m_mesh && (m_kind == PanelKind::Iso || m_glSilhouette);
+    return !m_glBroken && m_mesh && m_useGl;
 }
 
-render::SilhouetteGlOptions ReviewPanel::glOptions() const {
+render::SilhouetteGlOptions panelGlOptions(PanelKind kind, const ReviewSettings& settings) {
     render::SilhouetteGlOptions options;
-    options.panel = m_kind == PanelKind::Iso ? render::GlPanel::Iso : render::GlPanel::Silhouette;
-    options.visibility = m_appearance.visibility;
-    options.linesOnIso = m_kind == PanelKind::Iso && m_appearance.silhouetteOnIso &&
-                         m_appearance.method == render::SilhouetteMethod::GeometryShader;
-    options.lineWidth = float(m_appearance.lineWidth);
-    options.lineColour = toVec4(m_appearance.lineColour);
-    options.background = toVec4(m_appearance.background);
-    options.countSegments = m_kind == PanelKind::Silhouette;
-    if (m_kind == PanelKind::Iso && !options.linesOnIso) {
+    options.panel = kind == PanelKind::Iso ? render::GlPanel::Iso : render::GlPanel::Silhouette;
+    options.visibility = settings.visibility;
+    options.linesOnIso = kind == PanelKind::Iso && settings.silhouetteOnIso &&
+                         settings.method == render::SilhouetteMethod::GeometryShader;
+    options.lineWidth = float(settings.lineWidth);
+    options.lineColour = toVec4(settings.lineColour);
+    options.background = toVec4(settings.background);
+    options.countSegments = kind == PanelKind::Silhouette;
+    if (kind == PanelKind::Iso && !options.linesOnIso) {
         // No lines to win the depth test: keep the depth exact for picking.
         options.polygonOffsetFactor = 0.0f;
         options.polygonOffsetUnits = 0.0f;
@@ -132,7 +147,7 @@ void ReviewPanel::uploadPendingMesh() {
 
 void ReviewPanel::drawGl(const render::Camera& camera) {
     uploadPendingMesh();
-    m_lastStats = m_gl.render(camera, glOptions());
+    m_lastStats = m_gl.render(camera, panelGlOptions(m_kind, m_appearance));
     // The engine draws into its own framebuffer object; copy it into the widget's.
     QOpenGLExtraFunctions* f = context()->extraFunctions();
     f->glBindFramebuffer(GL_READ_FRAMEBUFFER, m_gl.framebuffer());
@@ -170,7 +185,7 @@ void ReviewPanel::paintGL() {
 }
 
 void ReviewPanel::drawImages() {
-    const bool showImage = m_kind == PanelKind::Silhouette && !m_glSilhouette && !m_image.isNull();
+    const bool showImage = !m_useGl && !m_image.isNull();
     const bool showOverlay = m_kind == PanelKind::Iso && !m_overlay.isNull();
     if (!showImage && !showOverlay)
         return;
@@ -178,7 +193,10 @@ void ReviewPanel::drawImages() {
     // The image was rendered for the viewport at request time; until the next one arrives after
     // a resize, it is stretched rather than left misplaced.
     painter.setRenderHint(QPainter::SmoothPixmapTransform, false);
-    painter.drawImage(rect(), showImage ? m_image : m_overlay);
+    if (showImage)
+        painter.drawImage(rect(), m_image);
+    if (showOverlay)
+        painter.drawImage(rect(), m_overlay);
 }
 
 void ReviewPanel::drawMessage() {
@@ -198,7 +216,7 @@ QImage ReviewPanel::renderImage(QSize size) {
     try {
         uploadPendingMesh();
         const render::Camera camera = m_camera.camera(size.width(), size.height());
-        image = toQImage(m_gl.renderImage(camera, glOptions()));
+        image = toQImage(m_gl.renderImage(camera, panelGlOptions(m_kind, m_appearance)));
     } catch (const core::Error& error) {
         m_message = tr("OpenGL failed: %1").arg(error.what());
     }
@@ -208,7 +226,24 @@ QImage ReviewPanel::renderImage(QSize size) {
 }
 
 std::optional<glm::dvec3> ReviewPanel::pickPatientPoint(QPoint position) {
-    if (m_kind != PanelKind::Iso || !drawsGl())
+    if (m_kind != PanelKind::Iso)
+        return std::nullopt;
+    if (!m_useGl) {
+        // The worker's depth buffer of the image on screen (stretched to the widget, as drawn).
+        const int w = m_depthCamera.width(), h = m_depthCamera.height();
+        if (m_depth.size() != std::size_t(w) * std::size_t(h) || width() <= 0 || height() <= 0)
+            return std::nullopt;
+        const double x = (position.x() + 0.5) * w / width();
+        const double y = (position.y() + 0.5) * h / height();
+        if (x < 0 || y < 0 || x >= w || y >= h)
+            return std::nullopt;
+        const float depth = m_depth[std::size_t(y) * std::size_t(w) + std::size_t(x)];
+        if (depth >= 1.0f)
+            return std::nullopt;
+        return m_depthCamera.unproject({std::floor(x) + 0.5, std::floor(y) + 0.5},
+                                       2.0 * double(depth) - 1.0);
+    }
+    if (!drawsGl())
         return std::nullopt;
     const QSize size = renderSize();
     const render::Camera camera = m_camera.camera(size.width(), size.height());
@@ -221,7 +256,7 @@ std::optional<glm::dvec3> ReviewPanel::pickPatientPoint(QPoint position) {
     float depth = 1.0f;
     try {
         uploadPendingMesh();
-        m_gl.render(camera, glOptions());
+        m_gl.render(camera, panelGlOptions(m_kind, m_appearance));
         QOpenGLExtraFunctions* f = context()->extraFunctions();
         f->glBindFramebuffer(GL_READ_FRAMEBUFFER, m_gl.framebuffer());
         f->glReadPixels(x, size.height() - 1 - y, 1, 1, GL_DEPTH_COMPONENT, GL_FLOAT, &depth);

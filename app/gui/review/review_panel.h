@@ -19,12 +19,17 @@
 #include <QString>
 #include <memory>
 #include <optional>
+#include <vector>
 
 namespace lw::gui {
 
 class CameraController;
 
 enum class PanelKind { Iso, Silhouette };
+
+// The engine's GL options for a panel under these settings (the panel and the render worker
+// draw with the same ones).
+render::SilhouetteGlOptions panelGlOptions(PanelKind kind, const ReviewSettings& settings);
 
 class ReviewPanel : public QOpenGLWidget {
     Q_OBJECT
@@ -37,10 +42,18 @@ public:
     // the next paint, in this widget's context.
     void setMesh(std::shared_ptr<const render::Mesh> mesh);
     bool hasMesh() const { return m_mesh != nullptr; }
-    // Silhouette panel: GL lines from the mesh (method 1 S) or a CPU image.
-    void setGlSilhouette(bool enabled);
-    bool glSilhouette() const { return m_glSilhouette; }
+    // Draw the mesh with GL in this widget's context (iso panel; silhouette panel for method 1
+    // S), or show the image the worker rendered.
+    void setUseGl(bool enabled);
+    bool usesGl() const { return m_useGl; }
     void setImage(const QImage& image);
+    // The worker's iso image comes with its depth buffer and camera, for picking.
+    void setDepth(std::vector<float> depth, const render::Camera& camera);
+    // The panel's GL context is a software rasterizer (llvmpipe, softpipe): known after the
+    // first show (glKnown()).
+    bool glKnown() const { return m_glKnown; }
+    bool softwareGl() const { return m_softwareGl; }
+    QString glRenderer() const { return m_glRenderer; }
     // Lines drawn over the iso panel by a CPU method (transparent elsewhere); null for none.
     void setOverlay(const QImage& overlay);
     void setAppearance(const ReviewSettings& settings);
@@ -62,18 +75,20 @@ public:
 
 signals:
     void painted(double milliseconds);
+    void resized();
+    void glReady();
     void glFailed(const QString& reason);
 
 protected:
     void initializeGL() override;
     void paintGL() override;
+    void resizeGL(int width, int height) override;
     void mousePressEvent(QMouseEvent* event) override;
     void mouseMoveEvent(QMouseEvent* event) override;
     void wheelEvent(QWheelEvent* event) override;
     void keyPressEvent(QKeyEvent* event) override;
 
 private:
-    render::SilhouetteGlOptions glOptions() const;
     bool drawsGl() const;
     void uploadPendingMesh();
     void drawGl(const render::Camera& camera);
@@ -86,9 +101,14 @@ private:
     render::SilhouetteGlRenderer m_gl;
     std::shared_ptr<const render::Mesh> m_mesh;
     bool m_meshUploaded = false;
-    bool m_glSilhouette = false;
+    bool m_useGl = false;
     bool m_glBroken = false;
+    bool m_glKnown = false;
+    bool m_softwareGl = false;
+    QString m_glRenderer;
     QImage m_image;
+    std::vector<float> m_depth;
+    render::Camera m_depthCamera;
     QImage m_overlay;
     ReviewSettings m_appearance;
     QString m_message;

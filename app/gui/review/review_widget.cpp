@@ -1,7 +1,9 @@
 #include "review/review_widget.h"
 
 #include "lw/core/error.h"
+#include "lw/render/gl_context.h"
 #include "lw/render/renderer_factory.h"
+#include "lw/render/silhouette_gl_renderer.h"
 #include "review/iso_control.h"
 #include "review/render_scheduler.h"
 #include "review/review_panel.h"
@@ -9,12 +11,14 @@
 #include <QHBoxLayout>
 #include <QLabel>
 #include <QLocale>
+#include <QOpenGLContext>
 #include <QSignalBlocker>
 #include <QSplitter>
 #include <QToolButton>
 #include <QVBoxLayout>
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 
 namespace lw::gui {
 namespace {
@@ -73,6 +77,7 @@ ReviewWidget::ReviewWidget(ReviewSource source, const ReviewSettings& settings, 
     connect(m_isoControl, &IsoControl::isoChanged, this, &ReviewWidget::setIso);
     for (ReviewPanel* panel : {m_isoPanel, m_silhouettePanel}) {
         connect(panel, &ReviewPanel::glFailed, this, &ReviewWidget::showError);
+        connect(panel, &ReviewPanel::resized, this, [this] { requestFrame(false); });
         connect(panel, &ReviewPanel::painted, this, [this, panel](double milliseconds) {
             (panel == m_isoPanel ? m_status.isoPaintMs : m_status.silhouettePaintMs) = milliseconds;
             if (panel == m_silhouettePanel && methodOneInPanel())
@@ -88,6 +93,11 @@ ReviewWidget::ReviewWidget(ReviewSource source, const ReviewSettings& settings, 
         m_isoControl->setIso(m_source.initialIso);
     }
     m_iso = m_isoControl->iso();
+    // Whether the panels draw with GL themselves is known once their context exists.
+    connect(m_isoPanel, &ReviewPanel::glReady, this, [this] {
+        if (drawsInPanels() != m_drawsInPanels)
+            applySettings(m_settings);
+    });
     applySettings(settings);
 }
 
@@ -124,8 +134,21 @@ QWidget* ReviewWidget::makeViewBar() {
     return bar;
 }
 
+bool ReviewWidget::drawsInPanels() const {
+    switch (m_settings.panelGl) {
+    case PanelGl::InPanels:
+        return true;
+    case PanelGl::OnWorker:
+        return false;
+    case PanelGl::Auto:
+        break;
+    }
+    return m_isoPanel->glKnown() && !m_isoPanel->softwareGl();
+}
+
 bool ReviewWidget::methodOneInPanel() const {
-    return m_settings.method == render::SilhouetteMethod::GeometryShader && brickCells() == 0;
+    return m_settings.method == render::SilhouetteMethod::GeometryShader && brickCells() == 0 &&
+           m_drawsInPanels;
 }
 
 int ReviewWidget::brickCells() const {
@@ -142,7 +165,9 @@ void ReviewWidget::applySettings(const ReviewSettings& settings) {
     m_camera.setProjection(settings.projection);
     m_isoPanel->setAppearance(settings);
     m_silhouettePanel->setAppearance(settings);
-    m_silhouettePanel->setGlSilhouette(methodOneInPanel());
+    m_drawsInPanels = drawsInPanels();
+    m_isoPanel->setUseGl(m_drawsInPanels);
+    m_silhouettePanel->setUseGl(methodOneInPanel());
     m_silhouettePanel->setImage({});
     m_isoPanel->setOverlay({});
     m_isoControl->setPresets(settings.presets);
@@ -187,7 +212,14 @@ void ReviewWidget::requestFrame(bool newIso) {
     request.wantSilhouette = !methodOneInPanel();
     request.wantMesh = newIso || !m_meshCurrent || (modeB && methodOneInPanel());
     request.forceExtract = modeB && methodOneInPanel() && !newIso;
-    if (!request.wantMesh && !request.wantSilhouette)
+    if (!m_drawsInPanels) {
+        // The worker draws the iso panel too: every new view and iso-value needs an image.
+        request.wantIsoImage = true;
+        const QSize isoSize = m_isoPanel->renderSize();
+        request.isoCamera = m_camera.camera(isoSize.width(), isoSize.height());
+        request.isoOptions = panelGlOptions(PanelKind::Iso, m_settings);
+    }
+    if (!request.wantMesh && !request.wantSilhouette && !request.wantIsoImage)
         return; // method 1 S in mode a: the panels redraw the cached mesh themselves
     const QSize size = m_silhouettePanel->renderSize();
     request.camera = m_camera.camera(size.width(), size.height());
@@ -207,7 +239,13 @@ void ReviewWidget::takeFrame(const std::shared_ptr<const FrameResult>& result) {
     m_status.backend = result->backend.isEmpty() ? QStringLiteral("gl") : result->backend;
     m_status.brickCells = result->brickCells;
     ++m_status.framesShown;
+    if (!result->isoImage.isNull()) {
+        m_isoPanel->setImage(result->isoImage);
+        m_isoPanel->setDepth(result->isoDepth, result->isoCamera);
+        m_status.isoPaintMs = result->isoRenderMs;
+    }
     if (result->mesh) {
+        m_mesh = result->mesh;
         m_isoPanel->setMesh(result->mesh);
         m_silhouettePanel->setMesh(methodOneInPanel() ? result->mesh : nullptr);
         m_meshCurrent = true;
@@ -291,12 +329,40 @@ void ReviewWidget::updateStatusLine() {
     emit statusChanged();
 }
 
+namespace {
+
+void releaseQtContext() {
+    if (QOpenGLContext* current = QOpenGLContext::currentContext())
+        current->doneCurrent();
+}
+
+} // namespace
+
+QImage ReviewWidget::renderIsoOffscreen(QSize size) {
+    if (!m_mesh)
+        return {};
+    // A context of its own on this thread (the worker's belongs to the worker thread). A thread
+    // can have one current context across GLX and EGL: let go of Qt's first.
+    releaseQtContext();
+    render::EglHeadlessContext context;
+    render::SilhouetteGlRenderer gl;
+    gl.uploadMesh(*m_mesh);
+    const core::ImageRgba8 image = gl.renderImage(m_camera.camera(size.width(), size.height()),
+                                                  panelGlOptions(PanelKind::Iso, m_settings));
+    gl.release();
+    QImage result(image.width(), image.height(), QImage::Format_RGBA8888);
+    for (int y = 0; y < image.height(); ++y)
+        std::memcpy(result.scanLine(y), image.row(y), std::size_t(image.width()) * 4);
+    return result;
+}
+
 std::pair<QImage, QImage> ReviewWidget::renderPanels(QSize size) {
-    QImage iso = m_isoPanel->renderImage(size);
+    QImage iso = m_drawsInPanels ? m_isoPanel->renderImage(size) : renderIsoOffscreen(size);
     QImage silhouette;
     if (methodOneInPanel()) {
         silhouette = m_silhouettePanel->renderImage(size);
     } else {
+        releaseQtContext(); // method 1 makes an EGL context on this thread
         auto renderer = render::createSilhouetteRenderer(m_settings.method, m_settings.backend);
         renderer->setVolume(*m_source.volume);
         render::SilhouetteSettings settings;

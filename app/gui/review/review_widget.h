@@ -5,6 +5,7 @@
 // render scheduler (worker thread); the UI thread only uploads, draws and reacts.
 
 #include "lw/render/aabb.h"
+#include "lw/render/iso_surface.h"
 #include "lw/volume/volume.h"
 #include "review/camera_controller.h"
 #include "settings/review_settings.h"
@@ -93,6 +94,8 @@ private:
     void showError(const QString& message);
     void updateStatusLine();
     bool methodOneInPanel() const;
+    bool drawsInPanels() const;
+    QImage renderIsoOffscreen(QSize size);
     int brickCells() const;
     QImage silhouetteImage(const render::PixelMask& lines, bool transparent) const;
 
@@ -100,7 +103,9 @@ private:
     ReviewSettings m_settings;
     std::uint64_t m_settingsGeneration = 1;
     double m_iso = 0.0;
-    bool m_meshCurrent = false; // the panels hold the mesh at m_iso
+    bool m_meshCurrent = false;   // the panels hold the mesh at m_iso
+    bool m_drawsInPanels = false; // the pipeline the current settings generation was set up for
+    std::shared_ptr<const render::Mesh> m_mesh; // the mesh on screen (export)
     CameraController m_camera;
     ReviewPanel* m_isoPanel = nullptr;
     ReviewPanel* m_silhouettePanel = nullptr;

@@ -68,6 +68,7 @@ ReviewSettings ReviewSettings::load(QSettings& settings) {
     s.backend = backend == "cpu"    ? render::Backend::Cpu
                 : backend == "cuda" ? render::Backend::Cuda
                                     : render::Backend::Auto;
+    s.panelGl = PanelGl(clampInt(settings.value("panelGl"), 0, 2, int(s.panelGl)));
     s.presets = readPresets(settings);
     settings.endGroup();
     return s;
@@ -89,6 +90,7 @@ void ReviewSettings::save(QSettings& settings) const {
     settings.setValue("projection",
                       projection == render::Projection::Orthographic ? "ortho" : "perspective");
     settings.setValue("backend", QString::fromUtf8(render::backendName(backend).data()));
+    settings.setValue("panelGl", int(panelGl));
     settings.beginWriteArray("presets", int(presets.size()));
     for (int i = 0; i < presets.size(); ++i) {
         settings.setArrayIndex(i);

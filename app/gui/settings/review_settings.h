@@ -20,6 +20,11 @@ namespace lw::gui {
 
 enum class Chunking { Off, Auto, Fixed };
 
+// Where the shaded iso panel and method 1 draw: in the panels' own GL context, or on the render
+// worker's headless context with the image shown in the panel. Auto draws in the panels unless
+// their context is a software rasterizer (llvmpipe), whose vertex work would block the UI thread.
+enum class PanelGl { Auto, InPanels, OnWorker };
+
 struct IsoPreset {
     QString name;
     double hu = 0.0;
@@ -40,6 +45,7 @@ struct ReviewSettings {
     bool silhouetteOnIso = false;
     render::Projection projection = render::Projection::Perspective;
     render::Backend backend = render::Backend::Auto;
+    PanelGl panelGl = PanelGl::Auto;
     QList<IsoPreset> presets = defaultPresets();
 
     static QList<IsoPreset> defaultPresets();

@@ -157,10 +157,17 @@ QWidget* SettingsDialog::makeAppearancePage() {
     m_projection = new QComboBox;
     m_projection->addItems({tr("Perspective"), tr("Orthographic")});
     form->addRow(tr("Projection:"), m_projection);
+    m_panelGl = new QComboBox;
+    m_panelGl->setObjectName("panelGl");
+    m_panelGl->addItems({tr("Auto: in the panels, unless OpenGL is software"),
+                         tr("In the panels' own OpenGL context"),
+                         tr("On the render thread (keeps the window responsive)")});
+    form->addRow(tr("Draw with OpenGL:"), m_panelGl);
 
     connect(m_lineWidth, &QDoubleSpinBox::valueChanged, this, [this] { readControls(); });
     connect(m_silhouetteOnIso, &QCheckBox::toggled, this, [this] { readControls(); });
     connect(m_projection, &QComboBox::currentIndexChanged, this, [this] { readControls(); });
+    connect(m_panelGl, &QComboBox::currentIndexChanged, this, [this] { readControls(); });
     connect(m_lineColour, &QPushButton::clicked, this,
             [this] { pickColour(m_settings.lineColour, m_lineColour); });
     connect(m_background, &QPushButton::clicked, this,
@@ -215,6 +222,7 @@ void SettingsDialog::showSettings() {
     showColour(m_background, m_settings.background);
     m_silhouetteOnIso->setChecked(m_settings.silhouetteOnIso);
     m_projection->setCurrentIndex(m_settings.projection == render::Projection::Orthographic);
+    m_panelGl->setCurrentIndex(int(m_settings.panelGl));
     m_presets->setRowCount(int(m_settings.presets.size()));
     for (int row = 0; row < m_settings.presets.size(); ++row) {
         m_presets->setItem(row, 0, new QTableWidgetItem(m_settings.presets[row].name));
@@ -242,6 +250,7 @@ void SettingsDialog::readControls() {
     s.silhouetteOnIso = m_silhouetteOnIso->isChecked();
     s.projection = m_projection->currentIndex() == 1 ? render::Projection::Orthographic
                                                      : render::Projection::Perspective;
+    s.panelGl = PanelGl(m_panelGl->currentIndex());
     QList<IsoPreset> presets;
     for (int row = 0; row < m_presets->rowCount(); ++row) {
         const QTableWidgetItem* name = m_presets->item(row, 0);

@@ -52,6 +52,7 @@ private:
     QPushButton* m_background = nullptr;
     QCheckBox* m_silhouetteOnIso = nullptr;
     QComboBox* m_projection = nullptr;
+    QComboBox* m_panelGl = nullptr;
     QButtonGroup* m_backend = nullptr;
     QLabel* m_backendNote = nullptr;
     QTableWidget* m_presets = nullptr;

@@ -468,6 +468,29 @@ core::ImageRgba8 SilhouetteGlRenderer::readImage() const {
     return image;
 }
 
+std::vector<float> SilhouetteGlRenderer::readDepth() const {
+    if (!m_framebuffer)
+        throw core::Error("GL depth read-back", "nothing has been rendered yet");
+    std::vector<float> depth(std::size_t(m_width) * std::size_t(m_height));
+    const FramebufferBindingGuard bindingGuard;
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, m_framebuffer);
+    GLint alignment = 4, packBuffer = 0;
+    glGetIntegerv(GL_PACK_ALIGNMENT, &alignment);
+    glGetIntegerv(GL_PIXEL_PACK_BUFFER_BINDING, &packBuffer);
+    glPixelStorei(GL_PACK_ALIGNMENT, 4);
+    glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
+    glReadPixels(0, 0, m_width, m_height, GL_DEPTH_COMPONENT, GL_FLOAT, depth.data());
+    glPixelStorei(GL_PACK_ALIGNMENT, alignment);
+    glBindBuffer(GL_PIXEL_PACK_BUFFER, GLuint(packBuffer));
+    gl::checkGlError("SilhouetteGlRenderer::readDepth");
+    // GL's first row is the bottom one; callers index top row first like the images.
+    for (int y = 0; y < m_height / 2; ++y)
+        std::swap_ranges(depth.begin() + std::ptrdiff_t(y) * m_width,
+                         depth.begin() + std::ptrdiff_t(y + 1) * m_width,
+                         depth.begin() + std::ptrdiff_t(m_height - 1 - y) * m_width);
+    return depth;
+}
+
 core::ImageRgba8 SilhouetteGlRenderer::renderImage(const Camera& camera,
                                                    const SilhouetteGlOptions& options) {
     render(camera, options);

@@ -21,6 +21,7 @@
 #include <cstdint>
 #include <glm/glm.hpp>
 #include <span>
+#include <vector>
 
 namespace lw::render {
 
@@ -107,6 +108,9 @@ public:
 
     // The last frame as RGBA8, top row first.
     core::ImageRgba8 readImage() const;
+    // The last frame's depth buffer in [0, 1] (1 = nothing drawn), top row first: picking a
+    // pixel's surface point with Camera::unproject (depth * 2 - 1 is its NDC depth).
+    std::vector<float> readDepth() const;
     // render() + readImage().
     core::ImageRgba8 renderImage(const Camera& camera, const SilhouetteGlOptions& options = {});
 
