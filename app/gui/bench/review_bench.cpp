@@ -1,0 +1,218 @@
+// linework-review-bench: the workstation's responsiveness on a real series, measured on the
+// real widgets (docs/BENCHMARKS.md): UI-thread stalls while importing, dragging the iso slider
+// and orbiting; iso release → both panels updated; a new view in mode a per method; and the time
+// from start to the first review drawn.
+//
+//   linework-review-bench PATH [--iso HU] [--repeat N]
+//
+// Run under a display (xvfb-run -a -s "-screen 0 1920x1080x24"). Prints one line per figure.
+#include "browser/study_browser.h"
+#include "review/camera_controller.h"
+#include "review/review_panel.h"
+#include "review/review_widget.h"
+#include "review/stall_monitor.h"
+#include "shell/main_window.h"
+
+#include <QApplication>
+#include <QCommandLineParser>
+#include <QElapsedTimer>
+#include <QSurfaceFormat>
+#include <QTemporaryDir>
+#include <QTest>
+#include <algorithm>
+#include <cstdio>
+#include <functional>
+#include <memory>
+#include <vector>
+
+using namespace lw::gui;
+
+namespace {
+
+bool waitFor(const std::function<bool()>& done, int timeoutMs = 120000) {
+    QElapsedTimer timer;
+    timer.start();
+    while (!done()) {
+        if (timer.elapsed() > timeoutMs)
+            return false;
+        QCoreApplication::processEvents(QEventLoop::AllEvents, 5);
+    }
+    return true;
+}
+
+double median(std::vector<double> values) {
+    if (values.empty())
+        return 0.0;
+    std::sort(values.begin(), values.end());
+    return values[values.size() / 2];
+}
+
+// Counts paints of both panels so "updated" means: a new result taken and both repainted.
+struct PaintCounter {
+    int iso = 0;
+    int silhouette = 0;
+    explicit PaintCounter(ReviewWidget& review) {
+        QObject::connect(&review.isoPanel(), &ReviewPanel::painted, [this](double) { ++iso; });
+        QObject::connect(&review.silhouettePanel(), &ReviewPanel::painted,
+                         [this](double) { ++silhouette; });
+    }
+};
+
+// Time from a change to the frame after it on both panels (ms).
+double timeUpdate(ReviewWidget& review, PaintCounter& paints, const std::function<void()>& change,
+                  bool needsWorker) {
+    const std::uint64_t frames = review.status().framesShown;
+    const int iso = paints.iso, silhouette = paints.silhouette;
+    QElapsedTimer timer;
+    timer.start();
+    change();
+    waitFor([&] {
+        const bool taken = !needsWorker || review.status().framesShown > frames;
+        return taken && !review.isBusy() && paints.iso > iso && paints.silhouette > silhouette;
+    });
+    return double(timer.nsecsElapsed()) / 1e6;
+}
+
+void report(const char* what, double value, const char* unit = "ms") {
+    std::printf("%-58s %9.1f %s\n", what, value, unit);
+    std::fflush(stdout);
+}
+
+void benchMethod(ReviewWidget& review, MainWindow& window, int method, double iso, int repeat,
+                 StallMonitor& monitor) {
+    ReviewSettings settings = window.settings();
+    settings.method = lw::render::SilhouetteMethod(method);
+    settings.chunking = Chunking::Off;
+    settings.mode = lw::render::ExtractionMode::CachedA;
+    window.applySettings(settings);
+    PaintCounter paints(review);
+    waitFor([&] { return !review.isBusy(); });
+    QTest::qWait(200);
+
+    monitor.start();
+    std::vector<double> isoTimes, orbitTimes;
+    for (int i = 0; i < repeat; ++i)
+        isoTimes.push_back(timeUpdate(
+            review, paints, [&] { review.setIso(i % 2 ? iso : iso + 100.0); }, true));
+    const double isoStall = monitor.longestStallMs();
+    monitor.start();
+    const bool worker = method != 1;
+    for (int i = 0; i < repeat; ++i)
+        orbitTimes.push_back(timeUpdate(
+            review, paints,
+            [&] { review.camera().rotateByDrag(QPointF(8.0, 0.0), review.isoPanel().size()); },
+            worker));
+    const double orbitStall = monitor.longestStallMs();
+    char line[160];
+    std::snprintf(line, sizeof line, "method %d: iso change -> both panels updated (median)",
+                  method);
+    report(line, median(isoTimes));
+    std::snprintf(line, sizeof line, "method %d: new view, mode a -> both panels (median)", method);
+    report(line, median(orbitTimes));
+    std::snprintf(line, sizeof line, "method %d: longest UI stall, iso changes", method);
+    report(line, isoStall);
+    std::snprintf(line, sizeof line, "method %d: longest UI stall, orbit", method);
+    report(line, orbitStall);
+    std::snprintf(line, sizeof line, "method %d: last paint, iso panel (UI thread)", method);
+    report(line, review.isoPanel().lastPaintMs());
+    std::snprintf(line, sizeof line, "method %d: last paint, silhouette panel (UI thread)", method);
+    report(line, review.silhouettePanel().lastPaintMs());
+    std::snprintf(line, sizeof line, "method %d: triangles", method);
+    report(line, double(review.status().triangles), "");
+}
+
+} // namespace
+
+int main(int argc, char* argv[]) {
+    QElapsedTimer sinceStart;
+    sinceStart.start();
+    QSurfaceFormat format;
+    format.setVersion(4, 5);
+    format.setProfile(QSurfaceFormat::CoreProfile);
+    format.setDepthBufferSize(24);
+    QSurfaceFormat::setDefaultFormat(format);
+    QTemporaryDir home;
+    qputenv("XDG_CONFIG_HOME", (home.path() + "/config").toLocal8Bit());
+    qputenv("XDG_DATA_HOME", (home.path() + "/data").toLocal8Bit());
+    QApplication app(argc, argv);
+    QCommandLineParser parser;
+    parser.addPositionalArgument("path", "DICOM folder to import and review");
+    const QCommandLineOption isoOption("iso", "Iso-value (HU).", "HU", "300");
+    const QCommandLineOption repeatOption("repeat", "Repetitions per figure.", "N", "9");
+    parser.addOptions({isoOption, repeatOption});
+    parser.process(app);
+    if (parser.positionalArguments().size() != 1) {
+        std::fprintf(stderr, "usage: linework-review-bench PATH [--iso HU] [--repeat N]\n");
+        return 2;
+    }
+    const QString path = parser.positionalArguments().front();
+    const double iso = parser.value(isoOption).toDouble();
+    const int repeat = std::max(1, parser.value(repeatOption).toInt());
+
+    MainWindowOptions options;
+    options.databasePath = home.path() + "/studies.sqlite";
+    MainWindow window(options);
+    window.resize(1600, 900);
+    window.show();
+    StallMonitor monitor;
+
+    // From start to the first review drawn: open the path directly (`linework PATH`).
+    ReviewWidget* review = nullptr;
+    double loadedAtMs = 0.0;
+    std::unique_ptr<PaintCounter> firstPaints;
+    std::pair<int, int> paintsAtFirstFrame{-1, -1};
+    QObject::connect(&window, &MainWindow::reviewOpened, [&](ReviewWidget* opened) {
+        review = opened;
+        firstPaints = std::make_unique<PaintCounter>(*opened);
+        QObject::connect(opened, &ReviewWidget::frameShown, [&] {
+            if (paintsAtFirstFrame.first < 0)
+                paintsAtFirstFrame = {firstPaints->iso, firstPaints->silhouette};
+        });
+        loadedAtMs = double(sinceStart.nsecsElapsed()) / 1e6;
+    });
+    monitor.start();
+    const double openAtMs = double(sinceStart.nsecsElapsed()) / 1e6;
+    window.openPath(path, iso);
+    if (!waitFor([&] { return review && review->status().framesShown > 0 && !review->isBusy(); })) {
+        std::fprintf(stderr, "linework-review-bench: %s did not open: %s\n", qPrintable(path),
+                     qPrintable(window.lastError()));
+        return 1;
+    }
+    // Drawn: a paint of both panels after the first result was taken.
+    waitFor([&] {
+        return firstPaints->iso > paintsAtFirstFrame.first &&
+               firstPaints->silhouette > paintsAtFirstFrame.second;
+    });
+    const double drawnAtMs = double(sinceStart.nsecsElapsed()) / 1e6;
+    report("start -> window shown, open requested", openAtMs);
+    report("open requested -> volume loaded (decode, range, histogram)", loadedAtMs - openAtMs);
+    report("volume loaded -> first review drawn (method 3 default)", drawnAtMs - loadedAtMs);
+    report("start -> first review drawn", drawnAtMs);
+    report("longest UI stall while opening", monitor.longestStallMs());
+
+    // Import through the browser (scan, plan, thumbnails, database write).
+    bool imported = false;
+    QObject::connect(&window.browser(), &StudyBrowser::importFinished, [&] { imported = true; });
+    monitor.start();
+    QElapsedTimer importTimer;
+    importTimer.start();
+    window.browser().importPath(path);
+    waitFor([&] { return imported; });
+    report("import into the study database", double(importTimer.nsecsElapsed()) / 1e6);
+    report("longest UI stall while importing", monitor.longestStallMs());
+
+    for (int method : {3, 2, 1})
+        benchMethod(*review, window, method, iso, repeat, monitor);
+    // The UI thread idle, then only repainting (no new work): what composing costs.
+    monitor.start();
+    QTest::qWait(1000);
+    report("longest UI stall, idle", monitor.longestStallMs());
+    monitor.start();
+    for (int i = 0; i < 50; ++i) {
+        review->isoPanel().update();
+        review->silhouettePanel().update();
+        QTest::qWait(20);
+    }
+    report("longest UI stall, panels repainting only", monitor.longestStallMs());
+    return 0;
+}

@@ -1,0 +1,73 @@
+// linework: the workstation. `linework [PATH] [--iso HU] [--series UID] [--database FILE]`
+// opens the study browser and, with PATH, a review of that folder, DICOMDIR, file or
+// phantom:N at once.
+#include "shell/main_window.h"
+
+#include <QApplication>
+#include <QCommandLineParser>
+#include <QSurfaceFormat>
+#include <cstdio>
+#include <optional>
+
+namespace {
+
+// The engine's GL pipeline needs an OpenGL 4.1+ core context (geometry shaders); ask for 4.5.
+void requestCoreProfile() {
+    QSurfaceFormat format;
+    format.setRenderableType(QSurfaceFormat::OpenGL);
+    format.setVersion(4, 5);
+    format.setProfile(QSurfaceFormat::CoreProfile);
+    format.setDepthBufferSize(24);
+    QSurfaceFormat::setDefaultFormat(format);
+}
+
+} // namespace
+
+int main(int argc, char* argv[]) {
+    requestCoreProfile();
+    QApplication app(argc, argv);
+    QApplication::setOrganizationName("Linework");
+    QApplication::setApplicationName("linework");
+    QApplication::setApplicationVersion(LINEWORK_VERSION);
+
+    QCommandLineParser parser;
+    parser.setApplicationDescription(
+        QApplication::translate("main", "Iso-surface and silhouette review of CT series"));
+    parser.addHelpOption();
+    parser.addVersionOption();
+    parser.addPositionalArgument("path",
+                                 QApplication::translate("main",
+                                                         "DICOM folder, DICOMDIR, file, volume or "
+                                                         "phantom:N to review at once"),
+                                 "[path]");
+    const QCommandLineOption iso("iso", QApplication::translate("main", "Iso-value in HU."), "HU");
+    const QCommandLineOption series("series",
+                                    QApplication::translate("main", "Series instance UID."), "UID");
+    const QCommandLineOption database(
+        "database", QApplication::translate("main", "Study database file."), "FILE");
+    parser.addOptions({iso, series, database});
+    parser.process(app); // exits with 0 for --help/--version and 1 for unknown options
+
+    std::optional<double> isoValue;
+    if (parser.isSet(iso)) {
+        bool ok = false;
+        isoValue = parser.value(iso).toDouble(&ok);
+        if (!ok) {
+            std::fprintf(stderr, "linework: --iso %s: not a number\n",
+                         qPrintable(parser.value(iso)));
+            return 2;
+        }
+    }
+    if (parser.positionalArguments().size() > 1) {
+        std::fprintf(stderr, "linework: expects at most one path\n");
+        return 2;
+    }
+
+    lw::gui::MainWindowOptions options;
+    options.databasePath = parser.value(database);
+    lw::gui::MainWindow window(options);
+    window.show();
+    if (!parser.positionalArguments().isEmpty())
+        window.openPath(parser.positionalArguments().front(), isoValue, parser.value(series));
+    return QApplication::exec();
+}

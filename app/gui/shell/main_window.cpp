@@ -1,0 +1,268 @@
+#include "shell/main_window.h"
+
+#include "browser/study_browser.h"
+#include "lw/core/error.h"
+#include "review/review_widget.h"
+#include "review/volume_loader.h"
+#include "settings/settings_dialog.h"
+
+#include <QAction>
+#include <QApplication>
+#include <QFileDialog>
+#include <QInputDialog>
+#include <QKeySequence>
+#include <QLabel>
+#include <QMenuBar>
+#include <QMessageBox>
+#include <QProgressBar>
+#include <QPushButton>
+#include <QSettings>
+#include <QStatusBar>
+#include <QTabBar>
+#include <QTabWidget>
+#include <QToolBar>
+
+namespace lw::gui {
+
+MainWindow::MainWindow(const MainWindowOptions& options, QWidget* parent) : QMainWindow(parent) {
+    setObjectName("mainWindow");
+    setWindowTitle(tr("Linework"));
+    QSettings store;
+    m_settings = ReviewSettings::load(store);
+
+    m_tabs = new QTabWidget;
+    m_tabs->setObjectName("mainTabs");
+    m_tabs->setTabsClosable(true);
+    m_tabs->setDocumentMode(true);
+    const QString databasePath = options.databasePath.isEmpty()
+                                     ? studydb::StudyDatabase::defaultPath()
+                                     : options.databasePath;
+    m_browser = new StudyBrowser(databasePath);
+    m_tabs->addTab(m_browser, tr("Studies"));
+    setCentralWidget(m_tabs);
+    connect(m_tabs, &QTabWidget::tabCloseRequested, this, [this](int index) {
+        if (index == 0)
+            return; // the browser stays
+        QWidget* page = m_tabs->widget(index);
+        m_tabs->removeTab(index);
+        page->deleteLater();
+    });
+    // The browser's own close button would remove it: hide it.
+    m_tabs->tabBar()->setTabButton(0, QTabBar::RightSide, nullptr);
+
+    m_loader = new VolumeLoader(this);
+    connect(m_loader, &VolumeLoader::progress, this,
+            [this](double fraction, const QString& message) {
+                m_progress->setValue(int(fraction * 1000));
+                m_loadingLabel->setText(m_loadingWhat +
+                                        (message.isEmpty() ? QString() : ": " + message));
+            });
+    connect(m_loader, &VolumeLoader::loaded, this, &MainWindow::showReview);
+    connect(m_loader, &VolumeLoader::failed, this, &MainWindow::showLoadError);
+    connect(m_loader, &VolumeLoader::cancelled, this, [this] {
+        setLoadingVisible(false);
+        statusBar()->showMessage(tr("Opening cancelled"), 5000);
+    });
+    connect(m_browser, &StudyBrowser::openSeriesRequested, this, &MainWindow::openSeries);
+    connect(m_browser, &StudyBrowser::statusMessage, this,
+            [this](const QString& message) { statusBar()->showMessage(message, 8000); });
+
+    m_loadingLabel = new QLabel;
+    m_progress = new QProgressBar;
+    m_progress->setObjectName("openProgress");
+    m_progress->setRange(0, 1000);
+    m_progress->setMaximumWidth(240);
+    m_cancel = new QPushButton(tr("Cancel"));
+    m_cancel->setObjectName("cancelOpenButton");
+    connect(m_cancel, &QPushButton::clicked, this, &MainWindow::cancelLoading);
+    statusBar()->addPermanentWidget(m_loadingLabel);
+    statusBar()->addPermanentWidget(m_progress);
+    statusBar()->addPermanentWidget(m_cancel);
+    setLoadingVisible(false);
+
+    createActions();
+    createViewMenu();
+    resize(1400, 900);
+}
+
+MainWindow::~MainWindow() = default;
+
+void MainWindow::createActions() {
+    QMenu* file = menuBar()->addMenu(tr("&File"));
+    QToolBar* toolbar = addToolBar(tr("Main"));
+    toolbar->setObjectName("mainToolbar");
+    auto add = [&](const QString& text, const QKeySequence& key, auto slot, bool onToolbar) {
+        QAction* action = file->addAction(text);
+        action->setShortcut(key);
+        connect(action, &QAction::triggered, this, slot);
+        if (onToolbar)
+            toolbar->addAction(action);
+        return action;
+    };
+    add(
+        tr("Import &folder…"), QKeySequence(tr("Ctrl+I")),
+        [this] { m_browser->chooseFolderToImport(); }, true)
+        ->setObjectName("importFolderAction");
+    add(
+        tr("Import &DICOMDIR…"), QKeySequence(tr("Ctrl+Shift+I")),
+        [this] { m_browser->chooseDicomdirToImport(); }, true);
+    add(
+        tr("&Open path without importing…"), QKeySequence::Open, [this] { chooseAndOpenPath(); },
+        true);
+    file->addSeparator();
+    add(
+        tr("&Settings…"), QKeySequence(tr("Ctrl+,")), [this] { showSettings(); }, true);
+    file->addSeparator();
+    add(
+        tr("&Close review"), QKeySequence::Close,
+        [this] {
+            const int index = m_tabs->currentIndex();
+            if (index > 0)
+                emit m_tabs->tabCloseRequested(index);
+        },
+        false);
+    add(
+        tr("&Quit"), QKeySequence::Quit, [] { QApplication::closeAllWindows(); }, false);
+}
+
+void MainWindow::createViewMenu() {
+    QMenu* view = menuBar()->addMenu(tr("&View"));
+    const std::pair<StandardView, QString> views[] = {
+        {StandardView::Anterior, tr("&Anterior")}, {StandardView::Posterior, tr("&Posterior")},
+        {StandardView::Left, tr("&Left")},         {StandardView::Right, tr("&Right")},
+        {StandardView::Superior, tr("&Superior")}, {StandardView::Inferior, tr("&Inferior")}};
+    int key = Qt::Key_1;
+    for (const auto& [standard, name] : views) {
+        QAction* action = view->addAction(name);
+        action->setShortcut(QKeySequence(Qt::CTRL | Qt::Key(key++)));
+        connect(action, &QAction::triggered, this, [this, standard = standard] {
+            if (ReviewWidget* review = currentReview())
+                review->setStandardView(standard);
+        });
+    }
+    view->addSeparator();
+    QAction* reset = view->addAction(tr("&Reset camera"));
+    reset->setShortcut(QKeySequence(Qt::CTRL | Qt::Key_0));
+    connect(reset, &QAction::triggered, this, [this] {
+        if (ReviewWidget* review = currentReview())
+            review->resetCamera();
+    });
+    QAction* browser = view->addAction(tr("&Studies"));
+    browser->setShortcut(QKeySequence(Qt::CTRL | Qt::Key_B));
+    connect(browser, &QAction::triggered, this, [this] { m_tabs->setCurrentIndex(0); });
+}
+
+ReviewWidget* MainWindow::currentReview() const {
+    return qobject_cast<ReviewWidget*>(m_tabs->currentWidget());
+}
+
+QList<ReviewWidget*> MainWindow::reviews() const {
+    QList<ReviewWidget*> result;
+    for (int i = 0; i < m_tabs->count(); ++i)
+        if (auto* review = qobject_cast<ReviewWidget*>(m_tabs->widget(i)))
+            result.append(review);
+    return result;
+}
+
+bool MainWindow::isLoading() const {
+    return m_loader->isRunning();
+}
+
+void MainWindow::openPath(const QString& path, std::optional<double> iso,
+                          const QString& seriesUid) {
+    LoadRequest request;
+    request.path = path;
+    request.seriesUid = seriesUid;
+    request.iso = iso.value_or(m_settings.presets.value(0).hu);
+    startLoading(request, tr("Opening %1").arg(path));
+}
+
+void MainWindow::openSeries(const QString& seriesUid) {
+    QStringList files;
+    try {
+        files = m_browser->database().seriesFiles(seriesUid);
+    } catch (const core::Error& error) {
+        return showLoadError(QString::fromStdString(error.what()));
+    }
+    if (files.isEmpty())
+        return showLoadError(tr("Series %1 has no image files in the database: re-import its "
+                                "folder")
+                                 .arg(seriesUid));
+    LoadRequest request;
+    request.files = files;
+    request.seriesUid = seriesUid;
+    request.iso = m_settings.presets.value(0).hu;
+    startLoading(request, tr("Opening series"));
+}
+
+void MainWindow::chooseAndOpenPath() {
+    const QString folder =
+        QFileDialog::getExistingDirectory(this, tr("Open a DICOM folder without importing it"));
+    if (!folder.isEmpty())
+        openPath(folder);
+}
+
+void MainWindow::startLoading(const LoadRequest& request, const QString& what) {
+    m_loadingWhat = what;
+    m_loadingLabel->setText(what);
+    m_progress->setValue(0);
+    setLoadingVisible(true);
+    m_loader->start(request);
+}
+
+void MainWindow::cancelLoading() {
+    m_loader->cancel();
+    setLoadingVisible(false);
+}
+
+void MainWindow::setLoadingVisible(bool visible) {
+    m_loadingLabel->setVisible(visible);
+    m_progress->setVisible(visible);
+    m_cancel->setVisible(visible);
+}
+
+void MainWindow::showReview(std::shared_ptr<ReviewSource> source) {
+    setLoadingVisible(false);
+    auto* review = new ReviewWidget(std::move(*source), m_settings);
+    const QString title = review->source().title;
+    const int index = m_tabs->addTab(review, title.left(40));
+    m_tabs->setTabToolTip(index, title);
+    m_tabs->setCurrentIndex(index);
+    connect(review, &ReviewWidget::statusChanged, this, [this, review] {
+        if (currentReview() == review)
+            statusBar()->showMessage(review->statusText());
+    });
+    emit reviewOpened(review);
+}
+
+void MainWindow::showLoadError(const QString& reason) {
+    setLoadingVisible(false);
+    m_lastError = reason;
+    statusBar()->showMessage(reason, 15000);
+    emit loadFailed(reason);
+    // Not modal while tests drive the window; a person sees the message box.
+    auto* box =
+        new QMessageBox(QMessageBox::Warning, tr("Cannot open"), reason, QMessageBox::Ok, this);
+    box->setObjectName("loadErrorBox");
+    box->setAttribute(Qt::WA_DeleteOnClose);
+    box->open();
+}
+
+void MainWindow::showSettings() {
+    if (!m_settingsDialog) {
+        m_settingsDialog = new SettingsDialog(m_settings, this);
+        connect(m_settingsDialog, &SettingsDialog::settingsChanged, this,
+                &MainWindow::applySettings);
+    }
+    m_settingsDialog->setSettings(m_settings);
+    m_settingsDialog->show();
+    m_settingsDialog->raise();
+}
+
+void MainWindow::applySettings(const ReviewSettings& settings) {
+    m_settings = settings;
+    for (ReviewWidget* review : reviews())
+        review->applySettings(settings);
+}
+
+} // namespace lw::gui

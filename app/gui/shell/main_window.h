@@ -1,0 +1,79 @@
+#pragma once
+
+// The workstation's window: the study browser as the first tab, one tab per open review, the
+// menus and toolbar, a progress bar with Cancel for opening a volume, and the settings page.
+// It only wires these together; each part lives in its own class.
+
+#include "settings/review_settings.h"
+
+#include <QMainWindow>
+#include <memory>
+#include <optional>
+
+class QLabel;
+class QProgressBar;
+class QPushButton;
+class QTabWidget;
+
+namespace lw::gui {
+
+class ReviewWidget;
+class SettingsDialog;
+class StudyBrowser;
+class VolumeLoader;
+struct LoadRequest;
+struct ReviewSource;
+
+struct MainWindowOptions {
+    QString databasePath; // empty: the study database in the user's data directory
+};
+
+class MainWindow : public QMainWindow {
+    Q_OBJECT
+public:
+    explicit MainWindow(const MainWindowOptions& options = {}, QWidget* parent = nullptr);
+    ~MainWindow() override;
+
+    StudyBrowser& browser() { return *m_browser; }
+    ReviewWidget* currentReview() const;
+    QList<ReviewWidget*> reviews() const;
+    const ReviewSettings& settings() const { return m_settings; }
+    bool isLoading() const;
+    QString lastError() const { return m_lastError; }
+
+public slots:
+    // Opens a folder, DICOMDIR, file or phantom:N directly in a review (not via the database).
+    void openPath(const QString& path, std::optional<double> iso = std::nullopt,
+                  const QString& seriesUid = {});
+    // Opens a series stored in the study database.
+    void openSeries(const QString& seriesUid);
+    void chooseAndOpenPath();
+    void showSettings();
+    void applySettings(const lw::gui::ReviewSettings& settings);
+    void cancelLoading();
+
+signals:
+    void reviewOpened(lw::gui::ReviewWidget* review);
+    void loadFailed(const QString& reason);
+
+private:
+    void createActions();
+    void createViewMenu();
+    void startLoading(const LoadRequest& request, const QString& what);
+    void showReview(std::shared_ptr<ReviewSource> source);
+    void showLoadError(const QString& reason);
+    void setLoadingVisible(bool visible);
+
+    ReviewSettings m_settings;
+    QTabWidget* m_tabs = nullptr;
+    StudyBrowser* m_browser = nullptr;
+    VolumeLoader* m_loader = nullptr;
+    SettingsDialog* m_settingsDialog = nullptr;
+    QProgressBar* m_progress = nullptr;
+    QPushButton* m_cancel = nullptr;
+    QLabel* m_loadingLabel = nullptr;
+    QString m_loadingWhat;
+    QString m_lastError;
+};
+
+} // namespace lw::gui
