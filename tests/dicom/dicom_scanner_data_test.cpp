@@ -237,3 +237,26 @@ TEST(DicomScannerData, EveryFileAndFolderScansPlansAndLoadsOrFailsClearly) {
                 inputs.size(), loaded, loadErrors, scanErrors);
     EXPECT_GT(loaded, 100u);
 }
+
+// The study database reopens a series from its stored file list: the same series as a folder scan.
+TEST(DicomScannerData, ScanDicomFilesOfAStoredSeriesMatchesTheFolderScan) {
+    const fs::path folder = dataDir() / "dicom/ct_head_ge_hispeed_tilt_varspacing";
+    const dicom::DicomIndex byFolder = dicom::scanDicom(folder);
+    ASSERT_EQ(byFolder.seriesCount(), 1u);
+    const dicom::SeriesInfo& series = *byFolder.allSeries()[0];
+    std::vector<fs::path> files;
+    for (const auto& instance : series.instances)
+        files.emplace_back(instance.path);
+    const dicom::DicomIndex byFiles = dicom::scanDicomFiles(files);
+    ASSERT_EQ(byFiles.seriesCount(), 1u);
+    EXPECT_TRUE(byFiles.errors.empty());
+    const dicom::SeriesInfo& again = *byFiles.allSeries()[0];
+    EXPECT_EQ(again.seriesInstanceUid, series.seriesInstanceUid);
+    ASSERT_EQ(again.instances.size(), series.instances.size());
+    const auto assembly = dicom::planVolumes(again);
+    ASSERT_EQ(assembly.volumes.size(), 1u);
+    EXPECT_EQ(assembly.volumes[0].dims, glm::ivec3(512, 512, 28));
+
+    const volume::Volume middle = dicom::loadSlice(again, assembly.volumes[0], 14);
+    EXPECT_EQ(middle.dims(), glm::ivec3(512, 512, 1));
+}

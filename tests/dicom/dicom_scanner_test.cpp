@@ -348,3 +348,48 @@ TEST(DicomScanner, EmptyDicomdirGivesAnEmptyIndex) {
     EXPECT_TRUE(index.errors.empty());
     EXPECT_TRUE(anyWarningContains(index, "no directory records"));
 }
+
+TEST(DicomScanner, ScanDicomFilesReadsExactlyTheseFiles) {
+    test::TempDir dir;
+    const SeriesSpec spec = newSeries(4, 4);
+    std::vector<fs::path> files = writeSeries(dir / "s", spec);
+    // A second series in the same folder that the list does not name: it must stay out.
+    writeSeries(dir / "s", newSeries(5, 2), "OTHER");
+    writeText(dir / "s" / "junk.dcm", "not DICOM");
+    files.push_back(dir / "s" / "junk.dcm");
+    files.push_back(dir / "s" / "gone.dcm");
+    std::reverse(files.begin(), files.end()); // caller order does not matter
+
+    double last = -1.0;
+    core::Progress progress([&](double fraction, const std::string&) { last = fraction; });
+    const dicom::DicomIndex index = dicom::scanDicomFiles(files, &progress);
+    EXPECT_DOUBLE_EQ(last, 1.0);
+    EXPECT_EQ(index.filesExamined, files.size());
+    ASSERT_EQ(index.seriesCount(), 1u);
+    const dicom::SeriesInfo* series = index.findSeries(spec.seriesUid);
+    ASSERT_NE(series, nullptr);
+    ASSERT_EQ(series->instances.size(), 4u);
+    for (int i = 0; i < 4; ++i)
+        EXPECT_EQ(series->instances[std::size_t(i)].instanceNumber, i + 1);
+
+    ASSERT_EQ(index.errors.size(), 2u);
+    const auto* missing = findError(index, "gone.dcm");
+    ASSERT_NE(missing, nullptr);
+    EXPECT_EQ(missing->reason, "file is missing");
+    const auto* junk = findError(index, "junk.dcm");
+    ASSERT_NE(junk, nullptr);
+    EXPECT_FALSE(junk->reason.empty());
+}
+
+TEST(DicomScanner, ScanDicomFilesEmptyListAndCancellation) {
+    const dicom::DicomIndex empty = dicom::scanDicomFiles({});
+    EXPECT_EQ(empty.seriesCount(), 0u);
+    EXPECT_TRUE(empty.errors.empty());
+
+    test::TempDir dir;
+    const auto files = writeSeries(dir.path(), newSeries(1, 6));
+    auto token = std::make_shared<core::CancelToken>();
+    token->cancel();
+    core::Progress cancelled([](double, const std::string&) {}, token);
+    EXPECT_THROW(dicom::scanDicomFiles(files, &cancelled), core::Cancelled);
+}

@@ -74,6 +74,16 @@ void expectSliceValues(const volume::Volume& v, int z, const std::vector<int>& e
             ASSERT_EQ(v.storedValue(x, y, z), expected[std::size_t(y * kSize + x)]) << "z " << z << " x " << x << " y " << y;
 }
 
+// Runs `action`, which must throw a core::Error whose message contains `text`.
+template <typename Action> void expectErrorMentions(Action&& action, const std::string& text) {
+    try {
+        action();
+        ADD_FAILURE() << "expected an error mentioning " << text;
+    } catch (const core::Error& e) {
+        EXPECT_NE(std::string(e.what()).find(text), std::string::npos) << e.what();
+    }
+}
+
 } // namespace
 
 TEST(VolumeAssembler, SortsByPositionNotByNameOrInstanceNumber) {
@@ -419,13 +429,14 @@ TEST(VolumeAssembler, DecodeErrorNamesTheFile) {
     const SeriesInfo series = readSeries(files);
     const SeriesAssembly assembly = planVolumes(series);
     ASSERT_EQ(assembly.volumes.size(), 1u);
-    std::filesystem::remove(files[1]);
-    try {
-        loadVolume(series, assembly.volumes[0]);
-        FAIL() << "expected an error";
-    } catch (const core::Error& e) {
-        EXPECT_NE(std::string(e.what()).find(files[1].filename().string()), std::string::npos) << e.what();
-    }
+    const VolumePlan& plan = assembly.volumes[0];
+    expectErrorMentions([&] { loadSlice(series, plan, 3); }, series.seriesInstanceUid);
+
+    const std::filesystem::path gone = series.instances[plan.slices[1].instance].path;
+    std::filesystem::remove(gone);
+    expectErrorMentions([&] { loadVolume(series, plan); }, gone.filename().string());
+    expectErrorMentions([&] { loadSlice(series, plan, 1); }, gone.filename().string());
+    EXPECT_NO_THROW(loadSlice(series, plan, 0)); // only the slice asked for is read
 }
 
 TEST(VolumeAssembler, MixedSignednessBecomesInt16WhenValuesFit) {
@@ -478,4 +489,28 @@ TEST(VolumeAssembler, ClassicMultiFrameWithoutPositionsIsStackedWithWarning) {
     const volume::Volume v = loadVolume(series, assembly.volumes[0]);
     for (int z = 0; z < 3; ++z)
         expectSliceValues(v, z, slicePixels(z));
+}
+
+TEST(VolumeAssembler, LoadSliceDecodesOneSliceWithItsGeometry) {
+    lw::test::TempDir dir;
+    const std::vector<double> zs = {0, 1.5, 3, 6, 7.5};
+    const SeriesInfo series = readSeries(writeStack(dir, zs, baseSlice(dt::makeTestUid())));
+    const SeriesAssembly assembly = planVolumes(series);
+    ASSERT_EQ(assembly.volumes.size(), 1u);
+    const VolumePlan& plan = assembly.volumes[0];
+    const volume::Volume whole = loadVolume(series, plan);
+
+    for (std::size_t k : {std::size_t(0), std::size_t(3), zs.size() - 1}) {
+        const volume::Volume slice = loadSlice(series, plan, k);
+        EXPECT_EQ(slice.dims(), glm::ivec3(kSize, kSize, 1));
+        EXPECT_EQ(slice.voxelType(), whole.voxelType());
+        expectSliceValues(slice, 0, slicePixels(int(k)));
+        // The slice sits where the whole volume has it: same patient position of its corners.
+        for (const glm::dvec3 corner : {glm::dvec3(0, 0, 0), glm::dvec3(kSize - 1, kSize - 1, 0)}) {
+            const glm::dvec3 expected =
+                whole.geometry().indexToPatient(corner + glm::dvec3(0, 0, double(k)));
+            const glm::dvec3 actual = slice.geometry().indexToPatient(corner);
+            EXPECT_NEAR(glm::distance(expected, actual), 0.0, 1e-9) << "slice " << k;
+        }
+    }
 }

@@ -733,25 +733,24 @@ DicomIndex scanDicom(const fs::path& path, core::Progress* progress) {
 
 DicomIndex scanDicomFiles(const std::vector<fs::path>& files, core::Progress* progress) {
     DicomIndex index;
+    if (!files.empty())
+        index.root = files.front().parent_path();
     std::vector<fs::path> present;
     present.reserve(files.size());
     for (const fs::path& file : files) {
         std::error_code ec;
-        if (fs::is_regular_file(file, ec))
+        const fs::file_status status = fs::status(file, ec);
+        if (fs::is_regular_file(status))
             present.push_back(file);
+        else if (!fs::exists(status))
+            index.errors.push_back({file.string(), "file is missing"});
         else
-            index.errors.push_back({file.string(), ec ? ec.message() : "file is missing"});
+            index.errors.push_back({file.string(), ec ? ec.message() : "not a regular file"});
     }
-    if (!files.empty())
-        index.root = files.front().parent_path();
-    std::vector<FileError> missing = std::move(index.errors);
-    index.errors.clear();
+    // Sorted like a folder scan, so the grouping does not depend on the caller's order.
     std::sort(present.begin(), present.end());
-    finishIndex(index, present, progress);
+    finishIndex(index, present, progress); // adds the read errors and sorts all errors by file
     index.filesExamined = files.size();
-    index.errors.insert(index.errors.begin(), missing.begin(), missing.end());
-    std::stable_sort(index.errors.begin(), index.errors.end(),
-                     [](const FileError& a, const FileError& b) { return a.file < b.file; });
     return index;
 }
 
