@@ -228,10 +228,7 @@ void MainWindow::showReview(std::shared_ptr<ReviewSource> source) {
     const int index = m_tabs->addTab(review, title.left(40));
     m_tabs->setTabToolTip(index, title);
     m_tabs->setCurrentIndex(index);
-    connect(review, &ReviewWidget::statusChanged, this, [this, review] {
-        if (currentReview() == review)
-            statusBar()->showMessage(review->statusText());
-    });
+
     emit reviewOpened(review);
 }
 

@@ -64,6 +64,8 @@ OpenedVolume openPhantom(const std::string& spec, core::Progress* progress) {
     opened.source = spec;
     opened.description =
         "phantom " + std::string(render::phantomKindName(kind)) + " " + dimsText(*dims);
+    if (progress)
+        progress->report(1.0, "Phantom ready");
     return opened;
 }
 
@@ -79,23 +81,11 @@ core::Progress subProgress(core::Progress* parent, double from, double to) {
         parent->cancelToken());
 }
 
-std::string formatDegrees(double value) {
-    char text[32];
-    std::snprintf(text, sizeof text, "%.1f", value);
-    return text;
-}
-
+// The plan already words tilt, uneven gaps and missing slices; add the series' own warnings and
+// the files that could not be used.
 std::vector<std::string> planWarnings(const dicom::VolumePlan& plan,
                                       const dicom::SeriesAssembly& assembly) {
     std::vector<std::string> warnings;
-    if (plan.tiltDegrees > 0.01)
-        warnings.push_back("gantry tilt " + formatDegrees(plan.tiltDegrees) +
-                           "° (kept as a sheared geometry, not resampled)");
-    if (plan.unevenGaps)
-        warnings.push_back("uneven slice gaps (" + formatDegrees(plan.minGap) + "–" +
-                           formatDegrees(plan.maxGap) + " mm)");
-    if (plan.missingSlices > 0)
-        warnings.push_back(std::to_string(plan.missingSlices) + " slices missing");
     warnings.insert(warnings.end(), plan.warnings.begin(), plan.warnings.end());
     warnings.insert(warnings.end(), assembly.warnings.begin(), assembly.warnings.end());
     for (const dicom::FileError& error : assembly.errors)
@@ -181,6 +171,9 @@ bool isDicomBuild() {
 
 OpenedVolume openInput(const std::string& path, const OpenOptions& options,
                        core::Progress* progress) {
+    // A request already cancelled (a newer one took its place) reads nothing.
+    if (progress)
+        progress->throwIfCancelled();
     if (path.rfind("phantom:", 0) == 0)
         return openPhantom(path, progress);
 #ifdef LINEWORK_HAVE_DICOM
@@ -194,7 +187,9 @@ OpenedVolume openInput(const std::string& path, const OpenOptions& options,
     if (progress)
         progress->report(0.0, "Reading " + path);
     OpenedVolume opened;
-    opened.volume = volume::readVolumeFile(path);
+    opened.volume = volume::readVolumeFile(path, progress);
+    if (progress)
+        progress->throwIfCancelled();
     opened.source = path;
     opened.description =
         std::filesystem::path(path).filename().string() + " " + dimsText(opened.volume.dims());

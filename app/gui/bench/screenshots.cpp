@@ -1,0 +1,118 @@
+// linework-screenshots: the user guide's pictures of the real windows (browser, review,
+// settings), taken from the X server as displayed. scripts/user_guide_screenshots.sh runs it
+// under Xvfb so they can be regenerated after a change.
+//
+//   linework-screenshots OUTDIR PATH...    (imports every PATH, reviews the first series)
+#include "browser/study_browser.h"
+#include "review/review_widget.h"
+#include "settings/settings_dialog.h"
+#include "shell/main_window.h"
+
+#include <QApplication>
+#include <QDir>
+#include <QElapsedTimer>
+#include <QScreen>
+#include <QSurfaceFormat>
+#include <QTemporaryDir>
+#include <QTest>
+#include <cstdio>
+#include <functional>
+
+using namespace lw::gui;
+
+namespace {
+
+bool waitFor(const std::function<bool()>& done, int timeoutMs = 120000) {
+    QElapsedTimer timer;
+    timer.start();
+    while (!done()) {
+        if (timer.elapsed() > timeoutMs)
+            return false;
+        QTest::qWait(20);
+    }
+    return true;
+}
+
+// What the X server shows of `widget`'s window (GL panels included).
+bool saveWindow(QWidget& widget, const QString& path) {
+    QTest::qWait(300);
+    const QPixmap shot = widget.screen()->grabWindow(widget.window()->winId());
+    const bool saved = shot.save(path);
+    std::printf("%s %s (%dx%d)\n", saved ? "wrote" : "could not write", qPrintable(path),
+                shot.width(), shot.height());
+    return saved;
+}
+
+} // namespace
+
+int main(int argc, char* argv[]) {
+    QSurfaceFormat format;
+    format.setVersion(4, 5);
+    format.setProfile(QSurfaceFormat::CoreProfile);
+    format.setDepthBufferSize(24);
+    QSurfaceFormat::setDefaultFormat(format);
+    QTemporaryDir home;
+    qputenv("XDG_CONFIG_HOME", (home.path() + "/config").toLocal8Bit());
+    qputenv("XDG_DATA_HOME", (home.path() + "/data").toLocal8Bit());
+    QApplication app(argc, argv);
+    const QStringList args = QApplication::arguments().mid(1);
+    if (args.size() < 2) {
+        std::fprintf(stderr, "usage: linework-screenshots OUTDIR PATH...\n");
+        return 2;
+    }
+    const QDir out(args.front());
+    QDir().mkpath(out.path());
+
+    MainWindowOptions options;
+    options.databasePath = home.path() + "/studies.sqlite";
+    MainWindow window(options);
+    window.resize(1400, 860);
+    window.show();
+    if (!QTest::qWaitForWindowExposed(&window))
+        return 1;
+
+    int imports = 0;
+    QObject::connect(&window.browser(), &StudyBrowser::importFinished, [&] { ++imports; });
+    for (const QString& path : args.mid(1))
+        window.browser().importPath(path);
+    if (!waitFor([&] { return imports == args.size() - 1; })) {
+        std::fprintf(stderr, "linework-screenshots: the import did not finish\n");
+        return 1;
+    }
+    // The series with the most slices: the diagnostic volume, not a scout.
+    QStringList series;
+    int mostSlices = 0;
+    for (const auto& patient : window.browser().database().patients())
+        for (const auto& study : patient.studies)
+            for (const auto& record : study.series)
+                if (record.sliceCount > mostSlices) {
+                    mostSlices = record.sliceCount;
+                    series = QStringList{record.uid};
+                }
+    if (series.isEmpty()) {
+        std::fprintf(stderr, "linework-screenshots: nothing was imported\n");
+        return 1;
+    }
+    window.browser().selectSeries(series.front());
+    bool ok = saveWindow(window, out.filePath("browser.png"));
+
+    window.openSeries(series.front());
+    if (!waitFor([&] {
+            ReviewWidget* review = window.currentReview();
+            return review && review->status().framesShown > 0 && !review->isBusy();
+        })) {
+        std::fprintf(stderr, "linework-screenshots: the review did not open: %s\n",
+                     qPrintable(window.lastError()));
+        return 1;
+    }
+    window.currentReview()->camera().setView(30.0, 15.0);
+    waitFor([&] { return !window.currentReview()->isBusy(); });
+    ok = saveWindow(window, out.filePath("review.png")) && ok;
+
+    window.showSettings();
+    auto* settings = window.findChild<SettingsDialog*>();
+    if (!settings || !QTest::qWaitForWindowExposed(settings))
+        return 1;
+    ok = saveWindow(*settings, out.filePath("settings.png")) && ok;
+    return ok ? 0 : 1;
+}

@@ -1,0 +1,191 @@
+// The workstation's window end to end: import the bundled demo study through the browser and open
+// its series in a review; open paths directly; cancel an open; errors (a series whose files have
+// gone, a path that does not exist) are shown, never a crash; settings apply to open reviews.
+#include "browser/study_browser.h"
+#include "gui_test_support.h"
+#include "review/review_panel.h"
+#include "review/review_widget.h"
+#include "shell/main_window.h"
+
+#include <QSignalSpy>
+#include <QTabWidget>
+#include <QtTest>
+#include <filesystem>
+
+using namespace lw::gui;
+
+namespace {
+
+QString demoStudy() {
+    return lw::test::sourcePath() + "/resources/demo/ct_head_ge_tilt";
+}
+
+bool waitForReview(MainWindow& window, int timeoutMs = 60000) {
+    QElapsedTimer timer;
+    timer.start();
+    while (timer.elapsed() < timeoutMs) {
+        QTest::qWait(20);
+        ReviewWidget* review = window.currentReview();
+        if (review && review->status().framesShown > 0 && !review->isBusy())
+            return true;
+    }
+    return false;
+}
+
+QString importAndFindSeries(MainWindow& window, const QString& path) {
+    QSignalSpy finished(&window.browser(), &StudyBrowser::importFinished);
+    window.browser().importPath(path);
+    if (!finished.wait(60000))
+        return {};
+    for (const auto& patient : window.browser().database().patients())
+        for (const auto& study : patient.studies)
+            for (const auto& series : study.series)
+                if (series.sliceCount > 1)
+                    return series.uid;
+    return {};
+}
+
+MainWindowOptions isolatedOptions(const QTemporaryDir& dir) {
+    MainWindowOptions options;
+    options.databasePath = dir.filePath("studies.sqlite");
+    return options;
+}
+
+} // namespace
+
+class MainWindowTest : public QObject {
+    Q_OBJECT
+private slots:
+    void openSeriesFromTheBrowser();
+    void openPathDirectly_data();
+    void openPathDirectly();
+    void seriesWithMissingFilesSaysSo();
+    void cancelOpening();
+    void settingsApplyToOpenReviews();
+};
+
+void MainWindowTest::openSeriesFromTheBrowser() {
+    QTemporaryDir dir;
+    MainWindow window(isolatedOptions(dir));
+    window.resize(1200, 800);
+    window.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&window));
+    const QString uid = importAndFindSeries(window, demoStudy());
+    QVERIFY(!uid.isEmpty());
+    // Double-click on the series row is StudyBrowser::openSeriesRequested.
+    QVERIFY(window.browser().selectSeries(uid));
+    emit window.browser().openSeriesRequested(uid);
+    QVERIFY(waitForReview(window));
+    ReviewWidget* review = window.currentReview();
+    QCOMPARE(review->source().seriesUid, uid);
+    QVERIFY(review->source().title.contains("512x512x28"));
+    QVERIFY(review->source().warnings.join(" ").contains("tilt"));
+    QCOMPARE(review->iso(), 400.0); // the bone preset, nothing to click first
+    QVERIFY(review->status().triangles > 10000);
+    QTest::qWait(100);
+    const QImage iso = review->isoPanel().grabFramebuffer();
+    QVERIFY(lw::test::pixelsDifferentFrom(iso, Qt::white) > iso.width() * iso.height() / 50);
+    QVERIFY(lw::test::pixelsDifferentFrom(review->silhouettePanel().grabFramebuffer(), Qt::white,
+                                          100) > 300);
+}
+
+void MainWindowTest::openPathDirectly_data() {
+    QTest::addColumn<QString>("path");
+    QTest::addColumn<bool>("opens");
+    QTest::addColumn<QString>("reasonContains");
+    QTest::addRow("phantom") << "phantom:48" << true << "";
+    QTest::addRow("demo DICOM folder") << demoStudy() << true << "";
+    QTest::addRow("missing path") << "/nonexistent/linework/study" << false
+                                  << "/nonexistent/linework/study";
+    QTest::addRow("bad phantom spec") << "phantom:1x2" << false << "phantom:1x2";
+}
+
+void MainWindowTest::openPathDirectly() {
+    QFETCH(QString, path);
+    QFETCH(bool, opens);
+    QFETCH(QString, reasonContains);
+    QTemporaryDir dir;
+    MainWindow window(isolatedOptions(dir));
+    window.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&window));
+    QSignalSpy failed(&window, &MainWindow::loadFailed);
+    window.openPath(path);
+    if (opens) {
+        QVERIFY(waitForReview(window));
+        QCOMPARE(window.reviews().size(), 1);
+    } else {
+        QVERIFY(failed.wait(30000));
+        QVERIFY2(failed.front().front().toString().contains(reasonContains),
+                 qPrintable(failed.front().front().toString()));
+        QVERIFY(window.reviews().isEmpty());
+        QVERIFY(!window.isLoading());
+    }
+}
+
+void MainWindowTest::seriesWithMissingFilesSaysSo() {
+    QTemporaryDir dir;
+    // A copy of the demo study, so a file can go missing without touching the original.
+    const std::filesystem::path copy = dir.filePath("study").toStdString();
+    std::filesystem::copy(demoStudy().toStdString(), copy);
+    MainWindow window(isolatedOptions(dir));
+    window.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&window));
+    const QString uid = importAndFindSeries(window, QString::fromStdString(copy.string()));
+    QVERIFY(!uid.isEmpty());
+    const QStringList files = window.browser().database().seriesFiles(uid);
+    QVERIFY(files.size() > 2);
+    QVERIFY(QFile::remove(files[1]));
+    QSignalSpy failed(&window, &MainWindow::loadFailed);
+    window.openSeries(uid);
+    QVERIFY(failed.wait(30000));
+    const QString reason = failed.front().front().toString();
+    QVERIFY2(reason.contains("missing") && reason.contains(files[1]), qPrintable(reason));
+    QVERIFY(window.reviews().isEmpty());
+    // The other source files are untouched.
+    QVERIFY(QFile::exists(files[0]) && QFile::exists(files[2]));
+}
+
+void MainWindowTest::cancelOpening() {
+    QTemporaryDir dir;
+    MainWindow window(isolatedOptions(dir));
+    window.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&window));
+    window.openPath(demoStudy());
+    QVERIFY(window.isLoading());
+    window.cancelLoading();
+    QVERIFY(!window.isLoading());
+    QTest::qWait(1500); // whatever the worker finishes afterwards must not open a review
+    QVERIFY(window.reviews().isEmpty());
+    // And the window still works.
+    window.openPath("phantom:32");
+    QVERIFY(waitForReview(window));
+}
+
+void MainWindowTest::settingsApplyToOpenReviews() {
+    QTemporaryDir dir;
+    MainWindow window(isolatedOptions(dir));
+    window.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&window));
+    window.openPath("phantom:48");
+    QVERIFY(waitForReview(window));
+    ReviewSettings settings = window.settings();
+    settings.method = lw::render::SilhouetteMethod::RayCastVisibility;
+    settings.background = QColor(20, 20, 40);
+    const std::uint64_t frames = window.currentReview()->status().framesShown;
+    window.applySettings(settings);
+    QCOMPARE(window.currentReview()->settings().method,
+             lw::render::SilhouetteMethod::RayCastVisibility);
+    QVERIFY(QTest::qWaitFor(
+        [&] {
+            return window.currentReview()->status().framesShown > frames &&
+                   !window.currentReview()->isBusy();
+        },
+        30000));
+    QVERIFY(window.currentReview()->statusText().startsWith("Method 2"));
+    QTest::qWait(100);
+    const QImage silhouette = window.currentReview()->silhouettePanel().grabFramebuffer();
+    QCOMPARE(silhouette.pixelColor(2, 2).rgb(), QColor(20, 20, 40).rgb());
+}
+
+LW_GUI_TEST_MAIN(MainWindowTest)
+#include "main_window_test.moc"
