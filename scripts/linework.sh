@@ -53,14 +53,20 @@ cmake --build "$build_dir" --parallel "$jobs"
 
 demo=resources/demo/ct_head_ge_tilt
 if [ "$command" = run ]; then
-  # The main job: the demo study's summary, then its side-by-side review (shaded bone surface
-  # left, silhouette right, one camera) as a PNG. The review GUI takes this place once it exists.
+  # The main job. With a display: the workstation on the bundled demo study, its series already
+  # in review at the bone preset. Without one: the same review headless, as a PNG.
+  gui="$build_dir/app/gui/linework"
+  if [ -n "${DISPLAY:-}${WAYLAND_DISPLAY:-}" ] && [ -x "$gui" ]; then
+    echo "linework: opening the demo study in the workstation"
+    exec "$gui" "$demo"
+  fi
   cli="$build_dir/app/cli/linework-cli"
   "$cli" info "$demo"
   mkdir -p out
   "$cli" render "$demo" --iso 400 --method 3 --panel both --view 30,20 --size 900x900 \
          -o out/demo_review.png
-  echo "linework: the review is in $root/out/demo_review.png"
+  echo "linework: no display, so the review was rendered headless: $root/out/demo_review.png"
+  echo "linework: with a display this command opens the workstation ($gui)"
   exit 0
 fi
 
