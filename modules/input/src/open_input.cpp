@@ -182,7 +182,8 @@ OpenedVolume openInput(const std::string& path, const OpenOptions& options,
         return openDicom(path, options, progress);
 #else
     if (options.seriesUid)
-        throw core::Error("--series", "this build reads no DICOM (LINEWORK_DICOM off)");
+        throw core::Error(path, "a series UID was given, but this build reads no DICOM "
+                                "(LINEWORK_DICOM off)");
 #endif
     if (progress)
         progress->report(0.0, "Reading " + path);
