@@ -13,6 +13,7 @@
 #include <QStandardPaths>
 #include <QTemporaryDir>
 #include <QTest>
+#include <mutex>
 
 using namespace lw;
 using namespace lw::studydb;
@@ -245,7 +246,9 @@ private slots:
         if (stage.isEmpty())
             cancel->cancel();
         QStringList messages;
+        std::mutex mutex; // the scanner reports from several threads at once
         const auto onProgress = [&](double, const std::string& message) {
+            std::lock_guard lock(mutex);
             messages.append(QString::fromStdString(message));
             if (!stage.isEmpty() &&
                 QString::fromStdString(message).contains(stage, Qt::CaseInsensitive))

@@ -27,7 +27,8 @@ constexpr int kThumbnailSize = 128;
 
 // Runs on the calling thread; opens its own connection to `databasePath` (so it may run on a
 // worker thread while the UI holds another connection to the same file). `onProgress` gets the
-// overall fraction and a message; `cancel` may be set from any thread. Returns the summary
+// overall fraction and a message, possibly from several scanner threads at once (make it
+// thread-safe); `cancel` may be set from any thread. Returns the summary
 // (cancelled = true when it stopped, with nothing written). Throws core::Error when the input
 // path cannot be read at all or the database cannot be opened or written.
 ImportSummary importStudies(const QString& databasePath, const QString& inputPath,
