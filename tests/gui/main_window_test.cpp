@@ -83,10 +83,10 @@ void MainWindowTest::openSeriesFromTheBrowser() {
     QCOMPARE(review->iso(), 400.0); // the bone preset, nothing to click first
     QVERIFY(review->status().triangles > 10000);
     QTest::qWait(100);
-    const QImage iso = review->isoPanel().grabFramebuffer();
+    const QImage iso = review->isoPanel().grabImage();
     QVERIFY(lw::test::pixelsDifferentFrom(iso, Qt::white) > iso.width() * iso.height() / 50);
-    QVERIFY(lw::test::pixelsDifferentFrom(review->silhouettePanel().grabFramebuffer(), Qt::white,
-                                          100) > 300);
+    QVERIFY(lw::test::pixelsDifferentFrom(review->silhouettePanel().grabImage(), Qt::white, 100) >
+            300);
 }
 
 void MainWindowTest::openPathDirectly_data() {
@@ -183,7 +183,7 @@ void MainWindowTest::settingsApplyToOpenReviews() {
         30000));
     QVERIFY(window.currentReview()->statusText().startsWith("Method 2"));
     QTest::qWait(100);
-    const QImage silhouette = window.currentReview()->silhouettePanel().grabFramebuffer();
+    const QImage silhouette = window.currentReview()->silhouettePanel().grabImage();
     QCOMPARE(silhouette.pixelColor(2, 2).rgb(), QColor(20, 20, 40).rgb());
 }
 

@@ -102,8 +102,8 @@ void ReviewTest::panelsDraw() {
     QTest::qWait(50);
     QVERIFY2(review.errorText().isEmpty(), qPrintable(review.errorText()));
 
-    const QImage iso = review.isoPanel().grabFramebuffer();
-    const QImage silhouette = review.silhouettePanel().grabFramebuffer();
+    const QImage iso = review.isoPanel().grabImage();
+    const QImage silhouette = review.silhouettePanel().grabImage();
     const int area = iso.width() * iso.height();
     const int surfacePixels = lw::test::pixelsDifferentFrom(iso, Qt::white);
     QVERIFY2(surfacePixels > area / 20, qPrintable(QString::number(surfacePixels)));
@@ -156,20 +156,20 @@ void ReviewTest::methodAndChunkingSwitchTheRightPanel() {
     review.show();
     QVERIFY(QTest::qWaitForWindowExposed(&review));
     QVERIFY(waitSettled(review));
-    const QImage method3 = review.silhouettePanel().grabFramebuffer();
+    const QImage method3 = review.silhouettePanel().grabImage();
 
     review.applySettings(settingsFor(2, Chunking::Off));
     QVERIFY(waitSettled(review, review.status().framesShown + 1));
     QVERIFY(review.statusText().startsWith("Method 2"));
-    const QImage method2 = review.silhouettePanel().grabFramebuffer();
+    const QImage method2 = review.silhouettePanel().grabImage();
     QVERIFY(method2 != method3); // another method draws other pixels
 
     review.applySettings(settingsFor(1, Chunking::Off, PanelGl::InPanels));
     QVERIFY(waitSettled(review, review.status().framesShown + 1));
     QVERIFY(review.silhouettePanel().usesGl());
     QTest::qWait(100);
-    QVERIFY(lw::test::pixelsDifferentFrom(review.silhouettePanel().grabFramebuffer(), Qt::white,
-                                          100) > 300);
+    QVERIFY(lw::test::pixelsDifferentFrom(review.silhouettePanel().grabImage(), Qt::white, 100) >
+            300);
 
     review.applySettings(settingsFor(1, Chunking::Fixed, PanelGl::InPanels));
     QVERIFY(waitSettled(review, review.status().framesShown + 1));
@@ -183,8 +183,8 @@ void ReviewTest::camerasAreLinked() {
     review.show();
     QVERIFY(QTest::qWaitForWindowExposed(&review));
     QVERIFY(waitSettled(review));
-    const QImage isoBefore = review.isoPanel().grabFramebuffer();
-    const QImage silhouetteBefore = review.silhouettePanel().grabFramebuffer();
+    const QImage isoBefore = review.isoPanel().grabImage();
+    const QImage silhouetteBefore = review.silhouettePanel().grabImage();
     // Drag on the iso panel: the silhouette panel must follow.
     ReviewPanel& panel = review.isoPanel();
     const QPoint centre = panel.rect().center();
@@ -196,8 +196,8 @@ void ReviewTest::camerasAreLinked() {
     QTest::mouseRelease(&panel, Qt::LeftButton, {}, centre + QPoint(120, 0));
     QVERIFY(waitSettled(review, review.status().framesShown + 1));
     QVERIFY(review.camera().cameraSetup().azimuthDeg != 0.0);
-    QVERIFY(review.isoPanel().grabFramebuffer() != isoBefore);
-    QVERIFY(review.silhouettePanel().grabFramebuffer() != silhouetteBefore);
+    QVERIFY(review.isoPanel().grabImage() != isoBefore);
+    QVERIFY(review.silhouettePanel().grabImage() != silhouetteBefore);
 
     review.setStandardView(StandardView::Left);
     QCOMPARE(review.camera().cameraSetup().azimuthDeg, 90.0);
@@ -276,7 +276,7 @@ void ReviewTest::windowMatchesBaseline() {
     // QWidget::grab misses what a QOpenGLWidget paints with QPainter over GL; take each panel's
     // framebuffer as the screen shows it.
     for (ReviewPanel* panel : {&review.isoPanel(), &review.silhouettePanel()})
-        painter.drawImage(panel->mapTo(&review, QPoint(0, 0)), panel->grabFramebuffer());
+        painter.drawImage(panel->mapTo(&review, QPoint(0, 0)), panel->grabImage());
     painter.end();
     QCOMPARE(shot.size(), QSize(1000, 640));
 

@@ -6,15 +6,52 @@
 #include <QElapsedTimer>
 #include <QKeyEvent>
 #include <QMouseEvent>
+#include <QOffscreenSurface>
 #include <QOpenGLContext>
 #include <QOpenGLExtraFunctions>
 #include <QOpenGLFunctions>
+#include <QOpenGLWidget>
 #include <QPainter>
+#include <QStackedLayout>
 #include <QWheelEvent>
 #include <cmath>
 #include <cstring>
 
 namespace lw::gui {
+
+// The GL view: a QOpenGLWidget whose drawing is the panel's.
+class PanelGlView final : public QOpenGLWidget {
+public:
+    explicit PanelGlView(ReviewPanel& panel) : QOpenGLWidget(&panel), m_panel(panel) {
+        setAttribute(Qt::WA_TransparentForMouseEvents); // the panel handles the mouse
+    }
+
+protected:
+    void initializeGL() override { m_panel.initializeGlView(); }
+    void paintGL() override { m_panel.paintGlView(); }
+
+private:
+    ReviewPanel& m_panel;
+};
+
+// The image view: raster painting, no OpenGL in the window.
+class PanelImageView final : public QWidget {
+public:
+    explicit PanelImageView(ReviewPanel& panel) : QWidget(&panel), m_panel(panel) {
+        setAttribute(Qt::WA_OpaquePaintEvent);
+        setAttribute(Qt::WA_TransparentForMouseEvents);
+    }
+
+protected:
+    void paintEvent(QPaintEvent*) override {
+        QPainter painter(this);
+        m_panel.paintImageView(painter);
+    }
+
+private:
+    ReviewPanel& m_panel;
+};
+
 namespace {
 
 glm::vec4 toVec4(const QColor& colour) {
@@ -28,96 +65,29 @@ QImage toQImage(const core::ImageRgba8& image) {
     return result;
 }
 
+GlInfo probeGl() {
+    GlInfo info;
+    QOpenGLContext context;
+    QOffscreenSurface surface;
+    surface.create();
+    if (!context.create() || !context.makeCurrent(&surface))
+        return info;
+    const auto* renderer =
+        reinterpret_cast<const char*>(context.functions()->glGetString(GL_RENDERER));
+    info.available = true;
+    info.renderer = QString::fromLatin1(renderer ? renderer : "unknown");
+    // Software rasterizers do the vertex work on the CPU, inside the draw call.
+    for (const char* name : {"llvmpipe", "softpipe", "swrast", "software"})
+        info.software = info.software || info.renderer.contains(name, Qt::CaseInsensitive);
+    context.doneCurrent();
+    return info;
+}
+
 } // namespace
 
-ReviewPanel::ReviewPanel(PanelKind kind, CameraController& camera, QWidget* parent)
-    : QOpenGLWidget(parent), m_kind(kind), m_camera(camera) {
-    setObjectName(kind == PanelKind::Iso ? "isoPanel" : "silhouettePanel");
-    setFocusPolicy(Qt::StrongFocus);
-    setMinimumSize(200, 200);
-    connect(&m_camera, &CameraController::changed, this, qOverload<>(&QWidget::update));
-}
-
-ReviewPanel::~ReviewPanel() {
-    releaseGl();
-}
-
-void ReviewPanel::releaseGl() {
-    // GL objects die with the context they were made in: release them while it still exists.
-    if (!context() || !m_gl.isInitialized())
-        return;
-    makeCurrent();
-    m_gl.release();
-    doneCurrent();
-}
-
-void ReviewPanel::initializeGL() {
-    connect(
-        context(), &QOpenGLContext::aboutToBeDestroyed, this, [this] { releaseGl(); },
-        Qt::DirectConnection);
-    m_meshUploaded = false;
-    const auto* renderer =
-        reinterpret_cast<const char*>(context()->functions()->glGetString(GL_RENDERER));
-    m_glRenderer = QString::fromLatin1(renderer ? renderer : "unknown");
-    // Software rasterizers do the vertex work on the CPU, inside the draw call on this thread.
-    m_softwareGl = m_glRenderer.contains("llvmpipe", Qt::CaseInsensitive) ||
-                   m_glRenderer.contains("softpipe", Qt::CaseInsensitive) ||
-                   m_glRenderer.contains("software", Qt::CaseInsensitive) ||
-                   m_glRenderer.contains("swr", Qt::CaseInsensitive);
-    m_glKnown = true;
-    // The engine's shaders are compiled at the first GL draw (not at all when the worker draws:
-    // on llvmpipe that compile alone holds the UI thread for ~100 ms).
-    emit glReady();
-}
-
-void ReviewPanel::setMesh(std::shared_ptr<const render::Mesh> mesh) {
-    m_mesh = std::move(mesh);
-    m_meshUploaded = false;
-    update();
-}
-
-void ReviewPanel::setUseGl(bool enabled) {
-    m_useGl = enabled;
-    update();
-}
-
-void ReviewPanel::setDepth(std::vector<float> depth, const render::Camera& camera) {
-    m_depth = std::move(depth);
-    m_depthCamera = camera;
-}
-
-void ReviewPanel::resizeGL(int, int) {
-    emit resized();
-}
-
-void ReviewPanel::setImage(const QImage& image) {
-    m_image = image;
-    update();
-}
-
-void ReviewPanel::setOverlay(const QImage& overlay) {
-    m_overlay = overlay;
-    update();
-}
-
-void ReviewPanel::setAppearance(const ReviewSettings& settings) {
-    m_appearance = settings;
-    update();
-}
-
-void ReviewPanel::setMessage(const QString& message) {
-    m_message = message;
-    update();
-}
-
-QSize ReviewPanel::renderSize() const {
-    const qreal ratio = devicePixelRatioF();
-    return {std::max(1, int(std::lround(width() * ratio))),
-            std::max(1, int(std::lround(height() * ratio)))};
-}
-
-bool ReviewPanel::drawsGl() const {
-    return !m_glBroken && m_mesh && m_useGl;
+const GlInfo& displayGlInfo() {
+    static const GlInfo info = probeGl(); // a fact of the display, asked once
+    return info;
 }
 
 render::SilhouetteGlOptions panelGlOptions(PanelKind kind, const ReviewSettings& settings) {
@@ -138,6 +108,106 @@ render::SilhouetteGlOptions panelGlOptions(PanelKind kind, const ReviewSettings&
     return options;
 }
 
+ReviewPanel::ReviewPanel(PanelKind kind, CameraController& camera, QWidget* parent)
+    : QWidget(parent), m_kind(kind), m_camera(camera) {
+    setObjectName(kind == PanelKind::Iso ? "isoPanel" : "silhouettePanel");
+    setFocusPolicy(Qt::StrongFocus);
+    setMinimumSize(200, 200);
+    m_stack = new QStackedLayout(this);
+    m_stack->setContentsMargins(0, 0, 0, 0);
+    m_imageView = new PanelImageView(*this);
+    m_stack->addWidget(m_imageView);
+    connect(&m_camera, &CameraController::changed, this, &ReviewPanel::updateView);
+}
+
+ReviewPanel::~ReviewPanel() {
+    releaseGl();
+}
+
+void ReviewPanel::setGlView(bool glView) {
+    if (glView && !m_glView) {
+        m_glView = new PanelGlView(*this);
+        m_stack->addWidget(m_glView);
+    }
+    m_glViewActive = glView;
+    m_stack->setCurrentWidget(glView ? static_cast<QWidget*>(m_glView) : m_imageView);
+    updateView();
+}
+
+void ReviewPanel::releaseGl() {
+    // GL objects die with the context they were made in: release them while it still exists.
+    if (!m_glView || !m_glView->context() || !m_gl.isInitialized())
+        return;
+    m_glView->makeCurrent();
+    m_gl.release();
+    m_glView->doneCurrent();
+}
+
+void ReviewPanel::initializeGlView() {
+    connect(
+        m_glView->context(), &QOpenGLContext::aboutToBeDestroyed, this, [this] { releaseGl(); },
+        Qt::DirectConnection);
+    m_meshUploaded = false; // a new context has none of the old buffers
+}
+
+void ReviewPanel::updateView() {
+    if (m_glViewActive && m_glView)
+        m_glView->update();
+    else
+        m_imageView->update();
+}
+
+void ReviewPanel::setMesh(std::shared_ptr<const render::Mesh> mesh) {
+    m_mesh = std::move(mesh);
+    m_meshUploaded = false;
+    updateView();
+}
+
+void ReviewPanel::setUseGl(bool enabled) {
+    m_useGl = enabled;
+    updateView();
+}
+
+void ReviewPanel::setImage(const QImage& image) {
+    m_image = image;
+    updateView();
+}
+
+void ReviewPanel::setDepth(std::vector<float> depth, const render::Camera& camera) {
+    m_depth = std::move(depth);
+    m_depthCamera = camera;
+}
+
+void ReviewPanel::setOverlay(const QImage& overlay) {
+    m_overlay = overlay;
+    updateView();
+}
+
+void ReviewPanel::setAppearance(const ReviewSettings& settings) {
+    m_appearance = settings;
+    updateView();
+}
+
+void ReviewPanel::setMessage(const QString& message) {
+    m_message = message;
+    updateView();
+}
+
+void ReviewPanel::resizeEvent(QResizeEvent* event) {
+    QWidget::resizeEvent(event);
+    emit resized();
+}
+
+QSize ReviewPanel::renderSize() const {
+    const qreal ratio = devicePixelRatioF();
+    return {std::max(1, int(std::lround(width() * ratio))),
+            std::max(1, int(std::lround(height() * ratio)))};
+}
+
+bool ReviewPanel::drawsGl() const {
+    return !m_glBroken && m_mesh && usesGl();
+}
+
 void ReviewPanel::uploadPendingMesh() {
     if (m_meshUploaded || !m_mesh)
         return;
@@ -149,18 +219,18 @@ void ReviewPanel::drawGl(const render::Camera& camera) {
     uploadPendingMesh();
     m_lastStats = m_gl.render(camera, panelGlOptions(m_kind, m_appearance));
     // The engine draws into its own framebuffer object; copy it into the widget's.
-    QOpenGLExtraFunctions* f = context()->extraFunctions();
+    QOpenGLExtraFunctions* f = m_glView->context()->extraFunctions();
     f->glBindFramebuffer(GL_READ_FRAMEBUFFER, m_gl.framebuffer());
-    f->glBindFramebuffer(GL_DRAW_FRAMEBUFFER, defaultFramebufferObject());
+    f->glBindFramebuffer(GL_DRAW_FRAMEBUFFER, m_glView->defaultFramebufferObject());
     f->glBlitFramebuffer(0, 0, camera.width(), camera.height(), 0, 0, camera.width(),
                          camera.height(), GL_COLOR_BUFFER_BIT, GL_NEAREST);
-    f->glBindFramebuffer(GL_FRAMEBUFFER, defaultFramebufferObject());
+    f->glBindFramebuffer(GL_FRAMEBUFFER, m_glView->defaultFramebufferObject());
 }
 
-void ReviewPanel::paintGL() {
+void ReviewPanel::paintGlView() {
     QElapsedTimer timer;
     timer.start();
-    QOpenGLExtraFunctions* f = context()->extraFunctions();
+    QOpenGLExtraFunctions* f = m_glView->context()->extraFunctions();
     const QColor background = m_appearance.background;
     f->glClearColor(float(background.redF()), float(background.greenF()), float(background.blueF()),
                     1.0f);
@@ -178,40 +248,53 @@ void ReviewPanel::paintGL() {
             m_mesh.reset();
         }
     }
-    drawImages();
-    drawMessage();
-    m_lastPaintMs = double(timer.nsecsElapsed()) / 1e6;
-    emit painted(m_lastPaintMs);
+    QPainter painter(m_glView);
+    drawImages(painter);
+    drawMessage(painter);
+    reportPaint(double(timer.nsecsElapsed()) / 1e6);
 }
 
-void ReviewPanel::drawImages() {
-    const bool showImage = !m_useGl && !m_image.isNull();
-    const bool showOverlay = m_kind == PanelKind::Iso && !m_overlay.isNull();
-    if (!showImage && !showOverlay)
-        return;
-    QPainter painter(this);
-    // The image was rendered for the viewport at request time; until the next one arrives after
-    // a resize, it is stretched rather than left misplaced.
-    painter.setRenderHint(QPainter::SmoothPixmapTransform, false);
-    if (showImage)
+void ReviewPanel::paintImageView(QPainter& painter) {
+    QElapsedTimer timer;
+    timer.start();
+    painter.fillRect(m_imageView->rect(), m_appearance.background);
+    drawImages(painter);
+    drawMessage(painter);
+    reportPaint(double(timer.nsecsElapsed()) / 1e6);
+}
+
+void ReviewPanel::reportPaint(double milliseconds) {
+    m_lastPaintMs = milliseconds;
+    emit painted(milliseconds);
+}
+
+void ReviewPanel::drawImages(QPainter& painter) {
+    // An image rendered for the viewport at request time; until the next one arrives after a
+    // resize, it is stretched rather than left misplaced.
+    if (!usesGl() && !m_image.isNull())
         painter.drawImage(rect(), m_image);
-    if (showOverlay)
+    if (m_kind == PanelKind::Iso && !m_overlay.isNull())
         painter.drawImage(rect(), m_overlay);
 }
 
-void ReviewPanel::drawMessage() {
+void ReviewPanel::drawMessage(QPainter& painter) {
     if (m_message.isEmpty())
         return;
-    QPainter painter(this);
-    QRect box = rect().adjusted(20, 20, -20, -20);
     painter.setPen(m_appearance.background.lightness() < 128 ? Qt::white : Qt::black);
-    painter.drawText(box, Qt::AlignCenter | Qt::TextWordWrap, m_message);
+    painter.drawText(rect().adjusted(20, 20, -20, -20), Qt::AlignCenter | Qt::TextWordWrap,
+                     m_message);
+}
+
+QImage ReviewPanel::grabImage() {
+    if (hasGlView())
+        return m_glView->grabFramebuffer();
+    return m_imageView->grab().toImage();
 }
 
 QImage ReviewPanel::renderImage(QSize size) {
     if (!drawsGl() || size.isEmpty())
         return {};
-    makeCurrent();
+    m_glView->makeCurrent();
     QImage image;
     try {
         uploadPendingMesh();
@@ -220,29 +303,32 @@ QImage ReviewPanel::renderImage(QSize size) {
     } catch (const core::Error& error) {
         m_message = tr("OpenGL failed: %1").arg(error.what());
     }
-    doneCurrent();
-    update(); // the framebuffer object now has the export's size; the next paint restores it
+    m_glView->doneCurrent();
+    updateView(); // the framebuffer object now has the export's size; the next paint restores it
     return image;
+}
+
+std::optional<glm::dvec3> ReviewPanel::pickFromDepthImage(QPoint position) const {
+    // The worker's depth buffer of the image on screen (stretched to the widget, as drawn).
+    const int w = m_depthCamera.width(), h = m_depthCamera.height();
+    if (m_depth.size() != std::size_t(w) * std::size_t(h) || width() <= 0 || height() <= 0)
+        return std::nullopt;
+    const double x = (position.x() + 0.5) * w / width();
+    const double y = (position.y() + 0.5) * h / height();
+    if (x < 0 || y < 0 || x >= w || y >= h)
+        return std::nullopt;
+    const float depth = m_depth[std::size_t(y) * std::size_t(w) + std::size_t(x)];
+    if (depth >= 1.0f)
+        return std::nullopt;
+    return m_depthCamera.unproject({std::floor(x) + 0.5, std::floor(y) + 0.5},
+                                   2.0 * double(depth) - 1.0);
 }
 
 std::optional<glm::dvec3> ReviewPanel::pickPatientPoint(QPoint position) {
     if (m_kind != PanelKind::Iso)
         return std::nullopt;
-    if (!m_useGl) {
-        // The worker's depth buffer of the image on screen (stretched to the widget, as drawn).
-        const int w = m_depthCamera.width(), h = m_depthCamera.height();
-        if (m_depth.size() != std::size_t(w) * std::size_t(h) || width() <= 0 || height() <= 0)
-            return std::nullopt;
-        const double x = (position.x() + 0.5) * w / width();
-        const double y = (position.y() + 0.5) * h / height();
-        if (x < 0 || y < 0 || x >= w || y >= h)
-            return std::nullopt;
-        const float depth = m_depth[std::size_t(y) * std::size_t(w) + std::size_t(x)];
-        if (depth >= 1.0f)
-            return std::nullopt;
-        return m_depthCamera.unproject({std::floor(x) + 0.5, std::floor(y) + 0.5},
-                                       2.0 * double(depth) - 1.0);
-    }
+    if (!usesGl())
+        return pickFromDepthImage(position);
     if (!drawsGl())
         return std::nullopt;
     const QSize size = renderSize();
@@ -252,19 +338,16 @@ std::optional<glm::dvec3> ReviewPanel::pickPatientPoint(QPoint position) {
     const int y = int(position.y() * ratio);
     if (x < 0 || y < 0 || x >= size.width() || y >= size.height())
         return std::nullopt;
-    makeCurrent();
+    m_glView->makeCurrent();
     float depth = 1.0f;
     try {
         uploadPendingMesh();
         m_gl.render(camera, panelGlOptions(m_kind, m_appearance));
-        QOpenGLExtraFunctions* f = context()->extraFunctions();
-        f->glBindFramebuffer(GL_READ_FRAMEBUFFER, m_gl.framebuffer());
-        f->glReadPixels(x, size.height() - 1 - y, 1, 1, GL_DEPTH_COMPONENT, GL_FLOAT, &depth);
-        f->glBindFramebuffer(GL_FRAMEBUFFER, defaultFramebufferObject());
+        depth = m_gl.readDepth()[std::size_t(y) * std::size_t(size.width()) + std::size_t(x)];
     } catch (const core::Error&) {
         depth = 1.0f;
     }
-    doneCurrent();
+    m_glView->doneCurrent();
     if (depth >= 1.0f)
         return std::nullopt;
     return camera.unproject({x + 0.5, y + 0.5}, 2.0 * double(depth) - 1.0);
@@ -300,19 +383,20 @@ void ReviewPanel::wheelEvent(QWheelEvent* event) {
 void ReviewPanel::keyPressEvent(QKeyEvent* event) {
     const bool shift = event->modifiers() & Qt::ShiftModifier;
     const double step = 0.05 * height();
+    QPointF delta;
     switch (event->key()) {
     case Qt::Key_Left:
-        return shift ? m_camera.panByDrag({-step, 0}, size())
-                     : m_camera.rotateByDrag({-step, 0}, size());
+        delta = {-step, 0};
+        break;
     case Qt::Key_Right:
-        return shift ? m_camera.panByDrag({step, 0}, size())
-                     : m_camera.rotateByDrag({step, 0}, size());
+        delta = {step, 0};
+        break;
     case Qt::Key_Up:
-        return shift ? m_camera.panByDrag({0, -step}, size())
-                     : m_camera.rotateByDrag({0, -step}, size());
+        delta = {0, -step};
+        break;
     case Qt::Key_Down:
-        return shift ? m_camera.panByDrag({0, step}, size())
-                     : m_camera.rotateByDrag({0, step}, size());
+        delta = {0, step};
+        break;
     case Qt::Key_Plus:
     case Qt::Key_Equal:
         return m_camera.zoomBy(1.1);
@@ -321,8 +405,12 @@ void ReviewPanel::keyPressEvent(QKeyEvent* event) {
     case Qt::Key_Home:
         return m_camera.reset();
     default:
-        QOpenGLWidget::keyPressEvent(event);
+        return QWidget::keyPressEvent(event);
     }
+    if (shift)
+        m_camera.panByDrag(delta, size());
+    else
+        m_camera.rotateByDrag(delta, size());
 }
 
 } // namespace lw::gui

@@ -1,10 +1,15 @@
 #pragma once
 
-// One of the review's two panels, a QOpenGLWidget. The iso panel shades the mesh with the
-// engine's GL pipeline (SilhouetteGlRenderer, the same shading as method 1's iso panel) in this
-// widget's own context; the silhouette panel either runs method 1 in its own context the same
-// way, or shows the image a CPU method rendered on the worker thread. Both follow one
-// CameraController (linked cameras) and turn mouse and keys into camera moves.
+// One of the review's two panels. The iso panel shades the mesh with the engine's GL pipeline
+// (SilhouetteGlRenderer, the same shading as method 1's iso panel); the silhouette panel either
+// runs method 1 the same way or shows the image a CPU method rendered on the worker thread. Both
+// follow one CameraController (linked cameras) and turn mouse and keys into camera moves.
+//
+// Where the GL runs decides what the panel is made of (setGlView):
+//   GL view     a QOpenGLWidget: the engine draws in the panel's own context (a real GPU);
+//   image view  a plain raster QWidget showing the worker's images: with a software OpenGL
+//               (llvmpipe) both the draw calls and Qt's GL composition of a window that holds a
+//               QOpenGLWidget would run on the UI thread, so the window holds none.
 //
 // For export and annotation: renderImage() re-renders the GL content at any size (not scaled)
 // and pickPatientPoint() turns a pixel into the surface point under it (LPS, mm) through the
@@ -15,15 +20,19 @@
 #include "settings/review_settings.h"
 
 #include <QImage>
-#include <QOpenGLWidget>
 #include <QString>
+#include <QWidget>
 #include <memory>
 #include <optional>
 #include <vector>
 
+class QStackedLayout;
+
 namespace lw::gui {
 
 class CameraController;
+class PanelGlView;
+class PanelImageView;
 
 enum class PanelKind { Iso, Silhouette };
 
@@ -31,29 +40,33 @@ enum class PanelKind { Iso, Silhouette };
 // draw with the same ones).
 render::SilhouetteGlOptions panelGlOptions(PanelKind kind, const ReviewSettings& settings);
 
-class ReviewPanel : public QOpenGLWidget {
+// The OpenGL the windows get on this display: a throw-away context asked once per process.
+struct GlInfo {
+    bool available = false;
+    bool software = false; // llvmpipe, softpipe, swrast
+    QString renderer;
+};
+const GlInfo& displayGlInfo();
+
+class ReviewPanel : public QWidget {
     Q_OBJECT
 public:
     ReviewPanel(PanelKind kind, CameraController& camera, QWidget* parent = nullptr);
     ~ReviewPanel() override;
 
     PanelKind kind() const { return m_kind; }
-    // The mesh to draw with GL (iso panel always; silhouette panel for method 1 S). Uploaded at
-    // the next paint, in this widget's context.
+    // true: a QOpenGLWidget that can draw the mesh itself; false: a raster image view.
+    void setGlView(bool glView);
+    bool hasGlView() const { return m_glView != nullptr && m_glViewActive; }
+    // The mesh to draw with GL (uploaded at the next paint of the GL view).
     void setMesh(std::shared_ptr<const render::Mesh> mesh);
     bool hasMesh() const { return m_mesh != nullptr; }
-    // Draw the mesh with GL in this widget's context (iso panel; silhouette panel for method 1
-    // S), or show the image the worker rendered.
+    // Draw the mesh with GL (GL view only) or show the image the worker rendered.
     void setUseGl(bool enabled);
-    bool usesGl() const { return m_useGl; }
+    bool usesGl() const { return m_useGl && hasGlView(); }
     void setImage(const QImage& image);
     // The worker's iso image comes with its depth buffer and camera, for picking.
     void setDepth(std::vector<float> depth, const render::Camera& camera);
-    // The panel's GL context is a software rasterizer (llvmpipe, softpipe): known after the
-    // first show (glKnown()).
-    bool glKnown() const { return m_glKnown; }
-    bool softwareGl() const { return m_softwareGl; }
-    QString glRenderer() const { return m_glRenderer; }
     // Lines drawn over the iso panel by a CPU method (transparent elsewhere); null for none.
     void setOverlay(const QImage& overlay);
     void setAppearance(const ReviewSettings& settings);
@@ -61,28 +74,30 @@ public:
     void setMessage(const QString& message);
     QString message() const { return m_message; }
 
-    // The GL content rendered offscreen at `size` (iso panel, method 1 silhouette panel); a
-    // null image when this panel shows a CPU image (the caller renders that itself).
+    // What the panel shows now, as the screen shows it.
+    QImage grabImage();
+    // The GL content rendered offscreen at `size` (GL view drawing the mesh); a null image
+    // otherwise (the caller renders it elsewhere).
     QImage renderImage(QSize size);
     // The surface point under widget pixel `position`, or nullopt where there is none.
     std::optional<glm::dvec3> pickPatientPoint(QPoint position);
-    // What the last paint drew (for tests and the status line).
     double lastPaintMs() const { return m_lastPaintMs; }
-    std::size_t uploadedTriangles() const { return m_gl.triangleCount(); }
-    // Segments the geometry shader emitted in the last paint (method 1 silhouette panel).
+    // Segments the geometry shader emitted in the last GL paint (method 1 silhouette panel).
     std::size_t lastSegmentCount() const { return m_lastStats.segments; }
     QSize renderSize() const; // the viewport in device pixels
+
+    // For the views: the drawing itself.
+    void initializeGlView();
+    void paintGlView();
+    void paintImageView(QPainter& painter);
 
 signals:
     void painted(double milliseconds);
     void resized();
-    void glReady();
     void glFailed(const QString& reason);
 
 protected:
-    void initializeGL() override;
-    void paintGL() override;
-    void resizeGL(int width, int height) override;
+    void resizeEvent(QResizeEvent* event) override;
     void mousePressEvent(QMouseEvent* event) override;
     void mouseMoveEvent(QMouseEvent* event) override;
     void wheelEvent(QWheelEvent* event) override;
@@ -92,24 +107,28 @@ private:
     bool drawsGl() const;
     void uploadPendingMesh();
     void drawGl(const render::Camera& camera);
-    void drawImages();
-    void drawMessage();
+    void drawImages(QPainter& painter);
+    void drawMessage(QPainter& painter);
     void releaseGl();
+    void updateView();
+    void reportPaint(double milliseconds);
+    std::optional<glm::dvec3> pickFromDepthImage(QPoint position) const;
 
     PanelKind m_kind;
     CameraController& m_camera;
+    QStackedLayout* m_stack = nullptr;
+    PanelGlView* m_glView = nullptr; // created on first need
+    PanelImageView* m_imageView = nullptr;
+    bool m_glViewActive = false;
     render::SilhouetteGlRenderer m_gl;
     std::shared_ptr<const render::Mesh> m_mesh;
     bool m_meshUploaded = false;
     bool m_useGl = false;
     bool m_glBroken = false;
-    bool m_glKnown = false;
-    bool m_softwareGl = false;
-    QString m_glRenderer;
     QImage m_image;
+    QImage m_overlay;
     std::vector<float> m_depth;
     render::Camera m_depthCamera;
-    QImage m_overlay;
     ReviewSettings m_appearance;
     QString m_message;
     QPoint m_lastMouse;

@@ -93,11 +93,6 @@ ReviewWidget::ReviewWidget(ReviewSource source, const ReviewSettings& settings, 
         m_isoControl->setIso(m_source.initialIso);
     }
     m_iso = m_isoControl->iso();
-    // Whether the panels draw with GL themselves is known once their context exists.
-    connect(m_isoPanel, &ReviewPanel::glReady, this, [this] {
-        if (drawsInPanels() != m_drawsInPanels)
-            applySettings(m_settings);
-    });
     applySettings(settings);
 }
 
@@ -143,7 +138,7 @@ bool ReviewWidget::drawsInPanels() const {
     case PanelGl::Auto:
         break;
     }
-    return m_isoPanel->glKnown() && !m_isoPanel->softwareGl();
+    return displayGlInfo().available && !displayGlInfo().software;
 }
 
 bool ReviewWidget::methodOneInPanel() const {
@@ -166,6 +161,8 @@ void ReviewWidget::applySettings(const ReviewSettings& settings) {
     m_isoPanel->setAppearance(settings);
     m_silhouettePanel->setAppearance(settings);
     m_drawsInPanels = drawsInPanels();
+    m_isoPanel->setGlView(m_drawsInPanels);
+    m_silhouettePanel->setGlView(m_drawsInPanels);
     m_isoPanel->setUseGl(m_drawsInPanels);
     m_silhouettePanel->setUseGl(methodOneInPanel());
     m_silhouettePanel->setImage({});

@@ -2,6 +2,7 @@
 
 #include "browser/study_browser.h"
 #include "lw/core/error.h"
+#include "review/review_panel.h"
 #include "review/review_widget.h"
 #include "review/volume_loader.h"
 #include "settings/settings_dialog.h"
@@ -29,6 +30,9 @@ MainWindow::MainWindow(const MainWindowOptions& options, QWidget* parent) : QMai
     setWindowTitle(tr("Linework"));
     QSettings store;
     m_settings = ReviewSettings::load(store);
+    // Which OpenGL this display gives decides how reviews draw; ask before the window shows,
+    // not when the first review opens.
+    displayGlInfo();
 
     m_tabs = new QTabWidget;
     m_tabs->setObjectName("mainTabs");
