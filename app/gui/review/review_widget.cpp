@@ -79,6 +79,8 @@ ReviewWidget::ReviewWidget(ReviewSource source, const ReviewSettings& settings, 
         connect(panel, &ReviewPanel::glFailed, this, &ReviewWidget::showError);
         connect(panel, &ReviewPanel::resized, this, [this] { requestFrame(false); });
         connect(panel, &ReviewPanel::painted, this, [this, panel](double milliseconds) {
+            if (!m_drawsInPanels)
+                return; // the worker's GL time is what counts, and it came with the result
             (panel == m_isoPanel ? m_status.isoPaintMs : m_status.silhouettePaintMs) = milliseconds;
             if (panel == m_silhouettePanel && methodOneInPanel())
                 m_status.segments = panel->lastSegmentCount();
@@ -314,7 +316,8 @@ QString ReviewWidget::statusText() const {
     } else {
         text += tr(" · silhouette: extract %1, segments %2, visibility %3, draw %4 ms")
                     .arg(ms(t.extractMs), ms(t.silhouetteMs), ms(t.visibilityMs), ms(t.drawMs));
-        text += tr(" · GL iso %1 ms").arg(ms(m_status.isoPaintMs));
+        text += (m_drawsInPanels ? tr(" · GL iso %1 ms") : tr(" · GL iso on the worker %1 ms"))
+                    .arg(ms(m_status.isoPaintMs));
     }
     text += tr(" · %1 triangles · %2 segments")
                 .arg(count(m_status.triangles), count(m_status.segments));
