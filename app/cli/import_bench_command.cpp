@@ -6,7 +6,7 @@
 #include "commands.h"
 #include "lw/core/error.h"
 #include "lw/core/json_writer.h"
-#include "lw/volume/parallel.h"
+#include "lw/core/parallel.h"
 
 #ifdef LINEWORK_HAVE_DICOM
 #include "lw/dicom/dicom_scanner.h"
@@ -94,7 +94,7 @@ int runBenchImport(const std::vector<std::string>& args, std::ostream& out) {
     if (arguments.flag("json")) {
         core::JsonWriter w;
         w.beginObject();
-        w.field("path", path).field("repeat", repeat).field("threads", int(volume::workerCount()));
+        w.field("path", path).field("repeat", repeat).field("threads", int(core::workerCount()));
         w.field("files", first.files).field("volumes", first.volumes).field("slices", first.slices);
         w.field("failed_volumes", first.failedVolumes).field("bytes", first.bytes);
         w.key("runs_s").beginArray();
@@ -112,7 +112,7 @@ int runBenchImport(const std::vector<std::string>& args, std::ostream& out) {
         if (first.failedVolumes)
             out << " (" << first.failedVolumes << " volumes failed to load)";
         out << "\n  median of " << repeat << " runs: " << medianTotal * 1000.0 << " ms (scan "
-            << medianScan * 1000.0 << " ms) on " << volume::workerCount() << " threads\n"
+            << medianScan * 1000.0 << " ms) on " << core::workerCount() << " threads\n"
             << "  " << slicesPerSecond << " slices/s, "
             << double(first.bytes) / (1024.0 * 1024.0) / medianTotal << " MiB/s decoded\n";
     }

@@ -1,11 +1,9 @@
-// Volume, VolumeGeometry, BrickGrid and parallelFor on synthetic data.
+// Volume, VolumeGeometry and BrickGrid on synthetic data.
 #include "lw/core/error.h"
 #include "lw/volume/bricks.h"
-#include "lw/volume/parallel.h"
 #include "lw/volume/volume.h"
 #include "lw/volume/volume_geometry.h"
 
-#include <atomic>
 #include <cmath>
 #include <cstring>
 #include <gtest/gtest.h>
@@ -295,41 +293,6 @@ TEST(BrickGrid, OneBrickIsTheWholeVolume) {
 TEST(BrickGrid, FlatVolumeHasNoCells) {
     const Volume v({10, 10, 1}, VoxelType::UInt8);
     EXPECT_TRUE(BrickGrid::build(v, {8, 8, 8}).bricks().empty());
-}
-
-// ---------------------------------------------------------------- parallelFor
-
-TEST(ParallelFor, VisitsEveryIndexOnce) {
-    std::vector<std::atomic<int>> hits(10007);
-    parallelFor(
-        hits.size(), [&](std::size_t i) { hits[i].fetch_add(1); }, 8);
-    for (const auto& h : hits)
-        ASSERT_EQ(h.load(), 1);
-}
-
-TEST(ParallelFor, PropagatesTheExceptionOfABody) {
-    for (unsigned threads : {1u, 4u}) {
-        std::atomic<int> ran{0};
-        try {
-            parallelFor(
-                1000,
-                [&](std::size_t i) {
-                    ++ran;
-                    if (i == 37)
-                        throw core::Error("item 37", "failed on purpose");
-                },
-                threads);
-            FAIL() << "no exception with " << threads << " threads";
-        } catch (const core::Error& e) {
-            EXPECT_EQ(e.subject(), "item 37");
-            EXPECT_EQ(e.reason(), "failed on purpose");
-        }
-        if (threads == 1)
-            EXPECT_EQ(ran.load(), 38); // stops at the failing item
-        else
-            EXPECT_GE(ran.load(), 1);
-    }
-    EXPECT_NO_THROW(parallelFor(0, [](std::size_t) { throw std::logic_error("never called"); }));
 }
 
 } // namespace

@@ -1,7 +1,7 @@
 #include "lw/kernels/cpu/marching_cubes_cpu.h"
 
+#include "lw/core/parallel.h"
 #include "lw/kernels/marching_cubes.h"
-#include "lw/volume/parallel.h"
 
 #include <algorithm>
 #include <cmath>
@@ -76,14 +76,14 @@ public:
             clearOutput();
             return result;
         }
-        makeUnits(active, threads == 0 ? volume::workerCount() : threads);
+        makeUnits(active, threads == 0 ? core::workerCount() : threads);
         result.workUnits = m_units.size();
 
         m_vertexOffset.assign(std::size_t(m_dims.nz) * std::size_t(m_dims.ny) * std::size_t(m_gx),
                               0u);
         m_triangleOffset.assign(std::size_t(m_dims.cz) * std::size_t(m_dims.cy) * std::size_t(m_gx),
                                 0u);
-        volume::parallelFor(
+        core::parallelFor(
             m_units.size(), [&](std::size_t u) { countUnit(m_units[u]); }, threads);
 
         const std::uint64_t vertices = exclusiveScan(m_vertexOffset);
@@ -98,7 +98,7 @@ public:
         m_out.positions.resize(std::size_t(vertices));
         m_out.normals.resize(std::size_t(vertices));
         m_out.indices.resize(std::size_t(triangles) * 3);
-        volume::parallelFor(
+        core::parallelFor(
             m_units.size(), [&](std::size_t u) { emitUnit(m_units[u]); }, threads);
         return result;
     }

@@ -1,9 +1,9 @@
 #include "lw/kernels/cpu/raycast_silhouette_cpu.h"
 
 #include "lw/core/error.h"
+#include "lw/core/parallel.h"
 #include "lw/kernels/cpu/marching_cubes_cpu.h"
 #include "lw/kernels/marching_cubes.h"
-#include "lw/volume/parallel.h"
 
 #include <algorithm>
 #include <cmath>
@@ -158,7 +158,7 @@ public:
         }
         if (unitCells.size() < units.size())
             unitCells.resize(units.size());
-        volume::parallelFor(
+        core::parallelFor(
             units.size(),
             [&](std::size_t u) {
                 const auto& brick = grid.bricks()[std::size_t(units[u].brick)];
@@ -223,7 +223,7 @@ public:
         if (withCones) {
             cones.resize(cells.size());
             chunkTriangleTotal.assign(chunkStarts.size() - 1, 0);
-            volume::parallelFor(
+            core::parallelFor(
                 chunkStarts.size() - 1,
                 [&](std::size_t c) {
                     std::size_t triangles = 0;
@@ -244,7 +244,7 @@ public:
         macroOccupied.assign(std::size_t(m_macroDims.x) * std::size_t(m_macroDims.y) *
                                  std::size_t(m_macroDims.z),
                              0);
-        volume::parallelFor(
+        core::parallelFor(
             std::size_t(m_macroDims.z),
             [&](std::size_t mz) {
                 const int z0 = int(mz) * kMacroCells, z1 = std::min(z0 + kMacroCells, m_dims.cz);
@@ -280,7 +280,7 @@ public:
             chunkSegments.resize(chunks);
         chunkTriangles.assign(chunks, 0);
         const glm::vec3 eye(view.eyeOrDirection);
-        volume::parallelFor(
+        core::parallelFor(
             chunks,
             [&](std::size_t c) {
                 auto& segments = chunkSegments[c];

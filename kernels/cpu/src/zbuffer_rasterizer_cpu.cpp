@@ -1,7 +1,7 @@
 #include "lw/kernels/cpu/zbuffer_rasterizer_cpu.h"
 
+#include "lw/core/parallel.h"
 #include "lw/kernels/silhouette_segment.h"
-#include "lw/volume/parallel.h"
 
 #include <algorithm>
 #include <cmath>
@@ -71,7 +71,7 @@ void projectVertices(const glm::vec3* positions, const glm::vec3* normals, std::
                      const ViewTransform& view, ScreenVertices& out, unsigned threads) {
     out.resize(count);
     const glm::vec3 eyeOrDirection = glm::vec3(view.orthographic ? view.toViewer : view.eye);
-    volume::parallelFor(
+    core::parallelFor(
         chunkCount(count, kVerticesPerChunk),
         [&](std::size_t chunk) {
             const std::size_t end = std::min(count, (chunk + 1) * kVerticesPerChunk);
@@ -100,7 +100,7 @@ void DepthBuffer::reset(int width, int height, unsigned threads) {
     const std::size_t count = std::size_t(m_width) * std::size_t(m_height);
     m_bits.resize(count);
     // Clearing in parallel keeps the pages on the cores that will touch them.
-    volume::parallelFor(
+    core::parallelFor(
         chunkCount(std::size_t(m_height), kRowsPerChunk),
         [&](std::size_t chunk) {
             const std::size_t begin = chunk * kRowsPerChunk * std::size_t(m_width);
@@ -121,7 +121,7 @@ void drawTrianglesDepth(const ScreenVertices& vertices, const std::uint32_t* ind
                         std::size_t triangleCount, DepthBuffer& depth, unsigned threads,
                         bool cullBackFaces) {
     const int width = depth.width(), height = depth.height();
-    volume::parallelFor(
+    core::parallelFor(
         chunkCount(triangleCount, kTrianglesPerChunk),
         [&](std::size_t chunk) {
             const std::size_t end = std::min(triangleCount, (chunk + 1) * kTrianglesPerChunk);
@@ -162,7 +162,7 @@ void TileMask::markAroundLines(const DepthBuffer& lines, unsigned threads) {
     m_pixels.assign(std::size_t(width) * std::size_t(height), 0);
     // One tile row per work item, so no two threads write the same byte... except the rows a
     // 3x3 neighbourhood reaches across: writes of the value 1 are idempotent, done atomically.
-    volume::parallelFor(
+    core::parallelFor(
         std::size_t(m_tilesY),
         [&](std::size_t tileRow) {
             const int yEnd = std::min(height, int(tileRow + 1) << kTileBits);
@@ -207,7 +207,7 @@ void drawClustersDepth(const ScreenVertices& vertices, const std::uint32_t* indi
                        unsigned threads, bool cullBackFaces) {
     const int width = depth.width(), height = depth.height();
     constexpr std::size_t kClustersPerChunk = 64;
-    volume::parallelFor(
+    core::parallelFor(
         chunkCount(clusterCount, kClustersPerChunk),
         [&](std::size_t chunk) {
             const std::size_t end = std::min(clusterCount, (chunk + 1) * kClustersPerChunk);
@@ -257,7 +257,7 @@ void drawTrianglesNearest(const ScreenVertices& vertices, const std::uint32_t* i
                           std::vector<std::uint64_t>& nearest, int width, int height,
                           unsigned threads) {
     nearest.resize(std::size_t(std::max(width, 0)) * std::size_t(std::max(height, 0)));
-    volume::parallelFor(
+    core::parallelFor(
         chunkCount(triangleCount, kTrianglesPerChunk),
         [&](std::size_t chunk) {
             const std::size_t end = std::min(triangleCount, (chunk + 1) * kTrianglesPerChunk);
@@ -291,7 +291,7 @@ void findSilhouetteSegments(const glm::vec3* positions, const ScreenVertices& ve
     const std::size_t chunks = chunkCount(triangleCount, kTrianglesPerChunk);
     if (scratch.chunks.size() < chunks)
         scratch.chunks.resize(chunks);
-    volume::parallelFor(
+    core::parallelFor(
         chunks,
         [&](std::size_t chunk) {
             std::vector<ScreenSegment>& local = scratch.chunks[chunk];
@@ -327,7 +327,7 @@ void drawSegmentsDepth(const ScreenSegment* segments, std::size_t count, DepthBu
                        unsigned threads) {
     const int width = lines.width(), height = lines.height();
     constexpr std::size_t kSegmentsPerChunk = 4096;
-    volume::parallelFor(
+    core::parallelFor(
         chunkCount(count, kSegmentsPerChunk),
         [&](std::size_t chunk) {
             const std::size_t end = std::min(count, (chunk + 1) * kSegmentsPerChunk);
@@ -362,7 +362,7 @@ void drawSegmentsDepth(const ScreenSegment* segments, std::size_t count, DepthBu
 void resolveSilhouette(const DepthBuffer& surface, const DepthBuffer& lines, float epsilon,
                        bool visibility, std::uint8_t* mask, unsigned threads) {
     const int width = lines.width(), height = lines.height();
-    volume::parallelFor(
+    core::parallelFor(
         chunkCount(std::size_t(height), kRowsPerChunk),
         [&](std::size_t chunk) {
             const int yEnd =

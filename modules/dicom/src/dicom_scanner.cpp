@@ -3,7 +3,7 @@
 #include "dicom_file.h"
 #include "lw/core/error.h"
 #include "lw/core/log.h"
-#include "lw/volume/parallel.h"
+#include "lw/core/parallel.h"
 
 #include <algorithm>
 #include <cctype>
@@ -446,7 +446,7 @@ HeaderResults readHeaders(const std::vector<fs::path>& files, core::Progress* pr
     std::vector<Slot> slots(files.size());
     if (progress)
         progress->setTotal(files.size(), "Reading DICOM headers");
-    volume::parallelFor(files.size(), [&](std::size_t i) {
+    core::parallelFor(files.size(), [&](std::size_t i) {
         if (progress)
             progress->throwIfCancelled();
         Slot& slot = slots[i];

@@ -1,15 +1,14 @@
 #include "lw/dicom/volume_assembler.h"
 
 #include "dicom_file.h"
-
 #include "lw/core/error.h"
 #include "lw/core/log.h"
-#include "lw/volume/parallel.h"
+#include "lw/core/parallel.h"
 
 #include <algorithm>
-#include <filesystem>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <functional>
 #include <map>
 #include <numeric>
@@ -519,7 +518,7 @@ volume::Volume loadVolume(const SeriesInfo& series, const VolumePlan& plan, core
 
     if (progress)
         progress->setTotal(plan.slices.size(), "Loading " + std::to_string(plan.slices.size()) + " slices");
-    volume::parallelFor(work.size(), [&](std::size_t item) {
+    core::parallelFor(work.size(), [&](std::size_t item) {
         const auto& [instance, zs] = work[item];
         const InstanceInfo& info = series.instances[instance];
         FrameDecoder decoder(info);

@@ -1,7 +1,7 @@
 #include "lw/render/analytic_shapes.h"
 
 #include "lw/core/error.h"
-#include "lw/volume/parallel.h"
+#include "lw/core/parallel.h"
 
 #include <algorithm>
 #include <cmath>
@@ -266,7 +266,7 @@ volume::Volume sampleShape(const AnalyticShape& shape, int n) {
                        volume::VolumeGeometry::regular(origin, glm::dvec3(spacing)));
     out.setDescription("analytic " + shape.name() + " " + std::to_string(n) + "^3, iso 0");
     float* voxels = out.dataAs<float>();
-    volume::parallelFor(std::size_t(n), [&](std::size_t z) {
+    core::parallelFor(std::size_t(n), [&](std::size_t z) {
         for (int y = 0; y < n; ++y)
             for (int x = 0; x < n; ++x) {
                 const glm::dvec3 p = origin + spacing * glm::dvec3(x, y, double(z));

@@ -1,7 +1,7 @@
 #include "lw/render/phantom.h"
 
 #include "lw/core/error.h"
-#include "lw/volume/parallel.h"
+#include "lw/core/parallel.h"
 
 #include <algorithm>
 #include <array>
@@ -196,7 +196,7 @@ volume::Volume makePhantom(glm::ivec3 dims, PhantomKind kind, unsigned threads) 
     std::int16_t* voxels = out.dataAs<std::int16_t>();
     const std::size_t sliceSize = std::size_t(nx) * std::size_t(ny);
 
-    volume::parallelFor(
+    core::parallelFor(
         std::size_t(nz),
         [&](std::size_t zi) {
             const int z = int(zi);
@@ -250,7 +250,7 @@ PhantomChecksum phantomChecksum(const volume::Volume& volume, double iso) {
         using T = decltype(tag);
         const T* voxels = volume.dataAs<T>();
         const std::size_t sliceSize = std::size_t(d.x) * std::size_t(d.y);
-        volume::parallelFor(perSlice.size(), [&](std::size_t z) {
+        core::parallelFor(perSlice.size(), [&](std::size_t z) {
             PhantomChecksum c;
             const T* s = voxels + z * sliceSize;
             for (std::size_t i = 0; i < sliceSize; ++i) {

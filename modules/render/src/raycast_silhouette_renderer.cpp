@@ -1,11 +1,11 @@
 #include "lw/render/raycast_silhouette_renderer.h"
 
 #include "lw/core/error.h"
+#include "lw/core/parallel.h"
 #include "lw/kernels/cpu/raycast_silhouette_cpu.h"
 #include "lw/render/iso_surface.h"
 #include "lw/render/line_raster.h"
 #include "lw/volume/bricks.h"
-#include "lw/volume/parallel.h"
 
 #include <algorithm>
 #include <chrono>
@@ -112,7 +112,7 @@ SilhouetteFrame RayCastSilhouetteRenderer::render(const Camera& camera,
         cache.chunkDots.resize(chunks);
     }
     auto pixelOf = [&](glm::dvec3 p) { return glm::vec2(camera.project(p).pixel); };
-    volume::parallelFor(
+    core::parallelFor(
         chunks,
         [&](std::size_t c) {
             auto& lines = cache.chunkLines[c];

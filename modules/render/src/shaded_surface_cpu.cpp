@@ -1,7 +1,7 @@
 #include "lw/render/shaded_surface_cpu.h"
 
+#include "lw/core/parallel.h"
 #include "lw/kernels/cpu/zbuffer_rasterizer_cpu.h"
-#include "lw/volume/parallel.h"
 #include "view_transform.h"
 
 #include <algorithm>
@@ -29,7 +29,7 @@ core::ImageRgba8 shadeSurfaceCpu(const Mesh& mesh, const Camera& camera,
     auto channel = [](double base, double lit, double highlight) {
         return std::uint8_t(std::clamp(std::lround(base * lit + 255.0 * highlight), 0L, 255L));
     };
-    volume::parallelFor(
+    core::parallelFor(
         std::size_t(height),
         [&](std::size_t row) {
             const int y = int(row);

@@ -1,6 +1,6 @@
 #include "lw/render/true_contour.h"
 
-#include "lw/volume/parallel.h"
+#include "lw/core/parallel.h"
 
 #include <algorithm>
 #include <cmath>
@@ -122,7 +122,7 @@ PixelMask coverageMask(const AnalyticShape& shape, const Camera& camera) {
     const Aabb box = marchBox(shape);
     const double stepFloor = stepFloorFor(camera);
     PixelMask mask(camera.width(), camera.height());
-    volume::parallelFor(std::size_t(camera.height()), [&](std::size_t row) {
+    core::parallelFor(std::size_t(camera.height()), [&](std::size_t row) {
         const int y = int(row);
         for (int x = 0; x < camera.width(); ++x) {
             bool hit = false;
@@ -143,7 +143,7 @@ PixelMask trueContourMask(const AnalyticShape& shape, const Camera& camera) {
 
     std::vector<RaySummary> rays(static_cast<std::size_t>(width) *
                                  static_cast<std::size_t>(height));
-    volume::parallelFor(std::size_t(height), [&](std::size_t row) {
+    core::parallelFor(std::size_t(height), [&](std::size_t row) {
         for (int x = 0; x < width; ++x)
             rays[row * std::size_t(width) + std::size_t(x)] =
                 summarise(shape, box, camera.rayThroughPixel(x, int(row)), stepFloor);
@@ -152,7 +152,7 @@ PixelMask trueContourMask(const AnalyticShape& shape, const Camera& camera) {
     // Pixel pairs are examined per row (the pair to the right and the one below), so the marks
     // are collected per row and merged afterwards: a pair may mark a pixel of the next row.
     std::vector<std::vector<std::pair<int, int>>> marks(static_cast<std::size_t>(height));
-    volume::parallelFor(std::size_t(height), [&](std::size_t row) {
+    core::parallelFor(std::size_t(height), [&](std::size_t row) {
         const int y = int(row);
         for (int x = 0; x < width; ++x) {
             const RaySummary& a = rays[std::size_t(y) * std::size_t(width) + std::size_t(x)];

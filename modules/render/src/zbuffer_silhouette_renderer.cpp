@@ -1,10 +1,10 @@
 #include "lw/render/zbuffer_silhouette_renderer.h"
 
 #include "lw/core/error.h"
+#include "lw/core/parallel.h"
 #include "lw/kernels/cpu/marching_cubes_cpu.h"
 #include "lw/kernels/cpu/zbuffer_rasterizer_cpu.h"
 #include "lw/volume/bricks.h"
-#include "lw/volume/parallel.h"
 #include "view_transform.h"
 
 #include <algorithm>
@@ -222,7 +222,7 @@ SilhouetteFrame ZBufferSilhouetteRenderer::render(const Camera& camera,
 void ZBufferSilhouetteRenderer::State::renderChunked(const Camera& camera,
                                                      const SilhouetteSettings& settings,
                                                      SilhouetteFrame& frame) {
-    const unsigned threads = settings.threads == 0 ? volume::workerCount() : settings.threads;
+    const unsigned threads = settings.threads == 0 ? core::workerCount() : settings.threads;
     releaseMesh();
     const double storedIso = storedIsoValue(*volume, settings.isoReal);
 
@@ -260,7 +260,7 @@ void ZBufferSilhouetteRenderer::State::renderChunked(const Camera& camera,
     }
     std::mutex idleMutex;
     start = Clock::now();
-    volume::parallelFor(
+    core::parallelFor(
         active.size(),
         [&](std::size_t i) {
             BrickWorker* worker = nullptr;

@@ -1,6 +1,6 @@
 #include "lw/volume/bricks.h"
 
-#include "lw/volume/parallel.h"
+#include "lw/core/parallel.h"
 
 #include <algorithm>
 
@@ -24,7 +24,7 @@ BrickGrid BrickGrid::build(const Volume& volume, glm::ivec3 brickCells) {
     dispatchVoxelType(volume.voxelType(), [&](auto tag) {
         using T = decltype(tag);
         const T* voxels = volume.dataAs<T>();
-        parallelFor(grid.m_bricks.size(), [&](std::size_t b) {
+        core::parallelFor(grid.m_bricks.size(), [&](std::size_t b) {
             Brick& brick = grid.m_bricks[b];
             T lo = voxels[volume.index(brick.cellBegin.x, brick.cellBegin.y, brick.cellBegin.z)];
             T hi = lo;

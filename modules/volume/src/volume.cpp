@@ -1,7 +1,8 @@
 #include "lw/volume/volume.h"
 
-#include "lw/volume/parallel.h"
+#include "lw/core/parallel.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -68,7 +69,7 @@ ValueRange Volume::storedRange() const {
         const std::size_t slices = std::size_t(m_dims.z);
         const std::size_t perSlice = std::size_t(m_dims.x) * std::size_t(m_dims.y);
         std::vector<ValueRange> partial(slices);
-        parallelFor(slices, [&](std::size_t z) {
+        core::parallelFor(slices, [&](std::size_t z) {
             const T* p = voxels + z * perSlice;
             T lo = p[0], hi = p[0];
             for (std::size_t i = 1; i < perSlice; ++i) {
