@@ -30,13 +30,13 @@ std::vector<int> parseIntList(const std::string& option, const std::string& text
         int value = 0;
         const auto [end, error] = std::from_chars(part.data(), part.data() + part.size(), value);
         if (error != std::errc() || end != part.data() + part.size() || value < minimum)
-            throw core::Error("--" + option + " " + text,
-                              "expected a comma-separated list of integers >= " +
-                                  std::to_string(minimum));
+            throw UsageError("--" + option + " " + text,
+                             "expected a comma-separated list of integers >= " +
+                                 std::to_string(minimum));
         values.push_back(value);
     }
     if (values.empty())
-        throw core::Error("--" + option, "empty list");
+        throw UsageError("--" + option, "empty list");
     return values;
 }
 
@@ -61,26 +61,28 @@ constexpr double kPixelsPerVoxel = 2.0;
 int runAccuracy(const std::vector<std::string>& args, std::ostream& out) {
     const Arguments arguments(args, {"json"}, {"backend", "methods", "sizes", "shapes", "view"});
     if (!arguments.positionals().empty())
-        throw core::Error("accuracy",
-                          "usage: accuracy [--backend cpu|cuda|auto] [--methods 1,2,3] "
-                          "[--sizes 32,64,256] [--shapes sphere,...] [--view AZ,EL] [--json]");
-    const render::Backend backend = render::parseBackend(arguments.option("backend", "auto"));
+        throw UsageError("accuracy", "takes no positional arguments");
+    const render::Backend backend =
+        parseUsage([&] { return render::parseBackend(arguments.option("backend", "auto")); });
     const std::string backendUsed(render::backendName(render::resolveBackend(backend)));
     const std::vector<int> methods =
         parseIntList("methods", arguments.option("methods", "1,2,3"), 1);
     for (int m : methods)
         if (m > 3)
-            throw core::Error("--methods", "methods are 1, 2 and 3");
+            throw UsageError("--methods", "methods are 1, 2 and 3");
     const std::vector<int> sizes = parseIntList("sizes", arguments.option("sizes", "32,64,256"), 8);
-    const std::vector<std::string> shapes = arguments.option("shapes")
-                                                ? splitList(*arguments.option("shapes"), ',', false)
-                                                : render::analyticShapeNames();
+    const std::vector<std::string> known = render::analyticShapeNames();
+    const std::vector<std::string> shapes =
+        arguments.option("shapes") ? splitList(*arguments.option("shapes"), ',', false) : known;
+    for (const std::string& shape : shapes)
+        if (std::find(known.begin(), known.end(), shape) == known.end())
+            throw UsageError("--shapes " + shape, "not a known shape");
     const bool json = arguments.flag("json");
     double azimuth = kAzimuth, elevation = kElevation;
     if (const auto view = arguments.option("view")) {
         const glm::dvec2 parsed = parseView(*view);
         if (std::abs(parsed.y) > 90.0)
-            throw core::Error("--view " + *view, "expected AZ,EL in degrees with |EL| <= 90");
+            throw UsageError("--view " + *view, "expected AZ,EL in degrees with |EL| <= 90");
         azimuth = parsed.x;
         elevation = parsed.y;
     }

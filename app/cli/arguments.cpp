@@ -1,7 +1,5 @@
 #include "arguments.h"
 
-#include "lw/core/error.h"
-
 #include <cstdlib>
 
 namespace lw::cli {
@@ -24,15 +22,15 @@ Arguments::Arguments(const std::vector<std::string>& args, const std::set<std::s
                     m_options[name] = *inlineValue;
                 } else {
                     if (i + 1 >= args.size())
-                        throw core::Error("--" + name, "needs a value");
+                        throw UsageError("--" + name, "needs a value");
                     m_options[name] = args[++i];
                 }
             } else {
-                throw core::Error(arg, "unknown option");
+                throw UsageError(arg, "unknown option");
             }
         } else if (arg == "-o") {
             if (i + 1 >= args.size())
-                throw core::Error("-o", "needs an output path");
+                throw UsageError("-o", "needs an output path");
             m_options["output"] = args[++i];
         } else {
             m_positionals.push_back(arg);
@@ -57,7 +55,7 @@ double Arguments::number(const std::string& name, double fallback) const {
     char* end = nullptr;
     const double value = std::strtod(text->c_str(), &end);
     if (end == text->c_str() || *end != '\0')
-        throw core::Error("--" + name, "expected a number, got '" + *text + "'");
+        throw UsageError("--" + name, "expected a number, got '" + *text + "'");
     return value;
 }
 

@@ -29,12 +29,6 @@ namespace {
 
 constexpr core::LogCategory kLog("lw.cli");
 
-constexpr const char* kBenchUsage =
-    "usage: bench [--sizes 32,256,512,512x512x1024] [--input FILE --iso HU] [--backend "
-    "cpu|cuda|auto] "
-    "[--methods mc,1,2,3] [--variants S,L] [--modes a,b] [--repeat N] [--image WxH] [--threads N] "
-    "[--peak-memory-of METHOD,VARIANT] [--json]";
-
 // The paper's view of the tables: a fixed oblique view, so the silhouette is neither a
 // symmetric front view nor empty; every timed run turns it by kViewStepDeg so that mode a
 // measures a genuinely new view with the extraction cached.
@@ -309,13 +303,13 @@ std::vector<std::string> parseChoiceList(const std::string& text, const std::str
             std::string expected;
             for (const std::string& a : allowed)
                 expected += (expected.empty() ? "" : ", ") + a;
-            throw core::Error(option + " " + text, "'" + part + "' is not one of " + expected);
+            throw UsageError(option + " " + text, "'" + part + "' is not one of " + expected);
         }
         if (std::find(values.begin(), values.end(), part) == values.end())
             values.push_back(part);
     }
     if (values.empty())
-        throw core::Error(option, "the list is empty");
+        throw UsageError(option, "the list is empty");
     return values;
 }
 
@@ -326,11 +320,12 @@ int runBench(const std::vector<std::string>& args, std::ostream& out) {
                               {"sizes", "input", "iso", "backend", "methods", "variants", "modes",
                                "repeat", "image", "threads", "peak-memory-of"});
     if (!arguments.positionals().empty())
-        throw core::Error("bench", std::string("takes no positional arguments; ") + kBenchUsage);
+        throw UsageError("bench", "takes no positional arguments");
     const bool json = arguments.flag("json");
 
     Plan plan;
-    plan.backend = render::parseBackend(arguments.option("backend", "auto"));
+    plan.backend =
+        parseUsage([&] { return render::parseBackend(arguments.option("backend", "auto")); });
     render::resolveBackend(plan.backend); // fail before the first run: CUDA is not built yet
     plan.methods = parseChoiceList(arguments.option("methods", "mc,1,2,3"), "--methods",
                                    {"mc", "1", "2", "3"});
@@ -338,7 +333,7 @@ int runBench(const std::vector<std::string>& args, std::ostream& out) {
     plan.modes = parseChoiceList(arguments.option("modes", "a,b"), "--modes", {"a", "b"});
     const double repeat = arguments.number("repeat", 5);
     if (repeat < 1 || repeat != double(int(repeat)))
-        throw core::Error("--repeat", "expected a whole number >= 1");
+        throw UsageError("--repeat", "expected a whole number >= 1");
     plan.repeat = int(repeat);
     plan.threads = unsigned(std::max(0.0, arguments.number("threads", 0)));
     if (const auto image = arguments.option("image"))
@@ -348,7 +343,7 @@ int runBench(const std::vector<std::string>& args, std::ostream& out) {
     if (const auto peak = arguments.option("peak-memory-of")) {
         const std::vector<std::string> parts = splitList(*peak);
         if (parts.size() != 2)
-            throw core::Error("--peak-memory-of " + *peak, "expected METHOD,VARIANT, e.g. 3,L");
+            throw UsageError("--peak-memory-of " + *peak, "expected METHOD,VARIANT, e.g. 3,L");
         plan.methods = parseChoiceList(parts[0], "--peak-memory-of", {"mc", "1", "2", "3"});
         plan.variants = parseChoiceList(parts[1], "--peak-memory-of", {"S", "L"});
         peakMethod = *peak;
@@ -359,21 +354,21 @@ int runBench(const std::vector<std::string>& args, std::ostream& out) {
     const auto input = arguments.option("input");
     if (input) {
         if (arguments.option("sizes"))
-            throw core::Error("bench", "--input and --sizes exclude each other");
+            throw UsageError("bench", "--input and --sizes exclude each other");
         if (!arguments.option("iso"))
-            throw core::Error("--input " + *input,
-                              "needs --iso HU (the iso-value of the surface to extract)");
+            throw UsageError("--input " + *input,
+                             "needs --iso HU (the iso-value of the surface to extract)");
         volumeSpecs.push_back(*input);
     } else {
         volumeSpecs = splitList(arguments.option("sizes", "32,256"));
         if (volumeSpecs.empty())
-            throw core::Error("--sizes", "the list is empty");
+            throw UsageError("--sizes", "the list is empty");
         for (const std::string& size : volumeSpecs)
             parseDimsOption("--sizes", size, 2); // fail before the first (possibly long) run
     }
     if (peakMethod && volumeSpecs.size() != 1)
-        throw core::Error("--peak-memory-of",
-                          "measures one volume per process: give one size or --input");
+        throw UsageError("--peak-memory-of",
+                         "measures one volume per process: give one size or --input");
 
     // The process before any volume exists: what the peak is compared with.
     const std::size_t baselineRss = procStatusBytes("VmRSS");

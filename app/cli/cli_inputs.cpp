@@ -1,5 +1,6 @@
 #include "cli_inputs.h"
 
+#include "arguments.h"
 #include "lw/core/error.h"
 #include "lw/input/open_input.h"
 
@@ -25,7 +26,7 @@ std::vector<double> parseNumbers(const std::string& text, char separator,
         double value = 0.0;
         const auto [end, error] = std::from_chars(part.data(), part.data() + part.size(), value);
         if (part.empty() || error != std::errc() || end != part.data() + part.size())
-            throw core::Error(subject, "'" + part + "' is not a number");
+            throw UsageError(subject, "'" + part + "' is not a number");
         values.push_back(value);
     }
     return values;
@@ -55,8 +56,8 @@ std::optional<glm::ivec3> parseDims(std::string_view text, int minimum, int maxi
 glm::ivec3 parseDimsOption(const std::string& option, const std::string& text, int minimum) {
     const std::optional<glm::ivec3> dims = parseDims(text, minimum);
     if (!dims)
-        throw core::Error(option + " " + text,
-                          "expected N or NXxNYxNZ with integers >= " + std::to_string(minimum));
+        throw UsageError(option + " " + text,
+                         "expected N or NXxNYxNZ with integers >= " + std::to_string(minimum));
     return *dims;
 }
 
@@ -71,15 +72,15 @@ glm::ivec2 parseImageSize(const std::string& option, const std::string& text, in
         return v >= minimum && v <= 16384 && v == double(int(v));
     };
     if (values.size() != 2 || !valid(values[0]) || !valid(values[1]))
-        throw core::Error(subject, "expected WxH with whole numbers between " +
-                                       std::to_string(minimum) + " and 16384");
+        throw UsageError(subject, "expected WxH with whole numbers between " +
+                                      std::to_string(minimum) + " and 16384");
     return {int(values[0]), int(values[1])};
 }
 
 glm::dvec2 parseView(const std::string& text) {
     const std::vector<double> values = parseNumbers(text, ',', "--view " + text);
     if (values.size() != 2)
-        throw core::Error("--view " + text, "expected AZ,EL in degrees");
+        throw UsageError("--view " + text, "expected AZ,EL in degrees");
     return {values[0], values[1]};
 }
 

@@ -70,10 +70,10 @@ double median(std::vector<double> values) {
 int runBenchImport(const std::vector<std::string>& args, std::ostream& out) {
     const Arguments arguments(args, {"json"}, {"repeat"});
     if (arguments.positionals().size() != 1)
-        throw core::Error("bench-import", "expects exactly one PATH");
+        throw UsageError("bench-import", "expects exactly one PATH");
     const double repeatValue = arguments.number("repeat", 5);
     if (repeatValue < 1 || repeatValue > 1000 || repeatValue != std::floor(repeatValue))
-        throw core::Error("--repeat", "expected a whole number from 1 to 1000");
+        throw UsageError("--repeat", "expected a whole number from 1 to 1000");
 #ifdef LINEWORK_HAVE_DICOM
     const std::string path = arguments.positionals()[0];
     const int repeat = int(repeatValue);

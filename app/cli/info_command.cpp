@@ -49,7 +49,7 @@ glm::ivec3 parseDims(const std::string& text) {
     char x1 = 0, x2 = 0;
     if (!(in >> dims.x >> x1 >> dims.y >> x2 >> dims.z) || (x1 != 'x' && x1 != 'X') ||
         (x2 != 'x' && x2 != 'X') || dims.x <= 0 || dims.y <= 0 || dims.z <= 0 || !in.eof())
-        throw core::Error("--raw", "expected WxHxD with positive integers, got '" + text + "'");
+        throw UsageError("--raw", "expected WxHxD with positive integers, got '" + text + "'");
     return dims;
 }
 
@@ -59,7 +59,7 @@ glm::dvec3 parseSpacing(const std::string& text) {
     char c1 = 0, c2 = 0;
     if (!(in >> spacing.x >> c1 >> spacing.y >> c2 >> spacing.z) || c1 != ',' || c2 != ',' ||
         spacing.x <= 0 || spacing.y <= 0 || spacing.z <= 0)
-        throw core::Error("--spacing", "expected X,Y,Z in mm (positive), got '" + text + "'");
+        throw UsageError("--spacing", "expected X,Y,Z in mm (positive), got '" + text + "'");
     return spacing;
 }
 
@@ -286,7 +286,7 @@ int runDicomInfo(const std::string& path, bool json, std::ostream& out) {
 int runInfo(const std::vector<std::string>& args, std::ostream& out) {
     const Arguments arguments(args, {"json", "big-endian"}, {"raw", "type", "spacing"});
     if (arguments.positionals().size() != 1)
-        throw core::Error("info", "expects exactly one PATH");
+        throw UsageError("info", "expects exactly one PATH");
     const std::string path = arguments.positionals()[0];
     const bool json = arguments.flag("json");
 
@@ -295,8 +295,8 @@ int runInfo(const std::vector<std::string>& args, std::ostream& out) {
         options.dims = parseDims(*raw);
         const auto type = arguments.option("type");
         if (!type)
-            throw core::Error("--raw", "needs --type (uint8, int16, uint16, float32)");
-        options.type = volume::parseVoxelType(*type);
+            throw UsageError("--raw", "needs --type (uint8, int16, uint16, float32)");
+        options.type = parseUsage([&] { return volume::parseVoxelType(*type); });
         options.bigEndian = arguments.flag("big-endian");
         if (const auto spacing = arguments.option("spacing"))
             options.spacing = parseSpacing(*spacing);

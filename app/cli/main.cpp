@@ -1,12 +1,13 @@
 // linework-cli: the headless face of the engine. Needs no display, Qt or (optionally) DCMTK.
+#include "arguments.h"
 #include "commands.h"
-
 #include "lw/core/error.h"
 
 #include <cstdio>
 #include <functional>
 #include <iostream>
 #include <map>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -47,6 +48,23 @@ commands:
 Exit codes: 0 success, 1 error (the message names the file and the reason), 2 usage error.
 )";
 
+// The lines of kUsage about `command`: its synopsis and description, up to the next command
+// (a line indented by exactly two spaces starts a command).
+std::string usageOf(const std::string& command) {
+    std::istringstream lines(kUsage);
+    std::string line, text;
+    bool inside = false;
+    while (std::getline(lines, line)) {
+        if (line.size() > 2 && line.compare(0, 2, "  ") == 0 && line[2] != ' ')
+            inside = line.compare(2, command.size() + 1, command + " ") == 0;
+        else if (line.empty())
+            inside = false;
+        if (inside)
+            text += line + "\n";
+    }
+    return text;
+}
+
 } // namespace
 
 int main(int argc, char** argv) {
@@ -72,6 +90,11 @@ int main(int argc, char** argv) {
     }
     try {
         return command->second(std::vector<std::string>(args.begin() + 1, args.end()), std::cout);
+    } catch (const lw::cli::UsageError& error) {
+        std::fprintf(stderr,
+                     "linework-cli: %s\n\nusage (linework-cli help lists every command):\n%s",
+                     error.what(), usageOf(args[0]).c_str());
+        return 2;
     } catch (const lw::core::Cancelled&) {
         std::fprintf(stderr, "linework-cli: cancelled\n");
         return 1;

@@ -36,10 +36,10 @@ int runPhantom(const std::vector<std::string>& args, std::ostream& out) {
     const auto size = arguments.option("size");
     const auto output = arguments.option("output");
     if (!size || !output || !arguments.positionals().empty())
-        throw core::Error("phantom",
-                          "usage: phantom --size N|NXxNYxNZ [--kind ct|sphere] -o OUT.nrrd");
+        throw UsageError("phantom", "needs --size and -o OUT.nrrd, and no other arguments");
     const glm::ivec3 dims = parseDimsOption("--size", *size, 1);
-    const render::PhantomKind kind = render::parsePhantomKind(arguments.option("kind", "ct"));
+    const render::PhantomKind kind =
+        parseUsage([&] { return render::parsePhantomKind(arguments.option("kind", "ct")); });
     const auto start = std::chrono::steady_clock::now();
     const volume::Volume phantom =
         render::makePhantom(dims, kind, unsigned(arguments.number("threads", 0)));
@@ -58,7 +58,8 @@ int runPhantom(const std::vector<std::string>& args, std::ostream& out) {
 int runBenchMc(const std::vector<std::string>& args, std::ostream& out) {
     const Arguments arguments(args, {}, {"size", "kind", "chunks", "repeat", "iso", "threads"});
     const glm::ivec3 dims = parseDimsOption("--size", arguments.option("size", "256"), 1);
-    const render::PhantomKind kind = render::parsePhantomKind(arguments.option("kind", "ct"));
+    const render::PhantomKind kind =
+        parseUsage([&] { return render::parsePhantomKind(arguments.option("kind", "ct")); });
     const int repeat = std::max(1, int(arguments.number("repeat", 10)));
     const double iso = arguments.number("iso", render::kPhantomBoneIso);
     const std::string chunks = arguments.option("chunks", "off");
@@ -68,7 +69,7 @@ int runBenchMc(const std::vector<std::string>& args, std::ostream& out) {
     const double generateSeconds = secondsSince(start);
 
     render::IsoSurfaceOptions options;
-    options.brickCells = render::parseChunks(chunks, dims);
+    options.brickCells = parseUsage([&] { return render::parseChunks(chunks, dims); });
     options.threads = unsigned(arguments.number("threads", 0));
     start = std::chrono::steady_clock::now();
     const render::IsoSurfaceExtractor extractor(phantom, options);

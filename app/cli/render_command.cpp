@@ -22,12 +22,6 @@
 namespace lw::cli {
 namespace {
 
-constexpr const char* kRenderUsage =
-    "usage: render INPUT [--series UID] --iso HU --method 1|2|3 [--chunks off|auto|N] [--mode a|b] "
-    "[--visibility on|off] [--view AZ,EL] [--camera perspective|ortho] [--size WxH] [--panel "
-    "iso|silhouette|both] "
-    "[--backend cpu|cuda|auto] -o OUT.png";
-
 // Lines black on white, like the GL renderer's defaults and a printed report.
 core::ImageRgba8 maskToImage(const render::PixelMask& mask) {
     return mask.toImage({0, 0, 0, 255}, {255, 255, 255, 255});
@@ -137,31 +131,33 @@ int runRender(const std::vector<std::string>& args, std::ostream& out) {
                               {"series", "iso", "method", "chunks", "mode", "visibility", "view",
                                "camera", "size", "panel", "backend", "threads", "repeat"});
     if (arguments.positionals().size() != 1)
-        throw core::Error("render", std::string("expects exactly one INPUT; ") + kRenderUsage);
+        throw UsageError("render", "expects exactly one INPUT");
     const auto output = arguments.option("output");
     if (!output)
-        throw core::Error("render", std::string("needs -o OUT.png; ") + kRenderUsage);
+        throw UsageError("render", "needs -o OUT.png");
     const std::string input = arguments.positionals()[0];
 
     RenderRequest request;
-    request.method = render::parseSilhouetteMethod(arguments.option("method", "3"));
-    request.backend = render::parseBackend(arguments.option("backend", "auto"));
+    request.method =
+        parseUsage([&] { return render::parseSilhouetteMethod(arguments.option("method", "3")); });
+    request.backend =
+        parseUsage([&] { return render::parseBackend(arguments.option("backend", "auto")); });
 
     const std::string mode = arguments.option("mode", "a");
     if (mode != "a" && mode != "b")
-        throw core::Error("--mode " + mode, "expected a or b");
+        throw UsageError("--mode " + mode, "expected a or b");
     request.settings.mode =
         mode == "a" ? render::ExtractionMode::CachedA : render::ExtractionMode::EveryFrameB;
     const std::string visibility = arguments.option("visibility", "on");
     if (visibility != "on" && visibility != "off")
-        throw core::Error("--visibility " + visibility, "expected on or off");
+        throw UsageError("--visibility " + visibility, "expected on or off");
     request.settings.visibility = visibility == "on";
     request.settings.threads = unsigned(std::max(0.0, arguments.number("threads", 0)));
     request.repeat = std::max(0, int(arguments.number("repeat", 0)));
 
     const std::string panel = arguments.option("panel", "silhouette");
     if (panel != "iso" && panel != "silhouette" && panel != "both")
-        throw core::Error("--panel " + panel, "expected iso, silhouette or both");
+        throw UsageError("--panel " + panel, "expected iso, silhouette or both");
     request.wantIso = panel != "silhouette";
     request.wantSilhouette = panel != "iso";
 
@@ -171,21 +167,21 @@ int runRender(const std::vector<std::string>& args, std::ostream& out) {
     setup.elevationDeg = view.y;
     const std::string projection = arguments.option("camera", "perspective");
     if (projection != "perspective" && projection != "ortho")
-        throw core::Error("--camera " + projection, "expected perspective or ortho");
+        throw UsageError("--camera " + projection, "expected perspective or ortho");
     setup.projection =
         projection == "ortho" ? render::Projection::Orthographic : render::Projection::Perspective;
     const glm::ivec2 size = parseImageSize("--size", arguments.option("size", "512x512"), 1);
 
     if (!arguments.option("iso"))
-        throw core::Error("render", std::string("needs --iso HU; ") + kRenderUsage);
+        throw UsageError("render", "needs --iso HU");
     request.settings.isoReal = arguments.number("iso", 0.0);
     volume::Volume volume; // declared first: the renderer holds it and must not outlive it
     // Before the input is read, so an unavailable method or back-end fails at once.
     const std::unique_ptr<render::SilhouetteRenderer> renderer =
         render::createSilhouetteRenderer(request.method, request.backend);
     volume = loadInput(input, arguments.option("series"));
-    request.settings.brickCells =
-        render::parseChunks(arguments.option("chunks", "off"), volume.dims());
+    request.settings.brickCells = parseUsage(
+        [&] { return render::parseChunks(arguments.option("chunks", "off"), volume.dims()); });
     // Frame the surface, not the field of view around it.
     setup.bounds = render::surfaceBounds(volume, request.settings.isoReal);
     const render::Camera camera(setup, size.x, size.y);

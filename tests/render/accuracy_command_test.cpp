@@ -46,11 +46,12 @@ TEST(AccuracyCommand, HumanReadableTable) {
 }
 
 TEST(AccuracyCommand, RejectsBadArguments) {
-    EXPECT_EQ(runCli("accuracy --methods 4").exitCode, 1);
-    EXPECT_EQ(runCli("accuracy --sizes 4").exitCode, 1);
-    EXPECT_EQ(runCli("accuracy --shapes cube --sizes 16").exitCode, 1);
-    EXPECT_EQ(runCli("accuracy --view 10").exitCode, 1);
-    EXPECT_EQ(runCli("accuracy --backend opencl").exitCode, 1);
+    // Usage errors: exit 2.
+    EXPECT_EQ(runCli("accuracy --methods 4").exitCode, 2);
+    EXPECT_EQ(runCli("accuracy --sizes 4").exitCode, 2);
+    EXPECT_EQ(runCli("accuracy --shapes cube --sizes 16").exitCode, 2);
+    EXPECT_EQ(runCli("accuracy --view 10").exitCode, 2);
+    EXPECT_EQ(runCli("accuracy --backend opencl").exitCode, 2);
 }
 
 } // namespace

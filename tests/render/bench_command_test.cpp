@@ -237,11 +237,14 @@ TEST(BenchCommand, MethodWithoutGlIsReportedAsSkipped) {
 
 TEST(BenchCommand, BadOptionsFailWithAUsageError) {
     EXPECT_EQ(runCli("bench --sizes 32 --backend cuda").exitCode, 1) << "CUDA is not built yet";
-    EXPECT_EQ(runCli("bench --sizes 32 --methods 4").exitCode, 1);
-    EXPECT_EQ(runCli("bench --sizes 0").exitCode, 1);
-    EXPECT_EQ(runCli("bench --sizes 32 --repeat 0").exitCode, 1);
-    EXPECT_EQ(runCli("bench --sizes 32,48 --peak-memory-of 3,L").exitCode, 1);
-    EXPECT_EQ(runCli("bench --input /nonexistent.nrrd").exitCode, 1) << "--input needs --iso";
+    EXPECT_EQ(runCli("bench --sizes 32 --methods 4").exitCode, 2);
+    EXPECT_EQ(runCli("bench --sizes 0").exitCode, 2);
+    EXPECT_EQ(runCli("bench --sizes 32 --repeat 0").exitCode, 2);
+    EXPECT_EQ(runCli("bench --sizes 32,48 --peak-memory-of 3,L").exitCode, 2);
+    EXPECT_EQ(runCli("bench --input /nonexistent.nrrd").exitCode, 2) << "--input needs --iso";
+    EXPECT_EQ(runCli("bench --input /nonexistent.nrrd --iso 300 --methods 3 --variants S").exitCode,
+              1)
+        << "an input that cannot be read";
 }
 
 } // namespace

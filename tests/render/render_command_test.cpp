@@ -68,12 +68,53 @@ TEST(RenderCommand, RejectsBadRequests) {
     EXPECT_EQ(
         runCli("render phantom:32 --iso 300.5 --method 3 --backend cuda -o '" + out.string() + "'"),
         1);
-    EXPECT_EQ(runCli("render phantom:32 --iso 300.5 --method 4 -o '" + out.string() + "'"), 1);
-    EXPECT_EQ(runCli("render phantom:32 --iso 300.5 --size 0x10 -o '" + out.string() + "'"), 1);
-    EXPECT_EQ(runCli("render phantom:32 --method 3 -o '" + out.string() + "'"), 1)
+    EXPECT_EQ(runCli("render phantom:32 --iso 300.5 --method 4 -o '" + out.string() + "'"), 2);
+    EXPECT_EQ(runCli("render phantom:32 --iso 300.5 --size 0x10 -o '" + out.string() + "'"), 2);
+    EXPECT_EQ(runCli("render phantom:32 --method 3 -o '" + out.string() + "'"), 2)
         << "--iso is required";
     EXPECT_EQ(runCli("render /nonexistent/volume.nrrd --iso 300.5 -o '" + out.string() + "'"), 1);
     EXPECT_FALSE(std::filesystem::exists(out));
+}
+
+// What a command prints on stderr (runCli drops it) and its exit code.
+lw::test::CliResult runCliWithStderr(const std::string& arguments) {
+    return lw::test::runProgram("/bin/sh", "-c '\"" LINEWORK_CLI_PATH "\" " + arguments + " 2>&1'");
+}
+
+// README and `help`: 0 success, 1 an input that cannot be read, 2 a usage error (with the usage).
+TEST(CliUsage, UsageErrorsExitTwoWithTheCommandsUsage) {
+    const struct {
+        std::string arguments;
+        std::string usage; // the start of the command's usage line
+    } cases[] = {
+        {"info", "  info PATH"},
+        {"info --bogus x", "  info PATH"},
+        {"render phantom:16 -o /tmp/lw-never.png", "  render INPUT"},
+        {"render phantom:16 --iso -o /tmp/lw-never.png", "  render INPUT"},
+        {"render phantom:16 --iso bone -o /tmp/lw-never.png", "  render INPUT"},
+        {"render phantom:16 --iso 300 --mode c -o /tmp/lw-never.png", "  render INPUT"},
+        {"render phantom:16 --iso 300 --chunks banana -o /tmp/lw-never.png", "  render INPUT"},
+        {"phantom --size 8 --kind cube -o /tmp/lw-never.nrrd", "  phantom --size"},
+        {"bench-mc --size 8 --repeat x", "  bench-mc"},
+        {"bench-import", "  bench-import PATH"},
+        {"accuracy extra", "  accuracy"},
+    };
+    for (const auto& c : cases) {
+        const lw::test::CliResult r = runCliWithStderr(c.arguments);
+        EXPECT_EQ(r.exitCode, 2) << c.arguments << "\n" << r.out;
+        EXPECT_NE(r.out.find("\n" + c.usage), std::string::npos) << c.arguments << "\n" << r.out;
+    }
+    EXPECT_EQ(runCli(""), 2);
+    EXPECT_EQ(runCli("no-such-command"), 2);
+    EXPECT_EQ(runCli("help"), 0);
+}
+
+TEST(CliUsage, UnreadableInputExitsOne) {
+    const lw::test::CliResult info = runCliWithStderr("info /nonexistent/volume.nrrd");
+    EXPECT_EQ(info.exitCode, 1) << info.out;
+    EXPECT_NE(info.out.find("/nonexistent/volume.nrrd"), std::string::npos) << info.out;
+    EXPECT_EQ(info.out.find("usage"), std::string::npos) << info.out;
+    EXPECT_EQ(runCli("render /nonexistent/volume.nrrd --iso 300 -o /tmp/lw-never.png"), 1);
 }
 
 } // namespace
