@@ -5,8 +5,11 @@
 #   scripts/linework.sh test   install what is missing, build, run the whole test suite (CTest)
 #
 # Both are idempotent: packages already present are not reinstalled, builds are incremental.
-# Environment: LINEWORK_BUILD_DIR (default build/<command>), LINEWORK_JOBS (default: cores),
-# LINEWORK_CUDA_ARCHITECTURES (run: 75;80;86;89;90, test: 90 — CI compiles one architecture).
+# Both build into one folder, so `test` after `run` (or the reverse) only builds what is new:
+# `run` builds the two programs it needs, `test` everything.
+# Environment: LINEWORK_BUILD_DIR (default build/linework), LINEWORK_JOBS (default: cores),
+# LINEWORK_CUDA_ARCHITECTURES (default 90, the H100/H200 of the GPU machine and what CI
+# compiles; e.g. "75;80;86;89;90" for other GPUs).
 set -euo pipefail
 
 command=${1:-}
@@ -32,24 +35,39 @@ install_packages() {
   [ ${#missing[@]} -eq 0 ] && return 0
   echo "linework: installing ${missing[*]}"
   local sudo=""
-  [ "$(id -u)" -eq 0 ] || sudo="sudo"
-  $sudo apt-get update -qq
-  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"
+  if [ "$(id -u)" -ne 0 ]; then
+    sudo="sudo"
+    sudo -v # ask for the password here, not inside the silenced apt-get below
+  fi
+  # dpkg prints about a thousand lines of progress: keep them in a log, show its end on failure.
+  local log
+  log=$(mktemp "${TMPDIR:-/tmp}/linework-apt.XXXXXX")
+  if ! { $sudo apt-get update -qq &&
+         DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends \
+           "${missing[@]}"; } >"$log" 2>&1; then
+    echo "linework: installing the packages failed; the end of $log:" >&2
+    tail -n 40 "$log" >&2
+    exit 1
+  fi
+  rm -f "$log"
 }
 
 install_packages
 
 jobs=${LINEWORK_JOBS:-$(nproc)}
-build_dir=${LINEWORK_BUILD_DIR:-build/$command}
-if [ "$command" = test ]; then
-  cuda_archs=${LINEWORK_CUDA_ARCHITECTURES:-90}
-else
-  cuda_archs=${LINEWORK_CUDA_ARCHITECTURES:-75;80;86;89;90}
-fi
+build_dir=${LINEWORK_BUILD_DIR:-build/linework}
+cuda_archs=${LINEWORK_CUDA_ARCHITECTURES:-90}
 
 cmake -S . -B "$build_dir" -G Ninja -DCMAKE_BUILD_TYPE=Release \
       "-DCMAKE_CUDA_ARCHITECTURES=$cuda_archs" "$@"
-cmake --build "$build_dir" --parallel "$jobs"
+if [ "$command" = run ]; then
+  # The main job needs the two programs only; the GUI exists where Qt 6 and DCMTK were found.
+  targets=(linework-cli)
+  ninja -C "$build_dir" -t query linework >/dev/null 2>&1 && targets+=(linework)
+  cmake --build "$build_dir" --parallel "$jobs" --target "${targets[@]}"
+else
+  cmake --build "$build_dir" --parallel "$jobs"
+fi
 
 demo=resources/demo/ct_head_ge_tilt
 if [ "$command" = run ]; then
