@@ -7,7 +7,7 @@
 #   scripts/user_guide_screenshots.sh [BUILD_DIR]
 set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
-build_dir=${1:-$root/build/test}
+build_dir=${1:-$root/build/linework}
 if ! log=$(cmake --build "$build_dir" --target linework-screenshots 2>&1); then
   echo "$log" >&2
   exit 1

@@ -97,6 +97,7 @@ render::SilhouetteRenderer& RenderWorker::rendererFor(const FrameRequest& reques
 void RenderWorker::renderSilhouette(const FrameRequest& request, FrameResult& result) {
     render::SilhouetteSettings settings = request.settings;
     settings.isoReal = request.iso;
+    settings.cancel = request.cancel.get(); // a newer iso-value stops this frame in the kernels
     render::SilhouetteRenderer& renderer = rendererFor(request, result);
     result.silhouette = renderer.render(request.camera, settings);
     keepRendererMesh(request, result);
@@ -177,7 +178,7 @@ void RenderWorker::extractMesh(const FrameRequest& request, FrameResult& result)
         m_extractorBricks = bricks;
     }
     auto mesh = std::make_shared<render::Mesh>();
-    m_extractor->extract(request.iso, *mesh);
+    m_extractor->extract(request.iso, *mesh, nullptr, request.cancel.get());
     m_mesh = std::move(mesh);
     m_meshIso = request.iso;
     result.mesh = m_mesh;

@@ -63,8 +63,15 @@ public:
         m_brickCells = grid.brickCells();
     }
 
-    McResult run(unsigned threads) {
+    McResult run(unsigned threads, const core::CancelToken* cancel) {
         McResult result;
+        // Units not started once the token is set are skipped; the phase ends and reports it.
+        const auto cancelled = [cancel] { return cancel && cancel->isCancelled(); };
+        const auto stop = [&] {
+            clearOutput();
+            result.status = McStatus::Cancelled;
+            return result;
+        };
         result.totalBricks = m_grid.bricks().size();
         if (m_dims.cx < 1 || m_dims.cy < 1 || m_dims.cz < 1 || result.totalBricks == 0) {
             clearOutput();
@@ -84,7 +91,14 @@ public:
         m_triangleOffset.assign(std::size_t(m_dims.cz) * std::size_t(m_dims.cy) * std::size_t(m_gx),
                                 0u);
         core::parallelFor(
-            m_units.size(), [&](std::size_t u) { countUnit(m_units[u]); }, threads);
+            m_units.size(),
+            [&](std::size_t u) {
+                if (!cancelled())
+                    countUnit(m_units[u]);
+            },
+            threads);
+        if (cancelled())
+            return stop();
 
         const std::uint64_t vertices = exclusiveScan(m_vertexOffset);
         const std::uint64_t triangles = exclusiveScan(m_triangleOffset);
@@ -99,7 +113,14 @@ public:
         m_out.normals.resize(std::size_t(vertices));
         m_out.indices.resize(std::size_t(triangles) * 3);
         core::parallelFor(
-            m_units.size(), [&](std::size_t u) { emitUnit(m_units[u]); }, threads);
+            m_units.size(),
+            [&](std::size_t u) {
+                if (!cancelled())
+                    emitUnit(m_units[u]);
+            },
+            threads);
+        if (cancelled())
+            return stop();
         return result;
     }
 
@@ -457,11 +478,12 @@ private:
 } // namespace
 
 McResult marchingCubes(const volume::Volume& volume, const volume::BrickGrid& grid,
-                       double storedIso, McOutput& out, unsigned threads) {
+                       double storedIso, McOutput& out, unsigned threads,
+                       const core::CancelToken* cancel) {
     return volume::dispatchVoxelType(volume.voxelType(), [&](auto tag) {
         using T = decltype(tag);
         Extractor<T> extractor(volume, grid, storedIso, out);
-        return extractor.run(threads);
+        return extractor.run(threads, cancel);
     });
 }
 

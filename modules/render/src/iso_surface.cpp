@@ -56,7 +56,8 @@ double storedIsoValue(const volume::Volume& volume, double isoReal) {
     return mapping.toStored(isoReal);
 }
 
-void IsoSurfaceExtractor::extract(double isoReal, Mesh& mesh, IsoSurfaceStats* stats) const {
+void IsoSurfaceExtractor::extract(double isoReal, Mesh& mesh, IsoSurfaceStats* stats,
+                                  const core::CancelToken* cancel) const {
     const double storedIso = storedIsoValue(m_volume, isoReal);
 
     kernels::cpu::McOutput out;
@@ -64,10 +65,13 @@ void IsoSurfaceExtractor::extract(double isoReal, Mesh& mesh, IsoSurfaceStats* s
     out.normals = std::move(mesh.normals);
     out.indices = std::move(mesh.indices);
     const kernels::cpu::McResult result =
-        kernels::cpu::marchingCubes(m_volume, m_impl->grid, storedIso, out, m_options.threads);
+        kernels::cpu::marchingCubes(m_volume, m_impl->grid, storedIso, out, m_options.threads,
+                                    cancel ? cancel : m_options.cancel);
     mesh.positions = std::move(out.positions);
     mesh.normals = std::move(out.normals);
     mesh.indices = std::move(out.indices);
+    if (result.status == kernels::cpu::McStatus::Cancelled)
+        throw core::Cancelled();
     if (result.status == kernels::cpu::McStatus::TooManyVertices)
         throw core::Error("iso-surface at " + std::to_string(isoReal),
                           "the mesh has more than 2^32 vertices; extract a smaller region");

@@ -99,6 +99,11 @@ SilhouetteFrame RayCastSilhouetteRenderer::render(const Camera& camera,
         frame.times.extractMs = msSince(start);
     }
 
+    const auto throwIfCancelled = [&] {
+        if (settings.cancel && settings.cancel->isCancelled())
+            throw core::Cancelled();
+    };
+    throwIfCancelled();
     start = Clock::now();
     const kernels::cpu::SilhouetteView view = viewOf(camera);
     frame.triangles = cache.kernel.extractSegments(view, settings.threads);
@@ -115,6 +120,7 @@ SilhouetteFrame RayCastSilhouetteRenderer::render(const Camera& camera,
     core::parallelFor(
         chunks,
         [&](std::size_t c) {
+            throwIfCancelled();
             auto& lines = cache.chunkLines[c];
             auto& dots = cache.chunkDots[c];
             lines.clear();

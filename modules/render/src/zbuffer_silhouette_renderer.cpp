@@ -159,6 +159,7 @@ SilhouetteFrame ZBufferSilhouetteRenderer::render(const Camera& camera,
         s.meshValid = false;
         IsoSurfaceOptions options;
         options.threads = threads;
+        options.cancel = settings.cancel;
         extractIsoSurface(*s.volume, settings.isoReal, options, s.mesh);
         s.buildClusters();
         s.meshClosed =
@@ -263,6 +264,8 @@ void ZBufferSilhouetteRenderer::State::renderChunked(const Camera& camera,
     core::parallelFor(
         active.size(),
         [&](std::size_t i) {
+            if (settings.cancel && settings.cancel->isCancelled())
+                throw core::Cancelled(); // parallelFor stops the other bricks and rethrows
             BrickWorker* worker = nullptr;
             {
                 std::lock_guard lock(idleMutex);

@@ -64,6 +64,7 @@ struct GeometryShaderSilhouetteRenderer::State {
         IsoSurfaceOptions options;
         options.brickCells = settings.brickCells;
         options.threads = settings.threads;
+        options.cancel = settings.cancel;
         meshIso.reset(); // a failed extraction or upload leaves no stale cache behind
         extractIsoSurface(*volume, settings.isoReal, options, mesh);
         gl.uploadMesh(mesh);
@@ -201,6 +202,8 @@ SilhouetteFrame GeometryShaderSilhouetteRenderer::renderBricks(const Camera& cam
     glFinish();
     frame.times.drawMs += msSince(start);
     for (const int index : active) {
+        if (settings.cancel && settings.cancel->isCancelled())
+            throw core::Cancelled();
         // Extract and upload one brick (billed to extraction, as S's upload is) ...
         start = Clock::now();
         extractor.extract(s.grid.bricks()[std::size_t(index)], s.brick);

@@ -1,5 +1,6 @@
 #pragma once
 
+#include "lw/core/progress.h"
 #include "lw/volume/volume.h"
 
 #include <cstddef>
@@ -27,6 +28,8 @@ struct IsoSurfaceOptions {
     // "S" variant), anything else is the chunked ("L") schedule. The mesh is the same either way.
     int brickCells = 0;
     unsigned threads = 0; // 0 = all cores
+    // Polled by the kernels between work units; when set, extraction throws core::Cancelled.
+    const core::CancelToken* cancel = nullptr;
 };
 
 struct IsoSurfaceStats {
@@ -44,8 +47,10 @@ public:
     IsoSurfaceExtractor(const IsoSurfaceExtractor&) = delete;
     IsoSurfaceExtractor& operator=(const IsoSurfaceExtractor&) = delete;
 
-    // Reuses `mesh`'s buffers (repeated extraction without fresh allocations).
-    void extract(double isoReal, Mesh& mesh, IsoSurfaceStats* stats = nullptr) const;
+    // Reuses `mesh`'s buffers (repeated extraction without fresh allocations). Throws
+    // core::Cancelled when `cancel` is set during the extraction (the mesh is then empty).
+    void extract(double isoReal, Mesh& mesh, IsoSurfaceStats* stats = nullptr,
+                 const core::CancelToken* cancel = nullptr) const;
     Mesh extract(double isoReal, IsoSurfaceStats* stats = nullptr) const;
 
 private:

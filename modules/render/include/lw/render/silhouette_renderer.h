@@ -9,6 +9,7 @@
 // Chunked ("L") variants are the same code with a brick schedule (settings.brickCells > 0);
 // the whole-volume ("S") variant is the one-brick case.
 
+#include "lw/core/progress.h"
 #include "lw/render/camera.h"
 #include "lw/render/pixel_mask.h"
 #include "lw/volume/volume.h"
@@ -27,9 +28,13 @@ struct SilhouetteSettings {
     double isoReal = 300.5; // real units (HU for CT); the volume's value mapping converts it
     int brickCells = 0;     // 0: whole volume (S); > 0: bricks of this many cells per axis (L)
     ExtractionMode mode = ExtractionMode::CachedA;
-    bool visibility = true;        // false: every silhouette segment is drawn (paper, tables 2-4)
-    bool testAlongSegment = false; // method 2: test points along each segment, not only its endpoints
-    unsigned threads = 0;          // CPU back-end: 0 = all cores
+    bool visibility = true; // false: every silhouette segment is drawn (paper, tables 2-4)
+    bool testAlongSegment =
+        false;            // method 2: test points along each segment, not only its endpoints
+    unsigned threads = 0; // CPU back-end: 0 = all cores
+    // A newer request (the GUI's iso slider) sets it: the frame stops at the next brick, stage or
+    // kernel work unit and render() throws core::Cancelled. Not owned; null for none.
+    const core::CancelToken* cancel = nullptr;
 };
 
 // Wall-clock time of each stage of one frame, in milliseconds (0 when a stage did not run,
@@ -43,9 +48,9 @@ struct StageTimes {
 };
 
 struct SilhouetteFrame {
-    PixelMask lines;            // silhouette pixels on the camera's viewport, row 0 at the top
-    std::size_t triangles = 0;  // triangles extracted (method 2: triangles visited)
-    std::size_t segments = 0;   // silhouette segments found (before visibility)
+    PixelMask lines;           // silhouette pixels on the camera's viewport, row 0 at the top
+    std::size_t triangles = 0; // triangles extracted (method 2: triangles visited)
+    std::size_t segments = 0;  // silhouette segments found (before visibility)
     StageTimes times;
 };
 

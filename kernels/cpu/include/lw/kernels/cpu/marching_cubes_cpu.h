@@ -1,5 +1,6 @@
 #pragma once
 
+#include "lw/core/progress.h"
 #include "lw/kernels/voxel_grid.h"
 #include "lw/volume/bricks.h"
 #include "lw/volume/volume.h"
@@ -19,6 +20,7 @@ namespace lw::kernels::cpu {
 enum class McStatus {
     Ok,
     TooManyVertices, // more than 2^32 - 1 vertices: the index type cannot address them
+    Cancelled,       // the cancel token was set: the output is empty
 };
 
 struct McResult {
@@ -43,8 +45,11 @@ struct McOutput {
 // are ordered by their global edge id (voxel index * 3 + axis), triangles by their cell index
 // and then by table order. The one-brick grid (whole volume) and any chunked grid therefore
 // give bit-identical meshes.
+// `cancel` (optional) is polled between work units: a newer request in the GUI stops an
+// extraction that is no longer wanted within one unit's time.
 McResult marchingCubes(const volume::Volume& volume, const volume::BrickGrid& grid,
-                       double storedIso, McOutput& out, unsigned threads = 0);
+                       double storedIso, McOutput& out, unsigned threads = 0,
+                       const core::CancelToken* cancel = nullptr);
 
 // The grid set-up (derivative spans, patient frame) that marchingCubes() uses for `volume`.
 // Method 2 builds its vertices from the same one, which is what makes them bit-identical.
