@@ -16,6 +16,7 @@
 #include <QApplication>
 #include <QCommandLineParser>
 #include <QElapsedTimer>
+#include <QSettings>
 #include <QSurfaceFormat>
 #include <QTemporaryDir>
 #include <QTest>
@@ -117,6 +118,7 @@ void benchMethod(ReviewWidget& review, MainWindow& window, int method, double is
     report(line, review.isoPanel().lastPaintMs());
     std::snprintf(line, sizeof line, "method %d: last paint, silhouette panel (UI thread)", method);
     report(line, review.silhouettePanel().lastPaintMs());
+    std::printf("method %d: status: %s\n", method, qPrintable(review.statusText()));
     std::snprintf(line, sizeof line, "method %d: triangles", method);
     report(line, double(review.status().triangles), "");
 }
@@ -135,11 +137,15 @@ int main(int argc, char* argv[]) {
     qputenv("XDG_CONFIG_HOME", (home.path() + "/config").toLocal8Bit());
     qputenv("XDG_DATA_HOME", (home.path() + "/data").toLocal8Bit());
     QApplication app(argc, argv);
+    QApplication::setOrganizationName("LineworkBench");
+    QApplication::setApplicationName("linework-review-bench");
     QCommandLineParser parser;
     parser.addPositionalArgument("path", "DICOM folder to import and review");
     const QCommandLineOption isoOption("iso", "Iso-value (HU).", "HU", "300");
     const QCommandLineOption repeatOption("repeat", "Repetitions per figure.", "N", "9");
-    parser.addOptions({isoOption, repeatOption});
+    const QCommandLineOption panelGlOption(
+        "panel-gl", "Where the GL draws: auto, panels or worker (settings page).", "WHERE", "auto");
+    parser.addOptions({isoOption, repeatOption, panelGlOption});
     parser.process(app);
     if (parser.positionalArguments().size() != 1) {
         std::fprintf(stderr, "usage: linework-review-bench PATH [--iso HU] [--repeat N]\n");
@@ -149,6 +155,16 @@ int main(int argc, char* argv[]) {
     const double iso = parser.value(isoOption).toDouble();
     const int repeat = std::max(1, parser.value(repeatOption).toInt());
 
+    {
+        // The setting the main window starts with (QSettings lives in the temporary folder).
+        QSettings store;
+        ReviewSettings settings = ReviewSettings::load(store);
+        const QString where = parser.value(panelGlOption);
+        settings.panelGl = where == "panels"   ? PanelGl::InPanels
+                           : where == "worker" ? PanelGl::OnWorker
+                                               : PanelGl::Auto;
+        settings.save(store);
+    }
     MainWindowOptions options;
     options.databasePath = home.path() + "/studies.sqlite";
     MainWindow window(options);

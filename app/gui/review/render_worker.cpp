@@ -1,6 +1,7 @@
 #include "review/render_worker.h"
 
 #include "lw/core/error.h"
+#include "lw/render/shaded_surface_cpu.h"
 #include "lw/render/zbuffer_silhouette_renderer.h"
 
 #if LINEWORK_GL
@@ -14,6 +15,13 @@
 
 namespace lw::gui {
 namespace {
+
+QImage toQImage(const core::ImageRgba8& image) {
+    QImage picture(image.width(), image.height(), QImage::Format_RGBA8888);
+    for (int y = 0; y < image.height(); ++y)
+        std::memcpy(picture.scanLine(y), image.row(y), std::size_t(image.width()) * 4);
+    return picture;
+}
 
 double millisecondsSince(std::chrono::steady_clock::time_point start) {
     return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
@@ -129,6 +137,20 @@ void RenderWorker::keepRendererMesh(const FrameRequest& request, FrameResult& re
 }
 
 void RenderWorker::renderIsoImage(const FrameRequest& request, FrameResult& result) {
+    if (request.isoOnCpu) {
+        const auto start = std::chrono::steady_clock::now();
+        const std::shared_ptr<const render::Mesh> mesh = result.mesh ? result.mesh : m_mesh;
+        const render::Mesh empty;
+        render::SurfaceShading shading =
+            render::glPanelShading(request.isoCamera, request.isoOptions);
+        shading.threads = request.settings.threads;
+        const core::ImageRgba8 image = render::shadeSurfaceCpu(
+            mesh ? *mesh : empty, request.isoCamera, shading, &result.isoDepth);
+        result.isoImage = toQImage(image);
+        result.isoCamera = request.isoCamera;
+        result.isoRenderMs = millisecondsSince(start);
+        return;
+    }
 #if LINEWORK_GL
     const auto start = std::chrono::steady_clock::now();
     if (!m_glContext) {
@@ -143,10 +165,7 @@ void RenderWorker::renderIsoImage(const FrameRequest& request, FrameResult& resu
         m_uploadedMeshOwner = mesh;
     }
     const core::ImageRgba8 image = m_isoGl->renderImage(request.isoCamera, request.isoOptions);
-    QImage picture(image.width(), image.height(), QImage::Format_RGBA8888);
-    for (int y = 0; y < image.height(); ++y)
-        std::memcpy(picture.scanLine(y), image.row(y), std::size_t(image.width()) * 4);
-    result.isoImage = std::move(picture);
+    result.isoImage = toQImage(image);
     result.isoDepth = m_isoGl->readDepth();
     result.isoCamera = request.isoCamera;
     result.isoRenderMs = millisecondsSince(start);

@@ -248,9 +248,11 @@ void ReviewPanel::paintGlView() {
             m_mesh.reset();
         }
     }
-    QPainter painter(m_glView);
-    drawImages(painter);
-    drawMessage(painter);
+    {
+        QPainter painter(m_glView);
+        drawImages(painter);
+        drawMessage(painter);
+    } // the painter ends while the widget's context is current, before anyone hears of it
     reportPaint(double(timer.nsecsElapsed()) / 1e6);
 }
 

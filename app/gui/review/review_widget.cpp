@@ -36,6 +36,7 @@ QString ms(double value) {
 ReviewWidget::ReviewWidget(ReviewSource source, const ReviewSettings& settings, QWidget* parent)
     : QWidget(parent), m_source(std::move(source)), m_settings(settings) {
     setObjectName("reviewWidget");
+    displayGlInfo(); // probe the display's GL now, not from inside a panel's paint
     m_camera.setBounds(m_source.bounds);
     m_camera.setProjection(settings.projection);
     m_isoPanel = new ReviewPanel(PanelKind::Iso, m_camera);
@@ -217,6 +218,7 @@ void ReviewWidget::requestFrame(bool newIso) {
         const QSize isoSize = m_isoPanel->renderSize();
         request.isoCamera = m_camera.camera(isoSize.width(), isoSize.height());
         request.isoOptions = panelGlOptions(PanelKind::Iso, m_settings);
+        request.isoOnCpu = !displayGlInfo().available || displayGlInfo().software;
     }
     if (!request.wantMesh && !request.wantSilhouette && !request.wantIsoImage)
         return; // method 1 S in mode a: the panels redraw the cached mesh themselves
@@ -316,7 +318,10 @@ QString ReviewWidget::statusText() const {
     } else {
         text += tr(" · silhouette: extract %1, segments %2, visibility %3, draw %4 ms")
                     .arg(ms(t.extractMs), ms(t.silhouetteMs), ms(t.visibilityMs), ms(t.drawMs));
-        text += (m_drawsInPanels ? tr(" · GL iso %1 ms") : tr(" · GL iso on the worker %1 ms"))
+        const bool cpu = !displayGlInfo().available || displayGlInfo().software;
+        text += (m_drawsInPanels ? tr(" · GL iso %1 ms")
+                 : cpu           ? tr(" · iso shaded on the CPU %1 ms")
+                                 : tr(" · GL iso on the worker %1 ms"))
                     .arg(ms(m_status.isoPaintMs));
     }
     text += tr(" · %1 triangles · %2 segments")

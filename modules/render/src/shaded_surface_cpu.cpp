@@ -11,10 +11,68 @@
 
 namespace lw::render {
 
+namespace {
+
+core::Rgba8 toRgba8(glm::vec3 colour) {
+    auto channel = [](float c) {
+        return std::uint8_t(std::clamp(std::lround(c * 255.0f), 0L, 255L));
+    };
+    return {channel(colour.r), channel(colour.g), channel(colour.b), 255};
+}
+
+// One lit pixel: headlight (two-sided, as before) or Blinn-Phong with a light, as surface.frag.
+core::Rgba8 shadePixel(glm::dvec3 normal, glm::dvec3 toViewer, const SurfaceShading& shading) {
+    auto channel = [](double base, double lit, double highlight) {
+        return std::uint8_t(std::clamp(std::lround(base * lit + 255.0 * highlight), 0L, 255L));
+    };
+    core::Rgba8 base = shading.surface;
+    double facing = glm::dot(normal, toViewer);
+    if (facing < 0.0) { // inner faces seen through a cut-open surface
+        normal = -normal;
+        facing = -facing;
+        base = shading.backSurface.value_or(shading.surface);
+    }
+    double lit = 0.0, highlight = 0.0;
+    if (shading.lightDirection == glm::dvec3(0.0)) {
+        // Headlight: light and eye coincide, so the half vector is the view vector.
+        lit = shading.ambient + shading.diffuse * facing;
+        highlight = shading.specular * std::pow(facing, shading.shininess);
+    } else {
+        const double diffuse = std::max(glm::dot(normal, shading.lightDirection), 0.0);
+        const glm::dvec3 half = glm::normalize(shading.lightDirection + toViewer);
+        lit = shading.ambient + shading.diffuse * diffuse;
+        highlight = diffuse > 0.0
+                        ? shading.specular *
+                              std::pow(std::max(glm::dot(normal, half), 0.0), shading.shininess)
+                        : 0.0;
+    }
+    return {channel(base.r, lit, highlight), channel(base.g, lit, highlight),
+            channel(base.b, lit, highlight), 255};
+}
+
+} // namespace
+
+SurfaceShading glPanelShading(const Camera& camera, const SilhouetteGlOptions& options) {
+    SurfaceShading shading;
+    shading.background = toRgba8(glm::vec3(options.background));
+    shading.surface = toRgba8(options.frontColour);
+    shading.backSurface = toRgba8(options.backColour);
+    shading.ambient = options.material.x;
+    shading.diffuse = options.material.y;
+    shading.specular = options.material.z;
+    shading.shininess = options.material.w;
+    // The GL renderer's light: above and left of the eye.
+    shading.lightDirection =
+        glm::normalize(-camera.forward() + 0.45 * camera.up() - 0.30 * camera.right());
+    return shading;
+}
+
 core::ImageRgba8 shadeSurfaceCpu(const Mesh& mesh, const Camera& camera,
-                                 const SurfaceShading& shading) {
+                                 const SurfaceShading& shading, std::vector<float>* depth) {
     const int width = camera.width(), height = camera.height();
     core::ImageRgba8 image(width, height, shading.background);
+    if (depth)
+        depth->assign(std::size_t(width) * std::size_t(height), 1.0f);
     if (mesh.isEmpty() || width == 0 || height == 0)
         return image;
     const kernels::cpu::ViewTransform view = toViewTransform(camera);
@@ -26,9 +84,6 @@ core::ImageRgba8 shadeSurfaceCpu(const Mesh& mesh, const Camera& camera,
                                        nearest, width, height, shading.threads);
 
     const double scale = 1.0 / double(kernels::cpu::kSubpixelScale);
-    auto channel = [](double base, double lit, double highlight) {
-        return std::uint8_t(std::clamp(std::lround(base * lit + 255.0 * highlight), 0L, 255L));
-    };
     core::parallelFor(
         std::size_t(height),
         [&](std::size_t row) {
@@ -68,16 +123,10 @@ core::ImageRgba8 shadeSurfaceCpu(const Mesh& mesh, const Camera& camera,
                 }
                 const double length = glm::length(normal);
                 normal = length > 0.0 ? normal / length : glm::dvec3(0.0);
-                // Headlight: light and eye coincide, so the half vector is the view vector.
-                const glm::dvec3 toViewer = camera.toViewer(point);
-                double facing = glm::dot(normal, toViewer);
-                if (facing < 0.0)
-                    facing = -facing; // two-sided: inner faces seen through a cut-open surface
-                const double lit = shading.ambient + shading.diffuse * facing;
-                const double highlight = shading.specular * std::pow(facing, shading.shininess);
-                out[x] = {channel(shading.surface.r, lit, highlight),
-                          channel(shading.surface.g, lit, highlight),
-                          channel(shading.surface.b, lit, highlight), 255};
+                out[x] = shadePixel(normal, camera.toViewer(point), shading);
+                if (depth)
+                    (*depth)[std::size_t(y) * std::size_t(width) + std::size_t(x)] =
+                        float(0.5 * (camera.project(point).ndcDepth + 1.0));
             }
         },
         shading.threads);

@@ -8,6 +8,10 @@
 #include "lw/core/image.h"
 #include "lw/render/camera.h"
 #include "lw/render/iso_surface.h"
+#include "lw/render/silhouette_gl_renderer.h"
+
+#include <optional>
+#include <vector>
 
 namespace lw::render {
 
@@ -19,11 +23,24 @@ struct SurfaceShading {
     double specular = 0.25;
     double shininess = 32.0;
     unsigned threads = 0; // 0 = all cores
+    // Unit direction toward the light in patient coordinates; zero = a headlight (the default).
+    // With a light, shading is Blinn-Phong as in the GL panel's surface shader.
+    glm::dvec3 lightDirection{0.0};
+    // Colour of inner faces (seen through a surface cut open by the volume border); by default
+    // the surface colour, lit two-sided.
+    std::optional<core::Rgba8> backSurface;
 };
+
+// The shading of the GL iso panel (SilhouetteGlRenderer's surface pass with `options`) for this
+// camera: same light, colours and material, so a panel drawn on the CPU looks like the GL one.
+SurfaceShading glPanelShading(const Camera& camera, const SilhouetteGlOptions& options);
 
 // Lit mesh on the camera's viewport, top row first. Back faces (seen through a surface cut open
 // by the volume's border) are lit two-sided.
+// `depth` (optional) receives each pixel's depth as a GL depth buffer holds it, top row first:
+// (NDC depth + 1) / 2, 1 where no surface is (picking with Camera::unproject).
 core::ImageRgba8 shadeSurfaceCpu(const Mesh& mesh, const Camera& camera,
-                                 const SurfaceShading& shading = {});
+                                 const SurfaceShading& shading = {},
+                                 std::vector<float>* depth = nullptr);
 
 } // namespace lw::render
