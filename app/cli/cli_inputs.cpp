@@ -32,37 +32,12 @@ std::vector<double> parseNumbers(const std::string& text, char separator,
     return values;
 }
 
-std::optional<glm::ivec3> parseDims(std::string_view text, int minimum, int maximum) {
-    std::vector<int> parts;
-    const char* p = text.data();
-    const char* end = text.data() + text.size();
-    while (p < end) {
-        int value = 0;
-        const auto [next, error] = std::from_chars(p, end, value);
-        if (error != std::errc() || value < minimum || value > maximum)
-            break;
-        parts.push_back(value);
-        p = next;
-        if (p < end && *p == 'x')
-            ++p;
-        else
-            break;
-    }
-    if (p != end || (parts.size() != 1 && parts.size() != 3))
-        return std::nullopt;
-    return parts.size() == 1 ? glm::ivec3(parts[0]) : glm::ivec3(parts[0], parts[1], parts[2]);
-}
-
 glm::ivec3 parseDimsOption(const std::string& option, const std::string& text, int minimum) {
     const std::optional<glm::ivec3> dims = parseDims(text, minimum);
     if (!dims)
         throw UsageError(option + " " + text,
                          "expected N or NXxNYxNZ with integers >= " + std::to_string(minimum));
     return *dims;
-}
-
-std::string dimsText(glm::ivec3 d) {
-    return std::to_string(d.x) + "x" + std::to_string(d.y) + "x" + std::to_string(d.z);
 }
 
 glm::ivec2 parseImageSize(const std::string& option, const std::string& text, int minimum) {

@@ -3,6 +3,7 @@
 // What several sub-commands read from their arguments the same way: lists, sizes, views and the
 // input volume. Arguments (arguments.h) splits the command line; these give the values meaning.
 
+#include "lw/input/open_input.h"
 #include "lw/volume/volume.h"
 
 #include <glm/glm.hpp>
@@ -20,12 +21,11 @@ std::vector<std::string> splitList(const std::string& text, char separator = ','
 std::vector<double> parseNumbers(const std::string& text, char separator,
                                  const std::string& subject);
 
-// "N" or "NXxNYxNZ", each a whole number in [minimum, maximum]; nullopt otherwise.
-std::optional<glm::ivec3> parseDims(std::string_view text, int minimum, int maximum = 1 << 30);
+// parseDims and dimsText come from lw::input (the phantom specs parse the same way).
+using input::dimsText;
+using input::parseDims;
 // parseDims for an option's value; throws core::Error("OPTION TEXT", ...) when it does not parse.
 glm::ivec3 parseDimsOption(const std::string& option, const std::string& text, int minimum);
-// "NXxNYxNZ".
-std::string dimsText(glm::ivec3 dims);
 
 // "WxH" with whole numbers in [minimum, 16384]; throws core::Error("OPTION TEXT", ...) otherwise.
 glm::ivec2 parseImageSize(const std::string& option, const std::string& text, int minimum);

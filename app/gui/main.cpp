@@ -1,30 +1,16 @@
 // linework: the workstation. `linework [PATH] [--iso HU] [--series UID] [--database FILE]`
 // opens the study browser and, with PATH, a review of that folder, DICOMDIR, file or
 // phantom:N at once.
+#include "review/review_panel.h"
 #include "shell/main_window.h"
 
 #include <QApplication>
 #include <QCommandLineParser>
-#include <QSurfaceFormat>
 #include <cstdio>
 #include <optional>
 
-namespace {
-
-// The engine's GL pipeline needs an OpenGL 4.1+ core context (geometry shaders); ask for 4.5.
-void requestCoreProfile() {
-    QSurfaceFormat format;
-    format.setRenderableType(QSurfaceFormat::OpenGL);
-    format.setVersion(4, 5);
-    format.setProfile(QSurfaceFormat::CoreProfile);
-    format.setDepthBufferSize(24);
-    QSurfaceFormat::setDefaultFormat(format);
-}
-
-} // namespace
-
 int main(int argc, char* argv[]) {
-    requestCoreProfile();
+    lw::gui::requestCoreProfileFormat();
     QApplication app(argc, argv);
     QApplication::setOrganizationName("Linework");
     QApplication::setApplicationName("linework");

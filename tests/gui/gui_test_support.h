@@ -4,10 +4,11 @@
 // the test command), settings and data directories isolated in a temporary folder, the GL
 // format the workstation asks for, and SKIP (exit 77) when there is no display.
 
+#include "review/review_panel.h"
+
 #include <QApplication>
 #include <QImage>
 #include <QStandardPaths>
-#include <QSurfaceFormat>
 #include <QTemporaryDir>
 #include <QTest>
 #include <cstdio>
@@ -65,11 +66,7 @@ template <typename TestClass> int runGuiTest(int argc, char** argv, bool needsDa
     qputenv("XDG_CACHE_HOME", (home.path() + "/cache").toLocal8Bit());
     qputenv("QT_QPA_PLATFORM", "xcb");
     QStandardPaths::setTestModeEnabled(true);
-    QSurfaceFormat format;
-    format.setVersion(4, 5);
-    format.setProfile(QSurfaceFormat::CoreProfile);
-    format.setDepthBufferSize(24);
-    QSurfaceFormat::setDefaultFormat(format);
+    gui::requestCoreProfileFormat();
     QApplication app(argc, argv);
     QApplication::setOrganizationName("LineworkTest");
     QApplication::setApplicationName("linework-test");

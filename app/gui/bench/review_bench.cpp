@@ -6,6 +6,7 @@
 //   linework-review-bench PATH [--iso HU] [--repeat N]
 //
 // Run under a display (xvfb-run -a -s "-screen 0 1920x1080x24"). Prints one line per figure.
+#include "bench/bench_support.h"
 #include "browser/study_browser.h"
 #include "review/camera_controller.h"
 #include "review/review_panel.h"
@@ -17,7 +18,6 @@
 #include <QCommandLineParser>
 #include <QElapsedTimer>
 #include <QSettings>
-#include <QSurfaceFormat>
 #include <QTemporaryDir>
 #include <QTest>
 #include <algorithm>
@@ -29,17 +29,6 @@
 using namespace lw::gui;
 
 namespace {
-
-bool waitFor(const std::function<bool()>& done, int timeoutMs = 120000) {
-    QElapsedTimer timer;
-    timer.start();
-    while (!done()) {
-        if (timer.elapsed() > timeoutMs)
-            return false;
-        QCoreApplication::processEvents(QEventLoop::AllEvents, 5);
-    }
-    return true;
-}
 
 double median(std::vector<double> values) {
     if (values.empty())
@@ -67,7 +56,7 @@ double timeUpdate(ReviewWidget& review, PaintCounter& paints, const std::functio
     QElapsedTimer timer;
     timer.start();
     change();
-    waitFor([&] {
+    bench::waitFor([&] {
         const bool taken = !needsWorker || review.status().framesShown > frames;
         return taken && !review.isBusy() && paints.iso > iso && paints.silhouette > silhouette;
     });
@@ -87,7 +76,7 @@ void benchMethod(ReviewWidget& review, MainWindow& window, int method, double is
     settings.mode = lw::render::ExtractionMode::CachedA;
     window.applySettings(settings);
     PaintCounter paints(review);
-    waitFor([&] { return !review.isBusy(); });
+    bench::waitFor([&] { return !review.isBusy(); });
     QTest::qWait(200);
 
     monitor.start();
@@ -128,14 +117,9 @@ void benchMethod(ReviewWidget& review, MainWindow& window, int method, double is
 int main(int argc, char* argv[]) {
     QElapsedTimer sinceStart;
     sinceStart.start();
-    QSurfaceFormat format;
-    format.setVersion(4, 5);
-    format.setProfile(QSurfaceFormat::CoreProfile);
-    format.setDepthBufferSize(24);
-    QSurfaceFormat::setDefaultFormat(format);
+    requestCoreProfileFormat();
     QTemporaryDir home;
-    qputenv("XDG_CONFIG_HOME", (home.path() + "/config").toLocal8Bit());
-    qputenv("XDG_DATA_HOME", (home.path() + "/data").toLocal8Bit());
+    bench::isolateUserFolders(home);
     QApplication app(argc, argv);
     QApplication::setOrganizationName("LineworkBench");
     QApplication::setApplicationName("linework-review-bench");
@@ -189,13 +173,14 @@ int main(int argc, char* argv[]) {
     monitor.start();
     const double openAtMs = double(sinceStart.nsecsElapsed()) / 1e6;
     window.openPath(path, iso);
-    if (!waitFor([&] { return review && review->status().framesShown > 0 && !review->isBusy(); })) {
+    if (!bench::waitFor(
+            [&] { return review && review->status().framesShown > 0 && !review->isBusy(); })) {
         std::fprintf(stderr, "linework-review-bench: %s did not open: %s\n", qPrintable(path),
                      qPrintable(window.lastError()));
         return 1;
     }
     // Drawn: a paint of both panels after the first result was taken.
-    waitFor([&] {
+    bench::waitFor([&] {
         return firstPaints->iso > paintsAtFirstFrame.first &&
                firstPaints->silhouette > paintsAtFirstFrame.second;
     });
@@ -215,7 +200,7 @@ int main(int argc, char* argv[]) {
         QElapsedTimer importTimer;
         importTimer.start();
         window.browser().importPath(path);
-        waitFor([&] { return imported; });
+        bench::waitFor([&] { return imported; });
         report("import into the study database", double(importTimer.nsecsElapsed()) / 1e6);
         report("longest UI stall while importing", monitor.longestStallMs());
     }

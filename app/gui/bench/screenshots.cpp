@@ -3,7 +3,9 @@
 // under Xvfb so they can be regenerated after a change.
 //
 //   linework-screenshots OUTDIR PATH...    (imports every PATH, reviews the first series)
+#include "bench/bench_support.h"
 #include "browser/study_browser.h"
+#include "review/review_panel.h"
 #include "review/review_widget.h"
 #include "settings/settings_dialog.h"
 #include "shell/main_window.h"
@@ -12,7 +14,6 @@
 #include <QDir>
 #include <QElapsedTimer>
 #include <QScreen>
-#include <QSurfaceFormat>
 #include <QTemporaryDir>
 #include <QTest>
 #include <cstdio>
@@ -21,17 +22,6 @@
 using namespace lw::gui;
 
 namespace {
-
-bool waitFor(const std::function<bool()>& done, int timeoutMs = 120000) {
-    QElapsedTimer timer;
-    timer.start();
-    while (!done()) {
-        if (timer.elapsed() > timeoutMs)
-            return false;
-        QTest::qWait(20);
-    }
-    return true;
-}
 
 // What the X server shows of `widget`'s window (GL panels included).
 bool saveWindow(QWidget& widget, const QString& path) {
@@ -46,14 +36,9 @@ bool saveWindow(QWidget& widget, const QString& path) {
 } // namespace
 
 int main(int argc, char* argv[]) {
-    QSurfaceFormat format;
-    format.setVersion(4, 5);
-    format.setProfile(QSurfaceFormat::CoreProfile);
-    format.setDepthBufferSize(24);
-    QSurfaceFormat::setDefaultFormat(format);
+    requestCoreProfileFormat();
     QTemporaryDir home;
-    qputenv("XDG_CONFIG_HOME", (home.path() + "/config").toLocal8Bit());
-    qputenv("XDG_DATA_HOME", (home.path() + "/data").toLocal8Bit());
+    bench::isolateUserFolders(home);
     QApplication app(argc, argv);
     const QStringList args = QApplication::arguments().mid(1);
     if (args.size() < 2) {
@@ -75,7 +60,7 @@ int main(int argc, char* argv[]) {
     QObject::connect(&window.browser(), &StudyBrowser::importFinished, [&] { ++imports; });
     for (const QString& path : args.mid(1))
         window.browser().importPath(path);
-    if (!waitFor([&] { return imports == args.size() - 1; })) {
+    if (!bench::waitFor([&] { return imports == args.size() - 1; })) {
         std::fprintf(stderr, "linework-screenshots: the import did not finish\n");
         return 1;
     }
@@ -97,7 +82,7 @@ int main(int argc, char* argv[]) {
     bool ok = saveWindow(window, out.filePath("browser.png"));
 
     window.openSeries(series.front());
-    if (!waitFor([&] {
+    if (!bench::waitFor([&] {
             ReviewWidget* review = window.currentReview();
             return review && review->status().framesShown > 0 && !review->isBusy();
         })) {
@@ -106,7 +91,7 @@ int main(int argc, char* argv[]) {
         return 1;
     }
     window.currentReview()->camera().setView(30.0, 15.0);
-    waitFor([&] { return !window.currentReview()->isBusy(); });
+    bench::waitFor([&] { return !window.currentReview()->isBusy(); });
     ok = saveWindow(window, out.filePath("review.png")) && ok;
 
     window.showSettings();

@@ -13,6 +13,7 @@
 #include <QOpenGLWidget>
 #include <QPainter>
 #include <QStackedLayout>
+#include <QSurfaceFormat>
 #include <QWheelEvent>
 #include <cmath>
 #include <cstring>
@@ -88,6 +89,15 @@ GlInfo probeGl() {
 const GlInfo& displayGlInfo() {
     static const GlInfo info = probeGl(); // a fact of the display, asked once
     return info;
+}
+
+void requestCoreProfileFormat() {
+    QSurfaceFormat format;
+    format.setRenderableType(QSurfaceFormat::OpenGL);
+    format.setVersion(4, 5);
+    format.setProfile(QSurfaceFormat::CoreProfile);
+    format.setDepthBufferSize(24);
+    QSurfaceFormat::setDefaultFormat(format);
 }
 
 render::SilhouetteGlOptions panelGlOptions(PanelKind kind, const ReviewSettings& settings) {

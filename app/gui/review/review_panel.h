@@ -48,6 +48,10 @@ struct GlInfo {
 };
 const GlInfo& displayGlInfo();
 
+// The OpenGL 4.5 core profile the engine's pipeline needs (geometry shaders), as the default
+// format of every window and context; call before QApplication is made.
+void requestCoreProfileFormat();
+
 class ReviewPanel : public QWidget {
     Q_OBJECT
 public:

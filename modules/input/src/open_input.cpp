@@ -19,40 +19,12 @@ namespace {
 
 constexpr core::LogCategory kLog("lw.input");
 
-std::string dimsText(glm::ivec3 d) {
-    return std::to_string(d.x) + "x" + std::to_string(d.y) + "x" + std::to_string(d.z);
-}
-
-// "N" or "NXxNYxNZ" with each number in [2, 4096].
-std::optional<glm::ivec3> parsePhantomDims(std::string_view text) {
-    std::vector<int> parts;
-    const char* p = text.data();
-    const char* end = text.data() + text.size();
-    while (p < end) {
-        int value = 0;
-        const auto [next, error] = std::from_chars(p, end, value);
-        if (error != std::errc() || value < 2 || value > 4096)
-            return std::nullopt;
-        parts.push_back(value);
-        p = next;
-        if (p < end && *p != 'x')
-            return std::nullopt;
-        if (p < end)
-            ++p;
-    }
-    if (parts.size() == 1)
-        return glm::ivec3(parts[0]);
-    if (parts.size() == 3)
-        return glm::ivec3(parts[0], parts[1], parts[2]);
-    return std::nullopt;
-}
-
 OpenedVolume openPhantom(const std::string& spec, core::Progress* progress) {
     const std::string body = spec.substr(std::string("phantom:").size());
     const auto colon = body.find(':');
     const render::PhantomKind kind =
         render::parsePhantomKind(colon == std::string::npos ? "ct" : body.substr(colon + 1));
-    const std::optional<glm::ivec3> dims = parsePhantomDims(body.substr(0, colon));
+    const std::optional<glm::ivec3> dims = parseDims(body.substr(0, colon), 2, 4096);
     if (!dims)
         throw core::Error(
             spec,
@@ -160,6 +132,31 @@ OpenedVolume openDicom(const std::string& path, const OpenOptions& options,
 #endif
 
 } // namespace
+
+std::optional<glm::ivec3> parseDims(std::string_view text, int minimum, int maximum) {
+    std::vector<int> parts;
+    const char* p = text.data();
+    const char* end = text.data() + text.size();
+    while (p < end) {
+        int value = 0;
+        const auto [next, error] = std::from_chars(p, end, value);
+        if (error != std::errc() || value < minimum || value > maximum)
+            break;
+        parts.push_back(value);
+        p = next;
+        if (p < end && *p == 'x')
+            ++p;
+        else
+            break;
+    }
+    if (p != end || (parts.size() != 1 && parts.size() != 3))
+        return std::nullopt;
+    return parts.size() == 1 ? glm::ivec3(parts[0]) : glm::ivec3(parts[0], parts[1], parts[2]);
+}
+
+std::string dimsText(glm::ivec3 d) {
+    return std::to_string(d.x) + "x" + std::to_string(d.y) + "x" + std::to_string(d.z);
+}
 
 bool isDicomBuild() {
 #ifdef LINEWORK_HAVE_DICOM

@@ -447,23 +447,35 @@ SilhouetteGlStats SilhouetteGlRenderer::render(const glm::mat4& viewProjection, 
     return stats;
 }
 
-core::ImageRgba8 SilhouetteGlRenderer::readImage() const {
-    if (!m_framebuffer)
-        throw core::Error("GL read-back", "nothing has been rendered yet");
-    core::ImageRgba8 image(m_width, m_height);
+namespace {
+
+// glReadPixels of the whole framebuffer object into tightly packed client memory, whatever pack
+// state the caller left set (restored afterwards).
+void readFramebuffer(unsigned framebuffer, int width, int height, GLenum format, GLenum type,
+                     void* pixels, const char* what) {
     const FramebufferBindingGuard bindingGuard;
-    glBindFramebuffer(GL_READ_FRAMEBUFFER, m_framebuffer);
-    glReadBuffer(GL_COLOR_ATTACHMENT0);
-    // Tightly packed rows into client memory, whatever the caller left set; restored afterwards.
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, framebuffer);
+    if (format != GL_DEPTH_COMPONENT)
+        glReadBuffer(GL_COLOR_ATTACHMENT0);
     GLint alignment = 4, packBuffer = 0;
     glGetIntegerv(GL_PACK_ALIGNMENT, &alignment);
     glGetIntegerv(GL_PIXEL_PACK_BUFFER_BINDING, &packBuffer);
     glPixelStorei(GL_PACK_ALIGNMENT, 1);
     glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
-    glReadPixels(0, 0, m_width, m_height, GL_RGBA, GL_UNSIGNED_BYTE, image.bytes());
+    glReadPixels(0, 0, width, height, format, type, pixels);
     glPixelStorei(GL_PACK_ALIGNMENT, alignment);
     glBindBuffer(GL_PIXEL_PACK_BUFFER, GLuint(packBuffer));
-    gl::checkGlError("SilhouetteGlRenderer::readImage");
+    gl::checkGlError(what);
+}
+
+} // namespace
+
+core::ImageRgba8 SilhouetteGlRenderer::readImage() const {
+    if (!m_framebuffer)
+        throw core::Error("GL read-back", "nothing has been rendered yet");
+    core::ImageRgba8 image(m_width, m_height);
+    readFramebuffer(m_framebuffer, m_width, m_height, GL_RGBA, GL_UNSIGNED_BYTE, image.bytes(),
+                    "SilhouetteGlRenderer::readImage");
     image.flipRows(); // GL's first row is the bottom one
     return image;
 }
@@ -472,17 +484,8 @@ std::vector<float> SilhouetteGlRenderer::readDepth() const {
     if (!m_framebuffer)
         throw core::Error("GL depth read-back", "nothing has been rendered yet");
     std::vector<float> depth(std::size_t(m_width) * std::size_t(m_height));
-    const FramebufferBindingGuard bindingGuard;
-    glBindFramebuffer(GL_READ_FRAMEBUFFER, m_framebuffer);
-    GLint alignment = 4, packBuffer = 0;
-    glGetIntegerv(GL_PACK_ALIGNMENT, &alignment);
-    glGetIntegerv(GL_PIXEL_PACK_BUFFER_BINDING, &packBuffer);
-    glPixelStorei(GL_PACK_ALIGNMENT, 4);
-    glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
-    glReadPixels(0, 0, m_width, m_height, GL_DEPTH_COMPONENT, GL_FLOAT, depth.data());
-    glPixelStorei(GL_PACK_ALIGNMENT, alignment);
-    glBindBuffer(GL_PIXEL_PACK_BUFFER, GLuint(packBuffer));
-    gl::checkGlError("SilhouetteGlRenderer::readDepth");
+    readFramebuffer(m_framebuffer, m_width, m_height, GL_DEPTH_COMPONENT, GL_FLOAT, depth.data(),
+                    "SilhouetteGlRenderer::readDepth");
     // GL's first row is the bottom one; callers index top row first like the images.
     for (int y = 0; y < m_height / 2; ++y)
         std::swap_ranges(depth.begin() + std::ptrdiff_t(y) * m_width,

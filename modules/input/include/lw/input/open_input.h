@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace lw::input {
@@ -39,5 +40,11 @@ OpenedVolume openDicomFiles(const std::vector<std::filesystem::path>& files,
                             const OpenOptions& options = {}, core::Progress* progress = nullptr);
 
 bool isDicomBuild();
+
+// "N" or "NXxNYxNZ", each a whole number in [minimum, maximum]; nullopt otherwise (phantom specs
+// here, sizes in the CLI's options).
+std::optional<glm::ivec3> parseDims(std::string_view text, int minimum, int maximum = 1 << 30);
+// "NXxNYxNZ".
+std::string dimsText(glm::ivec3 dims);
 
 } // namespace lw::input
