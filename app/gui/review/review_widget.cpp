@@ -74,6 +74,17 @@ ReviewWidget::ReviewWidget(ReviewSource source, const ReviewSettings& settings, 
 
     m_scheduler = std::make_unique<RenderScheduler>(m_source.volume);
     connect(m_scheduler.get(), &RenderScheduler::frameReady, this, &ReviewWidget::takeFrame);
+    // Until the first surface of an iso-value arrives the panels say what is being computed
+    // rather than stay blank (a 512^3 volume takes seconds on the CPU).
+    connect(m_scheduler.get(), &RenderScheduler::busyChanged, this, [this](bool busy) {
+        if (busy && !m_meshCurrent) {
+            const QString working = tr("Computing the surface at %1 HU…").arg(m_iso);
+            if (!m_isoPanel->hasMesh())
+                m_isoPanel->setMessage(working);
+            if (!m_silhouettePanel->hasMesh())
+                m_silhouettePanel->setMessage(working);
+        }
+    });
     connect(&m_camera, &CameraController::changed, this, [this] { requestFrame(false); });
     connect(m_isoControl, &IsoControl::isoChanged, this, &ReviewWidget::setIso);
     for (ReviewPanel* panel : {m_isoPanel, m_silhouettePanel}) {
@@ -234,6 +245,8 @@ void ReviewWidget::takeFrame(const std::shared_ptr<const FrameResult>& result) {
         return;
     if (!result->error.isEmpty()) {
         showError(result->error);
+        m_isoPanel->setMessage(result->error);
+        m_silhouettePanel->setMessage(result->error);
         return;
     }
     m_errorLine->hide();

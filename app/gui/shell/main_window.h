@@ -56,6 +56,9 @@ signals:
     void reviewOpened(lw::gui::ReviewWidget* review);
     void loadFailed(const QString& reason);
 
+protected:
+    void closeEvent(QCloseEvent* event) override;
+
 private:
     void createActions();
     void createViewMenu();
