@@ -74,11 +74,11 @@ ReviewWidget::ReviewWidget(ReviewSource source, const ReviewSettings& settings, 
 
     m_scheduler = std::make_unique<RenderScheduler>(m_source.volume);
     connect(m_scheduler.get(), &RenderScheduler::frameReady, this, &ReviewWidget::takeFrame);
-    // Until the first surface of an iso-value arrives the panels say what is being computed
+    // Until the first picture for an iso-value or settings arrives the panels say what is coming
     // rather than stay blank (a 512^3 volume takes seconds on the CPU).
     connect(m_scheduler.get(), &RenderScheduler::busyChanged, this, [this](bool busy) {
         if (busy && !m_meshCurrent) {
-            const QString working = tr("Computing the surface at %1 HU…").arg(m_iso);
+            const QString working = tr("Rendering the surface at %1 HU…").arg(m_iso);
             if (!m_isoPanel->hasMesh())
                 m_isoPanel->setMessage(working);
             if (!m_silhouettePanel->hasMesh())
@@ -182,8 +182,6 @@ void ReviewWidget::applySettings(const ReviewSettings& settings) {
     m_silhouettePanel->setImage({});
     m_isoPanel->setOverlay({});
     m_isoControl->setPresets(settings.presets);
-    if (methodOneInPanel() && m_isoPanel->hasMesh() && m_meshCurrent)
-        m_silhouettePanel->setMesh(nullptr);
     m_meshCurrent = false; // the new settings' first frame brings the mesh again
     requestFrame(true);
 }
