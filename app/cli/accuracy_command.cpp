@@ -6,11 +6,11 @@
 #include "commands.h"
 #include "lw/core/error.h"
 #include "lw/core/json_writer.h"
-#include "lw/render/analytic_shapes.h"
+#include "lw/evaluation/analytic_shapes.h"
+#include "lw/evaluation/contour_score.h"
+#include "lw/evaluation/true_contour.h"
 #include "lw/render/camera.h"
-#include "lw/render/contour_score.h"
 #include "lw/render/renderer_factory.h"
-#include "lw/render/true_contour.h"
 
 #include <algorithm>
 #include <charconv>
@@ -48,7 +48,7 @@ struct Row {
     std::string shape;
     int size = 0;
     int image = 0;
-    render::ContourScore score;
+    evaluation::ContourScore score;
 };
 
 // The default view of the accuracy images: oblique, so no shape is seen along a symmetry axis.
@@ -71,7 +71,7 @@ int runAccuracy(const std::vector<std::string>& args, std::ostream& out) {
         if (m > 3)
             throw UsageError("--methods", "methods are 1, 2 and 3");
     const std::vector<int> sizes = parseIntList("sizes", arguments.option("sizes", "32,64,256"), 8);
-    const std::vector<std::string> known = render::analyticShapeNames();
+    const std::vector<std::string> known = evaluation::analyticShapeNames();
     const std::vector<std::string> shapes =
         arguments.option("shapes") ? splitList(*arguments.option("shapes"), ',', false) : known;
     for (const std::string& shape : shapes)
@@ -108,9 +108,10 @@ int runAccuracy(const std::vector<std::string>& args, std::ostream& out) {
 
     std::vector<Row> rows;
     for (const std::string& shapeName : shapes) {
-        const std::unique_ptr<render::AnalyticShape> shape = render::makeAnalyticShape(shapeName);
+        const std::unique_ptr<evaluation::AnalyticShape> shape =
+            evaluation::makeAnalyticShape(shapeName);
         for (int n : sizes) {
-            const volume::Volume volume = render::sampleShape(*shape, n);
+            const volume::Volume volume = evaluation::sampleShape(*shape, n);
             render::CameraSetup setup;
             setup.bounds = shape->bounds();
             setup.azimuthDeg = azimuth;
@@ -118,7 +119,7 @@ int runAccuracy(const std::vector<std::string>& args, std::ostream& out) {
             const int side = render::Camera::squareSizeForVoxelCoverage(
                 setup, volume.geometry().spacingI(), kPixelsPerVoxel);
             const render::Camera camera(setup, side, side);
-            const render::PixelMask truth = render::trueContourMask(*shape, camera);
+            const render::PixelMask truth = evaluation::trueContourMask(*shape, camera);
             // L: a 4 x 4 x 4 brick schedule, so chunking is exercised at every size.
             const int brickCells = std::max(4, (n - 1 + 3) / 4);
 
@@ -133,13 +134,13 @@ int runAccuracy(const std::vector<std::string>& args, std::ostream& out) {
                 row.shape = shapeName;
                 row.size = n;
                 row.image = side;
-                row.score = render::scoreContours(drawn, truth, 1);
+                row.score = evaluation::scoreContours(drawn, truth, 1);
                 rows.push_back(row);
             };
 
             for (const bool chunked : {false, true}) {
                 render::SilhouetteSettings settings;
-                settings.isoReal = render::kShapeIso;
+                settings.isoReal = evaluation::kShapeIso;
                 settings.brickCells = chunked ? brickCells : 0;
                 for (int m = 1; m <= 3; ++m) {
                     if (!renderers[m])

@@ -2,8 +2,8 @@
 // same visible silhouette: >= 99% of either's pixels lie within 1 px of the other's. Linked
 // with lw_gtest_main_gl: without an OpenGL 4.x context the binary exits with the SKIP code
 // instead of passing untested.
-#include "lw/render/analytic_shapes.h"
-#include "lw/render/contour_score.h"
+#include "lw/evaluation/analytic_shapes.h"
+#include "lw/evaluation/contour_score.h"
 #include "lw/render/iso_surface.h"
 #include "lw/render/raycast_silhouette_renderer.h"
 #include "lw/render/silhouette_gl_renderer.h"
@@ -20,6 +20,8 @@
 
 namespace lw::render {
 namespace {
+
+using namespace lw::evaluation;
 
 PixelMask glSilhouette(SilhouetteGlRenderer& gl, const volume::Volume& v, const Camera& camera,
                        int brickCells) {

@@ -1,12 +1,12 @@
 // Method 2 (silhouette from active cells + ray-cast visibility) and its voxel walk.
+#include "lw/evaluation/analytic_shapes.h"
+#include "lw/evaluation/contour_score.h"
+#include "lw/evaluation/true_contour.h"
 #include "lw/kernels/cpu/voxel_ray.h"
 #include "lw/kernels/silhouette_segment.h"
-#include "lw/render/analytic_shapes.h"
 #include "lw/render/camera.h"
-#include "lw/render/contour_score.h"
 #include "lw/render/iso_surface.h"
 #include "lw/render/raycast_silhouette_renderer.h"
-#include "lw/render/true_contour.h"
 
 #if __has_include("lw/render/zbuffer_silhouette_renderer.h")
 #include "lw/render/zbuffer_silhouette_renderer.h"
@@ -24,6 +24,8 @@
 
 namespace lw::render {
 namespace {
+
+using namespace lw::evaluation;
 
 using kernels::cpu::CellExit;
 using kernels::cpu::VoxelRayGrid;

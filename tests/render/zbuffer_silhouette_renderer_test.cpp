@@ -2,14 +2,14 @@
 // images of the silhouette and the shaded panel.
 #include "lw/core/image_compare.h"
 #include "lw/core/png_io.h"
+#include "lw/evaluation/analytic_shapes.h"
+#include "lw/evaluation/contour_score.h"
+#include "lw/evaluation/true_contour.h"
 #include "lw/kernels/cpu/marching_cubes_cpu.h"
 #include "lw/kernels/cpu/zbuffer_rasterizer_cpu.h"
 #include "lw/kernels/marching_cubes_tables.h"
-#include "lw/render/analytic_shapes.h"
-#include "lw/render/contour_score.h"
 #include "lw/render/phantom.h"
 #include "lw/render/shaded_surface_cpu.h"
-#include "lw/render/true_contour.h"
 #include "lw/render/zbuffer_silhouette_renderer.h"
 #include "lw/volume/bricks.h"
 
@@ -24,6 +24,7 @@
 namespace {
 
 using namespace lw::render;
+using namespace lw::evaluation;
 
 Camera cameraFor(const lw::volume::Volume& volume, double az, double el, Projection projection,
                  int size) {

@@ -1,10 +1,11 @@
 #include "lw/core/error.h"
-#include "lw/render/analytic_shapes.h"
+#include "lw/evaluation/analytic_shapes.h"
 
 #include <gtest/gtest.h>
 #include <random>
 
 using namespace lw::render;
+using namespace lw::evaluation;
 
 namespace {
 

@@ -1,4 +1,4 @@
-#include "lw/render/true_contour.h"
+#include "lw/evaluation/true_contour.h"
 
 #include "lw/core/parallel.h"
 
@@ -7,7 +7,12 @@
 #include <limits>
 #include <utility>
 
-namespace lw::render {
+namespace lw::evaluation {
+
+using render::Aabb;
+using render::Camera;
+using render::PixelMask;
+using render::Ray;
 
 namespace {
 
@@ -188,4 +193,4 @@ PixelMask trueContourMask(const AnalyticShape& shape, const Camera& camera) {
     return mask;
 }
 
-} // namespace lw::render
+} // namespace lw::evaluation

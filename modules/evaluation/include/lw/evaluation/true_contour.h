@@ -1,10 +1,10 @@
 #pragma once
 
-#include "lw/render/analytic_shapes.h"
+#include "lw/evaluation/analytic_shapes.h"
 #include "lw/render/camera.h"
 #include "lw/render/pixel_mask.h"
 
-namespace lw::render {
+namespace lw::evaluation {
 
 // Ground truth for the accuracy measure, computed from the analytic function alone (no marching
 // cubes, no mesh), so it can judge every silhouette method.
@@ -24,14 +24,15 @@ namespace lw::render {
 // segment joining the two pixel centres, and the pixel containing the transition point is marked
 // - the pixel the true contour curve passes through where it crosses that segment. Features
 // thinner than 1e-2 pixel along a ray are not resolved.
-PixelMask trueContourMask(const AnalyticShape& shape, const Camera& camera);
+render::PixelMask trueContourMask(const AnalyticShape& shape, const render::Camera& camera);
 
 // Pixels whose centre ray hits the shape (the filled silhouette).
-PixelMask coverageMask(const AnalyticShape& shape, const Camera& camera);
+render::PixelMask coverageMask(const AnalyticShape& shape, const render::Camera& camera);
 
 // All surface crossings along a ray, in ray parameter order (t >= 0, unit direction); an even
 // count for rays that start and end outside. For tests and tools; `stepFloor` is the smallest
 // step (mm) taken while marching.
-std::vector<double> rayCrossings(const AnalyticShape& shape, const Ray& ray, double stepFloor);
+std::vector<double> rayCrossings(const AnalyticShape& shape, const render::Ray& ray,
+                                 double stepFloor);
 
-} // namespace lw::render
+} // namespace lw::evaluation

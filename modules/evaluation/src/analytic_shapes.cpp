@@ -1,4 +1,4 @@
-#include "lw/render/analytic_shapes.h"
+#include "lw/evaluation/analytic_shapes.h"
 
 #include "lw/core/error.h"
 #include "lw/core/parallel.h"
@@ -7,7 +7,9 @@
 #include <cmath>
 #include <numbers>
 
-namespace lw::render {
+namespace lw::evaluation {
+
+using render::Aabb;
 
 namespace {
 
@@ -276,4 +278,4 @@ volume::Volume sampleShape(const AnalyticShape& shape, int n) {
     return out;
 }
 
-} // namespace lw::render
+} // namespace lw::evaluation

@@ -1,10 +1,12 @@
-#include "lw/render/contour_score.h"
+#include "lw/evaluation/contour_score.h"
 
 #include "lw/core/error.h"
 
 #include <string>
 
-namespace lw::render {
+namespace lw::evaluation {
+
+using render::PixelMask;
 
 ContourScore scoreContours(const PixelMask& drawn, const PixelMask& truth, int tolerancePx) {
     if (drawn.width() != truth.width() || drawn.height() != truth.height())
@@ -33,4 +35,4 @@ ContourScore scoreContours(const PixelMask& drawn, const PixelMask& truth, int t
     return score;
 }
 
-} // namespace lw::render
+} // namespace lw::evaluation

@@ -1,10 +1,11 @@
 #include "lw/core/error.h"
-#include "lw/render/contour_score.h"
+#include "lw/evaluation/contour_score.h"
 
 #include <cmath>
 #include <gtest/gtest.h>
 
 using namespace lw::render;
+using namespace lw::evaluation;
 
 namespace {
 

@@ -9,7 +9,7 @@
 #include <string_view>
 #include <vector>
 
-namespace lw::render {
+namespace lw::evaluation {
 
 // Every shape is inside where value(p) >= kShapeIso. The values are in mm and, except for the
 // metaballs, are signed distances or distance-like (lipschitz() <= 1), so marching cubes on a
@@ -25,7 +25,7 @@ public:
     virtual std::string name() const = 0;
     virtual double value(glm::dvec3 p) const = 0;
     virtual glm::dvec3 gradient(glm::dvec3 p) const = 0;
-    virtual Aabb bounds() const = 0;
+    virtual render::Aabb bounds() const = 0;
     // Upper bound of |gradient| over space: outside, the surface is at least -value / lipschitz()
     // away.
     virtual double lipschitz() const = 0;
@@ -38,7 +38,7 @@ public:
     std::string name() const override { return "sphere"; }
     double value(glm::dvec3 p) const override;
     glm::dvec3 gradient(glm::dvec3 p) const override;
-    Aabb bounds() const override;
+    render::Aabb bounds() const override;
     double lipschitz() const override { return 1.0; }
 
 private:
@@ -55,7 +55,7 @@ public:
     std::string name() const override { return "torus"; }
     double value(glm::dvec3 p) const override;
     glm::dvec3 gradient(glm::dvec3 p) const override;
-    Aabb bounds() const override;
+    render::Aabb bounds() const override;
     double lipschitz() const override { return 1.0; }
 
 private:
@@ -74,7 +74,7 @@ public:
     std::string name() const override { return "tori"; }
     double value(glm::dvec3 p) const override;
     glm::dvec3 gradient(glm::dvec3 p) const override;
-    Aabb bounds() const override;
+    render::Aabb bounds() const override;
     double lipschitz() const override { return 1.0; }
 
 private:
@@ -95,7 +95,7 @@ public:
     std::string name() const override { return "superquadric"; }
     double value(glm::dvec3 p) const override;
     glm::dvec3 gradient(glm::dvec3 p) const override;
-    Aabb bounds() const override;
+    render::Aabb bounds() const override;
     double lipschitz() const override { return 1.0; }
 
 private:
@@ -122,16 +122,16 @@ public:
     std::string name() const override { return "metaballs"; }
     double value(glm::dvec3 p) const override;
     glm::dvec3 gradient(glm::dvec3 p) const override;
-    Aabb bounds() const override { return m_bounds; }
+    render::Aabb bounds() const override { return m_bounds; }
     double lipschitz() const override { return 1.0; }
 
 private:
-    Aabb computeBounds() const;
+    render::Aabb computeBounds() const;
 
     std::vector<Metaball> m_balls;
     double m_threshold;
     double m_scale;
-    Aabb m_bounds;
+    render::Aabb m_bounds;
 };
 
 // "sphere", "torus", "tori", "superquadric", "metaballs" (the paper's Table 5 set).
@@ -144,4 +144,4 @@ std::unique_ptr<AnalyticShape> makeAnalyticShape(std::string_view name);
 // side, so the surface is closed inside the grid. Extract the surface at kShapeIso. n >= 8.
 volume::Volume sampleShape(const AnalyticShape& shape, int n);
 
-} // namespace lw::render
+} // namespace lw::evaluation

@@ -1,12 +1,13 @@
 #include "lw/core/png_io.h"
-#include "lw/render/contour_score.h"
-#include "lw/render/true_contour.h"
+#include "lw/evaluation/contour_score.h"
+#include "lw/evaluation/true_contour.h"
 
 #include <cmath>
 #include <gtest/gtest.h>
 #include <numbers>
 
 using namespace lw::render;
+using namespace lw::evaluation;
 
 namespace {
 

@@ -4,7 +4,7 @@
 
 #include <cstddef>
 
-namespace lw::render {
+namespace lw::evaluation {
 
 // The accuracy measure of issue 3 (the paper's Table 5, measured instead of hand-drawn).
 struct ContourScore {
@@ -20,6 +20,7 @@ struct ContourScore {
 // recall 1 and an empty drawing precision 1 (vacuously: nothing missed, nothing wrong); an empty
 // drawing of a visible shape still fails through recall 0. Throws core::Error when the sizes
 // differ or tolerancePx < 0.
-ContourScore scoreContours(const PixelMask& drawn, const PixelMask& truth, int tolerancePx = 1);
+ContourScore scoreContours(const render::PixelMask& drawn, const render::PixelMask& truth,
+                           int tolerancePx = 1);
 
-} // namespace lw::render
+} // namespace lw::evaluation
