@@ -7,6 +7,7 @@
 #include "review/review_widget.h"
 #include "shell/main_window.h"
 
+#include <QMimeData>
 #include <QSignalSpy>
 #include <QTabWidget>
 #include <QtTest>
@@ -62,6 +63,7 @@ private slots:
     void seriesWithMissingFilesSaysSo();
     void cancelOpening();
     void settingsApplyToOpenReviews();
+    void droppingAFolderOnAReviewImportsIt();
 };
 
 void MainWindowTest::openSeriesFromTheBrowser() {
@@ -185,6 +187,27 @@ void MainWindowTest::settingsApplyToOpenReviews() {
     QTest::qWait(100);
     const QImage silhouette = window.currentReview()->silhouettePanel().grabImage();
     QCOMPARE(silhouette.pixelColor(2, 2).rgb(), QColor(20, 20, 40).rgb());
+}
+
+void MainWindowTest::droppingAFolderOnAReviewImportsIt() {
+    QTemporaryDir dir;
+    MainWindow window(isolatedOptions(dir));
+    window.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&window));
+    window.openPath("phantom:32");
+    QVERIFY(waitForReview(window));
+    QSignalSpy finished(&window.browser(), &StudyBrowser::importFinished);
+    QMimeData data;
+    data.setUrls({QUrl::fromLocalFile(demoStudy())});
+    // As a drag does it: the window accepts the enter, then gets the drop.
+    QDragEnterEvent enter(QPoint(50, 50), Qt::CopyAction, &data, Qt::LeftButton, Qt::NoModifier);
+    QApplication::sendEvent(&window, &enter);
+    QVERIFY(enter.isAccepted());
+    QDropEvent drop(QPointF(50, 50), Qt::CopyAction, &data, Qt::LeftButton, Qt::NoModifier);
+    QApplication::sendEvent(&window, &drop);
+    QVERIFY(finished.wait(60000));
+    QCOMPARE(window.browser().database().seriesCount(), 1);
+    QCOMPARE(window.findChild<QTabWidget*>("mainTabs")->currentIndex(), 0);
 }
 
 LW_GUI_TEST_MAIN(MainWindowTest)

@@ -10,12 +10,15 @@
 #include <QAction>
 #include <QApplication>
 #include <QCloseEvent>
+#include <QDragEnterEvent>
+#include <QDropEvent>
 #include <QFileDialog>
 #include <QInputDialog>
 #include <QKeySequence>
 #include <QLabel>
 #include <QMenuBar>
 #include <QMessageBox>
+#include <QMimeData>
 #include <QProgressBar>
 #include <QPushButton>
 #include <QSettings>
@@ -23,12 +26,14 @@
 #include <QTabBar>
 #include <QTabWidget>
 #include <QToolBar>
+#include <QUrl>
 
 namespace lw::gui {
 
 MainWindow::MainWindow(const MainWindowOptions& options, QWidget* parent) : QMainWindow(parent) {
     setObjectName("mainWindow");
     setWindowTitle(tr("Linework"));
+    setAcceptDrops(true);
     QSettings store;
     m_settings = ReviewSettings::load(store);
     // Which OpenGL this display gives decides how reviews draw; ask before the window shows,
@@ -91,6 +96,24 @@ MainWindow::MainWindow(const MainWindowOptions& options, QWidget* parent) : QMai
     // Where the user left the window last time.
     restoreGeometry(store.value("window/geometry").toByteArray());
     restoreState(store.value("window/state").toByteArray());
+}
+
+void MainWindow::dragEnterEvent(QDragEnterEvent* event) {
+    if (event->mimeData()->hasUrls())
+        event->acceptProposedAction();
+}
+
+void MainWindow::dropEvent(QDropEvent* event) {
+    bool any = false;
+    for (const QUrl& url : event->mimeData()->urls())
+        if (url.isLocalFile()) {
+            m_browser->importPath(url.toLocalFile());
+            any = true;
+        }
+    if (any) {
+        m_tabs->setCurrentIndex(0);
+        event->acceptProposedAction();
+    }
 }
 
 void MainWindow::closeEvent(QCloseEvent* event) {

@@ -58,6 +58,9 @@ signals:
 
 protected:
     void closeEvent(QCloseEvent* event) override;
+    // Folders and files dropped anywhere on the window are imported (the browser shows them).
+    void dragEnterEvent(QDragEnterEvent* event) override;
+    void dropEvent(QDropEvent* event) override;
 
 private:
     void createActions();
