@@ -393,3 +393,51 @@ TEST(DicomScanner, ScanDicomFilesEmptyListAndCancellation) {
     core::Progress cancelled([](double, const std::string&) {}, token);
     EXPECT_THROW(dicom::scanDicomFiles(files, &cancelled), core::Cancelled);
 }
+
+namespace {
+
+// DirectoryRecordType (0004,1430) is CS, at most 16 characters. A record type whose length is
+// enlarged beyond that (a fuzzer found one of 64 bytes) makes DCMTK's own check of the value
+// throw std::out_of_range from inside its parser (issue 10).
+const std::string kOverlongRecordType = "PATIENT" + std::string(57, 'X');
+
+} // namespace
+
+TEST(DicomScanner, DamagedDicomdirRecordBecomesCoreError) {
+    test::TempDir dir;
+    writeSeries(dir / "S1", newSeries(1, 2));
+    writeRawDicomdir(dir / "DICOMDIR",
+                     {{kOverlongRecordType, "", "", ""}, {"IMAGE", "S1\\IM1", "", ""}});
+    if (HasFatalFailure())
+        return;
+    // The DICOMDIR is the whole input: the scan fails, with core::Error naming it and never
+    // with the library's own exception type.
+    try {
+        (void)dicom::scanDicom(dir / "DICOMDIR");
+        ADD_FAILURE() << "a damaged DICOMDIR was accepted";
+    } catch (const core::Error& error) {
+        EXPECT_EQ(fs::path(error.subject()).filename(), "DICOMDIR");
+        EXPECT_NE(error.reason().find("damaged DICOMDIR"), std::string::npos) << error.reason();
+    } catch (const std::exception& other) {
+        ADD_FAILURE() << "escaped exception: " << other.what();
+    }
+    EXPECT_NO_THROW((void)dicom::looksLikeDicomInput(dir / "DICOMDIR"));
+}
+
+TEST(DicomScanner, DamagedNestedDicomdirIsReportedAndTheRestScanned) {
+    test::TempDir dir;
+    writeSeries(dir / "S1", newSeries(1, 2));
+    writeSeries(dir / "S2", newSeries(2, 1));
+    const std::string dirClass = UID_MediaStorageDirectoryStorage;
+    writeRawDicomdir(dir / "DICOMDIR",
+                     {{"STUDY", "S1\\DIRFILE", dirClass, ""}, {"IMAGE", "S2\\IM1", "", ""}});
+    writeRawDicomdir(dir / "S1" / "DIRFILE",
+                     {{kOverlongRecordType, "", "", ""}, {"IMAGE", "S1\\IM1", "", ""}});
+    if (HasFatalFailure())
+        return;
+    const dicom::DicomIndex index = dicom::scanDicom(dir / "DICOMDIR");
+    EXPECT_EQ(index.instanceCount(), 1u); // S2/IM1
+    const dicom::FileError* error = findError(index, "DIRFILE");
+    ASSERT_NE(error, nullptr);
+    EXPECT_NE(error->reason.find("damaged DICOMDIR"), std::string::npos) << error->reason;
+}

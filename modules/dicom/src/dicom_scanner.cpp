@@ -1,5 +1,6 @@
 #include "lw/dicom/dicom_scanner.h"
 
+#include "dicom_boundary.h"
 #include "dicom_file.h"
 #include "lw/core/error.h"
 #include "lw/core/log.h"
@@ -282,7 +283,8 @@ Reference handleReference(DcmItem& record, const fs::path& dicomdir, DicomdirSta
     return Reference::Present;
 }
 
-void walkDicomdir(const fs::path& dicomdir, DicomdirState& state, int depth, bool topLevel) {
+// Reads one DICOMDIR file and follows its records; walkDicomdir wraps it.
+void walkDicomdirRecords(const fs::path& dicomdir, DicomdirState& state, int depth, bool topLevel) {
     if (state.progress)
         state.progress->throwIfCancelled();
     if (!state.visitedDicomdirs.insert(canonicalOrAbsolute(dicomdir)).second) {
@@ -435,6 +437,30 @@ struct HeaderResults {
     std::vector<FileError> errors;
     std::vector<std::string> skippedDicomdirs;
 };
+
+// A damaged DICOMDIR (an element length pointing past its value) makes DCMTK throw standard
+// exceptions (std::out_of_range) from inside its parser; they become this file's error, and the
+// records read before it are kept. The top-level DICOMDIR is the whole input: it fails the scan.
+void walkDicomdir(const fs::path& dicomdir, DicomdirState& state, int depth, bool topLevel) {
+    std::string reason;
+    try {
+        walkDicomdirRecords(dicomdir, state, depth, topLevel);
+        return;
+    } catch (const core::Error&) {
+        throw;
+    } catch (const core::Cancelled&) {
+        throw;
+    } catch (const std::bad_alloc&) {
+        reason = "out of memory while reading the DICOMDIR";
+    } catch (const std::exception& error) {
+        reason = std::string("damaged DICOMDIR: ") + error.what();
+    } catch (...) {
+        reason = "damaged DICOMDIR (unknown failure)";
+    }
+    if (topLevel)
+        throw core::Error(dicomdir.string(), reason);
+    state.errors.push_back({dicomdir.string(), reason});
+}
 
 HeaderResults readHeaders(const std::vector<fs::path>& files, core::Progress* progress) {
     enum class Outcome { Pending, Instance, Error, Dicomdir };
@@ -686,7 +712,7 @@ std::vector<const SeriesInfo*> DicomIndex::allSeries() const {
     return result;
 }
 
-DicomIndex scanDicom(const fs::path& path, core::Progress* progress) {
+static DicomIndex scanDicomUnguarded(const fs::path& path, core::Progress* progress) {
     std::error_code ec;
     const auto status = fs::status(path, ec);
     if (ec || !fs::exists(status))
@@ -731,7 +757,8 @@ DicomIndex scanDicom(const fs::path& path, core::Progress* progress) {
     return index;
 }
 
-DicomIndex scanDicomFiles(const std::vector<fs::path>& files, core::Progress* progress) {
+static DicomIndex scanDicomFilesUnguarded(const std::vector<fs::path>& files,
+                                          core::Progress* progress) {
     DicomIndex index;
     if (!files.empty())
         index.root = files.front().parent_path();
@@ -754,7 +781,7 @@ DicomIndex scanDicomFiles(const std::vector<fs::path>& files, core::Progress* pr
     return index;
 }
 
-bool looksLikeDicomInput(const fs::path& path) {
+static bool looksLikeDicomInputUnguarded(const fs::path& path) {
     std::error_code ec;
     if (fs::is_directory(path, ec))
         return true;
@@ -769,6 +796,24 @@ bool looksLikeDicomInput(const fs::path& path) {
         if (name.size() > std::string_view(suffix).size() && name.ends_with(suffix))
             return true;
     return false;
+}
+
+// The public entries: nothing but core::Error (naming the input) and core::Cancelled leaves them.
+DicomIndex scanDicom(const fs::path& path, core::Progress* progress) {
+    return detail::atModuleBoundary(path.string(),
+                                    [&] { return scanDicomUnguarded(path, progress); });
+}
+
+DicomIndex scanDicomFiles(const std::vector<fs::path>& files, core::Progress* progress) {
+    const std::string subject =
+        files.empty() ? std::string("DICOM file list") : files.front().parent_path().string();
+    return detail::atModuleBoundary(subject,
+                                    [&] { return scanDicomFilesUnguarded(files, progress); });
+}
+
+bool looksLikeDicomInput(const fs::path& path) {
+    return detail::atModuleBoundary(path.string(),
+                                    [&] { return looksLikeDicomInputUnguarded(path); });
 }
 
 } // namespace lw::dicom

@@ -1,5 +1,6 @@
 #include "lw/dicom/volume_assembler.h"
 
+#include "dicom_boundary.h"
 #include "dicom_file.h"
 #include "lw/core/error.h"
 #include "lw/core/log.h"
@@ -425,7 +426,7 @@ void labelGroups(std::vector<Group>& groups) {
 
 } // namespace
 
-SeriesAssembly planVolumes(const SeriesInfo& series) {
+static SeriesAssembly planVolumesUnguarded(const SeriesInfo& series) {
     SeriesAssembly assembly;
     std::vector<FrameRef> frames;
     std::size_t withoutPixels = 0;
@@ -491,7 +492,8 @@ SeriesAssembly planVolumes(const SeriesInfo& series) {
     return assembly;
 }
 
-volume::Volume loadVolume(const SeriesInfo& series, const VolumePlan& plan, core::Progress* progress) {
+static volume::Volume loadVolumeUnguarded(const SeriesInfo& series, const VolumePlan& plan,
+                                          core::Progress* progress) {
     if (plan.slices.empty() || plan.dims.z != int(plan.slices.size()))
         throw core::Error(series.seriesInstanceUid, "the volume plan has no slices");
     for (const SliceRef& slice : plan.slices) {
@@ -521,20 +523,24 @@ volume::Volume loadVolume(const SeriesInfo& series, const VolumePlan& plan, core
     core::parallelFor(work.size(), [&](std::size_t item) {
         const auto& [instance, zs] = work[item];
         const InstanceInfo& info = series.instances[instance];
-        FrameDecoder decoder(info);
-        for (int z : zs) {
-            if (progress)
-                progress->throwIfCancelled();
-            decoder.decodeFrame(plan.slices[std::size_t(z)].frame, plan.voxelType, result.sliceData(z));
-            if (progress)
-                progress->step();
-        }
+        // A library failure while decoding names this file, not just the series.
+        detail::atModuleBoundary(info.path, [&] {
+            FrameDecoder decoder(info);
+            for (int z : zs) {
+                if (progress)
+                    progress->throwIfCancelled();
+                decoder.decodeFrame(plan.slices[std::size_t(z)].frame, plan.voxelType,
+                                    result.sliceData(z));
+                if (progress)
+                    progress->step();
+            }
+        });
     });
     return result;
 }
 
-volume::Volume loadSlice(const SeriesInfo& series, const VolumePlan& plan, std::size_t sliceIndex,
-                         core::Progress* progress) {
+static volume::Volume loadSliceUnguarded(const SeriesInfo& series, const VolumePlan& plan,
+                                         std::size_t sliceIndex, core::Progress* progress) {
     if (sliceIndex >= plan.slices.size())
         throw core::Error(series.seriesInstanceUid,
                           "slice " + std::to_string(sliceIndex) + " is outside the volume plan (" +
@@ -543,7 +549,27 @@ volume::Volume loadSlice(const SeriesInfo& series, const VolumePlan& plan, std::
     one.slices = {plan.slices[sliceIndex]};
     one.dims.z = 1;
     one.geometry = plan.geometry.subStack(int(sliceIndex), 1);
-    return loadVolume(series, one, progress);
+    return loadVolumeUnguarded(series, one, progress);
+}
+
+// The public entries: nothing but core::Error and core::Cancelled leaves them. The subject is
+// the series; errors of one file already name that file.
+SeriesAssembly planVolumes(const SeriesInfo& series) {
+    return detail::atModuleBoundary(series.seriesInstanceUid,
+                                    [&] { return planVolumesUnguarded(series); });
+}
+
+volume::Volume loadVolume(const SeriesInfo& series, const VolumePlan& plan,
+                          core::Progress* progress) {
+    return detail::atModuleBoundary(series.seriesInstanceUid,
+                                    [&] { return loadVolumeUnguarded(series, plan, progress); });
+}
+
+volume::Volume loadSlice(const SeriesInfo& series, const VolumePlan& plan, std::size_t sliceIndex,
+                         core::Progress* progress) {
+    return detail::atModuleBoundary(series.seriesInstanceUid, [&] {
+        return loadSliceUnguarded(series, plan, sliceIndex, progress);
+    });
 }
 
 } // namespace lw::dicom
