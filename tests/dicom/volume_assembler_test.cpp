@@ -514,3 +514,33 @@ TEST(VolumeAssembler, LoadSliceDecodesOneSliceWithItsGeometry) {
         }
     }
 }
+
+// Issue 10: slices at z = 0, 1 and 1e12 made the missing-slice estimate convert an
+// out-of-range double to int ("2147483647 missing slices"). The far slice is left out with
+// the reason; the estimate stays bounded whatever the gaps.
+TEST(VolumeAssembler, ImplausiblePositionIsLeftOutWithTheReason) {
+    lw::test::TempDir dir;
+    const auto files = writeStack(dir, {0.0, 1.0, 1e12}, baseSlice(dt::makeTestUid()));
+    const SeriesAssembly assembly = planVolumes(readSeries(files));
+    ASSERT_EQ(assembly.errors.size(), 1u);
+    const InstanceInfo far = readInstanceHeader(assembly.errors[0].file);
+    EXPECT_EQ(far.frames.at(0).position->z, 1e12);
+    EXPECT_NE(assembly.errors[0].reason.find("implausible ImagePositionPatient"), std::string::npos)
+        << assembly.errors[0].reason;
+    ASSERT_EQ(assembly.volumes.size(), 1u);
+    EXPECT_EQ(assembly.volumes[0].dims.z, 2);
+    EXPECT_EQ(assembly.volumes[0].missingSlices, 0);
+}
+
+TEST(VolumeAssembler, HugeGapIsNoRunOfMissingSlices) {
+    lw::test::TempDir dir;
+    // 9 m between the last two slices: plausible positions, but no 8997 lost slices.
+    const auto files = writeStack(dir, {0.0, 1.0, 2.0, 9000.0}, baseSlice(dt::makeTestUid()));
+    const SeriesAssembly assembly = planVolumes(readSeries(files));
+    EXPECT_TRUE(assembly.errors.empty());
+    ASSERT_EQ(assembly.volumes.size(), 1u);
+    const VolumePlan& plan = assembly.volumes[0];
+    EXPECT_TRUE(plan.unevenGaps);
+    EXPECT_EQ(plan.missingSlices, 0);
+    EXPECT_NEAR(plan.maxGap, 8998.0, 1e-6);
+}

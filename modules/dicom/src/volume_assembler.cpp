@@ -3,6 +3,7 @@
 #include "dicom_boundary.h"
 #include "dicom_file.h"
 #include "lw/core/error.h"
+#include "lw/core/limits.h"
 #include "lw/core/log.h"
 #include "lw/core/parallel.h"
 
@@ -11,6 +12,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <functional>
+#include <limits>
 #include <map>
 #include <numeric>
 #include <set>
@@ -275,6 +277,64 @@ volume::VoxelType chooseVoxelType(const std::vector<const InstanceInfo*>& instan
     return volume::VoxelType::UInt16; // uint8 and uint16 mixed
 }
 
+// Slices a gap of `ratio` common gaps hides; none when the ratio is no whole multiple. A gap
+// of more than kMaxMissingPerGap is no run of lost slices (a scout, a second station): it is
+// reported as an uneven gap only, and the estimate stays small whatever the positions say.
+constexpr double kMaxMissingPerGap = 1000.0;
+
+int missingSlicesInGap(double ratio) {
+    if (!std::isfinite(ratio))
+        return 0;
+    const double whole = std::round(ratio);
+    if (whole < 2 || whole - 1 > kMaxMissingPerGap || std::abs(ratio - whole) >= 0.1)
+        return 0;
+    return int(whole) - 1;
+}
+
+// Gaps along the stack: min/max, whether they are uneven, and the missing slices they suggest.
+void measureGaps(const std::vector<glm::dvec3>& positions, VolumePlan& plan) {
+    if (positions.size() < 2)
+        return;
+    const glm::dvec3 axis = plan.geometry.stackAxis();
+    std::vector<double> gaps;
+    for (std::size_t k = 1; k < positions.size(); ++k)
+        gaps.push_back(glm::dot(positions[k] - positions[k - 1], axis));
+    plan.minGap = *std::min_element(gaps.begin(), gaps.end());
+    plan.maxGap = *std::max_element(gaps.begin(), gaps.end());
+    plan.unevenGaps = plan.maxGap - plan.minGap > kUnevenGapTolerance * std::abs(plan.maxGap);
+    if (!plan.unevenGaps)
+        return;
+    const double common = commonGap(gaps);
+    long long missing = 0; // at most kMaxMissingPerGap per gap: cannot overflow for any frame count
+    for (double g : gaps)
+        missing += missingSlicesInGap(common > 0 ? g / common : 0.0);
+    plan.missingSlices = int(std::min<long long>(missing, std::numeric_limits<int>::max()));
+    plan.warnings.push_back("uneven slice gaps: " + formatNumber(plan.minGap) + " to " +
+                            formatNumber(plan.maxGap) + " mm");
+    if (plan.missingSlices > 0)
+        plan.warnings.push_back(
+            "about " + std::to_string(plan.missingSlices) + " missing slice(s): gaps of " +
+            "whole multiples of the common gap " + formatNumber(common) + " mm");
+}
+
+// Why a frame's position cannot be a patient's (not finite, or farther than 10 m from the
+// origin); empty when it can. Such a frame is left out with this reason: one damaged header
+// must neither stretch the volume to a kilometre nor overflow the slice arithmetic.
+std::string implausiblePosition(const FrameInfo& frame) {
+    if (!frame.position)
+        return {};
+    const glm::dvec3 p = *frame.position;
+    for (int axis = 0; axis < 3; ++axis) {
+        if (!std::isfinite(p[axis]))
+            return "ImagePositionPatient is not a finite number";
+        if (std::abs(p[axis]) > core::kMaxPlausibleExtentMm)
+            return "implausible ImagePositionPatient (" + formatNumber(p.x) + ", " +
+                   formatNumber(p.y) + ", " + formatNumber(p.z) +
+                   " mm): more than 10 m from the origin";
+    }
+    return {};
+}
+
 VolumePlan makePlan(const SeriesInfo& series, Group group) {
     VolumePlan plan;
     plan.seriesInstanceUid = series.seriesInstanceUid;
@@ -330,29 +390,7 @@ VolumePlan makePlan(const SeriesInfo& series, Group group) {
     plan.tiltDegrees = plan.geometry.tiltDegrees();
     plan.valueMapping = volume::ValueMapping{key.slope, key.intercept};
 
-    if (positions.size() >= 2) {
-        const glm::dvec3 axis = plan.geometry.stackAxis();
-        std::vector<double> gaps;
-        for (std::size_t k = 1; k < positions.size(); ++k)
-            gaps.push_back(glm::dot(positions[k] - positions[k - 1], axis));
-        plan.minGap = *std::min_element(gaps.begin(), gaps.end());
-        plan.maxGap = *std::max_element(gaps.begin(), gaps.end());
-        plan.unevenGaps = plan.maxGap - plan.minGap > kUnevenGapTolerance * std::abs(plan.maxGap);
-        if (plan.unevenGaps) {
-            const double common = commonGap(gaps);
-            for (double g : gaps) {
-                const double ratio = g / common;
-                const double whole = std::round(ratio);
-                if (whole >= 2 && std::abs(ratio - whole) < 0.1)
-                    plan.missingSlices += int(whole) - 1;
-            }
-            plan.warnings.push_back("uneven slice gaps: " + formatNumber(plan.minGap) + " to " +
-                                    formatNumber(plan.maxGap) + " mm");
-            if (plan.missingSlices > 0)
-                plan.warnings.push_back("about " + std::to_string(plan.missingSlices) + " missing slice(s): gaps of " +
-                                        "whole multiples of the common gap " + formatNumber(common) + " mm");
-        }
-    }
+    measureGaps(positions, plan);
     if (plan.tiltDegrees > 0.01)
         plan.warnings.push_back("gantry tilt " + formatNumber(plan.tiltDegrees) + " degrees (sheared volume)");
 
@@ -440,6 +478,14 @@ static SeriesAssembly planVolumesUnguarded(const SeriesInfo& series) {
             (void)storedVoxelType(info);
         } catch (const core::Error& e) {
             assembly.errors.push_back(FileError{info.path, e.reason()});
+            continue;
+        }
+        std::string implausible;
+        for (const FrameInfo& frame : info.frames)
+            if (implausible = implausiblePosition(frame); !implausible.empty())
+                break;
+        if (!implausible.empty()) {
+            assembly.errors.push_back(FileError{info.path, implausible});
             continue;
         }
         for (const FrameInfo& frame : info.frames)
