@@ -1,9 +1,14 @@
 // ImportLimits and checked arithmetic: the one place every reader asks before it allocates.
 #include "lw/core/error.h"
+#include "lw/core/file_util.h"
 #include "lw/core/limits.h"
 
+#include <algorithm>
+#include <chrono>
 #include <gtest/gtest.h>
 #include <limits>
+#include <vector>
+#include <zlib.h>
 
 using namespace lw::core;
 
@@ -50,4 +55,60 @@ TEST(ImportLimits, InflateBoundIsTheExpectedSizePlusASmallMargin) {
     EXPECT_EQ(inflateBound(std::size_t(1) << 30), (std::size_t(1) << 30) + (std::size_t(1) << 24));
     EXPECT_EQ(inflateBound(std::numeric_limits<std::size_t>::max() - 5),
               std::numeric_limits<std::size_t>::max());
+}
+
+namespace {
+
+// `inflated` zero bytes as one gzip member, compressed piecewise (a bomb: ~1000:1).
+std::vector<std::byte> gzipZeros(std::size_t inflated) {
+    z_stream stream{};
+    EXPECT_EQ(deflateInit2(&stream, Z_BEST_SPEED, Z_DEFLATED, 15 + 16, 9, Z_DEFAULT_STRATEGY),
+              Z_OK);
+    const std::vector<unsigned char> zeros(1 << 20, 0);
+    std::vector<std::byte> out;
+    std::vector<unsigned char> buffer(1 << 16);
+    std::size_t left = inflated;
+    int flush = Z_NO_FLUSH;
+    do {
+        const std::size_t piece = std::min(left, zeros.size());
+        stream.next_in = const_cast<unsigned char*>(zeros.data());
+        stream.avail_in = uInt(piece);
+        left -= piece;
+        flush = left == 0 ? Z_FINISH : Z_NO_FLUSH;
+        do {
+            stream.next_out = buffer.data();
+            stream.avail_out = uInt(buffer.size());
+            deflate(&stream, flush);
+            const std::size_t have = buffer.size() - stream.avail_out;
+            const auto* bytes = reinterpret_cast<const std::byte*>(buffer.data());
+            out.insert(out.end(), bytes, bytes + have);
+        } while (stream.avail_out == 0);
+    } while (flush != Z_FINISH);
+    deflateEnd(&stream);
+    return out;
+}
+
+} // namespace
+
+TEST(BoundedGunzip, StopsAGzipBombRightAfterTheDeclaredSize) {
+    const std::vector<std::byte> bomb = gzipZeros(std::size_t(64) << 20); // 64 MB of zeros
+    ASSERT_LT(bomb.size(), std::size_t(1) << 20);
+    const std::size_t declared = std::size_t(1) << 20;
+    const auto start = std::chrono::steady_clock::now();
+    try {
+        (void)gunzip(bomb.data(), bomb.size(), "bomb.nii.gz", inflateBound(declared));
+        FAIL() << "the bomb was inflated";
+    } catch (const Error& error) {
+        EXPECT_EQ(error.subject(), "bomb.nii.gz");
+        EXPECT_NE(error.reason().find("inflates to more than"), std::string::npos)
+            << error.reason();
+    }
+    const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    EXPECT_LT(seconds, 0.5); // only ~2 MB are inflated, not 64 MB
+
+    const auto prefix = gunzipPrefix(bomb.data(), bomb.size(), "bomb.nii.gz", 348);
+    EXPECT_EQ(prefix.size(), 348u);
+    const auto exact = gunzip(bomb.data(), bomb.size(), "bomb.nii.gz", std::size_t(64) << 20);
+    EXPECT_EQ(exact.size(), std::size_t(64) << 20);
 }

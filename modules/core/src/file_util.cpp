@@ -2,13 +2,14 @@
 
 #include "lw/core/error.h"
 
-#include <zlib.h>
-
+#include <algorithm>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
 #include <fstream>
+#include <limits>
 #include <random>
+#include <zlib.h>
 
 namespace lw::core {
 
@@ -36,44 +37,87 @@ bool looksGzipped(const std::byte* data, std::size_t size) {
     return size >= 2 && data[0] == std::byte{0x1f} && data[1] == std::byte{0x8b};
 }
 
-std::vector<std::byte> gunzip(const std::byte* data, std::size_t size, const std::string& subject) {
+namespace {
+
+// Inflates gzip or zlib data into at most `limit` bytes. Stops there: `*exceeded` tells whether
+// the stream had more. zlib's counters are 32-bit (uInt), so input and output are fed in
+// pieces; the output grows by doubling up to the limit, never beyond it.
+std::vector<std::byte> inflateAtMost(const std::byte* data, std::size_t size,
+                                     const std::string& subject, std::size_t limit,
+                                     bool* exceeded) {
+    constexpr std::size_t kPiece = std::numeric_limits<uInt>::max();
     z_stream stream{};
     // 15 + 32: accept both zlib and gzip headers.
     if (inflateInit2(&stream, 15 + 32) != Z_OK)
         throw Error(subject, "zlib initialisation failed");
-    std::vector<std::byte> out(std::max<std::size_t>(size * 4, 1 << 16));
-    stream.next_in = reinterpret_cast<Bytef*>(const_cast<std::byte*>(data));
-    stream.avail_in = static_cast<uInt>(size);
-    int status = Z_OK;
+    std::vector<std::byte> out(
+        std::min(limit, std::max<std::size_t>(size < limit / 4 ? size * 4 : limit, 1 << 16)));
+    std::size_t consumed = 0; // input handed to zlib so far
+    std::size_t produced = 0; // output across concatenated members
+    *exceeded = false;
+    const auto fail = [&](const std::string& reason) {
+        inflateEnd(&stream);
+        throw Error(subject, reason);
+    };
     while (true) {
-        if (stream.total_out == out.size())
-            out.resize(out.size() * 2);
-        stream.next_out = reinterpret_cast<Bytef*>(out.data() + stream.total_out);
-        stream.avail_out = static_cast<uInt>(out.size() - stream.total_out);
-        status = inflate(&stream, Z_NO_FLUSH);
+        if (stream.avail_in == 0 && consumed < size) {
+            stream.next_in = reinterpret_cast<Bytef*>(const_cast<std::byte*>(data + consumed));
+            stream.avail_in = uInt(std::min(kPiece, size - consumed));
+            consumed += stream.avail_in;
+        }
+        if (produced == out.size()) {
+            if (out.size() >= limit) {
+                // Full: one more byte of output means the stream is larger than allowed.
+                std::byte probe{};
+                stream.next_out = reinterpret_cast<Bytef*>(&probe);
+                stream.avail_out = 1;
+                const int status = inflate(&stream, Z_NO_FLUSH);
+                *exceeded = stream.avail_out == 0 && (status == Z_OK || status == Z_STREAM_END);
+                break;
+            }
+            out.resize(std::min(limit, std::max<std::size_t>(out.size(), 1) * 2));
+        }
+        stream.next_out = reinterpret_cast<Bytef*>(out.data() + produced);
+        stream.avail_out = uInt(std::min(kPiece, out.size() - produced));
+        const uInt before = stream.avail_out;
+        const int status = inflate(&stream, Z_NO_FLUSH);
+        produced += before - stream.avail_out;
         if (status == Z_STREAM_END) {
             // Concatenated gzip members (pigz, some NIfTI writers): keep inflating.
-            if (stream.avail_in > 0 && looksGzipped(reinterpret_cast<const std::byte*>(stream.next_in), stream.avail_in)) {
-                const auto produced = stream.total_out;
+            if (stream.avail_in > 0 &&
+                looksGzipped(reinterpret_cast<const std::byte*>(stream.next_in), stream.avail_in)) {
                 inflateReset(&stream);
-                stream.total_out = produced;
                 continue;
             }
             break;
         }
-        if (status == Z_BUF_ERROR && stream.avail_in == 0) {
-            inflateEnd(&stream);
-            throw Error(subject, "compressed data is truncated");
-        }
-        if (status != Z_OK && status != Z_BUF_ERROR) {
-            const std::string message = stream.msg ? stream.msg : "corrupt compressed data";
-            inflateEnd(&stream);
-            throw Error(subject, "decompression failed: " + message);
-        }
+        if (status == Z_BUF_ERROR && stream.avail_in == 0 && consumed == size)
+            fail("compressed data is truncated");
+        if (status != Z_OK && status != Z_BUF_ERROR)
+            fail(std::string("decompression failed: ") +
+                 (stream.msg ? stream.msg : "corrupt compressed data"));
     }
-    out.resize(stream.total_out);
     inflateEnd(&stream);
+    out.resize(produced);
     return out;
+}
+
+} // namespace
+
+std::vector<std::byte> gunzip(const std::byte* data, std::size_t size, const std::string& subject,
+                              std::size_t maxOutput) {
+    bool exceeded = false;
+    std::vector<std::byte> out = inflateAtMost(data, size, subject, maxOutput, &exceeded);
+    if (exceeded)
+        throw Error(subject, "compressed data inflates to more than " + std::to_string(maxOutput) +
+                                 " bytes, more than its header declares (or the import limit)");
+    return out;
+}
+
+std::vector<std::byte> gunzipPrefix(const std::byte* data, std::size_t size,
+                                    const std::string& subject, std::size_t count) {
+    bool exceeded = false;
+    return inflateAtMost(data, size, subject, count, &exceeded);
 }
 
 void writeFileAtomically(const std::filesystem::path& path, const void* data, std::size_t size) {
