@@ -46,7 +46,7 @@ TEST(ImportLimits, BytesFramesAndDimensionsAreCheckedWithTheReason) {
     EXPECT_THROW(limits.checkFrames(0, "f.dcm"), Error);
     EXPECT_NO_THROW(limits.checkFrames(1000, "f.dcm"));
     EXPECT_THROW(limits.checkDimension(-5, "f.nii", "dim[1]"), Error);
-    EXPECT_THROW(limits.checkDimension(1 << 20, "f.nii", "dim[1]"), Error);
+    EXPECT_THROW(limits.checkDimension(1 << 21, "f.nii", "dim[1]"), Error);
     EXPECT_NO_THROW(limits.checkDimension(512, "f.nii", "dim[1]"));
 }
 

@@ -1,5 +1,6 @@
 #include "dicom_test_writer.h"
 
+#include <cstdint>
 #include <dcmtk/dcmdata/dcdeftag.h>
 #include <dcmtk/dcmdata/dcfilefo.h>
 #include <dcmtk/dcmdata/dcrleerg.h>
@@ -9,10 +10,8 @@
 #include <dcmtk/dcmjpeg/djrplol.h>
 #include <dcmtk/dcmjpls/djencode.h>
 #include <dcmtk/dcmjpls/djrparam.h>
-
 #include <dlfcn.h>
-
-#include <cstdint>
+#include <fstream>
 #include <memory>
 #include <sstream>
 #include <stdexcept>
@@ -184,6 +183,80 @@ void writeTestSlice(const std::filesystem::path& path, const TestSlice& s) {
             throw std::runtime_error("test DICOM writer: DCMTK could not encode " + transferSyntaxUid(s.transferSyntax));
     }
     check(file.saveFile(OFFilename(path.c_str()), xfer), "save " + path.string());
+}
+
+namespace {
+
+void appendLe(std::string& out, std::uint64_t value, int bytes) {
+    for (int i = 0; i < bytes; ++i)
+        out.push_back(char((value >> (8 * i)) & 0xff));
+}
+
+// One explicit VR little endian element (OB in the long form).
+void appendElement(std::string& out, std::uint16_t group, std::uint16_t element, const char* vr,
+                   std::string value) {
+    if (value.size() % 2)
+        value.push_back(std::string(vr) == "UI" ? '\0' : ' ');
+    appendLe(out, group, 2);
+    appendLe(out, element, 2);
+    out.append(vr, 2);
+    if (std::string(vr) == "OB") { // long form: 2 reserved bytes, 4-byte length
+        appendLe(out, 0, 2);
+        appendLe(out, value.size(), 4);
+    } else {
+        appendLe(out, value.size(), 2);
+    }
+    out += value;
+}
+
+void appendUs(std::string& out, std::uint16_t group, std::uint16_t element, int value) {
+    std::string bytes;
+    appendLe(bytes, std::uint64_t(value), 2);
+    appendElement(out, group, element, "US", bytes);
+}
+
+} // namespace
+
+void writeHandMadeImage(const std::filesystem::path& path, const HandMadeImage& image) {
+    std::string meta;
+    appendElement(meta, 0x0002, 0x0001, "OB", std::string("\0\1", 2));
+    appendElement(meta, 0x0002, 0x0002, "UI", "1.2.840.10008.5.1.4.1.1.2");
+    appendElement(meta, 0x0002, 0x0003, "UI", "1.2.826.0.1.3680043.2.1143.99.1");
+    appendElement(meta, 0x0002, 0x0010, "UI", "1.2.840.10008.1.2.1");
+    std::string out(128, '\0');
+    out += "DICM";
+    std::string groupLength;
+    appendLe(groupLength, meta.size(), 4);
+    appendElement(out, 0x0002, 0x0000, "UL", groupLength);
+    out += meta;
+    appendElement(out, 0x0008, 0x0016, "UI", "1.2.840.10008.5.1.4.1.1.2");
+    appendElement(out, 0x0008, 0x0018, "UI", "1.2.826.0.1.3680043.2.1143.99.1");
+    appendElement(out, 0x0008, 0x0060, "CS", "CT");
+    appendElement(out, 0x0020, 0x000D, "UI", "1.2.826.0.1.3680043.2.1143.99.2");
+    appendElement(out, 0x0020, 0x000E, "UI", "1.2.826.0.1.3680043.2.1143.99.3");
+    appendUs(out, 0x0028, 0x0002, 1);
+    appendElement(out, 0x0028, 0x0004, "CS", "MONOCHROME2");
+    if (!image.numberOfFrames.empty())
+        appendElement(out, 0x0028, 0x0008, "IS", image.numberOfFrames);
+    appendUs(out, 0x0028, 0x0010, image.rows);
+    appendUs(out, 0x0028, 0x0011, image.columns);
+    appendUs(out, 0x0028, 0x0100, image.bitsAllocated);
+    appendUs(out, 0x0028, 0x0101, image.bitsAllocated);
+    appendUs(out, 0x0028, 0x0102, image.bitsAllocated - 1);
+    appendUs(out, 0x0028, 0x0103, 1);
+    if (image.writePixelData) {
+        appendLe(out, 0x7FE0, 2);
+        appendLe(out, 0x0010, 2);
+        out += image.bitsAllocated == 8 ? "OB" : "OW";
+        appendLe(out, 0, 2);
+        appendLe(out, image.declaredPixelDataLength.value_or(std::uint32_t(image.pixelDataBytes)),
+                 4);
+        out.append(image.pixelDataBytes, '\0');
+    }
+    std::ofstream file(path, std::ios::binary | std::ios::trunc);
+    file.write(out.data(), std::streamsize(out.size()));
+    if (!file)
+        throw std::runtime_error("cannot write " + path.string());
 }
 
 } // namespace lw::dicom::test

@@ -17,10 +17,10 @@
 // Stored pixel values are written exactly as given (bits above BitsStored included, so tests
 // can put garbage there); signed values are written as their two's complement 16-bit words.
 
-#include <glm/glm.hpp>
-
 #include <array>
+#include <cstdint>
 #include <filesystem>
+#include <glm/glm.hpp>
 #include <optional>
 #include <string>
 #include <vector>
@@ -85,5 +85,19 @@ std::string makeTestUid();
 
 // rows*columns values start, start+1, ... row-major: every pixel distinct, orientation visible.
 std::vector<int> rampPixels(int rows, int columns, int start = 0, int step = 1);
+
+// A hostile image header written byte by byte (explicit VR little endian), with whatever the
+// header claims and no check that it is consistent: 2^31-1 frames, 65535x65535 pixels, pixel
+// data shorter than declared. A few hundred bytes; DCMTK would refuse to write most of these.
+struct HandMadeImage {
+    int rows = 4;
+    int columns = 4;
+    std::string numberOfFrames = "1"; // written as is (IS); empty: not written
+    int bitsAllocated = 16;
+    bool writePixelData = true;
+    std::size_t pixelDataBytes = 32; // the element's value (zeros), its length as declared
+    std::optional<std::uint32_t> declaredPixelDataLength; // a length other than pixelDataBytes
+};
+void writeHandMadeImage(const std::filesystem::path& path, const HandMadeImage& image);
 
 } // namespace lw::dicom::test

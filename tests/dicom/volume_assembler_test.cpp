@@ -2,17 +2,18 @@
 // from the writer, not from the reader under test.
 #include "dicom_file.h"
 #include "dicom_test_writer.h"
-#include "test_support.h"
-
 #include "lw/core/error.h"
 #include "lw/core/progress.h"
+#include "lw/dicom/dicom_scanner.h"
 #include "lw/dicom/volume_assembler.h"
-
-#include <gtest/gtest.h>
+#include "test_support.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstring>
+#include <functional>
+#include <gtest/gtest.h>
 #include <numeric>
 #include <random>
 
@@ -543,4 +544,83 @@ TEST(VolumeAssembler, HugeGapIsNoRunOfMissingSlices) {
     EXPECT_TRUE(plan.unevenGaps);
     EXPECT_EQ(plan.missingSlices, 0);
     EXPECT_NEAR(plan.maxGap, 8998.0, 1e-6);
+}
+
+namespace {
+
+double secondsSince(std::chrono::steady_clock::time_point start) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+void expectReason(const std::function<void()>& work, const std::string& reason) {
+    try {
+        work();
+        ADD_FAILURE() << "no error; expected: " << reason;
+    } catch (const core::Error& error) {
+        EXPECT_NE(error.reason().find(reason), std::string::npos) << error.reason();
+    }
+}
+
+} // namespace
+
+// Issue 10: a ~550-byte header declaring 2^31-1 frames cost a minute and 13 GB of frame
+// descriptions before failing; the frame count is checked before any frame is described.
+TEST(ImportLimits, HeaderDeclaring2147483647FramesIsRejectedAtOnce) {
+    lw::test::TempDir dir;
+    dt::HandMadeImage image;
+    image.rows = 512;
+    image.columns = 512;
+    image.numberOfFrames = "2147483647";
+    image.pixelDataBytes = 2;
+    dt::writeHandMadeImage(dir / "frames.dcm", image);
+    const auto start = std::chrono::steady_clock::now();
+    expectReason([&] { (void)readInstanceHeader(dir / "frames.dcm"); },
+                 "implausible number of frames 2147483647");
+    const DicomIndex index = scanDicom(dir.path());
+    EXPECT_LT(secondsSince(start), 0.1);
+    ASSERT_EQ(index.errors.size(), 1u);
+    EXPECT_NE(index.errors[0].reason.find("implausible number of frames"), std::string::npos);
+}
+
+TEST(ImportLimits, PixelDataOverTheLimitIsRejectedFromTheHeader) {
+    lw::test::TempDir dir;
+    dt::HandMadeImage image;
+    image.rows = 1024;
+    image.columns = 1024;
+    image.numberOfFrames = "100";
+    image.pixelDataBytes = 2;
+    dt::writeHandMadeImage(dir / "big.dcm", image);
+    core::ImportLimits limits;
+    limits.maxBytes = std::size_t(64) << 20;
+    expectReason(
+        [&] { (void)readInstanceHeader(dir / "big.dcm", limits); },
+        "the pixel data the header declares needs 200 MB, more than the import limit of 64 MB");
+}
+
+// Issue 10: 65535 x 65535 pixels declared, 2 bytes present: loadVolume allocated the 8 GB volume
+// before finding out. The pixel data length is compared with the header before allocating.
+TEST(ImportLimits, HugeImageWithoutItsPixelsFailsBeforeAllocating) {
+    lw::test::TempDir dir;
+    dt::HandMadeImage image;
+    image.rows = 65535;
+    image.columns = 65535;
+    image.pixelDataBytes = 2;
+    dt::writeHandMadeImage(dir / "huge.dcm", image);
+    core::ImportLimits limits;
+    limits.maxBytes = std::size_t(16) << 30; // so that only the missing pixels can stop it
+    SeriesInfo series;
+    series.instances.push_back(readInstanceHeader(dir / "huge.dcm", limits));
+    series.seriesInstanceUid = series.instances[0].seriesInstanceUid;
+    ASSERT_TRUE(series.instances[0].nativePixelDataBytes.has_value());
+    EXPECT_EQ(*series.instances[0].nativePixelDataBytes, 2u);
+    const SeriesAssembly assembly = planVolumes(series);
+    ASSERT_EQ(assembly.volumes.size(), 1u);
+    const auto start = std::chrono::steady_clock::now();
+    expectReason([&] { (void)loadVolume(series, assembly.volumes[0], nullptr, limits); },
+                 "pixel data truncated: 2 bytes where the header declares 8589672450");
+    EXPECT_LT(secondsSince(start), 0.1);
+    // And with the default limit of a small machine, the volume itself is refused.
+    limits.maxBytes = std::size_t(1) << 30;
+    expectReason([&] { (void)loadVolume(series, assembly.volumes[0], nullptr, limits); },
+                 "the volume needs 8191 MB, more than the import limit of 1024 MB");
 }

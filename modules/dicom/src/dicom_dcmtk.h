@@ -3,13 +3,14 @@
 // Internal to lw::dicom: small DCMTK helpers shared by the reader and the decoder. DCMTK types
 // may appear here because this header never leaves modules/dicom/src.
 
-#include <dcmtk/dcmdata/dcfilefo.h>
-#include <dcmtk/dcmdata/dcitem.h>
-#include <dcmtk/dcmdata/dcmetinf.h>
+#include "lw/core/limits.h"
 
 #include <array>
 #include <cmath>
 #include <cstddef>
+#include <dcmtk/dcmdata/dcfilefo.h>
+#include <dcmtk/dcmdata/dcitem.h>
+#include <dcmtk/dcmdata/dcmetinf.h>
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -19,9 +20,11 @@ namespace lw::dicom {
 
 // Loads a DICOM file, or the DICOM file inside a gzip wrapper (then `inflated`, when given,
 // keeps the bytes). headerOnly: large elements (pixel data) stay on disk until accessed.
-// Throws core::Error(path, reason) when the file is not DICOM or cannot be parsed.
+// Throws core::Error(path, reason) when the file is not DICOM or cannot be parsed, or when a
+// gzip wrapper inflates to more than limits.maxBytes (nothing declares its size beforehand).
 void loadDicomFile(const std::filesystem::path& path, DcmFileFormat& file, bool headerOnly,
-                   std::vector<std::byte>* inflated = nullptr, bool* isGzipWrapped = nullptr);
+                   std::vector<std::byte>* inflated = nullptr, bool* isGzipWrapped = nullptr,
+                   const core::ImportLimits& limits = {});
 
 // Leading and trailing spaces and NULs removed (DICOM pads values to even length).
 inline std::string trim(const std::string& text) {

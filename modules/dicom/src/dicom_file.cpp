@@ -78,7 +78,36 @@ void applyFunctionalGroups(DcmItem& groups, FrameInfo& frame) {
     }
 }
 
-void fillInstance(DcmFileFormat& file, InstanceInfo& info) {
+// The size of the pixel data a header declares, checked against the import limits before a
+// single frame is described: a 600-byte header claiming 2^31-1 frames used to cost 13 GB of
+// frame descriptions and a minute before anything failed.
+void checkDeclaredPixels(const InstanceInfo& info, const core::ImportLimits& limits) {
+    limits.checkFrames(info.numberOfFrames, info.path);
+    if (info.rows <= 0 || info.columns <= 0)
+        return; // no image: storedVoxelType says so when a volume is planned
+    limits.checkDimension(info.rows, info.path, "Rows");
+    limits.checkDimension(info.columns, info.path, "Columns");
+    const std::size_t sampleBytes = std::size_t(std::max(1, (info.bitsAllocated + 7) / 8));
+    limits.checkedBytes({std::size_t(info.rows), std::size_t(info.columns),
+                         std::size_t(info.numberOfFrames),
+                         std::size_t(std::max(1, info.samplesPerPixel)), sampleBytes},
+                        info.path, "the pixel data the header declares");
+}
+
+// The declared length of native pixel data, without loading it (header reads skip long values).
+std::optional<std::uint64_t> nativePixelDataLength(DcmDataset& ds) {
+    DcmElement* element = nullptr;
+    if (ds.findAndGetElement(DCM_PixelData, element, OFFalse).bad() || !element)
+        return std::nullopt;
+    if (DcmXfer(ds.getOriginalXfer()).isEncapsulated())
+        return std::nullopt;
+    const Uint32 length = element->getLength();
+    if (length == DCM_UndefinedLength)
+        return std::nullopt;
+    return length;
+}
+
+void fillInstance(DcmFileFormat& file, InstanceInfo& info, const core::ImportLimits& limits) {
     DcmDataset& ds = *file.getDataset();
     DcmMetaInfo* meta = file.getMetaInfo();
 
@@ -127,6 +156,10 @@ void fillInstance(DcmFileFormat& file, InstanceInfo& info) {
     info.hasPixelData = ds.tagExists(DCM_PixelData, OFFalse);
     // badVR.dcm carries NumberOfFrames "1A": treat what cannot be parsed as one frame.
     info.numberOfFrames = std::max(1, getInt(ds, DCM_NumberOfFrames).value_or(1));
+    if (info.hasPixelData) {
+        info.nativePixelDataBytes = nativePixelDataLength(ds);
+        checkDeclaredPixels(info, limits);
+    }
 
     info.gantryTilt = getDouble(ds, DCM_GantryDetectorTilt);
     info.spacingBetweenSlices = getDouble(ds, DCM_SpacingBetweenSlices);
@@ -187,7 +220,8 @@ void fillInstance(DcmFileFormat& file, InstanceInfo& info) {
 }
 
 // Reads the raw bytes of a gzip-wrapped file and inflates them; empty when the file is not gzip.
-std::vector<std::byte> gunzippedContents(const std::filesystem::path& path) {
+std::vector<std::byte> gunzippedContents(const std::filesystem::path& path,
+                                         const core::ImportLimits& limits) {
     std::ifstream in(path, std::ios::binary);
     char magic[2] = {};
     if (!in.read(magic, 2))
@@ -196,7 +230,7 @@ std::vector<std::byte> gunzippedContents(const std::filesystem::path& path) {
     if (!core::looksGzipped(header, 2))
         return {};
     const std::vector<std::byte> raw = core::readFileBytes(path);
-    return core::gunzip(raw.data(), raw.size(), path.string());
+    return core::gunzip(raw.data(), raw.size(), path.string(), limits.maxBytes);
 }
 
 // Without file meta DCMTK guesses the encoding and will "parse" arbitrary bytes into
@@ -223,7 +257,8 @@ void configureDcmtk() {
 } // namespace
 
 void loadDicomFile(const std::filesystem::path& path, DcmFileFormat& file, bool headerOnly,
-                   std::vector<std::byte>* inflated, bool* isGzipWrapped) {
+                   std::vector<std::byte>* inflated, bool* isGzipWrapped,
+                   const core::ImportLimits& limits) {
     std::error_code ec;
     if (!std::filesystem::is_regular_file(path, ec))
         throw core::Error(path.string(), "not a readable file");
@@ -233,7 +268,7 @@ void loadDicomFile(const std::filesystem::path& path, DcmFileFormat& file, bool 
 
     std::vector<std::byte> local;
     std::vector<std::byte>& bytes = inflated ? *inflated : local;
-    bytes = gunzippedContents(path);
+    bytes = gunzippedContents(path, limits);
     if (isGzipWrapped)
         *isGzipWrapped = !bytes.empty();
 
@@ -281,13 +316,14 @@ void loadDicomFile(const std::filesystem::path& path, DcmFileFormat& file, bool 
     throw core::Error(path.string(), "not a DICOM file (no recognisable DICOM attributes)");
 }
 
-InstanceInfo readInstanceHeader(const std::filesystem::path& path) {
+InstanceInfo readInstanceHeader(const std::filesystem::path& path,
+                                const core::ImportLimits& limits) {
     InstanceInfo info;
     info.path = path.string();
     try {
         DcmFileFormat file;
-        loadDicomFile(path, file, true, nullptr, &info.isGzipWrapped);
-        fillInstance(file, info);
+        loadDicomFile(path, file, true, nullptr, &info.isGzipWrapped, limits);
+        fillInstance(file, info, limits);
     } catch (const core::Error&) {
         throw;
     } catch (const std::exception& e) {

@@ -2,6 +2,7 @@
 
 // Internal to lw::dicom: reading single DICOM files with DCMTK.
 
+#include "lw/core/limits.h"
 #include "lw/dicom/dicom_types.h"
 #include "lw/volume/voxel_type.h"
 
@@ -13,8 +14,10 @@ namespace lw::dicom {
 // Reads the header of one DICOM file (pixel data is not loaded). Enhanced multi-frame objects get
 // one FrameInfo per frame from the shared and per-frame functional groups. Accepts files with
 // or without preamble/meta (ACR-NEMA), gzip-wrapped files, any transfer syntax. Throws
-// core::Error(path, reason) when the file is not DICOM or cannot be parsed.
-InstanceInfo readInstanceHeader(const std::filesystem::path& path);
+// core::Error(path, reason) when the file is not DICOM or cannot be parsed, or when it declares
+// more frames or pixel data than `limits` allow (checked before any frame is described).
+InstanceInfo readInstanceHeader(const std::filesystem::path& path,
+                                const core::ImportLimits& limits = {});
 
 // True for DICOMDIR files (Media Storage Directory SOP class): they hold no images.
 bool isDicomdirFile(const std::filesystem::path& path);

@@ -462,7 +462,8 @@ void walkDicomdir(const fs::path& dicomdir, DicomdirState& state, int depth, boo
     state.errors.push_back({dicomdir.string(), reason});
 }
 
-HeaderResults readHeaders(const std::vector<fs::path>& files, core::Progress* progress) {
+HeaderResults readHeaders(const std::vector<fs::path>& files, core::Progress* progress,
+                          const core::ImportLimits& limits) {
     enum class Outcome { Pending, Instance, Error, Dicomdir };
     struct Slot {
         Outcome outcome = Outcome::Pending;
@@ -481,7 +482,7 @@ HeaderResults readHeaders(const std::vector<fs::path>& files, core::Progress* pr
             if (isNamedDicomdir(path) && safeIsDicomdir(path)) {
                 slot.outcome = Outcome::Dicomdir;
             } else {
-                slot.instance = readInstanceHeader(path);
+                slot.instance = readInstanceHeader(path, limits);
                 slot.outcome = slot.instance.sopClassUid == UID_MediaStorageDirectoryStorage
                                    ? Outcome::Dicomdir
                                    : Outcome::Instance;
@@ -625,8 +626,9 @@ std::vector<PatientInfo> groupInstances(std::vector<InstanceInfo> instances,
     return result;
 }
 
-void finishIndex(DicomIndex& index, const std::vector<fs::path>& files, core::Progress* progress) {
-    HeaderResults headers = readHeaders(files, progress);
+void finishIndex(DicomIndex& index, const std::vector<fs::path>& files, core::Progress* progress,
+                 const core::ImportLimits& limits) {
+    HeaderResults headers = readHeaders(files, progress, limits);
     index.filesExamined = files.size();
     for (auto& error : headers.errors)
         index.errors.push_back(std::move(error));
@@ -647,7 +649,8 @@ bool hasDicmMagic(const fs::path& path) {
     return std::string_view(buffer + 128, 4) == "DICM";
 }
 
-DicomIndex scanDicomdir(const fs::path& dicomdir, core::Progress* progress) {
+DicomIndex scanDicomdir(const fs::path& dicomdir, core::Progress* progress,
+                        const core::ImportLimits& limits) {
     DicomIndex index;
     index.fromDicomdir = true;
     DicomdirState state;
@@ -660,7 +663,7 @@ DicomIndex scanDicomdir(const fs::path& dicomdir, core::Progress* progress) {
     index.errors = std::move(state.errors);
     index.warnings = std::move(state.warnings);
     std::sort(state.files.begin(), state.files.end());
-    finishIndex(index, state.files, progress);
+    finishIndex(index, state.files, progress, limits);
 
     std::size_t seriesWithoutFiles = 0;
     for (const auto& uid : state.listedSeries) {
@@ -712,7 +715,8 @@ std::vector<const SeriesInfo*> DicomIndex::allSeries() const {
     return result;
 }
 
-static DicomIndex scanDicomUnguarded(const fs::path& path, core::Progress* progress) {
+static DicomIndex scanDicomUnguarded(const fs::path& path, core::Progress* progress,
+                                     const core::ImportLimits& limits) {
     std::error_code ec;
     const auto status = fs::status(path, ec);
     if (ec || !fs::exists(status))
@@ -726,7 +730,7 @@ static DicomIndex scanDicomUnguarded(const fs::path& path, core::Progress* progr
         DicomIndex index;
         index.root = path;
         index.errors = std::move(walk.errors);
-        finishIndex(index, walk.files, progress);
+        finishIndex(index, walk.files, progress, limits);
         kLog.info("scanned " + path.string() + ": " + std::to_string(index.filesExamined) +
                   " files, " + std::to_string(index.instanceCount()) + " instances in " +
                   std::to_string(index.seriesCount()) + " series, " +
@@ -738,7 +742,7 @@ static DicomIndex scanDicomUnguarded(const fs::path& path, core::Progress* progr
 
     // A file named DICOMDIR is parsed as one even without a meta header saying so.
     if (isNamedDicomdir(path) || safeIsDicomdir(path))
-        return scanDicomdir(path, progress);
+        return scanDicomdir(path, progress, limits);
 
     // A single file: it is the whole input, so failing to read it fails the scan.
     DicomIndex index;
@@ -746,7 +750,7 @@ static DicomIndex scanDicomUnguarded(const fs::path& path, core::Progress* progr
     index.filesExamined = 1;
     if (progress)
         progress->setTotal(1, "Reading DICOM header");
-    InstanceInfo instance = readInstanceHeader(path);
+    InstanceInfo instance = readInstanceHeader(path, limits);
     if (instance.path.empty())
         instance.path = path.string();
     if (progress)
@@ -758,7 +762,8 @@ static DicomIndex scanDicomUnguarded(const fs::path& path, core::Progress* progr
 }
 
 static DicomIndex scanDicomFilesUnguarded(const std::vector<fs::path>& files,
-                                          core::Progress* progress) {
+                                          core::Progress* progress,
+                                          const core::ImportLimits& limits) {
     DicomIndex index;
     if (!files.empty())
         index.root = files.front().parent_path();
@@ -776,7 +781,8 @@ static DicomIndex scanDicomFilesUnguarded(const std::vector<fs::path>& files,
     }
     // Sorted like a folder scan, so the grouping does not depend on the caller's order.
     std::sort(present.begin(), present.end());
-    finishIndex(index, present, progress); // adds the read errors and sorts all errors by file
+    finishIndex(index, present, progress,
+                limits); // adds the read errors and sorts all errors by file
     index.filesExamined = files.size();
     return index;
 }
@@ -799,16 +805,18 @@ static bool looksLikeDicomInputUnguarded(const fs::path& path) {
 }
 
 // The public entries: nothing but core::Error (naming the input) and core::Cancelled leaves them.
-DicomIndex scanDicom(const fs::path& path, core::Progress* progress) {
+DicomIndex scanDicom(const fs::path& path, core::Progress* progress,
+                     const core::ImportLimits& limits) {
     return detail::atModuleBoundary(path.string(),
-                                    [&] { return scanDicomUnguarded(path, progress); });
+                                    [&] { return scanDicomUnguarded(path, progress, limits); });
 }
 
-DicomIndex scanDicomFiles(const std::vector<fs::path>& files, core::Progress* progress) {
+DicomIndex scanDicomFiles(const std::vector<fs::path>& files, core::Progress* progress,
+                          const core::ImportLimits& limits) {
     const std::string subject =
         files.empty() ? std::string("DICOM file list") : files.front().parent_path().string();
-    return detail::atModuleBoundary(subject,
-                                    [&] { return scanDicomFilesUnguarded(files, progress); });
+    return detail::atModuleBoundary(
+        subject, [&] { return scanDicomFilesUnguarded(files, progress, limits); });
 }
 
 bool looksLikeDicomInput(const fs::path& path) {

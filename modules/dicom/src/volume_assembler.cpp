@@ -538,18 +538,46 @@ static SeriesAssembly planVolumesUnguarded(const SeriesInfo& series) {
     return assembly;
 }
 
-static volume::Volume loadVolumeUnguarded(const SeriesInfo& series, const VolumePlan& plan,
-                                          core::Progress* progress) {
+// Everything loadVolume can know before it allocates: the plan matches the series, the volume
+// fits the import limits, and each file's native pixel data is as long as its header says (a
+// 65535x65535 header without its pixels must fail here, not after allocating 8 GB).
+void checkBeforeLoading(const SeriesInfo& series, const VolumePlan& plan,
+                        const core::ImportLimits& limits) {
     if (plan.slices.empty() || plan.dims.z != int(plan.slices.size()))
         throw core::Error(series.seriesInstanceUid, "the volume plan has no slices");
+    limits.checkedBytes({std::size_t(std::max(plan.dims.x, 0)),
+                         std::size_t(std::max(plan.dims.y, 0)), std::size_t(plan.dims.z),
+                         volume::voxelSize(plan.voxelType)},
+                        series.seriesInstanceUid, "the volume");
+    std::map<std::size_t, int> lastFrame; // per instance: the highest frame the plan uses
     for (const SliceRef& slice : plan.slices) {
         if (slice.instance >= series.instances.size())
             throw core::Error(series.seriesInstanceUid, "the volume plan does not match the series");
         const InstanceInfo& info = series.instances[slice.instance];
         if (info.rows != plan.dims.y || info.columns != plan.dims.x)
             throw core::Error(info.path, "image size differs from the volume's");
+        lastFrame[slice.instance] = std::max(lastFrame[slice.instance], slice.frame);
     }
+    for (const auto& [instance, frame] : lastFrame) {
+        const InstanceInfo& info = series.instances[instance];
+        if (!info.nativePixelDataBytes)
+            continue; // encapsulated: the decoder finds out frame by frame
+        const std::size_t needed = core::checkedProduct(
+            {std::size_t(frame) + 1, std::size_t(info.rows), std::size_t(info.columns),
+             std::size_t(std::max(1, info.samplesPerPixel)),
+             std::size_t(std::max(1, info.bitsAllocated / 8))},
+            info.path, "the pixel data");
+        if (*info.nativePixelDataBytes < needed)
+            throw core::Error(
+                info.path, "pixel data truncated: " + std::to_string(*info.nativePixelDataBytes) +
+                               " bytes where the header declares " + std::to_string(needed));
+    }
+}
 
+static volume::Volume loadVolumeUnguarded(const SeriesInfo& series, const VolumePlan& plan,
+                                          core::Progress* progress,
+                                          const core::ImportLimits& limits) {
+    checkBeforeLoading(series, plan, limits);
     volume::Volume result(plan.dims, plan.voxelType, plan.geometry);
     result.setValueMapping(plan.valueMapping);
     std::string description = series.description;
@@ -586,7 +614,8 @@ static volume::Volume loadVolumeUnguarded(const SeriesInfo& series, const Volume
 }
 
 static volume::Volume loadSliceUnguarded(const SeriesInfo& series, const VolumePlan& plan,
-                                         std::size_t sliceIndex, core::Progress* progress) {
+                                         std::size_t sliceIndex, core::Progress* progress,
+                                         const core::ImportLimits& limits) {
     if (sliceIndex >= plan.slices.size())
         throw core::Error(series.seriesInstanceUid,
                           "slice " + std::to_string(sliceIndex) + " is outside the volume plan (" +
@@ -595,7 +624,7 @@ static volume::Volume loadSliceUnguarded(const SeriesInfo& series, const VolumeP
     one.slices = {plan.slices[sliceIndex]};
     one.dims.z = 1;
     one.geometry = plan.geometry.subStack(int(sliceIndex), 1);
-    return loadVolumeUnguarded(series, one, progress);
+    return loadVolumeUnguarded(series, one, progress, limits);
 }
 
 // The public entries: nothing but core::Error and core::Cancelled leaves them. The subject is
@@ -606,15 +635,16 @@ SeriesAssembly planVolumes(const SeriesInfo& series) {
 }
 
 volume::Volume loadVolume(const SeriesInfo& series, const VolumePlan& plan,
-                          core::Progress* progress) {
-    return detail::atModuleBoundary(series.seriesInstanceUid,
-                                    [&] { return loadVolumeUnguarded(series, plan, progress); });
+                          core::Progress* progress, const core::ImportLimits& limits) {
+    return detail::atModuleBoundary(series.seriesInstanceUid, [&] {
+        return loadVolumeUnguarded(series, plan, progress, limits);
+    });
 }
 
 volume::Volume loadSlice(const SeriesInfo& series, const VolumePlan& plan, std::size_t sliceIndex,
-                         core::Progress* progress) {
+                         core::Progress* progress, const core::ImportLimits& limits) {
     return detail::atModuleBoundary(series.seriesInstanceUid, [&] {
-        return loadSliceUnguarded(series, plan, sliceIndex, progress);
+        return loadSliceUnguarded(series, plan, sliceIndex, progress, limits);
     });
 }
 

@@ -23,7 +23,7 @@ struct ImportLimits {
     // thousands; each declared frame costs bookkeeping before any pixel is read.
     std::size_t maxFrames = 100000;
     // Most voxels along one axis of a volume (NRRD, NIfTI, PVM, raw, DICOM rows and columns).
-    std::size_t maxDimension = 65536;
+    std::size_t maxDimension = std::size_t(1) << 20;
 
     // Half the physical memory (sysconf), computed once; 4 GiB where it cannot be determined.
     static std::size_t defaultMaxBytes();

@@ -1,5 +1,6 @@
 #pragma once
 
+#include "lw/core/limits.h"
 #include "lw/core/progress.h"
 #include "lw/dicom/dicom_types.h"
 
@@ -29,14 +30,17 @@ struct DicomIndex {
 // `path` may be a folder (scanned recursively; headers read on all cores), a DICOMDIR file
 // (records followed, nested DICOMDIRs too, referenced paths kept inside the file-set root) or a
 // single DICOM file. Source files are opened read-only. Throws core::Error only when `path`
-// itself cannot be used; per-file problems land in DicomIndex::errors.
-DicomIndex scanDicom(const std::filesystem::path& path, core::Progress* progress = nullptr);
+// itself cannot be used; per-file problems land in DicomIndex::errors, among them headers that
+// declare more frames or pixel data than `limits` allow.
+DicomIndex scanDicom(const std::filesystem::path& path, core::Progress* progress = nullptr,
+                     const core::ImportLimits& limits = {});
 
 // Reads the headers of exactly these files (on all cores), as a folder scan would: the study
 // database reopens a series from its stored file list this way. A file that no longer exists or
 // cannot be read lands in DicomIndex::errors with the reason ("file is missing" when gone).
 DicomIndex scanDicomFiles(const std::vector<std::filesystem::path>& files,
-                          core::Progress* progress = nullptr);
+                          core::Progress* progress = nullptr,
+                          const core::ImportLimits& limits = {});
 
 // True when `path` looks like DICOM input: a folder, a DICOMDIR or a file with the DICM magic.
 bool looksLikeDicomInput(const std::filesystem::path& path);

@@ -54,6 +54,9 @@ struct InstanceInfo {
     int samplesPerPixel = 1;
     std::string photometricInterpretation;
     bool hasPixelData = false;
+    // Length of native (not encapsulated) pixel data as its element declares it; empty when
+    // encapsulated or undefined. Checked against rows x columns x frames before loading.
+    std::optional<std::uint64_t> nativePixelDataBytes;
     int numberOfFrames = 1;
     bool isEnhanced = false; // per-frame functional groups present
     bool isGzipWrapped = false; // the file on disk is a gzip of a DICOM file (.dcm.gz)

@@ -1,5 +1,6 @@
 #pragma once
 
+#include "lw/core/limits.h"
 #include "lw/core/progress.h"
 #include "lw/dicom/dicom_types.h"
 #include "lw/volume/volume.h"
@@ -47,13 +48,16 @@ SeriesAssembly planVolumes(const SeriesInfo& series);
 
 // Decodes the pixels of a plan into a Volume (both cores). Throws core::Error naming the file and
 // the reason when a frame cannot be decoded; core::Cancelled when cancelled through `progress`.
+// Before anything is allocated, the volume is checked against `limits` and every file's native
+// pixel data against what its header declares (a truncated file fails first, not last).
 volume::Volume loadVolume(const SeriesInfo& series, const VolumePlan& plan,
-                          core::Progress* progress = nullptr);
+                          core::Progress* progress = nullptr,
+                          const core::ImportLimits& limits = {});
 
 // Decodes one slice of a plan (0-based along the stack) into a volume of dims (x, y, 1) with the
 // plan's value mapping and that slice's geometry: thumbnails and previews without decoding the
 // series. Throws core::Error naming the file, or the series for an index out of range.
 volume::Volume loadSlice(const SeriesInfo& series, const VolumePlan& plan, std::size_t sliceIndex,
-                         core::Progress* progress = nullptr);
+                         core::Progress* progress = nullptr, const core::ImportLimits& limits = {});
 
 } // namespace lw::dicom
