@@ -7,6 +7,8 @@
 #include <array>
 #include <cmath>
 #include <cstring>
+#include <limits>
+#include <optional>
 
 namespace lw::volume {
 namespace {
@@ -18,13 +20,6 @@ constexpr std::size_t kHeaderSize = 348;
 bool endsWith(const std::string& text, std::string_view suffix) {
     return text.size() >= suffix.size() &&
            text.compare(text.size() - suffix.size(), suffix.size(), suffix) == 0;
-}
-
-std::vector<std::byte> readMaybeGzipped(const std::filesystem::path& path) {
-    std::vector<std::byte> bytes = core::readFileBytes(path);
-    if (core::looksGzipped(bytes.data(), bytes.size()))
-        bytes = core::gunzip(bytes.data(), bytes.size(), path.string());
-    return bytes;
 }
 
 // Reads header fields at fixed offsets with the file's byte order.
@@ -71,202 +66,286 @@ bool usable(const glm::dvec3& v) {
     return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z) && glm::length(v) > 0.0;
 }
 
-} // namespace
+// Given the .img(.gz) of a pair, the header next to it; otherwise `requested` itself.
+std::filesystem::path headerPathFor(const std::filesystem::path& requested) {
+    const std::string name = requested.string();
+    const bool gz = endsWith(name, ".gz");
+    std::string base = gz ? name.substr(0, name.size() - 3) : name;
+    if (!endsWith(base, ".img"))
+        return requested;
+    base.resize(base.size() - 4);
+    return std::filesystem::exists(base + ".hdr") ? base + ".hdr" : base + ".hdr.gz";
+}
 
-Volume readNifti(const std::filesystem::path& requested) {
-    std::filesystem::path path = requested;
-    {
-        // Given the .img of a pair, read the header next to it.
-        std::string name = path.string();
-        const bool gz = endsWith(name, ".gz");
-        std::string base = gz ? name.substr(0, name.size() - 3) : name;
-        if (endsWith(base, ".img")) {
-            base.resize(base.size() - 4);
-            path = std::filesystem::exists(base + ".hdr") ? base + ".hdr" : base + ".hdr.gz";
-        }
-    }
-    std::vector<std::byte> bytes = readMaybeGzipped(path);
-    if (bytes.size() < kHeaderSize)
-        fail(path, "truncated NIfTI header: " + std::to_string(bytes.size()) + " of 348 bytes");
+// A file as stored, and its inflated form when it is gzip: only `prefix` bytes of it until
+// the header has said how large the rest should be (a .nii.gz bomb stops at the header's size).
+struct StoredFile {
+    std::vector<std::byte> raw;
+    bool gzipped = false;
+};
 
-    std::int32_t sizeofHdr;
-    std::memcpy(&sizeofHdr, bytes.data(), 4);
+StoredFile readStored(const std::filesystem::path& path) {
+    StoredFile file;
+    file.raw = core::readFileBytes(path);
+    file.gzipped = core::looksGzipped(file.raw.data(), file.raw.size());
+    return file;
+}
+
+std::vector<std::byte> inflatedPrefix(const std::filesystem::path& path, const StoredFile& file,
+                                      std::size_t count) {
+    if (!file.gzipped)
+        return std::vector<std::byte>(
+            file.raw.begin(), file.raw.begin() + std::ptrdiff_t(std::min(count, file.raw.size())));
+    return core::gunzipPrefix(file.raw.data(), file.raw.size(), path.string(), count);
+}
+
+// The whole file, inflated to at most `expected` bytes (plus inflateBound's margin).
+std::vector<std::byte> inflatedWhole(const std::filesystem::path& path, StoredFile& file,
+                                     std::size_t expected) {
+    if (!file.gzipped)
+        return std::move(file.raw);
+    return core::gunzip(file.raw.data(), file.raw.size(), path.string(),
+                        core::inflateBound(expected));
+}
+
+enum class Layout { SingleFile, Pair, Analyze };
+
+// What the 348-byte header says, every field checked.
+struct NiftiHeader {
     bool swap = false;
-    if (sizeofHdr != std::int32_t(kHeaderSize)) {
-        if (__builtin_bswap32(std::uint32_t(sizeofHdr)) == kHeaderSize)
-            swap = true;
-        else if (__builtin_bswap32(std::uint32_t(sizeofHdr)) == 540 || sizeofHdr == 540)
-            fail(path, "NIfTI-2 files are not supported (only NIfTI-1)");
-        else
-            fail(path,
-                 "not a NIfTI-1 file (sizeof_hdr is " + std::to_string(sizeofHdr) + ", not 348)");
-    }
-    const HeaderView h(bytes.data(), swap);
-    const char* magic = reinterpret_cast<const char*>(bytes.data() + 344);
-    const bool singleFile = std::memcmp(magic, "n+1\0", 4) == 0;
-    const bool pair = std::memcmp(magic, "ni1\0", 4) == 0;
-    // Analyze 7.5 headers have no magic; they are read as a pair, like NIfTI "ni1".
-    const bool analyze = !singleFile && !pair;
+    Layout layout = Layout::SingleFile;
+    int rank = 0;
+    glm::ivec3 dims{1};
+    detail::SourceType sourceType = detail::SourceType::UInt8;
+    std::size_t dataBytes = 0; // dims x element size, within the import limits
+    double voxOffset = 0.0;
+};
 
-    const int rank = h.i16(40);
-    if (rank < 1 || rank > 7)
-        fail(path, "bad dim[0] = " + std::to_string(rank) + " (must be 1..7)");
-    glm::ivec3 dims(1);
-    for (int a = 0; a < 3 && a < rank; ++a) {
+// sizeof_hdr says the byte order (348 either way) and rules out NIfTI-2.
+bool detectSwap(const std::filesystem::path& path, const std::byte* bytes) {
+    std::int32_t sizeofHdr;
+    std::memcpy(&sizeofHdr, bytes, 4);
+    if (sizeofHdr == std::int32_t(kHeaderSize))
+        return false;
+    if (__builtin_bswap32(std::uint32_t(sizeofHdr)) == kHeaderSize)
+        return true;
+    if (__builtin_bswap32(std::uint32_t(sizeofHdr)) == 540 || sizeofHdr == 540)
+        fail(path, "NIfTI-2 files are not supported (only NIfTI-1)");
+    fail(path, "not a NIfTI-1 file (sizeof_hdr is " + std::to_string(sizeofHdr) + ", not 348)");
+}
+
+Layout layoutOf(const std::byte* bytes) {
+    const char* magic = reinterpret_cast<const char*>(bytes + 344);
+    if (std::memcmp(magic, "n+1\0", 4) == 0)
+        return Layout::SingleFile;
+    // Analyze 7.5 headers have no magic; they are read as a pair, like NIfTI "ni1".
+    return std::memcmp(magic, "ni1\0", 4) == 0 ? Layout::Pair : Layout::Analyze;
+}
+
+// dim[0] and dim[1..3]; higher dimensions must be 1 (a single 3D volume).
+void readDims(const std::filesystem::path& path, const HeaderView& h, NiftiHeader& header) {
+    header.rank = h.i16(40);
+    if (header.rank < 1 || header.rank > 7)
+        fail(path, "bad dim[0] = " + std::to_string(header.rank) + " (must be 1..7)");
+    for (int a = 0; a < 3 && a < header.rank; ++a) {
         const int n = h.i16(std::size_t(42 + 2 * a));
         if (n < 1)
             fail(path, "bad dim[" + std::to_string(a + 1) + "] = " + std::to_string(n));
-        dims[a] = n;
+        header.dims[a] = n;
     }
-    for (int a = 3; a < rank; ++a) {
+    for (int a = 3; a < header.rank; ++a) {
         const int n = h.i16(std::size_t(42 + 2 * a));
         if (n > 1)
-            fail(path, std::to_string(rank) + "D image with dim[" + std::to_string(a + 1) +
+            fail(path, std::to_string(header.rank) + "D image with dim[" + std::to_string(a + 1) +
                            "] = " + std::to_string(n) + "; only single 3D volumes are read");
     }
+}
 
+detail::SourceType sourceTypeOf(const std::filesystem::path& path, int datatype) {
     using detail::SourceType;
-    const int datatype = h.i16(70);
-    SourceType sourceType;
     switch (datatype) {
     case 2:
-        sourceType = SourceType::UInt8;
-        break;
+        return SourceType::UInt8;
     case 4:
-        sourceType = SourceType::Int16;
-        break;
+        return SourceType::Int16;
     case 8:
-        sourceType = SourceType::Int32;
-        break;
+        return SourceType::Int32;
     case 16:
-        sourceType = SourceType::Float32;
-        break;
+        return SourceType::Float32;
     case 64:
-        sourceType = SourceType::Float64;
-        break;
+        return SourceType::Float64;
     case 256:
-        sourceType = SourceType::Int8;
-        break;
+        return SourceType::Int8;
     case 512:
-        sourceType = SourceType::UInt16;
-        break;
+        return SourceType::UInt16;
     case 768:
-        sourceType = SourceType::UInt32;
-        break;
+        return SourceType::UInt32;
     default:
         fail(path, "unsupported NIfTI datatype " + std::to_string(datatype) +
                        " (complex, RGB and 64-bit integer data are not read)");
     }
-    const std::size_t elementSize = detail::sourceTypeSize(sourceType);
-    const auto expected = detail::checkedByteCount(dims, elementSize);
-    if (!expected)
-        fail(path, "image dimensions are too large");
+}
 
-    const double voxOffset = h.f32(108);
+NiftiHeader parseHeader(const std::filesystem::path& path, const std::vector<std::byte>& bytes,
+                        const core::ImportLimits& limits) {
+    if (bytes.size() < kHeaderSize)
+        fail(path, "truncated NIfTI header: " + std::to_string(bytes.size()) + " of 348 bytes");
+    NiftiHeader header;
+    header.swap = detectSwap(path, bytes.data());
+    header.layout = layoutOf(bytes.data());
+    const HeaderView h(bytes.data(), header.swap);
+    readDims(path, h, header);
+    header.sourceType = sourceTypeOf(path, h.i16(70));
+    header.dataBytes =
+        detail::checkVolumeSize(path, header.dims, detail::sourceTypeSize(header.sourceType),
+                                voxelSize(detail::targetVoxelType(header.sourceType)), limits);
+    header.voxOffset = h.f32(108);
+    return header;
+}
+
+// The image data: after vox_offset in a single file, or in the companion .img(.gz) of a pair.
+// `storage` keeps the bytes `data` points into.
+struct ImageData {
+    std::vector<std::byte> storage;
     const std::byte* data = nullptr;
-    std::vector<std::byte> imageBytes;
-    const std::filesystem::path* dataPath = &path;
-    std::filesystem::path imagePath;
-    std::size_t available = 0;
-    if (singleFile) {
-        if (!std::isfinite(voxOffset) || voxOffset < double(kHeaderSize) ||
-            voxOffset > double(bytes.size()))
-            fail(path, "bad vox_offset " + std::to_string(voxOffset) + " for a file of " +
-                           std::to_string(bytes.size()) + " bytes");
-        const auto offset = std::size_t(voxOffset);
-        data = bytes.data() + offset;
-        available = bytes.size() - offset;
-    } else {
-        imagePath = imagePathFor(path);
-        dataPath = &imagePath;
-        imageBytes = readMaybeGzipped(imagePath);
-        const double offset = std::isfinite(voxOffset) && voxOffset > 0.0 ? voxOffset : 0.0;
-        if (offset > double(imageBytes.size()))
-            fail(imagePath,
-                 "vox_offset " + std::to_string(voxOffset) + " is past the end of the file");
-        data = imageBytes.data() + std::size_t(offset);
-        available = imageBytes.size() - std::size_t(offset);
-    }
-    if (available < *expected)
-        fail(*dataPath, "truncated image data: " + std::to_string(available) + " bytes, expected " +
-                            std::to_string(*expected) + " for " +
-                            detail::describeShape(dims, detail::targetVoxelType(sourceType)));
+    std::filesystem::path path;
+};
 
-    // Geometry, in the order NIfTI prescribes: sform, then qform, then plain pixdim.
+ImageData readSingleFileData(const std::filesystem::path& path, StoredFile& file,
+                             const NiftiHeader& header) {
+    if (!std::isfinite(header.voxOffset) || header.voxOffset < double(kHeaderSize) ||
+        header.voxOffset > double(std::numeric_limits<std::uint32_t>::max()))
+        fail(path, "bad vox_offset " + std::to_string(header.voxOffset));
+    const auto offset = std::size_t(header.voxOffset);
+    ImageData image{inflatedWhole(path, file, offset + header.dataBytes), nullptr, path};
+    if (offset > image.storage.size())
+        fail(path, "bad vox_offset " + std::to_string(header.voxOffset) + " for a file of " +
+                       std::to_string(image.storage.size()) + " bytes");
+    image.data = image.storage.data() + offset;
+    return image;
+}
+
+ImageData readPairData(const std::filesystem::path& headerPath, const NiftiHeader& header) {
+    const std::filesystem::path imagePath = imagePathFor(headerPath);
+    const double offset =
+        std::isfinite(header.voxOffset) && header.voxOffset > 0.0 ? header.voxOffset : 0.0;
+    if (offset > double(std::numeric_limits<std::uint32_t>::max()))
+        fail(imagePath,
+             "vox_offset " + std::to_string(header.voxOffset) + " is past the end of the file");
+    StoredFile file = readStored(imagePath);
+    ImageData image{inflatedWhole(imagePath, file, std::size_t(offset) + header.dataBytes), nullptr,
+                    imagePath};
+    if (offset > double(image.storage.size()))
+        fail(imagePath,
+             "vox_offset " + std::to_string(header.voxOffset) + " is past the end of the file");
+    image.data = image.storage.data() + std::size_t(offset);
+    return image;
+}
+
+void checkDataLength(const ImageData& image, const NiftiHeader& header) {
+    const std::size_t available =
+        image.storage.size() - std::size_t(image.data - image.storage.data());
+    if (available < header.dataBytes)
+        fail(image.path,
+             "truncated image data: " + std::to_string(available) + " bytes, expected " +
+                 std::to_string(header.dataBytes) + " for " +
+                 detail::describeShape(header.dims, detail::targetVoxelType(header.sourceType)));
+}
+
+// sform (srow_x/y/z), when its code is set and its columns usable.
+std::optional<VolumeGeometry> sformGeometry(const HeaderView& h) {
+    glm::dvec3 columns[3];
+    glm::dvec3 offset;
+    for (int row = 0; row < 3; ++row) {
+        const std::size_t base = std::size_t(280 + 16 * row);
+        for (int c = 0; c < 3; ++c)
+            columns[c][row] = h.f32(base + std::size_t(4 * c));
+        offset[row] = h.f32(base + 12);
+    }
+    if (!usable(columns[0]) || !usable(columns[1]) || !usable(columns[2]) ||
+        !std::isfinite(offset.x) || !std::isfinite(offset.y) || !std::isfinite(offset.z))
+        return std::nullopt;
+    const glm::dvec3 toLps(-1.0, -1.0, 1.0);
+    const glm::dvec3 s(glm::length(columns[0]), glm::length(columns[1]), glm::length(columns[2]));
+    return VolumeGeometry::regular(offset * toLps, s, columns[0] * toLps, columns[1] * toLps,
+                                   columns[2] * toLps);
+}
+
+// qform: the quaternion (b, c, d), qoffset and qfac (sign of pixdim[0]), as nifti1_io does.
+std::optional<VolumeGeometry> qformGeometry(const HeaderView& h, glm::dvec3 spacing,
+                                            double pixdim0) {
+    double b = h.f32(256), c = h.f32(260), d = h.f32(264);
+    const glm::dvec3 offset(h.f32(268), h.f32(272), h.f32(276));
+    if (!std::isfinite(b) || !std::isfinite(c) || !std::isfinite(d) || !std::isfinite(offset.x) ||
+        !std::isfinite(offset.y) || !std::isfinite(offset.z))
+        return std::nullopt;
+    double a = 1.0 - (b * b + c * c + d * d);
+    if (a < 1e-7) {
+        // Nearly a 180 degree rotation: renormalise (b,c,d), as nifti1_io does.
+        const double n = std::sqrt(b * b + c * c + d * d);
+        b /= n;
+        c /= n;
+        d /= n;
+        a = 0.0;
+    } else {
+        a = std::sqrt(a);
+    }
+    const double qfac = pixdim0 < 0.0 ? -1.0 : 1.0;
+    const glm::dvec3 col0(a * a + b * b - c * c - d * d, 2 * (b * c + a * d), 2 * (b * d - a * c));
+    const glm::dvec3 col1(2 * (b * c - a * d), a * a + c * c - b * b - d * d, 2 * (c * d + a * b));
+    const glm::dvec3 col2 =
+        qfac * glm::dvec3(2 * (b * d + a * c), 2 * (c * d - a * b), a * a + d * d - c * c - b * b);
+    const glm::dvec3 toLps(-1.0, -1.0, 1.0);
+    return VolumeGeometry::regular(offset * toLps, spacing, col0 * toLps, col1 * toLps,
+                                   col2 * toLps);
+}
+
+// Geometry, in the order NIfTI prescribes: sform, then qform, then plain pixdim.
+VolumeGeometry niftiGeometry(const HeaderView& h, const NiftiHeader& header) {
     std::array<double, 8> pixdim{};
     for (int i = 0; i < 8; ++i)
         pixdim[std::size_t(i)] = h.f32(std::size_t(76 + 4 * i));
     glm::dvec3 spacing(1.0);
     for (int a = 0; a < 3; ++a) {
         const double p = std::abs(pixdim[std::size_t(a + 1)]);
-        if (std::isfinite(p) && p > 0.0 && a < rank)
+        if (std::isfinite(p) && p > 0.0 && a < header.rank)
             spacing[a] = p;
     }
-    const glm::dvec3 toLps(-1.0, -1.0, 1.0);
-    VolumeGeometry geometry;
-    bool haveGeometry = false;
-    const int qformCode = analyze ? 0 : h.i16(252);
-    const int sformCode = analyze ? 0 : h.i16(254);
-    if (sformCode > 0) {
-        glm::dvec3 columns[3];
-        glm::dvec3 offset;
-        for (int row = 0; row < 3; ++row) {
-            const std::size_t base = std::size_t(280 + 16 * row);
-            for (int c = 0; c < 3; ++c)
-                columns[c][row] = h.f32(base + std::size_t(4 * c));
-            offset[row] = h.f32(base + 12);
-        }
-        if (usable(columns[0]) && usable(columns[1]) && usable(columns[2]) &&
-            std::isfinite(offset.x) && std::isfinite(offset.y) && std::isfinite(offset.z)) {
-            const glm::dvec3 s(glm::length(columns[0]), glm::length(columns[1]),
-                               glm::length(columns[2]));
-            geometry = VolumeGeometry::regular(offset * toLps, s, columns[0] * toLps,
-                                               columns[1] * toLps, columns[2] * toLps);
-            haveGeometry = true;
-        }
-    }
-    if (!haveGeometry && qformCode > 0) {
-        double b = h.f32(256), c = h.f32(260), d = h.f32(264);
-        const glm::dvec3 offset(h.f32(268), h.f32(272), h.f32(276));
-        if (std::isfinite(b) && std::isfinite(c) && std::isfinite(d) && std::isfinite(offset.x) &&
-            std::isfinite(offset.y) && std::isfinite(offset.z)) {
-            double a = 1.0 - (b * b + c * c + d * d);
-            if (a < 1e-7) {
-                // Nearly a 180 degree rotation: renormalise (b,c,d), as nifti1_io does.
-                const double n = std::sqrt(b * b + c * c + d * d);
-                b /= n;
-                c /= n;
-                d /= n;
-                a = 0.0;
-            } else {
-                a = std::sqrt(a);
-            }
-            const double qfac = pixdim[0] < 0.0 ? -1.0 : 1.0;
-            const glm::dvec3 col0(a * a + b * b - c * c - d * d, 2 * (b * c + a * d),
-                                  2 * (b * d - a * c));
-            const glm::dvec3 col1(2 * (b * c - a * d), a * a + c * c - b * b - d * d,
-                                  2 * (c * d + a * b));
-            const glm::dvec3 col2 = qfac * glm::dvec3(2 * (b * d + a * c), 2 * (c * d - a * b),
-                                                      a * a + d * d - c * c - b * b);
-            geometry = VolumeGeometry::regular(offset * toLps, spacing, col0 * toLps, col1 * toLps,
-                                               col2 * toLps);
-            haveGeometry = true;
-        }
-    }
-    if (!haveGeometry)
-        geometry = VolumeGeometry::regular(glm::dvec3(0.0), spacing, glm::dvec3(-1, 0, 0),
-                                           glm::dvec3(0, -1, 0), glm::dvec3(0, 0, 1));
+    const bool analyze = header.layout == Layout::Analyze;
+    if (!analyze && h.i16(254) > 0)
+        if (auto geometry = sformGeometry(h))
+            return *geometry;
+    if (!analyze && h.i16(252) > 0)
+        if (auto geometry = qformGeometry(h, spacing, pixdim[0]))
+            return *geometry;
+    return VolumeGeometry::regular(glm::dvec3(0.0), spacing, glm::dvec3(-1, 0, 0),
+                                   glm::dvec3(0, -1, 0), glm::dvec3(0, 0, 1));
+}
 
-    Volume volume = detail::makeVolume(dims, sourceType, data,
-                                       swap != !detail::hostIsLittleEndian(), std::move(geometry));
+} // namespace
+
+Volume readNifti(const std::filesystem::path& requested, const core::ImportLimits& limits) {
+    const std::filesystem::path path = headerPathFor(requested);
+    StoredFile file = readStored(path);
+    // The header first (from a gzip stream too): it says how large the rest may be.
+    std::vector<std::byte> headerBytes = inflatedPrefix(path, file, kHeaderSize);
+    const NiftiHeader header = parseHeader(path, headerBytes, limits);
+    ImageData image = header.layout == Layout::SingleFile ? readSingleFileData(path, file, header)
+                                                          : readPairData(path, header);
+    checkDataLength(image, header);
+    const std::byte* headerData =
+        header.layout == Layout::SingleFile ? image.storage.data() : headerBytes.data();
+    const HeaderView h(headerData, header.swap);
+
+    Volume volume =
+        detail::makeVolume(header.dims, header.sourceType, image.data,
+                           header.swap != !detail::hostIsLittleEndian(), niftiGeometry(h, header));
     const double slope = h.f32(112), intercept = h.f32(116);
     // slope 0 (or NaN) means "no scaling" in NIfTI-1.
     if (std::isfinite(slope) && slope != 0.0)
         volume.setValueMapping({slope, std::isfinite(intercept) ? intercept : 0.0});
-    {
-        const char* descrip = reinterpret_cast<const char*>(bytes.data() + 148);
-        volume.setDescription(std::string(descrip, strnlen(descrip, 80)));
-    }
+    const char* descrip = reinterpret_cast<const char*>(headerData + 148);
+    volume.setDescription(std::string(descrip, strnlen(descrip, 80)));
     return volume;
 }
 

@@ -1,6 +1,7 @@
 // NRRD (Teem's "nearly raw raster data"): attached and detached headers, raw and gzip data,
 // single, listed and printf-style data files.
 #include "lw/core/file_util.h"
+#include "lw/core/limits.h"
 #include "lw/volume/volume_reader.h"
 #include "reader_util.h"
 
@@ -294,6 +295,7 @@ DataFiles resolveDataFiles(const std::filesystem::path& path, const NrrdHeader& 
 
 // Finds `expected` bytes of element data in one file's bytes (after the header for attached
 // data): line skip, decompression, byte skip, size check. Points into `bytes` or `inflated`.
+// gzip data may inflate only to what the header declares (byte skip + data, plus a margin).
 const std::byte* extractData(const std::filesystem::path& dataPath,
                              const std::vector<std::byte>& bytes, std::size_t start,
                              long long lineSkip, long long byteSkip, bool gzip,
@@ -310,7 +312,11 @@ const std::byte* extractData(const std::filesystem::path& dataPath,
     const std::byte* data = bytes.data() + std::min(pos, bytes.size());
     std::size_t size = bytes.size() - std::min(pos, bytes.size());
     if (gzip) {
-        inflated = core::gunzip(data, size, dataPath.string());
+        const std::size_t skip = std::size_t(std::max(byteSkip, 0LL));
+        const std::size_t declared = expected > std::numeric_limits<std::size_t>::max() - skip
+                                         ? std::numeric_limits<std::size_t>::max()
+                                         : expected + skip;
+        inflated = core::gunzip(data, size, dataPath.string(), core::inflateBound(declared));
         data = inflated.data();
         size = inflated.size();
     }
@@ -331,18 +337,28 @@ const std::byte* extractData(const std::filesystem::path& dataPath,
     return data;
 }
 
-} // namespace
+// How the element data is laid out, from the header: each field checked by its own function.
+struct DataLayout {
+    int dimension = 3;
+    glm::ivec3 dims{1};
+    detail::SourceType sourceType = detail::SourceType::UInt8;
+    std::size_t totalBytes = 0; // within the import limits
+    bool gzip = false;
+    bool bigEndian = false;
+    long long lineSkip = 0;
+    long long byteSkip = 0;
+};
 
-Volume readNrrd(const std::filesystem::path& path) {
-    std::vector<std::byte> bytes = core::readFileBytes(path);
-    const NrrdHeader header = parseHeader(path, bytes);
-
+int parseDimension(const std::filesystem::path& path, const NrrdHeader& header) {
     const auto dimension = detail::parseInteger(required(path, header, "dimension"));
     if (!dimension || *dimension < 1 || *dimension > 3)
         fail(path, "unsupported dimension '" + required(path, header, "dimension") + "'" +
                        lineRef(header, "dimension") +
                        "; only 1 to 3 dimensional scalar volumes are read");
-    const int dim = int(*dimension);
+    return int(*dimension);
+}
+
+glm::ivec3 parseSizes(const std::filesystem::path& path, const NrrdHeader& header, int dim) {
     const auto sizeParts = detail::splitWhitespace(required(path, header, "sizes"));
     if (sizeParts.size() != std::size_t(dim))
         fail(path, "'sizes' has " + std::to_string(sizeParts.size()) + " entries for dimension " +
@@ -354,49 +370,68 @@ Volume readNrrd(const std::filesystem::path& path) {
             fail(path, "bad size '" + sizeParts[std::size_t(a)] + "'" + lineRef(header, "sizes"));
         dims[a] = int(*n);
     }
-    const detail::SourceType sourceType = parseType(path, header);
-    const std::size_t elementSize = detail::sourceTypeSize(sourceType);
-    const auto total = detail::checkedByteCount(dims, elementSize);
-    if (!total)
-        fail(path, "sizes are too large");
+    return dims;
+}
 
+bool parseGzipEncoding(const std::filesystem::path& path, const NrrdHeader& header) {
     const std::string encoding = detail::toLower(required(path, header, "encoding"));
-    bool gzip = false;
     if (encoding == "gzip" || encoding == "gz")
-        gzip = true;
-    else if (encoding != "raw")
+        return true;
+    if (encoding != "raw")
         fail(path, "unsupported NRRD encoding '" + encoding + "'" + lineRef(header, "encoding") +
                        "; only raw and gzip are read");
+    return false;
+}
 
-    bool bigEndian = false;
+bool parseBigEndian(const std::filesystem::path& path, const NrrdHeader& header,
+                    std::size_t elementSize) {
     if (const std::string* endian = header.find({"endian"})) {
         const std::string e = detail::toLower(*endian);
-        if (e == "big")
-            bigEndian = true;
-        else if (e != "little")
+        if (e != "big" && e != "little")
             fail(path, "bad endian '" + *endian + "'" + lineRef(header, "endian"));
-    } else if (elementSize > 1) {
+        return e == "big";
+    }
+    if (elementSize > 1)
         fail(path, "header has no 'endian:' field, needed for " + std::to_string(elementSize * 8) +
                        "-bit data");
-    }
+    return false;
+}
 
-    long long lineSkip = 0, byteSkip = 0;
+void parseSkips(const std::filesystem::path& path, const NrrdHeader& header, DataLayout& layout) {
     if (const std::string* v = header.find({"line skip"})) {
         const auto n = detail::parseInteger(*v);
         if (!n || *n < 0)
             fail(path, "bad line skip '" + *v + "'");
-        lineSkip = *n;
+        layout.lineSkip = *n;
     }
     if (const std::string* v = header.find({"byte skip"})) {
         const auto n = detail::parseInteger(*v);
         if (!n || *n < -1)
             fail(path, "bad byte skip '" + *v + "'");
-        if (*n == -1 && gzip)
+        if (*n == -1 && layout.gzip)
             fail(path, "byte skip -1 is only allowed with raw encoding");
-        byteSkip = *n;
+        layout.byteSkip = *n;
     }
+}
 
-    // Geometry: space directions win over spacings; RAS-like spaces are flipped to LPS.
+DataLayout parseLayout(const std::filesystem::path& path, const NrrdHeader& header,
+                       const core::ImportLimits& limits) {
+    DataLayout layout;
+    layout.dimension = parseDimension(path, header);
+    layout.dims = parseSizes(path, header, layout.dimension);
+    layout.sourceType = parseType(path, header);
+    const std::size_t elementSize = detail::sourceTypeSize(layout.sourceType);
+    layout.totalBytes =
+        detail::checkVolumeSize(path, layout.dims, elementSize,
+                                voxelSize(detail::targetVoxelType(layout.sourceType)), limits);
+    layout.gzip = parseGzipEncoding(path, header);
+    layout.bigEndian = parseBigEndian(path, header, elementSize);
+    parseSkips(path, header, layout);
+    return layout;
+}
+
+// Geometry: space directions win over spacings; RAS-like spaces are flipped to LPS.
+VolumeGeometry parseGeometry(const std::filesystem::path& path, const NrrdHeader& header, int dim) {
     glm::dvec3 spacing(1.0), origin(0.0);
     std::array<glm::dvec3, 3> axes = {glm::dvec3(1, 0, 0), glm::dvec3(0, 1, 0),
                                       glm::dvec3(0, 0, 1)};
@@ -450,52 +485,59 @@ Volume readNrrd(const std::filesystem::path& path) {
             axis *= flip;
         origin *= flip;
     }
+    return VolumeGeometry::regular(origin, spacing, axes[0], axes[1], axes[2]);
+}
 
-    const DataFiles files = resolveDataFiles(path, header, dim);
-    const VolumeGeometry geometry =
-        VolumeGeometry::regular(origin, spacing, axes[0], axes[1], axes[2]);
-    Volume volume;
-    std::vector<std::byte> inflated;
-    if (files.paths.size() <= 1) {
-        // One source: build the volume straight from the file buffer, no intermediate copy.
-        if (files.paths.empty() && path.extension() == ".nhdr")
-            fail(path, "detached header (.nhdr) without a 'data file:' field");
-        std::vector<std::byte> dataBytes;
-        const std::filesystem::path& dataPath = files.paths.empty() ? path : files.paths[0];
-        if (!files.paths.empty()) {
-            bytes.clear();
-            bytes.shrink_to_fit();
-            dataBytes = core::readFileBytes(dataPath);
-        }
-        const std::byte* data = extractData(dataPath, files.paths.empty() ? bytes : dataBytes,
-                                            files.paths.empty() ? header.dataOffset : 0, lineSkip,
-                                            byteSkip, gzip, *total, inflated);
-        volume = detail::makeVolume(dims, sourceType, data, bigEndian, geometry);
-    } else {
-        // Each file holds the first `subdim` axes; the files enumerate the rest.
-        std::size_t filesNeeded = 1;
-        for (int a = files.subdim; a < dim; ++a)
-            filesNeeded *= std::size_t(dims[a]);
-        if (files.paths.size() != filesNeeded)
-            fail(path, "header names " + std::to_string(files.paths.size()) +
-                           " data files, expected " + std::to_string(filesNeeded) +
-                           lineRef(header, "data file"));
-        const std::size_t perFile = *total / filesNeeded;
-        std::vector<std::byte> data;
-        // Bounded: the sizes are not verified against the files yet, and a hostile header must
-        // not make us reserve terabytes.
-        data.reserve(std::min(*total, std::size_t(1) << 30));
-        for (const auto& file : files.paths) {
-            const std::vector<std::byte> fileBytes = core::readFileBytes(file);
-            const std::byte* chunk =
-                extractData(file, fileBytes, 0, lineSkip, byteSkip, gzip, perFile, inflated);
-            data.insert(data.end(), chunk, chunk + perFile);
-        }
-        volume = detail::makeVolume(dims, sourceType, data.data(), bigEndian, geometry);
+// One source (attached data or one detached file): the volume is built straight from the file
+// buffer, no intermediate copy.
+Volume readSingleSource(const std::filesystem::path& path, const NrrdHeader& header,
+                        std::vector<std::byte>& bytes, const DataFiles& files,
+                        const DataLayout& layout, VolumeGeometry geometry) {
+    if (files.paths.empty() && path.extension() == ".nhdr")
+        fail(path, "detached header (.nhdr) without a 'data file:' field");
+    std::vector<std::byte> dataBytes;
+    const std::filesystem::path& dataPath = files.paths.empty() ? path : files.paths[0];
+    if (!files.paths.empty()) {
+        bytes.clear();
+        bytes.shrink_to_fit();
+        dataBytes = core::readFileBytes(dataPath);
     }
+    std::vector<std::byte> inflated;
+    const std::byte* data =
+        extractData(dataPath, files.paths.empty() ? bytes : dataBytes,
+                    files.paths.empty() ? header.dataOffset : 0, layout.lineSkip, layout.byteSkip,
+                    layout.gzip, layout.totalBytes, inflated);
+    return detail::makeVolume(layout.dims, layout.sourceType, data, layout.bigEndian,
+                              std::move(geometry));
+}
+
+// Each file holds the first `subdim` axes; the files enumerate the rest.
+Volume readFileList(const std::filesystem::path& path, const NrrdHeader& header,
+                    const DataFiles& files, const DataLayout& layout, VolumeGeometry geometry) {
+    std::size_t filesNeeded = 1;
+    for (int a = files.subdim; a < layout.dimension; ++a)
+        filesNeeded *= std::size_t(layout.dims[a]);
+    if (files.paths.size() != filesNeeded)
+        fail(path, "header names " + std::to_string(files.paths.size()) + " data files, expected " +
+                       std::to_string(filesNeeded) + lineRef(header, "data file"));
+    const std::size_t perFile = layout.totalBytes / filesNeeded;
+    std::vector<std::byte> data;
+    data.reserve(layout.totalBytes); // within the import limits (parseLayout)
+    std::vector<std::byte> inflated;
+    for (const auto& file : files.paths) {
+        const std::vector<std::byte> fileBytes = core::readFileBytes(file);
+        const std::byte* chunk = extractData(file, fileBytes, 0, layout.lineSkip, layout.byteSkip,
+                                             layout.gzip, perFile, inflated);
+        data.insert(data.end(), chunk, chunk + perFile);
+    }
+    return detail::makeVolume(layout.dims, layout.sourceType, data.data(), layout.bigEndian,
+                              std::move(geometry));
+}
+
+// Description and our own rescale key/values (see writeNrrd): NRRD has no standard rescale field.
+void applyMetadata(const NrrdHeader& header, Volume& volume) {
     if (const std::string* content = header.find({"content"}))
         volume.setDescription(*content);
-    // Our own key/values (see writeNrrd): NRRD has no standard rescale field.
     const auto slope = header.keyValues.find("linework_rescale_slope");
     const auto intercept = header.keyValues.find("linework_rescale_intercept");
     if (slope != header.keyValues.end() && intercept != header.keyValues.end()) {
@@ -504,6 +546,20 @@ Volume readNrrd(const std::filesystem::path& path) {
         if (s && i && std::isfinite(*s) && std::isfinite(*i) && *s != 0.0)
             volume.setValueMapping({*s, *i});
     }
+}
+
+} // namespace
+
+Volume readNrrd(const std::filesystem::path& path, const core::ImportLimits& limits) {
+    std::vector<std::byte> bytes = core::readFileBytes(path);
+    const NrrdHeader header = parseHeader(path, bytes);
+    const DataLayout layout = parseLayout(path, header, limits);
+    VolumeGeometry geometry = parseGeometry(path, header, layout.dimension);
+    const DataFiles files = resolveDataFiles(path, header, layout.dimension);
+    Volume volume = files.paths.size() <= 1
+                        ? readSingleSource(path, header, bytes, files, layout, std::move(geometry))
+                        : readFileList(path, header, files, layout, std::move(geometry));
+    applyMetadata(header, volume);
     return volume;
 }
 

@@ -91,15 +91,15 @@ void restoreInterleave(std::vector<std::byte>& data, std::size_t skip, std::size
 }
 
 std::vector<std::byte> decodeDds(const std::filesystem::path& path, const std::byte* data,
-                                 std::size_t size, bool blocked) {
+                                 std::size_t size, bool blocked, const core::ImportLimits& limits) {
     BitReader bits(data, size);
     const std::size_t skip = bits.read(2) + 1;
     const std::size_t strip = bits.read(16) + 1;
     std::vector<std::byte> out;
-    out.reserve(size * 4);
     // An encoder never emits more than 127 bytes per 10 bits; a stream that claims more output
-    // than that bound is corrupt, and the cap keeps a hostile file from exhausting memory.
-    const std::size_t limit = (size * 8 / 10 + 1) * 127;
+    // than that bound is corrupt. The import limit caps it too: the header comes after it.
+    const std::size_t limit = std::min((size * 8 / 10 + 1) * 127, limits.maxBytes);
+    out.reserve(std::min(size * 4, limit));
     int value = 0;
     while (true) {
         const std::uint32_t run = bits.read(7);
@@ -109,7 +109,11 @@ std::vector<std::byte> decodeDds(const std::filesystem::path& path, const std::b
         const unsigned width = code >= 1 ? code + 1 : 0;
         const int half = (1 << width) / 2;
         if (out.size() + run > limit)
-            fail(path, "corrupt DDS stream (decodes to more data than it can hold)");
+            fail(path,
+                 out.size() + run > limits.maxBytes
+                     ? "DDS stream decodes to more than the import limit of " +
+                           std::to_string(limits.maxBytes >> 20) + " MB"
+                     : std::string("corrupt DDS stream (decodes to more data than it can hold)"));
         for (std::uint32_t r = 0; r < run; ++r) {
             int delta = int(bits.read(width)) - half;
             const std::size_t count = out.size();
@@ -169,7 +173,7 @@ std::string readCString(const std::byte* data, std::size_t size, std::size_t& po
 
 } // namespace
 
-Volume readPvm(const std::filesystem::path& path) {
+Volume readPvm(const std::filesystem::path& path, const core::ImportLimits& limits) {
     std::vector<std::byte> bytes = core::readFileBytes(path);
     const auto startsWith = [&](std::string_view magic) {
         return bytes.size() >= magic.size() &&
@@ -177,7 +181,7 @@ Volume readPvm(const std::filesystem::path& path) {
     };
     if (startsWith(kDdsMagic) || startsWith(kDdsMagicBlocked)) {
         const bool blocked = startsWith(kDdsMagicBlocked);
-        bytes = decodeDds(path, bytes.data() + 8, bytes.size() - 8, blocked);
+        bytes = decodeDds(path, bytes.data() + 8, bytes.size() - 8, blocked, limits);
     }
     const auto isMagic = [&](std::string_view magic) {
         return bytes.size() >= magic.size() &&
@@ -233,9 +237,8 @@ Volume readPvm(const std::filesystem::path& path) {
              std::to_string(*components) +
                  "-component (colour) PVM volumes are not supported; only 8 and 16 bit scalars");
     const VoxelType type = *components == 1 ? VoxelType::UInt8 : VoxelType::UInt16;
-    const auto expected = detail::checkedByteCount(dims, voxelSize(type));
-    if (!expected)
-        fail(path, "dimensions are too large");
+    const auto expected = std::optional(
+        detail::checkVolumeSize(path, dims, voxelSize(type), voxelSize(type), limits));
     const std::size_t dataStart = cursor.pos();
     if (bytes.size() - dataStart < *expected)
         fail(path, "truncated volume data: " + std::to_string(bytes.size() - dataStart) +

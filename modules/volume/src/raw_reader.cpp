@@ -6,15 +6,23 @@
 
 namespace lw::volume {
 
-Volume readRawVolume(const std::filesystem::path& path, const RawOptions& options) {
+Volume readRawVolume(const std::filesystem::path& path, const RawOptions& options,
+                     const core::ImportLimits& limits) {
     using detail::fail;
-    const auto expected = detail::checkedByteCount(options.dims, voxelSize(options.type));
-    if (!expected)
-        fail(path, "invalid raw dimensions " + detail::describeShape(options.dims, options.type));
+    const std::size_t size = voxelSize(options.type);
+    const auto expected =
+        std::optional(detail::checkVolumeSize(path, options.dims, size, size, limits));
     if (!(options.spacing.x > 0.0 && options.spacing.y > 0.0 && options.spacing.z > 0.0))
         fail(path, "raw spacing must be positive");
     if (options.headerBytes > std::numeric_limits<std::size_t>::max() - *expected)
         fail(path, "raw header size is too large");
+    // The size on disk first: a wrong -raw size must not read a large file to find out.
+    std::error_code ec;
+    const auto onDisk = std::filesystem::file_size(path, ec);
+    if (!ec && onDisk != options.headerBytes + *expected)
+        fail(path, "file has " + std::to_string(onDisk) + " bytes, expected " +
+                       std::to_string(options.headerBytes + *expected) + " for " +
+                       detail::describeShape(options.dims, options.type));
     const std::vector<std::byte> bytes = core::readFileBytes(path);
     // Exact size: a mismatch almost always means wrong dims or type, and silently reading a
     // prefix would hide that.

@@ -19,17 +19,15 @@ std::string describeShape(glm::ivec3 dims, VoxelType type) {
            " " + std::string(voxelTypeName(type));
 }
 
-std::optional<std::size_t> checkedByteCount(glm::ivec3 dims, std::size_t elementSize) {
-    if (dims.x <= 0 || dims.y <= 0 || dims.z <= 0)
-        return std::nullopt;
-    std::size_t total = elementSize;
-    for (int axis = 0; axis < 3; ++axis) {
-        const auto n = std::size_t(dims[axis]);
-        if (total > std::numeric_limits<std::size_t>::max() / n)
-            return std::nullopt;
-        total *= n;
-    }
-    return total;
+std::size_t checkVolumeSize(const std::filesystem::path& path, glm::ivec3 dims,
+                            std::size_t sourceElementSize, std::size_t targetVoxelSize,
+                            const core::ImportLimits& limits) {
+    static constexpr const char* kAxes[3] = {"size along x", "size along y", "size along z"};
+    for (int axis = 0; axis < 3; ++axis)
+        limits.checkDimension(dims[axis], path.string(), kAxes[axis]);
+    const std::size_t x = std::size_t(dims.x), y = std::size_t(dims.y), z = std::size_t(dims.z);
+    limits.checkedBytes({x, y, z, targetVoxelSize}, path.string(), "the volume");
+    return limits.checkedBytes({x, y, z, sourceElementSize}, path.string(), "the image data");
 }
 
 bool hostIsLittleEndian() {

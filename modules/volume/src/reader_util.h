@@ -4,6 +4,7 @@
 // arithmetic. Every reader funnels failures through fail() so messages name the file.
 
 #include "lw/core/error.h"
+#include "lw/core/limits.h"
 #include "lw/volume/volume.h"
 
 #include <cstddef>
@@ -21,8 +22,13 @@ namespace lw::volume::detail {
 // "64x64x93 int16" for messages.
 std::string describeShape(glm::ivec3 dims, VoxelType type);
 
-// Number of voxels * voxel size, or nullopt when it does not fit in size_t (hostile headers).
-std::optional<std::size_t> checkedByteCount(glm::ivec3 dims, std::size_t elementSize);
+// The one size check of every volume reader, made from the header before anything is read or
+// allocated: each axis within limits.maxDimension, and both the data as stored (dims x
+// sourceElementSize) and the volume made from it (dims x targetVoxelSize) within
+// limits.maxBytes, the products checked for overflow. Returns the stored data's byte count.
+std::size_t checkVolumeSize(const std::filesystem::path& path, glm::ivec3 dims,
+                            std::size_t sourceElementSize, std::size_t targetVoxelSize,
+                            const core::ImportLimits& limits);
 
 bool hostIsLittleEndian();
 // Reverses the bytes of every element of `elementSize` (2, 4 or 8) in place.

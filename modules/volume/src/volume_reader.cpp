@@ -53,7 +53,8 @@ VolumeFormat detectVolumeFormat(const std::filesystem::path& path) {
     return VolumeFormat::Unknown;
 }
 
-Volume readVolumeFile(const std::filesystem::path& path, core::Progress* progress) {
+Volume readVolumeFile(const std::filesystem::path& path, core::Progress* progress,
+                      const core::ImportLimits& limits) {
     if (progress) {
         progress->throwIfCancelled();
         progress->report(0.0, "reading " + path.filename().string());
@@ -66,13 +67,13 @@ Volume readVolumeFile(const std::filesystem::path& path, core::Progress* progres
     Volume volume;
     switch (detectVolumeFormat(path)) {
     case VolumeFormat::Nrrd:
-        volume = readNrrd(path);
+        volume = readNrrd(path, limits);
         break;
     case VolumeFormat::Nifti:
-        volume = readNifti(path);
+        volume = readNifti(path, limits);
         break;
     case VolumeFormat::Pvm:
-        volume = readPvm(path);
+        volume = readPvm(path, limits);
         break;
     case VolumeFormat::Raw:
     case VolumeFormat::Unknown:

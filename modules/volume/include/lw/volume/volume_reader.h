@@ -1,5 +1,6 @@
 #pragma once
 
+#include "lw/core/limits.h"
 #include "lw/core/progress.h"
 #include "lw/volume/volume.h"
 
@@ -24,13 +25,17 @@ struct RawOptions {
 VolumeFormat detectVolumeFormat(const std::filesystem::path& path);
 
 // Reads NRRD (.nrrd, .nhdr), NIfTI-1 (.nii, .nii.gz, .hdr/.img) or PVM (.pvm). Throws core::Error
-// naming the file and the reason. Files are opened read-only.
-Volume readVolumeFile(const std::filesystem::path& path, core::Progress* progress = nullptr);
+// naming the file and the reason. Files are opened read-only. The sizes a header declares are
+// checked against `limits` before anything is allocated, and gzip data may inflate only to
+// what the header declares (plus a small margin).
+Volume readVolumeFile(const std::filesystem::path& path, core::Progress* progress = nullptr,
+                      const core::ImportLimits& limits = {});
 
-Volume readRawVolume(const std::filesystem::path& path, const RawOptions& options);
-Volume readNrrd(const std::filesystem::path& path);
-Volume readNifti(const std::filesystem::path& path);
-Volume readPvm(const std::filesystem::path& path);
+Volume readRawVolume(const std::filesystem::path& path, const RawOptions& options,
+                     const core::ImportLimits& limits = {});
+Volume readNrrd(const std::filesystem::path& path, const core::ImportLimits& limits = {});
+Volume readNifti(const std::filesystem::path& path, const core::ImportLimits& limits = {});
+Volume readPvm(const std::filesystem::path& path, const core::ImportLimits& limits = {});
 
 // Writes an attached-header NRRD (raw encoding, little endian) atomically, with spacing,
 // space directions and origin from the volume's geometry (mean slice step when uneven).
