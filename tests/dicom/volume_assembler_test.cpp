@@ -561,18 +561,25 @@ void expectReason(const std::function<void()>& work, const std::string& reason) 
     }
 }
 
+// A hand-made header declaring rows x columns x frames of int16 with 2 bytes of pixel data.
+std::filesystem::path writeHostileHeader(const lw::test::TempDir& dir, const std::string& name,
+                                         int rows, int columns, const std::string& frames) {
+    dt::HandMadeImage image;
+    image.rows = rows;
+    image.columns = columns;
+    image.numberOfFrames = frames;
+    image.pixelDataBytes = 2;
+    dt::writeHandMadeImage(dir / name, image);
+    return dir / name;
+}
+
 } // namespace
 
 // Issue 10: a ~550-byte header declaring 2^31-1 frames cost a minute and 13 GB of frame
 // descriptions before failing; the frame count is checked before any frame is described.
 TEST(ImportLimits, HeaderDeclaring2147483647FramesIsRejectedAtOnce) {
     lw::test::TempDir dir;
-    dt::HandMadeImage image;
-    image.rows = 512;
-    image.columns = 512;
-    image.numberOfFrames = "2147483647";
-    image.pixelDataBytes = 2;
-    dt::writeHandMadeImage(dir / "frames.dcm", image);
+    writeHostileHeader(dir, "frames.dcm", 512, 512, "2147483647");
     const auto start = std::chrono::steady_clock::now();
     expectReason([&] { (void)readInstanceHeader(dir / "frames.dcm"); },
                  "implausible number of frames 2147483647");
@@ -584,12 +591,7 @@ TEST(ImportLimits, HeaderDeclaring2147483647FramesIsRejectedAtOnce) {
 
 TEST(ImportLimits, PixelDataOverTheLimitIsRejectedFromTheHeader) {
     lw::test::TempDir dir;
-    dt::HandMadeImage image;
-    image.rows = 1024;
-    image.columns = 1024;
-    image.numberOfFrames = "100";
-    image.pixelDataBytes = 2;
-    dt::writeHandMadeImage(dir / "big.dcm", image);
+    writeHostileHeader(dir, "big.dcm", 1024, 1024, "100");
     core::ImportLimits limits;
     limits.maxBytes = std::size_t(64) << 20;
     expectReason(
@@ -601,11 +603,7 @@ TEST(ImportLimits, PixelDataOverTheLimitIsRejectedFromTheHeader) {
 // before finding out. The pixel data length is compared with the header before allocating.
 TEST(ImportLimits, HugeImageWithoutItsPixelsFailsBeforeAllocating) {
     lw::test::TempDir dir;
-    dt::HandMadeImage image;
-    image.rows = 65535;
-    image.columns = 65535;
-    image.pixelDataBytes = 2;
-    dt::writeHandMadeImage(dir / "huge.dcm", image);
+    writeHostileHeader(dir, "huge.dcm", 65535, 65535, "1");
     core::ImportLimits limits;
     limits.maxBytes = std::size_t(16) << 30; // so that only the missing pixels can stop it
     SeriesInfo series;
