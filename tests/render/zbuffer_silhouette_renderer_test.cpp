@@ -399,3 +399,29 @@ TEST(ZBufferSilhouette, ShadedPanelLightsFacingSurfaceBrightest) {
 }
 
 } // namespace
+
+// Found by the accuracy sweep: volumes of the same size bound in turn to one renderer must not
+// share the chunked path's brick grid (the second one was culled with the first one's ranges).
+TEST(ZBufferSilhouette, AnotherVolumeOfTheSameSizeDropsTheBrickGrid) {
+    const lw::volume::Volume ct =
+        lw::render::makePhantom(glm::ivec3(48), lw::render::PhantomKind::Ct);
+    const lw::volume::Volume sphere =
+        lw::render::makePhantom(glm::ivec3(48), lw::render::PhantomKind::Sphere);
+    lw::render::SilhouetteSettings settings;
+    settings.isoReal = 0.0;
+    settings.brickCells = 16;
+    lw::render::CameraSetup setup;
+    setup.bounds = lw::render::volumeBounds(sphere);
+    const lw::render::Camera camera(setup, 128, 128);
+
+    lw::render::ZBufferSilhouetteRenderer fresh;
+    fresh.setVolume(sphere);
+    const lw::render::PixelMask expected = fresh.render(camera, settings).lines;
+    ASSERT_GT(expected.count(), 50u);
+
+    lw::render::ZBufferSilhouetteRenderer reused;
+    reused.setVolume(ct);
+    reused.render(camera, settings);
+    reused.setVolume(sphere);
+    EXPECT_EQ(reused.render(camera, settings).lines, expected);
+}

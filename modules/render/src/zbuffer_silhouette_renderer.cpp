@@ -115,8 +115,13 @@ ZBufferSilhouetteRenderer::ZBufferSilhouetteRenderer() : m_state(std::make_uniqu
 ZBufferSilhouetteRenderer::~ZBufferSilhouetteRenderer() = default;
 
 void ZBufferSilhouetteRenderer::setVolume(const volume::Volume& volume) {
-    m_state->volume = &volume;
-    m_state->meshValid = false;
+    State& s = *m_state;
+    s.volume = &volume;
+    s.meshValid = false;
+    // Everything cached from the previous volume goes, even when the dims are the same: the L
+    // path's brick min/max would otherwise cull the new volume with the old one's ranges.
+    s.gridBrickCells = -1;
+    s.closedIso = std::numeric_limits<double>::quiet_NaN();
 }
 
 const Mesh& ZBufferSilhouetteRenderer::mesh() const {
