@@ -409,19 +409,20 @@ TEST(ZBufferSilhouette, AnotherVolumeOfTheSameSizeDropsTheBrickGrid) {
         lw::render::makePhantom(glm::ivec3(48), lw::render::PhantomKind::Sphere);
     lw::render::SilhouetteSettings settings;
     settings.isoReal = 0.0;
-    settings.brickCells = 16;
+    settings.brickCells = 8; // small enough that the sphere's bricks miss the skin's
     lw::render::CameraSetup setup;
-    setup.bounds = lw::render::volumeBounds(sphere);
+    setup.bounds = lw::render::volumeBounds(ct);
     const lw::render::Camera camera(setup, 128, 128);
 
     lw::render::ZBufferSilhouetteRenderer fresh;
-    fresh.setVolume(sphere);
+    fresh.setVolume(ct);
     const lw::render::PixelMask expected = fresh.render(camera, settings).lines;
     ASSERT_GT(expected.count(), 50u);
 
     lw::render::ZBufferSilhouetteRenderer reused;
-    reused.setVolume(ct);
-    reused.render(camera, settings);
+    // The sphere's active bricks hold none of the CT phantom's outer skin.
     reused.setVolume(sphere);
+    reused.render(camera, settings);
+    reused.setVolume(ct);
     EXPECT_EQ(reused.render(camera, settings).lines, expected);
 }
