@@ -252,14 +252,41 @@ TEST(ImageCompare, BaselineHelperWritesDiffAndActual) {
     const ImageRgba8 baseline = testImage(9, 9, 8);
     writePng(dir / "baseline.png", baseline);
     EXPECT_TRUE(
-        compareWithBaseline(baseline, dir / "baseline.png", {}, dir / "case.diff.png").matches);
+        compareWithBaseline(baseline, dir / "baseline.png", ImageTolerance{}, dir / "case.diff.png")
+            .matches);
     ImageRgba8 changed = baseline;
     changed.at(0, 0) = {1, 2, 3, 4};
     changed.at(8, 8) = {200, 2, 3, 4};
     const auto result =
-        compareWithBaseline(changed, dir / "baseline.png", {}, dir / "case.diff.png");
+        compareWithBaseline(changed, dir / "baseline.png", ImageTolerance{}, dir / "case.diff.png");
     EXPECT_FALSE(result.matches);
     EXPECT_TRUE(std::filesystem::exists(dir / "case.diff.png"));
     EXPECT_EQ(readPng(dir / "case.diff.actual.png"), changed);
-    EXPECT_THROW(compareWithBaseline(changed, dir / "missing.png", {}), Error);
+    EXPECT_THROW(compareWithBaseline(changed, dir / "missing.png", ImageTolerance{}), Error);
+}
+
+// The baseline helper the image tests share: tolerance relative to the content, and an empty
+// image fails however loose the share (a thin line drawing of 212 pixels must not pass blank).
+TEST(ImageCompare, ContentToleranceIsRelativeAndRejectsEmptyImages) {
+    const lw::test::TempDir dir;
+    ImageRgba8 lines(64, 64, {255, 255, 255, 255});
+    for (int x = 8; x < 56; ++x)
+        lines.at(x, 32) = {0, 0, 0, 255}; // 48 content pixels
+    writePng(dir / "lines.png", lines);
+    EXPECT_EQ(contentPixels(lines, {255, 255, 255, 255}), 48u);
+
+    ImageRgba8 shifted(64, 64, {255, 255, 255, 255});
+    for (int x = 8; x < 56; ++x)
+        shifted.at(x, 33) = {0, 0, 0, 255}; // the line one pixel lower: 96 pixels differ
+    EXPECT_TRUE(
+        compareWithBaseline(shifted, dir / "lines.png", ContentTolerance{0, 2.0, 0.5}).matches);
+    EXPECT_FALSE(
+        compareWithBaseline(shifted, dir / "lines.png", ContentTolerance{0, 1.0, 0.5}).matches);
+
+    const ImageRgba8 blank(64, 64, {255, 255, 255, 255});
+    const ImageComparison empty =
+        compareWithBaseline(blank, dir / "lines.png", ContentTolerance{0, 10.0, 0.5});
+    EXPECT_FALSE(empty.matches) << empty.describe();
+    EXPECT_EQ(empty.actualContent, 0u);
+    EXPECT_EQ(empty.expectedContent, 48u);
 }

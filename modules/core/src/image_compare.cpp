@@ -1,8 +1,10 @@
 #include "lw/core/image_compare.h"
 
+#include "lw/core/error.h"
 #include "lw/core/png_io.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <sstream>
 
@@ -24,6 +26,9 @@ std::string ImageComparison::describe() const {
         out << " (sizes differ)";
     out << ": " << badPixels << " of " << pixelCount
         << " pixels over tolerance, max channel difference " << maxChannelDifference;
+    if (expectedContent > 0 || actualContent > 0)
+        out << "; content " << actualContent << " pixels against the baseline's "
+            << expectedContent;
     if (diffWritten)
         out << "; diff image: " << diffPath.string();
     return out.str();
@@ -102,6 +107,38 @@ ImageComparison compareWithBaseline(const ImageRgba8& actual,
         actualPath.replace_filename(diffPath.stem().string() + ".actual.png");
         writePng(actualPath, actual, PngFormat::Rgba);
     }
+    return result;
+}
+
+std::size_t contentPixels(const ImageRgba8& image, Rgba8 background) {
+    std::size_t count = 0;
+    for (int y = 0; y < image.height(); ++y) {
+        const Rgba8* row = image.row(y);
+        for (int x = 0; x < image.width(); ++x)
+            count +=
+                row[x].r != background.r || row[x].g != background.g || row[x].b != background.b;
+    }
+    return count;
+}
+
+ImageComparison compareWithBaseline(const ImageRgba8& actual,
+                                    const std::filesystem::path& baselinePng,
+                                    ContentTolerance tolerance,
+                                    const std::filesystem::path& diffPath) {
+    const ImageRgba8 expected = readPng(baselinePng);
+    if (expected.isEmpty())
+        throw Error(baselinePng.string(), "the baseline image is empty");
+    const Rgba8 background = expected.at(0, 0);
+    const std::size_t expectedContent = contentPixels(expected, background);
+    const std::size_t actualContent = contentPixels(actual, background);
+    ImageTolerance absolute;
+    absolute.channelTolerance = tolerance.channelTolerance;
+    absolute.maxBadPixels = std::size_t(std::ceil(tolerance.badShare * double(expectedContent)));
+    ImageComparison result = compareWithBaseline(actual, baselinePng, absolute, diffPath);
+    result.expectedContent = expectedContent;
+    result.actualContent = actualContent;
+    if (double(actualContent) < tolerance.minContentRatio * double(expectedContent))
+        result.matches = false; // too little on screen: blank, washed out or lost
     return result;
 }
 

@@ -15,11 +15,24 @@ struct ImageTolerance {
     std::size_t maxBadPixels = 0;
 };
 
+// A baseline tolerance relative to what the picture shows (its content: the pixels that are not
+// the background colour, read from the baseline's top-left pixel). Up to `badShare` x the
+// baseline's content pixels may differ by more than `channelTolerance`, and the actual image must
+// show at least `minContentRatio` x the baseline's content, so an empty or washed-out image never
+// passes however loose the rest is.
+struct ContentTolerance {
+    int channelTolerance = 0;
+    double badShare = 0.05;
+    double minContentRatio = 0.5;
+};
+
 struct ImageComparison {
     bool sizesMatch = false;
-    int maxChannelDifference = 0; // over the overlapping pixels; 255 when the sizes differ
-    std::size_t badPixels = 0;    // over tolerance, plus every pixel outside the overlap
-    std::size_t pixelCount = 0;   // pixels of the larger extent
+    std::size_t expectedContent = 0; // content pixels of the baseline (ContentTolerance only)
+    std::size_t actualContent = 0;   // and of the actual image
+    int maxChannelDifference = 0;    // over the overlapping pixels; 255 when the sizes differ
+    std::size_t badPixels = 0;       // over tolerance, plus every pixel outside the overlap
+    std::size_t pixelCount = 0;      // pixels of the larger extent
     bool matches = false;
     bool diffWritten = false;
     std::filesystem::path diffPath;
@@ -51,5 +64,12 @@ ImageComparison compareWithBaseline(const ImageRgba8& actual,
                                     const std::filesystem::path& baselinePng,
                                     ImageTolerance tolerance,
                                     const std::filesystem::path& diffPath = {});
+// The same with a tolerance relative to the baseline's content (see ContentTolerance).
+ImageComparison compareWithBaseline(const ImageRgba8& actual,
+                                    const std::filesystem::path& baselinePng,
+                                    ContentTolerance tolerance,
+                                    const std::filesystem::path& diffPath = {});
+// Pixels whose colour differs from `background` in r, g or b.
+std::size_t contentPixels(const ImageRgba8& image, Rgba8 background);
 
 } // namespace lw::core
