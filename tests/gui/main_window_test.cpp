@@ -6,6 +6,7 @@
 #include "review/review_panel.h"
 #include "review/review_widget.h"
 #include "shell/main_window.h"
+#include "shell/png_export.h"
 
 #include <QMimeData>
 #include <QSignalSpy>
@@ -64,6 +65,9 @@ private slots:
     void cancelOpening();
     void settingsApplyToOpenReviews();
     void droppingAFolderOnAReviewImportsIt();
+    void exportPng_data();
+    void exportPng();
+    void exportIntoAMissingFolderSaysWhy();
 };
 
 void MainWindowTest::openSeriesFromTheBrowser() {
@@ -208,6 +212,57 @@ void MainWindowTest::droppingAFolderOnAReviewImportsIt() {
     QVERIFY(finished.wait(60000));
     QCOMPARE(window.browser().database().seriesCount(), 1);
     QCOMPARE(window.findChild<QTabWidget*>("mainTabs")->currentIndex(), 0);
+}
+
+void MainWindowTest::exportPng_data() {
+    QTest::addColumn<int>("layout");
+    QTest::addColumn<int>("widthFactor"); // of the picture, in panels
+    QTest::addRow("side by side") << int(ExportLayout::SideBySide) << 2;
+    QTest::addRow("iso panel") << int(ExportLayout::IsoPanel) << 1;
+    QTest::addRow("silhouette panel") << int(ExportLayout::SilhouettePanel) << 1;
+}
+
+void MainWindowTest::exportPng() {
+    QFETCH(int, layout);
+    QFETCH(int, widthFactor);
+    QTemporaryDir dir;
+    MainWindow window(isolatedOptions(dir));
+    window.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&window));
+    window.openPath("phantom:48");
+    QVERIFY(waitForReview(window));
+    ReviewWidget& review = *window.currentReview();
+    const QSize screen = review.silhouettePanel().renderSize();
+    const QString path = dir.filePath("review.png");
+    QCOMPARE(exportReviewPng(review, path, screen * 2, ExportLayout(layout)), QString());
+    const QImage written(path);
+    if (qEnvironmentVariableIsSet("LINEWORK_KEEP_EXPORT"))
+        written.save(qEnvironmentVariable("LINEWORK_KEEP_EXPORT"));
+    QCOMPARE(written.size(), QSize(widthFactor * 2 * screen.width(), 2 * screen.height()));
+    QVERIFY(lw::test::pixelsDifferentFrom(written, Qt::white) > 500);
+    if (ExportLayout(layout) == ExportLayout::SilhouettePanel) {
+        // Re-rendered, not scaled, and the lines widen with the picture: twice the size gives
+        // about four times the line pixels (twice as long, twice as wide).
+        const QString small = dir.filePath("small.png");
+        QCOMPARE(exportReviewPng(review, small, screen, ExportLayout(layout)), QString());
+        const int thin = lw::test::pixelsDifferentFrom(QImage(small), Qt::white, 100);
+        const int wide = lw::test::pixelsDifferentFrom(written, Qt::white, 100);
+        QVERIFY2(wide > 3 * thin, qPrintable(QString("%1 vs %2").arg(wide).arg(thin)));
+    }
+}
+
+void MainWindowTest::exportIntoAMissingFolderSaysWhy() {
+    QTemporaryDir dir;
+    MainWindow window(isolatedOptions(dir));
+    window.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&window));
+    window.openPath("phantom:32");
+    QVERIFY(waitForReview(window));
+    const QString path = dir.filePath("no/such/folder/review.png");
+    const QString error =
+        exportReviewPng(*window.currentReview(), path, QSize(200, 150), ExportLayout::SideBySide);
+    QVERIFY2(error.contains(path), qPrintable(error));
+    QVERIFY(!QFileInfo::exists(path));
 }
 
 LW_GUI_TEST_MAIN(MainWindowTest)

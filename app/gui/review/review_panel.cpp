@@ -303,7 +303,7 @@ QImage ReviewPanel::grabImage() {
     return m_imageView->grab().toImage();
 }
 
-QImage ReviewPanel::renderImage(QSize size) {
+QImage ReviewPanel::renderImage(QSize size, const ReviewSettings* appearance) {
     if (!drawsGl() || size.isEmpty())
         return {};
     m_glView->makeCurrent();
@@ -311,7 +311,8 @@ QImage ReviewPanel::renderImage(QSize size) {
     try {
         uploadPendingMesh();
         const render::Camera camera = m_camera.camera(size.width(), size.height());
-        image = toQImage(m_gl.renderImage(camera, panelGlOptions(m_kind, m_appearance)));
+        image = toQImage(m_gl.renderImage(
+            camera, panelGlOptions(m_kind, appearance ? *appearance : m_appearance)));
     } catch (const core::Error& error) {
         m_message = tr("OpenGL failed: %1").arg(error.what());
     }

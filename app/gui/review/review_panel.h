@@ -82,7 +82,8 @@ public:
     QImage grabImage();
     // The GL content rendered offscreen at `size` (GL view drawing the mesh); a null image
     // otherwise (the caller renders it elsewhere).
-    QImage renderImage(QSize size);
+    // `appearance` (optional) replaces the panel's own, e.g. with lines widened for an export.
+    QImage renderImage(QSize size, const ReviewSettings* appearance = nullptr);
     // The surface point under widget pixel `position`, or nullopt where there is none.
     std::optional<glm::dvec3> pickPatientPoint(QPoint position);
     double lastPaintMs() const { return m_lastPaintMs; }

@@ -12,6 +12,7 @@
 #include <QLabel>
 #include <QLocale>
 #include <QOpenGLContext>
+#include <QPainter>
 #include <QSignalBlocker>
 #include <QSplitter>
 #include <QToolButton>
@@ -283,14 +284,16 @@ void ReviewWidget::showSilhouette(const FrameResult& result) {
     m_status.silhouetteTimes = frame.times;
     if (!result.mesh)
         m_status.triangles = std::max(m_status.triangles, frame.triangles);
-    m_silhouettePanel->setImage(silhouetteImage(frame.lines, false));
-    m_isoPanel->setOverlay(m_settings.silhouetteOnIso ? silhouetteImage(frame.lines, true)
-                                                      : QImage());
+    m_silhouettePanel->setImage(silhouetteImage(frame.lines, false, m_settings.lineWidth));
+    m_isoPanel->setOverlay(m_settings.silhouetteOnIso
+                               ? silhouetteImage(frame.lines, true, m_settings.lineWidth)
+                               : QImage());
 }
 
-QImage ReviewWidget::silhouetteImage(const render::PixelMask& lines, bool transparent) const {
+QImage ReviewWidget::silhouetteImage(const render::PixelMask& lines, bool transparent,
+                                     double lineWidth) const {
     // Line widths above one pixel widen the CPU methods' one-pixel lines by a square dilation.
-    const int radius = int((m_settings.lineWidth - 1.0) / 2.0 + 0.5);
+    const int radius = int((lineWidth - 1.0) / 2.0 + 0.5);
     const render::PixelMask mask = radius > 0 ? lines.dilated(radius) : lines;
     QImage image(mask.width(), mask.height(), QImage::Format_ARGB32);
     const QRgb line = m_settings.lineColour.rgb();
@@ -354,7 +357,7 @@ void releaseQtContext() {
 
 } // namespace
 
-QImage ReviewWidget::renderIsoOffscreen(QSize size) {
+QImage ReviewWidget::renderIsoOffscreen(QSize size, const ReviewSettings& appearance) {
     if (!m_mesh)
         return {};
     // A context of its own on this thread (the worker's belongs to the worker thread). A thread
@@ -364,7 +367,7 @@ QImage ReviewWidget::renderIsoOffscreen(QSize size) {
     render::SilhouetteGlRenderer gl;
     gl.uploadMesh(*m_mesh);
     const core::ImageRgba8 image = gl.renderImage(m_camera.camera(size.width(), size.height()),
-                                                  panelGlOptions(PanelKind::Iso, m_settings));
+                                                  panelGlOptions(PanelKind::Iso, appearance));
     gl.release();
     QImage result(image.width(), image.height(), QImage::Format_RGBA8888);
     for (int y = 0; y < image.height(); ++y)
@@ -373,10 +376,15 @@ QImage ReviewWidget::renderIsoOffscreen(QSize size) {
 }
 
 std::pair<QImage, QImage> ReviewWidget::renderPanels(QSize size) {
-    QImage iso = m_drawsInPanels ? m_isoPanel->renderImage(size) : renderIsoOffscreen(size);
+    // Lines keep their width relative to the picture: scaled from the panel on screen.
+    ReviewSettings appearance = m_settings;
+    const double scale = double(size.height()) / double(m_silhouettePanel->renderSize().height());
+    appearance.lineWidth = std::max(1.0, m_settings.lineWidth * scale);
+    QImage iso = m_drawsInPanels ? m_isoPanel->renderImage(size, &appearance)
+                                 : renderIsoOffscreen(size, appearance);
     QImage silhouette;
     if (methodOneInPanel()) {
-        silhouette = m_silhouettePanel->renderImage(size);
+        silhouette = m_silhouettePanel->renderImage(size, &appearance);
     } else {
         releaseQtContext(); // method 1 makes an EGL context on this thread
         auto renderer = render::createSilhouetteRenderer(m_settings.method, m_settings.backend);
@@ -388,9 +396,19 @@ std::pair<QImage, QImage> ReviewWidget::renderPanels(QSize size) {
         settings.testAlongSegment = m_settings.testAlongSegment;
         const render::SilhouetteFrame frame =
             renderer->render(m_camera.camera(size.width(), size.height()), settings);
-        silhouette = silhouetteImage(frame.lines, false);
+        silhouette = silhouetteImage(frame.lines, false, appearance.lineWidth);
     }
     return {iso, silhouette};
+}
+
+QImage ReviewWidget::renderSideBySide(QSize panelSize) {
+    const auto [iso, silhouette] = renderPanels(panelSize);
+    QImage pair(2 * panelSize.width(), panelSize.height(), QImage::Format_RGB32);
+    pair.fill(m_settings.background);
+    QPainter painter(&pair);
+    painter.drawImage(0, 0, iso);
+    painter.drawImage(panelSize.width(), 0, silhouette);
+    return pair;
 }
 
 } // namespace lw::gui

@@ -73,8 +73,11 @@ public:
     bool isBusy() const;
 
     // Both panels re-rendered at `size` (not scaled), the silhouette with the chosen method on
-    // the calling thread. Throws core::Error when a renderer fails.
+    // the calling thread. Lines widen with the size (a 2x export has 2x wider lines, as printed
+    // reports need). Throws core::Error when a renderer fails.
     std::pair<QImage, QImage> renderPanels(QSize size);
+    // The two panels side by side at `panelSize` each (iso left, silhouette right).
+    QImage renderSideBySide(QSize panelSize);
 
 public slots:
     void applySettings(const lw::gui::ReviewSettings& settings);
@@ -95,9 +98,10 @@ private:
     void updateStatusLine();
     bool methodOneInPanel() const;
     bool drawsInPanels() const;
-    QImage renderIsoOffscreen(QSize size);
+    QImage renderIsoOffscreen(QSize size, const ReviewSettings& appearance);
     int brickCells() const;
-    QImage silhouetteImage(const render::PixelMask& lines, bool transparent) const;
+    QImage silhouetteImage(const render::PixelMask& lines, bool transparent,
+                           double lineWidth) const;
 
     ReviewSource m_source;
     ReviewSettings m_settings;

@@ -6,6 +6,7 @@
 #include "review/review_widget.h"
 #include "review/volume_loader.h"
 #include "settings/settings_dialog.h"
+#include "shell/png_export.h"
 
 #include <QAction>
 #include <QApplication>
@@ -13,6 +14,7 @@
 #include <QDragEnterEvent>
 #include <QDropEvent>
 #include <QFileDialog>
+#include <QFileInfo>
 #include <QInputDialog>
 #include <QKeySequence>
 #include <QLabel>
@@ -149,6 +151,10 @@ void MainWindow::createActions() {
         true);
     file->addSeparator();
     add(
+        tr("&Export PNG…"), QKeySequence(tr("Ctrl+E")), [this] { chooseAndExportPng(); }, true)
+        ->setObjectName("exportPngAction");
+    file->addSeparator();
+    add(
         tr("&Settings…"), QKeySequence(tr("Ctrl+,")), [this] { showSettings(); }, true);
     file->addSeparator();
     add(
@@ -281,6 +287,36 @@ void MainWindow::showLoadError(const QString& reason) {
     box->setObjectName("loadErrorBox");
     box->setAttribute(Qt::WA_DeleteOnClose);
     box->open();
+}
+
+void MainWindow::chooseAndExportPng() {
+    ReviewWidget* review = currentReview();
+    if (!review) {
+        statusBar()->showMessage(tr("Open a review to export it"), 5000);
+        return;
+    }
+    PngExportDialog dialog(review->silhouettePanel().renderSize(), this);
+    if (dialog.exec() != QDialog::Accepted)
+        return;
+    // The file dialog asks before overwriting an existing file.
+    QString path =
+        QFileDialog::getSaveFileName(this, tr("Export PNG"), QString(), tr("PNG images (*.png)"));
+    if (path.isEmpty())
+        return;
+    if (!path.endsWith(".png", Qt::CaseInsensitive)) {
+        path += ".png";
+        if (QFileInfo::exists(path) &&
+            QMessageBox::question(this, tr("Export PNG"), tr("%1 exists. Replace it?").arg(path)) !=
+                QMessageBox::Yes)
+            return;
+    }
+    QApplication::setOverrideCursor(Qt::WaitCursor);
+    const QString error = exportReviewPng(*review, path, dialog.panelSize(), dialog.layout());
+    QApplication::restoreOverrideCursor();
+    if (error.isEmpty())
+        statusBar()->showMessage(tr("Exported %1").arg(path), 8000);
+    else
+        QMessageBox::warning(this, tr("Export failed"), error);
 }
 
 void MainWindow::showSettings() {

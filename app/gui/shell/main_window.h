@@ -48,6 +48,8 @@ public slots:
     // Opens a series stored in the study database.
     void openSeries(const QString& seriesUid);
     void chooseAndOpenPath();
+    // Asks what and how large, then where, and writes the review as a PNG (atomically).
+    void chooseAndExportPng();
     void showSettings();
     void applySettings(const lw::gui::ReviewSettings& settings);
     void cancelLoading();

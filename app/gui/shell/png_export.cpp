@@ -1,0 +1,92 @@
+#include "shell/png_export.h"
+
+#include "lw/core/error.h"
+#include "lw/core/png_io.h"
+#include "review/review_widget.h"
+
+#include <QComboBox>
+#include <QDialogButtonBox>
+#include <QFormLayout>
+#include <QHBoxLayout>
+#include <QLabel>
+#include <QSpinBox>
+#include <cstring>
+#include <new>
+
+namespace lw::gui {
+namespace {
+
+core::ImageRgba8 toCoreImage(const QImage& image) {
+    const QImage rgba = image.convertToFormat(QImage::Format_RGBA8888);
+    core::ImageRgba8 result(rgba.width(), rgba.height());
+    for (int y = 0; y < rgba.height(); ++y)
+        std::memcpy(result.row(y), rgba.constScanLine(y), std::size_t(rgba.width()) * 4);
+    return result;
+}
+
+} // namespace
+
+QString exportReviewPng(ReviewWidget& review, const QString& path, QSize panelSize,
+                        ExportLayout layout) {
+    try {
+        QImage image;
+        if (layout == ExportLayout::SideBySide) {
+            image = review.renderSideBySide(panelSize);
+        } else {
+            auto [iso, silhouette] = review.renderPanels(panelSize);
+            image = layout == ExportLayout::IsoPanel ? iso : silhouette;
+        }
+        if (image.isNull())
+            return QObject::tr("%1: nothing to export yet (the surface is still being computed)")
+                .arg(path);
+        core::writePng(path.toStdString(), toCoreImage(image), core::PngFormat::Rgb);
+        return {};
+    } catch (const core::Error& error) {
+        return QString::fromStdString(error.what());
+    } catch (const std::bad_alloc&) {
+        return QObject::tr("%1: out of memory rendering %2 x %3 pixels; choose a smaller size")
+            .arg(path)
+            .arg(panelSize.width())
+            .arg(panelSize.height());
+    }
+}
+
+PngExportDialog::PngExportDialog(QSize panelSize, QWidget* parent) : QDialog(parent) {
+    setWindowTitle(tr("Export PNG"));
+    setObjectName("pngExportDialog");
+    m_layout = new QComboBox;
+    m_layout->addItems(
+        {tr("Both panels side by side"), tr("Iso-surface panel"), tr("Silhouette panel")});
+    m_width = new QSpinBox;
+    m_height = new QSpinBox;
+    for (QSpinBox* box : {m_width, m_height}) {
+        box->setRange(16, 8192);
+        box->setSuffix(tr(" px"));
+    }
+    // Twice the screen by default: print resolution for a report page.
+    m_width->setValue(2 * panelSize.width());
+    m_height->setValue(2 * panelSize.height());
+    auto* size = new QHBoxLayout;
+    size->addWidget(m_width);
+    size->addWidget(new QLabel(QStringLiteral("×")));
+    size->addWidget(m_height);
+    auto* buttons = new QDialogButtonBox(QDialogButtonBox::Ok | QDialogButtonBox::Cancel);
+    connect(buttons, &QDialogButtonBox::accepted, this, &QDialog::accept);
+    connect(buttons, &QDialogButtonBox::rejected, this, &QDialog::reject);
+    auto* form = new QFormLayout(this);
+    form->addRow(tr("Picture:"), m_layout);
+    form->addRow(tr("Size of each panel:"), size);
+    form->addRow(
+        new QLabel(tr("The panels are rendered again at this size; lines widen with it.")));
+    form->addRow(buttons);
+}
+
+QSize PngExportDialog::panelSize() const {
+    return {m_width->value(), m_height->value()};
+}
+
+ExportLayout PngExportDialog::layout() const {
+    return ExportLayout(m_layout->currentIndex());
+}
+
+} // namespace lw::gui
