@@ -73,6 +73,7 @@ private slots:
     void pickingFindsTheSphereSurface_data();
     void pickingFindsTheSphereSurface();
     void windowMatchesBaseline();
+    void hoverShowsThePatientPosition();
 };
 
 void ReviewTest::panelsDraw_data() {
@@ -300,6 +301,24 @@ void ReviewTest::windowMatchesBaseline() {
     const auto comparison =
         lw::core::compareWithBaseline(toCoreImage(shot), baseline, tolerance, diff);
     QVERIFY2(comparison.matches, comparison.describe().c_str());
+}
+
+void ReviewTest::hoverShowsThePatientPosition() {
+    // The sphere phantom seen from the front (anterior): the point under the centre of the iso
+    // panel lies on the sphere's front, at y = -radius (anterior) and x, z near 0.
+    ReviewWidget review(phantomSource("phantom:64:sphere", 0.0), settingsFor(3, Chunking::Off));
+    review.resize(800, 500);
+    review.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&review));
+    QVERIFY(waitSettled(review));
+    auto* cursor = review.findChild<QLabel*>("cursorPosition");
+    QVERIFY(cursor);
+    QTest::mouseMove(&review.isoPanel(), review.isoPanel().rect().center());
+    QTRY_VERIFY_WITH_TIMEOUT(!cursor->text().isEmpty(), 3000);
+    QVERIFY2(cursor->text().contains("A 18.") || cursor->text().contains("A 19."),
+             qPrintable(cursor->text()));
+    QTest::mouseMove(&review.isoPanel(), QPoint(3, 3)); // background: no surface there
+    QTRY_VERIFY_WITH_TIMEOUT(cursor->text().isEmpty(), 3000);
 }
 
 LW_GUI_TEST_MAIN(ReviewTest)

@@ -14,6 +14,7 @@
 #include <QPainter>
 #include <QStackedLayout>
 #include <QSurfaceFormat>
+#include <QTimer>
 #include <QWheelEvent>
 #include <cmath>
 #include <cstring>
@@ -128,6 +129,15 @@ ReviewPanel::ReviewPanel(PanelKind kind, CameraController& camera, QWidget* pare
     m_imageView = new PanelImageView(*this);
     m_stack->addWidget(m_imageView);
     connect(&m_camera, &CameraController::changed, this, &ReviewPanel::updateView);
+    setMouseTracking(true);
+    m_hoverTimer = new QTimer(this);
+    m_hoverTimer->setSingleShot(true);
+    m_hoverTimer->setInterval(60);
+    // The iso panel picks through its depth; the silhouette panel shares the camera, so the same
+    // pixel of the iso panel is the same surface point.
+    connect(m_hoverTimer, &QTimer::timeout, this, [this] {
+        emit hovered(m_kind == PanelKind::Iso ? pickPatientPoint(m_lastMouse) : std::nullopt);
+    });
 }
 
 ReviewPanel::~ReviewPanel() {
@@ -376,6 +386,10 @@ void ReviewPanel::mouseMoveEvent(QMouseEvent* event) {
     const QPointF delta = position - m_lastMouse;
     m_lastMouse = position;
     const Qt::MouseButtons buttons = event->buttons();
+    if (buttons == Qt::NoButton) {
+        m_hoverTimer->start();
+        return;
+    }
     const bool shift = event->modifiers() & Qt::ShiftModifier;
     if (buttons & Qt::MiddleButton || (buttons & Qt::LeftButton && shift))
         m_camera.panByDrag(delta, size());

@@ -27,6 +27,7 @@
 #include <vector>
 
 class QStackedLayout;
+class QTimer;
 
 namespace lw::gui {
 
@@ -100,6 +101,8 @@ signals:
     void painted(double milliseconds);
     void resized();
     void glFailed(const QString& reason);
+    // The mouse rests over the panel (no button): the surface point under it, or none.
+    void hovered(std::optional<glm::dvec3> patientPoint);
 
 protected:
     void resizeEvent(QResizeEvent* event) override;
@@ -137,6 +140,7 @@ private:
     ReviewSettings m_appearance;
     QString m_message;
     QPoint m_lastMouse;
+    QTimer* m_hoverTimer = nullptr; // picks once the mouse rests, not on every move
     double m_lastPaintMs = 0.0;
     render::SilhouetteGlStats m_lastStats;
 };

@@ -24,6 +24,17 @@
 namespace lw::gui {
 namespace {
 
+// LPS millimetres as radiologists read them: R/L, A/P, I/S with the side the value lies on.
+QString patientPositionText(glm::dvec3 p) {
+    auto axis = [](double value, const char* negative, const char* positive) {
+        return QStringLiteral("%1 %2")
+            .arg(value < 0 ? negative : positive)
+            .arg(std::abs(value), 0, 'f', 1);
+    };
+    return QObject::tr("Surface at %1 · %2 · %3 mm")
+        .arg(axis(p.x, "R", "L"), axis(p.y, "A", "P"), axis(p.z, "I", "S"));
+}
+
 QString count(std::size_t value) {
     return QLocale().toString(qulonglong(value));
 }
@@ -91,6 +102,9 @@ ReviewWidget::ReviewWidget(ReviewSource source, const ReviewSettings& settings, 
     for (ReviewPanel* panel : {m_isoPanel, m_silhouettePanel}) {
         connect(panel, &ReviewPanel::glFailed, this, &ReviewWidget::showError);
         connect(panel, &ReviewPanel::resized, this, [this] { requestFrame(false); });
+        connect(panel, &ReviewPanel::hovered, this, [this](std::optional<glm::dvec3> point) {
+            m_cursorLine->setText(point ? patientPositionText(*point) : QString());
+        });
         connect(panel, &ReviewPanel::painted, this, [this, panel](double milliseconds) {
             if (!m_drawsInPanels)
                 return; // the worker's GL time is what counts, and it came with the result
@@ -137,6 +151,10 @@ QWidget* ReviewWidget::makeViewBar() {
     reset->setToolTip(tr("Reset the camera (Home)"));
     connect(reset, &QToolButton::clicked, this, &ReviewWidget::resetCamera);
     layout->addWidget(reset);
+    m_cursorLine = new QLabel;
+    m_cursorLine->setObjectName("cursorPosition");
+    m_cursorLine->setMinimumWidth(260);
+    layout->addWidget(m_cursorLine);
     auto* hint = new QLabel(tr("Drag: rotate · Shift/middle drag: pan · wheel/right drag: zoom · "
                                "Ctrl drag: roll"));
     hint->setEnabled(false);

@@ -117,6 +117,7 @@ private:
     QLabel* m_statusLine = nullptr;
     QLabel* m_errorLine = nullptr;
     QLabel* m_warningLine = nullptr;
+    QLabel* m_cursorLine = nullptr; // the surface point under the mouse, in patient terms
     std::unique_ptr<RenderScheduler> m_scheduler;
     ReviewStatus m_status;
 };
