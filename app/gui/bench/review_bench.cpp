@@ -42,10 +42,20 @@ struct PaintCounter {
     int iso = 0;
     int silhouette = 0;
     explicit PaintCounter(ReviewWidget& review) {
-        QObject::connect(&review.isoPanel(), &ReviewPanel::painted, [this](double) { ++iso; });
-        QObject::connect(&review.silhouettePanel(), &ReviewPanel::painted,
-                         [this](double) { ++silhouette; });
+        m_connections = {
+            QObject::connect(&review.isoPanel(), &ReviewPanel::painted, [this](double) { ++iso; }),
+            QObject::connect(&review.silhouettePanel(), &ReviewPanel::painted,
+                             [this](double) { ++silhouette; })};
     }
+    ~PaintCounter() {
+        for (const QMetaObject::Connection& connection : m_connections)
+            QObject::disconnect(connection);
+    }
+    PaintCounter(const PaintCounter&) = delete;
+    PaintCounter& operator=(const PaintCounter&) = delete;
+
+private:
+    std::vector<QMetaObject::Connection> m_connections;
 };
 
 // Time from a change to the frame after it on both panels (ms).
@@ -112,6 +122,91 @@ void benchMethod(ReviewWidget& review, MainWindow& window, int method, double is
     report(line, double(review.status().triangles), "");
 }
 
+// The GL placement the main window starts with (QSettings lives in the temporary folder).
+void storePanelGl(const QString& where) {
+    QSettings store;
+    ReviewSettings settings = ReviewSettings::load(store);
+    settings.panelGl = where == "panels"   ? PanelGl::InPanels
+                       : where == "worker" ? PanelGl::OnWorker
+                                           : PanelGl::Auto;
+    settings.save(store);
+}
+
+// `linework PATH` as a user starts it: from the process start to both panels drawn once.
+ReviewWidget* openAndMeasure(MainWindow& window, const QString& path, double iso,
+                             const QElapsedTimer& sinceStart, StallMonitor& monitor) {
+    ReviewWidget* review = nullptr;
+    double loadedAtMs = 0.0;
+    std::unique_ptr<PaintCounter> firstPaints;
+    std::pair<int, int> paintsAtFirstFrame{-1, -1};
+    QMetaObject::Connection firstFrame;
+    const QMetaObject::Connection opened =
+        QObject::connect(&window, &MainWindow::reviewOpened, [&](ReviewWidget* widget) {
+            review = widget;
+            firstPaints = std::make_unique<PaintCounter>(*widget);
+            firstFrame = QObject::connect(widget, &ReviewWidget::frameShown, [&] {
+                if (paintsAtFirstFrame.first < 0)
+                    paintsAtFirstFrame = {firstPaints->iso, firstPaints->silhouette};
+            });
+            loadedAtMs = double(sinceStart.nsecsElapsed()) / 1e6;
+        });
+    // The lambdas hold references to this function's locals: cut them before it returns.
+    const auto disconnectAll = [&] {
+        QObject::disconnect(opened);
+        QObject::disconnect(firstFrame);
+    };
+    monitor.start();
+    const double openAtMs = double(sinceStart.nsecsElapsed()) / 1e6;
+    window.openPath(path, iso);
+    if (!bench::waitFor(
+            [&] { return review && review->status().framesShown > 0 && !review->isBusy(); })) {
+        disconnectAll();
+        return nullptr;
+    }
+    // Drawn: a paint of both panels after the first result was taken.
+    bench::waitFor([&] {
+        return firstPaints->iso > paintsAtFirstFrame.first &&
+               firstPaints->silhouette > paintsAtFirstFrame.second;
+    });
+    const double drawnAtMs = double(sinceStart.nsecsElapsed()) / 1e6;
+    disconnectAll();
+    report("start -> window shown, open requested", openAtMs);
+    report("open requested -> volume loaded (decode, range, histogram)", loadedAtMs - openAtMs);
+    report("volume loaded -> first review drawn (method 3 default)", drawnAtMs - loadedAtMs);
+    report("start -> first review drawn", drawnAtMs);
+    report("longest UI stall while opening", monitor.longestStallMs());
+    return review;
+}
+
+// Import through the browser (scan, plan, thumbnails, database write).
+void importAndMeasure(MainWindow& window, const QString& path, StallMonitor& monitor) {
+    bool imported = false;
+    const QMetaObject::Connection finished = QObject::connect(
+        &window.browser(), &StudyBrowser::importFinished, [&] { imported = true; });
+    monitor.start();
+    QElapsedTimer importTimer;
+    importTimer.start();
+    window.browser().importPath(path);
+    bench::waitFor([&] { return imported; });
+    QObject::disconnect(finished);
+    report("import into the study database", double(importTimer.nsecsElapsed()) / 1e6);
+    report("longest UI stall while importing", monitor.longestStallMs());
+}
+
+// The UI thread idle, then only repainting (no new work): what composing costs.
+void measureIdleAndRepaint(ReviewWidget& review, StallMonitor& monitor) {
+    monitor.start();
+    QTest::qWait(1000);
+    report("longest UI stall, idle", monitor.longestStallMs());
+    monitor.start();
+    for (int i = 0; i < 50; ++i) {
+        review.isoPanel().update();
+        review.silhouettePanel().update();
+        QTest::qWait(20);
+    }
+    report("longest UI stall, panels repainting only", monitor.longestStallMs());
+}
+
 } // namespace
 
 int main(int argc, char* argv[]) {
@@ -138,85 +233,24 @@ int main(int argc, char* argv[]) {
     const QString path = parser.positionalArguments().front();
     const double iso = parser.value(isoOption).toDouble();
     const int repeat = std::max(1, parser.value(repeatOption).toInt());
+    storePanelGl(parser.value(panelGlOption));
 
-    {
-        // The setting the main window starts with (QSettings lives in the temporary folder).
-        QSettings store;
-        ReviewSettings settings = ReviewSettings::load(store);
-        const QString where = parser.value(panelGlOption);
-        settings.panelGl = where == "panels"   ? PanelGl::InPanels
-                           : where == "worker" ? PanelGl::OnWorker
-                                               : PanelGl::Auto;
-        settings.save(store);
-    }
     MainWindowOptions options;
     options.databasePath = home.path() + "/studies.sqlite";
     MainWindow window(options);
     window.resize(1600, 900);
     window.show();
     StallMonitor monitor;
-
-    // From start to the first review drawn: open the path directly (`linework PATH`).
-    ReviewWidget* review = nullptr;
-    double loadedAtMs = 0.0;
-    std::unique_ptr<PaintCounter> firstPaints;
-    std::pair<int, int> paintsAtFirstFrame{-1, -1};
-    QObject::connect(&window, &MainWindow::reviewOpened, [&](ReviewWidget* opened) {
-        review = opened;
-        firstPaints = std::make_unique<PaintCounter>(*opened);
-        QObject::connect(opened, &ReviewWidget::frameShown, [&] {
-            if (paintsAtFirstFrame.first < 0)
-                paintsAtFirstFrame = {firstPaints->iso, firstPaints->silhouette};
-        });
-        loadedAtMs = double(sinceStart.nsecsElapsed()) / 1e6;
-    });
-    monitor.start();
-    const double openAtMs = double(sinceStart.nsecsElapsed()) / 1e6;
-    window.openPath(path, iso);
-    if (!bench::waitFor(
-            [&] { return review && review->status().framesShown > 0 && !review->isBusy(); })) {
+    ReviewWidget* review = openAndMeasure(window, path, iso, sinceStart, monitor);
+    if (!review) {
         std::fprintf(stderr, "linework-review-bench: %s did not open: %s\n", qPrintable(path),
                      qPrintable(window.lastError()));
         return 1;
     }
-    // Drawn: a paint of both panels after the first result was taken.
-    bench::waitFor([&] {
-        return firstPaints->iso > paintsAtFirstFrame.first &&
-               firstPaints->silhouette > paintsAtFirstFrame.second;
-    });
-    const double drawnAtMs = double(sinceStart.nsecsElapsed()) / 1e6;
-    report("start -> window shown, open requested", openAtMs);
-    report("open requested -> volume loaded (decode, range, histogram)", loadedAtMs - openAtMs);
-    report("volume loaded -> first review drawn (method 3 default)", drawnAtMs - loadedAtMs);
-    report("start -> first review drawn", drawnAtMs);
-    report("longest UI stall while opening", monitor.longestStallMs());
-
-    if (!path.startsWith("phantom:")) {
-        // Import through the browser (scan, plan, thumbnails, database write).
-        bool imported = false;
-        QObject::connect(&window.browser(), &StudyBrowser::importFinished,
-                         [&] { imported = true; });
-        monitor.start();
-        QElapsedTimer importTimer;
-        importTimer.start();
-        window.browser().importPath(path);
-        bench::waitFor([&] { return imported; });
-        report("import into the study database", double(importTimer.nsecsElapsed()) / 1e6);
-        report("longest UI stall while importing", monitor.longestStallMs());
-    }
-
+    if (!path.startsWith("phantom:"))
+        importAndMeasure(window, path, monitor);
     for (int method : {3, 2, 1})
         benchMethod(*review, window, method, iso, repeat, monitor);
-    // The UI thread idle, then only repainting (no new work): what composing costs.
-    monitor.start();
-    QTest::qWait(1000);
-    report("longest UI stall, idle", monitor.longestStallMs());
-    monitor.start();
-    for (int i = 0; i < 50; ++i) {
-        review->isoPanel().update();
-        review->silhouettePanel().update();
-        QTest::qWait(20);
-    }
-    report("longest UI stall, panels repainting only", monitor.longestStallMs());
+    measureIdleAndRepaint(*review, monitor);
     return 0;
 }

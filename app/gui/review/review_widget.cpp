@@ -51,6 +51,21 @@ ReviewWidget::ReviewWidget(ReviewSource source, const ReviewSettings& settings, 
     displayGlInfo(); // probe the display's GL now, not from inside a panel's paint
     m_camera.setBounds(m_source.bounds);
     m_camera.setProjection(settings.projection);
+    buildLayout();
+    m_scheduler = std::make_unique<RenderScheduler>(m_source.volume);
+    connectParts();
+    m_isoControl->setVolumeRange(m_source.range, m_source.histogram);
+    m_isoControl->setPresets(settings.presets);
+    {
+        // The first frame is requested once, by applySettings, at the initial iso-value.
+        const QSignalBlocker blocker(m_isoControl);
+        m_isoControl->setIso(m_source.initialIso);
+    }
+    m_iso = m_isoControl->iso();
+    applySettings(settings);
+}
+
+void ReviewWidget::buildLayout() {
     m_isoPanel = new ReviewPanel(PanelKind::Iso, m_camera);
     m_silhouettePanel = new ReviewPanel(PanelKind::Silhouette, m_camera);
     m_isoControl = new IsoControl;
@@ -83,8 +98,9 @@ ReviewWidget::ReviewWidget(ReviewSource source, const ReviewSettings& settings, 
     layout->addWidget(splitter, 1);
     layout->addWidget(m_isoControl);
     layout->addWidget(m_statusLine);
+}
 
-    m_scheduler = std::make_unique<RenderScheduler>(m_source.volume);
+void ReviewWidget::connectParts() {
     connect(m_scheduler.get(), &RenderScheduler::frameReady, this, &ReviewWidget::takeFrame);
     // Until the first picture for an iso-value or settings arrives the panels say what is coming
     // rather than stay blank (a 512^3 volume takes seconds on the CPU).
@@ -114,15 +130,6 @@ ReviewWidget::ReviewWidget(ReviewSource source, const ReviewSettings& settings, 
             updateStatusLine();
         });
     }
-    m_isoControl->setVolumeRange(m_source.range, m_source.histogram);
-    m_isoControl->setPresets(settings.presets);
-    {
-        // The first frame is requested once, by applySettings, at the initial iso-value.
-        const QSignalBlocker blocker(m_isoControl);
-        m_isoControl->setIso(m_source.initialIso);
-    }
-    m_iso = m_isoControl->iso();
-    applySettings(settings);
 }
 
 ReviewWidget::~ReviewWidget() = default;

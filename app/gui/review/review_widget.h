@@ -90,6 +90,8 @@ signals:
     void frameShown();
 
 private:
+    void buildLayout();
+    void connectParts();
     QWidget* makeViewBar();
     void requestFrame(bool newIso);
     void takeFrame(const std::shared_ptr<const FrameResult>& result);
