@@ -8,8 +8,10 @@
 
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <cstdint>
 #include <fstream>
+#include <sys/resource.h>
 #include <zlib.h>
 
 namespace dt = lw::dicom::test;
@@ -134,4 +136,90 @@ TEST(DicomFile, GzipWrappedFile) {
     const auto pixels = decodeInt16(info);
     for (std::size_t i = 0; i < s.pixels.size(); ++i)
         ASSERT_EQ(pixels[i], s.pixels[i]);
+}
+
+namespace {
+
+// Peak resident memory of this process so far, in MB.
+long peakRssMb() {
+    rusage usage{};
+    getrusage(RUSAGE_SELF, &usage);
+    return usage.ru_maxrss / 1024;
+}
+
+constexpr std::uint32_t kBombPixelBytes = 65535u * 32768u * 2u; // what the bomb's header declares
+
+} // namespace
+
+// A deflated file declaring 65535 x 32768 16-bit pixels over a stream of zeros: DCMTK inflated
+// all of it while reading the header (19 s and 4.2 GB for the 4 GiB version). The header is
+// now read in front of the pixel data: fast, small, and with the declared length.
+TEST(DicomFile, DeflateBombHeaderReadIsBounded) {
+    lw::test::TempDir dir;
+    dt::HandMadeImage bomb;
+    bomb.rows = 65535;
+    bomb.columns = 32768;
+    bomb.deflate = true;
+    bomb.pixelDataBytes = std::size_t(256) << 20; // enough to cost seconds when inflated
+    bomb.declaredPixelDataLength = kBombPixelBytes;
+    dt::writeHandMadeImage(dir.path() / "bomb.dcm", bomb);
+
+    core::ImportLimits roomy;
+    roomy.maxBytes = std::size_t(8) << 30; // the declaration itself fits: only the read is tested
+    const long rssBefore = peakRssMb();
+    const auto start = std::chrono::steady_clock::now();
+    const InstanceInfo info = readInstanceHeader(dir.path() / "bomb.dcm", roomy);
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    EXPECT_LT(seconds, 1.0);
+    EXPECT_LT(peakRssMb() - rssBefore, 64);
+    EXPECT_EQ(info.transferSyntaxUid, "1.2.840.10008.1.2.1.99");
+    EXPECT_TRUE(info.hasPixelData);
+    ASSERT_TRUE(info.nativePixelDataBytes.has_value());
+    EXPECT_EQ(*info.nativePixelDataBytes, kBombPixelBytes);
+
+    // With a limit below the declaration it is refused, just as fast, with the reason.
+    core::ImportLimits tight;
+    tight.maxBytes = std::size_t(1) << 30;
+    const auto refusedStart = std::chrono::steady_clock::now();
+    try {
+        readInstanceHeader(dir.path() / "bomb.dcm", tight);
+        FAIL() << "a declaration over the limit was accepted";
+    } catch (const core::Error& e) {
+        EXPECT_NE(std::string(e.what()).find("import limit"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("bomb.dcm"), std::string::npos) << e.what();
+    }
+    EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - refusedStart).count(), 1.0);
+}
+
+// A header longer than the first inflated prefix (a 300 KB private element in front of the
+// pixel data) is still read whole, and the pixels decode.
+TEST(DicomFile, DeflatedLongHeaderReadsAndDecodes) {
+    lw::test::TempDir dir;
+    dt::HandMadeImage image;
+    image.deflate = true;
+    image.privateBytesBeforePixels = 300 * 1024;
+    dt::writeHandMadeImage(dir.path() / "long.dcm", image);
+    const InstanceInfo info = readInstanceHeader(dir.path() / "long.dcm");
+    EXPECT_EQ(info.rows, 4);
+    EXPECT_EQ(info.modality, "CT");
+    ASSERT_TRUE(info.nativePixelDataBytes.has_value());
+    EXPECT_EQ(*info.nativePixelDataBytes, 32u);
+    EXPECT_EQ(decodeInt16(info), std::vector<std::int16_t>(16, 0));
+}
+
+// Loading the pixels inflates no further than the header's declaration allows: 4 x 4 pixels
+// followed by 64 MB of zeros is refused with the reason instead of being inflated.
+TEST(DicomFile, DeflatedPixelsBeyondTheDeclarationAreRefused) {
+    lw::test::TempDir dir;
+    dt::HandMadeImage image;
+    image.deflate = true;
+    image.pixelDataBytes = std::size_t(64) << 20;
+    dt::writeHandMadeImage(dir.path() / "long_pixels.dcm", image);
+    const InstanceInfo info = readInstanceHeader(dir.path() / "long_pixels.dcm");
+    try {
+        decodeInt16(info);
+        FAIL() << "64 MB of pixel data for 4 x 4 pixels was inflated";
+    } catch (const core::Error& e) {
+        EXPECT_NE(std::string(e.what()).find("more than its header declares"), std::string::npos) << e.what();
+    }
 }

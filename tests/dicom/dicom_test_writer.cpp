@@ -15,6 +15,7 @@
 #include <memory>
 #include <sstream>
 #include <stdexcept>
+#include <zlib.h>
 
 namespace lw::dicom::test {
 
@@ -217,18 +218,63 @@ void appendUs(std::string& out, std::uint16_t group, std::uint16_t element, int 
 
 } // namespace
 
+namespace {
+
+// Writes `prefix` as is, then `data` followed by `zeros` zero bytes, raw-deflated when `deflated`.
+void writeDataSet(std::ofstream& file, const std::string& prefix, const std::string& data,
+                  std::size_t zeros, bool deflated) {
+    file.write(prefix.data(), std::streamsize(prefix.size()));
+    if (!deflated) {
+        file.write(data.data(), std::streamsize(data.size()));
+        const std::string chunk(1 << 20, '\0');
+        for (std::size_t left = zeros; left > 0;) {
+            const std::size_t n = std::min(left, chunk.size());
+            file.write(chunk.data(), std::streamsize(n));
+            left -= n;
+        }
+        return;
+    }
+    z_stream z{};
+    if (deflateInit2(&z, 1, Z_DEFLATED, -MAX_WBITS, 8, Z_DEFAULT_STRATEGY) != Z_OK)
+        throw std::runtime_error("deflateInit2 failed");
+    std::string out(1 << 16, '\0');
+    auto pump = [&](const char* in, std::size_t size, int flush) {
+        z.next_in = reinterpret_cast<Bytef*>(const_cast<char*>(in));
+        z.avail_in = uInt(size);
+        do {
+            z.next_out = reinterpret_cast<Bytef*>(out.data());
+            z.avail_out = uInt(out.size());
+            deflate(&z, flush);
+            file.write(out.data(), std::streamsize(out.size() - z.avail_out));
+        } while (z.avail_out == 0 || z.avail_in > 0);
+    };
+    pump(data.data(), data.size(), Z_NO_FLUSH);
+    const std::string chunk(1 << 20, '\0');
+    for (std::size_t left = zeros; left > 0;) {
+        const std::size_t n = std::min(left, chunk.size());
+        pump(chunk.data(), n, Z_NO_FLUSH);
+        left -= n;
+    }
+    pump(nullptr, 0, Z_FINISH);
+    deflateEnd(&z);
+}
+
+} // namespace
+
 void writeHandMadeImage(const std::filesystem::path& path, const HandMadeImage& image) {
     std::string meta;
     appendElement(meta, 0x0002, 0x0001, "OB", std::string("\0\1", 2));
     appendElement(meta, 0x0002, 0x0002, "UI", "1.2.840.10008.5.1.4.1.1.2");
     appendElement(meta, 0x0002, 0x0003, "UI", "1.2.826.0.1.3680043.2.1143.99.1");
-    appendElement(meta, 0x0002, 0x0010, "UI", "1.2.840.10008.1.2.1");
-    std::string out(128, '\0');
-    out += "DICM";
+    appendElement(meta, 0x0002, 0x0010, "UI",
+                  image.deflate ? "1.2.840.10008.1.2.1.99" : "1.2.840.10008.1.2.1");
+    std::string head(128, '\0');
+    head += "DICM";
     std::string groupLength;
     appendLe(groupLength, meta.size(), 4);
-    appendElement(out, 0x0002, 0x0000, "UL", groupLength);
-    out += meta;
+    appendElement(head, 0x0002, 0x0000, "UL", groupLength);
+    head += meta;
+    std::string out;
     appendElement(out, 0x0008, 0x0016, "UI", "1.2.840.10008.5.1.4.1.1.2");
     appendElement(out, 0x0008, 0x0018, "UI", "1.2.826.0.1.3680043.2.1143.99.1");
     appendElement(out, 0x0008, 0x0060, "CS", "CT");
@@ -244,6 +290,11 @@ void writeHandMadeImage(const std::filesystem::path& path, const HandMadeImage& 
     appendUs(out, 0x0028, 0x0101, image.bitsAllocated);
     appendUs(out, 0x0028, 0x0102, image.bitsAllocated - 1);
     appendUs(out, 0x0028, 0x0103, 1);
+    if (image.privateBytesBeforePixels > 0) {
+        appendElement(out, 0x0029, 0x0010, "LO", "LINEWORK TEST");
+        appendElement(out, 0x0029, 0x1000, "OB", std::string(image.privateBytesBeforePixels, '\0'));
+    }
+    std::size_t zeros = 0;
     if (image.writePixelData) {
         appendLe(out, 0x7FE0, 2);
         appendLe(out, 0x0010, 2);
@@ -251,10 +302,10 @@ void writeHandMadeImage(const std::filesystem::path& path, const HandMadeImage& 
         appendLe(out, 0, 2);
         appendLe(out, image.declaredPixelDataLength.value_or(std::uint32_t(image.pixelDataBytes)),
                  4);
-        out.append(image.pixelDataBytes, '\0');
+        zeros = image.pixelDataBytes;
     }
     std::ofstream file(path, std::ios::binary | std::ios::trunc);
-    file.write(out.data(), std::streamsize(out.size()));
+    writeDataSet(file, head, out, zeros, image.deflate);
     if (!file)
         throw std::runtime_error("cannot write " + path.string());
 }

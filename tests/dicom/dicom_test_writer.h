@@ -97,6 +97,11 @@ struct HandMadeImage {
     bool writePixelData = true;
     std::size_t pixelDataBytes = 32; // the element's value (zeros), its length as declared
     std::optional<std::uint32_t> declaredPixelDataLength; // a length other than pixelDataBytes
+    // Deflated Explicit VR Little Endian: the data set after the meta group is raw-deflated,
+    // its zeros streamed through zlib, so a bomb of hundreds of MB costs the test little.
+    bool deflate = false;
+    // A private OB element of this many zeros in front of the pixel data (0: none).
+    std::size_t privateBytesBeforePixels = 0;
 };
 void writeHandMadeImage(const std::filesystem::path& path, const HandMadeImage& image);
 

@@ -8,6 +8,7 @@
 #include <array>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
 #include <dcmtk/dcmdata/dcfilefo.h>
 #include <dcmtk/dcmdata/dcitem.h>
 #include <dcmtk/dcmdata/dcmetinf.h>
@@ -18,13 +19,24 @@
 
 namespace lw::dicom {
 
+// What loading learnt beyond the data set DCMTK holds.
+struct LoadedDicom {
+    bool isGzipWrapped = false;
+    // Deflated header reads stop in front of the pixel data (see deflated_dataset.h): whether it
+    // is there and the length it declares.
+    bool pixelDataSkipped = false;
+    std::optional<std::uint64_t> skippedPixelDataLength;
+};
+
 // Loads a DICOM file, or the DICOM file inside a gzip wrapper (then `inflated`, when given,
-// keeps the bytes). headerOnly: large elements (pixel data) stay on disk until accessed.
+// keeps the bytes). headerOnly: large elements (pixel data) stay on disk until accessed; a
+// deflated data set is inflated only up to its pixel data. A full load of a deflated data set
+// inflates at most what `expectedPixelBytes` (the header's declaration) allows.
 // Throws core::Error(path, reason) when the file is not DICOM or cannot be parsed, or when a
-// gzip wrapper inflates to more than limits.maxBytes (nothing declares its size beforehand).
-void loadDicomFile(const std::filesystem::path& path, DcmFileFormat& file, bool headerOnly,
-                   std::vector<std::byte>* inflated = nullptr, bool* isGzipWrapped = nullptr,
-                   const core::ImportLimits& limits = {});
+// gzip wrapper or a deflated data set inflates past limits.maxBytes.
+LoadedDicom loadDicomFile(const std::filesystem::path& path, DcmFileFormat& file, bool headerOnly,
+                          std::vector<std::byte>* inflated, const core::ImportLimits& limits,
+                          std::optional<std::size_t> expectedPixelBytes = std::nullopt);
 
 // Leading and trailing spaces and NULs removed (DICOM pads values to even length).
 inline std::string trim(const std::string& text) {

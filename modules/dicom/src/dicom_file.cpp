@@ -1,5 +1,6 @@
 #include "dicom_file.h"
 
+#include "deflated_dataset.h"
 #include "dicom_dcmtk.h"
 
 #include "lw/core/error.h"
@@ -107,7 +108,8 @@ std::optional<std::uint64_t> nativePixelDataLength(DcmDataset& ds) {
     return length;
 }
 
-void fillInstance(DcmFileFormat& file, InstanceInfo& info, const core::ImportLimits& limits) {
+void fillInstance(DcmFileFormat& file, const LoadedDicom& loaded, InstanceInfo& info,
+                  const core::ImportLimits& limits) {
     DcmDataset& ds = *file.getDataset();
     DcmMetaInfo* meta = file.getMetaInfo();
 
@@ -153,11 +155,12 @@ void fillInstance(DcmFileFormat& file, InstanceInfo& info, const core::ImportLim
     info.pixelRepresentation = getUnsigned(ds, DCM_PixelRepresentation).value_or(0);
     info.samplesPerPixel = getUnsigned(ds, DCM_SamplesPerPixel).value_or(1);
     info.photometricInterpretation = getString(ds, DCM_PhotometricInterpretation);
-    info.hasPixelData = ds.tagExists(DCM_PixelData, OFFalse);
+    info.hasPixelData = ds.tagExists(DCM_PixelData, OFFalse) || loaded.pixelDataSkipped;
     // badVR.dcm carries NumberOfFrames "1A": treat what cannot be parsed as one frame.
     info.numberOfFrames = std::max(1, getInt(ds, DCM_NumberOfFrames).value_or(1));
     if (info.hasPixelData) {
-        info.nativePixelDataBytes = nativePixelDataLength(ds);
+        info.nativePixelDataBytes =
+            loaded.pixelDataSkipped ? loaded.skippedPixelDataLength : nativePixelDataLength(ds);
         checkDeclaredPixels(info, limits);
     }
 
@@ -254,11 +257,25 @@ void configureDcmtk() {
     (void)configured;
 }
 
+// Deflated files are read by deflated_dataset.cpp (bounded inflation) instead of DCMTK's own
+// stream filter; a plain file is read into memory for it only when its meta names deflate.
+std::optional<DeflatedRead> readDeflated(const std::filesystem::path& path,
+                                         const std::vector<std::byte>& gunzipped, DcmFileFormat& file,
+                                         bool headerOnly, std::optional<std::size_t> expectedPixelBytes,
+                                         const core::ImportLimits& limits) {
+    if (!gunzipped.empty())
+        return readIfDeflated(gunzipped, file, headerOnly, expectedPixelBytes, path.string(), limits);
+    if (!isDeflatedFile(path.string()))
+        return std::nullopt;
+    return readIfDeflated(core::readFileBytes(path), file, headerOnly, expectedPixelBytes, path.string(),
+                          limits);
+}
+
 } // namespace
 
-void loadDicomFile(const std::filesystem::path& path, DcmFileFormat& file, bool headerOnly,
-                   std::vector<std::byte>* inflated, bool* isGzipWrapped,
-                   const core::ImportLimits& limits) {
+LoadedDicom loadDicomFile(const std::filesystem::path& path, DcmFileFormat& file, bool headerOnly,
+                          std::vector<std::byte>* inflated, const core::ImportLimits& limits,
+                          std::optional<std::size_t> expectedPixelBytes) {
     std::error_code ec;
     if (!std::filesystem::is_regular_file(path, ec))
         throw core::Error(path.string(), "not a readable file");
@@ -266,13 +283,18 @@ void loadDicomFile(const std::filesystem::path& path, DcmFileFormat& file, bool 
     if (std::filesystem::file_size(path, ec) < 8)
         throw core::Error(path.string(), "not a DICOM file (too short)");
 
+    LoadedDicom loaded;
     std::vector<std::byte> local;
     std::vector<std::byte>& bytes = inflated ? *inflated : local;
     bytes = gunzippedContents(path, limits);
-    if (isGzipWrapped)
-        *isGzipWrapped = !bytes.empty();
+    loaded.isGzipWrapped = !bytes.empty();
 
     configureDcmtk();
+    if (auto deflated = readDeflated(path, bytes, file, headerOnly, expectedPixelBytes, limits)) {
+        loaded.pixelDataSkipped = deflated->pixelDataSkipped;
+        loaded.skippedPixelDataLength = deflated->pixelDataLength;
+        return loaded;
+    }
     // The encoding is guessed when the meta header does not name it (ACR-NEMA, a missing
     // TransferSyntaxUID); a wrong guess parses into nonsense, so the other plausible
     // encodings are tried before giving up. Good files succeed on the first attempt.
@@ -297,7 +319,7 @@ void loadDicomFile(const std::filesystem::path& path, DcmFileFormat& file, bool 
         if (guess == EXS_Unknown)
             firstStatus = status;
         if (status.good() && looksLikeDicom(file))
-            return;
+            return loaded;
         if (status.good() && (file.getMetaInfo()->card() > 0 || file.getDataset()->card() > 0))
             parsedSomething = true;
         if (status.bad())
@@ -322,8 +344,9 @@ InstanceInfo readInstanceHeader(const std::filesystem::path& path,
     info.path = path.string();
     try {
         DcmFileFormat file;
-        loadDicomFile(path, file, true, nullptr, &info.isGzipWrapped, limits);
-        fillInstance(file, info, limits);
+        const LoadedDicom loaded = loadDicomFile(path, file, true, nullptr, limits);
+        info.isGzipWrapped = loaded.isGzipWrapped;
+        fillInstance(file, loaded, info, limits);
     } catch (const core::Error&) {
         throw;
     } catch (const std::exception& e) {

@@ -116,6 +116,7 @@ template <typename T> T clampTo(std::int32_t value) {
 
 struct FrameDecoder::Impl {
     InstanceInfo info;
+    core::ImportLimits limits;
     DcmFileFormat file;
     std::vector<std::byte> inflated; // gzip-wrapped files: the DICOM bytes
     bool loaded = false;
@@ -135,6 +136,16 @@ struct FrameDecoder::Impl {
 
     [[noreturn]] void fail(int frame, const std::string& reason) const { throw core::Error(where(frame), reason); }
 
+    // What the header declares for the whole pixel data: a deflated data set may inflate to
+    // little more than this (the header read checked it against the limits already).
+    std::size_t declaredPixelBytes() const {
+        return core::checkedProduct({std::size_t(std::max(info.rows, 0)), std::size_t(std::max(info.columns, 0)),
+                                     std::size_t(std::max(info.numberOfFrames, 1)),
+                                     std::size_t(std::max(info.samplesPerPixel, 1)),
+                                     std::size_t(std::max(1, (info.bitsAllocated + 7) / 8))},
+                                    info.path, "the pixel data the header declares");
+    }
+
     void load(int frame);
     void loadJpeg2000(int frame, DcmPixelData& pixelData, E_TransferSyntax xfer);
     void loadWithGdcm(int frame);
@@ -142,7 +153,7 @@ struct FrameDecoder::Impl {
 
 void FrameDecoder::Impl::load(int frame) {
     ensureDecoders();
-    loadDicomFile(info.path, file, false, &inflated);
+    loadDicomFile(info.path, file, false, &inflated, limits, declaredPixelBytes());
     DcmDataset& ds = *file.getDataset();
     DcmElement* element = nullptr;
     if (ds.findAndGetElement(DCM_PixelData, element, OFFalse).bad() || !element)
