@@ -13,6 +13,7 @@
 #include "review/review_widget.h"
 #include "review/stall_monitor.h"
 #include "shell/main_window.h"
+#include "shell/png_export.h"
 
 #include <QApplication>
 #include <QCommandLineParser>
@@ -252,5 +253,23 @@ int main(int argc, char* argv[]) {
     for (int method : {3, 2, 1})
         benchMethod(*review, window, method, iso, repeat, monitor);
     measureIdleAndRepaint(*review, monitor);
+    // The report issue's export goal: a 4096 x 2048 side-by-side PNG.
+    for (int method : {3, 1}) {
+        ReviewSettings settings = window.settings();
+        settings.method = lw::render::SilhouetteMethod(method);
+        window.applySettings(settings);
+        bench::waitFor([&] { return !review->isBusy(); });
+        monitor.start();
+        QElapsedTimer exportTimer;
+        exportTimer.start();
+        const QString error = exportReviewPng(*review, home.filePath("export.png"),
+                                              QSize(2048, 2048), ExportLayout::SideBySide);
+        char line[160];
+        std::snprintf(line, sizeof line, "method %d: export 4096x2048 side-by-side PNG%s", method,
+                      error.isEmpty() ? "" : " (FAILED)");
+        report(line, double(exportTimer.nsecsElapsed()) / 1e6);
+        std::snprintf(line, sizeof line, "method %d: longest UI stall while exporting", method);
+        report(line, monitor.longestStallMs());
+    }
     return 0;
 }

@@ -5,6 +5,7 @@
 #include "lw/render/renderer_factory.h"
 #include "lw/render/silhouette_gl_renderer.h"
 #include "review/iso_control.h"
+#include "review/panel_render_job.h"
 #include "review/render_scheduler.h"
 #include "review/review_panel.h"
 
@@ -309,28 +310,10 @@ void ReviewWidget::showSilhouette(const FrameResult& result) {
     m_status.silhouetteTimes = frame.times;
     if (!result.mesh)
         m_status.triangles = std::max(m_status.triangles, frame.triangles);
-    m_silhouettePanel->setImage(silhouetteImage(frame.lines, false, m_settings.lineWidth));
+    m_silhouettePanel->setImage(linesToImage(frame.lines, m_settings, false, m_settings.lineWidth));
     m_isoPanel->setOverlay(m_settings.silhouetteOnIso
-                               ? silhouetteImage(frame.lines, true, m_settings.lineWidth)
+                               ? linesToImage(frame.lines, m_settings, true, m_settings.lineWidth)
                                : QImage());
-}
-
-QImage ReviewWidget::silhouetteImage(const render::PixelMask& lines, bool transparent,
-                                     double lineWidth) const {
-    // Line widths above one pixel widen the CPU methods' one-pixel lines by a square dilation.
-    const int radius = int((lineWidth - 1.0) / 2.0 + 0.5);
-    const render::PixelMask mask = radius > 0 ? lines.dilated(radius) : lines;
-    QImage image(mask.width(), mask.height(), QImage::Format_ARGB32);
-    const QRgb line = m_settings.lineColour.rgb();
-    const QRgb background = transparent ? qRgba(0, 0, 0, 0) : m_settings.background.rgb();
-    const auto& pixels = mask.pixels();
-    for (int y = 0; y < mask.height(); ++y) {
-        auto* row = reinterpret_cast<QRgb*>(image.scanLine(y));
-        const std::uint8_t* source = pixels.data() + std::size_t(y) * std::size_t(mask.width());
-        for (int x = 0; x < mask.width(); ++x)
-            row[x] = source[x] ? line : background;
-    }
-    return image;
 }
 
 void ReviewWidget::showError(const QString& message) {
@@ -382,58 +365,43 @@ void releaseQtContext() {
 
 } // namespace
 
-QImage ReviewWidget::renderIsoOffscreen(QSize size, const ReviewSettings& appearance) {
-    if (!m_mesh)
-        return {};
-    // A context of its own on this thread (the worker's belongs to the worker thread). A thread
-    // can have one current context across GLX and EGL: let go of Qt's first.
-    releaseQtContext();
-    render::EglHeadlessContext context;
-    render::SilhouetteGlRenderer gl;
-    gl.uploadMesh(*m_mesh);
-    const core::ImageRgba8 image = gl.renderImage(m_camera.camera(size.width(), size.height()),
-                                                  panelGlOptions(PanelKind::Iso, appearance));
-    gl.release();
-    QImage result(image.width(), image.height(), QImage::Format_RGBA8888);
-    for (int y = 0; y < image.height(); ++y)
-        std::memcpy(result.scanLine(y), image.row(y), std::size_t(image.width()) * 4);
-    return result;
+PanelRenderJob ReviewWidget::renderJob(QSize size) const {
+    PanelRenderJob job;
+    job.volume = m_source.volume;
+    job.mesh = m_mesh;
+    job.camera = m_camera.camera(size.width(), size.height());
+    // Lines keep their width relative to the picture: scaled from the panel on screen.
+    job.appearance = m_settings;
+    const double scale = double(size.height()) / double(m_silhouettePanel->renderSize().height());
+    job.appearance.lineWidth = std::max(1.0, m_settings.lineWidth * scale);
+    job.iso = m_iso;
+    job.brickCells = brickCells();
+    job.isoOnCpu = !displayGlInfo().available || displayGlInfo().software;
+    return job;
+}
+
+bool ReviewWidget::rendersOnUiThread() const {
+    return m_drawsInPanels;
 }
 
 std::pair<QImage, QImage> ReviewWidget::renderPanels(QSize size) {
-    // Lines keep their width relative to the picture: scaled from the panel on screen.
-    ReviewSettings appearance = m_settings;
-    const double scale = double(size.height()) / double(m_silhouettePanel->renderSize().height());
-    appearance.lineWidth = std::max(1.0, m_settings.lineWidth * scale);
-    QImage iso = m_drawsInPanels ? m_isoPanel->renderImage(size, &appearance)
-                                 : renderIsoOffscreen(size, appearance);
-    QImage silhouette;
-    if (methodOneInPanel()) {
-        silhouette = m_silhouettePanel->renderImage(size, &appearance);
-    } else {
-        releaseQtContext(); // method 1 makes an EGL context on this thread
-        auto renderer = render::createSilhouetteRenderer(m_settings.method, m_settings.backend);
-        renderer->setVolume(*m_source.volume);
-        render::SilhouetteSettings settings;
-        settings.isoReal = m_iso;
-        settings.brickCells = brickCells();
-        settings.visibility = m_settings.visibility;
-        settings.testAlongSegment = m_settings.testAlongSegment;
-        const render::SilhouetteFrame frame =
-            renderer->render(m_camera.camera(size.width(), size.height()), settings);
-        silhouette = silhouetteImage(frame.lines, false, appearance.lineWidth);
+    const PanelRenderJob job = renderJob(size);
+    if (!m_drawsInPanels) {
+        releaseQtContext(); // the job may make an EGL context on this thread
+        return renderPanelJob(job);
     }
+    // A GPU: the panels' own contexts draw the GL parts; a CPU method renders its lines here.
+    QImage iso = m_isoPanel->renderImage(size, &job.appearance);
+    if (methodOneInPanel())
+        return {iso, m_silhouettePanel->renderImage(size, &job.appearance)};
+    releaseQtContext();
+    auto [unused, silhouette] = renderPanelJob(job);
     return {iso, silhouette};
 }
 
 QImage ReviewWidget::renderSideBySide(QSize panelSize) {
     const auto [iso, silhouette] = renderPanels(panelSize);
-    QImage pair(2 * panelSize.width(), panelSize.height(), QImage::Format_RGB32);
-    pair.fill(m_settings.background);
-    QPainter painter(&pair);
-    painter.drawImage(0, 0, iso);
-    painter.drawImage(panelSize.width(), 0, silhouette);
-    return pair;
+    return sideBySide(iso, silhouette, m_settings.background);
 }
 
 } // namespace lw::gui

@@ -8,6 +8,7 @@
 #include "lw/render/iso_surface.h"
 #include "lw/volume/volume.h"
 #include "review/camera_controller.h"
+#include "review/panel_render_job.h"
 #include "settings/review_settings.h"
 
 #include <QImage>
@@ -78,6 +79,10 @@ public:
     std::pair<QImage, QImage> renderPanels(QSize size);
     // The two panels side by side at `panelSize` each (iso left, silhouette right).
     QImage renderSideBySide(QSize panelSize);
+    // What an export at `size` needs, copied so renderPanelJob() can run on another thread;
+    // valid only where rendersOnUiThread() is false (the panels' GL contexts are not needed).
+    PanelRenderJob renderJob(QSize size) const;
+    bool rendersOnUiThread() const;
 
 public slots:
     void applySettings(const lw::gui::ReviewSettings& settings);
@@ -100,10 +105,7 @@ private:
     void updateStatusLine();
     bool methodOneInPanel() const;
     bool drawsInPanels() const;
-    QImage renderIsoOffscreen(QSize size, const ReviewSettings& appearance);
     int brickCells() const;
-    QImage silhouetteImage(const render::PixelMask& lines, bool transparent,
-                           double lineWidth) const;
 
     ReviewSource m_source;
     ReviewSettings m_settings;

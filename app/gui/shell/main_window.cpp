@@ -310,9 +310,7 @@ void MainWindow::chooseAndExportPng() {
                 QMessageBox::Yes)
             return;
     }
-    QApplication::setOverrideCursor(Qt::WaitCursor);
-    const QString error = exportReviewPng(*review, path, dialog.panelSize(), dialog.layout());
-    QApplication::restoreOverrideCursor();
+    const QString error = exportReviewPng(*review, path, dialog.panelSize(), dialog.layout(), this);
     if (error.isEmpty())
         statusBar()->showMessage(tr("Exported %1").arg(path), 8000);
     else

@@ -2,14 +2,20 @@
 
 #include "lw/core/error.h"
 #include "lw/core/png_io.h"
+#include "review/panel_render_job.h"
 #include "review/review_widget.h"
 
 #include <QComboBox>
 #include <QDialogButtonBox>
+#include <QEventLoop>
+#include <QFileInfo>
 #include <QFormLayout>
+#include <QFutureWatcher>
 #include <QHBoxLayout>
 #include <QLabel>
+#include <QProgressDialog>
 #include <QSpinBox>
+#include <QtConcurrent/QtConcurrentRun>
 #include <cstring>
 #include <new>
 
@@ -26,29 +32,74 @@ core::ImageRgba8 toCoreImage(const QImage& image) {
 
 } // namespace
 
-QString exportReviewPng(ReviewWidget& review, const QString& path, QSize panelSize,
-                        ExportLayout layout) {
+namespace {
+
+// Renders and writes; thread-safe when `job` is used (no review access).
+QString writeExport(const QImage& image, const QString& path) {
+    if (image.isNull())
+        return QObject::tr("%1: nothing to export yet (the surface is still being computed)")
+            .arg(path);
+    core::writePng(path.toStdString(), toCoreImage(image), core::PngFormat::Rgb);
+    return {};
+}
+
+QImage composeLayout(const std::pair<QImage, QImage>& panels, ExportLayout layout,
+                     QColor background) {
+    switch (layout) {
+    case ExportLayout::SideBySide:
+        return sideBySide(panels.first, panels.second, background);
+    case ExportLayout::IsoPanel:
+        return panels.first;
+    case ExportLayout::SilhouettePanel:
+        return panels.second;
+    }
+    return {};
+}
+
+template <typename Work> QString guarded(const QString& path, QSize size, Work&& work) {
     try {
-        QImage image;
-        if (layout == ExportLayout::SideBySide) {
-            image = review.renderSideBySide(panelSize);
-        } else {
-            auto [iso, silhouette] = review.renderPanels(panelSize);
-            image = layout == ExportLayout::IsoPanel ? iso : silhouette;
-        }
-        if (image.isNull())
-            return QObject::tr("%1: nothing to export yet (the surface is still being computed)")
-                .arg(path);
-        core::writePng(path.toStdString(), toCoreImage(image), core::PngFormat::Rgb);
-        return {};
+        return work();
     } catch (const core::Error& error) {
         return QString::fromStdString(error.what());
     } catch (const std::bad_alloc&) {
         return QObject::tr("%1: out of memory rendering %2 x %3 pixels; choose a smaller size")
             .arg(path)
-            .arg(panelSize.width())
-            .arg(panelSize.height());
+            .arg(size.width())
+            .arg(size.height());
     }
+}
+
+} // namespace
+
+QString exportReviewPng(ReviewWidget& review, const QString& path, QSize panelSize,
+                        ExportLayout layout, QWidget* progressParent) {
+    const QColor background = review.settings().background;
+    if (review.rendersOnUiThread()) // a GPU draws in the panels' contexts: fast, and only here
+        return guarded(path, panelSize, [&] {
+            return writeExport(composeLayout(review.renderPanels(panelSize), layout, background),
+                               path);
+        });
+    // Off the UI thread: the job is a copy of what the panels show.
+    const PanelRenderJob job = review.renderJob(panelSize);
+    QFuture<QString> future = QtConcurrent::run([job, layout, background, path, panelSize] {
+        return guarded(path, panelSize, [&] {
+            return writeExport(composeLayout(renderPanelJob(job), layout, background), path);
+        });
+    });
+    QProgressDialog progress(QObject::tr("Rendering %1 at %2 x %3…")
+                                 .arg(QFileInfo(path).fileName())
+                                 .arg(panelSize.width())
+                                 .arg(panelSize.height()),
+                             QString(), 0, 0, progressParent);
+    progress.setWindowModality(Qt::WindowModal);
+    progress.setMinimumDuration(300);
+    QFutureWatcher<QString> watcher;
+    QEventLoop loop;
+    QObject::connect(&watcher, &QFutureWatcher<QString>::finished, &loop, &QEventLoop::quit);
+    watcher.setFuture(future);
+    if (!future.isFinished())
+        loop.exec();
+    return future.result();
 }
 
 PngExportDialog::PngExportDialog(QSize panelSize, QWidget* parent) : QDialog(parent) {

@@ -9,6 +9,7 @@
 #include <QString>
 
 class QComboBox;
+class QWidget;
 class QSpinBox;
 
 namespace lw::gui {
@@ -19,8 +20,10 @@ enum class ExportLayout { SideBySide, IsoPanel, SilhouettePanel };
 
 // Renders `review` with panels of `panelSize` in `layout` and writes it to `path`. Returns an
 // empty string on success, otherwise the reason naming the file (nothing is written then).
+// Where the panels do not need their own GL contexts (software GL) the rendering runs off the
+// UI thread, with a progress dialog over `progressParent` when it takes longer than a moment.
 QString exportReviewPng(ReviewWidget& review, const QString& path, QSize panelSize,
-                        ExportLayout layout);
+                        ExportLayout layout, QWidget* progressParent = nullptr);
 
 // What to export and at which size (the file is asked for afterwards).
 class PngExportDialog : public QDialog {

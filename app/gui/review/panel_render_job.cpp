@@ -1,0 +1,80 @@
+#include "review/panel_render_job.h"
+
+#include "lw/render/gl_context.h"
+#include "lw/render/renderer_factory.h"
+#include "lw/render/shaded_surface_cpu.h"
+#include "lw/render/silhouette_gl_renderer.h"
+#include "review/review_panel.h"
+
+#include <QPainter>
+#include <cstring>
+
+namespace lw::gui {
+namespace {
+
+QImage toQImage(const core::ImageRgba8& image) {
+    QImage result(image.width(), image.height(), QImage::Format_RGBA8888);
+    for (int y = 0; y < image.height(); ++y)
+        std::memcpy(result.scanLine(y), image.row(y), std::size_t(image.width()) * 4);
+    return result;
+}
+
+QImage renderIso(const PanelRenderJob& job) {
+    const render::Mesh empty;
+    const render::Mesh& mesh = job.mesh ? *job.mesh : empty;
+    const render::SilhouetteGlOptions options = panelGlOptions(PanelKind::Iso, job.appearance);
+    if (job.isoOnCpu)
+        return toQImage(
+            render::shadeSurfaceCpu(mesh, job.camera, render::glPanelShading(job.camera, options)));
+    // A headless context of this thread's own (no Qt context may be current here).
+    render::EglHeadlessContext context;
+    render::SilhouetteGlRenderer gl;
+    gl.uploadMesh(mesh);
+    QImage image = toQImage(gl.renderImage(job.camera, options));
+    gl.release();
+    return image;
+}
+
+} // namespace
+
+QImage linesToImage(const render::PixelMask& lines, const ReviewSettings& appearance,
+                    bool transparent, double lineWidth) {
+    const int radius = int((lineWidth - 1.0) / 2.0 + 0.5);
+    const render::PixelMask mask = radius > 0 ? lines.dilated(radius) : lines;
+    QImage image(mask.width(), mask.height(), QImage::Format_ARGB32);
+    const QRgb line = appearance.lineColour.rgb();
+    const QRgb background = transparent ? qRgba(0, 0, 0, 0) : appearance.background.rgb();
+    const auto& pixels = mask.pixels();
+    for (int y = 0; y < mask.height(); ++y) {
+        auto* row = reinterpret_cast<QRgb*>(image.scanLine(y));
+        const std::uint8_t* source = pixels.data() + std::size_t(y) * std::size_t(mask.width());
+        for (int x = 0; x < mask.width(); ++x)
+            row[x] = source[x] ? line : background;
+    }
+    return image;
+}
+
+std::pair<QImage, QImage> renderPanelJob(const PanelRenderJob& job) {
+    QImage iso = renderIso(job);
+    auto renderer = render::createSilhouetteRenderer(job.appearance.method, job.appearance.backend);
+    renderer->setVolume(*job.volume);
+    render::SilhouetteSettings settings;
+    settings.isoReal = job.iso;
+    settings.brickCells = job.brickCells;
+    settings.visibility = job.appearance.visibility;
+    settings.testAlongSegment = job.appearance.testAlongSegment;
+    const render::SilhouetteFrame frame = renderer->render(job.camera, settings);
+    return {iso, linesToImage(frame.lines, job.appearance, false, job.appearance.lineWidth)};
+}
+
+QImage sideBySide(const QImage& iso, const QImage& silhouette, QColor background) {
+    QImage pair(iso.width() + silhouette.width(), std::max(iso.height(), silhouette.height()),
+                QImage::Format_RGB32);
+    pair.fill(background);
+    QPainter painter(&pair);
+    painter.drawImage(0, 0, iso);
+    painter.drawImage(iso.width(), 0, silhouette);
+    return pair;
+}
+
+} // namespace lw::gui

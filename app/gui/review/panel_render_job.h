@@ -1,0 +1,38 @@
+#pragma once
+
+// Re-rendering the review's panels at another size (export) from a copy of what they show, so
+// it can run on any thread: the iso panel shaded from the mesh on screen, the silhouette by a
+// fresh renderer of the chosen method. ReviewWidget::renderJob() makes the copy.
+
+#include "lw/render/camera.h"
+#include "lw/render/iso_surface.h"
+#include "lw/render/pixel_mask.h"
+#include "lw/volume/volume.h"
+#include "settings/review_settings.h"
+
+#include <QImage>
+#include <memory>
+#include <utility>
+
+namespace lw::gui {
+
+struct PanelRenderJob {
+    std::shared_ptr<const volume::Volume> volume;
+    std::shared_ptr<const render::Mesh> mesh; // the iso panel's surface
+    render::Camera camera;                    // at the export size
+    ReviewSettings appearance;                // line width already scaled to the size
+    double iso = 0.0;
+    int brickCells = 0;
+    bool isoOnCpu = true; // shade with the CPU rasterizer (software GL), else a headless GL context
+};
+
+// Thread-safe: reads only `job`. Throws core::Error when a renderer fails.
+std::pair<QImage, QImage> renderPanelJob(const PanelRenderJob& job);
+// Iso left, silhouette right, on the background colour.
+QImage sideBySide(const QImage& iso, const QImage& silhouette, QColor background);
+// A silhouette mask as the panels show it: lines in `lineColour` widened to `lineWidth` pixels by
+// a square dilation, on the background or (transparent) on nothing.
+QImage linesToImage(const render::PixelMask& lines, const ReviewSettings& appearance,
+                    bool transparent, double lineWidth);
+
+} // namespace lw::gui
