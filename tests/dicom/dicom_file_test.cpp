@@ -136,6 +136,19 @@ TEST(DicomFile, GzipWrappedFile) {
     const auto pixels = decodeInt16(info);
     for (std::size_t i = 0; i < s.pixels.size(); ++i)
         ASSERT_EQ(pixels[i], s.pixels[i]);
+
+    // The decoder inflates within the caller's limits, not the default ones.
+    core::ImportLimits tight;
+    tight.maxBytes = bytes.size() / 2;
+    FrameDecoder decoder(info, tight);
+    std::vector<std::int16_t> out(std::size_t(info.rows) * std::size_t(info.columns));
+    try {
+        decoder.decodeFrame(0, volume::VoxelType::Int16, out.data());
+        FAIL() << "the decoder inflated past the caller's limit";
+    } catch (const core::Error& e) {
+        EXPECT_NE(std::string(e.what()).find("inflates to more than"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("wrapped.dcm.gz"), std::string::npos) << e.what();
+    }
 }
 
 namespace {

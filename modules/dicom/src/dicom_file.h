@@ -29,9 +29,11 @@ volume::VoxelType storedVoxelType(const InstanceInfo& instance);
 // Decodes frames of one file. The file is opened once (read-only) and may be asked for
 // several frames. Output values are the stored values masked to BitsStored and sign-extended
 // from HighBit, MONOCHROME1 inverted; rescale is NOT applied (it is the volume's ValueMapping).
+// A gzip wrapper or a deflated data set is inflated within `limits`: the caller's, so an
+// import with a lower limit than the default is held to it while decoding too.
 class FrameDecoder {
 public:
-    explicit FrameDecoder(const InstanceInfo& instance);
+    explicit FrameDecoder(const InstanceInfo& instance, const core::ImportLimits& limits = {});
     ~FrameDecoder();
     FrameDecoder(const FrameDecoder&) = delete;
     FrameDecoder& operator=(const FrameDecoder&) = delete;

@@ -267,8 +267,10 @@ void FrameDecoder::Impl::loadWithGdcm(int frame) {
 #endif
 }
 
-FrameDecoder::FrameDecoder(const InstanceInfo& instance) : m_impl(std::make_unique<Impl>()) {
+FrameDecoder::FrameDecoder(const InstanceInfo& instance, const core::ImportLimits& limits)
+    : m_impl(std::make_unique<Impl>()) {
     m_impl->info = instance;
+    m_impl->limits = limits;
     m_impl->info.frames.clear(); // geometry is not needed here
 }
 

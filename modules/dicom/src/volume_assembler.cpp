@@ -599,7 +599,7 @@ static volume::Volume loadVolumeUnguarded(const SeriesInfo& series, const Volume
         const InstanceInfo& info = series.instances[instance];
         // A library failure while decoding names this file, not just the series.
         detail::atModuleBoundary(info.path, [&] {
-            FrameDecoder decoder(info);
+            FrameDecoder decoder(info, limits);
             for (int z : zs) {
                 if (progress)
                     progress->throwIfCancelled();
