@@ -424,6 +424,28 @@ TEST(DicomScanner, DamagedDicomdirRecordBecomesCoreError) {
     EXPECT_NO_THROW((void)dicom::looksLikeDicomInput(dir / "DICOMDIR"));
 }
 
+// A top-level DICOMDIR cut off inside its last record (a copy that stopped short): the records
+// DCMTK parsed before the cut are used, the one it stopped in is not.
+TEST(DicomScanner, TruncatedTopLevelDicomdirKeepsTheWholeRecords) {
+    test::TempDir dir;
+    const SeriesSpec first = newSeries(1, 2);
+    writeSeries(dir / "S1", first);
+    writeSeries(dir / "S2", newSeries(2, 1));
+    writeRawDicomdir(dir / "DICOMDIR", {{"IMAGE", "S1\\IM1", "", ""},
+                                        {"IMAGE", "S1\\IM2", "", ""},
+                                        {"IMAGE", "S2\\IM1", "", ""}});
+    if (HasFatalFailure())
+        return;
+    fs::resize_file(dir / "DICOMDIR", fs::file_size(dir / "DICOMDIR") - 6);
+    const dicom::DicomIndex index = dicom::scanDicom(dir / "DICOMDIR");
+    EXPECT_EQ(index.instanceCount(), 2u);
+    EXPECT_NE(index.findSeries(first.seriesUid), nullptr);
+    const dicom::FileError* error = findError(index, "DICOMDIR");
+    ASSERT_NE(error, nullptr);
+    EXPECT_NE(error->reason.find("the 2 records before the damage are used"), std::string::npos)
+        << error->reason;
+}
+
 TEST(DicomScanner, DamagedNestedDicomdirIsReportedAndTheRestScanned) {
     test::TempDir dir;
     writeSeries(dir / "S1", newSeries(1, 2));

@@ -283,6 +283,35 @@ Reference handleReference(DcmItem& record, const fs::path& dicomdir, DicomdirSta
     return Reference::Present;
 }
 
+// The directory records of one DICOMDIR as far as they could be parsed.
+struct DicomdirRecords {
+    DcmSequenceOfItems* records = nullptr; // owned by the DcmFileFormat passed in
+    unsigned long usable = 0;              // the records before any damage
+    std::string damage;                    // why parsing stopped early; empty when it did not
+};
+
+// Loads a DICOMDIR. A parse that fails part-way (a file cut short, a broken item) keeps the
+// records read before the damage: DCMTK leaves them in the data set with a bad status. The
+// record the parse stopped in is the last one of the sequence and is left out, since its values
+// may be cut short. (A library exception from the parse is walkDicomdir's: see there.)
+DicomdirRecords loadDicomdirRecords(const fs::path& dicomdir, DcmFileFormat& file) {
+    DicomdirRecords result;
+    // Read-only: loadFile never writes. ERM_autoDetect accepts files without meta header.
+    const OFCondition status = file.loadFile(OFFilename(dicomdir.c_str()), EXS_Unknown,
+                                             EGL_noChange, DCM_MaxReadLength, ERM_autoDetect);
+    if (status.bad())
+        result.damage = std::string("cannot read DICOMDIR: ") + status.text();
+    DcmDataset* dataset = file.getDataset();
+    if (dataset == nullptr ||
+        dataset->findAndGetSequence(DCM_DirectoryRecordSequence, result.records).bad() ||
+        result.records == nullptr)
+        return result;
+    result.usable = result.records->card();
+    if (!result.damage.empty() && result.usable > 0)
+        --result.usable;
+    return result;
+}
+
 // Reads one DICOMDIR file and follows its records; walkDicomdir wraps it.
 void walkDicomdirRecords(const fs::path& dicomdir, DicomdirState& state, int depth, bool topLevel) {
     if (state.progress)
@@ -297,24 +326,23 @@ void walkDicomdirRecords(const fs::path& dicomdir, DicomdirState& state, int dep
         return;
     }
     DcmFileFormat file;
-    // Read-only: loadFile never writes. ERM_autoDetect accepts files without meta header.
-    const OFCondition status = file.loadFile(OFFilename(dicomdir.c_str()), EXS_Unknown,
-                                             EGL_noChange, DCM_MaxReadLength, ERM_autoDetect);
-    if (status.bad()) {
-        const std::string reason = std::string("cannot read DICOMDIR: ") + status.text();
-        if (topLevel)
-            throw core::Error(dicomdir.string(), reason);
-        state.errors.push_back({dicomdir.string(), reason});
+    const DicomdirRecords loaded = loadDicomdirRecords(dicomdir, file);
+    if (!loaded.damage.empty()) {
+        // Nothing before the damage: for the top-level DICOMDIR the scan has nothing to show.
+        if (loaded.usable == 0 && topLevel)
+            throw core::Error(dicomdir.string(), loaded.damage);
+        state.errors.push_back(
+            {dicomdir.string(), loaded.usable == 0
+                                    ? loaded.damage
+                                    : loaded.damage + "; the " + std::to_string(loaded.usable) +
+                                          " records before the damage are used"});
+    }
+    if (loaded.usable == 0) {
+        if (loaded.damage.empty())
+            state.warnings.push_back("DICOMDIR " + dicomdir.string() + " has no directory records");
         return;
     }
-    DcmDataset* dataset = file.getDataset();
-    DcmSequenceOfItems* records = nullptr;
-    if (dataset == nullptr ||
-        dataset->findAndGetSequence(DCM_DirectoryRecordSequence, records).bad() ||
-        records == nullptr || records->card() == 0) {
-        state.warnings.push_back("DICOMDIR " + dicomdir.string() + " has no directory records");
-        return;
-    }
+    DcmSequenceOfItems* records = loaded.records;
     // The records are walked as a flat list rather than through the offset links: the offsets
     // are often absent, stale after copying, or the records reordered, while every record that
     // matters carries its ReferencedFileID. The hierarchy comes from the image headers.
@@ -324,7 +352,7 @@ void walkDicomdirRecords(const fs::path& dicomdir, DicomdirState& state, int dep
     ListedSeries context;
     std::string currentSeries;
     bool sawPatient = false, sawStudy = false;
-    const unsigned long count = records->card();
+    const unsigned long count = loaded.usable;
     for (unsigned long i = 0; i < count; ++i) {
         DcmItem* record = records->getItem(i);
         if (record == nullptr)
@@ -439,8 +467,10 @@ struct HeaderResults {
 };
 
 // A damaged DICOMDIR (an element length pointing past its value) makes DCMTK throw standard
-// exceptions (std::out_of_range) from inside its parser; they become this file's error, and the
-// records read before it are kept. The top-level DICOMDIR is the whole input: it fails the scan.
+// exceptions (std::out_of_range) from inside its parser; they become this file's error. The
+// records parsed before such an exception cannot be kept: DCMTK attaches the record sequence to
+// the data set only once it is read whole, so a throw inside it leaves none of them reachable.
+// The top-level DICOMDIR is the whole input: it fails the scan.
 void walkDicomdir(const fs::path& dicomdir, DicomdirState& state, int depth, bool topLevel) {
     std::string reason;
     try {
