@@ -4,6 +4,7 @@
 #include "lw/core/error.h"
 #include "lw/core/progress.h"
 #include "lw/kernels/cpu/marching_cubes_cpu.h"
+#include "lw/kernels/cpu/raycast_silhouette_cpu.h"
 #include "lw/render/iso_surface.h"
 #include "lw/render/phantom.h"
 #include "lw/render/raycast_silhouette_renderer.h"
@@ -88,4 +89,16 @@ TEST(Cancel, ZBufferRendererWholeAndChunked) {
 
 TEST(Cancel, RayCastRenderer) {
     expectRendererCancels<render::RayCastSilhouetteRenderer>(0);
+}
+
+TEST(Cancel, MethodTwoCellPreparationStopsAndPreparesNothing) {
+    const volume::Volume volume = phantom();
+    const volume::BrickGrid grid = volume::BrickGrid::build(volume, glm::ivec3(16));
+    core::CancelToken token;
+    token.cancel();
+    kernels::cpu::RayCastSilhouetteCpu kernel;
+    EXPECT_FALSE(kernel.prepare(volume, grid, render::kPhantomBoneIso, true, 0, &token));
+    EXPECT_FALSE(kernel.isPrepared());
+    EXPECT_TRUE(kernel.prepare(volume, grid, render::kPhantomBoneIso));
+    EXPECT_GT(kernel.activeCellCount(), 1000u);
 }

@@ -74,7 +74,9 @@ glm::dvec3 octDecode(double x, double y) {
 
 struct RayCastSilhouetteCpu::Impl {
     virtual ~Impl() = default;
-    virtual void findCells(const volume::BrickGrid& grid, bool withCones, unsigned threads) = 0;
+    // False when `cancel` was set (the cell list is then incomplete and must not be used).
+    virtual bool findCells(const volume::BrickGrid& grid, bool withCones, unsigned threads,
+                           const core::CancelToken* cancel) = 0;
     virtual std::size_t extract(const SilhouetteView& view, unsigned threads) = 0;
     virtual bool visible(glm::dvec3 point, const SilhouetteView& view) const = 0;
 
@@ -133,14 +135,16 @@ public:
             m_cellScale.z = 1.0;
     }
 
-    void findCells(const volume::BrickGrid& grid, bool withCones, unsigned threads) override {
+    bool findCells(const volume::BrickGrid& grid, bool withCones, unsigned threads,
+                   const core::CancelToken* cancel) override {
+        const auto cancelled = [cancel] { return cancel && cancel->isCancelled(); };
         cells.clear();
         cones.clear();
         chunkStarts.assign(1, 0);
         activeBricks = 0;
         buildMacroGrid(threads);
         if (m_dims.cx < 1 || m_dims.cy < 1 || m_dims.cz < 1)
-            return;
+            return true;
         if (voxelIndex(m_dims.cx, m_dims.cy, m_dims.cz) > std::numeric_limits<std::uint32_t>::max())
             throw core::Error("method 2", "volumes of more than 2^32 voxels are not supported");
         const std::vector<int> active = grid.activeBricks(m_iso);
@@ -164,6 +168,8 @@ public:
                 const auto& brick = grid.bricks()[std::size_t(units[u].brick)];
                 auto& list = unitCells[u];
                 list.clear();
+                if (cancelled())
+                    return; // the remaining layers are skipped; the caller drops the result
                 const int z = units[u].z;
                 // Classify the voxel rows of layers z and z+1 first (a branch-free count the
                 // compiler vectorises): a cell row whose four voxel rows are all outside or all
@@ -220,6 +226,8 @@ public:
         // Release the per-layer lists of a large volume: the cache is the flat list only.
         unitCells.clear();
         unitCells.shrink_to_fit();
+        if (cancelled())
+            return false;
         if (withCones) {
             cones.resize(cells.size());
             chunkTriangleTotal.assign(chunkStarts.size() - 1, 0);
@@ -235,6 +243,7 @@ public:
                 },
                 threads);
         }
+        return true;
     }
 
     void buildMacroGrid(unsigned threads) {
@@ -597,13 +606,17 @@ private:
 RayCastSilhouetteCpu::RayCastSilhouetteCpu() = default;
 RayCastSilhouetteCpu::~RayCastSilhouetteCpu() = default;
 
-void RayCastSilhouetteCpu::prepare(const volume::Volume& volume, const volume::BrickGrid& grid,
-                                   double storedIso, bool withNormalCones, unsigned threads) {
+bool RayCastSilhouetteCpu::prepare(const volume::Volume& volume, const volume::BrickGrid& grid,
+                                   double storedIso, bool withNormalCones, unsigned threads,
+                                   const core::CancelToken* cancel) {
     m_impl = volume::dispatchVoxelType(volume.voxelType(), [&](auto tag) -> std::unique_ptr<Impl> {
         using T = decltype(tag);
         return std::make_unique<Engine<T>>(volume, storedIso);
     });
-    m_impl->findCells(grid, withNormalCones, threads);
+    if (m_impl->findCells(grid, withNormalCones, threads, cancel))
+        return true;
+    m_impl.reset(); // half a cell list is no cache
+    return false;
 }
 
 bool RayCastSilhouetteCpu::isPrepared() const {

@@ -91,7 +91,10 @@ SilhouetteFrame RayCastSilhouetteRenderer::render(const Camera& camera,
                                                  : std::max({cells.x, cells.y, cells.z, 1});
         const volume::BrickGrid grid = volume::BrickGrid::build(volume, glm::ivec3(edge));
         // Normal cones pay off only when the cells serve several views (mode a).
-        cache.kernel.prepare(volume, grid, storedIso, cachedMode, settings.threads);
+        cache.valid = false; // until a prepare completes
+        if (!cache.kernel.prepare(volume, grid, storedIso, cachedMode, settings.threads,
+                                  settings.cancel))
+            throw core::Cancelled();
         cache.withCones = cachedMode;
         cache.storedIso = storedIso;
         cache.brickCells = settings.brickCells;

@@ -1,5 +1,7 @@
 #pragma once
 
+#include "lw/core/progress.h"
+
 // Method 2 of the paper on the CPU: silhouette segments straight from the active cells (no mesh
 // kept) and the ray-cast visibility test through the voxel grid.
 
@@ -38,8 +40,10 @@ public:
     // silhouette; the cull is conservative, the segments are the same with or without it.
     // Also builds an occupancy grid of 8^3-cell macro cells that lets the visibility rays jump
     // over empty space.
-    void prepare(const volume::Volume& volume, const volume::BrickGrid& grid, double storedIso,
-                 bool withNormalCones = true, unsigned threads = 0);
+    // `cancel` (optional) is polled between cell layers; false = cancelled, nothing prepared.
+    bool prepare(const volume::Volume& volume, const volume::BrickGrid& grid, double storedIso,
+                 bool withNormalCones = true, unsigned threads = 0,
+                 const core::CancelToken* cancel = nullptr);
     bool isPrepared() const;
     std::size_t activeCellCount() const;
     std::size_t activeBrickCount() const;
