@@ -313,11 +313,18 @@ void ReviewTest::hoverShowsThePatientPosition() {
     QVERIFY(waitSettled(review));
     auto* cursor = review.findChild<QLabel*>("cursorPosition");
     QVERIFY(cursor);
-    QTest::mouseMove(&review.isoPanel(), review.isoPanel().rect().center());
+    // Synthetic moves, not QTest::mouseMove: that warps the real pointer, which another test's
+    // window on the same X server may be under when tests run in parallel.
+    const auto hover = [&](QPoint at) {
+        QMouseEvent move(QEvent::MouseMove, QPointF(at), review.isoPanel().mapToGlobal(QPointF(at)),
+                         Qt::NoButton, Qt::NoButton, {});
+        QApplication::sendEvent(&review.isoPanel(), &move);
+    };
+    hover(review.isoPanel().rect().center());
     QTRY_VERIFY_WITH_TIMEOUT(!cursor->text().isEmpty(), 3000);
     QVERIFY2(cursor->text().contains("A 18.") || cursor->text().contains("A 19."),
              qPrintable(cursor->text()));
-    QTest::mouseMove(&review.isoPanel(), QPoint(3, 3)); // background: no surface there
+    hover(QPoint(3, 3)); // background: no surface there
     QTRY_VERIFY_WITH_TIMEOUT(cursor->text().isEmpty(), 3000);
 }
 
