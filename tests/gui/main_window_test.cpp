@@ -47,6 +47,15 @@ QString importAndFindSeries(MainWindow& window, const QString& path) {
     return {};
 }
 
+// Shows the window and opens `path` in a review, waiting for its first frame.
+bool showAndOpen(MainWindow& window, const QString& path) {
+    window.show();
+    if (!QTest::qWaitForWindowExposed(&window))
+        return false;
+    window.openPath(path);
+    return waitForReview(window);
+}
+
 MainWindowOptions isolatedOptions(const QTemporaryDir& dir) {
     MainWindowOptions options;
     options.databasePath = dir.filePath("studies.sqlite");
@@ -170,10 +179,7 @@ void MainWindowTest::cancelOpening() {
 void MainWindowTest::settingsApplyToOpenReviews() {
     QTemporaryDir dir;
     MainWindow window(isolatedOptions(dir));
-    window.show();
-    QVERIFY(QTest::qWaitForWindowExposed(&window));
-    window.openPath("phantom:48");
-    QVERIFY(waitForReview(window));
+    QVERIFY(showAndOpen(window, "phantom:48"));
     ReviewSettings settings = window.settings();
     settings.method = lw::render::SilhouetteMethod::RayCastVisibility;
     settings.background = QColor(20, 20, 40);
@@ -196,10 +202,7 @@ void MainWindowTest::settingsApplyToOpenReviews() {
 void MainWindowTest::droppingAFolderOnAReviewImportsIt() {
     QTemporaryDir dir;
     MainWindow window(isolatedOptions(dir));
-    window.show();
-    QVERIFY(QTest::qWaitForWindowExposed(&window));
-    window.openPath("phantom:32");
-    QVERIFY(waitForReview(window));
+    QVERIFY(showAndOpen(window, "phantom:32"));
     QSignalSpy finished(&window.browser(), &StudyBrowser::importFinished);
     QMimeData data;
     data.setUrls({QUrl::fromLocalFile(demoStudy())});
@@ -227,10 +230,7 @@ void MainWindowTest::exportPng() {
     QFETCH(int, widthFactor);
     QTemporaryDir dir;
     MainWindow window(isolatedOptions(dir));
-    window.show();
-    QVERIFY(QTest::qWaitForWindowExposed(&window));
-    window.openPath("phantom:48");
-    QVERIFY(waitForReview(window));
+    QVERIFY(showAndOpen(window, "phantom:48"));
     ReviewWidget& review = *window.currentReview();
     const QSize screen = review.silhouettePanel().renderSize();
     const QString path = dir.filePath("review.png");
@@ -254,10 +254,7 @@ void MainWindowTest::exportPng() {
 void MainWindowTest::exportIntoAMissingFolderSaysWhy() {
     QTemporaryDir dir;
     MainWindow window(isolatedOptions(dir));
-    window.show();
-    QVERIFY(QTest::qWaitForWindowExposed(&window));
-    window.openPath("phantom:32");
-    QVERIFY(waitForReview(window));
+    QVERIFY(showAndOpen(window, "phantom:32"));
     const QString path = dir.filePath("no/such/folder/review.png");
     const QString error =
         exportReviewPng(*window.currentReview(), path, QSize(200, 150), ExportLayout::SideBySide);
