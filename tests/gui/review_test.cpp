@@ -5,6 +5,7 @@
 #include "lw/core/image_compare.h"
 #include "lw/core/png_io.h"
 #include "review/iso_control.h"
+#include "review/qt_image.h"
 #include "review/review_panel.h"
 #include "review/review_widget.h"
 #include "review/volume_loader.h"
@@ -48,14 +49,6 @@ ReviewSettings settingsFor(int method, Chunking chunking, PanelGl panelGl = Pane
     settings.chunking = chunking;
     settings.fixedBrickCells = 16;
     return settings;
-}
-
-lw::core::ImageRgba8 toCoreImage(const QImage& image) {
-    const QImage rgba = image.convertToFormat(QImage::Format_RGBA8888);
-    lw::core::ImageRgba8 result(rgba.width(), rgba.height());
-    for (int y = 0; y < rgba.height(); ++y)
-        std::memcpy(result.row(y), rgba.constScanLine(y), std::size_t(rgba.width()) * 4);
-    return result;
 }
 
 } // namespace
@@ -287,7 +280,7 @@ void ReviewTest::windowMatchesBaseline() {
     const std::filesystem::path diff =
         std::filesystem::current_path() / "review_phantom64_method3.diff.png";
     if (qEnvironmentVariableIsSet("LINEWORK_UPDATE_BASELINES")) {
-        lw::core::writePng(baseline.string(), toCoreImage(shot), lw::core::PngFormat::Rgb);
+        lw::core::writePng(baseline.string(), lw::gui::toCoreImage(shot), lw::core::PngFormat::Rgb);
         QSKIP("baseline written");
     }
     QVERIFY(lw::test::pixelsDifferentFrom(shot, Qt::white) > shot.width() * shot.height() / 20);
@@ -299,7 +292,7 @@ void ReviewTest::windowMatchesBaseline() {
     // thread tiling), and half of it must be there.
     const lw::core::ContentTolerance tolerance{24, 0.012, 0.5};
     const auto comparison =
-        lw::core::compareWithBaseline(toCoreImage(shot), baseline, tolerance, diff);
+        lw::core::compareWithBaseline(lw::gui::toCoreImage(shot), baseline, tolerance, diff);
     QVERIFY2(comparison.matches, comparison.describe().c_str());
 }
 

@@ -4,6 +4,7 @@
 #include "lw/render/renderer_factory.h"
 #include "lw/render/shaded_surface_cpu.h"
 #include "lw/render/silhouette_gl_renderer.h"
+#include "review/qt_image.h"
 #include "review/review_panel.h"
 
 #include <QPainter>
@@ -11,13 +12,6 @@
 
 namespace lw::gui {
 namespace {
-
-QImage toQImage(const core::ImageRgba8& image) {
-    QImage result(image.width(), image.height(), QImage::Format_RGBA8888);
-    for (int y = 0; y < image.height(); ++y)
-        std::memcpy(result.scanLine(y), image.row(y), std::size_t(image.width()) * 4);
-    return result;
-}
 
 QImage renderIso(const PanelRenderJob& job) {
     const render::Mesh empty;

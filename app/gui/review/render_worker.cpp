@@ -3,6 +3,7 @@
 #include "lw/core/error.h"
 #include "lw/render/shaded_surface_cpu.h"
 #include "lw/render/zbuffer_silhouette_renderer.h"
+#include "review/qt_image.h"
 
 #if LINEWORK_GL
 #include "lw/render/geometry_shader_silhouette_renderer.h"
@@ -15,13 +16,6 @@
 
 namespace lw::gui {
 namespace {
-
-QImage toQImage(const core::ImageRgba8& image) {
-    QImage picture(image.width(), image.height(), QImage::Format_RGBA8888);
-    for (int y = 0; y < image.height(); ++y)
-        std::memcpy(picture.scanLine(y), image.row(y), std::size_t(image.width()) * 4);
-    return picture;
-}
 
 double millisecondsSince(std::chrono::steady_clock::time_point start) {
     return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)

@@ -2,6 +2,7 @@
 
 #include "lw/core/error.h"
 #include "review/camera_controller.h"
+#include "review/qt_image.h"
 
 #include <QElapsedTimer>
 #include <QKeyEvent>
@@ -58,13 +59,6 @@ namespace {
 
 glm::vec4 toVec4(const QColor& colour) {
     return {float(colour.redF()), float(colour.greenF()), float(colour.blueF()), 1.0f};
-}
-
-QImage toQImage(const core::ImageRgba8& image) {
-    QImage result(image.width(), image.height(), QImage::Format_RGBA8888);
-    for (int y = 0; y < image.height(); ++y)
-        std::memcpy(result.scanLine(y), image.row(y), std::size_t(image.width()) * 4);
-    return result;
 }
 
 GlInfo probeGl() {

@@ -3,6 +3,7 @@
 #include "lw/core/error.h"
 #include "lw/core/png_io.h"
 #include "review/panel_render_job.h"
+#include "review/qt_image.h"
 #include "review/review_widget.h"
 
 #include <QComboBox>
@@ -20,18 +21,6 @@
 #include <new>
 
 namespace lw::gui {
-namespace {
-
-core::ImageRgba8 toCoreImage(const QImage& image) {
-    const QImage rgba = image.convertToFormat(QImage::Format_RGBA8888);
-    core::ImageRgba8 result(rgba.width(), rgba.height());
-    for (int y = 0; y < rgba.height(); ++y)
-        std::memcpy(result.row(y), rgba.constScanLine(y), std::size_t(rgba.width()) * 4);
-    return result;
-}
-
-} // namespace
-
 namespace {
 
 // Renders and writes; thread-safe when `job` is used (no review access).
