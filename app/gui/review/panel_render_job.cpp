@@ -14,22 +14,27 @@ namespace lw::gui {
 namespace {
 
 QImage renderIso(const PanelRenderJob& job) {
-    const render::Mesh empty;
-    const render::Mesh& mesh = job.mesh ? *job.mesh : empty;
     const render::SilhouetteGlOptions options = panelGlOptions(PanelKind::Iso, job.appearance);
     if (job.isoOnCpu)
-        return toQImage(
-            render::shadeSurfaceCpu(mesh, job.camera, render::glPanelShading(job.camera, options)));
+        return shadeIsoOnCpu(job.mesh.get(), job.camera, options);
     // A headless context of this thread's own (no Qt context may be current here).
     render::EglHeadlessContext context;
     render::SilhouetteGlRenderer gl;
-    gl.uploadMesh(mesh);
+    gl.uploadMesh(job.mesh ? *job.mesh : render::Mesh());
     QImage image = toQImage(gl.renderImage(job.camera, options));
     gl.release();
     return image;
 }
 
 } // namespace
+
+QImage shadeIsoOnCpu(const render::Mesh* mesh, const render::Camera& camera,
+                     const render::SilhouetteGlOptions& options, unsigned threads,
+                     std::vector<float>* depth) {
+    render::SurfaceShading shading = render::glPanelShading(camera, options);
+    shading.threads = threads;
+    return toQImage(render::shadeSurfaceCpu(mesh ? *mesh : render::Mesh(), camera, shading, depth));
+}
 
 QImage linesToImage(const render::PixelMask& lines, const ReviewSettings& appearance,
                     bool transparent, double lineWidth) {

@@ -7,12 +7,14 @@
 #include "lw/render/camera.h"
 #include "lw/render/iso_surface.h"
 #include "lw/render/pixel_mask.h"
+#include "lw/render/silhouette_gl_renderer.h"
 #include "lw/volume/volume.h"
 #include "settings/review_settings.h"
 
 #include <QImage>
 #include <memory>
 #include <utility>
+#include <vector>
 
 namespace lw::gui {
 
@@ -28,6 +30,11 @@ struct PanelRenderJob {
 
 // Thread-safe: reads only `job`. Throws core::Error when a renderer fails.
 std::pair<QImage, QImage> renderPanelJob(const PanelRenderJob& job);
+// The iso panel shaded by the CPU rasterizer in the GL panel's light and colours (`options`),
+// with its depth for picking when `depth` is given; a null mesh gives the background.
+QImage shadeIsoOnCpu(const render::Mesh* mesh, const render::Camera& camera,
+                     const render::SilhouetteGlOptions& options, unsigned threads = 0,
+                     std::vector<float>* depth = nullptr);
 // Iso left, silhouette right, on the background colour.
 QImage sideBySide(const QImage& iso, const QImage& silhouette, QColor background);
 // A silhouette mask as the panels show it: lines in `lineColour` widened to `lineWidth` pixels by

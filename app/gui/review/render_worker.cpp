@@ -1,8 +1,8 @@
 #include "review/render_worker.h"
 
 #include "lw/core/error.h"
-#include "lw/render/shaded_surface_cpu.h"
 #include "lw/render/zbuffer_silhouette_renderer.h"
+#include "review/panel_render_job.h"
 #include "review/qt_image.h"
 
 #if LINEWORK_GL
@@ -134,13 +134,8 @@ void RenderWorker::renderIsoImage(const FrameRequest& request, FrameResult& resu
     if (request.isoOnCpu) {
         const auto start = std::chrono::steady_clock::now();
         const std::shared_ptr<const render::Mesh> mesh = result.mesh ? result.mesh : m_mesh;
-        const render::Mesh empty;
-        render::SurfaceShading shading =
-            render::glPanelShading(request.isoCamera, request.isoOptions);
-        shading.threads = request.settings.threads;
-        const core::ImageRgba8 image = render::shadeSurfaceCpu(
-            mesh ? *mesh : empty, request.isoCamera, shading, &result.isoDepth);
-        result.isoImage = toQImage(image);
+        result.isoImage = shadeIsoOnCpu(mesh.get(), request.isoCamera, request.isoOptions,
+                                        request.settings.threads, &result.isoDepth);
         result.isoCamera = request.isoCamera;
         result.isoRenderMs = millisecondsSince(start);
         return;

@@ -46,6 +46,8 @@ struct GlInfo {
     bool available = false;
     bool software = false; // llvmpipe, softpipe, swrast
     QString renderer;
+    // Draw on the CPU rather than through this OpenGL (none, or a software rasterizer).
+    bool prefersCpu() const { return !available || software; }
 };
 const GlInfo& displayGlInfo();
 

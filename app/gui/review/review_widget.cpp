@@ -179,7 +179,7 @@ bool ReviewWidget::drawsInPanels() const {
     case PanelGl::Auto:
         break;
     }
-    return displayGlInfo().available && !displayGlInfo().software;
+    return !displayGlInfo().prefersCpu();
 }
 
 bool ReviewWidget::methodOneInPanel() const {
@@ -254,7 +254,7 @@ void ReviewWidget::requestFrame(bool newIso) {
         const QSize isoSize = m_isoPanel->renderSize();
         request.isoCamera = m_camera.camera(isoSize.width(), isoSize.height());
         request.isoOptions = panelGlOptions(PanelKind::Iso, m_settings);
-        request.isoOnCpu = !displayGlInfo().available || displayGlInfo().software;
+        request.isoOnCpu = displayGlInfo().prefersCpu();
     }
     if (!request.wantMesh && !request.wantSilhouette && !request.wantIsoImage)
         return; // method 1 S in mode a: the panels redraw the cached mesh themselves
@@ -340,7 +340,7 @@ QString ReviewWidget::statusText() const {
     } else {
         text += tr(" · silhouette: extract %1, segments %2, visibility %3, draw %4 ms")
                     .arg(ms(t.extractMs), ms(t.silhouetteMs), ms(t.visibilityMs), ms(t.drawMs));
-        const bool cpu = !displayGlInfo().available || displayGlInfo().software;
+        const bool cpu = displayGlInfo().prefersCpu();
         text += (m_drawsInPanels ? tr(" · GL iso %1 ms")
                  : cpu           ? tr(" · iso shaded on the CPU %1 ms")
                                  : tr(" · GL iso on the worker %1 ms"))
@@ -376,7 +376,7 @@ PanelRenderJob ReviewWidget::renderJob(QSize size) const {
     job.appearance.lineWidth = std::max(1.0, m_settings.lineWidth * scale);
     job.iso = m_iso;
     job.brickCells = brickCells();
-    job.isoOnCpu = !displayGlInfo().available || displayGlInfo().software;
+    job.isoOnCpu = displayGlInfo().prefersCpu();
     return job;
 }
 

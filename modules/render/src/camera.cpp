@@ -217,6 +217,10 @@ glm::dvec3 Camera::unproject(glm::dvec2 pixel, double ndcDepth) const {
     return ray.at(z / glm::dot(ray.direction, m_forward));
 }
 
+glm::dvec3 Camera::panelLightDirection() const {
+    return glm::normalize(-m_forward + 0.45 * m_up - 0.30 * m_right);
+}
+
 double Camera::pixelFootprint(double depth) const {
     return isOrthographic() ? 2.0 * m_halfHeight / m_height : 2.0 * depth * m_halfHeight / m_height;
 }

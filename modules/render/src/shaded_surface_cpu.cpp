@@ -61,9 +61,7 @@ SurfaceShading glPanelShading(const Camera& camera, const SilhouetteGlOptions& o
     shading.diffuse = options.material.y;
     shading.specular = options.material.z;
     shading.shininess = options.material.w;
-    // The GL renderer's light: above and left of the eye.
-    shading.lightDirection =
-        glm::normalize(-camera.forward() + 0.45 * camera.up() - 0.30 * camera.right());
+    shading.lightDirection = camera.panelLightDirection(); // the GL renderer's light
     return shading;
 }
 

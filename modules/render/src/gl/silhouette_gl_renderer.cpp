@@ -339,10 +339,7 @@ SilhouetteGlStats SilhouetteGlRenderer::render(const Camera& camera,
     const glm::dvec3 toViewer = -camera.forward();
     const glm::vec4 viewer = camera.isOrthographic() ? glm::vec4(glm::vec3(toViewer), 0.0f)
                                                      : glm::vec4(glm::vec3(camera.eye()), 1.0f);
-    // A light above and left of the eye, so the shading shows the surface's relief (a pure
-    // headlight flattens it).
-    const glm::vec3 light =
-        glm::normalize(glm::vec3(toViewer + 0.45 * camera.up() - 0.30 * camera.right()));
+    const glm::vec3 light(camera.panelLightDirection());
     return render(camera.viewProjectionMatrixF(), viewer, light, camera.width(), camera.height(),
                   options);
 }

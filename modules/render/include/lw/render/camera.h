@@ -110,6 +110,10 @@ public:
     // buffer stores it, mapped from [0, 1] to [-1, 1]): the inverse of project().
     glm::dvec3 unproject(glm::dvec2 pixel, double ndcDepth) const;
 
+    // The shaded panels' key light (GL and CPU alike): unit direction toward a light above and
+    // left of the eye, so the shading shows the surface's relief (a pure headlight flattens it).
+    glm::dvec3 panelLightDirection() const;
+
     // Size of one pixel in mm on the plane at `depth` in front of the eye (constant for ortho).
     double pixelFootprint(double depth) const;
     // Visible height in mm on the plane through the target.
