@@ -360,7 +360,7 @@ std::optional<glm::dvec3> ReviewPanel::pickPatientPoint(QPoint position) {
     try {
         uploadPendingMesh();
         m_gl.render(camera, panelGlOptions(m_kind, m_appearance));
-        depth = m_gl.readDepth()[std::size_t(y) * std::size_t(size.width()) + std::size_t(x)];
+        depth = m_gl.readDepthAt(x, y);
     } catch (const core::Error&) {
         depth = 1.0f;
     }

@@ -448,8 +448,9 @@ namespace {
 
 // glReadPixels of the whole framebuffer object into tightly packed client memory, whatever pack
 // state the caller left set (restored afterwards).
-void readFramebuffer(unsigned framebuffer, int width, int height, GLenum format, GLenum type,
-                     void* pixels, const char* what) {
+// The rectangle (x, y, width, height) in GL's bottom-up rows.
+void readFramebuffer(unsigned framebuffer, int x, int y, int width, int height, GLenum format,
+                     GLenum type, void* pixels, const char* what) {
     const FramebufferBindingGuard bindingGuard;
     glBindFramebuffer(GL_READ_FRAMEBUFFER, framebuffer);
     if (format != GL_DEPTH_COMPONENT)
@@ -459,7 +460,7 @@ void readFramebuffer(unsigned framebuffer, int width, int height, GLenum format,
     glGetIntegerv(GL_PIXEL_PACK_BUFFER_BINDING, &packBuffer);
     glPixelStorei(GL_PACK_ALIGNMENT, 1);
     glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
-    glReadPixels(0, 0, width, height, format, type, pixels);
+    glReadPixels(x, y, width, height, format, type, pixels);
     glPixelStorei(GL_PACK_ALIGNMENT, alignment);
     glBindBuffer(GL_PIXEL_PACK_BUFFER, GLuint(packBuffer));
     gl::checkGlError(what);
@@ -471,8 +472,8 @@ core::ImageRgba8 SilhouetteGlRenderer::readImage() const {
     if (!m_framebuffer)
         throw core::Error("GL read-back", "nothing has been rendered yet");
     core::ImageRgba8 image(m_width, m_height);
-    readFramebuffer(m_framebuffer, m_width, m_height, GL_RGBA, GL_UNSIGNED_BYTE, image.bytes(),
-                    "SilhouetteGlRenderer::readImage");
+    readFramebuffer(m_framebuffer, 0, 0, m_width, m_height, GL_RGBA, GL_UNSIGNED_BYTE,
+                    image.bytes(), "SilhouetteGlRenderer::readImage");
     image.flipRows(); // GL's first row is the bottom one
     return image;
 }
@@ -481,13 +482,24 @@ std::vector<float> SilhouetteGlRenderer::readDepth() const {
     if (!m_framebuffer)
         throw core::Error("GL depth read-back", "nothing has been rendered yet");
     std::vector<float> depth(std::size_t(m_width) * std::size_t(m_height));
-    readFramebuffer(m_framebuffer, m_width, m_height, GL_DEPTH_COMPONENT, GL_FLOAT, depth.data(),
-                    "SilhouetteGlRenderer::readDepth");
+    readFramebuffer(m_framebuffer, 0, 0, m_width, m_height, GL_DEPTH_COMPONENT, GL_FLOAT,
+                    depth.data(), "SilhouetteGlRenderer::readDepth");
     // GL's first row is the bottom one; callers index top row first like the images.
     for (int y = 0; y < m_height / 2; ++y)
         std::swap_ranges(depth.begin() + std::ptrdiff_t(y) * m_width,
                          depth.begin() + std::ptrdiff_t(y + 1) * m_width,
                          depth.begin() + std::ptrdiff_t(m_height - 1 - y) * m_width);
+    return depth;
+}
+
+float SilhouetteGlRenderer::readDepthAt(int x, int y) const {
+    if (!m_framebuffer)
+        throw core::Error("GL depth read-back", "nothing has been rendered yet");
+    if (x < 0 || y < 0 || x >= m_width || y >= m_height)
+        return 1.0f;
+    float depth = 1.0f;
+    readFramebuffer(m_framebuffer, x, m_height - 1 - y, 1, 1, GL_DEPTH_COMPONENT, GL_FLOAT, &depth,
+                    "SilhouetteGlRenderer::readDepthAt");
     return depth;
 }
 

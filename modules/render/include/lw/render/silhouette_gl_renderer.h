@@ -111,6 +111,9 @@ public:
     // The last frame's depth buffer in [0, 1] (1 = nothing drawn), top row first: picking a
     // pixel's surface point with Camera::unproject (depth * 2 - 1 is its NDC depth).
     std::vector<float> readDepth() const;
+    // One pixel of it (x right, y down from the top row); 1 outside the frame. Picking under the
+    // mouse reads this rather than the whole buffer.
+    float readDepthAt(int x, int y) const;
     // render() + readImage().
     core::ImageRgba8 renderImage(const Camera& camera, const SilhouetteGlOptions& options = {});
 
