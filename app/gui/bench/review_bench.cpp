@@ -7,11 +7,11 @@
 //
 // Run under a display (xvfb-run -a -s "-screen 0 1920x1080x24"). Prints one line per figure.
 #include "bench/bench_support.h"
+#include "bench/stall_monitor.h"
 #include "browser/study_browser.h"
 #include "review/camera_controller.h"
 #include "review/review_panel.h"
 #include "review/review_widget.h"
-#include "review/stall_monitor.h"
 #include "shell/main_window.h"
 #include "shell/png_export.h"
 

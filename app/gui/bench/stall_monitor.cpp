@@ -1,4 +1,4 @@
-#include "review/stall_monitor.h"
+#include "bench/stall_monitor.h"
 
 #include <algorithm>
 
