@@ -45,7 +45,7 @@ render::SilhouetteGlOptions panelGlOptions(PanelKind kind, const ReviewSettings&
 struct GlInfo {
     bool available = false;
     bool software = false; // llvmpipe, softpipe, swrast
-    QString renderer;
+    QString renderer;      // GL_RENDERER, for the settings page
     // Draw on the CPU rather than through this OpenGL (none, or a software rasterizer).
     bool prefersCpu() const { return !available || software; }
 };

@@ -306,7 +306,6 @@ void ReviewWidget::takeFrame(const std::shared_ptr<const FrameResult>& result) {
 void ReviewWidget::showSilhouette(const FrameResult& result) {
     const render::SilhouetteFrame& frame = *result.silhouette;
     m_status.segments = frame.segments;
-    m_status.silhouettePixels = frame.lines.count();
     m_status.silhouetteTimes = frame.times;
     if (!result.mesh)
         m_status.triangles = std::max(m_status.triangles, frame.triangles);

@@ -43,7 +43,6 @@ struct ReviewSource {
 struct ReviewStatus {
     std::size_t triangles = 0;
     std::size_t segments = 0;
-    std::size_t silhouettePixels = 0;
     double isoShown = 0.0; // the iso-value of the mesh on screen
     double extractMs = 0.0;
     render::StageTimes silhouetteTimes;

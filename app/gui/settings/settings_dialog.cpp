@@ -1,6 +1,7 @@
 #include "settings/settings_dialog.h"
 
 #include "lw/core/error.h"
+#include "review/review_panel.h"
 
 #include <QButtonGroup>
 #include <QCheckBox>
@@ -163,6 +164,13 @@ QWidget* SettingsDialog::makeAppearancePage() {
                          tr("In the panels' own OpenGL context"),
                          tr("On the render thread (keeps the window responsive)")});
     form->addRow(tr("Draw with OpenGL:"), m_panelGl);
+    const GlInfo& gl = displayGlInfo();
+    auto* glNote =
+        new QLabel(gl.available ? tr("This display's OpenGL: %1%2")
+                                      .arg(gl.renderer, gl.software ? tr(" (software)") : QString())
+                                : tr("This display offers no OpenGL 4.5 core context"));
+    glNote->setWordWrap(true);
+    form->addRow(QString(), glNote);
 
     connect(m_lineWidth, &QDoubleSpinBox::valueChanged, this, [this] { readControls(); });
     connect(m_silhouetteOnIso, &QCheckBox::toggled, this, [this] { readControls(); });
