@@ -40,14 +40,34 @@ TEST(RendererFactory, BadValuesNameTheOption) {
     EXPECT_NE(backend.find("cpu, cuda or auto"), std::string::npos) << backend;
 }
 
-TEST(RendererFactory, CudaIsNotBuiltYet) {
+TEST(RendererFactory, CudaWithoutADeviceSaysWhy) {
+    const CudaAvailability cuda = cudaAvailability();
+    if (cuda.available)
+        GTEST_SKIP() << "a CUDA device is present: " << cuda.deviceName;
+    EXPECT_FALSE(cuda.reason.empty());
     for (const SilhouetteMethod method :
          {SilhouetteMethod::RayCastVisibility, SilhouetteMethod::ZBuffer}) {
         const std::string message =
             errorOf([&] { createSilhouetteRenderer(method, Backend::Cuda); });
         EXPECT_NE(message.find("--backend cuda"), std::string::npos) << message;
-        EXPECT_NE(message.find("CUDA backend is not built yet"), std::string::npos) << message;
+        EXPECT_NE(message.find(cuda.reason), std::string::npos) << message;
     }
+}
+
+TEST(RendererFactory, CudaOnlyWhereTheMethodHasKernels) {
+    const CudaAvailability cuda = cudaAvailability();
+    if (!cuda.available)
+        GTEST_SKIP() << "no CUDA device: " << cuda.reason;
+    const std::string message = errorOf(
+        [&] { createSilhouetteRenderer(SilhouetteMethod::RayCastVisibility, Backend::Cuda); });
+    EXPECT_NE(message.find("no CUDA implementation"), std::string::npos) << message;
+    std::string note;
+    auto m3 = createSilhouetteRenderer(SilhouetteMethod::ZBuffer, Backend::Auto, &note);
+    EXPECT_EQ(m3->backendName(), "cuda");
+    EXPECT_EQ(note, "auto: CUDA on " + cuda.deviceName);
+    auto m2 = createSilhouetteRenderer(SilhouetteMethod::RayCastVisibility, Backend::Auto, &note);
+    EXPECT_EQ(m2->backendName(), "cpu");
+    EXPECT_EQ(note, "auto: method 2 has no CUDA implementation yet, using CPU");
 }
 
 TEST(RendererFactory, CpuMethodsAndTheAutoNote) {
@@ -58,11 +78,14 @@ TEST(RendererFactory, CpuMethodsAndTheAutoNote) {
     EXPECT_EQ(m2->backendName(), "cpu");
     EXPECT_TRUE(note.empty()) << "an explicit backend needs no note";
 
+    const CudaAvailability cuda = cudaAvailability();
+    if (cuda.available)
+        return; // auto picks CUDA there (CudaOnlyWhereTheMethodHasKernels)
     auto m3 = createSilhouetteRenderer(SilhouetteMethod::ZBuffer, Backend::Auto, &note);
     ASSERT_NE(m3, nullptr);
     EXPECT_EQ(m3->method(), SilhouetteMethod::ZBuffer);
     EXPECT_EQ(m3->backendName(), "cpu");
-    EXPECT_EQ(note, "auto: no CUDA backend in this build, using CPU");
+    EXPECT_EQ(note, "auto: " + cuda.reason + ", using CPU");
 }
 
 #if !LINEWORK_GL

@@ -15,10 +15,6 @@ namespace {
 constexpr std::size_t kTrianglesPerChunk = 16384;
 constexpr std::size_t kVerticesPerChunk = 32768;
 constexpr std::size_t kRowsPerChunk = 16;
-// Pixels further off screen than this are not representable in the fixed-point edge functions
-// without overflow risk; such vertices only occur with a camera that does not frame the data.
-constexpr double kMaxPixelCoordinate = 1 << 20;
-
 std::size_t chunkCount(std::size_t items, std::size_t perChunk) {
     return (items + perChunk - 1) / perChunk;
 }
@@ -27,25 +23,9 @@ std::size_t chunkCount(std::size_t items, std::size_t perChunk) {
 
 namespace {
 
-// Round half away from zero without a libm call (the default x86-64 target has no roundsd).
-inline std::int32_t roundToInt(double v) {
-    return std::int32_t(v + (v >= 0.0 ? 0.5 : -0.5));
-}
-
-inline bool projectInline(const ViewTransform& view, const glm::dvec3& world, glm::dvec2& pixel,
+inline bool projectInline(const ScreenProjection& view, const glm::dvec3& world, glm::dvec2& pixel,
                           float& key, float& invW) {
-    const glm::dmat4& m = view.viewProjection;
-    const double cw = m[0][3] * world.x + m[1][3] * world.y + m[2][3] * world.z + m[3][3];
-    if (!(cw > 0.0))
-        return false;
-    const double w = 1.0 / cw;
-    const double cx = m[0][0] * world.x + m[1][0] * world.y + m[2][0] * world.z + m[3][0];
-    const double cy = m[0][1] * world.x + m[1][1] * world.y + m[2][1] * world.z + m[3][1];
-    const double cz = m[0][2] * world.x + m[1][2] * world.y + m[2][2] * world.z + m[3][2];
-    pixel = {0.5 * (cx * w + 1.0) * view.width, 0.5 * (1.0 - cy * w) * view.height};
-    key = float(1.0 - cz * w);
-    invW = float(w);
-    return true;
+    return projectToScreen(view, world.x, world.y, world.z, pixel.x, pixel.y, key, invW);
 }
 
 } // namespace
@@ -53,7 +33,7 @@ inline bool projectInline(const ViewTransform& view, const glm::dvec3& world, gl
 bool projectPoint(const ViewTransform& view, glm::dvec3 world, glm::dvec2& pixel, float& key,
                   float* invW) {
     float w = 0.0f;
-    const bool ok = projectInline(view, world, pixel, key, w);
+    const bool ok = projectInline(view.projection(), world, pixel, key, w);
     if (invW)
         *invW = w;
     return ok;
@@ -71,6 +51,7 @@ void projectVertices(const glm::vec3* positions, const glm::vec3* normals, std::
                      const ViewTransform& view, ScreenVertices& out, unsigned threads) {
     out.resize(count);
     const glm::vec3 eyeOrDirection = glm::vec3(view.orthographic ? view.toViewer : view.eye);
+    const ScreenProjection projection = view.projection();
     core::parallelFor(
         chunkCount(count, kVerticesPerChunk),
         [&](std::size_t chunk) {
@@ -78,12 +59,8 @@ void projectVertices(const glm::vec3* positions, const glm::vec3* normals, std::
             for (std::size_t i = chunk * kVerticesPerChunk; i < end; ++i) {
                 glm::dvec2 pixel;
                 float key = 0.0f, invW = 0.0f;
-                const bool ok = projectInline(view, glm::dvec3(positions[i]), pixel, key, invW) &&
-                                std::abs(pixel.x) < kMaxPixelCoordinate &&
-                                std::abs(pixel.y) < kMaxPixelCoordinate;
-                out.xy[i] = ok ? glm::ivec2(roundToInt(pixel.x * double(kSubpixelScale)),
-                                            roundToInt(pixel.y * double(kSubpixelScale)))
-                               : glm::ivec2(kInvalidVertex);
+                const bool ok = projectInline(projection, glm::dvec3(positions[i]), pixel, key, invW);
+                out.xy[i] = snapVertex(ok, pixel.x, pixel.y);
                 out.key[i] = key;
                 out.invW[i] = invW;
                 out.facing[i] =
@@ -207,6 +184,7 @@ void drawClustersDepth(const ScreenVertices& vertices, const std::uint32_t* indi
                        unsigned threads, bool cullBackFaces) {
     const int width = depth.width(), height = depth.height();
     constexpr std::size_t kClustersPerChunk = 64;
+    const ScreenProjection projection = view.projection();
     core::parallelFor(
         chunkCount(clusterCount, kClustersPerChunk),
         [&](std::size_t chunk) {
@@ -222,7 +200,7 @@ void drawClustersDepth(const ScreenVertices& vertices, const std::uint32_t* indi
                                        (corner & 4) ? cluster.max.z : cluster.min.z);
                     glm::dvec2 pixel;
                     float key = 0.0f, invW = 0.0f;
-                    if (!projectInline(view, p, pixel, key, invW)) {
+                    if (!projectInline(projection, p, pixel, key, invW)) {
                         x0 = y0 = -1e300;
                         x1 = y1 = 1e300;
                         break;
@@ -288,6 +266,7 @@ void findSilhouetteSegments(const glm::vec3* positions, const ScreenVertices& ve
                             const std::uint32_t* indices, std::size_t triangleCount,
                             const ViewTransform& view, SegmentScratch& scratch,
                             std::vector<ScreenSegment>& out, unsigned threads) {
+    const ScreenProjection projection = view.projection();
     const std::size_t chunks = chunkCount(triangleCount, kTrianglesPerChunk);
     if (scratch.chunks.size() < chunks)
         scratch.chunks.resize(chunks);
@@ -312,8 +291,8 @@ void findSilhouetteSegments(const glm::vec3* positions, const ScreenVertices& ve
                     continue;
                 ScreenSegment segment;
                 float invW = 0.0f;
-                if (!projectInline(view, glm::dvec3(ends.a), segment.a, segment.keyA, invW) ||
-                    !projectInline(view, glm::dvec3(ends.b), segment.b, segment.keyB, invW))
+                if (!projectInline(projection, glm::dvec3(ends.a), segment.a, segment.keyA, invW) ||
+                    !projectInline(projection, glm::dvec3(ends.b), segment.b, segment.keyB, invW))
                     continue;
                 local.push_back(segment);
             }
@@ -332,30 +311,11 @@ void drawSegmentsDepth(const ScreenSegment* segments, std::size_t count, DepthBu
         [&](std::size_t chunk) {
             const std::size_t end = std::min(count, (chunk + 1) * kSegmentsPerChunk);
             for (std::size_t s = chunk * kSegmentsPerChunk; s < end; ++s) {
-                const ScreenSegment& segment = segments[s];
-                // The same stepping as lw::render::rasterizeLine, so methods 2 and 3 set the same
-                // pixels for the same segment; the key is affine along the projected line.
-                const glm::dvec2 delta = segment.b - segment.a;
-                const double steps = std::max(std::abs(delta.x), std::abs(delta.y));
-                if (!(steps < kMaxPixelCoordinate))
-                    continue;
-                const int stepCount = int(std::ceil(steps));
-                for (int i = 0; i <= stepCount; ++i) {
-                    const double t = stepCount == 0 ? 0.0 : double(i) / double(stepCount);
-                    const glm::dvec2 p = segment.a + t * delta;
-                    // floor() without a libm call; p is bounded, so the int conversion is exact.
-                    const int x = int(p.x) - (p.x < double(int(p.x))),
-                              y = int(p.y) - (p.y < double(int(p.y)));
-                    if (x < 0 || y < 0 || x >= width || y >= height)
-                        continue;
-                    const float key = float(double(segment.keyA) +
-                                            t * (double(segment.keyB) - double(segment.keyA)));
-                    // Keys <= 0 lie beyond the far plane; they would read as "empty".
-                    lines.writeMax(std::size_t(y) * std::size_t(width) + std::size_t(x),
-                                   std::max(key, 1e-30f));
-                }
+                forEachSegmentPixel(segments[s], width, height, [&](int x, int y, float key) {
+                    lines.writeMax(std::size_t(y) * std::size_t(width) + std::size_t(x), key);
+                });
             }
-        },
+            },
         threads);
 }
 
@@ -368,24 +328,10 @@ void resolveSilhouette(const DepthBuffer& surface, const DepthBuffer& lines, flo
             const int yEnd =
                 int(std::min<std::size_t>(std::size_t(height), (chunk + 1) * kRowsPerChunk));
             for (int y = int(chunk * kRowsPerChunk); y < yEnd; ++y) {
-                for (int x = 0; x < width; ++x) {
-                    const std::size_t index = std::size_t(y) * std::size_t(width) + std::size_t(x);
-                    const float lineKey = lines.keyAt(index);
-                    if (!(lineKey > 0.0f)) {
-                        mask[index] = 0;
-                        continue;
-                    }
-                    if (!visibility) {
-                        mask[index] = 1;
-                        continue;
-                    }
-                    float farthest = surface.keyAt(index);
-                    for (int ny = std::max(0, y - 1);
-                         ny <= std::min(height - 1, y + 1) && farthest > 0.0f; ++ny)
-                        for (int nx = std::max(0, x - 1); nx <= std::min(width - 1, x + 1); ++nx)
-                            farthest = std::min(farthest, surface.at(nx, ny));
-                    mask[index] = lineKey >= farthest - epsilon ? 1 : 0;
-                }
+                for (int x = 0; x < width; ++x)
+                    mask[std::size_t(y) * std::size_t(width) + std::size_t(x)] =
+                        resolvePixel(surface.bits(), lines.bits(), x, y, width, height, epsilon,
+                                     visibility);
             }
         },
         threads);

@@ -8,6 +8,10 @@
 #if LINEWORK_GL
 #include "lw/render/geometry_shader_silhouette_renderer.h"
 #endif
+#if LINEWORK_CUDA
+#include "cuda/cuda_zbuffer_silhouette_renderer.h"
+#include "lw/kernels/cuda/cuda_device.h"
+#endif
 
 namespace lw::render {
 namespace {
@@ -48,22 +52,58 @@ std::string_view backendName(Backend backend) {
     return "?";
 }
 
+CudaAvailability cudaAvailability() {
+    CudaAvailability availability;
+#if LINEWORK_CUDA
+    // Probed once per process: the answer does not change while it runs, and the first probe
+    // pays for the CUDA context (0.2-0.35 s on an H100).
+    static const kernels::cuda::CudaDeviceInfo device = kernels::cuda::probeCudaDevice();
+    availability.built = true;
+    availability.available = device.available;
+    availability.deviceName = device.name;
+    availability.reason = device.available ? std::string() : device.reason;
+#else
+    availability.reason = "this build has no CUDA backend (no nvcc, or LINEWORK_CUDA=OFF)";
+#endif
+    return availability;
+}
+
 Backend resolveBackend(Backend requested, std::string* backendNote) {
-    if (requested == Backend::Cuda)
-        throw core::Error("--backend cuda", "the CUDA backend is not built yet");
-    if (backendNote) {
-        if (requested == Backend::Auto)
-            *backendNote = "auto: no CUDA backend in this build, using CPU";
-        else
-            backendNote->clear();
+    return resolveBackend(requested, SilhouetteMethod::ZBuffer, backendNote);
+}
+
+Backend resolveBackend(Backend requested, SilhouetteMethod method, std::string* backendNote) {
+    std::string note;
+    Backend chosen = Backend::Cpu;
+    if (requested != Backend::Cpu) {
+        const CudaAvailability cuda = cudaAvailability();
+        const bool hasKernels = method == SilhouetteMethod::ZBuffer;
+        if (requested == Backend::Cuda) {
+            if (!cuda.available)
+                throw core::Error("--backend cuda", cuda.reason);
+            if (!hasKernels)
+                throw core::Error("--backend cuda", "method " + std::to_string(int(method)) +
+                                                        " has no CUDA implementation yet (method 3 has)");
+            chosen = Backend::Cuda;
+        } else if (!cuda.available) {
+            note = "auto: " + cuda.reason + ", using CPU";
+        } else if (!hasKernels) {
+            note = "auto: method " + std::to_string(int(method)) +
+                   " has no CUDA implementation yet, using CPU";
+        } else {
+            chosen = Backend::Cuda;
+            note = "auto: CUDA on " + cuda.deviceName;
+        }
     }
-    return Backend::Cpu;
+    if (backendNote)
+        *backendNote = note;
+    return chosen;
 }
 
 std::unique_ptr<SilhouetteRenderer>
 createSilhouetteRenderer(SilhouetteMethod method, Backend requested, std::string* backendNote) {
     std::string note;
-    resolveBackend(requested, &note);
+    const Backend backend = resolveBackend(requested, method, &note);
     if (!note.empty())
         kLog.info(note);
     if (backendNote)
@@ -83,6 +123,10 @@ createSilhouetteRenderer(SilhouetteMethod method, Backend requested, std::string
     case SilhouetteMethod::RayCastVisibility:
         return std::make_unique<RayCastSilhouetteRenderer>();
     case SilhouetteMethod::ZBuffer:
+#if LINEWORK_CUDA
+        if (backend == Backend::Cuda)
+            return std::make_unique<CudaZBufferSilhouetteRenderer>();
+#endif
         return std::make_unique<ZBufferSilhouetteRenderer>();
     }
     throw core::Error("silhouette method", std::to_string(int(method)) + " is not 1, 2 or 3");

@@ -329,23 +329,25 @@ void ZBufferSilhouetteRenderer::State::renderChunked(const Camera& camera,
     colourPass(camera, settings, frame);
 }
 
+float ZBufferSilhouetteRenderer::depthEpsilon(const Camera& camera, const volume::Volume& volume) {
+    // Depth-key range of the volume's box for this camera.
+    const Aabb box = volumeBounds(volume);
+    double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+    for (int i = 0; i < 8; ++i) {
+        const double key = 1.0 - camera.project(box.corner(i)).ndcDepth;
+        lo = std::min(lo, key);
+        hi = std::max(hi, key);
+    }
+    return float(kRelativeDepthEpsilon * (hi - lo));
+}
+
 void ZBufferSilhouetteRenderer::State::colourPass(const Camera& camera,
                                                   const SilhouetteSettings& settings,
                                                   SilhouetteFrame& frame) {
     const int width = camera.width(), height = camera.height();
     const auto start = Clock::now();
-    float epsilon = 0.0f;
-    if (settings.visibility) {
-        // Depth-key range of the volume's box for this camera.
-        const Aabb box = volumeBounds(*volume);
-        double lo = std::numeric_limits<double>::infinity(), hi = -lo;
-        for (int i = 0; i < 8; ++i) {
-            const double key = 1.0 - camera.project(box.corner(i)).ndcDepth;
-            lo = std::min(lo, key);
-            hi = std::max(hi, key);
-        }
-        epsilon = float(ZBufferSilhouetteRenderer::kRelativeDepthEpsilon * (hi - lo));
-    }
+    const float epsilon =
+        settings.visibility ? ZBufferSilhouetteRenderer::depthEpsilon(camera, *volume) : 0.0f;
     frame.lines = PixelMask(width, height);
     kernels::cpu::resolveSilhouette(surfaceDepth, lineDepth, epsilon, settings.visibility,
                                     frame.lines.pixels().data(), settings.threads);

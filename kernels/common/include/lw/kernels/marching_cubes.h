@@ -6,8 +6,11 @@
 #include "lw/kernels/host_device.h"
 #include "lw/kernels/marching_cubes_tables.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <limits>
+#include <type_traits>
 
 namespace lw::kernels {
 
@@ -27,6 +30,19 @@ inline float insideThreshold(double iso) {
     if (double(t) < iso)
         t = std::nextafter(t, INFINITY);
     return t;
+}
+
+// The inside test `value >= iso` done in the voxel type T: exact, and it lets row scans
+// vectorise. For integer voxels v >= iso  <=>  v >= ceil(iso) (clamped to T's range: callers
+// only classify when some brick has min < iso <= max); for float voxels insideThreshold(iso).
+template <typename T> T voxelInsideThreshold(double iso) {
+    if constexpr (std::is_integral_v<T>) {
+        const double c = std::ceil(iso);
+        return T(std::clamp(c, double(std::numeric_limits<T>::lowest()),
+                            double(std::numeric_limits<T>::max())));
+    } else {
+        return T(insideThreshold(iso));
+    }
 }
 
 // Case index from the eight corner values in diagram order.

@@ -19,9 +19,23 @@ SilhouetteMethod parseSilhouetteMethod(std::string_view text, std::string_view o
 Backend parseBackend(std::string_view text, std::string_view option = "--backend");
 std::string_view backendName(Backend backend);
 
-// The back-end a request runs on: Cpu for Cpu and for Auto (Auto says so in `backendNote`, if
-// given; an explicit choice clears it). Throws core::Error for Cuda until the CUDA back-end
-// exists. Commands call it up front to fail before any work.
+// Whether this build has the CUDA back-end and this machine a device for it (probed once per
+// process; no driver or no GPU is an answer, never a crash).
+struct CudaAvailability {
+    bool built = false;
+    bool available = false;
+    std::string deviceName;
+    std::string reason; // why not available
+};
+CudaAvailability cudaAvailability();
+
+// The back-end a request for `method` runs on. Cpu stays Cpu. Auto is CUDA when the build has it,
+// a device is present and the method has CUDA kernels (method 3 today), else CPU; the note says
+// which and why ("auto: CUDA on NVIDIA H100 80GB HBM3", "auto: no CUDA device ..., using CPU").
+// Cuda throws core::Error("--backend cuda", reason) when it cannot be honoured. Commands call it
+// up front to fail before any work. Without a method: as for method 3.
+Backend resolveBackend(Backend requested, SilhouetteMethod method,
+                       std::string* backendNote = nullptr);
 Backend resolveBackend(Backend requested, std::string* backendNote = nullptr);
 
 // Method 1 -> the GL adapter (GeometryShaderSilhouetteRenderer on a headless EGL context),

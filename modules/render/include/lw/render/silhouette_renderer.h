@@ -19,6 +19,8 @@
 
 namespace lw::render {
 
+struct Mesh; // iso_surface.h
+
 enum class SilhouetteMethod { GeometryShader = 1, RayCastVisibility = 2, ZBuffer = 3 };
 
 // Mode a: the extraction is cached and only the view changes; mode b: re-extract every frame.
@@ -62,6 +64,10 @@ public:
     // Binds a volume; it must outlive the renderer or the next setVolume. Drops cached results.
     virtual void setVolume(const volume::Volume& volume) = 0;
     virtual SilhouetteFrame render(const Camera& camera, const SilhouetteSettings& settings) = 0;
+    // The iso-surface mesh of the last frame, on the host, for the shaded panel (so both panels
+    // show the same surface); null for a method that keeps no mesh (method 2). May extract or
+    // download it on first use after a frame that did not need it on the host.
+    virtual const Mesh* surfaceMesh() const { return nullptr; }
 };
 
 } // namespace lw::render

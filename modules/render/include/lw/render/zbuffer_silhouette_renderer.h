@@ -37,12 +37,15 @@ public:
     // iso-surface panel draws this one, so both panels show the same surface. After an L frame
     // the whole mesh is extracted here, on the first call (L frames themselves never hold it).
     const Mesh& mesh() const;
+    const Mesh* surfaceMesh() const override { return &mesh(); }
 
     // Depth tolerance of the colour pass as a share of the depth-key range of the volume's box
     // for the current camera: 0.2 %, i.e. about one voxel of a 512-voxel-deep volume. It only
     // has to absorb float rounding between the two buffers and the sampling of the surface
     // near a contour; the steep depth at the contour itself is handled by the 3x3 neighbourhood.
     static constexpr double kRelativeDepthEpsilon = 0.002;
+    // That tolerance in depth keys for `camera` (the CPU and CUDA back-ends both use it).
+    static float depthEpsilon(const Camera& camera, const volume::Volume& volume);
 
 private:
     struct State;

@@ -63,18 +63,7 @@ inline VoxelGridSetup voxelGridSetup(const volume::Volume& volume) {
                           g.spacingI(), g.spacingJ(), std::move(sliceOffsets));
 }
 
-// The inside test `value >= iso` done in the voxel type T: exact, and it lets row scans
-// vectorise. For integer voxels v >= iso  <=>  v >= ceil(iso) (clamped to T's range: callers
-// only classify when some brick has min < iso <= max); for float voxels insideThreshold(iso).
-template <typename T> T voxelInsideThreshold(double iso) {
-    if constexpr (std::is_integral_v<T>) {
-        const double c = std::ceil(iso);
-        return T(std::clamp(c, double(std::numeric_limits<T>::lowest()),
-                            double(std::numeric_limits<T>::max())));
-    } else {
-        return T(insideThreshold(iso));
-    }
-}
+using kernels::voxelInsideThreshold;
 
 // Marching cubes of one brick at a time, for method 3's L variant (the paper's chunked method 3
 // exists for devices whose memory cannot hold the whole mesh). The surface of one brick's cells:

@@ -2,17 +2,11 @@
 
 // Method 3's software z-buffer rasterizer on the CPU (the reference for the CUDA kernels).
 //
-// Conventions:
-//   * Screen space is the camera's viewport: x to the right, y down, pixel (i, j) covers
-//     [i, i+1) x [j, j+1) and is sampled at its centre (i + 0.5, j + 0.5).
-//   * Triangle vertices are snapped to a fixed-point grid of 1/256 pixel so the edge functions
-//     are exact integers: two triangles sharing an edge then agree bit for bit on which pixel
-//     centres lie on which side, and the top-left rule gives every centre to exactly one of them.
-//   * Depth is stored as a key = 1 - NDC depth (GL convention, NDC in [-1, 1]): 0 < key < 2 inside
-//     the frustum, larger = nearer, 0 = nothing drawn. NDC depth is an affine function of screen
-//     position over a planar triangle (and along a projected 3D line), so interpolating the key
-//     linearly in screen space is perspective-correct for both projections. This is the paper's
-//     "inverted depth" that makes atomicMax keep the nearest fragment.
+// The per-vertex, per-triangle, per-segment and per-pixel rules (fixed-point snapping, top-left
+// rule, depth key, segment stepping, colour pass) live in lw/kernels/zbuffer_rules.h, shared with
+// the CUDA back-end; this file adds the CPU's buffers, threading and culling around them.
+
+#include "lw/kernels/zbuffer_rules.h"
 
 #include <algorithm>
 #include <atomic>
@@ -24,20 +18,11 @@
 
 namespace lw::kernels::cpu {
 
-inline constexpr int kSubpixelBits = 8;
-inline constexpr std::int64_t kSubpixelScale = std::int64_t(1) << kSubpixelBits;
-// x of a vertex that could not be projected (behind the eye or absurdly far off screen).
-inline constexpr std::int32_t kInvalidVertex = INT32_MIN;
+using kernels::kInvalidVertex;
+using kernels::kSubpixelBits;
+using kernels::kSubpixelScale;
 
-// What the kernels need from a camera (kernels do not depend on the render module).
-struct ViewTransform {
-    glm::dmat4 viewProjection{1.0}; // world (patient mm) -> GL clip space
-    int width = 0;
-    int height = 0;
-    bool orthographic = false;
-    glm::dvec3 eye{0.0};      // perspective: Burns' d = N . (eye - P)
-    glm::dvec3 toViewer{0.0}; // orthographic: d = N . toViewer
-};
+using kernels::ViewTransform;
 
 // One projected point: continuous pixel coordinates and the depth key. Returns false when the
 // point is behind the eye plane.
@@ -94,99 +79,14 @@ private:
     std::vector<std::uint32_t> m_bits;
 };
 
-// Calls fn(px, py, key) for every pixel centre covered by the triangle (a, b, c) under the
-// top-left rule, key interpolated linearly in screen space. Either winding, unless
-// `cullBackFaces`: then triangles that are clockwise on screen (back-facing for a mesh wound
-// counter-clockwise seen from outside) cover nothing. Degenerate and invalid triangles cover
-// nothing.
+// forEachCoveredPixel (zbuffer_rules.h) for triangle (a, b, c) of `v`.
 template <typename Fn>
 [[gnu::always_inline]] inline void
 forEachCoveredPixel(const ScreenVertices& v, std::uint32_t a, std::uint32_t b, std::uint32_t c,
                     int width, int height, Fn&& fn, bool cullBackFaces = false,
                     const std::uint8_t* pixelFilter = nullptr) {
-    const glm::ivec2 pa = v.xy[a], pb = v.xy[b], pc = v.xy[c];
-    std::int64_t x0 = pa.x, y0 = pa.y, x1 = pb.x, y1 = pb.y, x2 = pc.x, y2 = pc.y;
-    if (x0 == kInvalidVertex || x1 == kInvalidVertex || x2 == kInvalidVertex)
-        return;
-    // The pixel-centre grid: centre i sits at i * 256 + 128. Most triangles of a fine mesh hold
-    // no centre at all; the bounding box rejects them before any setup.
-    const std::int64_t half = kSubpixelScale / 2;
-    const std::int64_t minX = std::min({x0, x1, x2}), maxX = std::max({x0, x1, x2});
-    const std::int64_t minY = std::min({y0, y1, y2}), maxY = std::max({y0, y1, y2});
-    std::int64_t i0 = (minX - half + kSubpixelScale - 1) >> kSubpixelBits; // ceil
-    std::int64_t i1 = (maxX - half) >> kSubpixelBits;                      // floor
-    std::int64_t j0 = (minY - half + kSubpixelScale - 1) >> kSubpixelBits;
-    std::int64_t j1 = (maxY - half) >> kSubpixelBits;
-    i0 = std::max<std::int64_t>(i0, 0);
-    j0 = std::max<std::int64_t>(j0, 0);
-    i1 = std::min<std::int64_t>(i1, width - 1);
-    j1 = std::min<std::int64_t>(j1, height - 1);
-    if (i0 > i1 || j0 > j1)
-        return;
-    if (pixelFilter) {
-        // Only pixels the caller will read matter; most triangles cover one or two pixels, so
-        // checking the box is far cheaper than setting the triangle up.
-        bool wanted = false;
-        for (std::int64_t j = j0; j <= j1 && !wanted; ++j)
-            for (std::int64_t i = i0; i <= i1; ++i)
-                if (pixelFilter[j * width + i]) {
-                    wanted = true;
-                    break;
-                }
-        if (!wanted)
-            return;
-    }
-    // Edge function of a -> b at p: (b.y - a.y)(p.x - a.x) - (b.x - a.x)(p.y - a.y); with y down
-    // it is positive on the interior of a triangle whose area E_01(v2) is positive.
-    std::int64_t area = (y1 - y0) * (x2 - x0) - (x1 - x0) * (y2 - y0);
-    if (area == 0 || (area < 0 && cullBackFaces))
-        return;
-    float k0 = v.key[a], k1 = v.key[b], k2 = v.key[c];
-    if (area < 0) {
-        std::swap(x1, x2);
-        std::swap(y1, y2);
-        std::swap(k1, k2);
-        area = -area;
-    }
-    // Top-left rule (y down, this winding): an edge is "left" when it runs downward (dy > 0),
-    // "top" when horizontal and running to the left (dy == 0, dx < 0). Centres exactly on such an
-    // edge are inside; on the other edges they are outside (bias -1 on the integer function).
-    auto bias = [](std::int64_t ax, std::int64_t ay, std::int64_t bx,
-                   std::int64_t by) -> std::int64_t {
-        const std::int64_t dx = bx - ax, dy = by - ay;
-        return (dy > 0 || (dy == 0 && dx < 0)) ? 0 : -1;
-    };
-    const std::int64_t px = i0 * kSubpixelScale + half, py = j0 * kSubpixelScale + half;
-    // w0 belongs to edge 1->2 (weight of vertex 0), w1 to 2->0, w2 to 0->1.
-    std::int64_t row0 = (y2 - y1) * (px - x1) - (x2 - x1) * (py - y1) + bias(x1, y1, x2, y2);
-    std::int64_t row1 = (y0 - y2) * (px - x2) - (x0 - x2) * (py - y2) + bias(x2, y2, x0, y0);
-    std::int64_t row2 = (y1 - y0) * (px - x0) - (x1 - x0) * (py - y0) + bias(x0, y0, x1, y1);
-    const std::int64_t stepX0 = (y2 - y1) * kSubpixelScale, stepY0 = -(x2 - x1) * kSubpixelScale;
-    const std::int64_t stepX1 = (y0 - y2) * kSubpixelScale, stepY1 = -(x0 - x2) * kSubpixelScale;
-    const std::int64_t stepX2 = (y1 - y0) * kSubpixelScale, stepY2 = -(x1 - x0) * kSubpixelScale;
-    // Key as a plane over pixel indices: exact barycentric weights at (i0, j0), constant steps.
-    const double inv = 1.0 / double(area);
-    const double d10 = double(k1) - double(k0), d20 = double(k2) - double(k0);
-    const double e1 = double(row1 - bias(x2, y2, x0, y0)), e2 = double(row2 - bias(x0, y0, x1, y1));
-    const double keyOrigin = double(k0) + (e1 * d10 + e2 * d20) * inv;
-    const double keyStepX = (double(stepX1) * d10 + double(stepX2) * d20) * inv;
-    const double keyStepY = (double(stepY1) * d10 + double(stepY2) * d20) * inv;
-    for (std::int64_t j = j0; j <= j1; ++j) {
-        std::int64_t w0 = row0, w1 = row1, w2 = row2;
-        for (std::int64_t i = i0; i <= i1; ++i) {
-            if ((w0 | w1 | w2) >= 0) {
-                const float key =
-                    float(keyOrigin + double(i - i0) * keyStepX + double(j - j0) * keyStepY);
-                fn(int(i), int(j), key);
-            }
-            w0 += stepX0;
-            w1 += stepX1;
-            w2 += stepX2;
-        }
-        row0 += stepY0;
-        row1 += stepY1;
-        row2 += stepY2;
-    }
+    kernels::forEachCoveredPixel(v.xy[a], v.xy[b], v.xy[c], v.key[a], v.key[b], v.key[c], width,
+                                 height, fn, cullBackFaces, pixelFilter);
 }
 
 // zbuffer1: every triangle's depth (indices: three per triangle). `cullBackFaces` is only exact
@@ -246,13 +146,7 @@ void drawTrianglesNearest(const ScreenVertices& vertices, const std::uint32_t* i
                           std::vector<std::uint64_t>& nearest, int width, int height,
                           unsigned threads = 0);
 
-// A silhouette segment on screen: continuous pixel coordinates and depth keys of its ends.
-struct ScreenSegment {
-    glm::dvec2 a{0.0};
-    glm::dvec2 b{0.0};
-    float keyA = 0.0f;
-    float keyB = 0.0f;
-};
+using kernels::ScreenSegment;
 
 // Reusable per-chunk scratch for findSilhouetteSegments (no allocation once warmed up).
 struct SegmentScratch {

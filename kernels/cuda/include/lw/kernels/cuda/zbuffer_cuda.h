@@ -1,0 +1,57 @@
+#pragma once
+
+// Method 3 on the GPU: the paper's own z-buffer rasterizer as CUDA kernels over a device mesh.
+//   project     per vertex: fixed-point screen position, depth key, Burns' d
+//   silhouette  per triangle: Burns' segment where d changes sign, drawn straight into zbuffer2
+//               with atomicMax on the key bits (no segment list is stored)
+//   depth       per triangle: covered pixel centres into zbuffer1, atomicMax (back faces culled
+//               when the surface is closed)
+//   resolve     per pixel: the colour pass, into a byte mask copied to the host
+// Every rule comes from lw/kernels/zbuffer_rules.h, shared with the CPU rasterizer, so the mask
+// equals the CPU's. Public header: no CUDA types.
+
+#include "lw/kernels/cuda/cuda_status.h"
+#include "lw/kernels/cuda/marching_cubes_cuda.h"
+#include "lw/kernels/zbuffer_rules.h"
+
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+
+namespace lw::kernels::cuda {
+
+struct ZBufferCudaFrame {
+    std::size_t segments = 0;
+    double projectMs = 0, silhouetteMs = 0, depthMs = 0, resolveMs = 0; // CUDA events
+};
+
+struct ZBufferCudaSettings {
+    float epsilon = 0.0f;      // depth tolerance of the colour pass (keys)
+    bool visibility = true;    // false: every segment pixel is drawn
+    bool cullBackFaces = false; // only exact for a closed surface
+};
+
+class ZBufferCuda {
+public:
+    ZBufferCuda();
+    ~ZBufferCuda();
+    ZBufferCuda(const ZBufferCuda&) = delete;
+    ZBufferCuda& operator=(const ZBufferCuda&) = delete;
+
+    // Clears both buffers for a view (call once per frame before drawing).
+    CudaStatus begin(const ViewTransform& view);
+    // Draws a mesh's silhouette segments into zbuffer2 and, when `depth`, its triangles into
+    // zbuffer1. Called once per frame (S) or once per brick (L): both buffers keep maxima.
+    CudaStatus draw(const DeviceMeshView& mesh, const ZBufferCudaSettings& settings,
+                    ZBufferCudaFrame& frame);
+    // The colour pass into `hostMask` (width * height bytes, 1 = silhouette).
+    CudaStatus resolve(const ZBufferCudaSettings& settings, std::uint8_t* hostMask,
+                       ZBufferCudaFrame& frame);
+
+    struct Impl;
+
+private:
+    std::unique_ptr<Impl> m_impl;
+};
+
+} // namespace lw::kernels::cuda

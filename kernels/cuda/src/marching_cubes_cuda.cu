@@ -1,0 +1,338 @@
+// Host dispatch of marching cubes on the GPU (kernels in marching_cubes_kernels.cuh).
+
+#include "lw/kernels/cuda/marching_cubes_cuda.h"
+
+#include "dispatch.h"
+#include "marching_cubes_kernels.cuh"
+
+#include <cub/device/device_scan.cuh>
+
+#include <cstring>
+#include <limits>
+#include <mutex>
+
+namespace lw::kernels::cuda {
+
+using dispatch::blocksFor;
+using dispatch::DeviceBuffer;
+
+namespace {
+
+CudaStatus uploadTables() {
+    // Once per process; constant memory is per module, shared by every MarchingCubesCuda.
+    static std::once_flag once;
+    static CudaStatus status;
+    std::call_once(once, [] {
+        const auto copy = [](const void* symbol, const void* source, std::size_t bytes,
+                             const char* what) {
+            return dispatch::statusOf(cudaMemcpyToSymbol(symbol, source, bytes), what);
+        };
+        status = copy(mc::c_triTable, kMcTriTable, sizeof kMcTriTable, "cudaMemcpyToSymbol(triTable)");
+        if (status.ok())
+            status = copy(mc::c_triCount, kMcTriangleCount.count, sizeof kMcTriangleCount.count,
+                          "cudaMemcpyToSymbol(triCount)");
+        if (status.ok())
+            status = copy(mc::c_edgeOwner, kMcEdgeOwner, sizeof kMcEdgeOwner,
+                          "cudaMemcpyToSymbol(edgeOwner)");
+    });
+    return status;
+}
+
+} // namespace
+
+struct MarchingCubesCuda::Impl {
+    dispatch::Stream stream;
+    VolumeView volume;          // device voxels after setVolume (voxels points to `voxels`)
+    DeviceBuffer<unsigned char> voxels;
+    DeviceBuffer<double> sliceOffset;
+    DeviceBuffer<float> spanK, invSpanK;
+    GridSpans spans;
+    McGridFrame frame{};
+    std::uint32_t bricksX = 0, bricksY = 0, bricksZ = 0;
+    DeviceBuffer<float2> brickMinMax;
+    DeviceBuffer<std::uint8_t> brickActive;
+    DeviceBuffer<int> flag;
+
+    DeviceBuffer<std::uint32_t> tileCounts, tileOffsets;
+    DeviceBuffer<std::uint32_t> activeVoxels, vertexCounts, vertexOffsets, triangleCounts,
+        triangleOffsets;
+    DeviceBuffer<std::uint16_t> activeCodes;
+    DeviceBuffer<unsigned char> scanTemp;
+    DeviceBuffer<glm::vec3> positions, normals;
+    DeviceBuffer<std::uint32_t> indices;
+
+    std::uint32_t activeCount = 0;
+    DeviceMeshView mesh;
+    McCudaTimes times;
+    double uploadMs = 0.0;
+    dispatch::StageTimer timers[4];
+
+    std::size_t deviceBytes() const {
+        return voxels.bytes() + sliceOffset.bytes() + spanK.bytes() + invSpanK.bytes() +
+               brickMinMax.bytes() + brickActive.bytes() + tileCounts.bytes() +
+               tileOffsets.bytes() + activeVoxels.bytes() + vertexCounts.bytes() +
+               vertexOffsets.bytes() + triangleCounts.bytes() + triangleOffsets.bytes() +
+               activeCodes.bytes() + scanTemp.bytes() + positions.bytes() + normals.bytes() +
+               indices.bytes();
+    }
+
+    // CUB's exclusive sum over `count` values (temporary storage grown on demand).
+    CudaStatus exclusiveSum(const std::uint32_t* in, std::uint32_t* out, std::uint32_t count,
+                            const char* what) {
+        std::size_t bytes = 0;
+        LW_CUDA_TRY(cub::DeviceScan::ExclusiveSum(nullptr, bytes, in, out, count, stream.get()),
+                    what);
+        LW_RETURN_IF_FAILED(scanTemp.reserve(bytes, what));
+        LW_CUDA_TRY(cub::DeviceScan::ExclusiveSum(scanTemp.data(), bytes, in, out, count,
+                                                  stream.get()),
+                    what);
+        return CudaStatus::success();
+    }
+
+    template <typename T> mc::Grid<T> grid(double iso) const {
+        mc::Grid<T> g;
+        g.voxels = reinterpret_cast<const T*>(voxels.data());
+        g.spans = spans;
+        g.frame = frame;
+        g.nx = std::uint32_t(volume.dims.x);
+        g.ny = std::uint32_t(volume.dims.y);
+        g.nz = std::uint32_t(volume.dims.z);
+        g.voxelCount = std::uint32_t(volume.voxelCount());
+        g.threshold = voxelInsideThreshold<T>(iso);
+        g.iso = iso;
+        g.isoF = insideThreshold(iso);
+        g.brickActive = brickActive.data();
+        g.bricksX = bricksX;
+        g.bricksY = bricksY;
+        return g;
+    }
+
+    template <typename T> CudaStatus computeBrickMinMax();
+    template <typename T> CudaStatus extractTyped(double iso);
+    CudaStatus readBack(const std::uint32_t* device, std::uint32_t& host, const char* what) {
+        LW_CUDA_TRY(cudaMemcpyAsync(&host, device, sizeof host, cudaMemcpyDeviceToHost,
+                                    stream.get()),
+                    what);
+        LW_CUDA_TRY(cudaStreamSynchronize(stream.get()), what);
+        return CudaStatus::success();
+    }
+};
+
+MarchingCubesCuda::MarchingCubesCuda() : m_impl(std::make_unique<Impl>()) {}
+MarchingCubesCuda::~MarchingCubesCuda() = default;
+
+double MarchingCubesCuda::uploadMs() const { return m_impl->uploadMs; }
+std::size_t MarchingCubesCuda::deviceBytes() const { return m_impl->deviceBytes(); }
+DeviceMeshView MarchingCubesCuda::mesh() const { return m_impl->mesh; }
+const McCudaTimes& MarchingCubesCuda::times() const { return m_impl->times; }
+std::size_t MarchingCubesCuda::activeVoxelCount() const { return m_impl->activeCount; }
+
+template <typename T> CudaStatus MarchingCubesCuda::Impl::computeBrickMinMax() {
+    const std::uint32_t count = bricksX * bricksY * bricksZ;
+    mc::brickMinMax<T><<<count, tuning::kBrickReduceBlock, 0, stream.get()>>>(
+        reinterpret_cast<const T*>(voxels.data()), std::uint32_t(volume.dims.x),
+        std::uint32_t(volume.dims.y), std::uint32_t(volume.dims.z), bricksX, bricksY,
+        brickMinMax.data());
+    LW_CUDA_LAUNCHED("mc::brickMinMax");
+    return CudaStatus::success();
+}
+
+CudaStatus MarchingCubesCuda::setVolume(const VolumeView& host, const VoxelGridSetup& setup) {
+    Impl& s = *m_impl;
+    s.mesh = DeviceMeshView();
+    s.activeCount = 0;
+    const glm::ivec3 d = host.dims;
+    if (d.x < 2 || d.y < 2 || d.z < 2)
+        return CudaStatus::failure(CudaStatus::Code::TooLarge, "marching cubes (CUDA)",
+                                   "the volume needs at least 2 voxels along each axis");
+    if (host.voxelCount() >= std::size_t(std::numeric_limits<std::uint32_t>::max()) - 1024)
+        return CudaStatus::failure(CudaStatus::Code::TooLarge, "marching cubes (CUDA)",
+                                   "more than 2^32 voxels: the kernels index voxels with 32 bits");
+    LW_RETURN_IF_FAILED(uploadTables());
+    LW_RETURN_IF_FAILED(s.stream.create());
+    s.volume = host;
+    LW_RETURN_IF_FAILED(s.voxels.reserve(host.byteCount(), "cudaMalloc(volume)"));
+    s.volume.voxels = s.voxels.data();
+
+    dispatch::StageTimer upload;
+    LW_RETURN_IF_FAILED(upload.start(s.stream.get()));
+    LW_CUDA_TRY(cudaMemcpyAsync(s.voxels.data(), host.voxels, host.byteCount(),
+                                cudaMemcpyHostToDevice, s.stream.get()),
+                "cudaMemcpy(volume)");
+    LW_RETURN_IF_FAILED(upload.stop(s.stream.get()));
+
+    const std::vector<double>& offsets = setup.sliceOffsets();
+    const std::size_t slices = offsets.size();
+    LW_RETURN_IF_FAILED(s.sliceOffset.reserve(slices, "cudaMalloc(sliceOffset)"));
+    LW_RETURN_IF_FAILED(s.spanK.reserve(slices, "cudaMalloc(spanK)"));
+    LW_RETURN_IF_FAILED(s.invSpanK.reserve(slices, "cudaMalloc(invSpanK)"));
+    LW_CUDA_TRY(cudaMemcpy(s.sliceOffset.data(), offsets.data(), slices * sizeof(double),
+                           cudaMemcpyHostToDevice),
+                "cudaMemcpy(sliceOffset)");
+    LW_CUDA_TRY(cudaMemcpy(s.spanK.data(), setup.spans().spanK, slices * sizeof(float),
+                           cudaMemcpyHostToDevice),
+                "cudaMemcpy(spanK)");
+    LW_CUDA_TRY(cudaMemcpy(s.invSpanK.data(), setup.spans().invSpanK, slices * sizeof(float),
+                           cudaMemcpyHostToDevice),
+                "cudaMemcpy(invSpanK)");
+    s.spans = setup.spans();
+    s.spans.spanK = s.spanK.data();
+    s.spans.invSpanK = s.invSpanK.data();
+    s.frame = setup.frame();
+    s.frame.sliceOffset = s.sliceOffset.data();
+
+    const auto bricks = [](int voxels) {
+        return std::uint32_t((voxels - 1 + tuning::kSkipBrickCells - 1) / tuning::kSkipBrickCells);
+    };
+    s.bricksX = bricks(d.x);
+    s.bricksY = bricks(d.y);
+    s.bricksZ = bricks(d.z);
+    const std::size_t brickCount = std::size_t(s.bricksX) * s.bricksY * s.bricksZ;
+    LW_RETURN_IF_FAILED(s.brickMinMax.reserve(brickCount, "cudaMalloc(brickMinMax)"));
+    LW_RETURN_IF_FAILED(s.brickActive.reserve(brickCount, "cudaMalloc(brickActive)"));
+    LW_RETURN_IF_FAILED(s.flag.reserve(1, "cudaMalloc(flag)"));
+    LW_RETURN_IF_FAILED(dispatchVoxelKind(host.kind, [&](auto zero) {
+        return s.computeBrickMinMax<decltype(zero)>();
+    }));
+    LW_CUDA_TRY(cudaStreamSynchronize(s.stream.get()), "mc::brickMinMax");
+    s.uploadMs = upload.ms();
+    return CudaStatus::success();
+}
+
+CudaStatus MarchingCubesCuda::extract(double storedIso) {
+    Impl& s = *m_impl;
+    if (!s.volume.voxels)
+        return CudaStatus::failure(CudaStatus::Code::Failed, "marching cubes (CUDA)",
+                                   "no volume: call setVolume first");
+    s.mesh = DeviceMeshView();
+    return dispatchVoxelKind(s.volume.kind,
+                             [&](auto zero) { return s.extractTyped<decltype(zero)>(storedIso); });
+}
+
+template <typename T> CudaStatus MarchingCubesCuda::Impl::extractTyped(double iso) {
+    cudaStream_t st = stream.get();
+    const mc::Grid<T> g = grid<T>(iso);
+    const std::uint32_t brickCount = bricksX * bricksY * bricksZ;
+
+    // Bricks and the border test.
+    LW_RETURN_IF_FAILED(timers[0].start(st));
+    mc::markActiveBricks<<<blocksFor(brickCount, 256), 256, 0, st>>>(brickMinMax.data(),
+                                                                     brickCount, iso,
+                                                                     brickActive.data());
+    LW_CUDA_LAUNCHED("mc::markActiveBricks");
+    LW_CUDA_TRY(cudaMemsetAsync(flag.data(), 0, sizeof(int), st), "cudaMemset(flag)");
+    mc::borderInside<T><<<dim3(64, 6), 256, 0, st>>>(g.voxels, g.nx, g.ny, g.nz, g.threshold,
+                                                     flag.data());
+    LW_CUDA_LAUNCHED("mc::borderInside");
+    LW_RETURN_IF_FAILED(timers[0].stop(st));
+
+    // Classification and compaction of the active voxels.
+    LW_RETURN_IF_FAILED(timers[1].start(st));
+    const std::uint32_t tiles = blocksFor(g.voxelCount, tuning::kClassifyBlock);
+    LW_RETURN_IF_FAILED(tileCounts.reserve(std::size_t(tiles) + 1, "cudaMalloc(tileCounts)"));
+    LW_RETURN_IF_FAILED(tileOffsets.reserve(std::size_t(tiles) + 1, "cudaMalloc(tileOffsets)"));
+    mc::countTiles<T><<<tiles, tuning::kClassifyBlock, 0, st>>>(g, tileCounts.data());
+    LW_CUDA_LAUNCHED("mc::countTiles");
+    LW_CUDA_TRY(cudaMemsetAsync(tileCounts.data() + tiles, 0, sizeof(std::uint32_t), st),
+                "cudaMemset(tileCounts)");
+    LW_RETURN_IF_FAILED(exclusiveSum(tileCounts.data(), tileOffsets.data(), tiles + 1,
+                                     "cub::DeviceScan(tiles)"));
+    std::uint32_t active = 0;
+    LW_RETURN_IF_FAILED(readBack(tileOffsets.data() + tiles, active, "mc::countTiles"));
+    int touches = 0;
+    LW_CUDA_TRY(cudaMemcpy(&touches, flag.data(), sizeof touches, cudaMemcpyDeviceToHost),
+                "mc::borderInside");
+    activeCount = active;
+    if (active == 0) {
+        LW_RETURN_IF_FAILED(timers[1].stop(st));
+        LW_CUDA_TRY(cudaStreamSynchronize(st), "mc::classify");
+        times = McCudaTimes{timers[0].ms(), timers[1].ms(), 0.0, 0.0};
+        mesh = DeviceMeshView();
+        mesh.touchesBorder = touches != 0;
+        return CudaStatus::success();
+    }
+    LW_RETURN_IF_FAILED(activeVoxels.reserve(active, "cudaMalloc(activeVoxels)"));
+    LW_RETURN_IF_FAILED(activeCodes.reserve(active, "cudaMalloc(activeCodes)"));
+    mc::writeTiles<T><<<tiles, tuning::kClassifyBlock, 0, st>>>(g, tileOffsets.data(),
+                                                                activeVoxels.data(),
+                                                                activeCodes.data());
+    LW_CUDA_LAUNCHED("mc::writeTiles");
+    LW_RETURN_IF_FAILED(timers[1].stop(st));
+
+    // Vertex and triangle offsets.
+    LW_RETURN_IF_FAILED(timers[2].start(st));
+    const std::size_t entries = std::size_t(active) + 1;
+    LW_RETURN_IF_FAILED(vertexCounts.reserve(entries, "cudaMalloc(vertexCounts)"));
+    LW_RETURN_IF_FAILED(vertexOffsets.reserve(entries, "cudaMalloc(vertexOffsets)"));
+    LW_RETURN_IF_FAILED(triangleCounts.reserve(entries, "cudaMalloc(triangleCounts)"));
+    LW_RETURN_IF_FAILED(triangleOffsets.reserve(entries, "cudaMalloc(triangleOffsets)"));
+    mc::countGeometry<<<blocksFor(entries, tuning::kActiveBlock), tuning::kActiveBlock, 0, st>>>(
+        activeCodes.data(), active, vertexCounts.data(), triangleCounts.data());
+    LW_CUDA_LAUNCHED("mc::countGeometry");
+    LW_RETURN_IF_FAILED(exclusiveSum(vertexCounts.data(), vertexOffsets.data(),
+                                     std::uint32_t(entries), "cub::DeviceScan(vertices)"));
+    LW_RETURN_IF_FAILED(exclusiveSum(triangleCounts.data(), triangleOffsets.data(),
+                                     std::uint32_t(entries), "cub::DeviceScan(triangles)"));
+    std::uint32_t vertexTotal = 0, triangleTotal = 0;
+    LW_CUDA_TRY(cudaMemcpyAsync(&vertexTotal, vertexOffsets.data() + active, sizeof vertexTotal,
+                                cudaMemcpyDeviceToHost, st),
+                "cub::DeviceScan(vertices)");
+    LW_RETURN_IF_FAILED(readBack(triangleOffsets.data() + active, triangleTotal,
+                                 "cub::DeviceScan(triangles)"));
+    LW_RETURN_IF_FAILED(timers[2].stop(st));
+    // Each active voxel has at most 3 vertices and 5 triangles: with fewer than 2^32 / 16 active
+    // voxels no 32-bit count can have wrapped.
+    if (active >= std::numeric_limits<std::uint32_t>::max() / 16)
+        return CudaStatus::failure(CudaStatus::Code::TooLarge, "marching cubes (CUDA)",
+                                   "more than 2^32 / 3 triangle corners");
+
+    LW_RETURN_IF_FAILED(timers[3].start(st));
+    LW_RETURN_IF_FAILED(positions.reserve(vertexTotal, "cudaMalloc(positions)"));
+    LW_RETURN_IF_FAILED(normals.reserve(vertexTotal, "cudaMalloc(normals)"));
+    LW_RETURN_IF_FAILED(indices.reserve(std::size_t(triangleTotal) * 3, "cudaMalloc(indices)"));
+    mc::generateVertices<T><<<blocksFor(active, tuning::kActiveBlock), tuning::kActiveBlock, 0,
+                              st>>>(g, activeVoxels.data(), activeCodes.data(),
+                                    vertexOffsets.data(), active, positions.data(),
+                                    normals.data());
+    LW_CUDA_LAUNCHED("mc::generateVertices");
+    mc::generateTriangles<<<blocksFor(active, tuning::kActiveBlock), tuning::kActiveBlock, 0,
+                            st>>>(activeVoxels.data(), activeCodes.data(), vertexOffsets.data(),
+                                  triangleOffsets.data(), active, g.nx, g.ny, indices.data());
+    LW_CUDA_LAUNCHED("mc::generateTriangles");
+    LW_RETURN_IF_FAILED(timers[3].stop(st));
+    LW_CUDA_TRY(cudaStreamSynchronize(st), "mc::generate");
+
+    times = McCudaTimes{timers[0].ms(), timers[1].ms(), timers[2].ms(), timers[3].ms()};
+    mesh.positions = positions.data();
+    mesh.normals = normals.data();
+    mesh.indices = indices.data();
+    mesh.vertexCount = vertexTotal;
+    mesh.triangleCount = triangleTotal;
+    mesh.touchesBorder = touches != 0;
+    return CudaStatus::success();
+}
+
+CudaStatus MarchingCubesCuda::download(std::vector<glm::vec3>& positions,
+                                       std::vector<glm::vec3>& normals,
+                                       std::vector<std::uint32_t>& indices) const {
+    const DeviceMeshView& m = m_impl->mesh;
+    positions.resize(m.vertexCount);
+    normals.resize(m.vertexCount);
+    indices.resize(m.triangleCount * 3);
+    if (m.vertexCount > 0) {
+        LW_CUDA_TRY(cudaMemcpy(positions.data(), m.positions, m.vertexCount * sizeof(glm::vec3),
+                               cudaMemcpyDeviceToHost),
+                    "cudaMemcpy(positions)");
+        LW_CUDA_TRY(cudaMemcpy(normals.data(), m.normals, m.vertexCount * sizeof(glm::vec3),
+                               cudaMemcpyDeviceToHost),
+                    "cudaMemcpy(normals)");
+    }
+    if (m.triangleCount > 0)
+        LW_CUDA_TRY(cudaMemcpy(indices.data(), m.indices,
+                               m.triangleCount * 3 * sizeof(std::uint32_t),
+                               cudaMemcpyDeviceToHost),
+                    "cudaMemcpy(indices)");
+    return CudaStatus::success();
+}
+
+} // namespace lw::kernels::cuda

@@ -1,0 +1,251 @@
+#pragma once
+
+// Marching-cubes kernels (dispatch in marching_cubes_cuda.cu, constants in tuning.h). Each kernel
+// evaluates the shared host+device expressions of kernels/common, so the vertices equal the CPU
+// reference's bit for bit.
+
+#include "lw/kernels/marching_cubes.h"
+#include "lw/kernels/voxel_grid.h"
+#include "tuning.h"
+
+#include <cub/block/block_reduce.cuh>
+#include <cub/block/block_scan.cuh>
+
+#include <cfloat>
+#include <cstdint>
+
+namespace lw::kernels::cuda::mc {
+
+// The tables in constant memory (the host constexpr arrays cannot be indexed in device code);
+// filled once from kernels/common's tables by uploadTables().
+__constant__ std::int8_t c_triTable[256][16];
+__constant__ std::uint8_t c_triCount[256];
+__constant__ std::int8_t c_edgeOwner[12][4];
+
+// Everything a kernel needs to know about the grid, by value.
+template <typename T> struct Grid {
+    const T* voxels;
+    GridSpans spans;    // spanK / invSpanK point to device memory
+    McGridFrame frame;  // sliceOffset points to device memory
+    std::uint32_t nx, ny, nz;
+    std::uint32_t voxelCount;
+    T threshold;        // inside = voxel >= threshold (== value >= iso, exactly)
+    double iso;
+    float isoF;
+    // Skip bricks: brick of voxel (x, y, z) = (min(x, cx - 1), ...) >> kSkipBrickShift.
+    const std::uint8_t* brickActive;
+    std::uint32_t bricksX, bricksY;
+};
+
+// The code of a voxel: bits 0-7 its cell's case (0 when the cell has no triangles or does not
+// exist), bits 8-10 which of its +x, +y, +z edges cross the surface. 0 = inactive.
+template <typename T>
+__device__ __forceinline__ std::uint32_t voxelCode(const Grid<T>& g, std::uint32_t v) {
+    const std::uint32_t x = v % g.nx, yz = v / g.nx;
+    const std::uint32_t y = yz % g.ny, z = yz / g.ny;
+    const std::uint32_t cx = g.nx - 1, cy = g.ny - 1, cz = g.nz - 1;
+    const std::uint32_t bx = (x < cx ? x : cx - 1) >> tuning::kSkipBrickShift;
+    const std::uint32_t by = (y < cy ? y : cy - 1) >> tuning::kSkipBrickShift;
+    const std::uint32_t bz = (z < cz ? z : cz - 1) >> tuning::kSkipBrickShift;
+    if (!g.brickActive[(bz * g.bricksY + by) * g.bricksX + bx])
+        return 0;
+    const std::size_t sy = g.nx, sz = std::size_t(g.nx) * g.ny;
+    const T* p = g.voxels + v;
+    const T thr = g.threshold;
+    const bool hasX = x < cx, hasY = y < cy, hasZ = z < cz;
+    const bool c0 = p[0] >= thr;
+    // Corners in diagram order: 0 (0,0,0) 1 (1,0,0) 2 (1,1,0) 3 (0,1,0), 4-7 the same at z + 1.
+    const bool c1 = hasX && p[1] >= thr;
+    const bool c3 = hasY && p[sy] >= thr;
+    const bool c4 = hasZ && p[sz] >= thr;
+    std::uint32_t edges = (hasX && c0 != c1 ? 1u : 0u) | (hasY && c0 != c3 ? 2u : 0u) |
+                          (hasZ && c0 != c4 ? 4u : 0u);
+    std::uint32_t cubeCase = 0;
+    if (hasX && hasY && hasZ) {
+        const bool c2 = p[1 + sy] >= thr;
+        const bool c5 = p[1 + sz] >= thr;
+        const bool c6 = p[1 + sy + sz] >= thr;
+        const bool c7 = p[sy + sz] >= thr;
+        cubeCase = std::uint32_t(c0) | std::uint32_t(c1) << 1 | std::uint32_t(c2) << 2 |
+                   std::uint32_t(c3) << 3 | std::uint32_t(c4) << 4 | std::uint32_t(c5) << 5 |
+                   std::uint32_t(c6) << 6 | std::uint32_t(c7) << 7;
+        if (cubeCase == 255)
+            cubeCase = 0;
+    }
+    return cubeCase | edges << 8;
+}
+
+struct MinOp {
+    __device__ float operator()(float a, float b) const { return fminf(a, b); }
+};
+struct MaxOp {
+    __device__ float operator()(float a, float b) const { return fmaxf(a, b); }
+};
+
+// Min/max over the corner voxels of each skip brick (one block per brick).
+template <typename T>
+__global__ void brickMinMax(const T* voxels, std::uint32_t nx, std::uint32_t ny, std::uint32_t nz,
+                            std::uint32_t bricksX, std::uint32_t bricksY, float2* minMax) {
+    using Reduce = cub::BlockReduce<float, tuning::kBrickReduceBlock>;
+    __shared__ typename Reduce::TempStorage tempMin, tempMax;
+    const std::uint32_t b = blockIdx.x;
+    const std::uint32_t bx = b % bricksX, by = (b / bricksX) % bricksY, bz = b / (bricksX * bricksY);
+    const std::uint32_t n = tuning::kSkipBrickCells;
+    const std::uint32_t x0 = bx * n, y0 = by * n, z0 = bz * n;
+    const std::uint32_t x1 = min(x0 + n, nx - 1), y1 = min(y0 + n, ny - 1), z1 = min(z0 + n, nz - 1);
+    const std::uint32_t w = x1 - x0 + 1, h = y1 - y0 + 1, d = z1 - z0 + 1;
+    float lo = FLT_MAX, hi = -FLT_MAX;
+    for (std::uint32_t i = threadIdx.x; i < w * h * d; i += blockDim.x) {
+        const std::uint32_t x = x0 + i % w, y = y0 + (i / w) % h, z = z0 + i / (w * h);
+        const float value = float(voxels[(std::size_t(z) * ny + y) * nx + x]);
+        lo = fminf(lo, value);
+        hi = fmaxf(hi, value);
+    }
+    lo = Reduce(tempMin).Reduce(lo, MinOp());
+    hi = Reduce(tempMax).Reduce(hi, MaxOp());
+    if (threadIdx.x == 0)
+        minMax[b] = make_float2(lo, hi);
+}
+
+__global__ void markActiveBricks(const float2* minMax, std::uint32_t count, double iso,
+                                 std::uint8_t* active) {
+    const std::uint32_t b = blockIdx.x * blockDim.x + threadIdx.x;
+    if (b < count)
+        active[b] = double(minMax[b].x) < iso && iso <= double(minMax[b].y) ? 1 : 0;
+}
+
+// Sets *flag when a voxel on the volume's six faces is inside.
+template <typename T>
+__global__ void borderInside(const T* voxels, std::uint32_t nx, std::uint32_t ny, std::uint32_t nz,
+                             T threshold, int* flag) {
+    // Face f (blockIdx.y): 0/1 z = 0 / nz-1, 2/3 y = 0 / ny-1, 4/5 x = 0 / nx-1.
+    const int f = blockIdx.y;
+    const std::uint32_t a = f < 2 ? nx : (f < 4 ? nx : ny);
+    const std::uint32_t b = f < 2 ? ny : nz;
+    for (std::uint32_t i = blockIdx.x * blockDim.x + threadIdx.x; i < a * b;
+         i += gridDim.x * blockDim.x) {
+        const std::uint32_t u = i % a, w = i / a;
+        std::uint32_t x, y, z;
+        if (f < 2) {
+            x = u, y = w, z = f == 0 ? 0 : nz - 1;
+        } else if (f < 4) {
+            x = u, z = w, y = f == 2 ? 0 : ny - 1;
+        } else {
+            y = u, z = w, x = f == 4 ? 0 : nx - 1;
+        }
+        if (voxels[(std::size_t(z) * ny + y) * nx + x] >= threshold)
+            *flag = 1;
+    }
+}
+
+// Pass 1 of the compaction: active voxels per tile.
+template <typename T> __global__ void countTiles(Grid<T> g, std::uint32_t* tileCounts) {
+    using Reduce = cub::BlockReduce<std::uint32_t, tuning::kClassifyBlock>;
+    __shared__ typename Reduce::TempStorage temp;
+    const std::uint32_t v = blockIdx.x * tuning::kClassifyBlock + threadIdx.x;
+    const std::uint32_t active = v < g.voxelCount && voxelCode(g, v) != 0 ? 1u : 0u;
+    const std::uint32_t sum = Reduce(temp).Sum(active);
+    if (threadIdx.x == 0)
+        tileCounts[blockIdx.x] = sum;
+}
+
+// Pass 2: the same tiles write their active voxels at the scanned tile offset, in voxel order.
+template <typename T>
+__global__ void writeTiles(Grid<T> g, const std::uint32_t* tileOffsets,
+                           std::uint32_t* activeVoxels, std::uint16_t* activeCodes) {
+    using Scan = cub::BlockScan<std::uint32_t, tuning::kClassifyBlock>;
+    __shared__ typename Scan::TempStorage temp;
+    const std::uint32_t v = blockIdx.x * tuning::kClassifyBlock + threadIdx.x;
+    const std::uint32_t code = v < g.voxelCount ? voxelCode(g, v) : 0u;
+    std::uint32_t rank = 0;
+    Scan(temp).ExclusiveSum(code != 0 ? 1u : 0u, rank);
+    if (code != 0) {
+        const std::uint32_t slot = tileOffsets[blockIdx.x] + rank;
+        activeVoxels[slot] = v;
+        activeCodes[slot] = std::uint16_t(code);
+    }
+}
+
+// Vertices and triangles per active voxel; entry `count` is 0 so the exclusive scans end with the
+// totals.
+__global__ void countGeometry(const std::uint16_t* codes, std::uint32_t count,
+                              std::uint32_t* vertexCounts, std::uint32_t* triangleCounts) {
+    const std::uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
+    if (i > count)
+        return;
+    if (i == count) {
+        vertexCounts[i] = 0;
+        triangleCounts[i] = 0;
+        return;
+    }
+    const std::uint32_t code = codes[i];
+    vertexCounts[i] = __popc(code >> 8);
+    triangleCounts[i] = c_triCount[code & 0xff];
+}
+
+template <typename T>
+__global__ void generateVertices(Grid<T> g, const std::uint32_t* activeVoxels,
+                                 const std::uint16_t* codes, const std::uint32_t* vertexOffsets,
+                                 std::uint32_t count, glm::vec3* positions, glm::vec3* normals) {
+    const std::uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
+    if (i >= count)
+        return;
+    const std::uint32_t edges = codes[i] >> 8;
+    if (edges == 0)
+        return;
+    const std::uint32_t v = activeVoxels[i];
+    const int x = int(v % g.nx), y = int((v / g.nx) % g.ny), z = int(v / (g.nx * g.ny));
+    const VoxelGradientSampler<T> sampler{g.voxels, g.spans};
+    const McVec3 here = sampler.gradient(x, y, z);
+    std::uint32_t id = vertexOffsets[i];
+    for (int axis = 0; axis < 3; ++axis) {
+        if (!(edges & (1u << axis)))
+            continue;
+        const McVec3 there = sampler.gradient(x + (axis == 0), y + (axis == 1), z + (axis == 2));
+        const McVertex vertex = sampler.edgeVertex(g.frame, x, y, z, axis, here, there, g.iso, g.isoF);
+        positions[id] = glm::vec3(vertex.position.x, vertex.position.y, vertex.position.z);
+        normals[id] = glm::vec3(vertex.normal.x, vertex.normal.y, vertex.normal.z);
+        ++id;
+    }
+}
+
+// First position in [lo, hi) of `voxels` (ascending) holding a value >= key.
+__device__ __forceinline__ std::uint32_t lowerBound(const std::uint32_t* voxels, std::uint32_t lo,
+                                                    std::uint32_t hi, std::uint32_t key) {
+    while (lo < hi) {
+        const std::uint32_t mid = lo + (hi - lo) / 2;
+        if (voxels[mid] < key)
+            lo = mid + 1;
+        else
+            hi = mid;
+    }
+    return lo;
+}
+
+__global__ void generateTriangles(const std::uint32_t* activeVoxels, const std::uint16_t* codes,
+                                  const std::uint32_t* vertexOffsets,
+                                  const std::uint32_t* triangleOffsets, std::uint32_t count,
+                                  std::uint32_t nx, std::uint32_t ny, std::uint32_t* indices) {
+    const std::uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
+    if (i >= count)
+        return;
+    const std::uint32_t cubeCase = codes[i] & 0xff;
+    if (cubeCase == 0)
+        return;
+    const std::uint32_t v = activeVoxels[i];
+    const std::uint32_t sy = nx, sz = nx * ny;
+    std::uint32_t* out = indices + std::size_t(triangleOffsets[i]) * 3;
+    const std::int8_t* row = c_triTable[cubeCase];
+    for (int k = 0; row[k] >= 0; ++k) {
+        const std::int8_t* owner = c_edgeOwner[row[k]];
+        const std::uint32_t ownerVoxel =
+            v + std::uint32_t(owner[0]) + std::uint32_t(owner[1]) * sy + std::uint32_t(owner[2]) * sz;
+        // The owner is this voxel or a later one; it is active (its edge crosses).
+        const std::uint32_t slot = ownerVoxel == v ? i : lowerBound(activeVoxels, i + 1, count, ownerVoxel);
+        const std::uint32_t ownerEdges = codes[slot] >> 8;
+        const int axis = owner[3];
+        out[k] = vertexOffsets[slot] + __popc(ownerEdges & ((1u << axis) - 1u));
+    }
+}
+
+} // namespace lw::kernels::cuda::mc

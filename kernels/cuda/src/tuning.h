@@ -1,0 +1,24 @@
+#pragma once
+
+// Tuning constants of the CUDA kernels, apart from the kernels and the dispatch (CUB's layout):
+// change them here, measure with `linework-cli bench --backend cuda`.
+
+namespace lw::kernels::cuda::tuning {
+
+// Marching cubes: one classification tile is one block of threads, one voxel each; x fastest,
+// so a tile is a run of a voxel row and its reads coalesce.
+inline constexpr int kClassifyBlock = 256;
+// Cells per brick edge of the min/max skip grid (a power of two: voxel -> brick is a shift).
+inline constexpr int kSkipBrickShift = 4;
+inline constexpr int kSkipBrickCells = 1 << kSkipBrickShift;
+inline constexpr int kBrickReduceBlock = 256;
+// Per active voxel (vertex and triangle generation, counts).
+inline constexpr int kActiveBlock = 128;
+
+// Method 3: per vertex, per triangle, per pixel.
+inline constexpr int kVertexBlock = 256;
+inline constexpr int kTriangleBlock = 128;
+inline constexpr int kPixelBlockX = 32;
+inline constexpr int kPixelBlockY = 8;
+
+} // namespace lw::kernels::cuda::tuning

@@ -1,0 +1,120 @@
+// Host dispatch of method 3 on the GPU (kernels in zbuffer_kernels.cuh).
+
+#include "lw/kernels/cuda/zbuffer_cuda.h"
+
+#include "dispatch.h"
+#include "tuning.h"
+#include "zbuffer_kernels.cuh"
+
+namespace lw::kernels::cuda {
+
+using dispatch::blocksFor;
+using dispatch::DeviceBuffer;
+
+struct ZBufferCuda::Impl {
+    dispatch::Stream stream;
+    ViewTransform view;
+    ScreenProjection projection{};
+    DeviceBuffer<zb::ScreenVertex> screen;
+    DeviceBuffer<std::uint32_t> surface, lines;
+    DeviceBuffer<std::uint8_t> mask;
+    DeviceBuffer<unsigned long long> segmentCount;
+    dispatch::StageTimer timers[4];
+    std::size_t pixels() const {
+        return std::size_t(view.width > 0 ? view.width : 0) *
+               std::size_t(view.height > 0 ? view.height : 0);
+    }
+};
+
+ZBufferCuda::ZBufferCuda() : m_impl(std::make_unique<Impl>()) {}
+ZBufferCuda::~ZBufferCuda() = default;
+
+CudaStatus ZBufferCuda::begin(const ViewTransform& view) {
+    Impl& s = *m_impl;
+    LW_RETURN_IF_FAILED(s.stream.create());
+    s.view = view;
+    s.projection = view.projection();
+    const std::size_t pixels = s.pixels();
+    LW_RETURN_IF_FAILED(s.surface.reserve(pixels, "cudaMalloc(zbuffer1)"));
+    LW_RETURN_IF_FAILED(s.lines.reserve(pixels, "cudaMalloc(zbuffer2)"));
+    LW_RETURN_IF_FAILED(s.mask.reserve(pixels, "cudaMalloc(mask)"));
+    LW_RETURN_IF_FAILED(s.segmentCount.reserve(1, "cudaMalloc(segmentCount)"));
+    cudaStream_t st = s.stream.get();
+    LW_CUDA_TRY(cudaMemsetAsync(s.surface.data(), 0, pixels * sizeof(std::uint32_t), st),
+                "cudaMemset(zbuffer1)");
+    LW_CUDA_TRY(cudaMemsetAsync(s.lines.data(), 0, pixels * sizeof(std::uint32_t), st),
+                "cudaMemset(zbuffer2)");
+    LW_CUDA_TRY(cudaMemsetAsync(s.segmentCount.data(), 0, sizeof(unsigned long long), st),
+                "cudaMemset(segmentCount)");
+    return CudaStatus::success();
+}
+
+CudaStatus ZBufferCuda::draw(const DeviceMeshView& mesh, const ZBufferCudaSettings& settings,
+                             ZBufferCudaFrame& frame) {
+    Impl& s = *m_impl;
+    if (mesh.triangleCount == 0)
+        return CudaStatus::success();
+    cudaStream_t st = s.stream.get();
+    LW_RETURN_IF_FAILED(s.screen.reserve(mesh.vertexCount, "cudaMalloc(screenVertices)"));
+    const glm::vec3 eyeOrDirection = glm::vec3(s.view.orthographic ? s.view.toViewer : s.view.eye);
+
+    LW_RETURN_IF_FAILED(s.timers[0].start(st));
+    zb::projectVertices<<<blocksFor(mesh.vertexCount, tuning::kVertexBlock), tuning::kVertexBlock,
+                          0, st>>>(mesh.positions, mesh.normals, std::uint32_t(mesh.vertexCount),
+                                   s.projection, eyeOrDirection, s.view.orthographic,
+                                   s.screen.data());
+    LW_CUDA_LAUNCHED("zb::projectVertices");
+    LW_RETURN_IF_FAILED(s.timers[0].stop(st));
+
+    const unsigned triangleBlocks = blocksFor(mesh.triangleCount, tuning::kTriangleBlock);
+    LW_RETURN_IF_FAILED(s.timers[1].start(st));
+    zb::drawSilhouettes<<<triangleBlocks, tuning::kTriangleBlock, 0, st>>>(
+        mesh.positions, mesh.indices, std::uint32_t(mesh.triangleCount), s.screen.data(),
+        s.projection, s.lines.data(), s.segmentCount.data());
+    LW_CUDA_LAUNCHED("zb::drawSilhouettes");
+    LW_RETURN_IF_FAILED(s.timers[1].stop(st));
+
+    LW_RETURN_IF_FAILED(s.timers[2].start(st));
+    if (settings.visibility) {
+        zb::drawTriangles<<<triangleBlocks, tuning::kTriangleBlock, 0, st>>>(
+            mesh.indices, std::uint32_t(mesh.triangleCount), s.screen.data(), s.view.width,
+            s.view.height, settings.cullBackFaces, s.surface.data());
+        LW_CUDA_LAUNCHED("zb::drawTriangles");
+    }
+    LW_RETURN_IF_FAILED(s.timers[2].stop(st));
+    LW_CUDA_TRY(cudaStreamSynchronize(st), "zb::draw");
+    frame.projectMs += s.timers[0].ms();
+    frame.silhouetteMs += s.timers[1].ms();
+    frame.depthMs += s.timers[2].ms();
+    return CudaStatus::success();
+}
+
+CudaStatus ZBufferCuda::resolve(const ZBufferCudaSettings& settings, std::uint8_t* hostMask,
+                                ZBufferCudaFrame& frame) {
+    Impl& s = *m_impl;
+    cudaStream_t st = s.stream.get();
+    const int width = s.view.width, height = s.view.height;
+    const std::size_t pixels = s.pixels();
+    LW_RETURN_IF_FAILED(s.timers[3].start(st));
+    if (pixels > 0) {
+        const dim3 block(tuning::kPixelBlockX, tuning::kPixelBlockY);
+        const dim3 grid(blocksFor(std::size_t(width), tuning::kPixelBlockX),
+                        blocksFor(std::size_t(height), tuning::kPixelBlockY));
+        zb::resolve<<<grid, block, 0, st>>>(s.surface.data(), s.lines.data(), width, height,
+                                            settings.epsilon, settings.visibility, s.mask.data());
+        LW_CUDA_LAUNCHED("zb::resolve");
+        LW_CUDA_TRY(cudaMemcpyAsync(hostMask, s.mask.data(), pixels, cudaMemcpyDeviceToHost, st),
+                    "cudaMemcpy(mask)");
+    }
+    LW_RETURN_IF_FAILED(s.timers[3].stop(st));
+    unsigned long long segments = 0;
+    LW_CUDA_TRY(cudaMemcpyAsync(&segments, s.segmentCount.data(), sizeof segments,
+                                cudaMemcpyDeviceToHost, st),
+                "cudaMemcpy(segmentCount)");
+    LW_CUDA_TRY(cudaStreamSynchronize(st), "zb::resolve");
+    frame.resolveMs += s.timers[3].ms();
+    frame.segments = std::size_t(segments);
+    return CudaStatus::success();
+}
+
+} // namespace lw::kernels::cuda

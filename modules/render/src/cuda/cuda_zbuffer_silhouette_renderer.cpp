@@ -1,0 +1,141 @@
+#include "cuda_zbuffer_silhouette_renderer.h"
+
+#include "../view_transform.h"
+#include "lw/core/error.h"
+#include "lw/kernels/cpu/marching_cubes_cpu.h"
+#include "lw/kernels/cuda/marching_cubes_cuda.h"
+#include "lw/kernels/cuda/zbuffer_cuda.h"
+
+#include <limits>
+#include <string>
+
+namespace lw::render {
+namespace {
+
+void throwIfFailed(const kernels::cuda::CudaStatus& status) {
+    if (!status.ok())
+        throw core::Error("method 3 (CUDA)", status.describe());
+}
+
+kernels::VolumeView hostView(const volume::Volume& volume) {
+    kernels::VolumeView view;
+    view.voxels = volume.data();
+    view.kind = kernels::VoxelKind(volume.voxelType());
+    view.dims = volume.dims();
+    return view;
+}
+
+} // namespace
+
+struct CudaZBufferSilhouetteRenderer::State {
+    const volume::Volume* volume = nullptr;
+    bool uploaded = false;
+    kernels::cuda::MarchingCubesCuda marchingCubes;
+    kernels::cuda::ZBufferCuda zbuffer;
+    bool meshValid = false;
+    double meshIso = std::numeric_limits<double>::quiet_NaN();
+    mutable Mesh hostMesh;
+    mutable bool hostMeshValid = false;
+    // L frames: the CPU renderer (see the header).
+    std::unique_ptr<ZBufferSilhouetteRenderer> chunked;
+    bool lastWasChunked = false;
+
+    void upload() {
+        if (uploaded)
+            return;
+        const kernels::VoxelGridSetup setup = kernels::cpu::voxelGridSetup(*volume);
+        throwIfFailed(marchingCubes.setVolume(hostView(*volume), setup));
+        uploaded = true;
+    }
+};
+
+static_assert(int(kernels::VoxelKind::UInt8) == int(volume::VoxelType::UInt8) &&
+              int(kernels::VoxelKind::Int16) == int(volume::VoxelType::Int16) &&
+              int(kernels::VoxelKind::UInt16) == int(volume::VoxelType::UInt16) &&
+              int(kernels::VoxelKind::Float32) == int(volume::VoxelType::Float32));
+
+CudaZBufferSilhouetteRenderer::CudaZBufferSilhouetteRenderer()
+    : m_state(std::make_unique<State>()) {}
+CudaZBufferSilhouetteRenderer::~CudaZBufferSilhouetteRenderer() = default;
+
+std::string_view CudaZBufferSilhouetteRenderer::backendName() const {
+    return m_state->lastWasChunked ? "cpu" : "cuda";
+}
+
+double CudaZBufferSilhouetteRenderer::uploadMs() const {
+    return m_state->uploaded ? m_state->marchingCubes.uploadMs() : 0.0;
+}
+
+void CudaZBufferSilhouetteRenderer::setVolume(const volume::Volume& volume) {
+    State& s = *m_state;
+    s.volume = &volume;
+    s.uploaded = false;
+    s.meshValid = false;
+    s.hostMeshValid = false;
+    if (s.chunked)
+        s.chunked->setVolume(volume);
+}
+
+const Mesh* CudaZBufferSilhouetteRenderer::surfaceMesh() const {
+    const State& s = *m_state;
+    if (s.lastWasChunked && s.chunked)
+        return s.chunked->surfaceMesh();
+    if (!s.hostMeshValid && s.meshValid) {
+        throwIfFailed(s.marchingCubes.download(s.hostMesh.positions, s.hostMesh.normals,
+                                               s.hostMesh.indices));
+        s.hostMeshValid = true;
+    }
+    return &s.hostMesh;
+}
+
+SilhouetteFrame CudaZBufferSilhouetteRenderer::render(const Camera& camera,
+                                                       const SilhouetteSettings& settings) {
+    State& s = *m_state;
+    if (!s.volume)
+        throw core::Error("method 3 (CUDA)", "no volume bound: call setVolume first");
+    if (settings.brickCells < 0)
+        throw core::Error("method 3 (CUDA)", "brickCells must be 0 (whole volume) or positive");
+    if (settings.brickCells > 0) {
+        if (!s.chunked) {
+            s.chunked = std::make_unique<ZBufferSilhouetteRenderer>();
+            s.chunked->setVolume(*s.volume);
+        }
+        s.lastWasChunked = true;
+        return s.chunked->render(camera, settings);
+    }
+    s.lastWasChunked = false;
+    if (settings.cancel && settings.cancel->isCancelled())
+        throw core::Cancelled();
+    SilhouetteFrame frame;
+    s.upload();
+    const bool reuse = settings.mode == ExtractionMode::CachedA && s.meshValid &&
+                       s.meshIso == settings.isoReal;
+    if (!reuse) {
+        s.meshValid = false;
+        s.hostMeshValid = false;
+        throwIfFailed(s.marchingCubes.extract(storedIsoValue(*s.volume, settings.isoReal)));
+        s.meshValid = true;
+        s.meshIso = settings.isoReal;
+        frame.times.extractMs = s.marchingCubes.times().totalMs();
+    }
+    const kernels::cuda::DeviceMeshView mesh = s.marchingCubes.mesh();
+    frame.triangles = mesh.triangleCount;
+
+    kernels::cuda::ZBufferCudaSettings zb;
+    zb.visibility = settings.visibility;
+    zb.cullBackFaces = !mesh.touchesBorder;
+    zb.epsilon =
+        settings.visibility ? ZBufferSilhouetteRenderer::depthEpsilon(camera, *s.volume) : 0.0f;
+    kernels::cuda::ZBufferCudaFrame timing;
+    throwIfFailed(s.zbuffer.begin(toViewTransform(camera)));
+    throwIfFailed(s.zbuffer.draw(mesh, zb, timing));
+    frame.lines = PixelMask(camera.width(), camera.height());
+    throwIfFailed(s.zbuffer.resolve(zb, frame.lines.pixels().data(), timing));
+    frame.segments = timing.segments;
+    frame.times.silhouetteMs = timing.projectMs + timing.silhouetteMs;
+    frame.times.visibilityMs = timing.depthMs;
+    frame.times.drawMs = timing.resolveMs;
+    return frame;
+}
+
+} // namespace lw::render
