@@ -29,14 +29,16 @@ endif()
 # A test that needs a resource it cannot find exits with this code; CTest reports it as SKIP.
 set(LINEWORK_SKIP_CODE 77)
 
-# linework_add_gtest(name SOURCES ... LIBS ... LABELS unit|data|gl|gpu [REQUIRES_DATA|REQUIRES_GL])
+# linework_add_gtest(name SOURCES ... LIBS ... LABELS unit|data|gl|gpu [REQUIRES_DATA|REQUIRES_GL|REQUIRES_CUDA])
 # REQUIRES_DATA / REQUIRES_GL: the test's main exits with the SKIP code when ../shared/data is
-# missing / no headless OpenGL context can be made (the GL main keeps the context current for the
+# missing / no headless OpenGL context can be made / no CUDA device is present (the GL main keeps the context current for the
 # tests: lw::test::glContext()), so CTest reports SKIP instead of a PASS that tested nothing.
 function(linework_add_gtest name)
-    cmake_parse_arguments(ARG "REQUIRES_DATA;REQUIRES_GL" "" "SOURCES;LIBS;LABELS" ${ARGN})
+    cmake_parse_arguments(ARG "REQUIRES_DATA;REQUIRES_GL;REQUIRES_CUDA" "" "SOURCES;LIBS;LABELS" ${ARGN})
     add_executable(${name} ${ARG_SOURCES})
-    if(ARG_REQUIRES_DATA)
+    if(ARG_REQUIRES_CUDA)
+        target_link_libraries(${name} PRIVATE ${ARG_LIBS} lw_gtest_main_cuda GTest::gtest)
+    elseif(ARG_REQUIRES_DATA)
         target_link_libraries(${name} PRIVATE ${ARG_LIBS} lw_gtest_main_data GTest::gtest)
     elseif(ARG_REQUIRES_GL)
         target_link_libraries(${name} PRIVATE ${ARG_LIBS} lw_gtest_main_gl GTest::gtest)

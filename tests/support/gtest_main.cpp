@@ -1,11 +1,15 @@
 // gtest main for Linework. Error-level log messages fail the running test (DESIGN.md: errors at
 // error level fail tests). With LINEWORK_TEST_REQUIRES_DATA the binary exits with the SKIP code
-// when ../shared/data is missing. GL tests use gtest_main_gl.cpp instead.
+// when ../shared/data is missing, with LINEWORK_TEST_REQUIRES_CUDA when no CUDA device is present. GL tests use gtest_main_gl.cpp instead.
 #include "test_support.h"
 
 #include <gtest/gtest.h>
 
 #include <cstdio>
+
+#ifdef LINEWORK_TEST_REQUIRES_CUDA
+#include "lw/render/renderer_factory.h"
+#endif
 
 int main(int argc, char** argv) {
     testing::InitGoogleTest(&argc, argv);
@@ -14,6 +18,14 @@ int main(int argc, char** argv) {
         std::puts("SKIP: ../shared/data not found (set LINEWORK_SHARED_DATA)");
         return LINEWORK_SKIP_CODE;
     }
+#endif
+#ifdef LINEWORK_TEST_REQUIRES_CUDA
+    const lw::render::CudaAvailability cuda = lw::render::cudaAvailability();
+    if (!cuda.available) {
+        std::printf("SKIP: %s\n", cuda.reason.c_str());
+        return LINEWORK_SKIP_CODE;
+    }
+    std::printf("CUDA device: %s\n", cuda.deviceName.c_str());
 #endif
     lw::test::installFailingLogSink();
     return RUN_ALL_TESTS();

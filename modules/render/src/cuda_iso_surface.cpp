@@ -1,0 +1,63 @@
+#include "lw/render/cuda_iso_surface.h"
+
+#include "lw/core/error.h"
+#include "lw/render/renderer_factory.h"
+
+#if LINEWORK_CUDA
+#include "lw/kernels/cpu/marching_cubes_cpu.h"
+#include "lw/kernels/cuda/marching_cubes_cuda.h"
+#endif
+
+namespace lw::render {
+
+#if LINEWORK_CUDA
+namespace {
+void throwIfFailed(const kernels::cuda::CudaStatus& status) {
+    if (!status.ok())
+        throw core::Error("marching cubes (CUDA)", status.describe());
+}
+} // namespace
+
+struct CudaIsoSurfaceExtractor::Impl {
+    const volume::Volume& volume;
+    kernels::cuda::MarchingCubesCuda marchingCubes;
+};
+
+CudaIsoSurfaceExtractor::CudaIsoSurfaceExtractor(const volume::Volume& volume) {
+    const CudaAvailability cuda = cudaAvailability();
+    if (!cuda.available)
+        throw core::Error("marching cubes (CUDA)", cuda.reason);
+    m_impl.reset(new Impl{volume});
+    kernels::VolumeView view;
+    view.voxels = volume.data();
+    view.kind = kernels::VoxelKind(volume.voxelType());
+    view.dims = volume.dims();
+    throwIfFailed(m_impl->marchingCubes.setVolume(view, kernels::cpu::voxelGridSetup(volume)));
+}
+
+CudaIsoSurfaceExtractor::~CudaIsoSurfaceExtractor() = default;
+
+double CudaIsoSurfaceExtractor::uploadMs() const { return m_impl->marchingCubes.uploadMs(); }
+
+CudaExtraction CudaIsoSurfaceExtractor::extract(double isoReal) {
+    throwIfFailed(m_impl->marchingCubes.extract(storedIsoValue(m_impl->volume, isoReal)));
+    const kernels::cuda::DeviceMeshView mesh = m_impl->marchingCubes.mesh();
+    return {mesh.triangleCount, mesh.vertexCount, m_impl->marchingCubes.times().totalMs()};
+}
+
+void CudaIsoSurfaceExtractor::download(Mesh& mesh) const {
+    throwIfFailed(m_impl->marchingCubes.download(mesh.positions, mesh.normals, mesh.indices));
+}
+#else
+struct CudaIsoSurfaceExtractor::Impl {};
+
+CudaIsoSurfaceExtractor::CudaIsoSurfaceExtractor(const volume::Volume&) {
+    throw core::Error("marching cubes (CUDA)", cudaAvailability().reason);
+}
+CudaIsoSurfaceExtractor::~CudaIsoSurfaceExtractor() = default;
+double CudaIsoSurfaceExtractor::uploadMs() const { return 0.0; }
+CudaExtraction CudaIsoSurfaceExtractor::extract(double) { return {}; }
+void CudaIsoSurfaceExtractor::download(Mesh&) const {}
+#endif
+
+} // namespace lw::render

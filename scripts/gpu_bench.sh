@@ -1,0 +1,30 @@
+#!/usr/bin/env bash
+# The CUDA benchmarks of the GPU run (called by scripts/gpu_run.sh after the build and the tests):
+# `linework-cli bench` on the phantom with the CUDA back-end (median of 20 runs after a warm-up,
+# 1024x1024) and the same rows on the CPU for comparison (5 runs), JSON rows into $1.
+set -uo pipefail
+out=${1:-out/gpu}
+cli=build-gpu/app/cli/linework-cli
+mkdir -p "$out"
+rc=0
+"$cli" bench --backend cuda --sizes 256,512 --methods mc,3 --variants S --modes a,b \
+    --repeat 20 --image 1024x1024 --json > "$out/bench_cuda.json" 2> "$out/bench_cuda.log" || rc=1
+"$cli" bench --backend cpu --sizes 256,512 --methods mc,3 --variants S --modes a,b \
+    --repeat 5 --image 1024x1024 --json > "$out/bench_cpu.json" 2> "$out/bench_cpu.log" || rc=1
+python3 - "$out" <<'PY'
+import json, sys, os
+out = sys.argv[1]
+def rows(name):
+    try:
+        return json.load(open(os.path.join(out, name)))
+    except Exception as e:
+        print(name, "unreadable:", e); return {}
+for name in ("bench_cuda.json", "bench_cpu.json"):
+    data = rows(name)
+    for note in data.get("notes", []):
+        print("note:", note)
+    for r in data.get("rows", []):
+        print(f"{r['backend']:5} {r['volume']:>14} m{r['method']!s:3} {r['variant']} {r.get('mode') or '-'} "
+              f"vis={r.get('visibility') or '-':3} median {r['ms_median']!s:>10} ms  stages {r['stages']}  tris {r['triangles']} segs {r['segments']}")
+PY
+exit $rc

@@ -1,0 +1,217 @@
+// The CUDA back-end against the CPU reference (label gpu: runs only where a CUDA device is
+// present, SKIP elsewhere). Marching cubes must give the CPU's triangles in the CPU's order with
+// the same vertices; method 3 must give the CPU's image. The volumes cover every voxel type, sizes
+// that are not multiples of the 256-voxel classification tile or the 16-cell skip brick, a
+// gantry-tilted stack with uneven gaps, and surfaces cut open by the volume's border.
+
+#include "lw/kernels/cpu/marching_cubes_cpu.h"
+#include "lw/kernels/cuda/marching_cubes_cuda.h"
+#include "lw/render/iso_surface.h"
+#include "lw/render/phantom.h"
+#include "lw/render/renderer_factory.h"
+#include "lw/render/zbuffer_silhouette_renderer.h"
+
+#include <cmath>
+#include <cstring>
+#include <functional>
+#include <gtest/gtest.h>
+#include <random>
+#include <string>
+
+namespace lw::render {
+namespace {
+
+using volume::Volume;
+using volume::VoxelType;
+
+struct Case {
+    std::string name;
+    std::function<Volume()> make;
+    double iso;
+};
+
+template <typename T, typename F>
+Volume makeVolume(glm::ivec3 dims, VoxelType type, F&& value, volume::VolumeGeometry geometry = {}) {
+    Volume v(dims, type, std::move(geometry));
+    T* data = v.dataAs<T>();
+    for (int z = 0; z < dims.z; ++z)
+        for (int y = 0; y < dims.y; ++y)
+            for (int x = 0; x < dims.x; ++x)
+                data[v.index(x, y, z)] = T(value(x, y, z));
+    return v;
+}
+
+Volume tiltedSphere() {
+    const double tilt = 25.0 * 3.14159265358979323846 / 180.0;
+    std::vector<glm::dvec3> slices;
+    double zPos = 0.0;
+    for (int k = 0; k < 37; ++k) {
+        slices.push_back({0.0, zPos * std::tan(tilt), zPos});
+        zPos += (k % 3 == 0) ? 1.6 : 0.8;
+    }
+    const auto geometry =
+        volume::VolumeGeometry::fromSlicePositions({1, 0, 0}, {0, 1, 0}, 0.7, 0.9, slices);
+    const glm::dvec3 centre = geometry.indexToPatient({21.5, 30.0, 18.0});
+    return makeVolume<float>(
+        {45, 61, 37}, VoxelType::Float32,
+        [&](int x, int y, int z) {
+            return 11.0 - glm::length(geometry.indexToPatient({double(x), double(y), double(z)}) -
+                                      centre);
+        },
+        geometry);
+}
+
+Volume noise(glm::ivec3 dims, VoxelType type, unsigned seed) {
+    std::mt19937 random(seed);
+    std::uniform_int_distribution<int> value(0, 200);
+    return volume::dispatchVoxelType(type, [&](auto zero) {
+        using T = decltype(zero);
+        return makeVolume<T>(dims, type, [&](int, int, int) { return value(random); });
+    });
+}
+
+std::vector<Case> cases() {
+    return {
+        {"phantom 64^3 int16", [] { return makePhantom({64, 64, 64}, PhantomKind::Ct); }, 300.5},
+        {"phantom 100x67x45 int16 (odd sizes)",
+         [] { return makePhantom({100, 67, 45}, PhantomKind::Ct); }, 300.5},
+        {"phantom soft tissue", [] { return makePhantom({96, 80, 70}, PhantomKind::Ct); }, -500.0},
+        {"sphere 33^3", [] { return makePhantom({33, 33, 33}, PhantomKind::Sphere); }, 300.5},
+        {"tilted uneven float", tiltedSphere, 0.0},
+        {"noise uint8 (open at the border)", [] { return noise({40, 23, 19}, VoxelType::UInt8, 1); },
+         100.0},
+        {"noise uint16 17x16x257 (brick boundaries)",
+         [] { return noise({17, 16, 257}, VoxelType::UInt16, 2); }, 120.0},
+        {"noise int16 fractional iso",
+         [] { return noise({31, 29, 18}, VoxelType::Int16, 3); }, 99.5},
+    };
+}
+
+class CudaBackend : public testing::TestWithParam<Case> {};
+
+std::string caseName(const testing::TestParamInfo<Case>& info) {
+    std::string name;
+    for (char c : info.param.name)
+        name += std::isalnum(static_cast<unsigned char>(c)) ? c : '_';
+    return name;
+}
+
+TEST_P(CudaBackend, MarchingCubesGivesTheCpuTrianglesInTheCpuOrder) {
+    const Volume volume = GetParam().make();
+    const double storedIso = storedIsoValue(volume, GetParam().iso);
+    const Mesh reference = extractIsoSurface(volume, GetParam().iso);
+    ASSERT_GT(reference.triangleCount(), 0u) << "the case must have a surface";
+
+    kernels::VolumeView view;
+    view.voxels = volume.data();
+    view.kind = kernels::VoxelKind(volume.voxelType());
+    view.dims = volume.dims();
+    const kernels::VoxelGridSetup setup = kernels::cpu::voxelGridSetup(volume);
+    kernels::cuda::MarchingCubesCuda cuda;
+    const auto uploaded = cuda.setVolume(view, setup);
+    ASSERT_TRUE(uploaded.ok()) << uploaded.describe();
+    const auto extracted = cuda.extract(storedIso);
+    ASSERT_TRUE(extracted.ok()) << extracted.describe();
+    Mesh mesh;
+    const auto downloaded = cuda.download(mesh.positions, mesh.normals, mesh.indices);
+    ASSERT_TRUE(downloaded.ok()) << downloaded.describe();
+
+    ASSERT_EQ(mesh.vertexCount(), reference.vertexCount());
+    ASSERT_EQ(mesh.triangleCount(), reference.triangleCount());
+    EXPECT_TRUE(mesh.indices == reference.indices) << "triangles in another order or wired differently";
+    double worstPosition = 0.0, worstNormal = 0.0;
+    std::size_t identical = 0;
+    for (std::size_t i = 0; i < mesh.vertexCount(); ++i) {
+        worstPosition = std::max(worstPosition,
+                                 double(glm::length(mesh.positions[i] - reference.positions[i])));
+        worstNormal =
+            std::max(worstNormal, double(glm::length(mesh.normals[i] - reference.normals[i])));
+        identical += std::memcmp(&mesh.positions[i], &reference.positions[i], sizeof(glm::vec3)) == 0 &&
+                     std::memcmp(&mesh.normals[i], &reference.normals[i], sizeof(glm::vec3)) == 0;
+    }
+    EXPECT_LE(worstPosition, 1e-4) << "mm";
+    EXPECT_LE(worstNormal, 1e-5);
+    // Shared expressions and no FMA contraction: the vertices are the same bits.
+    EXPECT_EQ(identical, mesh.vertexCount())
+        << "worst position difference " << worstPosition << " mm, normal " << worstNormal;
+
+    // A second extraction at another iso-value reuses the buffers and still agrees.
+    const double other = GetParam().iso + 1.0;
+    const Mesh reference2 = extractIsoSurface(volume, other);
+    ASSERT_TRUE(cuda.extract(storedIsoValue(volume, other)).ok());
+    EXPECT_EQ(cuda.mesh().triangleCount, reference2.triangleCount());
+    EXPECT_EQ(cuda.mesh().vertexCount, reference2.vertexCount());
+}
+
+// Share of the pixels set in either image that are set in both.
+double agreement(const PixelMask& a, const PixelMask& b, std::size_t& differing) {
+    std::size_t either = 0, both = 0;
+    differing = 0;
+    for (std::size_t i = 0; i < a.pixels().size(); ++i) {
+        either += a.pixels()[i] || b.pixels()[i];
+        both += a.pixels()[i] && b.pixels()[i];
+        differing += a.pixels()[i] != b.pixels()[i];
+    }
+    return either == 0 ? 1.0 : double(both) / double(either);
+}
+
+TEST_P(CudaBackend, Method3GivesTheCpuImage) {
+    const Volume volume = GetParam().make();
+    auto cuda = createSilhouetteRenderer(SilhouetteMethod::ZBuffer, Backend::Cuda);
+    ASSERT_EQ(cuda->backendName(), "cuda");
+    ZBufferSilhouetteRenderer cpu;
+    cuda->setVolume(volume);
+    cpu.setVolume(volume);
+    const Aabb bounds = volumeBounds(volume);
+    struct View {
+        double az, el;
+        Projection projection;
+        bool visibility;
+        int width, height;
+    };
+    const View views[] = {{30, 20, Projection::Perspective, true, 256, 256},
+                          {75, 70, Projection::Perspective, true, 301, 173},
+                          {200, -35, Projection::Orthographic, true, 256, 200},
+                          {120, 10, Projection::Perspective, false, 256, 256}};
+    for (const View& v : views) {
+        CameraSetup setup;
+        setup.bounds = bounds;
+        setup.azimuthDeg = v.az;
+        setup.elevationDeg = v.el;
+        setup.projection = v.projection;
+        const Camera camera(setup, v.width, v.height);
+        for (const ExtractionMode mode : {ExtractionMode::EveryFrameB, ExtractionMode::CachedA}) {
+            SilhouetteSettings settings;
+            settings.isoReal = GetParam().iso;
+            settings.visibility = v.visibility;
+            settings.mode = mode;
+            const SilhouetteFrame expected = cpu.render(camera, settings);
+            const SilhouetteFrame frame = cuda->render(camera, settings);
+            const std::string where = "view az " + std::to_string(v.az) + " el " +
+                                      std::to_string(v.el) + (v.visibility ? "" : " no visibility");
+            EXPECT_EQ(frame.triangles, expected.triangles) << where;
+            EXPECT_EQ(frame.segments, expected.segments) << where;
+            ASSERT_GT(expected.lines.count(), 0u) << where << ": an empty image tests nothing";
+            std::size_t differing = 0;
+            const double share = agreement(frame.lines, expected.lines, differing);
+            EXPECT_GE(share, 0.995) << where;
+            EXPECT_EQ(differing, 0u) << where << ": the same rules should give the same pixels";
+        }
+    }
+    // The shaded panel's mesh comes from the device and is the CPU's.
+    const Mesh* mesh = cuda->surfaceMesh();
+    ASSERT_NE(mesh, nullptr);
+    EXPECT_EQ(mesh->triangleCount(), extractIsoSurface(volume, GetParam().iso).triangleCount());
+}
+
+INSTANTIATE_TEST_SUITE_P(Volumes, CudaBackend, testing::ValuesIn(cases()), caseName);
+
+TEST(CudaBackendStatus, ErrorsNameTheCall) {
+    kernels::cuda::MarchingCubesCuda cuda;
+    const auto status = cuda.extract(0.0);
+    EXPECT_FALSE(status.ok());
+    EXPECT_NE(status.describe().find("setVolume"), std::string::npos) << status.describe();
+}
+
+} // namespace
+} // namespace lw::render
