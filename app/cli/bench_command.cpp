@@ -126,13 +126,22 @@ Row benchMarchingCubesCuda(const BenchVolume& input, const Plan& plan,
     notes.push_back(input.label + ": volume upload " + std::to_string(extractor.uploadMs()) +
                     " ms (pageable host memory)");
     render::CudaExtraction result = extractor.extract(input.iso); // warm-up
-    std::vector<double> times, device;
+    std::vector<double> times, device, stages[4];
     for (int i = 0; i < plan.repeat; ++i) {
         const auto start = Clock::now();
         result = extractor.extract(input.iso);
         times.push_back(msSince(start));
         device.push_back(result.deviceMs);
+        const double stage[4] = {result.bricksMs, result.classifyMs, result.countMs,
+                                 result.generateMs};
+        for (int s = 0; s < 4; ++s)
+            stages[s].push_back(stage[s]);
     }
+    notes.push_back(input.label + ": CUDA marching cubes stages (median ms): bricks " +
+                    std::to_string(median(stages[0])) + ", classify " +
+                    std::to_string(median(stages[1])) + ", count " +
+                    std::to_string(median(stages[2])) + ", generate " +
+                    std::to_string(median(stages[3])));
     row.msMedian = median(times);
     row.msMin = *std::min_element(times.begin(), times.end());
     row.stages.extractMs = median(device);

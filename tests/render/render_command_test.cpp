@@ -3,6 +3,7 @@
 #include "lw/core/png_io.h"
 
 #include <filesystem>
+#include <cstdlib>
 #include <gtest/gtest.h>
 #include <string>
 
@@ -30,6 +31,13 @@ std::size_t darkPixels(const lw::core::ImageRgba8& image, int x0, int x1) {
                 ++n;
     return n;
 }
+
+// These tests check the CPU rows and the errors of a machine without a GPU, so the CLI they start
+// sees no CUDA device even on the GPU machine (the CUDA paths: render_cuda_backend_tests).
+const bool kNoCudaDeviceForTheCli = [] {
+    ::setenv("CUDA_VISIBLE_DEVICES", "", 1);
+    return true;
+}();
 
 TEST(RenderCommand, PhantomSilhouetteHasRequestedSize) {
     const auto out = outputPath("phantom64.png");

@@ -57,6 +57,7 @@ struct MarchingCubesCuda::Impl {
     DeviceBuffer<std::uint32_t> activeVoxels, vertexCounts, vertexOffsets, triangleCounts,
         triangleOffsets;
     DeviceBuffer<std::uint16_t> activeCodes;
+    DeviceBuffer<std::uint32_t> rowStart;
     DeviceBuffer<unsigned char> scanTemp;
     DeviceBuffer<glm::vec3> positions, normals;
     DeviceBuffer<std::uint32_t> indices;
@@ -72,7 +73,7 @@ struct MarchingCubesCuda::Impl {
                brickMinMax.bytes() + brickActive.bytes() + tileCounts.bytes() +
                tileOffsets.bytes() + activeVoxels.bytes() + vertexCounts.bytes() +
                vertexOffsets.bytes() + triangleCounts.bytes() + triangleOffsets.bytes() +
-               activeCodes.bytes() + scanTemp.bytes() + positions.bytes() + normals.bytes() +
+               activeCodes.bytes() + rowStart.bytes() + scanTemp.bytes() + positions.bytes() + normals.bytes() +
                indices.bytes();
     }
 
@@ -295,9 +296,15 @@ template <typename T> CudaStatus MarchingCubesCuda::Impl::extractTyped(double is
                                     vertexOffsets.data(), active, positions.data(),
                                     normals.data());
     LW_CUDA_LAUNCHED("mc::generateVertices");
+    const std::uint32_t rows = g.ny * g.nz;
+    LW_RETURN_IF_FAILED(rowStart.reserve(std::size_t(rows) + 1, "cudaMalloc(rowStart)"));
+    mc::findRowStarts<<<blocksFor(std::size_t(rows) + 1, 256), 256, 0, st>>>(
+        activeVoxels.data(), active, g.nx, rows, rowStart.data());
+    LW_CUDA_LAUNCHED("mc::findRowStarts");
     mc::generateTriangles<<<blocksFor(active, tuning::kActiveBlock), tuning::kActiveBlock, 0,
                             st>>>(activeVoxels.data(), activeCodes.data(), vertexOffsets.data(),
-                                  triangleOffsets.data(), active, g.nx, g.ny, indices.data());
+                                  triangleOffsets.data(), rowStart.data(), active, g.nx, g.ny,
+                                  indices.data());
     LW_CUDA_LAUNCHED("mc::generateTriangles");
     LW_RETURN_IF_FAILED(timers[3].stop(st));
     LW_CUDA_TRY(cudaStreamSynchronize(st), "mc::generate");

@@ -222,10 +222,22 @@ __device__ __forceinline__ std::uint32_t lowerBound(const std::uint32_t* voxels,
     return lo;
 }
 
+// rowStart[r] = first position in the ordered active list whose voxel lies in voxel row r
+// (r = z * ny + y) or later; entry rows = count. A triangle corner's owning voxel is then found
+// within one row's few active voxels instead of the whole list.
+__global__ void findRowStarts(const std::uint32_t* activeVoxels, std::uint32_t count,
+                              std::uint32_t nx, std::uint32_t rows, std::uint32_t* rowStart) {
+    const std::uint32_t r = blockIdx.x * blockDim.x + threadIdx.x;
+    if (r > rows)
+        return;
+    rowStart[r] = r == rows ? count : lowerBound(activeVoxels, 0, count, r * nx);
+}
+
 __global__ void generateTriangles(const std::uint32_t* activeVoxels, const std::uint16_t* codes,
                                   const std::uint32_t* vertexOffsets,
-                                  const std::uint32_t* triangleOffsets, std::uint32_t count,
-                                  std::uint32_t nx, std::uint32_t ny, std::uint32_t* indices) {
+                                  const std::uint32_t* triangleOffsets, const std::uint32_t* rowStart,
+                                  std::uint32_t count, std::uint32_t nx, std::uint32_t ny,
+                                  std::uint32_t* indices) {
     const std::uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
     if (i >= count)
         return;
@@ -233,15 +245,21 @@ __global__ void generateTriangles(const std::uint32_t* activeVoxels, const std::
     if (cubeCase == 0)
         return;
     const std::uint32_t v = activeVoxels[i];
-    const std::uint32_t sy = nx, sz = nx * ny;
+    const std::uint32_t row = v / nx;
     std::uint32_t* out = indices + std::size_t(triangleOffsets[i]) * 3;
-    const std::int8_t* row = c_triTable[cubeCase];
-    for (int k = 0; row[k] >= 0; ++k) {
-        const std::int8_t* owner = c_edgeOwner[row[k]];
-        const std::uint32_t ownerVoxel =
-            v + std::uint32_t(owner[0]) + std::uint32_t(owner[1]) * sy + std::uint32_t(owner[2]) * sz;
-        // The owner is this voxel or a later one; it is active (its edge crosses).
-        const std::uint32_t slot = ownerVoxel == v ? i : lowerBound(activeVoxels, i + 1, count, ownerVoxel);
+    const std::int8_t* table = c_triTable[cubeCase];
+    for (int k = 0; table[k] >= 0; ++k) {
+        const std::int8_t* owner = c_edgeOwner[table[k]];
+        const std::uint32_t ownerVoxel = v + std::uint32_t(owner[0]) +
+                                         (std::uint32_t(owner[1]) + std::uint32_t(owner[2]) * ny) * nx;
+        // The owner is this voxel or a later one in this row or one of the next rows; it is
+        // active (its edge crosses).
+        std::uint32_t slot = i;
+        if (ownerVoxel != v) {
+            const std::uint32_t ownerRow = row + std::uint32_t(owner[1]) + std::uint32_t(owner[2]) * ny;
+            const std::uint32_t lo = ownerRow == row ? i + 1 : rowStart[ownerRow];
+            slot = lowerBound(activeVoxels, lo, rowStart[ownerRow + 1], ownerVoxel);
+        }
         const std::uint32_t ownerEdges = codes[slot] >> 8;
         const int axis = owner[3];
         out[k] = vertexOffsets[slot] + __popc(ownerEdges & ((1u << axis) - 1u));

@@ -42,7 +42,9 @@ double CudaIsoSurfaceExtractor::uploadMs() const { return m_impl->marchingCubes.
 CudaExtraction CudaIsoSurfaceExtractor::extract(double isoReal) {
     throwIfFailed(m_impl->marchingCubes.extract(storedIsoValue(m_impl->volume, isoReal)));
     const kernels::cuda::DeviceMeshView mesh = m_impl->marchingCubes.mesh();
-    return {mesh.triangleCount, mesh.vertexCount, m_impl->marchingCubes.times().totalMs()};
+    const kernels::cuda::McCudaTimes& t = m_impl->marchingCubes.times();
+    return {mesh.triangleCount, mesh.vertexCount, t.totalMs(), t.bricksMs, t.classifyMs,
+            t.countMs, t.generateMs};
 }
 
 void CudaIsoSurfaceExtractor::download(Mesh& mesh) const {

@@ -17,6 +17,9 @@ struct CudaExtraction {
     std::size_t triangles = 0;
     std::size_t vertices = 0;
     double deviceMs = 0.0; // the kernels and scans, CUDA events
+    // Its stages: active bricks and border test, classification and compaction, vertex and
+    // triangle offsets, generation.
+    double bricksMs = 0.0, classifyMs = 0.0, countMs = 0.0, generateMs = 0.0;
 };
 
 class CudaIsoSurfaceExtractor {
