@@ -4,6 +4,7 @@
 #include "lw/core/parallel.h"
 #include "lw/kernels/cpu/marching_cubes_cpu.h"
 #include "lw/kernels/marching_cubes.h"
+#include "lw/kernels/voxel_ray_walk.h"
 
 #include <algorithm>
 #include <cmath>
@@ -18,18 +19,9 @@ namespace lw::kernels::cpu {
 namespace {
 
 constexpr std::size_t kChunkCells = 2048;
-constexpr double kStartOffsetCells = 1e-4;
-constexpr double kSelfSkipCells = 1.0;
-// Grazing zone: up to this many cell widths from the start a wall occludes only when its value is
-// inside by more than kGrazeFraction of the spread of its four corner values (about that fraction
-// of a cell deep). A silhouette ray runs tangent to the surface, and on flat stretches it stays
-// within a hair of the trilinear surface for several cells, where the difference between the
-// linear mesh and the trilinear field alone would hide it.
-constexpr double kGrazeCells = 4.0;
-constexpr double kGrazeFraction = 0.1;
-// Empty-space skipping for the visibility rays: macro cells of this many cells per axis that hold
-// no inside voxel cannot occlude (a bilinear wall value is a convex combination of its corners).
-constexpr int kMacroCells = 8;
+// The visibility rule and its constants (start offset, self skip, grazing zone, macro cells) are
+// kernels/common's RayVisibility, shared with the CUDA back-end.
+constexpr int kMacroCells = RayVisibilityRule::kMacroCells;
 // Slack of the normal-cone cull, relative to |eye - cell centre|: float round-off of d = N . V
 // (relative 1e-6 at most) must never turn a culled cell into one with a segment.
 constexpr double kConeSlack = 1e-4;
@@ -316,68 +308,19 @@ public:
     }
 
     bool visible(glm::dvec3 point, const SilhouetteView& view) const override {
-        const glm::dvec3 toward =
-            view.orthographic ? view.eyeOrDirection : view.eyeOrDirection - point;
-        const double tMax = view.orthographic ? std::numeric_limits<double>::infinity() : 1.0;
-        const glm::dvec3 u0 = rayGrid.toGrid(point);
-        const glm::dvec3 du = rayGrid.directionToGrid(toward);
-        const double cellsPerT = glm::length(du / m_cellScale);
-        if (!(cellsPerT > 0.0))
-            return true;
-        const double tStart = kStartOffsetCells / cellsPerT;
-        if (tStart >= tMax)
-            return true;
-        glm::ivec3 startCell;
-        if (!rayGrid.cellOf(u0 + tStart * du, du, startCell))
-            return true;
-        const double tSkip = kSelfSkipCells / cellsPerT;
-        const double tGraze = kGrazeCells / cellsPerT;
-        // The walk restarts at every macro cell boundary: an empty macro cell is crossed in one
-        // jump, an occupied one cell by cell. `from` always lies exactly on the wall entered.
-        glm::dvec3 from = u0 + tStart * du;
-        double tFrom = tStart;
-        for (;;) {
-            glm::ivec3 cell;
-            if (!rayGrid.cellOf(from, du, cell))
-                return true;
-            const glm::ivec3 macro = cell / kMacroCells;
-            int axis = 0;
-            const double tExit =
-                macroOccupied[macroIndex(cell)] ? 0.0 : macroExit(macro, from, du, axis);
-            // (A jump of length 0 would not progress: such a macro cell is walked cell by cell.)
-            if (tExit > 0.0) {
-                if (tFrom + tExit >= tMax)
-                    return true;
-                glm::dvec3 next = from + tExit * du;
-                next[axis] = macroWall(macro, du, axis);
-                from = next;
-                tFrom += tExit;
-                continue;
-            }
-            bool occluded = false, moved = false;
-            CellExit last;
-            rayGrid.walk(from, du, tMax - tFrom, [&](const CellExit& exit) {
-                const double t = tFrom + exit.t;
-                if (exit.cell != startCell && t >= tSkip && occludes(exit, t < tGraze)) {
-                    occluded = true;
-                    return false;
-                }
-                glm::ivec3 next = exit.cell;
-                next[exit.axis] += exit.wall > exit.cell[exit.axis] ? 1 : -1;
-                if (next / kMacroCells != macro) {
-                    last = exit;
-                    moved = true;
-                    return false;
-                }
-                return true;
-            });
-            if (occluded)
-                return false;
-            if (!moved)
-                return true;
-            from = last.point;
-            tFrom += last.t;
-        }
+        return rayVisibility().visible(point, view.eyeOrDirection, view.orthographic);
+    }
+
+    RayVisibility<T> rayVisibility() const {
+        RayVisibility<T> rule;
+        rule.voxels = m_voxels;
+        rule.dims = m_dims;
+        rule.grid = rayGrid.view();
+        rule.macroOccupied = macroOccupied.data();
+        rule.macroDims = m_macroDims;
+        rule.cellScale = m_cellScale;
+        rule.iso = m_iso;
+        return rule;
     }
 
 private:
@@ -389,28 +332,6 @@ private:
     int columnBits(std::size_t index) const {
         return mcColumnBits([this](std::size_t i) { return inside(i); }, index, m_dims.sy,
                             m_dims.sz);
-    }
-
-    // Ray parameter (from `from`) where the ray leaves macro cell `macro`, and through which axis.
-    double macroExit(glm::ivec3 macro, glm::dvec3 from, glm::dvec3 du, int& axis) const {
-        double best = std::numeric_limits<double>::infinity();
-        for (int a = 0; a < 3; ++a) {
-            if (du[a] == 0.0)
-                continue;
-            const double t = (macroWall(macro, du, a) - from[a]) / du[a];
-            if (t < best) {
-                best = t;
-                axis = a;
-            }
-        }
-        return std::max(best, 0.0);
-    }
-    // Grid coordinate of the wall of `macro` that a ray going along du leaves through on `axis`.
-    double macroWall(glm::ivec3 macro, glm::dvec3 du, int axis) const {
-        const int cellsOnAxis = axis == 0 ? m_dims.cx : (axis == 1 ? m_dims.cy : m_dims.cz);
-        const int c = du[axis] > 0.0 ? std::min((macro[axis] + 1) * kMacroCells, cellsOnAxis)
-                                     : macro[axis] * kMacroCells;
-        return axis < 2 ? double(c) : rayGrid.offset(c);
     }
 
     glm::ivec3 cellCoords(std::uint32_t cellIndex) const {
@@ -502,33 +423,6 @@ private:
         if (c < 0.0 && c * cosA + sn * sinA < -margin)
             return true;
         return false;
-    }
-
-    // Bilinear value on the wall the ray leaves through (stored units).
-    bool occludes(const CellExit& exit, bool grazing) const {
-        double spread = 0.0;
-        const double v = wallValue(exit, spread);
-        return grazing ? v - m_iso > kGrazeFraction * spread : v >= m_iso;
-    }
-
-    double wallValue(const CellExit& exit, double& spread) const {
-        const int a = exit.axis, b = (a + 1) % 3, c = (a + 2) % 3;
-        auto fraction = [&](int axis) {
-            const double f = axis == 2 ? rayGrid.sliceFraction(exit.point.z, exit.cell.z)
-                                       : exit.point[axis] - double(exit.cell[axis]);
-            return std::clamp(f, 0.0, 1.0);
-        };
-        const double fb = fraction(b), fc = fraction(c);
-        glm::ivec3 v = exit.cell;
-        v[a] = exit.wall;
-        const std::size_t stride[3] = {1, m_dims.sy, m_dims.sz};
-        const std::size_t i00 = voxelIndex(v.x, v.y, v.z);
-        const std::size_t sb = stride[b], sc = stride[c];
-        const double v00 = value(i00), v10 = value(i00 + sb), v01 = value(i00 + sc),
-                     v11 = value(i00 + sb + sc);
-        spread = std::max(std::max(v00, v10), std::max(v01, v11)) -
-                 std::min(std::min(v00, v10), std::min(v01, v11));
-        return (1.0 - fc) * ((1.0 - fb) * v00 + fb * v10) + fc * ((1.0 - fb) * v01 + fb * v11);
     }
 
     // The marching-cubes vertices (patient mm) and outward normals of cell p's crossing edges,
@@ -629,7 +523,7 @@ std::size_t RayCastSilhouetteCpu::activeBrickCount() const {
     return m_impl ? m_impl->activeBricks : 0;
 }
 double RayCastSilhouetteCpu::selfSkipCells() {
-    return kSelfSkipCells;
+    return RayVisibilityRule::kSelfSkipCells;
 }
 
 std::size_t RayCastSilhouetteCpu::extractSegments(const SilhouetteView& view, unsigned threads) {

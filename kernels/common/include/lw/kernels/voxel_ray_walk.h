@@ -1,0 +1,314 @@
+#pragma once
+
+// Method 2's voxel ray stepping and visibility rule, host+device: the CPU back-end
+// (kernels/cpu/voxel_ray.h, raycast_silhouette_cpu.cpp) and the CUDA one call these same
+// functions, so a silhouette point is visible on one exactly when it is on the other.
+//
+// Grid coordinates u = (i, j, s): i and j are the fractional voxel indices and s the distance
+// along the stack axis from slice 0 (mm). With M = [spacingI * axisI | spacingJ * axisJ |
+// stackAxis]
+//   patient = origin + M u
+// holds for every geometry VolumeGeometry describes, tilted (sheared) and unevenly spaced stacks
+// included, because the slice offset is the only non-linear part of index -> patient and s is
+// that offset itself. A straight ray in patient space is therefore a straight ray in u, and the
+// cell walls are at integer i, integer j and s = offset(k): the walk needs no per-slab inverse.
+
+#include "lw/kernels/host_device.h"
+#include "lw/kernels/voxel_grid.h"
+
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <glm/glm.hpp>
+
+namespace lw::kernels {
+
+// Where the walk crossed a cell wall.
+struct CellExit {
+    glm::ivec3 cell{0};    // the cell being left: it spans voxels cell .. cell + 1
+    int axis = 0;          // 0, 1, 2: the wall is perpendicular to i, j or s
+    int wall = 0;          // voxel plane of the wall along `axis` (cell[axis] or cell[axis] + 1)
+    double t = 0.0;        // ray parameter of the exit point
+    glm::dvec3 point{0.0}; // grid coordinates of the exit point
+};
+
+// The grid as the walk sees it: plain values and one pointer (host or device memory).
+struct RayGridView {
+    glm::ivec3 dims{0};
+    glm::dvec3 origin{0.0};
+    glm::dmat3 toGrid{1.0};
+    const double* offsets = nullptr; // per slice, increasing (s of wall k); at least one entry
+    int offsetCount = 1;
+
+    LW_HOST_DEVICE glm::ivec3 cellCount() const {
+        return glm::ivec3(dims.x > 1 ? dims.x - 1 : 0, dims.y > 1 ? dims.y - 1 : 0,
+                          dims.z > 1 ? dims.z - 1 : 0);
+    }
+    LW_HOST_DEVICE glm::dvec3 toGridPoint(glm::dvec3 patient) const {
+        return toGrid * (patient - origin);
+    }
+    LW_HOST_DEVICE glm::dvec3 directionToGrid(glm::dvec3 patientDirection) const {
+        return toGrid * patientDirection;
+    }
+    // Fractional slice index of grid coordinate s inside slab k (k .. k+1).
+    LW_HOST_DEVICE double sliceFraction(double s, int k) const {
+        const double gap = offsets[k + 1] - offsets[k];
+        return gap > 0.0 ? (s - offsets[k]) / gap : 0.0;
+    }
+    LW_HOST_DEVICE double wall(int axis, int c) const { return axis < 2 ? double(c) : offsets[c]; }
+
+    // The cell holding grid point u, or false when u lies outside the cell grid. Points on a
+    // wall go to the cell on the side `direction` points to, so a walk starting on a wall
+    // begins in the cell it enters.
+    LW_HOST_DEVICE bool cellOf(glm::dvec3 u, glm::dvec3 direction, glm::ivec3& cell) const {
+        const glm::ivec3 cells = cellCount();
+        if (cells.x < 1 || cells.y < 1 || cells.z < 1)
+            return false;
+        for (int a = 0; a < 2; ++a) {
+            double f = floor(u[a]);
+            if (f == u[a] && direction[a] < 0.0)
+                f -= 1.0;
+            if (!(u[a] >= 0.0 && u[a] <= double(cells[a])) || f < 0.0 || f >= double(cells[a]))
+                return false;
+            cell[a] = int(f);
+        }
+        if (!(u.z >= offsets[0] && u.z <= offsets[offsetCount - 1]))
+            return false;
+        // First wall strictly above s (or at s when walking down): upper/lower bound.
+        int lo = 0, hi = offsetCount;
+        const bool down = direction.z < 0.0;
+        while (lo < hi) {
+            const int mid = lo + (hi - lo) / 2;
+            if (down ? offsets[mid] < u.z : offsets[mid] <= u.z)
+                lo = mid + 1;
+            else
+                hi = mid;
+        }
+        const int k = lo - 1;
+        if (k < 0 || k >= cells.z)
+            return false;
+        cell.z = k;
+        return true;
+    }
+
+    // Walks the cells along u(t) = start + t * direction for t in [0, tMax], calling
+    // onExit(const CellExit&) at every wall the ray leaves a cell through, in order; onExit
+    // returns false to stop the walk. Returns false when stopped that way, true when the ray
+    // left the grid or reached tMax. Simultaneous walls (edges, corners) are reported one
+    // after the other with the same t. No allocation.
+    template <typename OnExit>
+    LW_HOST_DEVICE bool walk(glm::dvec3 start, glm::dvec3 direction, double tMax,
+                             OnExit&& onExit) const {
+        glm::ivec3 cell;
+        if (!cellOf(start, direction, cell))
+            return true;
+        const glm::ivec3 cells = cellCount();
+        const double kInf = HUGE_VAL;
+        int step[3];
+        double next[3]; // t of the next wall per axis
+        double inv[3];
+        for (int a = 0; a < 3; ++a) {
+            step[a] = direction[a] > 0.0 ? 1 : (direction[a] < 0.0 ? -1 : 0);
+            inv[a] = step[a] != 0 ? 1.0 / direction[a] : 0.0;
+        }
+        for (int a = 0; a < 3; ++a)
+            next[a] = step[a] == 0 ? kInf
+                                   : (wall(a, cell[a] + (step[a] > 0 ? 1 : 0)) - start[a]) * inv[a];
+        for (;;) {
+            int axis = 0;
+            if (next[1] < next[axis])
+                axis = 1;
+            if (next[2] < next[axis])
+                axis = 2;
+            const double t = next[axis];
+            if (t > tMax || t == kInf)
+                return true;
+            CellExit exit;
+            exit.cell = cell;
+            exit.axis = axis;
+            exit.t = t;
+            exit.wall = cell[axis] + (step[axis] > 0 ? 1 : 0);
+            exit.point = start + t * direction;
+            // Exact wall coordinate, so interpolation on the wall sees no round-off across it.
+            exit.point[axis] = wall(axis, exit.wall);
+            if (!onExit(exit))
+                return false;
+            cell[axis] += step[axis];
+            if (cell[axis] < 0 || cell[axis] >= cells[axis])
+                return true;
+            next[axis] =
+                (wall(axis, cell[axis] + (step[axis] > 0 ? 1 : 0)) - start[axis]) * inv[axis];
+        }
+    }
+};
+
+// The paper's visibility test for a point on the surface, with empty-space skipping: a ray from
+// the point toward the viewer, walked cell by cell; occluded when the bilinearly interpolated
+// value on a wall the ray leaves a cell through is inside (>= iso).
+//
+// Self-occlusion rule: the ray starts kStartOffsetCells off the point toward the viewer, and
+// walls are not tested until the ray has left the cell it starts in and travelled at least
+// kSelfSkipCells cell widths (measured in grid units). Up to kGrazeCells cell widths (the grazing
+// zone) a wall occludes only when its value is inside by more than kGrazeFraction of the spread of
+// its four corner values (about a tenth of a cell deep); beyond, any inside wall occludes. A
+// silhouette point lies on a chord of the interpolated surface and its ray runs tangent to it;
+// near the start, and for several cells on flat stretches, the ray stays within a hair of the
+// trilinear surface, where round-off and the difference between the linear mesh and the
+// trilinear field would hide it. Rays leaving the grid, or reaching the eye, are visible.
+//
+// Empty-space skipping: macro cells of kMacroCells^3 cells that hold no inside voxel cannot
+// occlude (a bilinear wall value is a convex combination of its corners); the walk crosses them
+// in one jump.
+struct RayVisibilityRule {
+    static constexpr double kStartOffsetCells = 1e-4;
+    static constexpr double kSelfSkipCells = 1.0;
+    static constexpr double kGrazeCells = 4.0;
+    static constexpr double kGrazeFraction = 0.1;
+    static constexpr int kMacroCells = 8;
+};
+
+template <typename T> struct RayVisibility {
+    const T* voxels = nullptr;
+    GridDims dims;
+    RayGridView grid;
+    const std::uint8_t* macroOccupied = nullptr; // per macro cell: holds a voxel >= iso
+    glm::ivec3 macroDims{0};
+    glm::dvec3 cellScale{1.0}; // cell widths in grid units (i, j, s)
+    double iso = 0.0;
+
+    using Rule = RayVisibilityRule;
+
+    LW_HOST_DEVICE std::size_t voxelIndex(int x, int y, int z) const {
+        return std::size_t(x) + dims.sy * std::size_t(y) + dims.sz * std::size_t(z);
+    }
+    LW_HOST_DEVICE std::size_t macroIndex(glm::ivec3 cell) const {
+        const glm::ivec3 m = cell / Rule::kMacroCells;
+        return std::size_t(m.x) +
+               std::size_t(macroDims.x) * (std::size_t(m.y) + std::size_t(macroDims.y) * std::size_t(m.z));
+    }
+    // Grid coordinate of the wall of `macro` that a ray going along du leaves through on `axis`.
+    LW_HOST_DEVICE double macroWall(glm::ivec3 macro, glm::dvec3 du, int axis) const {
+        const int cellsOnAxis = axis == 0 ? dims.cx : (axis == 1 ? dims.cy : dims.cz);
+        const int end = (macro[axis] + 1) * Rule::kMacroCells;
+        const int c = du[axis] > 0.0 ? (end < cellsOnAxis ? end : cellsOnAxis)
+                                     : macro[axis] * Rule::kMacroCells;
+        return grid.wall(axis, c);
+    }
+    // Ray parameter (from `from`) where the ray leaves macro cell `macro`, and through which axis.
+    LW_HOST_DEVICE double macroExit(glm::ivec3 macro, glm::dvec3 from, glm::dvec3 du,
+                                    int& axis) const {
+        double best = 1e308;
+        bool any = false;
+        for (int a = 0; a < 3; ++a) {
+            if (du[a] == 0.0)
+                continue;
+            const double t = (macroWall(macro, du, a) - from[a]) / du[a];
+            if (!any || t < best) {
+                best = t;
+                axis = a;
+                any = true;
+            }
+        }
+        if (!any)
+            return HUGE_VAL;
+        return best > 0.0 ? best : 0.0;
+    }
+
+    // Bilinear value on the wall the ray leaves through (stored units), and the spread of its
+    // four corner values.
+    LW_HOST_DEVICE double wallValue(const CellExit& exit, double& spread) const {
+        const int a = exit.axis, b = (a + 1) % 3, c = (a + 2) % 3;
+        auto fraction = [&](int axis) {
+            const double f = axis == 2 ? grid.sliceFraction(exit.point.z, exit.cell.z)
+                                       : exit.point[axis] - double(exit.cell[axis]);
+            return f < 0.0 ? 0.0 : (f > 1.0 ? 1.0 : f);
+        };
+        const double fb = fraction(b), fc = fraction(c);
+        glm::ivec3 v = exit.cell;
+        v[a] = exit.wall;
+        const std::size_t stride[3] = {1, dims.sy, dims.sz};
+        const std::size_t i00 = voxelIndex(v.x, v.y, v.z);
+        const std::size_t sb = stride[b], sc = stride[c];
+        const double v00 = double(float(voxels[i00])), v10 = double(float(voxels[i00 + sb])),
+                     v01 = double(float(voxels[i00 + sc])),
+                     v11 = double(float(voxels[i00 + sb + sc]));
+        const double hi0 = v00 > v10 ? v00 : v10, hi1 = v01 > v11 ? v01 : v11;
+        const double lo0 = v00 < v10 ? v00 : v10, lo1 = v01 < v11 ? v01 : v11;
+        spread = (hi0 > hi1 ? hi0 : hi1) - (lo0 < lo1 ? lo0 : lo1);
+        return (1.0 - fc) * ((1.0 - fb) * v00 + fb * v10) + fc * ((1.0 - fb) * v01 + fb * v11);
+    }
+
+    LW_HOST_DEVICE bool occludes(const CellExit& exit, bool grazing) const {
+        double spread = 0.0;
+        const double v = wallValue(exit, spread);
+        return grazing ? v - iso > Rule::kGrazeFraction * spread : v >= iso;
+    }
+
+    // `eyeOrDirection`: the eye (perspective) or the unit vector toward the viewer (orthographic).
+    LW_HOST_DEVICE bool visible(glm::dvec3 point, glm::dvec3 eyeOrDirection,
+                                bool orthographic) const {
+        const glm::dvec3 toward = orthographic ? eyeOrDirection : eyeOrDirection - point;
+        const double tMax = orthographic ? HUGE_VAL : 1.0;
+        const glm::dvec3 u0 = grid.toGridPoint(point);
+        const glm::dvec3 du = grid.directionToGrid(toward);
+        const double cellsPerT = glm::length(du / cellScale);
+        if (!(cellsPerT > 0.0))
+            return true;
+        const double tStart = Rule::kStartOffsetCells / cellsPerT;
+        if (tStart >= tMax)
+            return true;
+        glm::ivec3 startCell;
+        if (!grid.cellOf(u0 + tStart * du, du, startCell))
+            return true;
+        const double tSkip = Rule::kSelfSkipCells / cellsPerT;
+        const double tGraze = Rule::kGrazeCells / cellsPerT;
+        // The walk restarts at every macro cell boundary: an empty macro cell is crossed in one
+        // jump, an occupied one cell by cell. `from` always lies exactly on the wall entered.
+        glm::dvec3 from = u0 + tStart * du;
+        double tFrom = tStart;
+        for (;;) {
+            glm::ivec3 cell;
+            if (!grid.cellOf(from, du, cell))
+                return true;
+            const glm::ivec3 macro = cell / Rule::kMacroCells;
+            int axis = 0;
+            const double tExit =
+                macroOccupied[macroIndex(cell)] ? 0.0 : macroExit(macro, from, du, axis);
+            // (A jump of length 0 would not progress: such a macro cell is walked cell by cell.)
+            if (tExit > 0.0) {
+                if (tFrom + tExit >= tMax)
+                    return true;
+                glm::dvec3 next = from + tExit * du;
+                next[axis] = macroWall(macro, du, axis);
+                from = next;
+                tFrom += tExit;
+                continue;
+            }
+            bool occluded = false, moved = false;
+            CellExit last;
+            grid.walk(from, du, tMax - tFrom, [&](const CellExit& exit) {
+                const double t = tFrom + exit.t;
+                if (exit.cell != startCell && t >= tSkip && occludes(exit, t < tGraze)) {
+                    occluded = true;
+                    return false;
+                }
+                glm::ivec3 next = exit.cell;
+                next[exit.axis] += exit.wall > exit.cell[exit.axis] ? 1 : -1;
+                if (next / Rule::kMacroCells != macro) {
+                    last = exit;
+                    moved = true;
+                    return false;
+                }
+                return true;
+            });
+            if (occluded)
+                return false;
+            if (!moved)
+                return true;
+            from = last.point;
+            tFrom += last.t;
+        }
+    }
+};
+
+} // namespace lw::kernels
