@@ -7,9 +7,9 @@ out=${1:-out/gpu}
 cli=build-gpu/app/cli/linework-cli
 mkdir -p "$out"
 rc=0
-"$cli" bench --backend cuda --sizes 256,512 --methods mc,3 --variants S --modes a,b \
+"$cli" bench --backend cuda --sizes 256,512 --methods mc,2,3 --variants S --modes a,b \
     --repeat 20 --image 1024x1024 --json > "$out/bench_cuda.json" 2> "$out/bench_cuda.log" || rc=1
-"$cli" bench --backend cpu --sizes 256,512 --methods mc,3 --variants S --modes a,b \
+"$cli" bench --backend cpu --sizes 256,512 --methods mc,2,3 --variants S --modes a,b \
     --repeat 5 --image 1024x1024 --json > "$out/bench_cpu.json" 2> "$out/bench_cpu.log" || rc=1
 python3 - "$out" <<'PY'
 import json, sys, os

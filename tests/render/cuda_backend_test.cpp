@@ -204,6 +204,52 @@ TEST_P(CudaBackend, Method3GivesTheCpuImage) {
     EXPECT_EQ(mesh->triangleCount(), extractIsoSurface(volume, GetParam().iso).triangleCount());
 }
 
+TEST_P(CudaBackend, Method2GivesTheCpuImage) {
+    const Volume volume = GetParam().make();
+    auto cuda = createSilhouetteRenderer(SilhouetteMethod::RayCastVisibility, Backend::Cuda);
+    ASSERT_EQ(cuda->backendName(), "cuda");
+    auto cpu = createSilhouetteRenderer(SilhouetteMethod::RayCastVisibility, Backend::Cpu);
+    cuda->setVolume(volume);
+    cpu->setVolume(volume);
+    const Aabb bounds = volumeBounds(volume);
+    struct View {
+        double az, el;
+        Projection projection;
+        bool visibility, along;
+    };
+    const View views[] = {{30, 20, Projection::Perspective, true, false},
+                          {75, 70, Projection::Perspective, true, true},
+                          {200, -35, Projection::Orthographic, true, false},
+                          {120, 10, Projection::Perspective, false, false}};
+    for (const View& v : views) {
+        CameraSetup setup;
+        setup.bounds = bounds;
+        setup.azimuthDeg = v.az;
+        setup.elevationDeg = v.el;
+        setup.projection = v.projection;
+        const Camera camera(setup, 256, 224);
+        for (const ExtractionMode mode : {ExtractionMode::CachedA, ExtractionMode::EveryFrameB}) {
+            SilhouetteSettings settings;
+            settings.isoReal = GetParam().iso;
+            settings.visibility = v.visibility;
+            settings.testAlongSegment = v.along;
+            settings.mode = mode;
+            const SilhouetteFrame expected = cpu->render(camera, settings);
+            const SilhouetteFrame frame = cuda->render(camera, settings);
+            const std::string where = "view az " + std::to_string(v.az) + " el " +
+                                      std::to_string(v.el) + (v.visibility ? "" : " no visibility") +
+                                      (v.along ? " along segments" : "");
+            EXPECT_EQ(frame.triangles, expected.triangles) << where;
+            EXPECT_EQ(frame.segments, expected.segments) << where;
+            ASSERT_GT(expected.lines.count(), 0u) << where << ": an empty image tests nothing";
+            std::size_t differing = 0;
+            const double share = agreement(frame.lines, expected.lines, differing);
+            EXPECT_GE(share, 0.995) << where;
+            EXPECT_EQ(differing, 0u) << where << ": the same rules should give the same pixels";
+        }
+    }
+}
+
 INSTANTIATE_TEST_SUITE_P(Volumes, CudaBackend, testing::ValuesIn(cases()), caseName);
 
 TEST(CudaBackendStatus, ErrorsNameTheCall) {

@@ -3,7 +3,7 @@
 #include "lw/kernels/cuda/marching_cubes_cuda.h"
 
 #include "dispatch.h"
-#include "marching_cubes_kernels.cuh"
+#include "marching_cubes_impl.cuh"
 
 #include <cub/device/device_scan.cuh>
 
@@ -15,109 +15,6 @@ namespace lw::kernels::cuda {
 
 using dispatch::blocksFor;
 using dispatch::DeviceBuffer;
-
-namespace {
-
-CudaStatus uploadTables() {
-    // Once per process; constant memory is per module, shared by every MarchingCubesCuda.
-    static std::once_flag once;
-    static CudaStatus status;
-    std::call_once(once, [] {
-        const auto copy = [](const void* symbol, const void* source, std::size_t bytes,
-                             const char* what) {
-            return dispatch::statusOf(cudaMemcpyToSymbol(symbol, source, bytes), what);
-        };
-        status = copy(mc::c_triTable, kMcTriTable, sizeof kMcTriTable, "cudaMemcpyToSymbol(triTable)");
-        if (status.ok())
-            status = copy(mc::c_triCount, kMcTriangleCount.count, sizeof kMcTriangleCount.count,
-                          "cudaMemcpyToSymbol(triCount)");
-        if (status.ok())
-            status = copy(mc::c_edgeOwner, kMcEdgeOwner, sizeof kMcEdgeOwner,
-                          "cudaMemcpyToSymbol(edgeOwner)");
-    });
-    return status;
-}
-
-} // namespace
-
-struct MarchingCubesCuda::Impl {
-    dispatch::Stream stream;
-    VolumeView volume;          // device voxels after setVolume (voxels points to `voxels`)
-    DeviceBuffer<unsigned char> voxels;
-    DeviceBuffer<double> sliceOffset;
-    DeviceBuffer<float> spanK, invSpanK;
-    GridSpans spans;
-    McGridFrame frame{};
-    std::uint32_t bricksX = 0, bricksY = 0, bricksZ = 0;
-    DeviceBuffer<float2> brickMinMax;
-    DeviceBuffer<std::uint8_t> brickActive;
-    DeviceBuffer<int> flag;
-
-    DeviceBuffer<std::uint32_t> tileCounts, tileOffsets;
-    DeviceBuffer<std::uint32_t> activeVoxels, vertexCounts, vertexOffsets, triangleCounts,
-        triangleOffsets;
-    DeviceBuffer<std::uint16_t> activeCodes;
-    DeviceBuffer<std::uint32_t> rowStart;
-    DeviceBuffer<unsigned char> scanTemp;
-    DeviceBuffer<glm::vec3> positions, normals;
-    DeviceBuffer<std::uint32_t> indices;
-
-    std::uint32_t activeCount = 0;
-    DeviceMeshView mesh;
-    McCudaTimes times;
-    double uploadMs = 0.0;
-    dispatch::StageTimer timers[4];
-
-    std::size_t deviceBytes() const {
-        return voxels.bytes() + sliceOffset.bytes() + spanK.bytes() + invSpanK.bytes() +
-               brickMinMax.bytes() + brickActive.bytes() + tileCounts.bytes() +
-               tileOffsets.bytes() + activeVoxels.bytes() + vertexCounts.bytes() +
-               vertexOffsets.bytes() + triangleCounts.bytes() + triangleOffsets.bytes() +
-               activeCodes.bytes() + rowStart.bytes() + scanTemp.bytes() + positions.bytes() + normals.bytes() +
-               indices.bytes();
-    }
-
-    // CUB's exclusive sum over `count` values (temporary storage grown on demand).
-    CudaStatus exclusiveSum(const std::uint32_t* in, std::uint32_t* out, std::uint32_t count,
-                            const char* what) {
-        std::size_t bytes = 0;
-        LW_CUDA_TRY(cub::DeviceScan::ExclusiveSum(nullptr, bytes, in, out, count, stream.get()),
-                    what);
-        LW_RETURN_IF_FAILED(scanTemp.reserve(bytes, what));
-        LW_CUDA_TRY(cub::DeviceScan::ExclusiveSum(scanTemp.data(), bytes, in, out, count,
-                                                  stream.get()),
-                    what);
-        return CudaStatus::success();
-    }
-
-    template <typename T> mc::Grid<T> grid(double iso) const {
-        mc::Grid<T> g;
-        g.voxels = reinterpret_cast<const T*>(voxels.data());
-        g.spans = spans;
-        g.frame = frame;
-        g.nx = std::uint32_t(volume.dims.x);
-        g.ny = std::uint32_t(volume.dims.y);
-        g.nz = std::uint32_t(volume.dims.z);
-        g.voxelCount = std::uint32_t(volume.voxelCount());
-        g.threshold = voxelInsideThreshold<T>(iso);
-        g.iso = iso;
-        g.isoF = insideThreshold(iso);
-        g.brickActive = brickActive.data();
-        g.bricksX = bricksX;
-        g.bricksY = bricksY;
-        return g;
-    }
-
-    template <typename T> CudaStatus computeBrickMinMax();
-    template <typename T> CudaStatus extractTyped(double iso);
-    CudaStatus readBack(const std::uint32_t* device, std::uint32_t& host, const char* what) {
-        LW_CUDA_TRY(cudaMemcpyAsync(&host, device, sizeof host, cudaMemcpyDeviceToHost,
-                                    stream.get()),
-                    what);
-        LW_CUDA_TRY(cudaStreamSynchronize(stream.get()), what);
-        return CudaStatus::success();
-    }
-};
 
 MarchingCubesCuda::MarchingCubesCuda() : m_impl(std::make_unique<Impl>()) {}
 MarchingCubesCuda::~MarchingCubesCuda() = default;
@@ -149,7 +46,7 @@ CudaStatus MarchingCubesCuda::setVolume(const VolumeView& host, const VoxelGridS
     if (host.voxelCount() >= std::size_t(std::numeric_limits<std::uint32_t>::max()) - 1024)
         return CudaStatus::failure(CudaStatus::Code::TooLarge, "marching cubes (CUDA)",
                                    "more than 2^32 voxels: the kernels index voxels with 32 bits");
-    LW_RETURN_IF_FAILED(uploadTables());
+    LW_RETURN_IF_FAILED(mc::uploadTables());
     LW_RETURN_IF_FAILED(s.stream.create());
     s.volume = host;
     LW_RETURN_IF_FAILED(s.voxels.reserve(host.byteCount(), "cudaMalloc(volume)"));
@@ -210,7 +107,7 @@ CudaStatus MarchingCubesCuda::extract(double storedIso) {
                              [&](auto zero) { return s.extractTyped<decltype(zero)>(storedIso); });
 }
 
-template <typename T> CudaStatus MarchingCubesCuda::Impl::extractTyped(double iso) {
+template <typename T> CudaStatus MarchingCubesCuda::Impl::classifyTyped(double iso) {
     cudaStream_t st = stream.get();
     const mc::Grid<T> g = grid<T>(iso);
     const std::uint32_t brickCount = bricksX * bricksY * bricksZ;
@@ -244,12 +141,12 @@ template <typename T> CudaStatus MarchingCubesCuda::Impl::extractTyped(double is
     LW_CUDA_TRY(cudaMemcpy(&touches, flag.data(), sizeof touches, cudaMemcpyDeviceToHost),
                 "mc::borderInside");
     activeCount = active;
+    mesh = DeviceMeshView();
+    mesh.touchesBorder = touches != 0;
     if (active == 0) {
         LW_RETURN_IF_FAILED(timers[1].stop(st));
         LW_CUDA_TRY(cudaStreamSynchronize(st), "mc::classify");
         times = McCudaTimes{timers[0].ms(), timers[1].ms(), 0.0, 0.0};
-        mesh = DeviceMeshView();
-        mesh.touchesBorder = touches != 0;
         return CudaStatus::success();
     }
     LW_RETURN_IF_FAILED(activeVoxels.reserve(active, "cudaMalloc(activeVoxels)"));
@@ -259,6 +156,16 @@ template <typename T> CudaStatus MarchingCubesCuda::Impl::extractTyped(double is
                                                                 activeCodes.data());
     LW_CUDA_LAUNCHED("mc::writeTiles");
     LW_RETURN_IF_FAILED(timers[1].stop(st));
+    return CudaStatus::success();
+}
+
+template <typename T> CudaStatus MarchingCubesCuda::Impl::extractTyped(double iso) {
+    cudaStream_t st = stream.get();
+    const mc::Grid<T> g = grid<T>(iso);
+    LW_RETURN_IF_FAILED(classifyTyped<T>(iso));
+    const std::uint32_t active = activeCount;
+    if (active == 0)
+        return CudaStatus::success();
 
     // Vertex and triangle offsets.
     LW_RETURN_IF_FAILED(timers[2].start(st));
@@ -315,8 +222,20 @@ template <typename T> CudaStatus MarchingCubesCuda::Impl::extractTyped(double is
     mesh.indices = indices.data();
     mesh.vertexCount = vertexTotal;
     mesh.triangleCount = triangleTotal;
-    mesh.touchesBorder = touches != 0;
     return CudaStatus::success();
+}
+
+CudaStatus MarchingCubesCuda::classify(double storedIso) {
+    Impl& s = *m_impl;
+    if (!s.volume.voxels)
+        return CudaStatus::failure(CudaStatus::Code::Failed, "marching cubes (CUDA)",
+                                   "no volume: call setVolume first");
+    s.mesh = DeviceMeshView();
+    return dispatchVoxelKind(s.volume.kind, [&](auto zero) -> CudaStatus {
+        LW_RETURN_IF_FAILED(s.classifyTyped<decltype(zero)>(storedIso));
+        LW_CUDA_TRY(cudaStreamSynchronize(s.stream.get()), "mc::classify");
+        return CudaStatus::success();
+    });
 }
 
 CudaStatus MarchingCubesCuda::download(std::vector<glm::vec3>& positions,

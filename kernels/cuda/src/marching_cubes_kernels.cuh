@@ -6,6 +6,7 @@
 
 #include "lw/kernels/marching_cubes.h"
 #include "lw/kernels/voxel_grid.h"
+#include "dispatch.h"
 #include "tuning.h"
 
 #include <cub/block/block_reduce.cuh>
@@ -13,14 +14,47 @@
 
 #include <cfloat>
 #include <cstdint>
+#include <mutex>
 
 namespace lw::kernels::cuda::mc {
 
-// The tables in constant memory (the host constexpr arrays cannot be indexed in device code);
-// filled once from kernels/common's tables by uploadTables().
+// The tables in constant memory (the host constexpr arrays cannot be indexed in device code).
+// Without relocatable device code each translation unit that includes this header has its own
+// copy, so each fills its own through uploadTables() (internal linkage: one per unit).
 __constant__ std::int8_t c_triTable[256][16];
 __constant__ std::uint8_t c_triCount[256];
 __constant__ std::int8_t c_edgeOwner[12][4];
+__constant__ std::uint16_t c_edgeTable[256];
+__constant__ std::int8_t c_edgeCorners[12][2];
+__constant__ std::int8_t c_cornerOffset[8][3];
+
+static CudaStatus uploadTables() {
+    static std::once_flag once;
+    static CudaStatus status;
+    std::call_once(once, [] {
+        const auto copy = [](const void* symbol, const void* source, std::size_t bytes,
+                             const char* what) {
+            return dispatch::statusOf(cudaMemcpyToSymbol(symbol, source, bytes), what);
+        };
+        status = copy(c_triTable, kMcTriTable, sizeof kMcTriTable, "cudaMemcpyToSymbol(triTable)");
+        if (status.ok())
+            status = copy(c_triCount, kMcTriangleCount.count, sizeof kMcTriangleCount.count,
+                          "cudaMemcpyToSymbol(triCount)");
+        if (status.ok())
+            status = copy(c_edgeOwner, kMcEdgeOwner, sizeof kMcEdgeOwner,
+                          "cudaMemcpyToSymbol(edgeOwner)");
+        if (status.ok())
+            status = copy(c_edgeTable, kMcEdgeTable, sizeof kMcEdgeTable,
+                          "cudaMemcpyToSymbol(edgeTable)");
+        if (status.ok())
+            status = copy(c_edgeCorners, kMcEdgeCorners, sizeof kMcEdgeCorners,
+                          "cudaMemcpyToSymbol(edgeCorners)");
+        if (status.ok())
+            status = copy(c_cornerOffset, kMcCornerOffset, sizeof kMcCornerOffset,
+                          "cudaMemcpyToSymbol(cornerOffset)");
+    });
+    return status;
+}
 
 // Everything a kernel needs to know about the grid, by value.
 template <typename T> struct Grid {
@@ -107,7 +141,7 @@ __global__ void brickMinMax(const T* voxels, std::uint32_t nx, std::uint32_t ny,
         minMax[b] = make_float2(lo, hi);
 }
 
-__global__ void markActiveBricks(const float2* minMax, std::uint32_t count, double iso,
+static __global__ void markActiveBricks(const float2* minMax, std::uint32_t count, double iso,
                                  std::uint8_t* active) {
     const std::uint32_t b = blockIdx.x * blockDim.x + threadIdx.x;
     if (b < count)
@@ -168,7 +202,7 @@ __global__ void writeTiles(Grid<T> g, const std::uint32_t* tileOffsets,
 
 // Vertices and triangles per active voxel; entry `count` is 0 so the exclusive scans end with the
 // totals.
-__global__ void countGeometry(const std::uint16_t* codes, std::uint32_t count,
+static __global__ void countGeometry(const std::uint16_t* codes, std::uint32_t count,
                               std::uint32_t* vertexCounts, std::uint32_t* triangleCounts) {
     const std::uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
     if (i > count)
@@ -225,7 +259,7 @@ __device__ __forceinline__ std::uint32_t lowerBound(const std::uint32_t* voxels,
 // rowStart[r] = first position in the ordered active list whose voxel lies in voxel row r
 // (r = z * ny + y) or later; entry rows = count. A triangle corner's owning voxel is then found
 // within one row's few active voxels instead of the whole list.
-__global__ void findRowStarts(const std::uint32_t* activeVoxels, std::uint32_t count,
+static __global__ void findRowStarts(const std::uint32_t* activeVoxels, std::uint32_t count,
                               std::uint32_t nx, std::uint32_t rows, std::uint32_t* rowStart) {
     const std::uint32_t r = blockIdx.x * blockDim.x + threadIdx.x;
     if (r > rows)
@@ -233,7 +267,7 @@ __global__ void findRowStarts(const std::uint32_t* activeVoxels, std::uint32_t c
     rowStart[r] = r == rows ? count : lowerBound(activeVoxels, 0, count, r * nx);
 }
 
-__global__ void generateTriangles(const std::uint32_t* activeVoxels, const std::uint16_t* codes,
+static __global__ void generateTriangles(const std::uint32_t* activeVoxels, const std::uint16_t* codes,
                                   const std::uint32_t* vertexOffsets,
                                   const std::uint32_t* triangleOffsets, const std::uint32_t* rowStart,
                                   std::uint32_t count, std::uint32_t nx, std::uint32_t ny,

@@ -14,6 +14,8 @@ inline constexpr int kSkipBrickCells = 1 << kSkipBrickShift;
 inline constexpr int kBrickReduceBlock = 256;
 // Per active voxel (vertex and triangle generation, counts).
 inline constexpr int kActiveBlock = 128;
+// Method 2: one thread per active cell (heavy threads: vertices, segments, visibility rays).
+inline constexpr int kRayCastBlock = 64;
 
 // Method 3: per vertex, per triangle, per pixel.
 inline constexpr int kVertexBlock = 256;

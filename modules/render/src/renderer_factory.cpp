@@ -9,6 +9,7 @@
 #include "lw/render/geometry_shader_silhouette_renderer.h"
 #endif
 #if LINEWORK_CUDA
+#include "cuda/cuda_raycast_silhouette_renderer.h"
 #include "cuda/cuda_zbuffer_silhouette_renderer.h"
 #include "lw/kernels/cuda/cuda_device.h"
 #endif
@@ -77,13 +78,14 @@ Backend resolveBackend(Backend requested, SilhouetteMethod method, std::string* 
     Backend chosen = Backend::Cpu;
     if (requested != Backend::Cpu) {
         const CudaAvailability cuda = cudaAvailability();
-        const bool hasKernels = method == SilhouetteMethod::ZBuffer;
+        const bool hasKernels =
+            method == SilhouetteMethod::ZBuffer || method == SilhouetteMethod::RayCastVisibility;
         if (requested == Backend::Cuda) {
             if (!cuda.available)
                 throw core::Error("--backend cuda", cuda.reason);
             if (!hasKernels)
                 throw core::Error("--backend cuda", "method " + std::to_string(int(method)) +
-                                                        " has no CUDA implementation yet (method 3 has)");
+                                                        " has no CUDA implementation yet (methods 2 and 3 have)");
             chosen = Backend::Cuda;
         } else if (!cuda.available) {
             note = "auto: " + cuda.reason + ", using CPU";
@@ -121,6 +123,10 @@ createSilhouetteRenderer(SilhouetteMethod method, Backend requested, std::string
                           "no OpenGL context: this build has no OpenGL/EGL (LINEWORK_GL=0)");
 #endif
     case SilhouetteMethod::RayCastVisibility:
+#if LINEWORK_CUDA
+        if (backend == Backend::Cuda)
+            return std::make_unique<CudaRayCastSilhouetteRenderer>();
+#endif
         return std::make_unique<RayCastSilhouetteRenderer>();
     case SilhouetteMethod::ZBuffer:
 #if LINEWORK_CUDA

@@ -88,6 +88,9 @@ public:
     glm::dvec3 up() const { return m_up; }           // unit, screen up
     glm::dvec3 right() const { return m_right; }     // unit, screen right
     double nearPlane() const { return m_near; }
+    // Orthographic: half extents of the view (mm); perspective: tan of the half angles.
+    double halfWidth() const { return m_halfWidth; }
+    double halfHeight() const { return m_halfHeight; }
     double farPlane() const { return m_far; }
 
     // Unit vector from `point` toward the viewer: normalize(eye - point) for perspective,

@@ -64,10 +64,16 @@ public:
     const McCudaTimes& times() const;
     std::size_t activeVoxelCount() const;
 
+    // Only the classification: the ordered list of active voxels (a crossing edge or a cut cell),
+    // without generating the mesh; what method 2 starts from.
+    CudaStatus classify(double storedIso);
+
     CudaStatus download(std::vector<glm::vec3>& positions, std::vector<glm::vec3>& normals,
                         std::vector<std::uint32_t>& indices) const;
 
+    // The back-end's other kernels (kernels/cuda/src) reach the state through this.
     struct Impl;
+    Impl& implementation() { return *m_impl; }
 
 private:
     std::unique_ptr<Impl> m_impl;

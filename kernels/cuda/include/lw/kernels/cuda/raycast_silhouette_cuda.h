@@ -1,0 +1,66 @@
+#pragma once
+
+// Method 2 on the GPU: silhouette segments straight from the active cells (no mesh kept) and the
+// ray-cast visibility test through the voxel grid, as one kernel over the cells.
+//   prepare   the ordered active cells (MarchingCubesCuda::classify: bricks with min/max skip,
+//             CUB scans) and the macro-cell occupancy for empty-space skipping (view-independent:
+//             what mode a keeps)
+//   render    per active cell: the marching-cubes vertices and normals of its crossing edges
+//             (kernels/common, bit for bit the CPU's), Burns' segment of each triangle, and for
+//             each segment the visibility rays of kernels/common's RayVisibility (both endpoints,
+//             or every pixel step along it), then the DDA of rasterizeLine into a byte mask
+// The CPU back-end (kernels/cpu/raycast_silhouette_cpu.h) calls the same rules, so the images
+// agree. Public header: no CUDA types.
+
+#include "lw/kernels/cuda/cuda_status.h"
+#include "lw/kernels/cuda/marching_cubes_cuda.h"
+#include "lw/kernels/pixel_camera.h"
+#include "lw/kernels/voxel_ray_walk.h"
+
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+namespace lw::kernels::cuda {
+
+struct RayCastCudaSettings {
+    bool visibility = true;
+    bool alongSegment = false; // test every pixel step of a segment, not only its endpoints
+};
+
+struct RayCastCudaFrame {
+    std::size_t triangles = 0; // triangles of the active cells (visited)
+    std::size_t segments = 0;  // silhouette segments found (before visibility)
+    double prepareMs = 0.0;    // CUDA events; 0 when the cache was reused
+    double renderMs = 0.0;
+};
+
+// The walk's grid on the host side (kernels/cpu's VoxelRayGrid supplies it).
+struct RayGridSetup {
+    RayGridView view;            // offsets point to host memory here
+    std::vector<double> offsets; // increasing slice offsets (the view's table)
+    glm::dvec3 cellScale{1.0};
+};
+
+class RayCastSilhouetteCuda {
+public:
+    RayCastSilhouetteCuda();
+    ~RayCastSilhouetteCuda();
+    RayCastSilhouetteCuda(const RayCastSilhouetteCuda&) = delete;
+    RayCastSilhouetteCuda& operator=(const RayCastSilhouetteCuda&) = delete;
+
+    CudaStatus setVolume(const VolumeView& hostVolume, const VoxelGridSetup& setup,
+                         const RayGridSetup& rayGrid);
+    double uploadMs() const;
+    CudaStatus prepare(double storedIso, RayCastCudaFrame& frame);
+    CudaStatus render(const PixelCamera& camera, glm::dvec3 eyeOrDirection, bool orthographic,
+                      const RayCastCudaSettings& settings, std::uint8_t* hostMask,
+                      RayCastCudaFrame& frame);
+
+private:
+    struct Impl;
+    std::unique_ptr<Impl> m_impl;
+};
+
+} // namespace lw::kernels::cuda

@@ -1,0 +1,156 @@
+#pragma once
+
+// Method 2's kernels (dispatch in raycast_silhouette_cuda.cu): everything per cell and per ray is
+// kernels/common's (marching_cubes.h, voxel_grid.h, silhouette_segment.h, voxel_ray_walk.h,
+// pixel_camera.h), the same functions the CPU back-end calls.
+
+#include "lw/kernels/pixel_camera.h"
+#include "lw/kernels/silhouette_segment.h"
+#include "lw/kernels/voxel_ray_walk.h"
+#include "marching_cubes_kernels.cuh"
+
+namespace lw::kernels::cuda::rc {
+
+using mc::c_cornerOffset;
+using mc::c_edgeCorners;
+using mc::c_edgeOwner;
+using mc::c_edgeTable;
+using mc::c_triCount;
+using mc::c_triTable;
+
+// Per macro cell of RayVisibilityRule::kMacroCells^3 cells: does any of its corner voxels lie
+// inside (float(value) >= isoF, as the CPU engine tests)?
+template <typename T>
+__global__ void macroOccupancy(const T* voxels, GridDims dims, glm::ivec3 macroDims, float isoF,
+                               std::uint8_t* occupied) {
+    const std::uint32_t m = blockIdx.x * blockDim.x + threadIdx.x;
+    const std::uint32_t total = std::uint32_t(macroDims.x) * macroDims.y * macroDims.z;
+    if (m >= total)
+        return;
+    const int n = RayVisibilityRule::kMacroCells;
+    const int mx = int(m % macroDims.x), my = int((m / macroDims.x) % macroDims.y),
+              mz = int(m / (std::uint32_t(macroDims.x) * macroDims.y));
+    const int x0 = mx * n, y0 = my * n, z0 = mz * n;
+    const int x1 = min(x0 + n, dims.cx), y1 = min(y0 + n, dims.cy), z1 = min(z0 + n, dims.cz);
+    std::uint8_t any = 0;
+    for (int z = z0; z <= z1 && !any; ++z)
+        for (int y = y0; y <= y1 && !any; ++y) {
+            const T* row = voxels + std::size_t(y) * dims.sy + std::size_t(z) * dims.sz;
+            for (int x = x0; x <= x1; ++x)
+                any |= float(row[x]) >= isoF;
+        }
+    occupied[m] = any;
+}
+
+struct Counters {
+    unsigned long long triangles;
+    unsigned long long segments;
+};
+
+struct View {
+    PixelCamera camera;
+    glm::dvec3 eyeOrDirection;
+    glm::vec3 eyeOrDirectionF;
+    bool orthographic;
+    bool visibility;
+    bool alongSegment;
+};
+
+__device__ __forceinline__ glm::dvec2 pixelOf(const PixelCamera& camera, glm::vec3 p) {
+    // The CPU renderer keeps pixel positions as float vec2 before drawing.
+    return glm::dvec2(glm::vec2(projectPixel(camera, glm::dvec3(p))));
+}
+
+template <typename T>
+__device__ void drawSegment(const RayVisibility<T>& rule, const View& view,
+                            const SegmentEndpoints& segment, std::uint8_t* mask) {
+    const int width = view.camera.width, height = view.camera.height;
+    const auto set = [&](int x, int y) { mask[std::size_t(y) * std::size_t(width) + x] = 1; };
+    const glm::dvec3 a(segment.a), b(segment.b);
+    if (!view.visibility) {
+        forEachLinePixel(pixelOf(view.camera, segment.a), pixelOf(view.camera, segment.b), width,
+                         height, set);
+    } else if (!view.alongSegment) {
+        if (rule.visible(a, view.eyeOrDirection, view.orthographic) &&
+            rule.visible(b, view.eyeOrDirection, view.orthographic))
+            forEachLinePixel(pixelOf(view.camera, segment.a), pixelOf(view.camera, segment.b),
+                             width, height, set);
+    } else {
+        const glm::dvec2 pa = pixelOf(view.camera, segment.a), pb = pixelOf(view.camera, segment.b);
+        const glm::dvec2 delta = pb - pa;
+        const double adx = fabs(delta.x), ady = fabs(delta.y);
+        const double steps = ceil(adx > ady ? adx : ady);
+        if (!(steps < double(1 << 20)))
+            return; // a segment projected absurdly far off screen
+        const int count = int(steps);
+        for (int step = 0; step <= count; ++step) {
+            const double t = count == 0 ? 0.0 : double(step) / double(count);
+            if (rule.visible(a + t * (b - a), view.eyeOrDirection, view.orthographic)) {
+                const glm::dvec2 q = pa + t * delta;
+                const int x = int(floor(q.x)), y = int(floor(q.y));
+                if (x >= 0 && y >= 0 && x < width && y < height)
+                    set(x, y);
+            }
+        }
+    }
+}
+
+template <typename T>
+__global__ void silhouetteCells(mc::Grid<T> g, RayVisibility<T> rule,
+                                const std::uint32_t* activeVoxels, const std::uint16_t* codes,
+                                std::uint32_t count, View view, std::uint8_t* mask,
+                                Counters* counters) {
+    const std::uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
+    if (i >= count || (codes[i] & 0xff) == 0)
+        return;
+    const std::uint32_t v = activeVoxels[i];
+    const int x = int(v % g.nx), y = int((v / g.nx) % g.ny), z = int(v / (g.nx * g.ny));
+    const std::size_t sy = g.nx, sz = std::size_t(g.nx) * g.ny;
+    float value[8];
+    for (int c = 0; c < 8; ++c)
+        value[c] = float(g.voxels[v + std::size_t(c_cornerOffset[c][0]) +
+                                  std::size_t(c_cornerOffset[c][1]) * sy +
+                                  std::size_t(c_cornerOffset[c][2]) * sz]);
+    const int cubeCase = mcCaseIndex(value, g.isoF);
+    const int triangles = c_triCount[cubeCase];
+    if (triangles == 0)
+        return;
+    atomicAdd(&counters->triangles, (unsigned long long)triangles);
+    const unsigned edges = c_edgeTable[cubeCase];
+    const VoxelGradientSampler<T> sampler{g.voxels, g.spans};
+    McVec3 gradient[8];
+    unsigned haveGradient = 0;
+    glm::vec3 position[12], normal[12];
+    float distance[12];
+    for (int e = 0; e < 12; ++e) {
+        if (!(edges & (1u << e)))
+            continue;
+        const int c0 = c_edgeCorners[e][0], c1 = c_edgeCorners[e][1];
+        for (const int c : {c0, c1})
+            if (!(haveGradient & (1u << c))) {
+                gradient[c] = sampler.gradient(x + c_cornerOffset[c][0], y + c_cornerOffset[c][1],
+                                               z + c_cornerOffset[c][2]);
+                haveGradient |= 1u << c;
+            }
+        const std::int8_t* owner = c_edgeOwner[e];
+        const McVertex vertex = mcEdgeVertex(g.frame, x + owner[0], y + owner[1], z + owner[2],
+                                             owner[3], value[c0], value[c1], gradient[c0],
+                                             gradient[c1], g.iso, g.isoF);
+        position[e] = glm::vec3(vertex.position.x, vertex.position.y, vertex.position.z);
+        normal[e] = glm::vec3(vertex.normal.x, vertex.normal.y, vertex.normal.z);
+        distance[e] = silhouetteDistance(position[e], normal[e], view.eyeOrDirectionF,
+                                         view.orthographic);
+    }
+    const std::int8_t* row = c_triTable[cubeCase];
+    for (int k = 0; row[k] >= 0; k += 3) {
+        const glm::vec3 q[3] = {position[row[k]], position[row[k + 1]], position[row[k + 2]]};
+        const float d[3] = {distance[row[k]], distance[row[k + 1]], distance[row[k + 2]]};
+        SegmentEndpoints segment;
+        if (!silhouetteSegment(q, d, segment))
+            continue;
+        atomicAdd(&counters->segments, 1ull);
+        drawSegment(rule, view, segment, mask);
+    }
+}
+
+} // namespace lw::kernels::cuda::rc

@@ -1,0 +1,153 @@
+// Host dispatch of method 2 on the GPU (kernels in raycast_kernels.cuh).
+
+#include "lw/kernels/cuda/raycast_silhouette_cuda.h"
+
+#include "marching_cubes_impl.cuh"
+#include "raycast_kernels.cuh"
+
+namespace lw::kernels::cuda {
+
+struct RayCastSilhouetteCuda::Impl {
+    MarchingCubesCuda marchingCubes;
+    RayGridSetup rayGrid;
+    DeviceBuffer<double> rayOffsets;
+    DeviceBuffer<std::uint8_t> macroOccupied;
+    glm::ivec3 macroDims{0};
+    DeviceBuffer<std::uint8_t> mask;
+    DeviceBuffer<rc::Counters> counters;
+    double iso = 0.0;
+    bool prepared = false;
+    dispatch::StageTimer prepareTimer, renderTimer;
+
+    MarchingCubesCuda::Impl& mc() { return marchingCubes.implementation(); }
+
+    template <typename T> CudaStatus prepareTyped(double storedIso, RayCastCudaFrame& frame);
+    template <typename T>
+    CudaStatus renderTyped(const rc::View& view, std::uint8_t* hostMask, RayCastCudaFrame& frame);
+};
+
+RayCastSilhouetteCuda::RayCastSilhouetteCuda() : m_impl(std::make_unique<Impl>()) {}
+RayCastSilhouetteCuda::~RayCastSilhouetteCuda() = default;
+
+double RayCastSilhouetteCuda::uploadMs() const { return m_impl->marchingCubes.uploadMs(); }
+
+CudaStatus RayCastSilhouetteCuda::setVolume(const VolumeView& hostVolume,
+                                            const VoxelGridSetup& setup,
+                                            const RayGridSetup& rayGrid) {
+    Impl& s = *m_impl;
+    s.prepared = false;
+    // This translation unit's copy of the constant tables (see marching_cubes_kernels.cuh).
+    LW_RETURN_IF_FAILED(mc::uploadTables());
+    LW_RETURN_IF_FAILED(s.marchingCubes.setVolume(hostVolume, setup));
+    s.rayGrid = rayGrid;
+    LW_RETURN_IF_FAILED(s.rayOffsets.reserve(rayGrid.offsets.size(), "cudaMalloc(rayOffsets)"));
+    LW_CUDA_TRY(cudaMemcpy(s.rayOffsets.data(), rayGrid.offsets.data(),
+                           rayGrid.offsets.size() * sizeof(double), cudaMemcpyHostToDevice),
+                "cudaMemcpy(rayOffsets)");
+    s.rayGrid.view.offsets = s.rayOffsets.data();
+    s.rayGrid.view.offsetCount = int(rayGrid.offsets.size());
+    const glm::ivec3 cells = glm::max(hostVolume.dims - 1, glm::ivec3(0));
+    const int n = RayVisibilityRule::kMacroCells;
+    s.macroDims = (cells + n - 1) / n;
+    const std::size_t macroCount =
+        std::size_t(s.macroDims.x) * std::size_t(s.macroDims.y) * std::size_t(s.macroDims.z);
+    LW_RETURN_IF_FAILED(s.macroOccupied.reserve(macroCount, "cudaMalloc(macroOccupied)"));
+    LW_RETURN_IF_FAILED(s.counters.reserve(1, "cudaMalloc(counters)"));
+    return CudaStatus::success();
+}
+
+template <typename T>
+CudaStatus RayCastSilhouetteCuda::Impl::prepareTyped(double storedIso, RayCastCudaFrame& frame) {
+    MarchingCubesCuda::Impl& m = mc();
+    cudaStream_t st = m.stream.get();
+    LW_RETURN_IF_FAILED(prepareTimer.start(st));
+    LW_RETURN_IF_FAILED(m.classifyTyped<T>(storedIso));
+    const std::size_t macroCount =
+        std::size_t(macroDims.x) * std::size_t(macroDims.y) * std::size_t(macroDims.z);
+    rc::macroOccupancy<T><<<blocksFor(macroCount, 128), 128, 0, st>>>(
+        reinterpret_cast<const T*>(m.voxels.data()), m.spans.dims, macroDims,
+        insideThreshold(storedIso), macroOccupied.data());
+    LW_CUDA_LAUNCHED("rc::macroOccupancy");
+    LW_RETURN_IF_FAILED(prepareTimer.stop(st));
+    LW_CUDA_TRY(cudaStreamSynchronize(st), "rc::prepare");
+    frame.prepareMs = prepareTimer.ms();
+    iso = storedIso;
+    prepared = true;
+    return CudaStatus::success();
+}
+
+CudaStatus RayCastSilhouetteCuda::prepare(double storedIso, RayCastCudaFrame& frame) {
+    Impl& s = *m_impl;
+    s.prepared = false;
+    if (!s.mc().volume.voxels)
+        return CudaStatus::failure(CudaStatus::Code::Failed, "method 2 (CUDA)",
+                                   "no volume: call setVolume first");
+    return dispatchVoxelKind(s.mc().volume.kind, [&](auto zero) {
+        return s.prepareTyped<decltype(zero)>(storedIso, frame);
+    });
+}
+
+template <typename T>
+CudaStatus RayCastSilhouetteCuda::Impl::renderTyped(const rc::View& view, std::uint8_t* hostMask,
+                                                    RayCastCudaFrame& frame) {
+    MarchingCubesCuda::Impl& m = mc();
+    cudaStream_t st = m.stream.get();
+    const std::size_t pixels =
+        std::size_t(view.camera.width > 0 ? view.camera.width : 0) *
+        std::size_t(view.camera.height > 0 ? view.camera.height : 0);
+    LW_RETURN_IF_FAILED(mask.reserve(pixels > 0 ? pixels : 1, "cudaMalloc(mask)"));
+    LW_RETURN_IF_FAILED(renderTimer.start(st));
+    LW_CUDA_TRY(cudaMemsetAsync(mask.data(), 0, pixels, st), "cudaMemset(mask)");
+    LW_CUDA_TRY(cudaMemsetAsync(counters.data(), 0, sizeof(rc::Counters), st),
+                "cudaMemset(counters)");
+    if (m.activeCount > 0) {
+        const mc::Grid<T> g = m.grid<T>(iso);
+        RayVisibility<T> rule;
+        rule.voxels = g.voxels;
+        rule.dims = m.spans.dims;
+        rule.grid = rayGrid.view;
+        rule.macroOccupied = macroOccupied.data();
+        rule.macroDims = macroDims;
+        rule.cellScale = rayGrid.cellScale;
+        rule.iso = iso;
+        rc::silhouetteCells<T><<<blocksFor(m.activeCount, tuning::kRayCastBlock),
+                                 tuning::kRayCastBlock, 0, st>>>(
+            g, rule, m.activeVoxels.data(), m.activeCodes.data(), m.activeCount, view, mask.data(),
+            counters.data());
+        LW_CUDA_LAUNCHED("rc::silhouetteCells");
+    }
+    LW_RETURN_IF_FAILED(renderTimer.stop(st));
+    rc::Counters counts{};
+    if (pixels > 0)
+        LW_CUDA_TRY(cudaMemcpyAsync(hostMask, mask.data(), pixels, cudaMemcpyDeviceToHost, st),
+                    "cudaMemcpy(mask)");
+    LW_CUDA_TRY(cudaMemcpyAsync(&counts, counters.data(), sizeof counts, cudaMemcpyDeviceToHost,
+                                st),
+                "cudaMemcpy(counters)");
+    LW_CUDA_TRY(cudaStreamSynchronize(st), "rc::silhouetteCells");
+    frame.renderMs = renderTimer.ms();
+    frame.triangles = std::size_t(counts.triangles);
+    frame.segments = std::size_t(counts.segments);
+    return CudaStatus::success();
+}
+
+CudaStatus RayCastSilhouetteCuda::render(const PixelCamera& camera, glm::dvec3 eyeOrDirection,
+                                         bool orthographic, const RayCastCudaSettings& settings,
+                                         std::uint8_t* hostMask, RayCastCudaFrame& frame) {
+    Impl& s = *m_impl;
+    if (!s.prepared)
+        return CudaStatus::failure(CudaStatus::Code::Failed, "method 2 (CUDA)",
+                                   "render() needs a prepare() first");
+    rc::View view;
+    view.camera = camera;
+    view.eyeOrDirection = eyeOrDirection;
+    view.eyeOrDirectionF = glm::vec3(eyeOrDirection);
+    view.orthographic = orthographic;
+    view.visibility = settings.visibility;
+    view.alongSegment = settings.alongSegment;
+    return dispatchVoxelKind(s.mc().volume.kind, [&](auto zero) {
+        return s.renderTyped<decltype(zero)>(view, hostMask, frame);
+    });
+}
+
+} // namespace lw::kernels::cuda

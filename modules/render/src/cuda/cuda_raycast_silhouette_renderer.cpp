@@ -1,0 +1,132 @@
+#include "cuda_raycast_silhouette_renderer.h"
+
+#include "lw/core/error.h"
+#include "lw/kernels/cpu/marching_cubes_cpu.h"
+#include "lw/kernels/cpu/voxel_ray.h"
+#include "lw/kernels/cuda/raycast_silhouette_cuda.h"
+#include "lw/render/iso_surface.h"
+
+#include <cmath>
+#include <limits>
+
+namespace lw::render {
+namespace {
+
+void throwIfFailed(const kernels::cuda::CudaStatus& status) {
+    if (!status.ok())
+        throw core::Error("method 2 (CUDA)", status.describe());
+}
+
+kernels::PixelCamera pixelCamera(const Camera& camera) {
+    kernels::PixelCamera c;
+    c.eye = camera.eye();
+    c.right = camera.right();
+    c.up = camera.up();
+    c.forward = camera.forward();
+    c.halfWidth = camera.halfWidth();
+    c.halfHeight = camera.halfHeight();
+    c.width = camera.width();
+    c.height = camera.height();
+    c.orthographic = camera.isOrthographic();
+    return c;
+}
+
+// The walk's grid and the cell widths in grid units, as the CPU engine sets them up.
+kernels::cuda::RayGridSetup rayGridSetup(const volume::Volume& volume) {
+    const kernels::cpu::VoxelRayGrid grid(volume);
+    kernels::cuda::RayGridSetup setup;
+    setup.offsets = grid.offsets();
+    setup.view = grid.view();
+    const glm::ivec3 dims = volume.dims();
+    const kernels::VoxelGridSetup voxelGrid = kernels::cpu::voxelGridSetup(volume);
+    const std::vector<double>& offset = voxelGrid.sliceOffsets();
+    const int cz = dims.z - 1;
+    setup.cellScale = glm::dvec3(
+        1.0, 1.0, dims.z > 1 ? std::abs(offset.back() - offset.front()) / cz : 1.0);
+    if (!(setup.cellScale.z > 0.0))
+        setup.cellScale.z = 1.0;
+    return setup;
+}
+
+} // namespace
+
+struct CudaRayCastSilhouetteRenderer::State {
+    const volume::Volume* volume = nullptr;
+    bool uploaded = false;
+    kernels::cuda::RayCastSilhouetteCuda kernels;
+    bool prepared = false;
+    double preparedIso = std::numeric_limits<double>::quiet_NaN();
+    std::unique_ptr<RayCastSilhouetteRenderer> chunked; // L frames (see the header)
+    bool lastWasChunked = false;
+};
+
+CudaRayCastSilhouetteRenderer::CudaRayCastSilhouetteRenderer()
+    : m_state(std::make_unique<State>()) {}
+CudaRayCastSilhouetteRenderer::~CudaRayCastSilhouetteRenderer() = default;
+
+std::string_view CudaRayCastSilhouetteRenderer::backendName() const {
+    return m_state->lastWasChunked ? "cpu" : "cuda";
+}
+
+void CudaRayCastSilhouetteRenderer::setVolume(const volume::Volume& volume) {
+    State& s = *m_state;
+    s.volume = &volume;
+    s.uploaded = false;
+    s.prepared = false;
+    if (s.chunked)
+        s.chunked->setVolume(volume);
+}
+
+SilhouetteFrame CudaRayCastSilhouetteRenderer::render(const Camera& camera,
+                                                       const SilhouetteSettings& settings) {
+    State& s = *m_state;
+    if (!s.volume)
+        throw core::Error("method 2 (CUDA)", "no volume bound (setVolume)");
+    if (settings.brickCells > 0) {
+        if (!s.chunked) {
+            s.chunked = std::make_unique<RayCastSilhouetteRenderer>();
+            s.chunked->setVolume(*s.volume);
+        }
+        s.lastWasChunked = true;
+        return s.chunked->render(camera, settings);
+    }
+    s.lastWasChunked = false;
+    if (settings.cancel && settings.cancel->isCancelled())
+        throw core::Cancelled();
+    if (!s.uploaded) {
+        kernels::VolumeView view;
+        view.voxels = s.volume->data();
+        view.kind = kernels::VoxelKind(s.volume->voxelType());
+        view.dims = s.volume->dims();
+        throwIfFailed(s.kernels.setVolume(view, kernels::cpu::voxelGridSetup(*s.volume),
+                                          rayGridSetup(*s.volume)));
+        s.uploaded = true;
+        s.prepared = false;
+    }
+    SilhouetteFrame frame;
+    kernels::cuda::RayCastCudaFrame timing;
+    const double storedIso = storedIsoValue(*s.volume, settings.isoReal);
+    if (!s.prepared || s.preparedIso != storedIso ||
+        settings.mode == ExtractionMode::EveryFrameB) {
+        s.prepared = false;
+        throwIfFailed(s.kernels.prepare(storedIso, timing));
+        s.prepared = true;
+        s.preparedIso = storedIso;
+        frame.times.extractMs = timing.prepareMs;
+    }
+    kernels::cuda::RayCastCudaSettings rc;
+    rc.visibility = settings.visibility;
+    rc.alongSegment = settings.testAlongSegment;
+    const bool orthographic = camera.isOrthographic();
+    frame.lines = PixelMask(camera.width(), camera.height());
+    throwIfFailed(s.kernels.render(pixelCamera(camera),
+                                   orthographic ? -camera.forward() : camera.eye(), orthographic,
+                                   rc, frame.lines.pixels().data(), timing));
+    frame.triangles = timing.triangles;
+    frame.segments = timing.segments;
+    // One kernel finds the segments and tests them: its time is reported as visibility.
+    frame.times.visibilityMs = timing.renderMs;
+    return frame;
+}
+
+} // namespace lw::render
