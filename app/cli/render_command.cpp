@@ -8,7 +8,6 @@
 #include "lw/render/iso_surface.h"
 #include "lw/render/renderer_factory.h"
 #include "lw/render/shaded_surface_cpu.h"
-#include "lw/render/zbuffer_silhouette_renderer.h"
 
 #if LINEWORK_GL
 #include "lw/render/geometry_shader_silhouette_renderer.h"
@@ -94,9 +93,11 @@ core::ImageRgba8 renderIsoPanel(render::SilhouetteRenderer& renderer, const volu
 #endif
     render::Mesh extracted;
     const render::Mesh* mesh = &extracted;
-    const auto* zbuffer = dynamic_cast<const render::ZBufferSilhouetteRenderer*>(&renderer);
-    if (zbuffer && request.wantSilhouette) {
-        mesh = &zbuffer->mesh();
+    const render::Mesh* kept = renderer.method() == render::SilhouetteMethod::ZBuffer
+                                   ? renderer.surfaceMesh()
+                                   : nullptr;
+    if (kept && request.wantSilhouette) {
+        mesh = kept;
     } else {
         render::IsoSurfaceOptions options;
         options.brickCells = request.settings.brickCells;

@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 #include <map>
 #include <memory>
+#include <cstdlib>
 #include <regex>
 #include <set>
 #include <string>
@@ -17,6 +18,13 @@ namespace {
 
 using lw::test::CliResult;
 using lw::test::runCli;
+
+// The rows checked here are the CPU's, so the CLI sees no CUDA device even on the GPU machine
+// (CUDA accuracy: render_cuda_backend_tests compares its images with the CPU's).
+const bool kNoCudaDeviceForTheCli = [] {
+    ::setenv("CUDA_VISIBLE_DEVICES", "", 1);
+    return true;
+}();
 
 TEST(AccuracyCommand, JsonRowsForMethod2SAndLOnTheSphere) {
     const CliResult r =

@@ -1,7 +1,6 @@
 #include "review/render_worker.h"
 
 #include "lw/core/error.h"
-#include "lw/render/zbuffer_silhouette_renderer.h"
 #include "review/panel_render_job.h"
 #include "review/qt_image.h"
 
@@ -105,18 +104,12 @@ void RenderWorker::renderSilhouette(const FrameRequest& request, FrameResult& re
     keepRendererMesh(request, result);
 }
 
-// Methods 1 and 3 (S) keep the mesh they drew: the iso panel shows exactly that surface and
+// Methods 1 and 3 (S, CPU or CUDA) keep the mesh they drew: the iso panel shows exactly that surface and
 // marching cubes does not run twice for one iso-value.
 void RenderWorker::keepRendererMesh(const FrameRequest& request, FrameResult& result) {
     if (!(request.wantMesh || request.wantIsoImage) || request.settings.brickCells != 0)
         return;
-    const render::Mesh* mesh = nullptr;
-    if (auto* zbuffer = dynamic_cast<render::ZBufferSilhouetteRenderer*>(m_renderer.get()))
-        mesh = &zbuffer->mesh();
-#if LINEWORK_GL
-    if (auto* gl = dynamic_cast<render::GeometryShaderSilhouetteRenderer*>(m_renderer.get()))
-        mesh = &gl->mesh();
-#endif
+    const render::Mesh* mesh = m_renderer->surfaceMesh();
     if (!mesh)
         return;
     if (m_mesh && m_meshIso == request.iso &&

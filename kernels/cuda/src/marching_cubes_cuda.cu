@@ -126,10 +126,13 @@ template <typename T> CudaStatus MarchingCubesCuda::Impl::classifyTyped(double i
 
     // Classification and compaction of the active voxels.
     LW_RETURN_IF_FAILED(timers[1].start(st));
-    const std::uint32_t tiles = blocksFor(g.voxelCount, tuning::kClassifyBlock);
+    const std::uint32_t tilesPerRow = blocksFor(g.nx, tuning::kClassifyBlock);
+    const std::uint32_t rows = g.ny * g.nz;
+    const std::uint32_t tiles = tilesPerRow * rows;
+    const dim3 tileGrid(rows, tilesPerRow);
     LW_RETURN_IF_FAILED(tileCounts.reserve(std::size_t(tiles) + 1, "cudaMalloc(tileCounts)"));
     LW_RETURN_IF_FAILED(tileOffsets.reserve(std::size_t(tiles) + 1, "cudaMalloc(tileOffsets)"));
-    mc::countTiles<T><<<tiles, tuning::kClassifyBlock, 0, st>>>(g, tileCounts.data());
+    mc::countTiles<T><<<tileGrid, tuning::kClassifyBlock, 0, st>>>(g, tileCounts.data());
     LW_CUDA_LAUNCHED("mc::countTiles");
     LW_CUDA_TRY(cudaMemsetAsync(tileCounts.data() + tiles, 0, sizeof(std::uint32_t), st),
                 "cudaMemset(tileCounts)");
@@ -151,7 +154,7 @@ template <typename T> CudaStatus MarchingCubesCuda::Impl::classifyTyped(double i
     }
     LW_RETURN_IF_FAILED(activeVoxels.reserve(active, "cudaMalloc(activeVoxels)"));
     LW_RETURN_IF_FAILED(activeCodes.reserve(active, "cudaMalloc(activeCodes)"));
-    mc::writeTiles<T><<<tiles, tuning::kClassifyBlock, 0, st>>>(g, tileOffsets.data(),
+    mc::writeTiles<T><<<tileGrid, tuning::kClassifyBlock, 0, st>>>(g, tileOffsets.data(),
                                                                 activeVoxels.data(),
                                                                 activeCodes.data());
     LW_CUDA_LAUNCHED("mc::writeTiles");

@@ -74,9 +74,9 @@ template <typename T> struct Grid {
 // The code of a voxel: bits 0-7 its cell's case (0 when the cell has no triangles or does not
 // exist), bits 8-10 which of its +x, +y, +z edges cross the surface. 0 = inactive.
 template <typename T>
-__device__ __forceinline__ std::uint32_t voxelCode(const Grid<T>& g, std::uint32_t v) {
-    const std::uint32_t x = v % g.nx, yz = v / g.nx;
-    const std::uint32_t y = yz % g.ny, z = yz / g.ny;
+__device__ __forceinline__ std::uint32_t voxelCode(const Grid<T>& g, std::uint32_t x,
+                                                   std::uint32_t y, std::uint32_t z,
+                                                   std::uint32_t v) {
     const std::uint32_t cx = g.nx - 1, cy = g.ny - 1, cz = g.nz - 1;
     const std::uint32_t bx = (x < cx ? x : cx - 1) >> tuning::kSkipBrickShift;
     const std::uint32_t by = (y < cy ? y : cy - 1) >> tuning::kSkipBrickShift;
@@ -172,31 +172,53 @@ __global__ void borderInside(const T* voxels, std::uint32_t nx, std::uint32_t ny
     }
 }
 
+// The classification grid: blockIdx.x is the voxel row (y + z * ny; grids reach 2^31 - 1 blocks
+// along x, only 65535 along y), blockIdx.y the tile along it, one voxel per thread; tiles are
+// numbered row by row, so tile order is voxel order and no thread divides by nx.
+struct TileCoords {
+    std::uint32_t x, y, z, v, tile;
+    bool valid;
+};
+template <typename T> __device__ __forceinline__ TileCoords tileCoords(const Grid<T>& g) {
+    TileCoords c;
+    const std::uint32_t row = blockIdx.x;
+    c.x = blockIdx.y * tuning::kClassifyBlock + threadIdx.x;
+    c.y = row % g.ny;
+    c.z = row / g.ny;
+    c.v = row * g.nx + c.x;
+    c.tile = row * gridDim.y + blockIdx.y;
+    c.valid = c.x < g.nx;
+    return c;
+}
+
 // Pass 1 of the compaction: active voxels per tile.
 template <typename T> __global__ void countTiles(Grid<T> g, std::uint32_t* tileCounts) {
     using Reduce = cub::BlockReduce<std::uint32_t, tuning::kClassifyBlock>;
     __shared__ typename Reduce::TempStorage temp;
-    const std::uint32_t v = blockIdx.x * tuning::kClassifyBlock + threadIdx.x;
-    const std::uint32_t active = v < g.voxelCount && voxelCode(g, v) != 0 ? 1u : 0u;
+    const TileCoords c = tileCoords(g);
+    const std::uint32_t active = c.valid && voxelCode(g, c.x, c.y, c.z, c.v) != 0 ? 1u : 0u;
     const std::uint32_t sum = Reduce(temp).Sum(active);
     if (threadIdx.x == 0)
-        tileCounts[blockIdx.x] = sum;
+        tileCounts[c.tile] = sum;
 }
 
-// Pass 2: the same tiles write their active voxels at the scanned tile offset, in voxel order.
+// Pass 2: the tiles that hold active voxels write them at the scanned tile offset, in voxel
+// order (most tiles hold none and return before reading a voxel).
 template <typename T>
 __global__ void writeTiles(Grid<T> g, const std::uint32_t* tileOffsets,
                            std::uint32_t* activeVoxels, std::uint16_t* activeCodes) {
     using Scan = cub::BlockScan<std::uint32_t, tuning::kClassifyBlock>;
     __shared__ typename Scan::TempStorage temp;
-    const std::uint32_t v = blockIdx.x * tuning::kClassifyBlock + threadIdx.x;
-    const std::uint32_t code = v < g.voxelCount ? voxelCode(g, v) : 0u;
+    const TileCoords c = tileCoords(g);
+    const std::uint32_t first = tileOffsets[c.tile];
+    if (tileOffsets[c.tile + 1] == first)
+        return; // the whole block returns together: no thread waits in the scan below
+    const std::uint32_t code = c.valid ? voxelCode(g, c.x, c.y, c.z, c.v) : 0u;
     std::uint32_t rank = 0;
     Scan(temp).ExclusiveSum(code != 0 ? 1u : 0u, rank);
     if (code != 0) {
-        const std::uint32_t slot = tileOffsets[blockIdx.x] + rank;
-        activeVoxels[slot] = v;
-        activeCodes[slot] = std::uint16_t(code);
+        activeVoxels[first + rank] = c.v;
+        activeCodes[first + rank] = std::uint16_t(code);
     }
 }
 

@@ -61,45 +61,70 @@ __device__ __forceinline__ glm::dvec2 pixelOf(const PixelCamera& camera, glm::ve
     return glm::dvec2(glm::vec2(projectPixel(camera, glm::dvec3(p))));
 }
 
+// Phase 2: one thread per segment endpoint (rays packed densely in warps, whatever cell they
+// came from): 1 when the endpoint is visible.
 template <typename T>
-__device__ void drawSegment(const RayVisibility<T>& rule, const View& view,
-                            const SegmentEndpoints& segment, std::uint8_t* mask) {
+__global__ void testEndpoints(RayVisibility<T> rule, View view, const SegmentEndpoints* segments,
+                              std::uint32_t count, std::uint8_t* visible) {
+    const std::uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
+    if (i >= 2 * count)
+        return;
+    const SegmentEndpoints& segment = segments[i / 2];
+    const glm::dvec3 p(i % 2 == 0 ? segment.a : segment.b);
+    visible[i] = rule.visible(p, view.eyeOrDirection, view.orthographic) ? 1 : 0;
+}
+
+// Phase 3: rasterizeLine's pixels of every segment drawn (all, or those with both endpoints
+// visible).
+__global__ void drawSegments(View view, const SegmentEndpoints* segments, std::uint32_t count,
+                             const std::uint8_t* visible, std::uint8_t* mask) {
+    const std::uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
+    if (i >= count || (visible && !(visible[2 * i] && visible[2 * i + 1])))
+        return;
+    const int width = view.camera.width;
+    forEachLinePixel(pixelOf(view.camera, segments[i].a), pixelOf(view.camera, segments[i].b),
+                     width, view.camera.height,
+                     [&](int x, int y) { mask[std::size_t(y) * std::size_t(width) + x] = 1; });
+}
+
+// The along-segment rule instead of phases 2 and 3: one thread per segment tests every pixel step
+// of it (the CPU renderer's arithmetic) and sets the visible steps' pixels.
+template <typename T>
+__global__ void drawAlongSegments(RayVisibility<T> rule, View view,
+                                  const SegmentEndpoints* segments, std::uint32_t count,
+                                  std::uint8_t* mask) {
+    const std::uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
+    if (i >= count)
+        return;
+    const SegmentEndpoints segment = segments[i];
     const int width = view.camera.width, height = view.camera.height;
-    const auto set = [&](int x, int y) { mask[std::size_t(y) * std::size_t(width) + x] = 1; };
     const glm::dvec3 a(segment.a), b(segment.b);
-    if (!view.visibility) {
-        forEachLinePixel(pixelOf(view.camera, segment.a), pixelOf(view.camera, segment.b), width,
-                         height, set);
-    } else if (!view.alongSegment) {
-        if (rule.visible(a, view.eyeOrDirection, view.orthographic) &&
-            rule.visible(b, view.eyeOrDirection, view.orthographic))
-            forEachLinePixel(pixelOf(view.camera, segment.a), pixelOf(view.camera, segment.b),
-                             width, height, set);
-    } else {
-        const glm::dvec2 pa = pixelOf(view.camera, segment.a), pb = pixelOf(view.camera, segment.b);
-        const glm::dvec2 delta = pb - pa;
-        const double adx = fabs(delta.x), ady = fabs(delta.y);
-        const double steps = ceil(adx > ady ? adx : ady);
-        if (!(steps < double(1 << 20)))
-            return; // a segment projected absurdly far off screen
-        const int count = int(steps);
-        for (int step = 0; step <= count; ++step) {
-            const double t = count == 0 ? 0.0 : double(step) / double(count);
-            if (rule.visible(a + t * (b - a), view.eyeOrDirection, view.orthographic)) {
-                const glm::dvec2 q = pa + t * delta;
-                const int x = int(floor(q.x)), y = int(floor(q.y));
-                if (x >= 0 && y >= 0 && x < width && y < height)
-                    set(x, y);
-            }
+    const glm::dvec2 pa = pixelOf(view.camera, segment.a), pb = pixelOf(view.camera, segment.b);
+    const glm::dvec2 delta = pb - pa;
+    const double adx = fabs(delta.x), ady = fabs(delta.y);
+    const double steps = ceil(adx > ady ? adx : ady);
+    if (!(steps < double(1 << 20)))
+        return; // a segment projected absurdly far off screen
+    const int stepCount = int(steps);
+    for (int step = 0; step <= stepCount; ++step) {
+        const double t = stepCount == 0 ? 0.0 : double(step) / double(stepCount);
+        if (rule.visible(a + t * (b - a), view.eyeOrDirection, view.orthographic)) {
+            const glm::dvec2 q = pa + t * delta;
+            const int x = int(floor(q.x)), y = int(floor(q.y));
+            if (x >= 0 && y >= 0 && x < width && y < height)
+                mask[std::size_t(y) * std::size_t(width) + x] = 1;
         }
     }
 }
 
+// Phase 1: one thread per active cell builds its vertices and appends the Burns segment of each
+// of its triangles to `segments` (slots past `capacity` are only counted: the caller grows the
+// buffer and runs again).
 template <typename T>
-__global__ void silhouetteCells(mc::Grid<T> g, RayVisibility<T> rule,
-                                const std::uint32_t* activeVoxels, const std::uint16_t* codes,
-                                std::uint32_t count, View view, std::uint8_t* mask,
-                                Counters* counters) {
+__global__ void findSegments(mc::Grid<T> g, const std::uint32_t* activeVoxels,
+                             const std::uint16_t* codes, std::uint32_t count, View view,
+                             SegmentEndpoints* segments, std::uint32_t capacity,
+                             Counters* counters) {
     const std::uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
     if (i >= count || (codes[i] & 0xff) == 0)
         return;
@@ -148,8 +173,9 @@ __global__ void silhouetteCells(mc::Grid<T> g, RayVisibility<T> rule,
         SegmentEndpoints segment;
         if (!silhouetteSegment(q, d, segment))
             continue;
-        atomicAdd(&counters->segments, 1ull);
-        drawSegment(rule, view, segment, mask);
+        const unsigned long long slot = atomicAdd(&counters->segments, 1ull);
+        if (slot < capacity)
+            segments[slot] = segment;
     }
 }
 

@@ -15,6 +15,8 @@ struct RayCastSilhouetteCuda::Impl {
     glm::ivec3 macroDims{0};
     DeviceBuffer<std::uint8_t> mask;
     DeviceBuffer<rc::Counters> counters;
+    DeviceBuffer<SegmentEndpoints> segments; // phase 1's output, grown on demand
+    DeviceBuffer<std::uint8_t> visible;      // phase 2's, two flags per segment
     double iso = 0.0;
     bool prepared = false;
     dispatch::StageTimer prepareTimer, renderTimer;
@@ -98,10 +100,27 @@ CudaStatus RayCastSilhouetteCuda::Impl::renderTyped(const rc::View& view, std::u
     LW_RETURN_IF_FAILED(mask.reserve(pixels > 0 ? pixels : 1, "cudaMalloc(mask)"));
     LW_RETURN_IF_FAILED(renderTimer.start(st));
     LW_CUDA_TRY(cudaMemsetAsync(mask.data(), 0, pixels, st), "cudaMemset(mask)");
-    LW_CUDA_TRY(cudaMemsetAsync(counters.data(), 0, sizeof(rc::Counters), st),
-                "cudaMemset(counters)");
+    rc::Counters counts{};
     if (m.activeCount > 0) {
         const mc::Grid<T> g = m.grid<T>(iso);
+        // Phase 1, run again with a larger buffer when the segments did not fit.
+        for (int attempt = 0; attempt < 2; ++attempt) {
+            LW_CUDA_TRY(cudaMemsetAsync(counters.data(), 0, sizeof(rc::Counters), st),
+                        "cudaMemset(counters)");
+            rc::findSegments<T><<<blocksFor(m.activeCount, tuning::kRayCastBlock),
+                                  tuning::kRayCastBlock, 0, st>>>(
+                g, m.activeVoxels.data(), m.activeCodes.data(), m.activeCount, view,
+                segments.data(), std::uint32_t(segments.capacity()), counters.data());
+            LW_CUDA_LAUNCHED("rc::findSegments");
+            LW_CUDA_TRY(cudaMemcpyAsync(&counts, counters.data(), sizeof counts,
+                                        cudaMemcpyDeviceToHost, st),
+                        "cudaMemcpy(counters)");
+            LW_CUDA_TRY(cudaStreamSynchronize(st), "rc::findSegments");
+            if (counts.segments <= segments.capacity())
+                break;
+            LW_RETURN_IF_FAILED(segments.reserve(std::size_t(counts.segments), "cudaMalloc(segments)"));
+        }
+        const std::uint32_t found = std::uint32_t(counts.segments);
         RayVisibility<T> rule;
         rule.voxels = g.voxels;
         rule.dims = m.spans.dims;
@@ -110,21 +129,30 @@ CudaStatus RayCastSilhouetteCuda::Impl::renderTyped(const rc::View& view, std::u
         rule.macroDims = macroDims;
         rule.cellScale = rayGrid.cellScale;
         rule.iso = iso;
-        rc::silhouetteCells<T><<<blocksFor(m.activeCount, tuning::kRayCastBlock),
-                                 tuning::kRayCastBlock, 0, st>>>(
-            g, rule, m.activeVoxels.data(), m.activeCodes.data(), m.activeCount, view, mask.data(),
-            counters.data());
-        LW_CUDA_LAUNCHED("rc::silhouetteCells");
+        if (found > 0 && view.visibility && view.alongSegment) {
+            rc::drawAlongSegments<T><<<blocksFor(found, tuning::kRayBlock), tuning::kRayBlock, 0,
+                                       st>>>(rule, view, segments.data(), found, mask.data());
+            LW_CUDA_LAUNCHED("rc::drawAlongSegments");
+        } else if (found > 0) {
+            const std::uint8_t* visibleFlags = nullptr;
+            if (view.visibility) {
+                LW_RETURN_IF_FAILED(visible.reserve(2 * std::size_t(found), "cudaMalloc(visible)"));
+                rc::testEndpoints<T><<<blocksFor(2 * std::size_t(found), tuning::kRayBlock),
+                                       tuning::kRayBlock, 0, st>>>(rule, view, segments.data(),
+                                                                   found, visible.data());
+                LW_CUDA_LAUNCHED("rc::testEndpoints");
+                visibleFlags = visible.data();
+            }
+            rc::drawSegments<<<blocksFor(found, tuning::kVertexBlock), tuning::kVertexBlock, 0,
+                               st>>>(view, segments.data(), found, visibleFlags, mask.data());
+            LW_CUDA_LAUNCHED("rc::drawSegments");
+        }
     }
     LW_RETURN_IF_FAILED(renderTimer.stop(st));
-    rc::Counters counts{};
     if (pixels > 0)
         LW_CUDA_TRY(cudaMemcpyAsync(hostMask, mask.data(), pixels, cudaMemcpyDeviceToHost, st),
                     "cudaMemcpy(mask)");
-    LW_CUDA_TRY(cudaMemcpyAsync(&counts, counters.data(), sizeof counts, cudaMemcpyDeviceToHost,
-                                st),
-                "cudaMemcpy(counters)");
-    LW_CUDA_TRY(cudaStreamSynchronize(st), "rc::silhouetteCells");
+    LW_CUDA_TRY(cudaStreamSynchronize(st), "rc::render");
     frame.renderMs = renderTimer.ms();
     frame.triangles = std::size_t(counts.triangles);
     frame.segments = std::size_t(counts.segments);

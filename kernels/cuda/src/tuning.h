@@ -16,6 +16,8 @@ inline constexpr int kBrickReduceBlock = 256;
 inline constexpr int kActiveBlock = 128;
 // Method 2: one thread per active cell (heavy threads: vertices, segments, visibility rays).
 inline constexpr int kRayCastBlock = 64;
+// Method 2: one visibility ray per thread.
+inline constexpr int kRayBlock = 128;
 
 // Method 3: per vertex, per triangle, per pixel.
 inline constexpr int kVertexBlock = 256;
