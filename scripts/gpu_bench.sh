@@ -11,6 +11,9 @@ rc=0
     --repeat 20 --image 1024x1024 --json > "$out/bench_cuda.json" 2> "$out/bench_cuda.log" || rc=1
 "$cli" bench --backend cpu --sizes 256,512 --methods mc,2,3 --variants S --modes a,b \
     --repeat 5 --image 1024x1024 --json > "$out/bench_cpu.json" 2> "$out/bench_cpu.log" || rc=1
+# Accuracy with the CUDA back-end at every view of the sweep (methods 2 and 3; method 1 is GL).
+"$cli" accuracy --backend cuda --methods 2,3 --sizes 64 --views sweep --json \
+    > "$out/accuracy_cuda.json" 2> "$out/accuracy_cuda.log" || rc=1
 python3 - "$out" <<'PY'
 import json, sys, os
 out = sys.argv[1]
@@ -19,6 +22,14 @@ def rows(name):
         return json.load(open(os.path.join(out, name)))
     except Exception as e:
         print(name, "unreadable:", e); return {}
+acc = rows("accuracy_cuda.json")
+worst = {}
+for r in acc.get("rows", []):
+    key = (r.get("method"), r.get("variant"), r.get("visibility"), r.get("backend"))
+    w = worst.setdefault(key, [1.0, 1.0])
+    w[0] = min(w[0], r.get("recall", 1.0)); w[1] = min(w[1], r.get("precision", 1.0))
+for key, (rec, prec) in sorted(worst.items(), key=str):
+    print("accuracy worst over views/shapes/sizes", key, f"recall {rec:.4f} precision {prec:.4f}")
 for name in ("bench_cuda.json", "bench_cpu.json"):
     data = rows(name)
     for note in data.get("notes", []):
