@@ -143,6 +143,16 @@ TEST_P(CudaBackend, MarchingCubesGivesTheCpuTrianglesInTheCpuOrder) {
     EXPECT_EQ(cuda.mesh().vertexCount, reference2.vertexCount());
 }
 
+Camera cameraAt(const Aabb& bounds, double az, double el, Projection projection, int width,
+               int height) {
+    CameraSetup setup;
+    setup.bounds = bounds;
+    setup.azimuthDeg = az;
+    setup.elevationDeg = el;
+    setup.projection = projection;
+    return Camera(setup, width, height);
+}
+
 // Share of the pixels set in either image that are set in both.
 double agreement(const PixelMask& a, const PixelMask& b, std::size_t& differing) {
     std::size_t either = 0, both = 0;
@@ -174,12 +184,7 @@ TEST_P(CudaBackend, Method3GivesTheCpuImage) {
                           {200, -35, Projection::Orthographic, true, 256, 200},
                           {120, 10, Projection::Perspective, false, 256, 256}};
     for (const View& v : views) {
-        CameraSetup setup;
-        setup.bounds = bounds;
-        setup.azimuthDeg = v.az;
-        setup.elevationDeg = v.el;
-        setup.projection = v.projection;
-        const Camera camera(setup, v.width, v.height);
+        const Camera camera = cameraAt(bounds, v.az, v.el, v.projection, v.width, v.height);
         for (const ExtractionMode mode : {ExtractionMode::EveryFrameB, ExtractionMode::CachedA}) {
             SilhouetteSettings settings;
             settings.isoReal = GetParam().iso;
@@ -222,12 +227,7 @@ TEST_P(CudaBackend, Method2GivesTheCpuImage) {
                           {200, -35, Projection::Orthographic, true, false},
                           {120, 10, Projection::Perspective, false, false}};
     for (const View& v : views) {
-        CameraSetup setup;
-        setup.bounds = bounds;
-        setup.azimuthDeg = v.az;
-        setup.elevationDeg = v.el;
-        setup.projection = v.projection;
-        const Camera camera(setup, 256, 224);
+        const Camera camera = cameraAt(bounds, v.az, v.el, v.projection, 256, 224);
         for (const ExtractionMode mode : {ExtractionMode::CachedA, ExtractionMode::EveryFrameB}) {
             SilhouetteSettings settings;
             settings.isoReal = GetParam().iso;

@@ -6,6 +6,7 @@
 #if LINEWORK_CUDA
 #include "lw/kernels/cpu/marching_cubes_cpu.h"
 #include "lw/kernels/cuda/marching_cubes_cuda.h"
+#include "cuda/cuda_support.h"
 #endif
 
 namespace lw::render {
@@ -28,11 +29,8 @@ CudaIsoSurfaceExtractor::CudaIsoSurfaceExtractor(const volume::Volume& volume) {
     if (!cuda.available)
         throw core::Error("marching cubes (CUDA)", cuda.reason);
     m_impl.reset(new Impl{volume});
-    kernels::VolumeView view;
-    view.voxels = volume.data();
-    view.kind = kernels::VoxelKind(volume.voxelType());
-    view.dims = volume.dims();
-    throwIfFailed(m_impl->marchingCubes.setVolume(view, kernels::cpu::voxelGridSetup(volume)));
+    throwIfFailed(m_impl->marchingCubes.setVolume(hostVolumeView(volume),
+                                                   kernels::cpu::voxelGridSetup(volume)));
 }
 
 CudaIsoSurfaceExtractor::~CudaIsoSurfaceExtractor() = default;

@@ -1,5 +1,7 @@
 #include "cuda_raycast_silhouette_renderer.h"
 
+#include "cuda_support.h"
+
 #include "lw/core/error.h"
 #include "lw/kernels/cpu/marching_cubes_cpu.h"
 #include "lw/kernels/cpu/voxel_ray.h"
@@ -56,8 +58,7 @@ struct CudaRayCastSilhouetteRenderer::State {
     kernels::cuda::RayCastSilhouetteCuda kernels;
     bool prepared = false;
     double preparedIso = std::numeric_limits<double>::quiet_NaN();
-    std::unique_ptr<RayCastSilhouetteRenderer> chunked; // L frames (see the header)
-    bool lastWasChunked = false;
+    ChunkedOnCpu<RayCastSilhouetteRenderer> chunked; // L frames (see the header)
 };
 
 CudaRayCastSilhouetteRenderer::CudaRayCastSilhouetteRenderer()
@@ -65,7 +66,7 @@ CudaRayCastSilhouetteRenderer::CudaRayCastSilhouetteRenderer()
 CudaRayCastSilhouetteRenderer::~CudaRayCastSilhouetteRenderer() = default;
 
 std::string_view CudaRayCastSilhouetteRenderer::backendName() const {
-    return m_state->lastWasChunked ? "cpu" : "cuda";
+    return m_state->chunked.lastFrameWasChunked() ? "cpu" : "cuda";
 }
 
 void CudaRayCastSilhouetteRenderer::setVolume(const volume::Volume& volume) {
@@ -73,8 +74,7 @@ void CudaRayCastSilhouetteRenderer::setVolume(const volume::Volume& volume) {
     s.volume = &volume;
     s.uploaded = false;
     s.prepared = false;
-    if (s.chunked)
-        s.chunked->setVolume(volume);
+    s.chunked.setVolume(volume);
 }
 
 SilhouetteFrame CudaRayCastSilhouetteRenderer::render(const Camera& camera,
@@ -82,28 +82,18 @@ SilhouetteFrame CudaRayCastSilhouetteRenderer::render(const Camera& camera,
     State& s = *m_state;
     if (!s.volume)
         throw core::Error("method 2 (CUDA)", "no volume bound (setVolume)");
-    if (settings.brickCells > 0) {
-        if (!s.chunked) {
-            s.chunked = std::make_unique<RayCastSilhouetteRenderer>();
-            s.chunked->setVolume(*s.volume);
-        }
-        s.lastWasChunked = true;
-        return s.chunked->render(camera, settings);
-    }
-    s.lastWasChunked = false;
+    SilhouetteFrame frame;
+    if (s.chunked.render(camera, settings, frame))
+        return frame;
     if (settings.cancel && settings.cancel->isCancelled())
         throw core::Cancelled();
     if (!s.uploaded) {
-        kernels::VolumeView view;
-        view.voxels = s.volume->data();
-        view.kind = kernels::VoxelKind(s.volume->voxelType());
-        view.dims = s.volume->dims();
-        throwIfFailed(s.kernels.setVolume(view, kernels::cpu::voxelGridSetup(*s.volume),
+        throwIfFailed(s.kernels.setVolume(hostVolumeView(*s.volume),
+                                          kernels::cpu::voxelGridSetup(*s.volume),
                                           rayGridSetup(*s.volume)));
         s.uploaded = true;
         s.prepared = false;
     }
-    SilhouetteFrame frame;
     kernels::cuda::RayCastCudaFrame timing;
     const double storedIso = storedIsoValue(*s.volume, settings.isoReal);
     if (!s.prepared || s.preparedIso != storedIso ||

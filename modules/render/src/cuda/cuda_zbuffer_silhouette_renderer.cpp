@@ -1,6 +1,7 @@
 #include "cuda_zbuffer_silhouette_renderer.h"
 
 #include "../view_transform.h"
+#include "cuda_support.h"
 #include "lw/core/error.h"
 #include "lw/kernels/cpu/marching_cubes_cpu.h"
 #include "lw/kernels/cuda/marching_cubes_cuda.h"
@@ -17,14 +18,6 @@ void throwIfFailed(const kernels::cuda::CudaStatus& status) {
         throw core::Error("method 3 (CUDA)", status.describe());
 }
 
-kernels::VolumeView hostView(const volume::Volume& volume) {
-    kernels::VolumeView view;
-    view.voxels = volume.data();
-    view.kind = kernels::VoxelKind(volume.voxelType());
-    view.dims = volume.dims();
-    return view;
-}
-
 } // namespace
 
 struct CudaZBufferSilhouetteRenderer::State {
@@ -36,30 +29,23 @@ struct CudaZBufferSilhouetteRenderer::State {
     double meshIso = std::numeric_limits<double>::quiet_NaN();
     mutable Mesh hostMesh;
     mutable bool hostMeshValid = false;
-    // L frames: the CPU renderer (see the header).
-    std::unique_ptr<ZBufferSilhouetteRenderer> chunked;
-    bool lastWasChunked = false;
+    ChunkedOnCpu<ZBufferSilhouetteRenderer> chunked; // L frames (see the header)
 
     void upload() {
         if (uploaded)
             return;
         const kernels::VoxelGridSetup setup = kernels::cpu::voxelGridSetup(*volume);
-        throwIfFailed(marchingCubes.setVolume(hostView(*volume), setup));
+        throwIfFailed(marchingCubes.setVolume(hostVolumeView(*volume), setup));
         uploaded = true;
     }
 };
-
-static_assert(int(kernels::VoxelKind::UInt8) == int(volume::VoxelType::UInt8) &&
-              int(kernels::VoxelKind::Int16) == int(volume::VoxelType::Int16) &&
-              int(kernels::VoxelKind::UInt16) == int(volume::VoxelType::UInt16) &&
-              int(kernels::VoxelKind::Float32) == int(volume::VoxelType::Float32));
 
 CudaZBufferSilhouetteRenderer::CudaZBufferSilhouetteRenderer()
     : m_state(std::make_unique<State>()) {}
 CudaZBufferSilhouetteRenderer::~CudaZBufferSilhouetteRenderer() = default;
 
 std::string_view CudaZBufferSilhouetteRenderer::backendName() const {
-    return m_state->lastWasChunked ? "cpu" : "cuda";
+    return m_state->chunked.lastFrameWasChunked() ? "cpu" : "cuda";
 }
 
 double CudaZBufferSilhouetteRenderer::uploadMs() const {
@@ -72,14 +58,13 @@ void CudaZBufferSilhouetteRenderer::setVolume(const volume::Volume& volume) {
     s.uploaded = false;
     s.meshValid = false;
     s.hostMeshValid = false;
-    if (s.chunked)
-        s.chunked->setVolume(volume);
+    s.chunked.setVolume(volume);
 }
 
 const Mesh* CudaZBufferSilhouetteRenderer::surfaceMesh() const {
     const State& s = *m_state;
-    if (s.lastWasChunked && s.chunked)
-        return s.chunked->surfaceMesh();
+    if (s.chunked.lastFrameWasChunked())
+        return s.chunked.renderer()->surfaceMesh();
     if (!s.hostMeshValid && s.meshValid) {
         throwIfFailed(s.marchingCubes.download(s.hostMesh.positions, s.hostMesh.normals,
                                                s.hostMesh.indices));
@@ -95,18 +80,11 @@ SilhouetteFrame CudaZBufferSilhouetteRenderer::render(const Camera& camera,
         throw core::Error("method 3 (CUDA)", "no volume bound: call setVolume first");
     if (settings.brickCells < 0)
         throw core::Error("method 3 (CUDA)", "brickCells must be 0 (whole volume) or positive");
-    if (settings.brickCells > 0) {
-        if (!s.chunked) {
-            s.chunked = std::make_unique<ZBufferSilhouetteRenderer>();
-            s.chunked->setVolume(*s.volume);
-        }
-        s.lastWasChunked = true;
-        return s.chunked->render(camera, settings);
-    }
-    s.lastWasChunked = false;
+    SilhouetteFrame frame;
+    if (s.chunked.render(camera, settings, frame))
+        return frame;
     if (settings.cancel && settings.cancel->isCancelled())
         throw core::Cancelled();
-    SilhouetteFrame frame;
     s.upload();
     const bool reuse = settings.mode == ExtractionMode::CachedA && s.meshValid &&
                        s.meshIso == settings.isoReal;

@@ -1,0 +1,56 @@
+#pragma once
+
+// What the CUDA renderers share: the host volume as the kernels see it, and the CPU fallback for
+// the chunked (L) variant, which runs on the CPU renderer of the same method until bricks stream
+// through a device memory budget (issue 8, item 7).
+
+#include "lw/kernels/volume_view.h"
+#include "lw/render/silhouette_renderer.h"
+#include "lw/volume/volume.h"
+
+#include <memory>
+
+namespace lw::render {
+
+inline kernels::VolumeView hostVolumeView(const volume::Volume& volume) {
+    static_assert(int(kernels::VoxelKind::UInt8) == int(volume::VoxelType::UInt8) &&
+                  int(kernels::VoxelKind::Int16) == int(volume::VoxelType::Int16) &&
+                  int(kernels::VoxelKind::UInt16) == int(volume::VoxelType::UInt16) &&
+                  int(kernels::VoxelKind::Float32) == int(volume::VoxelType::Float32));
+    kernels::VolumeView view;
+    view.voxels = volume.data();
+    view.kind = kernels::VoxelKind(volume.voxelType());
+    view.dims = volume.dims();
+    return view;
+}
+
+template <typename CpuRenderer> class ChunkedOnCpu {
+public:
+    void setVolume(const volume::Volume& volume) {
+        m_volume = &volume;
+        if (m_renderer)
+            m_renderer->setVolume(volume);
+    }
+    // An L frame (settings.brickCells > 0) on the CPU renderer: true and `frame` set. Otherwise
+    // false, and the caller renders on the GPU.
+    bool render(const Camera& camera, const SilhouetteSettings& settings, SilhouetteFrame& frame) {
+        m_lastFrame = settings.brickCells > 0;
+        if (!m_lastFrame)
+            return false;
+        if (!m_renderer) {
+            m_renderer = std::make_unique<CpuRenderer>();
+            m_renderer->setVolume(*m_volume);
+        }
+        frame = m_renderer->render(camera, settings);
+        return true;
+    }
+    bool lastFrameWasChunked() const { return m_lastFrame; }
+    const CpuRenderer* renderer() const { return m_renderer.get(); }
+
+private:
+    const volume::Volume* m_volume = nullptr;
+    std::unique_ptr<CpuRenderer> m_renderer;
+    bool m_lastFrame = false;
+};
+
+} // namespace lw::render
