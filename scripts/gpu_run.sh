@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The GPU machine's run in one command (each device call starts a bare machine): unpack the GL,
-# EGL, GLM, GoogleTest and zlib packages carried in .gpu/debs (../shared/GPU.md says how to fetch
+# EGL, GLM, GoogleTest and zlib packages carried in .gpu/debs (scripts/fetch_gpu_debs.sh fetches
 # them), configure the engine preset with CUDA for sm_90, build, run the tests (all of them: the
 # `gpu` ones run against the CPU reference there), then the CUDA benchmarks. Logs and the JSON go
 # to $OUT (or out/gpu when run elsewhere).
