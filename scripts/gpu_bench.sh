@@ -9,6 +9,10 @@ mkdir -p "$out"
 rc=0
 "$cli" bench --backend cuda --sizes 256,512 --methods mc,2,3 --variants S --modes a,b \
     --repeat 20 --image 1024x1024 --json > "$out/bench_cuda.json" 2> "$out/bench_cuda.log" || rc=1
+# Streamed L: method 3 on 512 x 512 x 1024 under a 256 MiB device budget, and S beside it.
+"$cli" bench --backend cuda --sizes 512x512x1024 --methods mc,3 --variants S,L --modes a,b \
+    --repeat 20 --image 1024x1024 --gpu-budget 256 --json > "$out/bench_cuda_1024.json" \
+    2> "$out/bench_cuda_1024.log" || rc=1
 "$cli" bench --backend cpu --sizes 256,512 --methods mc,2,3 --variants S --modes a,b \
     --repeat 5 --image 1024x1024 --json > "$out/bench_cpu.json" 2> "$out/bench_cpu.log" || rc=1
 # Accuracy with the CUDA back-end at every view of the sweep (methods 2 and 3; method 1 is GL).
@@ -30,12 +34,12 @@ for r in acc.get("rows", []):
     w[0] = min(w[0], r.get("recall", 1.0)); w[1] = min(w[1], r.get("precision", 1.0))
 for key, (rec, prec) in sorted(worst.items(), key=str):
     print("accuracy worst over views/shapes/sizes", key, f"recall {rec:.4f} precision {prec:.4f}")
-for name in ("bench_cuda.json", "bench_cpu.json"):
+for name in ("bench_cuda.json", "bench_cuda_1024.json", "bench_cpu.json"):
     data = rows(name)
     for note in data.get("notes", []):
         print("note:", note)
     for r in data.get("rows", []):
         print(f"{r['backend']:5} {r['volume']:>14} m{r['method']!s:3} {r['variant']} {r.get('mode') or '-'} "
-              f"vis={r.get('visibility') or '-':3} median {r['ms_median']!s:>10} ms  stages {r['stages']}  tris {r['triangles']} segs {r['segments']}")
+              f"vis={r.get('visibility') or '-':3} median {r['ms_median']!s:>10} ms  stages {r['stages']}  tris {r['triangles']} segs {r['segments']} dev_mib {r.get('device_mib', '-')}")
 PY
 exit $rc

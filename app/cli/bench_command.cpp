@@ -93,6 +93,7 @@ struct Row {
     render::StageTimes stages; // median of each stage over the runs
     int runs = 0;
     std::string skipped; // why the row did not run; empty when it did
+    std::size_t deviceBytes = 0; // CUDA: device memory the first frame held at the most
 };
 
 struct Plan {
@@ -104,6 +105,7 @@ struct Plan {
     int repeat = 5;
     glm::ivec2 image{1024, 1024};
     unsigned threads = 0;
+    std::size_t gpuMemoryBudget = 0; // --gpu-budget (MiB), 0 = free memory less a margin
 };
 
 int brickCellsFor(const std::string& variant, const volume::Volume& volume) {
@@ -200,6 +202,7 @@ Row benchConfiguration(render::SilhouetteRenderer& renderer, const BenchVolume& 
         mode == "a" ? render::ExtractionMode::CachedA : render::ExtractionMode::EveryFrameB;
     settings.visibility = visibility;
     settings.threads = plan.threads;
+    settings.gpuMemoryBudget = plan.gpuMemoryBudget;
 
     render::CameraSetup setup;
     setup.bounds = render::volumeBounds(input.volume);
@@ -211,6 +214,7 @@ Row benchConfiguration(render::SilhouetteRenderer& renderer, const BenchVolume& 
     const render::SilhouetteFrame first = renderer.render(camera, settings);
     row.triangles = first.triangles;
     row.segments = first.segments;
+    row.deviceBytes = first.deviceBytes;
 
     std::vector<double> totals, extract, silhouette, visibilityTimes, draw;
     for (int i = 1; i <= plan.repeat; ++i) {
@@ -301,6 +305,8 @@ void writeJsonRow(core::JsonWriter& writer, const Row& row) {
     writer.field("visibility", row.stages.visibilityMs).field("draw", row.stages.drawMs);
     writer.endObject();
     writer.field("runs", row.runs);
+    if (row.deviceBytes > 0)
+        writer.field("device_mib", double(row.deviceBytes) / double(1 << 20));
     if (!row.skipped.empty())
         writer.field("skipped", row.skipped);
     writer.endObject();
@@ -362,7 +368,7 @@ std::vector<std::string> parseChoiceList(const std::string& text, const std::str
 int runBench(const std::vector<std::string>& args, std::ostream& out) {
     const Arguments arguments(args, {"json"},
                               {"sizes", "input", "iso", "backend", "methods", "variants", "modes",
-                               "repeat", "image", "threads", "peak-memory-of"});
+                               "repeat", "image", "threads", "peak-memory-of", "gpu-budget"});
     if (!arguments.positionals().empty())
         throw UsageError("bench", "takes no positional arguments");
     const bool json = arguments.flag("json");
@@ -380,6 +386,10 @@ int runBench(const std::vector<std::string>& args, std::ostream& out) {
         throw UsageError("--repeat", "expected a whole number >= 1");
     plan.repeat = int(repeat);
     plan.threads = unsigned(std::max(0.0, arguments.number("threads", 0)));
+    const double budgetMiB = arguments.number("gpu-budget", 0);
+    if (budgetMiB < 0)
+        throw UsageError("--gpu-budget", "expected MiB >= 0 (0: the free device memory)");
+    plan.gpuMemoryBudget = std::size_t(budgetMiB * 1024.0 * 1024.0);
     if (const auto image = arguments.option("image"))
         plan.image = parseImageSize("--image", *image, 2);
 

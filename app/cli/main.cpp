@@ -42,7 +42,7 @@ commands:
                               --repeat N: N more views 1 degree apart, prints their median ms
   bench [--sizes 32,256,512,512x512x1024] [--input FILE --iso HU] [--backend cpu|cuda|auto]
         [--methods mc,1,2,3] [--variants S,L] [--modes a,b] [--repeat N] [--image WxH]
-        [--peak-memory-of METHOD,VARIANT] [--json]
+        [--peak-memory-of METHOD,VARIANT] [--gpu-budget MIB] [--json]
                               the paper's Tables 1-4: median ms of marching cubes and of each
                               method x S/L x mode a/b x visibility on/off (default phantom
                               32,256, 1024x1024, 5 runs), stage times, peak memory (VmHWM)

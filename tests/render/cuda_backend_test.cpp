@@ -12,6 +12,7 @@
 #include "lw/render/zbuffer_silhouette_renderer.h"
 
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <functional>
 #include <gtest/gtest.h>
@@ -203,6 +204,27 @@ TEST_P(CudaBackend, Method3GivesTheCpuImage) {
             EXPECT_EQ(differing, 0u) << where << ": the same rules should give the same pixels";
         }
     }
+    // The chunked variant streams slabs through the device under a budget smaller than the
+    // volume needs: still the CPU's image (ZBufferSilhouetteRenderer's L equals its S).
+    auto streamed = createSilhouetteRenderer(SilhouetteMethod::ZBuffer, Backend::Cuda);
+    streamed->setVolume(volume);
+    const Camera camera = cameraAt(bounds, 40, 25, Projection::Perspective, 256, 256);
+    SilhouetteSettings settings;
+    settings.isoReal = GetParam().iso;
+    settings.brickCells = 8;
+    const std::size_t volumeBytes = volume.dims().x * std::size_t(volume.dims().y) *
+                                    volume.dims().z * volume::voxelSize(volume.voxelType());
+    settings.gpuMemoryBudget = std::max<std::size_t>(volumeBytes / 2, std::size_t(1) << 20);
+    const SilhouetteFrame chunked = streamed->render(camera, settings);
+    EXPECT_EQ(streamed->backendName(), "cuda");
+    settings.brickCells = 0;
+    const SilhouetteFrame expected = cpu.render(camera, settings);
+    std::size_t differing = 0;
+    agreement(chunked.lines, expected.lines, differing);
+    EXPECT_EQ(differing, 0u) << "slabs under a budget of " << settings.gpuMemoryBudget;
+    EXPECT_EQ(chunked.segments, expected.segments);
+    EXPECT_GT(chunked.deviceBytes, 0u);
+
     // The shaded panel's mesh comes from the device and is the CPU's.
     const Mesh* mesh = cuda->surfaceMesh();
     ASSERT_NE(mesh, nullptr);
@@ -251,6 +273,33 @@ TEST_P(CudaBackend, Method2GivesTheCpuImage) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Volumes, CudaBackend, testing::ValuesIn(cases()), caseName);
+
+// The GPU-run goal's case: a 512 x 512 x 1024 CT phantom (512 MiB of voxels) under a 256 MiB
+// budget streams in slabs and gives the image of the resident whole volume.
+TEST(CudaBackendStreaming, VolumeLargerThanTheBudgetGivesTheSameImage) {
+    const Volume volume = makePhantom({512, 512, 1024}, PhantomKind::Ct);
+    auto whole = createSilhouetteRenderer(SilhouetteMethod::ZBuffer, Backend::Cuda);
+    auto streamed = createSilhouetteRenderer(SilhouetteMethod::ZBuffer, Backend::Cuda);
+    whole->setVolume(volume);
+    streamed->setVolume(volume);
+    const Camera camera =
+        cameraAt(volumeBounds(volume), 30, 20, Projection::Perspective, 1024, 1024);
+    SilhouetteSettings settings;
+    settings.isoReal = 300.5;
+    const SilhouetteFrame expected = whole->render(camera, settings);
+    settings.gpuMemoryBudget = std::size_t(256) << 20;
+    const SilhouetteFrame frame = streamed->render(camera, settings);
+    ASSERT_GT(expected.lines.count(), 1000u);
+    std::size_t differing = 0;
+    agreement(frame.lines, expected.lines, differing);
+    EXPECT_EQ(differing, 0u);
+    EXPECT_EQ(frame.segments, expected.segments);
+    EXPECT_EQ(frame.triangles, expected.triangles);
+    EXPECT_LE(frame.deviceBytes, settings.gpuMemoryBudget)
+        << "held " << (frame.deviceBytes >> 20) << " MiB";
+    std::printf("512x512x1024 under 256 MiB: %zu MiB held at the most, whole volume %zu MiB\n",
+                frame.deviceBytes >> 20, expected.deviceBytes >> 20);
+}
 
 TEST(CudaBackendStatus, ErrorsNameTheCall) {
     kernels::cuda::MarchingCubesCuda cuda;

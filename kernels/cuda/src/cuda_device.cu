@@ -42,4 +42,13 @@ CudaDeviceInfo probeCudaDevice() {
     return info;
 }
 
+std::size_t freeDeviceBytes() {
+    std::size_t free = 0, total = 0;
+    if (cudaMemGetInfo(&free, &total) != cudaSuccess) {
+        cudaGetLastError();
+        return 0;
+    }
+    return free;
+}
+
 } // namespace lw::kernels::cuda

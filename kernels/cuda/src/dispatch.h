@@ -49,13 +49,6 @@ inline CudaStatus checkLaunch(const char* kernel) {
             return lwStatus_;                                                                     \
     } while (0)
 
-#define LW_RETURN_IF_FAILED(statusExpr)                                                           \
-    do {                                                                                          \
-        ::lw::kernels::cuda::CudaStatus lwStatus_ = (statusExpr);                                 \
-        if (!lwStatus_.ok())                                                                      \
-            return lwStatus_;                                                                     \
-    } while (0)
-
 // Device memory of `T`, grown on demand and never shrunk (repeated frames allocate nothing).
 template <typename T> class DeviceBuffer {
 public:

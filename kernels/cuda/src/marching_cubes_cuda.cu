@@ -35,6 +35,30 @@ template <typename T> CudaStatus MarchingCubesCuda::Impl::computeBrickMinMax() {
     return CudaStatus::success();
 }
 
+CudaStatus MarchingCubesCuda::Impl::uploadGridTables(const VoxelGridSetup& setup) {
+    const std::vector<double>& offsets = setup.sliceOffsets();
+    const std::size_t slices = offsets.size();
+    LW_RETURN_IF_FAILED(sliceOffset.reserve(slices, "cudaMalloc(sliceOffset)"));
+    LW_RETURN_IF_FAILED(spanK.reserve(slices, "cudaMalloc(spanK)"));
+    LW_RETURN_IF_FAILED(invSpanK.reserve(slices, "cudaMalloc(invSpanK)"));
+    LW_CUDA_TRY(cudaMemcpy(sliceOffset.data(), offsets.data(), slices * sizeof(double),
+                           cudaMemcpyHostToDevice),
+                "cudaMemcpy(sliceOffset)");
+    LW_CUDA_TRY(cudaMemcpy(spanK.data(), setup.spans().spanK, slices * sizeof(float),
+                           cudaMemcpyHostToDevice),
+                "cudaMemcpy(spanK)");
+    LW_CUDA_TRY(cudaMemcpy(invSpanK.data(), setup.spans().invSpanK, slices * sizeof(float),
+                           cudaMemcpyHostToDevice),
+                "cudaMemcpy(invSpanK)");
+    spans = setup.spans();
+    spans.spanK = spanK.data();
+    spans.invSpanK = invSpanK.data();
+    frame = setup.frame();
+    frame.sliceOffset = sliceOffset.data();
+
+    return CudaStatus::success();
+}
+
 CudaStatus MarchingCubesCuda::setVolume(const VolumeView& host, const VoxelGridSetup& setup) {
     Impl& s = *m_impl;
     s.mesh = DeviceMeshView();
@@ -48,6 +72,11 @@ CudaStatus MarchingCubesCuda::setVolume(const VolumeView& host, const VoxelGridS
                                    "more than 2^32 voxels: the kernels index voxels with 32 bits");
     LW_RETURN_IF_FAILED(mc::uploadTables());
     LW_RETURN_IF_FAILED(s.stream.create());
+    s.unregisterHost();
+    s.streamed = false;
+    s.slabBox[0].release();
+    s.slabBox[1].release();
+    s.peakBytes = 0;
     s.volume = host;
     LW_RETURN_IF_FAILED(s.voxels.reserve(host.byteCount(), "cudaMalloc(volume)"));
     s.volume.voxels = s.voxels.data();
@@ -59,25 +88,7 @@ CudaStatus MarchingCubesCuda::setVolume(const VolumeView& host, const VoxelGridS
                 "cudaMemcpy(volume)");
     LW_RETURN_IF_FAILED(upload.stop(s.stream.get()));
 
-    const std::vector<double>& offsets = setup.sliceOffsets();
-    const std::size_t slices = offsets.size();
-    LW_RETURN_IF_FAILED(s.sliceOffset.reserve(slices, "cudaMalloc(sliceOffset)"));
-    LW_RETURN_IF_FAILED(s.spanK.reserve(slices, "cudaMalloc(spanK)"));
-    LW_RETURN_IF_FAILED(s.invSpanK.reserve(slices, "cudaMalloc(invSpanK)"));
-    LW_CUDA_TRY(cudaMemcpy(s.sliceOffset.data(), offsets.data(), slices * sizeof(double),
-                           cudaMemcpyHostToDevice),
-                "cudaMemcpy(sliceOffset)");
-    LW_CUDA_TRY(cudaMemcpy(s.spanK.data(), setup.spans().spanK, slices * sizeof(float),
-                           cudaMemcpyHostToDevice),
-                "cudaMemcpy(spanK)");
-    LW_CUDA_TRY(cudaMemcpy(s.invSpanK.data(), setup.spans().invSpanK, slices * sizeof(float),
-                           cudaMemcpyHostToDevice),
-                "cudaMemcpy(invSpanK)");
-    s.spans = setup.spans();
-    s.spans.spanK = s.spanK.data();
-    s.spans.invSpanK = s.invSpanK.data();
-    s.frame = setup.frame();
-    s.frame.sliceOffset = s.sliceOffset.data();
+    LW_RETURN_IF_FAILED(s.uploadGridTables(setup));
 
     const auto bricks = [](int voxels) {
         return std::uint32_t((voxels - 1 + tuning::kSkipBrickCells - 1) / tuning::kSkipBrickCells);
@@ -94,40 +105,48 @@ CudaStatus MarchingCubesCuda::setVolume(const VolumeView& host, const VoxelGridS
     }));
     LW_CUDA_TRY(cudaStreamSynchronize(s.stream.get()), "mc::brickMinMax");
     s.uploadMs = upload.ms();
+    s.notePeak();
     return CudaStatus::success();
 }
 
 CudaStatus MarchingCubesCuda::extract(double storedIso) {
     Impl& s = *m_impl;
-    if (!s.volume.voxels)
+    if (!s.volume.voxels || s.streamed)
         return CudaStatus::failure(CudaStatus::Code::Failed, "marching cubes (CUDA)",
                                    "no volume: call setVolume first");
     s.mesh = DeviceMeshView();
-    return dispatchVoxelKind(s.volume.kind,
-                             [&](auto zero) { return s.extractTyped<decltype(zero)>(storedIso); });
+    const CudaStatus status = dispatchVoxelKind(
+        s.volume.kind, [&](auto zero) { return s.extractTyped<decltype(zero)>(storedIso); });
+    s.notePeak();
+    return status;
 }
 
-template <typename T> CudaStatus MarchingCubesCuda::Impl::classifyTyped(double iso) {
+template <typename T>
+CudaStatus MarchingCubesCuda::Impl::markBricksTyped(const mc::Grid<T>& g, bool& touchesBorder) {
     cudaStream_t st = stream.get();
-    const mc::Grid<T> g = grid<T>(iso);
     const std::uint32_t brickCount = bricksX * bricksY * bricksZ;
-
-    // Bricks and the border test.
-    LW_RETURN_IF_FAILED(timers[0].start(st));
     mc::markActiveBricks<<<blocksFor(brickCount, 256), 256, 0, st>>>(brickMinMax.data(),
-                                                                     brickCount, iso,
+                                                                     brickCount, g.iso,
                                                                      brickActive.data());
     LW_CUDA_LAUNCHED("mc::markActiveBricks");
     LW_CUDA_TRY(cudaMemsetAsync(flag.data(), 0, sizeof(int), st), "cudaMemset(flag)");
-    mc::borderInside<T><<<dim3(64, 6), 256, 0, st>>>(g.voxels, g.nx, g.ny, g.nz, g.threshold,
-                                                     flag.data());
+    mc::borderInside<T><<<dim3(64, 6), 256, 0, st>>>(
+        g.box, std::uint32_t(volume.dims.x), std::uint32_t(volume.dims.y),
+        std::uint32_t(volume.dims.z), g.threshold, flag.data());
     LW_CUDA_LAUNCHED("mc::borderInside");
-    LW_RETURN_IF_FAILED(timers[0].stop(st));
+    int touches = 0;
+    LW_CUDA_TRY(cudaMemcpyAsync(&touches, flag.data(), sizeof touches, cudaMemcpyDeviceToHost, st),
+                "mc::borderInside");
+    LW_CUDA_TRY(cudaStreamSynchronize(st), "mc::borderInside");
+    touchesBorder = touches != 0;
+    return CudaStatus::success();
+}
 
-    // Classification and compaction of the active voxels.
-    LW_RETURN_IF_FAILED(timers[1].start(st));
-    const std::uint32_t tilesPerRow = blocksFor(g.nx, tuning::kClassifyBlock);
-    const std::uint32_t rows = g.ny * g.nz;
+template <typename T> CudaStatus MarchingCubesCuda::Impl::classifyGrid(const mc::Grid<T>& g) {
+    cudaStream_t st = stream.get();
+    const std::uint32_t tilesPerRow =
+        blocksFor(std::size_t(g.hi.x - g.lo.x + 1), tuning::kClassifyBlock);
+    const std::uint32_t rows = g.rowsY * std::uint32_t(g.hi.z - g.lo.z + 1);
     const std::uint32_t tiles = tilesPerRow * rows;
     const dim3 tileGrid(rows, tilesPerRow);
     LW_RETURN_IF_FAILED(tileCounts.reserve(std::size_t(tiles) + 1, "cudaMalloc(tileCounts)"));
@@ -140,32 +159,23 @@ template <typename T> CudaStatus MarchingCubesCuda::Impl::classifyTyped(double i
                                      "cub::DeviceScan(tiles)"));
     std::uint32_t active = 0;
     LW_RETURN_IF_FAILED(readBack(tileOffsets.data() + tiles, active, "mc::countTiles"));
-    int touches = 0;
-    LW_CUDA_TRY(cudaMemcpy(&touches, flag.data(), sizeof touches, cudaMemcpyDeviceToHost),
-                "mc::borderInside");
     activeCount = active;
-    mesh = DeviceMeshView();
-    mesh.touchesBorder = touches != 0;
-    if (active == 0) {
-        LW_RETURN_IF_FAILED(timers[1].stop(st));
-        LW_CUDA_TRY(cudaStreamSynchronize(st), "mc::classify");
-        times = McCudaTimes{timers[0].ms(), timers[1].ms(), 0.0, 0.0};
+    if (active == 0)
         return CudaStatus::success();
-    }
     LW_RETURN_IF_FAILED(activeVoxels.reserve(active, "cudaMalloc(activeVoxels)"));
     LW_RETURN_IF_FAILED(activeCodes.reserve(active, "cudaMalloc(activeCodes)"));
     mc::writeTiles<T><<<tileGrid, tuning::kClassifyBlock, 0, st>>>(g, tileOffsets.data(),
                                                                 activeVoxels.data(),
                                                                 activeCodes.data());
     LW_CUDA_LAUNCHED("mc::writeTiles");
-    LW_RETURN_IF_FAILED(timers[1].stop(st));
     return CudaStatus::success();
 }
 
-template <typename T> CudaStatus MarchingCubesCuda::Impl::extractTyped(double iso) {
+template <typename T> CudaStatus MarchingCubesCuda::Impl::generate(const mc::Grid<T>& g) {
     cudaStream_t st = stream.get();
-    const mc::Grid<T> g = grid<T>(iso);
-    LW_RETURN_IF_FAILED(classifyTyped<T>(iso));
+    const bool touchesBorder = mesh.touchesBorder;
+    mesh = DeviceMeshView();
+    mesh.touchesBorder = touchesBorder;
     const std::uint32_t active = activeCount;
     if (active == 0)
         return CudaStatus::success();
@@ -206,26 +216,171 @@ template <typename T> CudaStatus MarchingCubesCuda::Impl::extractTyped(double is
                                     vertexOffsets.data(), active, positions.data(),
                                     normals.data());
     LW_CUDA_LAUNCHED("mc::generateVertices");
-    const std::uint32_t rows = g.ny * g.nz;
+    // Box rows (S: the volume's rows): the active list holds box indices.
+    const std::uint32_t boxZ = std::uint32_t(g.hi.z - g.boxOrigin.z + 1);
+    const std::uint32_t rows = g.boxY * boxZ;
     LW_RETURN_IF_FAILED(rowStart.reserve(std::size_t(rows) + 1, "cudaMalloc(rowStart)"));
     mc::findRowStarts<<<blocksFor(std::size_t(rows) + 1, 256), 256, 0, st>>>(
-        activeVoxels.data(), active, g.nx, rows, rowStart.data());
+        activeVoxels.data(), active, g.boxX, rows, rowStart.data());
     LW_CUDA_LAUNCHED("mc::findRowStarts");
     mc::generateTriangles<<<blocksFor(active, tuning::kActiveBlock), tuning::kActiveBlock, 0,
                             st>>>(activeVoxels.data(), activeCodes.data(), vertexOffsets.data(),
-                                  triangleOffsets.data(), rowStart.data(), active, g.nx, g.ny,
+                                  triangleOffsets.data(), rowStart.data(), active, g.boxX, g.boxY,
                                   indices.data());
     LW_CUDA_LAUNCHED("mc::generateTriangles");
     LW_RETURN_IF_FAILED(timers[3].stop(st));
     LW_CUDA_TRY(cudaStreamSynchronize(st), "mc::generate");
 
-    times = McCudaTimes{timers[0].ms(), timers[1].ms(), timers[2].ms(), timers[3].ms()};
     mesh.positions = positions.data();
     mesh.normals = normals.data();
     mesh.indices = indices.data();
     mesh.vertexCount = vertexTotal;
     mesh.triangleCount = triangleTotal;
     return CudaStatus::success();
+}
+
+template <typename T> CudaStatus MarchingCubesCuda::Impl::classifyTyped(double iso) {
+    cudaStream_t st = stream.get();
+    const mc::Grid<T> g = grid<T>(iso);
+    bool touches = false;
+    LW_RETURN_IF_FAILED(timers[0].start(st));
+    LW_RETURN_IF_FAILED(markBricksTyped<T>(g, touches));
+    LW_RETURN_IF_FAILED(timers[0].stop(st));
+    mesh = DeviceMeshView();
+    mesh.touchesBorder = touches;
+    LW_RETURN_IF_FAILED(timers[1].start(st));
+    LW_RETURN_IF_FAILED(classifyGrid<T>(g));
+    LW_RETURN_IF_FAILED(timers[1].stop(st));
+    return CudaStatus::success();
+}
+
+template <typename T> CudaStatus MarchingCubesCuda::Impl::extractTyped(double iso) {
+    LW_RETURN_IF_FAILED(classifyTyped<T>(iso));
+    LW_RETURN_IF_FAILED(generate<T>(grid<T>(iso)));
+    LW_CUDA_TRY(cudaStreamSynchronize(stream.get()), "mc::extract");
+    times = McCudaTimes{timers[0].ms(), timers[1].ms(), activeCount ? timers[2].ms() : 0.0,
+                        activeCount ? timers[3].ms() : 0.0};
+    return CudaStatus::success();
+}
+
+CudaStatus MarchingCubesCuda::setStreamedVolume(const VolumeView& host,
+                                                const VoxelGridSetup& setup) {
+    Impl& s = *m_impl;
+    s.mesh = DeviceMeshView();
+    s.activeCount = 0;
+    const glm::ivec3 d = host.dims;
+    if (d.x < 2 || d.y < 2 || d.z < 2)
+        return CudaStatus::failure(CudaStatus::Code::TooLarge, "marching cubes (CUDA, streamed)",
+                                   "the volume needs at least 2 voxels along each axis");
+    if (std::size_t(d.x) * std::size_t(d.y) * 4 >= std::numeric_limits<std::uint32_t>::max())
+        return CudaStatus::failure(CudaStatus::Code::TooLarge, "marching cubes (CUDA, streamed)",
+                                   "slices of more than 2^30 voxels");
+    LW_RETURN_IF_FAILED(mc::uploadTables());
+    LW_RETURN_IF_FAILED(s.stream.create());
+    LW_RETURN_IF_FAILED(s.uploadStream.create());
+    for (cudaEvent_t& e : s.uploaded)
+        if (!e)
+            LW_CUDA_TRY(cudaEventCreateWithFlags(&e, cudaEventDisableTiming), "cudaEventCreate");
+    // The whole-volume buffers go: streaming exists to stay under a memory budget.
+    s.voxels.release();
+    s.brickMinMax.release();
+    s.brickActive.release();
+    s.releaseScratch();
+    s.unregisterHost();
+    s.volume = host;
+    s.streamed = true;
+    s.hostVoxels = host.voxels;
+    // Page-locking the volume lets every slab go up with one asynchronous copy. Where the driver
+    // refuses (limits on locked memory), slabs are staged through two pinned buffers instead.
+    const cudaError_t registered = cudaHostRegister(const_cast<void*>(host.voxels), host.byteCount(),
+                                                    cudaHostRegisterReadOnly);
+    s.hostRegistered = registered == cudaSuccess;
+    if (!s.hostRegistered)
+        cudaGetLastError();
+    LW_RETURN_IF_FAILED(s.uploadGridTables(setup));
+    s.peakBytes = 0;
+    s.notePeak();
+    return CudaStatus::success();
+}
+
+CudaStatus MarchingCubesCuda::Impl::uploadSlab(int slot, int boxZ0, int boxZ1) {
+    const std::size_t slice = std::size_t(volume.dims.x) * std::size_t(volume.dims.y) *
+                              voxelKindSize(volume.kind);
+    const std::size_t bytes = std::size_t(boxZ1 - boxZ0) * slice;
+    const unsigned char* source = static_cast<const unsigned char*>(hostVoxels) + boxZ0 * slice;
+    LW_RETURN_IF_FAILED(slabBox[slot].reserve(bytes, "cudaMalloc(slab)"));
+    if (!hostRegistered) {
+        // The staging buffer of this slot may still feed the upload of two slabs ago.
+        LW_CUDA_TRY(cudaEventSynchronize(uploaded[slot]), "cudaEventSynchronize(upload)");
+        LW_RETURN_IF_FAILED(staging[slot].reserve(bytes, "cudaMallocHost(staging)"));
+        std::memcpy(staging[slot].data(), source, bytes);
+        source = staging[slot].data();
+    }
+    LW_CUDA_TRY(cudaMemcpyAsync(slabBox[slot].data(), source, bytes, cudaMemcpyHostToDevice,
+                                uploadStream.get()),
+                "cudaMemcpy(slab)");
+    LW_CUDA_TRY(cudaEventRecord(uploaded[slot], uploadStream.get()), "cudaEventRecord(upload)");
+    notePeak();
+    return CudaStatus::success();
+}
+
+template <typename T>
+CudaStatus MarchingCubesCuda::Impl::extractSlabsTyped(double iso,
+                                                      const std::vector<glm::ivec2>& ranges,
+                                                      const MarchingCubesCuda::SlabCallback& onSlab) {
+    const glm::ivec3 d = volume.dims;
+    const auto boxOf = [&](const glm::ivec2& cells) {
+        return glm::ivec2(cells.x > 0 ? cells.x - 1 : 0, cells.y + 2 < d.z ? cells.y + 2 : d.z);
+    };
+    if (!ranges.empty()) {
+        const glm::ivec2 box = boxOf(ranges[0]);
+        LW_RETURN_IF_FAILED(uploadSlab(0, box.x, box.y));
+    }
+    for (std::size_t k = 0; k < ranges.size(); ++k) {
+        const int slot = int(k % 2);
+        if (k + 1 < ranges.size()) {
+            // Slot (k + 1) % 2 held slab k - 1, whose extraction has finished.
+            const glm::ivec2 next = boxOf(ranges[k + 1]);
+            LW_RETURN_IF_FAILED(uploadSlab(int((k + 1) % 2), next.x, next.y));
+        }
+        LW_CUDA_TRY(cudaStreamWaitEvent(stream.get(), uploaded[slot], 0), "cudaStreamWaitEvent");
+        const glm::ivec2 box = boxOf(ranges[k]);
+        const mc::Grid<T> g = brickGrid<T>(
+            iso, reinterpret_cast<const T*>(slabBox[slot].data()), glm::ivec3(0, 0, box.x),
+            glm::ivec3(d.x, d.y, box.y), glm::ivec3(0, 0, ranges[k].x),
+            glm::ivec3(d.x - 1, d.y - 1, ranges[k].y));
+        mesh = DeviceMeshView();
+        LW_RETURN_IF_FAILED(classifyGrid<T>(g));
+        LW_RETURN_IF_FAILED(generate<T>(g));
+        notePeak();
+        if (mesh.triangleCount > 0)
+            LW_RETURN_IF_FAILED(onSlab(mesh));
+    }
+    return CudaStatus::success();
+}
+
+CudaStatus MarchingCubesCuda::extractSlabs(double storedIso,
+                                           const std::vector<glm::ivec2>& cellLayerRanges,
+                                           const SlabCallback& onSlab) {
+    Impl& s = *m_impl;
+    if (!s.streamed)
+        return CudaStatus::failure(CudaStatus::Code::Failed, "marching cubes (CUDA, streamed)",
+                                   "no volume: call setStreamedVolume first");
+    for (const glm::ivec2& r : cellLayerRanges)
+        if (r.x < 0 || r.y <= r.x || r.y > s.volume.dims.z - 1)
+            return CudaStatus::failure(CudaStatus::Code::Failed, "marching cubes (CUDA, streamed)",
+                                       "cell layers out of range");
+    return dispatchVoxelKind(s.volume.kind, [&](auto zero) {
+        return s.extractSlabsTyped<decltype(zero)>(storedIso, cellLayerRanges, onSlab);
+    });
+}
+
+std::size_t MarchingCubesCuda::peakDeviceBytes() const { return m_impl->peakBytes; }
+
+void MarchingCubesCuda::release() {
+    // A fresh state: every DeviceBuffer, event and stream frees itself; the host registration is
+    // undone by the destructor.
+    m_impl = std::make_unique<Impl>();
 }
 
 CudaStatus MarchingCubesCuda::classify(double storedIso) {

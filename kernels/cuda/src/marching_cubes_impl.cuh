@@ -36,6 +36,52 @@ struct MarchingCubesCuda::Impl {
     DeviceBuffer<glm::vec3> positions, normals;
     DeviceBuffer<std::uint32_t> indices;
 
+    // The streamed (L) variant: the host volume, registered with the driver when possible,
+    // otherwise staged through pinned buffers; two device slots for the slab boxes.
+    const void* hostVoxels = nullptr;
+    bool streamed = false;
+    bool hostRegistered = false;
+    dispatch::Stream uploadStream;
+    DeviceBuffer<unsigned char> slabBox[2];
+    dispatch::PinnedBuffer<unsigned char> staging[2];
+    cudaEvent_t uploaded[2] = {nullptr, nullptr};
+    std::size_t peakBytes = 0;
+
+    ~Impl() {
+        unregisterHost();
+        for (cudaEvent_t& e : uploaded)
+            if (e)
+                cudaEventDestroy(e);
+    }
+    void unregisterHost() {
+        if (hostRegistered)
+            cudaHostUnregister(const_cast<void*>(hostVoxels));
+        hostRegistered = false;
+        hostVoxels = nullptr;
+    }
+    // The classification and mesh buffers (sized by the last extraction) go back to the device.
+    void releaseScratch() {
+        tileCounts.release();
+        tileOffsets.release();
+        activeVoxels.release();
+        vertexCounts.release();
+        vertexOffsets.release();
+        triangleCounts.release();
+        triangleOffsets.release();
+        activeCodes.release();
+        rowStart.release();
+        scanTemp.release();
+        positions.release();
+        normals.release();
+        indices.release();
+    }
+    void notePeak() { peakBytes = deviceBytes() > peakBytes ? deviceBytes() : peakBytes; }
+    CudaStatus uploadGridTables(const VoxelGridSetup& setup);
+    template <typename T>
+    CudaStatus extractSlabsTyped(double iso, const std::vector<glm::ivec2>& ranges,
+                                 const MarchingCubesCuda::SlabCallback& onSlab);
+    CudaStatus uploadSlab(int slot, int boxZ0, int boxZ1);
+
     std::uint32_t activeCount = 0;
     DeviceMeshView mesh;
     McCudaTimes times;
@@ -47,7 +93,8 @@ struct MarchingCubesCuda::Impl {
                brickMinMax.bytes() + brickActive.bytes() + tileCounts.bytes() +
                tileOffsets.bytes() + activeVoxels.bytes() + vertexCounts.bytes() +
                vertexOffsets.bytes() + triangleCounts.bytes() + triangleOffsets.bytes() +
-               activeCodes.bytes() + rowStart.bytes() + scanTemp.bytes() + positions.bytes() + normals.bytes() +
+               activeCodes.bytes() + rowStart.bytes() + slabBox[0].bytes() + slabBox[1].bytes() +
+               scanTemp.bytes() + positions.bytes() + normals.bytes() +
                indices.bytes();
     }
 
@@ -64,26 +111,64 @@ struct MarchingCubesCuda::Impl {
         return CudaStatus::success();
     }
 
-    template <typename T> mc::Grid<T> grid(double iso) const {
-        mc::Grid<T> g;
-        g.voxels = reinterpret_cast<const T*>(voxels.data());
+    // The grid fields common to S and L: the volume's spans and frame, the iso-value.
+    template <typename T> mc::Grid<T> baseGrid(double iso) const {
+        mc::Grid<T> g{};
         g.spans = spans;
         g.frame = frame;
-        g.nx = std::uint32_t(volume.dims.x);
-        g.ny = std::uint32_t(volume.dims.y);
-        g.nz = std::uint32_t(volume.dims.z);
-        g.voxelCount = std::uint32_t(volume.voxelCount());
         g.threshold = voxelInsideThreshold<T>(iso);
         g.iso = iso;
         g.isoF = insideThreshold(iso);
+        return g;
+    }
+
+    // S: the whole resident volume, with the brick skip.
+    template <typename T> mc::Grid<T> grid(double iso) const {
+        mc::Grid<T> g = baseGrid<T>(iso);
+        g.box = reinterpret_cast<const T*>(voxels.data());
+        g.boxX = std::uint32_t(volume.dims.x);
+        g.boxY = std::uint32_t(volume.dims.y);
+        g.boxOrigin = glm::ivec3(0);
+        g.indexOrigin = 0;
+        g.lo = glm::ivec3(0);
+        g.hi = volume.dims - 1;
+        g.rowsY = std::uint32_t(volume.dims.y);
         g.brickActive = brickActive.data();
         g.bricksX = bricksX;
         g.bricksY = bricksY;
         return g;
     }
 
+    // L: one brick's cells [cellBegin, cellEnd) with its box (the corner voxels and the gradient
+    // apron, boxBegin .. boxEnd exclusive) resident at `box`.
+    template <typename T>
+    mc::Grid<T> brickGrid(double iso, const T* box, glm::ivec3 boxBegin, glm::ivec3 boxEnd,
+                          glm::ivec3 cellBegin, glm::ivec3 cellEnd) const {
+        mc::Grid<T> g = baseGrid<T>(iso);
+        const glm::ivec3 size = boxEnd - boxBegin;
+        g.box = box;
+        g.boxX = std::uint32_t(size.x);
+        g.boxY = std::uint32_t(size.y);
+        g.boxOrigin = boxBegin;
+        g.indexOrigin = std::size_t(boxBegin.x) +
+                        std::size_t(size.x) *
+                            (std::size_t(boxBegin.y) + std::size_t(size.y) * std::size_t(boxBegin.z));
+        g.spans.dims.sy = std::size_t(size.x);
+        g.spans.dims.sz = std::size_t(size.x) * std::size_t(size.y);
+        g.lo = cellBegin;
+        g.hi = cellEnd;
+        g.rowsY = std::uint32_t(cellEnd.y - cellBegin.y + 1);
+        g.brickActive = nullptr;
+        return g;
+    }
+
     template <typename T> CudaStatus computeBrickMinMax();
-    // Active bricks, border test and the ordered active voxel list (activeVoxels/activeCodes).
+    // S: active bricks and the border test (the whole volume only).
+    template <typename T> CudaStatus markBricksTyped(const mc::Grid<T>& g, bool& touchesBorder);
+    // The ordered active voxel list (activeVoxels/activeCodes, activeCount) of g's range.
+    template <typename T> CudaStatus classifyGrid(const mc::Grid<T>& g);
+    // The mesh of the classified voxels (positions/normals/indices, mesh).
+    template <typename T> CudaStatus generate(const mc::Grid<T>& g);
     template <typename T> CudaStatus classifyTyped(double iso);
     template <typename T> CudaStatus extractTyped(double iso);
     CudaStatus readBack(const std::uint32_t* device, std::uint32_t& host, const char* what) {

@@ -58,17 +58,29 @@ static CudaStatus uploadTables() {
 
 // Everything a kernel needs to know about the grid, by value.
 template <typename T> struct Grid {
-    const T* voxels;
-    GridSpans spans;    // spanK / invSpanK point to device memory
-    McGridFrame frame;  // sliceOffset points to device memory
-    std::uint32_t nx, ny, nz;
-    std::uint32_t voxelCount;
-    T threshold;        // inside = voxel >= threshold (== value >= iso, exactly)
+    // The resident voxels, x fastest: the whole volume (S) or one brick's box (streamed L).
+    const T* box;
+    std::uint32_t boxX, boxY; // box strides: 1, boxX, boxX * boxY
+    glm::ivec3 boxOrigin;     // the volume voxel stored at box[0]
+    std::size_t indexOrigin;  // boxOrigin's linear index with the box strides (see
+                              // VoxelGradientSampler::indexOrigin)
+    // The voxels classified, inclusive, in volume coordinates; their edges and cells end at hi
+    // (S: 0 .. dims - 1; a brick: its cells' corner voxels cellBegin .. cellEnd).
+    glm::ivec3 lo, hi;
+    std::uint32_t rowsY;      // hi.y - lo.y + 1
+    GridSpans spans;          // the volume's, with the box strides; spanK/invSpanK on the device
+    McGridFrame frame;        // sliceOffset on the device
+    T threshold;              // inside = voxel >= threshold (== value >= iso, exactly)
     double iso;
     float isoF;
-    // Skip bricks: brick of voxel (x, y, z) = (min(x, cx - 1), ...) >> kSkipBrickShift.
+    // Skip bricks (S only, null for a streamed brick): brick of voxel (x, y, z) =
+    // (min(x, cx - 1), ...) >> kSkipBrickShift.
     const std::uint8_t* brickActive;
     std::uint32_t bricksX, bricksY;
+
+    __device__ std::uint32_t boxIndex(std::uint32_t x, std::uint32_t y, std::uint32_t z) const {
+        return (x - boxOrigin.x) + boxX * ((y - boxOrigin.y) + boxY * (z - boxOrigin.z));
+    }
 };
 
 // The code of a voxel: bits 0-7 its cell's case (0 when the cell has no triangles or does not
@@ -77,16 +89,18 @@ template <typename T>
 __device__ __forceinline__ std::uint32_t voxelCode(const Grid<T>& g, std::uint32_t x,
                                                    std::uint32_t y, std::uint32_t z,
                                                    std::uint32_t v) {
-    const std::uint32_t cx = g.nx - 1, cy = g.ny - 1, cz = g.nz - 1;
-    const std::uint32_t bx = (x < cx ? x : cx - 1) >> tuning::kSkipBrickShift;
-    const std::uint32_t by = (y < cy ? y : cy - 1) >> tuning::kSkipBrickShift;
-    const std::uint32_t bz = (z < cz ? z : cz - 1) >> tuning::kSkipBrickShift;
-    if (!g.brickActive[(bz * g.bricksY + by) * g.bricksX + bx])
-        return 0;
-    const std::size_t sy = g.nx, sz = std::size_t(g.nx) * g.ny;
-    const T* p = g.voxels + v;
+    if (g.brickActive) {
+        const std::uint32_t cx = g.spans.dims.cx, cy = g.spans.dims.cy, cz = g.spans.dims.cz;
+        const std::uint32_t bx = (x < cx ? x : cx - 1) >> tuning::kSkipBrickShift;
+        const std::uint32_t by = (y < cy ? y : cy - 1) >> tuning::kSkipBrickShift;
+        const std::uint32_t bz = (z < cz ? z : cz - 1) >> tuning::kSkipBrickShift;
+        if (!g.brickActive[(bz * g.bricksY + by) * g.bricksX + bx])
+            return 0;
+    }
+    const std::size_t sy = g.boxX, sz = std::size_t(g.boxX) * g.boxY;
+    const T* p = g.box + v;
     const T thr = g.threshold;
-    const bool hasX = x < cx, hasY = y < cy, hasZ = z < cz;
+    const bool hasX = int(x) < g.hi.x, hasY = int(y) < g.hi.y, hasZ = int(z) < g.hi.z;
     const bool c0 = p[0] >= thr;
     // Corners in diagram order: 0 (0,0,0) 1 (1,0,0) 2 (1,1,0) 3 (0,1,0), 4-7 the same at z + 1.
     const bool c1 = hasX && p[1] >= thr;
@@ -172,9 +186,10 @@ __global__ void borderInside(const T* voxels, std::uint32_t nx, std::uint32_t ny
     }
 }
 
-// The classification grid: blockIdx.x is the voxel row (y + z * ny; grids reach 2^31 - 1 blocks
-// along x, only 65535 along y), blockIdx.y the tile along it, one voxel per thread; tiles are
-// numbered row by row, so tile order is voxel order and no thread divides by nx.
+// The classification grid: blockIdx.x is the voxel row of the classified range (grids reach
+// 2^31 - 1 blocks along x, only 65535 along y), blockIdx.y the tile along it, one voxel per
+// thread; tiles are numbered row by row, so tile order is voxel order. Active voxels are listed by
+// their index in the box (ascending = voxel order).
 struct TileCoords {
     std::uint32_t x, y, z, v, tile;
     bool valid;
@@ -182,12 +197,12 @@ struct TileCoords {
 template <typename T> __device__ __forceinline__ TileCoords tileCoords(const Grid<T>& g) {
     TileCoords c;
     const std::uint32_t row = blockIdx.x;
-    c.x = blockIdx.y * tuning::kClassifyBlock + threadIdx.x;
-    c.y = row % g.ny;
-    c.z = row / g.ny;
-    c.v = row * g.nx + c.x;
+    c.x = g.lo.x + blockIdx.y * tuning::kClassifyBlock + threadIdx.x;
+    c.y = g.lo.y + row % g.rowsY;
+    c.z = g.lo.z + row / g.rowsY;
+    c.valid = int(c.x) <= g.hi.x;
+    c.v = c.valid ? g.boxIndex(c.x, c.y, c.z) : 0u;
     c.tile = row * gridDim.y + blockIdx.y;
-    c.valid = c.x < g.nx;
     return c;
 }
 
@@ -250,8 +265,9 @@ __global__ void generateVertices(Grid<T> g, const std::uint32_t* activeVoxels,
     if (edges == 0)
         return;
     const std::uint32_t v = activeVoxels[i];
-    const int x = int(v % g.nx), y = int((v / g.nx) % g.ny), z = int(v / (g.nx * g.ny));
-    const VoxelGradientSampler<T> sampler{g.voxels, g.spans};
+    const int x = g.boxOrigin.x + int(v % g.boxX), y = g.boxOrigin.y + int((v / g.boxX) % g.boxY),
+              z = g.boxOrigin.z + int(v / (g.boxX * g.boxY));
+    const VoxelGradientSampler<T> sampler{g.box, g.spans, g.indexOrigin};
     const McVec3 here = sampler.gradient(x, y, z);
     std::uint32_t id = vertexOffsets[i];
     for (int axis = 0; axis < 3; ++axis) {
@@ -278,8 +294,8 @@ __device__ __forceinline__ std::uint32_t lowerBound(const std::uint32_t* voxels,
     return lo;
 }
 
-// rowStart[r] = first position in the ordered active list whose voxel lies in voxel row r
-// (r = z * ny + y) or later; entry rows = count. A triangle corner's owning voxel is then found
+// rowStart[r] = first position in the ordered active list whose voxel lies in box row r
+// (r = z * boxY + y) or later; entry rows = count. A triangle corner's owning voxel is then found
 // within one row's few active voxels instead of the whole list.
 static __global__ void findRowStarts(const std::uint32_t* activeVoxels, std::uint32_t count,
                               std::uint32_t nx, std::uint32_t rows, std::uint32_t* rowStart) {

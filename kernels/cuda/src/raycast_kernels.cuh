@@ -129,11 +129,12 @@ __global__ void findSegments(mc::Grid<T> g, const std::uint32_t* activeVoxels,
     if (i >= count || (codes[i] & 0xff) == 0)
         return;
     const std::uint32_t v = activeVoxels[i];
-    const int x = int(v % g.nx), y = int((v / g.nx) % g.ny), z = int(v / (g.nx * g.ny));
-    const std::size_t sy = g.nx, sz = std::size_t(g.nx) * g.ny;
+    // S only: the box is the whole volume (origin 0).
+    const int x = int(v % g.boxX), y = int((v / g.boxX) % g.boxY), z = int(v / (g.boxX * g.boxY));
+    const std::size_t sy = g.boxX, sz = std::size_t(g.boxX) * g.boxY;
     float value[8];
     for (int c = 0; c < 8; ++c)
-        value[c] = float(g.voxels[v + std::size_t(c_cornerOffset[c][0]) +
+        value[c] = float(g.box[v + std::size_t(c_cornerOffset[c][0]) +
                                   std::size_t(c_cornerOffset[c][1]) * sy +
                                   std::size_t(c_cornerOffset[c][2]) * sz]);
     const int cubeCase = mcCaseIndex(value, g.isoF);
@@ -142,7 +143,7 @@ __global__ void findSegments(mc::Grid<T> g, const std::uint32_t* activeVoxels,
         return;
     atomicAdd(&counters->triangles, (unsigned long long)triangles);
     const unsigned edges = c_edgeTable[cubeCase];
-    const VoxelGradientSampler<T> sampler{g.voxels, g.spans};
+    const VoxelGradientSampler<T> sampler{g.box, g.spans, g.indexOrigin};
     McVec3 gradient[8];
     unsigned haveGradient = 0;
     glm::vec3 position[12], normal[12];

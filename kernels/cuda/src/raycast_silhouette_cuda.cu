@@ -122,7 +122,7 @@ CudaStatus RayCastSilhouetteCuda::Impl::renderTyped(const rc::View& view, std::u
         }
         const std::uint32_t found = std::uint32_t(counts.segments);
         RayVisibility<T> rule;
-        rule.voxels = g.voxels;
+        rule.voxels = g.box;
         rule.dims = m.spans.dims;
         rule.grid = rayGrid.view;
         rule.macroOccupied = macroOccupied.data();

@@ -27,6 +27,12 @@ struct ZBufferCuda::Impl {
 };
 
 ZBufferCuda::ZBufferCuda() : m_impl(std::make_unique<Impl>()) {}
+
+std::size_t ZBufferCuda::deviceBytes() const {
+    const Impl& s = *m_impl;
+    return s.screen.bytes() + s.surface.bytes() + s.lines.bytes() + s.mask.bytes() +
+           s.segmentCount.bytes();
+}
 ZBufferCuda::~ZBufferCuda() = default;
 
 CudaStatus ZBufferCuda::begin(const ViewTransform& view) {

@@ -23,33 +23,6 @@ double msSince(Clock::time_point start) {
     return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
 }
 
-// True when a voxel on the volume's border is inside (>= iso): only then can the surface be cut
-// open by the border. Marching cubes gives a watertight mesh otherwise, and on a closed surface
-// back faces are always hidden behind front faces, so the depth pass may cull them (half the work).
-bool surfaceTouchesBorder(const volume::Volume& volume, double storedIso) {
-    const glm::ivec3 d = volume.dims();
-    return volume::dispatchVoxelType(volume.voxelType(), [&](auto zero) {
-        using T = decltype(zero);
-        const T* voxels = volume.dataAs<T>();
-        auto inside = [&](int x, int y, int z) {
-            return double(voxels[volume.index(x, y, z)]) >= storedIso;
-        };
-        for (int z = 0; z < d.z; ++z) {
-            const bool zFace = z == 0 || z == d.z - 1;
-            for (int y = 0; y < d.y; ++y) {
-                if (zFace || y == 0 || y == d.y - 1) {
-                    for (int x = 0; x < d.x; ++x)
-                        if (inside(x, y, z))
-                            return true;
-                } else if (inside(0, y, z) || inside(d.x - 1, y, z)) {
-                    return true;
-                }
-            }
-        }
-        return false;
-    });
-}
-
 } // namespace
 
 struct ZBufferSilhouetteRenderer::State {

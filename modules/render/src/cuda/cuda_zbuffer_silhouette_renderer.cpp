@@ -3,40 +3,64 @@
 #include "../view_transform.h"
 #include "cuda_support.h"
 #include "lw/core/error.h"
+#include "lw/core/log.h"
 #include "lw/kernels/cpu/marching_cubes_cpu.h"
+#include "lw/kernels/cuda/cuda_device.h"
 #include "lw/kernels/cuda/marching_cubes_cuda.h"
 #include "lw/kernels/cuda/zbuffer_cuda.h"
+#include "lw/render/zbuffer_silhouette_renderer.h"
 
+#include <chrono>
 #include <limits>
 #include <string>
 
 namespace lw::render {
 namespace {
 
-void throwIfFailed(const kernels::cuda::CudaStatus& status) {
+using kernels::cuda::CudaStatus;
+constexpr core::LogCategory kLog("lw.render");
+
+void throwIfFailed(const CudaStatus& status) {
     if (!status.ok())
         throw core::Error("method 3 (CUDA)", status.describe());
+}
+
+double msSince(std::chrono::steady_clock::time_point start) {
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+        .count();
 }
 
 } // namespace
 
 struct CudaZBufferSilhouetteRenderer::State {
     const volume::Volume* volume = nullptr;
-    bool uploaded = false;
+    // Where the voxels are now (Cpu: none on the device) and where frames must go at least
+    // (raised by an out-of-memory fallback until the next setVolume).
+    GpuResidency resident = GpuResidency::Cpu;
+    GpuResidency floor = GpuResidency::WholeVolume;
+    GpuResidency last = GpuResidency::WholeVolume;
     kernels::cuda::MarchingCubesCuda marchingCubes;
     kernels::cuda::ZBufferCuda zbuffer;
-    bool meshValid = false;
+    bool meshValid = false; // whole volume: the device mesh is for meshIso
     double meshIso = std::numeric_limits<double>::quiet_NaN();
+    double closedIso = std::numeric_limits<double>::quiet_NaN(); // slabs: meshClosed is for it
+    bool meshClosed = false;
     mutable Mesh hostMesh;
     mutable bool hostMeshValid = false;
-    ChunkedOnCpu<ZBufferSilhouetteRenderer> chunked; // L frames (see the header)
+    double lastIso = std::numeric_limits<double>::quiet_NaN();
+    std::unique_ptr<ZBufferSilhouetteRenderer> cpu; // the last fallback
 
-    void upload() {
-        if (uploaded)
-            return;
-        const kernels::VoxelGridSetup setup = kernels::cpu::voxelGridSetup(*volume);
-        throwIfFailed(marchingCubes.setVolume(hostVolumeView(*volume), setup));
-        uploaded = true;
+    CudaStatus renderWhole(const Camera& camera, const SilhouetteSettings& settings,
+                           SilhouetteFrame& frame);
+    CudaStatus renderSlabs(const Camera& camera, const SilhouetteSettings& settings,
+                           std::size_t budget, SilhouetteFrame& frame);
+    CudaStatus draw(const Camera& camera, const SilhouetteSettings& settings, bool closed,
+                    const kernels::cuda::DeviceMeshView* mesh,
+                    const std::vector<glm::ivec2>* slabs, double storedIso,
+                    SilhouetteFrame& frame);
+    std::size_t imageBytes(const Camera& camera) const {
+        // zbuffer1, zbuffer2 (4 bytes a pixel each) and the mask.
+        return std::size_t(camera.width()) * std::size_t(camera.height()) * 9;
     }
 };
 
@@ -45,32 +69,129 @@ CudaZBufferSilhouetteRenderer::CudaZBufferSilhouetteRenderer()
 CudaZBufferSilhouetteRenderer::~CudaZBufferSilhouetteRenderer() = default;
 
 std::string_view CudaZBufferSilhouetteRenderer::backendName() const {
-    return m_state->chunked.lastFrameWasChunked() ? "cpu" : "cuda";
+    return m_state->last == GpuResidency::Cpu ? "cpu" : "cuda";
 }
 
+GpuResidency CudaZBufferSilhouetteRenderer::lastResidency() const { return m_state->last; }
+
 double CudaZBufferSilhouetteRenderer::uploadMs() const {
-    return m_state->uploaded ? m_state->marchingCubes.uploadMs() : 0.0;
+    return m_state->resident == GpuResidency::WholeVolume ? m_state->marchingCubes.uploadMs()
+                                                           : 0.0;
 }
 
 void CudaZBufferSilhouetteRenderer::setVolume(const volume::Volume& volume) {
     State& s = *m_state;
     s.volume = &volume;
-    s.uploaded = false;
+    s.resident = GpuResidency::Cpu;
+    s.floor = GpuResidency::WholeVolume;
     s.meshValid = false;
     s.hostMeshValid = false;
-    s.chunked.setVolume(volume);
+    s.closedIso = std::numeric_limits<double>::quiet_NaN();
+    if (s.cpu)
+        s.cpu->setVolume(volume);
 }
 
 const Mesh* CudaZBufferSilhouetteRenderer::surfaceMesh() const {
     const State& s = *m_state;
-    if (s.chunked.lastFrameWasChunked())
-        return s.chunked.renderer()->surfaceMesh();
-    if (!s.hostMeshValid && s.meshValid) {
-        throwIfFailed(s.marchingCubes.download(s.hostMesh.positions, s.hostMesh.normals,
-                                               s.hostMesh.indices));
+    if (s.last == GpuResidency::Cpu && s.cpu)
+        return s.cpu->surfaceMesh();
+    if (!s.hostMeshValid && s.volume && !(s.lastIso != s.lastIso)) {
+        if (s.last == GpuResidency::WholeVolume && s.meshValid)
+            throwIfFailed(s.marchingCubes.download(s.hostMesh.positions, s.hostMesh.normals,
+                                                   s.hostMesh.indices));
+        else // slab frames keep no whole mesh: the CPU extracts it for the caller that asks
+            extractIsoSurface(*s.volume, s.lastIso, IsoSurfaceOptions{}, s.hostMesh);
         s.hostMeshValid = true;
     }
     return &s.hostMesh;
+}
+
+CudaStatus CudaZBufferSilhouetteRenderer::State::draw(
+    const Camera& camera, const SilhouetteSettings& settings, bool closed,
+    const kernels::cuda::DeviceMeshView* mesh, const std::vector<glm::ivec2>* slabs,
+    double storedIso, SilhouetteFrame& frame) {
+    kernels::cuda::ZBufferCudaSettings zb;
+    zb.visibility = settings.visibility;
+    zb.cullBackFaces = closed;
+    zb.epsilon =
+        settings.visibility ? ZBufferSilhouetteRenderer::depthEpsilon(camera, *volume) : 0.0f;
+    kernels::cuda::ZBufferCudaFrame timing;
+    LW_RETURN_IF_FAILED(zbuffer.begin(toViewTransform(camera)));
+    if (mesh) {
+        LW_RETURN_IF_FAILED(zbuffer.draw(*mesh, zb, timing));
+        frame.triangles = mesh->triangleCount;
+    } else {
+        const auto start = std::chrono::steady_clock::now();
+        LW_RETURN_IF_FAILED(marchingCubes.extractSlabs(
+            storedIso, *slabs, [&](const kernels::cuda::DeviceMeshView& slab) {
+                frame.triangles += slab.triangleCount;
+                return zbuffer.draw(slab, zb, timing);
+            }));
+        // The slabs' extraction and drawing interleave: extraction is the loop's wall time less
+        // the drawing kernels' time.
+        const double drawn = timing.projectMs + timing.silhouetteMs + timing.depthMs;
+        frame.times.extractMs = std::max(0.0, msSince(start) - drawn);
+    }
+    frame.lines = PixelMask(camera.width(), camera.height());
+    LW_RETURN_IF_FAILED(zbuffer.resolve(zb, frame.lines.pixels().data(), timing));
+    frame.segments = timing.segments;
+    frame.times.silhouetteMs = timing.projectMs + timing.silhouetteMs;
+    frame.times.visibilityMs = timing.depthMs;
+    frame.times.drawMs = timing.resolveMs;
+    frame.deviceBytes = marchingCubes.peakDeviceBytes() + zbuffer.deviceBytes();
+    return CudaStatus::success();
+}
+
+CudaStatus CudaZBufferSilhouetteRenderer::State::renderWhole(const Camera& camera,
+                                                             const SilhouetteSettings& settings,
+                                                             SilhouetteFrame& frame) {
+    if (resident != GpuResidency::WholeVolume) {
+        meshValid = false;
+        resident = GpuResidency::Cpu;
+        LW_RETURN_IF_FAILED(marchingCubes.setVolume(hostVolumeView(*volume),
+                                                    kernels::cpu::voxelGridSetup(*volume)));
+        resident = GpuResidency::WholeVolume;
+    }
+    const double storedIso = storedIsoValue(*volume, settings.isoReal);
+    const bool reuse =
+        settings.mode == ExtractionMode::CachedA && meshValid && meshIso == settings.isoReal;
+    if (!reuse) {
+        meshValid = false;
+        hostMeshValid = false;
+        LW_RETURN_IF_FAILED(marchingCubes.extract(storedIso));
+        meshValid = true;
+        meshIso = settings.isoReal;
+        frame.times.extractMs = marchingCubes.times().totalMs();
+    }
+    const kernels::cuda::DeviceMeshView mesh = marchingCubes.mesh();
+    const double extractMs = frame.times.extractMs;
+    LW_RETURN_IF_FAILED(
+        draw(camera, settings, !mesh.touchesBorder, &mesh, nullptr, storedIso, frame));
+    frame.times.extractMs = extractMs;
+    return CudaStatus::success();
+}
+
+CudaStatus CudaZBufferSilhouetteRenderer::State::renderSlabs(const Camera& camera,
+                                                             const SilhouetteSettings& settings,
+                                                             std::size_t budget,
+                                                             SilhouetteFrame& frame) {
+    if (resident != GpuResidency::Slabs) {
+        meshValid = false;
+        resident = GpuResidency::Cpu;
+        LW_RETURN_IF_FAILED(marchingCubes.setStreamedVolume(
+            hostVolumeView(*volume), kernels::cpu::voxelGridSetup(*volume)));
+        resident = GpuResidency::Slabs;
+    }
+    hostMeshValid = false;
+    const double storedIso = storedIsoValue(*volume, settings.isoReal);
+    if (!(closedIso == settings.isoReal)) {
+        meshClosed = !surfaceTouchesBorder(*volume, storedIso);
+        closedIso = settings.isoReal;
+    }
+    const std::vector<glm::ivec2> slabs =
+        planSlabs(volume->dims(), volume::voxelSize(volume->voxelType()), budget,
+                  imageBytes(camera));
+    return draw(camera, settings, meshClosed, nullptr, &slabs, storedIso, frame);
 }
 
 SilhouetteFrame CudaZBufferSilhouetteRenderer::render(const Camera& camera,
@@ -80,40 +201,46 @@ SilhouetteFrame CudaZBufferSilhouetteRenderer::render(const Camera& camera,
         throw core::Error("method 3 (CUDA)", "no volume bound: call setVolume first");
     if (settings.brickCells < 0)
         throw core::Error("method 3 (CUDA)", "brickCells must be 0 (whole volume) or positive");
-    SilhouetteFrame frame;
-    if (s.chunked.render(camera, settings, frame))
-        return frame;
     if (settings.cancel && settings.cancel->isCancelled())
         throw core::Cancelled();
-    s.upload();
-    const bool reuse = settings.mode == ExtractionMode::CachedA && s.meshValid &&
-                       s.meshIso == settings.isoReal;
-    if (!reuse) {
+    s.lastIso = settings.isoReal;
+    std::size_t budget = settings.gpuMemoryBudget;
+    if (budget == 0) // what is free plus what this renderer holds already
+        budget = defaultGpuBudget(kernels::cuda::freeDeviceBytes() +
+                                  s.marchingCubes.deviceBytes() + s.zbuffer.deviceBytes());
+    GpuResidency where =
+        chooseResidency(s.volume->dims(), volume::voxelSize(s.volume->voxelType()), budget,
+                        s.imageBytes(camera), settings.brickCells > 0);
+    if (int(where) < int(s.floor))
+        where = s.floor;
+    for (;;) {
+        s.last = where;
+        if (where == GpuResidency::Cpu) {
+            if (!s.cpu) {
+                s.cpu = std::make_unique<ZBufferSilhouetteRenderer>();
+                s.cpu->setVolume(*s.volume);
+            }
+            return s.cpu->render(camera, settings);
+        }
+        SilhouetteFrame frame;
+        const CudaStatus status = where == GpuResidency::WholeVolume
+                                      ? s.renderWhole(camera, settings, frame)
+                                      : s.renderSlabs(camera, settings, budget, frame);
+        if (status.ok())
+            return frame;
+        if (status.code != CudaStatus::Code::OutOfMemory)
+            throwIfFailed(status);
+        const GpuResidency next = afterOutOfMemory(where);
+        kLog.warning("method 3 (CUDA): out of device memory with the " +
+                     std::string(residencyName(where)) + " (" + status.describe() +
+                     "); trying the " + std::string(residencyName(next)));
+        // Free what the failed attempt holds before the next one allocates.
+        s.marchingCubes.release();
+        s.resident = GpuResidency::Cpu;
         s.meshValid = false;
-        s.hostMeshValid = false;
-        throwIfFailed(s.marchingCubes.extract(storedIsoValue(*s.volume, settings.isoReal)));
-        s.meshValid = true;
-        s.meshIso = settings.isoReal;
-        frame.times.extractMs = s.marchingCubes.times().totalMs();
+        s.floor = next;
+        where = next;
     }
-    const kernels::cuda::DeviceMeshView mesh = s.marchingCubes.mesh();
-    frame.triangles = mesh.triangleCount;
-
-    kernels::cuda::ZBufferCudaSettings zb;
-    zb.visibility = settings.visibility;
-    zb.cullBackFaces = !mesh.touchesBorder;
-    zb.epsilon =
-        settings.visibility ? ZBufferSilhouetteRenderer::depthEpsilon(camera, *s.volume) : 0.0f;
-    kernels::cuda::ZBufferCudaFrame timing;
-    throwIfFailed(s.zbuffer.begin(toViewTransform(camera)));
-    throwIfFailed(s.zbuffer.draw(mesh, zb, timing));
-    frame.lines = PixelMask(camera.width(), camera.height());
-    throwIfFailed(s.zbuffer.resolve(zb, frame.lines.pixels().data(), timing));
-    frame.segments = timing.segments;
-    frame.times.silhouetteMs = timing.projectMs + timing.silhouetteMs;
-    frame.times.visibilityMs = timing.depthMs;
-    frame.times.drawMs = timing.resolveMs;
-    return frame;
 }
 
 } // namespace lw::render

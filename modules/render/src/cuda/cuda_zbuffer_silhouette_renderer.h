@@ -2,16 +2,21 @@
 
 // Method 3 on the CUDA back-end: marching cubes and the z-buffer rasterizer as CUDA kernels
 // (lw/kernels/cuda), behind the same SilhouetteRenderer interface and with the same mode a/b
-// rules as the CPU ZBufferSilhouetteRenderer. The volume is uploaded once per setVolume (lazily,
-// on the first frame); mode a keeps the mesh on the device and only the view passes run per frame.
-// The image equals the CPU's: both back-ends evaluate kernels/common's rules.
+// rules as the CPU ZBufferSilhouetteRenderer. The image equals the CPU's: both back-ends evaluate
+// kernels/common's rules.
 //
-// The chunked variant (brickCells > 0) runs on the CPU renderer for now (streaming bricks through
-// a device memory budget is not built yet); backendName() then says "cpu".
+// Where the volume lives (gpu_memory_plan.h), decided per frame from settings.gpuMemoryBudget:
+//   whole volume  uploaded once per setVolume; mode a keeps the mesh on the device and only the
+//                 view passes run per frame
+//   slabs         the chunked (L) variant, and any volume too large for the budget: slabs of cell
+//                 layers stream from host memory through two device slots, each slab's mesh drawn
+//                 into the shared z-buffers and dropped; re-extracted every frame (as the CPU L)
+// Out of device memory, a frame falls back from the whole volume to slabs, and from slabs to the
+// CPU renderer (logged; backendName() then says "cpu").
 
+#include "lw/render/gpu_memory_plan.h"
 #include "lw/render/iso_surface.h"
 #include "lw/render/silhouette_renderer.h"
-#include "lw/render/zbuffer_silhouette_renderer.h"
 
 #include <memory>
 
@@ -30,8 +35,10 @@ public:
     SilhouetteFrame render(const Camera& camera, const SilhouetteSettings& settings) override;
     const Mesh* surfaceMesh() const override;
 
-    // Host -> device copy of the voxels of the bound volume (0 before the first frame).
+    // Host -> device copy of the voxels of the bound volume (0 before the first whole-volume
+    // frame).
     double uploadMs() const;
+    GpuResidency lastResidency() const;
 
 private:
     struct State;

@@ -132,13 +132,19 @@ private:
 template <typename T> struct VoxelGradientSampler {
     const T* voxels = nullptr;
     GridSpans spans;
+    // For a box of the volume held on its own (the CUDA back-end's streamed bricks): spans.dims
+    // keeps the whole volume's sizes (faces, one-sided differences) but its sy/sz are the box's
+    // strides, and voxel (x, y, z) of the volume sits at x + sy y + sz z - indexOrigin in the box
+    // (unsigned arithmetic wraps exactly). 0 for a whole volume.
+    std::size_t indexOrigin = 0;
 
     LW_HOST_DEVICE float value(std::size_t index) const { return float(voxels[index]); }
 
     LW_HOST_DEVICE McVec3 gradient(int x, int y, int z) const {
         const int cx = spans.dims.cx, cy = spans.dims.cy, cz = spans.dims.cz;
         const std::size_t sy = spans.dims.sy, sz = spans.dims.sz;
-        const std::size_t i = std::size_t(x) + sy * std::size_t(y) + sz * std::size_t(z);
+        const std::size_t i =
+            std::size_t(x) + sy * std::size_t(y) + sz * std::size_t(z) - indexOrigin;
         if (x > 0 && x < cx && y > 0 && y < cy && z > 0 && z < cz) {
             // Interior: central differences everywhere, no boundary cases.
             return {(value(i + 1) - value(i - 1)) * spans.invSpanI,
@@ -172,8 +178,8 @@ template <typename T> struct VoxelGradientSampler {
     LW_HOST_DEVICE McVertex edgeVertex(const McGridFrame& frame, int x, int y, int z, int axis,
                                        const McVec3& ga, const McVec3& gb, double iso,
                                        float isoF) const {
-        const std::size_t i =
-            std::size_t(x) + spans.dims.sy * std::size_t(y) + spans.dims.sz * std::size_t(z);
+        const std::size_t i = std::size_t(x) + spans.dims.sy * std::size_t(y) +
+                              spans.dims.sz * std::size_t(z) - indexOrigin;
         const std::size_t step = axis == 0 ? 1 : (axis == 1 ? spans.dims.sy : spans.dims.sz);
         return mcEdgeVertex(frame, x, y, z, axis, value(i), value(i + step), ga, gb, iso, isoF);
     }

@@ -65,6 +65,11 @@ private:
 // inside and outside (inside = value >= iso).
 double storedIsoValue(const volume::Volume& volume, double isoReal);
 
+// True when a voxel on the volume's border is inside (value >= storedIso): only then can the
+// surface be cut open by the border. Otherwise marching cubes gives a closed surface, on which
+// back faces always lie behind front faces, so method 3 may cull them.
+bool surfaceTouchesBorder(const volume::Volume& volume, double storedIso);
+
 // Brick edge length the "auto" chunking picks for a volume.
 int autoBrickCells(glm::ivec3 dims);
 

@@ -34,6 +34,10 @@ struct SilhouetteSettings {
     bool testAlongSegment =
         false;            // method 2: test points along each segment, not only its endpoints
     unsigned threads = 0; // CPU back-end: 0 = all cores
+    // CUDA back-end: the device memory a frame may use (bytes); 0 = the free memory less a margin.
+    // Method 3 streams the volume through it in slabs when the whole volume does not fit, and
+    // always in the chunked (L) variant.
+    std::size_t gpuMemoryBudget = 0;
     // A newer request (the GUI's iso slider) sets it: the frame stops at the next brick, stage or
     // kernel work unit and render() throws core::Cancelled. Not owned; null for none.
     const core::CancelToken* cancel = nullptr;
@@ -53,6 +57,7 @@ struct SilhouetteFrame {
     PixelMask lines;           // silhouette pixels on the camera's viewport, row 0 at the top
     std::size_t triangles = 0; // triangles extracted (method 2: triangles visited)
     std::size_t segments = 0;  // silhouette segments found (before visibility)
+    std::size_t deviceBytes = 0; // CUDA back-end: device memory held at the most (0 on the CPU)
     StageTimes times;
 };
 

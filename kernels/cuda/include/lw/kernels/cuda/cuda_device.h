@@ -22,4 +22,7 @@ struct CudaDeviceInfo {
 // Device 0. Cheap after the first call in a process (the CUDA context is then made).
 CudaDeviceInfo probeCudaDevice();
 
+// Free device memory now (bytes); 0 when there is no device.
+std::size_t freeDeviceBytes();
+
 } // namespace lw::kernels::cuda

@@ -22,6 +22,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <glm/glm.hpp>
 #include <memory>
 #include <vector>
@@ -63,6 +64,28 @@ public:
     DeviceMeshView mesh() const;
     const McCudaTimes& times() const;
     std::size_t activeVoxelCount() const;
+
+    // The streamed (L) variant: the volume stays in host memory and goes to the device one slab
+    // at a time. A slab is cells [cellBegin, cellEnd) along z over the whole x/y extent; its box
+    // (its corner voxels plus the one-voxel gradient apron) is contiguous in the host volume, so
+    // it is one asynchronous copy from page-locked memory (the volume is registered with the
+    // driver, or, where that fails, staged through a pinned buffer). Two slots: slab k + 1 uploads
+    // on its own stream while slab k is extracted. Each slab's mesh has the same triangles and
+    // bit-identical vertices as the whole mesh's triangles of those cells (only the numbering is
+    // slab-local), so per-pixel maxima drawn from the slabs equal those of the whole mesh.
+    //
+    // setStreamedVolume keeps `hostVolume` (it must outlive the calls) and uploads only the grid
+    // tables; extractSlabs calls onSlab(mesh) once per slab with cells, the mesh valid during the
+    // call; a failed status from onSlab stops the walk and is returned.
+    CudaStatus setStreamedVolume(const VolumeView& hostVolume, const VoxelGridSetup& setup);
+    using SlabCallback = std::function<CudaStatus(const DeviceMeshView&)>;
+    CudaStatus extractSlabs(double storedIso, const std::vector<glm::ivec2>& cellLayerRanges,
+                            const SlabCallback& onSlab);
+    // Frees every device buffer (after running out of memory, before trying another way); the
+    // next frame needs setVolume or setStreamedVolume again.
+    void release();
+    // Device memory held at the most since setVolume / setStreamedVolume (bytes).
+    std::size_t peakDeviceBytes() const;
 
     // Only the classification: the ordered list of active voxels (a crossing edge or a cut cell),
     // without generating the mesh; what method 2 starts from.

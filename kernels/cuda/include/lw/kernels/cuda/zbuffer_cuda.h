@@ -48,6 +48,8 @@ public:
     CudaStatus resolve(const ZBufferCudaSettings& settings, std::uint8_t* hostMask,
                        ZBufferCudaFrame& frame);
 
+    std::size_t deviceBytes() const; // buffers held now
+
     struct Impl;
 
 private:

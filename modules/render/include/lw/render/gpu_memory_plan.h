@@ -1,0 +1,43 @@
+#pragma once
+
+// How the CUDA back-end fits a frame into a device memory budget: whether the whole volume can be
+// resident (S) or streams in slabs (L), how thick the slabs are, and what to try when the device
+// runs out of memory. Plain arithmetic, so it is tested on machines without a GPU.
+
+#include <cstddef>
+#include <glm/glm.hpp>
+#include <string_view>
+#include <vector>
+
+namespace lw::render {
+
+enum class GpuResidency { WholeVolume, Slabs, Cpu };
+std::string_view residencyName(GpuResidency residency);
+
+// What a resident whole volume needs besides its voxels, as a multiple of the voxel bytes: the
+// classification, the mesh and the method's buffers. An estimate from the buffer sizes on the
+// 512^3 CT phantom at 300.5 HU (tiles, active voxels, mesh: about 0.6 times the voxels), with
+// room for much denser surfaces (noise); frames report what they really held
+// (SilhouetteFrame::deviceBytes), and running out anyway falls back (afterOutOfMemory).
+inline constexpr double kWholeVolumeOverhead = 3.0;
+// Per slab: two slab boxes in flight, the classification and the slab's mesh.
+inline constexpr double kSlabOverhead = 6.0;
+// The default budget keeps this much of the free memory for everyone else (display, other
+// programs): the larger of 512 MiB and 10 % of the free memory.
+std::size_t defaultGpuBudget(std::size_t freeBytes);
+
+// WholeVolume when the caller did not ask for chunks and the volume with its overhead fits in
+// `budget` (after `reservedBytes`, e.g. the image buffers); Slabs otherwise.
+GpuResidency chooseResidency(glm::ivec3 dims, std::size_t voxelBytes, std::size_t budget,
+                             std::size_t reservedBytes, bool chunkedRequested);
+
+// Cell layers [first, end) of each slab: as thick as `budget` allows, at least one layer, the
+// cell grid (dims.z - 1 layers) covered in order without gaps. Empty for fewer than 2 slices.
+std::vector<glm::ivec2> planSlabs(glm::ivec3 dims, std::size_t voxelBytes, std::size_t budget,
+                                  std::size_t reservedBytes);
+
+// Where a frame goes when the device ran out of memory: the whole volume falls back to slabs,
+// slabs to the CPU (which is final).
+GpuResidency afterOutOfMemory(GpuResidency residency);
+
+} // namespace lw::render
