@@ -4,6 +4,7 @@
 // that are not multiples of the 256-voxel classification tile or the 16-cell skip brick, a
 // gantry-tilted stack with uneven gaps, and surfaces cut open by the volume's border.
 
+#include "lw/core/error.h"
 #include "lw/kernels/cpu/marching_cubes_cpu.h"
 #include "lw/kernels/cuda/marching_cubes_cuda.h"
 #include "lw/render/iso_surface.h"
@@ -299,6 +300,39 @@ TEST(CudaBackendStreaming, VolumeLargerThanTheBudgetGivesTheSameImage) {
         << "held " << (frame.deviceBytes >> 20) << " MiB";
     std::printf("512x512x1024 under 256 MiB: %zu MiB held at the most, whole volume %zu MiB\n",
                 frame.deviceBytes >> 20, expected.deviceBytes >> 20);
+}
+
+// Method 1 with the CUDA extraction writing the GL buffers (interop) draws exactly what it draws
+// from the CPU's mesh: same triangles, same segments, same pixels.
+TEST(CudaBackendMethod1, CudaExtractionDrawsTheCpuImage) {
+    std::unique_ptr<SilhouetteRenderer> cpu, cuda;
+    try {
+        cpu = createSilhouetteRenderer(SilhouetteMethod::GeometryShader, Backend::Cpu);
+        cuda = createSilhouetteRenderer(SilhouetteMethod::GeometryShader, Backend::Cuda);
+    } catch (const core::Error& error) {
+        GTEST_SKIP() << "no OpenGL for method 1: " << error.what();
+    }
+    ASSERT_EQ(cuda->backendName(), "cuda+gl");
+    const Volume volume = makePhantom({128, 120, 96}, PhantomKind::Ct);
+    cpu->setVolume(volume);
+    cuda->setVolume(volume);
+    const Camera camera = cameraAt(volumeBounds(volume), 30, 20, Projection::Perspective, 512, 512);
+    for (const ExtractionMode mode : {ExtractionMode::EveryFrameB, ExtractionMode::CachedA}) {
+        SilhouetteSettings settings;
+        settings.isoReal = 300.5;
+        settings.mode = mode;
+        const SilhouetteFrame expected = cpu->render(camera, settings);
+        const SilhouetteFrame frame = cuda->render(camera, settings);
+        ASSERT_GT(expected.lines.count(), 500u);
+        EXPECT_EQ(frame.triangles, expected.triangles);
+        EXPECT_EQ(frame.segments, expected.segments);
+        std::size_t differing = 0;
+        agreement(frame.lines, expected.lines, differing);
+        EXPECT_EQ(differing, 0u);
+    }
+    // The iso panel's mesh, downloaded on demand, is the CPU's.
+    ASSERT_NE(cuda->surfaceMesh(), nullptr);
+    EXPECT_EQ(cuda->surfaceMesh()->triangleCount(), cpu->surfaceMesh()->triangleCount());
 }
 
 TEST(CudaBackendStatus, ErrorsNameTheCall) {

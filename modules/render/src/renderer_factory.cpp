@@ -18,6 +18,11 @@ namespace lw::render {
 namespace {
 
 constexpr core::LogCategory kLog("lw.render");
+#if LINEWORK_CUDA_GL_INTEROP && LINEWORK_GL
+constexpr bool kCudaGlInterop = true;
+#else
+constexpr bool kCudaGlInterop = false;
+#endif
 
 } // namespace
 
@@ -79,13 +84,14 @@ Backend resolveBackend(Backend requested, SilhouetteMethod method, std::string* 
     if (requested != Backend::Cpu) {
         const CudaAvailability cuda = cudaAvailability();
         const bool hasKernels =
-            method == SilhouetteMethod::ZBuffer || method == SilhouetteMethod::RayCastVisibility;
+            method == SilhouetteMethod::ZBuffer || method == SilhouetteMethod::RayCastVisibility ||
+            (method == SilhouetteMethod::GeometryShader && kCudaGlInterop);
         if (requested == Backend::Cuda) {
             if (!cuda.available)
                 throw core::Error("--backend cuda", cuda.reason);
             if (!hasKernels)
                 throw core::Error("--backend cuda", "method " + std::to_string(int(method)) +
-                                                        " has no CUDA implementation yet (methods 2 and 3 have)");
+                                                        " has no CUDA implementation in this build");
             chosen = Backend::Cuda;
         } else if (!cuda.available) {
             note = "auto: " + cuda.reason + ", using CPU";
@@ -114,7 +120,10 @@ createSilhouetteRenderer(SilhouetteMethod method, Backend requested, std::string
     case SilhouetteMethod::GeometryShader:
 #if LINEWORK_GL
         try {
-            return std::make_unique<GeometryShaderSilhouetteRenderer>();
+            auto renderer = std::make_unique<GeometryShaderSilhouetteRenderer>();
+            if (backend == Backend::Cuda)
+                renderer->useCudaExtraction();
+            return renderer;
         } catch (const core::Error& error) {
             throw core::Error("method 1", std::string("no OpenGL context: ") + error.what());
         }

@@ -1,6 +1,7 @@
 #include "lw/render/geometry_shader_silhouette_renderer.h"
 
 #include "gl_api.h"
+#include "gl_mesh_source.h"
 #include "lw/core/error.h"
 #include "lw/core/log.h"
 #include "lw/kernels/cpu/marching_cubes_cpu.h"
@@ -34,6 +35,10 @@ struct GeometryShaderSilhouetteRenderer::State {
     SilhouetteGlRenderer gl;
     const volume::Volume* volume = nullptr;
     Mesh mesh;
+    // The CUDA back-end's extraction (useCudaExtraction); null: the CPU's. With it `mesh` is
+    // downloaded only when asked for (meshOnHost false until then).
+    std::unique_ptr<GlMeshSource> source;
+    bool meshOnHost = true;
     // What the uploaded mesh was extracted with; empty when there is none (or the volume changed).
     std::optional<double> meshIso;
     int meshBrickCells = 0;
@@ -49,6 +54,7 @@ struct GeometryShaderSilhouetteRenderer::State {
     void dropWholeMesh() {
         meshIso.reset();
         mesh = Mesh{};
+        meshOnHost = true;
         gl.clearMesh();
     }
 
@@ -66,8 +72,15 @@ struct GeometryShaderSilhouetteRenderer::State {
         options.threads = settings.threads;
         options.cancel = settings.cancel;
         meshIso.reset(); // a failed extraction or upload leaves no stale cache behind
-        extractIsoSurface(*volume, settings.isoReal, options, mesh);
-        gl.uploadMesh(mesh);
+        if (source) {
+            mesh = Mesh{};
+            meshOnHost = false;
+            source->extractInto(gl, settings);
+        } else {
+            extractIsoSurface(*volume, settings.isoReal, options, mesh);
+            meshOnHost = true;
+            gl.uploadMesh(mesh);
+        }
         glFinish(); // the upload is part of this stage, not of the next draw
         meshIso = settings.isoReal;
         meshBrickCells = settings.brickCells;
@@ -91,13 +104,31 @@ GeometryShaderSilhouetteRenderer::~GeometryShaderSilhouetteRenderer() {
     // GL objects belong to the context: free them while it is still alive and current.
     try {
         m_state->context->makeCurrent();
+        if (m_state->source)
+            m_state->source->releaseGl();
         m_state->gl.release();
     } catch (const std::exception& error) {
         kLog.warning(std::string("method 1: GL objects not released: ") + error.what());
     }
 }
 
+std::string_view GeometryShaderSilhouetteRenderer::backendName() const {
+    return m_state->source ? m_state->source->backendName() : "gl";
+}
+
+void GeometryShaderSilhouetteRenderer::useCudaExtraction() {
+    std::unique_ptr<GlMeshSource> source = makeCudaGlMeshSource();
+    if (!source)
+        throw core::Error("method 1", "this build has no CUDA back-end with OpenGL interop");
+    if (m_state->volume)
+        source->setVolume(*m_state->volume);
+    m_state->source = std::move(source);
+    m_state->meshIso.reset();
+}
+
 void GeometryShaderSilhouetteRenderer::setVolume(const volume::Volume& volume) {
+    if (m_state->source)
+        m_state->source->setVolume(volume);
     m_state->volume = &volume;
     m_state->meshIso.reset();
     m_state->mesh = Mesh{};
@@ -110,7 +141,12 @@ const GeometryShaderFrameStats& GeometryShaderSilhouetteRenderer::lastFrameStats
 }
 
 const Mesh& GeometryShaderSilhouetteRenderer::mesh() const {
-    return m_state->mesh;
+    State& s = *m_state;
+    if (!s.meshOnHost && s.source && s.meshIso) {
+        s.source->download(s.mesh);
+        s.meshOnHost = true;
+    }
+    return s.mesh;
 }
 
 std::string GeometryShaderSilhouetteRenderer::contextDescription() const {

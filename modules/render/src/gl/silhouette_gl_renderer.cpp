@@ -247,6 +247,7 @@ void SilhouetteGlRenderer::uploadMesh(std::span<const glm::vec3> positions,
                  vertexBytes);
     uploadBuffer(GL_ARRAY_BUFFER, m_normalBuffer, normals.data(), normals.size_bytes(),
                  normalBytes);
+    const std::size_t oldVertexCapacity = m_vertexCapacity, oldIndexCapacity = m_indexCapacity;
     m_vertexCapacity = std::min(vertexBytes, normalBytes) / sizeof(glm::vec3);
     glBindBuffer(GL_ARRAY_BUFFER, 0);
     // The element buffer binding is vertex array state.
@@ -257,7 +258,43 @@ void SilhouetteGlRenderer::uploadMesh(std::span<const glm::vec3> positions,
     m_indexCapacity = indexBytes / sizeof(std::uint32_t);
     glBindVertexArray(0);
     m_indexCount = indices.size();
+    if (m_vertexCapacity != oldVertexCapacity || m_indexCapacity != oldIndexCapacity)
+        ++m_storageGeneration;
     gl::checkGlError("SilhouetteGlRenderer::uploadMesh");
+}
+
+bool SilhouetteGlRenderer::reserveMesh(std::size_t vertexCount, std::size_t triangleCount) {
+    initialize();
+    bool reallocated = false;
+    // Room to grow by an eighth, so a slightly larger surface at the next iso-value reuses the
+    // storage (and its CUDA registration).
+    const auto grow = [](std::size_t n) { return n + n / 8; };
+    if (vertexCount > m_vertexCapacity || m_vertexCapacity == 0) {
+        const std::size_t capacity = std::max<std::size_t>(grow(vertexCount), 1);
+        for (GLuint buffer : {m_positionBuffer, m_normalBuffer}) {
+            glBindBuffer(GL_ARRAY_BUFFER, buffer);
+            glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(capacity * sizeof(glm::vec3)), nullptr,
+                         GL_DYNAMIC_DRAW);
+        }
+        glBindBuffer(GL_ARRAY_BUFFER, 0);
+        m_vertexCapacity = capacity;
+        reallocated = true;
+    }
+    if (triangleCount * 3 > m_indexCapacity || m_indexCapacity == 0) {
+        const std::size_t capacity = std::max<std::size_t>(grow(triangleCount * 3), 3);
+        glBindVertexArray(m_vertexArray);
+        glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, m_indexBuffer);
+        glBufferData(GL_ELEMENT_ARRAY_BUFFER, GLsizeiptr(capacity * sizeof(std::uint32_t)),
+                     nullptr, GL_DYNAMIC_DRAW);
+        glBindVertexArray(0);
+        m_indexCapacity = capacity;
+        reallocated = true;
+    }
+    m_indexCount = triangleCount * 3;
+    if (reallocated)
+        ++m_storageGeneration;
+    gl::checkGlError("SilhouetteGlRenderer::reserveMesh");
+    return reallocated;
 }
 
 void SilhouetteGlRenderer::clearMesh() {
@@ -273,6 +310,7 @@ void SilhouetteGlRenderer::clearMesh() {
     glBufferData(GL_ELEMENT_ARRAY_BUFFER, 0, nullptr, GL_DYNAMIC_DRAW);
     glBindVertexArray(0);
     m_vertexCapacity = m_indexCapacity = m_indexCount = 0;
+    ++m_storageGeneration;
     gl::checkGlError("SilhouetteGlRenderer::clearMesh");
 }
 

@@ -58,9 +58,15 @@ public:
     GeometryShaderSilhouetteRenderer& operator=(const GeometryShaderSilhouetteRenderer&) = delete;
 
     SilhouetteMethod method() const override { return SilhouetteMethod::GeometryShader; }
-    std::string_view backendName() const override { return "gl"; }
+    // "gl", or "cuda+gl" after useCudaExtraction().
+    std::string_view backendName() const override;
     void setVolume(const volume::Volume& volume) override;
     SilhouetteFrame render(const Camera& camera, const SilhouetteSettings& settings) override;
+
+    // Whole-volume (S) frames extract on the CUDA back-end, which writes the GL buffers directly
+    // (CUDA-GL interop; through host memory where interop fails). Throws core::Error where this
+    // build has no CUDA with GL interop. The L variant still extracts brick by brick on the CPU.
+    void useCudaExtraction();
 
     // The shaded iso-surface panel for the same camera and settings (extracts first if the
     // cached mesh does not match them), RGBA8 top row first: `render --panel both`'s left half.

@@ -90,6 +90,19 @@ public:
     void uploadMesh(std::span<const glm::vec3> positions, std::span<const glm::vec3> normals,
                     std::span<const std::uint32_t> indices);
     std::size_t triangleCount() const { return m_indexCount / 3; }
+    // Sizes the mesh buffers for `vertexCount` vertices and `triangleCount` triangles without
+    // filling them (another API writes them: the CUDA back-end through CUDA-GL interop); their
+    // contents are undefined until written. Returns true when the buffers' storage was
+    // reallocated (a registration with CUDA must then be renewed).
+    bool reserveMesh(std::size_t vertexCount, std::size_t triangleCount);
+    // The buffer names (GL_ARRAY_BUFFER positions and normals as 3 floats a vertex,
+    // GL_ELEMENT_ARRAY_BUFFER indices as uint32), for interop.
+    unsigned positionBuffer() const { return m_positionBuffer; }
+    unsigned normalBuffer() const { return m_normalBuffer; }
+    unsigned indexBuffer() const { return m_indexBuffer; }
+    // Changes whenever the mesh buffers' storage is reallocated (by any upload, reserve or clear):
+    // a CUDA registration made at another generation is stale.
+    std::size_t storageGeneration() const { return m_storageGeneration; }
     // Frees the mesh buffers' storage (the buffers stay; the next upload allocates what it needs),
     // e.g. before drawing piece by piece after a whole mesh was uploaded.
     void clearMesh();
@@ -138,6 +151,7 @@ private:
     std::size_t m_vertexCapacity = 0; // vertices the position/normal buffers can hold
     std::size_t m_indexCapacity = 0;
     std::size_t m_indexCount = 0;
+    std::size_t m_storageGeneration = 0;
 
     unsigned m_framebuffer = 0;
     unsigned m_colourTexture = 0;

@@ -1,0 +1,87 @@
+#include "../gl/gl_mesh_source.h"
+
+#if LINEWORK_CUDA_GL_INTEROP
+#include "cuda_support.h"
+#include "lw/core/error.h"
+#include "lw/core/log.h"
+#include "lw/kernels/cpu/marching_cubes_cpu.h"
+#include "lw/kernels/cuda/gl_mesh_interop.h"
+#include "lw/kernels/cuda/marching_cubes_cuda.h"
+#endif
+
+namespace lw::render {
+
+#if LINEWORK_CUDA_GL_INTEROP
+namespace {
+
+constexpr core::LogCategory kLog("lw.render");
+
+void throwIfFailed(const kernels::cuda::CudaStatus& status) {
+    if (!status.ok())
+        throw core::Error("method 1 (CUDA)", status.describe());
+}
+
+class CudaGlMeshSource final : public GlMeshSource {
+public:
+    std::string_view backendName() const override { return "cuda+gl"; }
+
+    void setVolume(const volume::Volume& volume) override {
+        m_volume = &volume;
+        m_uploaded = false;
+    }
+
+    void extractInto(SilhouetteGlRenderer& gl, const SilhouetteSettings& settings) override {
+        if (!m_volume)
+            throw core::Error("method 1 (CUDA)", "no volume bound");
+        if (!m_uploaded) {
+            throwIfFailed(m_marchingCubes.setVolume(hostVolumeView(*m_volume),
+                                                    kernels::cpu::voxelGridSetup(*m_volume)));
+            m_uploaded = true;
+        }
+        throwIfFailed(m_marchingCubes.extract(storedIsoValue(*m_volume, settings.isoReal)));
+        const kernels::cuda::DeviceMeshView mesh = m_marchingCubes.mesh();
+        gl.reserveMesh(mesh.vertexCount, mesh.triangleCount);
+        if (m_interopWorks) {
+            const kernels::cuda::CudaStatus copied = m_interop.copy(
+                mesh, {gl.positionBuffer(), gl.normalBuffer(), gl.indexBuffer(),
+                       gl.storageGeneration()});
+            if (copied.ok())
+                return;
+            // E.g. the GL context runs on another device (Mesa) than CUDA: the host round trip
+            // still works.
+            kLog.warning("method 1: CUDA-GL interop unavailable (" + copied.describe() +
+                         "); copying the mesh through host memory");
+            m_interop.unregister();
+            m_interopWorks = false;
+        }
+        Mesh host;
+        throwIfFailed(m_marchingCubes.download(host.positions, host.normals, host.indices));
+        gl.uploadMesh(host);
+    }
+
+    void download(Mesh& mesh) override {
+        throwIfFailed(m_marchingCubes.download(mesh.positions, mesh.normals, mesh.indices));
+    }
+
+    void releaseGl() override { m_interop.unregister(); }
+
+private:
+    const volume::Volume* m_volume = nullptr;
+    bool m_uploaded = false;
+    bool m_interopWorks = true;
+    kernels::cuda::MarchingCubesCuda m_marchingCubes;
+    kernels::cuda::GlMeshInterop m_interop;
+};
+
+} // namespace
+
+std::unique_ptr<GlMeshSource> makeCudaGlMeshSource() {
+    return std::make_unique<CudaGlMeshSource>();
+}
+#else
+std::unique_ptr<GlMeshSource> makeCudaGlMeshSource() {
+    return nullptr;
+}
+#endif
+
+} // namespace lw::render

@@ -1,0 +1,34 @@
+#pragma once
+
+// Where method 1's whole mesh comes from. By default the CPU extracts it and uploadMesh() copies
+// it through host memory; with the CUDA back-end (cuda/cuda_gl_mesh_source.cpp) marching cubes
+// runs on the GPU and writes the GL buffers directly through CUDA-GL interop, no host round trip.
+
+#include "lw/render/iso_surface.h"
+#include "lw/render/silhouette_renderer.h"
+#include "lw/render/silhouette_gl_renderer.h"
+#include "lw/volume/volume.h"
+
+#include <memory>
+#include <string_view>
+
+namespace lw::render {
+
+class GlMeshSource {
+public:
+    virtual ~GlMeshSource() = default;
+    virtual std::string_view backendName() const = 0;
+    virtual void setVolume(const volume::Volume& volume) = 0;
+    // Extracts the surface at settings.isoReal into gl's mesh buffers (its context current).
+    // Throws core::Error naming the failed step.
+    virtual void extractInto(SilhouetteGlRenderer& gl, const SilhouetteSettings& settings) = 0;
+    // The last extraction, on the host (for the iso panel's callers that want the mesh).
+    virtual void download(Mesh& mesh) = 0;
+    // GL objects the source registered: released while the context is still current.
+    virtual void releaseGl() = 0;
+};
+
+// The CUDA source, or null where this build has no CUDA-GL interop.
+std::unique_ptr<GlMeshSource> makeCudaGlMeshSource();
+
+} // namespace lw::render
