@@ -29,4 +29,6 @@ fi
 if [ "$what" = bench ] || [ "$what" = all ]; then
     if [ -x scripts/gpu_bench.sh ]; then bash scripts/gpu_bench.sh "$out" || rc=1; fi
 fi
+# What comes back from the device is limited in number of files: the logs go as one archive.
+(cd "$out" && tar czf logs.tgz --remove-files $(ls *.log machine.txt 2>/dev/null | grep -v '^run.log$') 2>/dev/null)
 exit $rc

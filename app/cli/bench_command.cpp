@@ -254,7 +254,7 @@ void benchVolume(const BenchVolume& input, const Plan& plan, std::vector<Row>& r
         } catch (const core::Error& error) {
             // Only an unavailable method is skipped (no GL context, no CUDA kernels for it);
             // anything else is a failure.
-            if (method != "1" && !(plan.backend == render::Backend::Cuda && method != "3"))
+            if (method != "1")
                 throw;
             skipped = error.what();
             kLog.warning("bench: method " + method + " skipped: " + skipped);
