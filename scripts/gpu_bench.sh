@@ -15,8 +15,8 @@ rc=0
     2> "$out/bench_cuda_1024.log" || rc=1
 "$cli" bench --backend cpu --sizes 256,512,512x512x140 --methods mc,1,2,3 --variants S --modes a,b \
     --repeat 5 --image 1024x1024 --json > "$out/bench_cpu.json" 2> "$out/bench_cpu.log" || rc=1
-# Accuracy with the CUDA back-end at every view of the sweep (methods 2 and 3; method 1 is GL).
-"$cli" accuracy --backend cuda --methods 2,3 --sizes 64 --views sweep --json \
+# Accuracy with the CUDA back-end at every view of the sweep.
+"$cli" accuracy --backend cuda --methods 1,2,3 --sizes 64 --views sweep --json \
     > "$out/accuracy_cuda.json" 2> "$out/accuracy_cuda.log" || rc=1
 python3 - "$out" <<'PY'
 import json, sys, os
