@@ -82,6 +82,10 @@ public:
     T* data() const { return m_data; }
     std::size_t capacity() const { return m_capacity; }
     std::size_t bytes() const { return m_capacity * sizeof(T); }
+    friend void swap(DeviceBuffer& a, DeviceBuffer& b) noexcept {
+        std::swap(a.m_data, b.m_data);
+        std::swap(a.m_capacity, b.m_capacity);
+    }
 
 private:
     T* m_data = nullptr;

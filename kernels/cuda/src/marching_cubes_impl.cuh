@@ -83,6 +83,8 @@ struct MarchingCubesCuda::Impl {
     CudaStatus uploadSlab(int slot, int boxZ0, int boxZ1);
 
     std::uint32_t activeCount = 0;
+    // An upper bound of the active voxels' indices (the sort key range of method 2).
+    std::uint32_t activeVoxelLimit() const { return std::uint32_t(volume.voxelCount()); }
     DeviceMeshView mesh;
     McCudaTimes times;
     double uploadMs = 0.0;

@@ -123,8 +123,8 @@ __global__ void drawAlongSegments(RayVisibility<T> rule, View view,
 template <typename T>
 __global__ void findSegments(mc::Grid<T> g, const std::uint32_t* activeVoxels,
                              const std::uint16_t* codes, std::uint32_t count, View view,
-                             SegmentEndpoints* segments, std::uint32_t capacity,
-                             Counters* counters) {
+                             SegmentEndpoints* segments, std::uint32_t* segmentCells,
+                             std::uint32_t capacity, Counters* counters) {
     const std::uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
     if (i >= count || (codes[i] & 0xff) == 0)
         return;
@@ -175,8 +175,10 @@ __global__ void findSegments(mc::Grid<T> g, const std::uint32_t* activeVoxels,
         if (!silhouetteSegment(q, d, segment))
             continue;
         const unsigned long long slot = atomicAdd(&counters->segments, 1ull);
-        if (slot < capacity)
+        if (slot < capacity) {
             segments[slot] = segment;
+            segmentCells[slot] = v; // the sort key that brings neighbouring rays together
+        }
     }
 }
 

@@ -5,6 +5,11 @@
 #include "marching_cubes_impl.cuh"
 #include "raycast_kernels.cuh"
 
+#include <cub/device/device_radix_sort.cuh>
+
+#include <algorithm>
+#include <utility>
+
 namespace lw::kernels::cuda {
 
 struct RayCastSilhouetteCuda::Impl {
@@ -16,6 +21,10 @@ struct RayCastSilhouetteCuda::Impl {
     DeviceBuffer<std::uint8_t> mask;
     DeviceBuffer<rc::Counters> counters;
     DeviceBuffer<SegmentEndpoints> segments; // phase 1's output, grown on demand
+    DeviceBuffer<std::uint32_t> segmentCells; // each segment's cell (voxel index): the sort key
+    DeviceBuffer<SegmentEndpoints> sortedSegments;
+    DeviceBuffer<std::uint32_t> sortedCells;
+    DeviceBuffer<unsigned char> sortTemp;
     DeviceBuffer<std::uint8_t> visible;      // phase 2's, two flags per segment
     double iso = 0.0;
     bool prepared = false;
@@ -110,17 +119,41 @@ CudaStatus RayCastSilhouetteCuda::Impl::renderTyped(const rc::View& view, std::u
             rc::findSegments<T><<<blocksFor(m.activeCount, tuning::kRayCastBlock),
                                   tuning::kRayCastBlock, 0, st>>>(
                 g, m.activeVoxels.data(), m.activeCodes.data(), m.activeCount, view,
-                segments.data(), std::uint32_t(segments.capacity()), counters.data());
+                segments.data(), segmentCells.data(),
+                std::uint32_t(std::min(segments.capacity(), segmentCells.capacity())),
+                counters.data());
             LW_CUDA_LAUNCHED("rc::findSegments");
             LW_CUDA_TRY(cudaMemcpyAsync(&counts, counters.data(), sizeof counts,
                                         cudaMemcpyDeviceToHost, st),
                         "cudaMemcpy(counters)");
             LW_CUDA_TRY(cudaStreamSynchronize(st), "rc::findSegments");
-            if (counts.segments <= segments.capacity())
+            if (counts.segments <= std::min(segments.capacity(), segmentCells.capacity()))
                 break;
             LW_RETURN_IF_FAILED(segments.reserve(std::size_t(counts.segments), "cudaMalloc(segments)"));
+            LW_RETURN_IF_FAILED(
+                segmentCells.reserve(std::size_t(counts.segments), "cudaMalloc(segmentCells)"));
         }
         const std::uint32_t found = std::uint32_t(counts.segments);
+        // The segments were appended in whatever order the cells' threads finished: sorted by
+        // cell, neighbouring rays (similar paths through the grid toward the eye) share warps.
+        if (found > 1 && view.visibility) {
+            LW_RETURN_IF_FAILED(sortedSegments.reserve(found, "cudaMalloc(sortedSegments)"));
+            LW_RETURN_IF_FAILED(sortedCells.reserve(found, "cudaMalloc(sortedCells)"));
+            std::size_t bytes = 0;
+            const int keyBits = 32 - __builtin_clz(std::max(m.activeVoxelLimit(), 1u));
+            LW_CUDA_TRY(cub::DeviceRadixSort::SortPairs(nullptr, bytes, segmentCells.data(),
+                                                        sortedCells.data(), segments.data(),
+                                                        sortedSegments.data(), found, 0, keyBits,
+                                                        st),
+                        "cub::DeviceRadixSort(segments)");
+            LW_RETURN_IF_FAILED(sortTemp.reserve(bytes, "cudaMalloc(sortTemp)"));
+            LW_CUDA_TRY(cub::DeviceRadixSort::SortPairs(sortTemp.data(), bytes, segmentCells.data(),
+                                                        sortedCells.data(), segments.data(),
+                                                        sortedSegments.data(), found, 0, keyBits,
+                                                        st),
+                        "cub::DeviceRadixSort(segments)");
+            swap(segments, sortedSegments); // dispatch::swap (ADL): the buffers trade places
+        }
         RayVisibility<T> rule;
         rule.voxels = g.box;
         rule.dims = m.spans.dims;

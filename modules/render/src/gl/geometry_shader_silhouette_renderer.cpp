@@ -168,13 +168,18 @@ SilhouetteFrame GeometryShaderSilhouetteRenderer::render(const Camera& camera,
     options.lineColour = {0.0f, 0.0f, 0.0f, 1.0f};
     options.background = {1.0f, 1.0f, 1.0f, 1.0f};
     options.countSegments = true;
+    options.timePasses = true;
     // Nothing queued before this point may be billed to the draw.
     glFinish();
     const auto start = Clock::now();
     const SilhouetteGlStats stats = s.gl.render(camera, options);
     glFinish();
     frame.lines = PixelMask::fromImage(s.gl.readImage(), kBackground);
-    frame.times.drawMs = msSince(start);
+    // The passes' GPU times (timer queries) as visibility (pass 1: the depth to test against) and
+    // silhouette (pass 2); draw is the rest: setup, the read-back of the image and its mask.
+    frame.times.visibilityMs = stats.surfacePassMs;
+    frame.times.silhouetteMs = stats.linePassMs;
+    frame.times.drawMs = std::max(0.0, msSince(start) - stats.surfacePassMs - stats.linePassMs);
     frame.triangles = stats.triangles;
     frame.segments = stats.segments;
     s.stats = {};

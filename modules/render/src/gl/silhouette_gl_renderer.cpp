@@ -176,6 +176,7 @@ void SilhouetteGlRenderer::initialize() {
         glGenBuffers(1, &m_normalBuffer);
         glGenBuffers(1, &m_indexBuffer);
         glGenQueries(1, &m_segmentQuery);
+        glGenQueries(2, m_timerQueries);
         glBindVertexArray(m_vertexArray);
         // Separate position and normal buffers: Mesh keeps them apart, so each uploads without
         // an interleaving copy.
@@ -206,6 +207,9 @@ void SilhouetteGlRenderer::release() {
     if (m_segmentQuery)
         glDeleteQueries(1, &m_segmentQuery);
     m_segmentQuery = 0;
+    if (m_timerQueries[0])
+        glDeleteQueries(2, m_timerQueries);
+    m_timerQueries[0] = m_timerQueries[1] = 0;
     if (m_framebuffer)
         glDeleteFramebuffers(1, &m_framebuffer);
     m_framebuffer = 0;
@@ -436,7 +440,15 @@ SilhouetteGlStats SilhouetteGlRenderer::render(const glm::mat4& viewProjection, 
         glPolygonOffset(options.polygonOffsetFactor, options.polygonOffsetUnits);
         if (!iso && !flat)
             glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+        if (options.timePasses)
+            glBeginQuery(GL_TIME_ELAPSED, m_timerQueries[0]);
         glDrawElements(GL_TRIANGLES, count, GL_UNSIGNED_INT, nullptr);
+        if (options.timePasses) {
+            glEndQuery(GL_TIME_ELAPSED);
+            GLuint64 ns = 0;
+            glGetQueryObjectui64v(m_timerQueries[0], GL_QUERY_RESULT, &ns);
+            stats.surfacePassMs = double(ns) * 1e-6;
+        }
         glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
         glDisable(GL_POLYGON_OFFSET_FILL);
     }
@@ -465,7 +477,15 @@ SilhouetteGlStats SilhouetteGlRenderer::render(const glm::mat4& viewProjection, 
         glDepthMask(!iso && options.visibility && options.linesWriteDepth ? GL_TRUE : GL_FALSE);
         if (options.countSegments)
             glBeginQuery(GL_PRIMITIVES_GENERATED, m_segmentQuery);
+        if (options.timePasses)
+            glBeginQuery(GL_TIME_ELAPSED, m_timerQueries[1]);
         glDrawElements(GL_TRIANGLES, count, GL_UNSIGNED_INT, nullptr);
+        if (options.timePasses) {
+            glEndQuery(GL_TIME_ELAPSED);
+            GLuint64 ns = 0;
+            glGetQueryObjectui64v(m_timerQueries[1], GL_QUERY_RESULT, &ns);
+            stats.linePassMs = double(ns) * 1e-6;
+        }
         if (options.countSegments) {
             glEndQuery(GL_PRIMITIVES_GENERATED);
             GLuint primitives = 0;

@@ -49,6 +49,7 @@ struct SilhouetteGlOptions {
     float polygonOffsetUnits = 4.0f;
     float depthBias = 0.0f;
     bool countSegments = false; // query how many segments the geometry shader emitted
+    bool timePasses = false;    // GPU time of pass 1 and pass 2 (GL_TIME_ELAPSED queries)
     // Drawing a mesh in pieces (method 1's L variant: one brick uploaded at a time). With
     // clear = false render() draws over the last frame instead of clearing it (the caller starts
     // the frame with clear(); the size must stay the same). On the silhouette panel,
@@ -67,6 +68,8 @@ struct SilhouetteGlOptions {
 struct SilhouetteGlStats {
     std::size_t triangles = 0;
     std::size_t segments = 0; // only with countSegments (GL_PRIMITIVES_GENERATED)
+    double surfacePassMs = 0.0; // only with timePasses: pass 1 (surface), GPU time
+    double linePassMs = 0.0;    // pass 2 (geometry-shader silhouette)
 };
 
 class SilhouetteGlRenderer {
@@ -148,6 +151,7 @@ private:
     unsigned m_normalBuffer = 0;
     unsigned m_indexBuffer = 0;
     unsigned m_segmentQuery = 0;
+    unsigned m_timerQueries[2] = {0, 0};
     std::size_t m_vertexCapacity = 0; // vertices the position/normal buffers can hold
     std::size_t m_indexCapacity = 0;
     std::size_t m_indexCount = 0;
