@@ -63,12 +63,35 @@ public:
         throwIfFailed(m_marchingCubes.download(mesh.positions, mesh.normals, mesh.indices));
     }
 
+    bool writeLineCandidates(SilhouetteGlRenderer& gl, const Camera& camera,
+                             std::size_t& indices) override {
+        const kernels::cuda::DeviceMeshView mesh = m_marchingCubes.mesh();
+        if (!m_interopWorks || mesh.triangleCount == 0)
+            return false;
+        if (gl.reserveLineCandidates(mesh.triangleCount))
+            ++m_candidateGeneration;
+        const glm::vec4 viewer = camera.isOrthographic()
+                                     ? glm::vec4(glm::vec3(-camera.forward()), 0.0f)
+                                     : glm::vec4(glm::vec3(camera.eye()), 1.0f);
+        std::size_t triangles = 0;
+        const kernels::cuda::CudaStatus status = m_interop.writeLineCandidates(
+            mesh, viewer, gl.lineCandidateBuffer(), m_candidateGeneration, triangles);
+        if (!status.ok()) {
+            kLog.warning("method 1: line candidates not written (" + status.describe() +
+                         "); pass 2 sends every triangle");
+            return false;
+        }
+        indices = triangles * 3;
+        return true;
+    }
+
     void releaseGl() override { m_interop.unregister(); }
 
 private:
     const volume::Volume* m_volume = nullptr;
     bool m_uploaded = false;
     bool m_interopWorks = true;
+    std::size_t m_candidateGeneration = 0;
     kernels::cuda::MarchingCubesCuda m_marchingCubes;
     kernels::cuda::GlMeshInterop m_interop;
 };

@@ -24,6 +24,11 @@ public:
     virtual void extractInto(SilhouetteGlRenderer& gl, const SilhouetteSettings& settings) = 0;
     // The last extraction, on the host (for the iso panel's callers that want the mesh).
     virtual void download(Mesh& mesh) = 0;
+    // Per frame: the triangles that can hold a silhouette segment for `camera` into gl's
+    // line-candidate buffer (a superset of those the geometry shader emits a segment for);
+    // false when the source cannot (then pass 2 sends every triangle). `indices`: 3 a triangle.
+    virtual bool writeLineCandidates(SilhouetteGlRenderer& gl, const Camera& camera,
+                                     std::size_t& indices) = 0;
     // GL objects the source registered: released while the context is still current.
     virtual void releaseGl() = 0;
 };

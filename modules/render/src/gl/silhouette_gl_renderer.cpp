@@ -175,6 +175,7 @@ void SilhouetteGlRenderer::initialize() {
         glGenBuffers(1, &m_positionBuffer);
         glGenBuffers(1, &m_normalBuffer);
         glGenBuffers(1, &m_indexBuffer);
+        glGenBuffers(1, &m_candidateBuffer);
         glGenQueries(1, &m_segmentQuery);
         glGenQueries(2, m_timerQueries);
         glBindVertexArray(m_vertexArray);
@@ -204,6 +205,8 @@ void SilhouetteGlRenderer::release() {
     deleteBuffer(m_positionBuffer);
     deleteBuffer(m_normalBuffer);
     deleteBuffer(m_indexBuffer);
+    deleteBuffer(m_candidateBuffer);
+    m_candidateCapacity = 0;
     if (m_segmentQuery)
         glDeleteQueries(1, &m_segmentQuery);
     m_segmentQuery = 0;
@@ -265,6 +268,23 @@ void SilhouetteGlRenderer::uploadMesh(std::span<const glm::vec3> positions,
     if (m_vertexCapacity != oldVertexCapacity || m_indexCapacity != oldIndexCapacity)
         ++m_storageGeneration;
     gl::checkGlError("SilhouetteGlRenderer::uploadMesh");
+}
+
+bool SilhouetteGlRenderer::reserveLineCandidates(std::size_t triangleCount) {
+    initialize();
+    const std::size_t indices = std::max<std::size_t>(triangleCount * 3, 3);
+    if (indices <= m_candidateCapacity)
+        return false;
+    const std::size_t capacity = indices + indices / 8;
+    // Bound outside any vertex array: GL_ELEMENT_ARRAY_BUFFER is vertex-array state.
+    glBindVertexArray(0);
+    glBindBuffer(GL_COPY_WRITE_BUFFER, m_candidateBuffer);
+    glBufferData(GL_COPY_WRITE_BUFFER, GLsizeiptr(capacity * sizeof(std::uint32_t)), nullptr,
+                 GL_DYNAMIC_DRAW);
+    glBindBuffer(GL_COPY_WRITE_BUFFER, 0);
+    m_candidateCapacity = capacity;
+    gl::checkGlError("SilhouetteGlRenderer::reserveLineCandidates");
+    return true;
 }
 
 bool SilhouetteGlRenderer::reserveMesh(std::size_t vertexCount, std::size_t triangleCount) {
@@ -479,7 +499,15 @@ SilhouetteGlStats SilhouetteGlRenderer::render(const glm::mat4& viewProjection, 
             glBeginQuery(GL_PRIMITIVES_GENERATED, m_segmentQuery);
         if (options.timePasses)
             glBeginQuery(GL_TIME_ELAPSED, m_timerQueries[1]);
-        glDrawElements(GL_TRIANGLES, count, GL_UNSIGNED_INT, nullptr);
+        if (options.useLineCandidates) {
+            glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, m_candidateBuffer);
+            glDrawElements(GL_TRIANGLES,
+                           GLsizei(std::min(options.lineCandidateIndices, m_candidateCapacity)),
+                           GL_UNSIGNED_INT, nullptr);
+            glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, m_indexBuffer);
+        } else {
+            glDrawElements(GL_TRIANGLES, count, GL_UNSIGNED_INT, nullptr);
+        }
         if (options.timePasses) {
             glEndQuery(GL_TIME_ELAPSED);
             GLuint64 ns = 0;
@@ -534,6 +562,23 @@ core::ImageRgba8 SilhouetteGlRenderer::readImage() const {
                     image.bytes(), "SilhouetteGlRenderer::readImage");
     image.flipRows(); // GL's first row is the bottom one
     return image;
+}
+
+void SilhouetteGlRenderer::readRedMask(std::uint8_t backgroundRed,
+                                       std::vector<std::uint8_t>& mask) const {
+    if (!m_framebuffer)
+        throw core::Error("GL read-back", "nothing has been rendered yet");
+    std::vector<std::uint8_t> red(std::size_t(m_width) * std::size_t(m_height));
+    readFramebuffer(m_framebuffer, 0, 0, m_width, m_height, GL_RED, GL_UNSIGNED_BYTE, red.data(),
+                    "SilhouetteGlRenderer::readRedMask");
+    mask.resize(red.size());
+    // GL's first row is the bottom one.
+    for (int y = 0; y < m_height; ++y) {
+        const std::uint8_t* from = red.data() + std::size_t(m_height - 1 - y) * std::size_t(m_width);
+        std::uint8_t* to = mask.data() + std::size_t(y) * std::size_t(m_width);
+        for (int x = 0; x < m_width; ++x)
+            to[x] = from[x] != backgroundRed ? 1 : 0;
+    }
 }
 
 std::vector<float> SilhouetteGlRenderer::readDepth() const {

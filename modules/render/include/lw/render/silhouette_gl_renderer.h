@@ -50,6 +50,11 @@ struct SilhouetteGlOptions {
     float depthBias = 0.0f;
     bool countSegments = false; // query how many segments the geometry shader emitted
     bool timePasses = false;    // GPU time of pass 1 and pass 2 (GL_TIME_ELAPSED queries)
+    // Pass 2 over a subset of the triangles: the candidate buffer (reserveLineCandidates) holding
+    // `lineCandidateIndices` indices, three a triangle, filled by whoever knows which triangles
+    // can hold a silhouette (the CUDA back-end's facing test). Off: pass 2 sends every triangle.
+    bool useLineCandidates = false;
+    std::size_t lineCandidateIndices = 0;
     // Drawing a mesh in pieces (method 1's L variant: one brick uploaded at a time). With
     // clear = false render() draws over the last frame instead of clearing it (the caller starts
     // the frame with clear(); the size must stay the same). On the silhouette panel,
@@ -103,6 +108,15 @@ public:
     unsigned positionBuffer() const { return m_positionBuffer; }
     unsigned normalBuffer() const { return m_normalBuffer; }
     unsigned indexBuffer() const { return m_indexBuffer; }
+    // A GL_ELEMENT_ARRAY_BUFFER for up to `triangleCount` triangles of pass-2 candidates (see
+    // SilhouetteGlOptions::useLineCandidates); its name, and true when its storage was
+    // reallocated (a CUDA registration must be renewed).
+    unsigned lineCandidateBuffer() const { return m_candidateBuffer; }
+    bool reserveLineCandidates(std::size_t triangleCount);
+    // The last frame's red channel as a mask, top row first: 1 where it differs from
+    // `backgroundRed` (lines drawn in another red than the background). A quarter of readImage's
+    // bytes, and no image in between.
+    void readRedMask(std::uint8_t backgroundRed, std::vector<std::uint8_t>& mask) const;
     // Changes whenever the mesh buffers' storage is reallocated (by any upload, reserve or clear):
     // a CUDA registration made at another generation is stale.
     std::size_t storageGeneration() const { return m_storageGeneration; }
@@ -156,6 +170,8 @@ private:
     std::size_t m_indexCapacity = 0;
     std::size_t m_indexCount = 0;
     std::size_t m_storageGeneration = 0;
+    unsigned m_candidateBuffer = 0;
+    std::size_t m_candidateCapacity = 0; // indices
 
     unsigned m_framebuffer = 0;
     unsigned m_colourTexture = 0;
