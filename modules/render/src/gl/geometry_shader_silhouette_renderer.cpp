@@ -39,6 +39,7 @@ struct GeometryShaderSilhouetteRenderer::State {
     // downloaded only when asked for (meshOnHost false until then).
     std::unique_ptr<GlMeshSource> source;
     bool meshOnHost = true;
+    bool lastFrameChunked = false;
     // What the uploaded mesh was extracted with; empty when there is none (or the volume changed).
     std::optional<double> meshIso;
     int meshBrickCells = 0;
@@ -113,7 +114,8 @@ GeometryShaderSilhouetteRenderer::~GeometryShaderSilhouetteRenderer() {
 }
 
 std::string_view GeometryShaderSilhouetteRenderer::backendName() const {
-    return m_state->source ? m_state->source->backendName() : "gl";
+    // L frames extract brick by brick on the CPU whatever the source.
+    return m_state->source && !m_state->lastFrameChunked ? m_state->source->backendName() : "gl";
 }
 
 void GeometryShaderSilhouetteRenderer::useCudaExtraction() {
@@ -155,6 +157,7 @@ std::string GeometryShaderSilhouetteRenderer::contextDescription() const {
 
 SilhouetteFrame GeometryShaderSilhouetteRenderer::render(const Camera& camera,
                                                          const SilhouetteSettings& settings) {
+    m_state->lastFrameChunked = settings.brickCells > 0;
     if (settings.brickCells > 0)
         return renderBricks(camera, settings);
     State& s = *m_state;

@@ -58,7 +58,7 @@ public:
     GeometryShaderSilhouetteRenderer& operator=(const GeometryShaderSilhouetteRenderer&) = delete;
 
     SilhouetteMethod method() const override { return SilhouetteMethod::GeometryShader; }
-    // "gl", or "cuda+gl" after useCudaExtraction().
+    // "gl", or "cuda+gl" after useCudaExtraction() (for S frames; L frames extract on the CPU).
     std::string_view backendName() const override;
     void setVolume(const volume::Volume& volume) override;
     SilhouetteFrame render(const Camera& camera, const SilhouetteSettings& settings) override;
