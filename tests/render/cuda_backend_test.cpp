@@ -9,6 +9,7 @@
 #include "lw/kernels/cuda/marching_cubes_cuda.h"
 #include "lw/render/iso_surface.h"
 #include "lw/render/phantom.h"
+#include "lw/render/gpu_memory_plan.h"
 #include "lw/render/renderer_factory.h"
 #include "lw/render/zbuffer_silhouette_renderer.h"
 
@@ -333,6 +334,71 @@ TEST(CudaBackendMethod1, CudaExtractionDrawsTheCpuImage) {
     // The iso panel's mesh, downloaded on demand, is the CPU's.
     ASSERT_NE(cuda->surfaceMesh(), nullptr);
     EXPECT_EQ(cuda->surfaceMesh()->triangleCount(), cpu->surfaceMesh()->triangleCount());
+}
+
+// The device memory budget is a limit: a frame that would hold more falls back (whole volume ->
+// slabs -> CPU) and still gives the CPU's image; where it stays on the GPU it holds no more than
+// the budget.
+struct BudgetCase {
+    std::string name;
+    std::function<Volume()> make;
+    double iso;
+    std::size_t budget; // 0: just above the whole-volume estimate for a 256 x 256 image
+};
+
+class CudaBudget : public testing::TestWithParam<BudgetCase> {};
+
+TEST_P(CudaBudget, OverTheBudgetFallsBackAndKeepsTheImage) {
+    const Volume volume = GetParam().make();
+    const Camera camera = cameraAt(volumeBounds(volume), 35, 25, Projection::Perspective, 256, 256);
+    std::size_t budget = GetParam().budget;
+    if (budget == 0) {
+        // The residency plan picks the whole volume (its estimate fits), but a noisy surface's
+        // mesh is far larger than the estimate: the frame runs over and must fall back.
+        const double voxels = double(volume.dims().x) * volume.dims().y * volume.dims().z *
+                              double(volume::voxelSize(volume.voxelType()));
+        budget = std::size_t(voxels * (1.0 + kWholeVolumeOverhead)) + 256 * 256 * 9 + 4096;
+    }
+    auto cuda = createSilhouetteRenderer(SilhouetteMethod::ZBuffer, Backend::Cuda);
+    ZBufferSilhouetteRenderer cpu;
+    cuda->setVolume(volume);
+    cpu.setVolume(volume);
+    SilhouetteSettings settings;
+    settings.isoReal = GetParam().iso;
+    settings.gpuMemoryBudget = budget;
+    for (int frame = 0; frame < 2; ++frame) { // the second frame starts where the first ended
+        const SilhouetteFrame got = cuda->render(camera, settings);
+        const SilhouetteFrame expected = cpu.render(camera, settings);
+        std::size_t differing = 0;
+        agreement(got.lines, expected.lines, differing);
+        EXPECT_EQ(differing, 0u) << "frame " << frame << " on " << cuda->backendName();
+        if (cuda->backendName() == "cuda") {
+            EXPECT_LE(got.deviceBytes, budget);
+        }
+    }
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Budgets, CudaBudget,
+    testing::Values(
+        BudgetCase{"TinyBudgetEndsOnTheCpu",
+                   [] { return makePhantom({96, 80, 70}, PhantomKind::Ct); }, 300.5,
+                   std::size_t(1) << 20},
+        BudgetCase{"NoisyMeshOverflowsTheEstimate",
+                   [] { return noise({64, 64, 64}, VoxelType::UInt8, 4); }, 100.0, 0}),
+    [](const testing::TestParamInfo<BudgetCase>& info) { return info.param.name; });
+
+TEST(CudaBackendMethod2, RenderWithoutAVolumeNamesTheError) {
+    auto cuda = createSilhouetteRenderer(SilhouetteMethod::RayCastVisibility, Backend::Cuda);
+    const Camera camera = cameraAt(Aabb{{-1, -1, -1}, {1, 1, 1}}, 0, 0, Projection::Perspective,
+                                   64, 64);
+    try {
+        cuda->render(camera, SilhouetteSettings{});
+        ADD_FAILURE() << "rendered without a volume";
+    } catch (const core::Error& error) {
+        EXPECT_NE(std::string(error.what()).find("method 2 (CUDA)"), std::string::npos)
+            << error.what();
+    }
 }
 
 TEST(CudaBackendStatus, ErrorsNameTheCall) {

@@ -40,6 +40,8 @@ struct RayCastSilhouetteCuda::Impl {
 RayCastSilhouetteCuda::RayCastSilhouetteCuda() : m_impl(std::make_unique<Impl>()) {}
 RayCastSilhouetteCuda::~RayCastSilhouetteCuda() = default;
 
+void RayCastSilhouetteCuda::release() { m_impl = std::make_unique<Impl>(); }
+
 double RayCastSilhouetteCuda::uploadMs() const { return m_impl->marchingCubes.uploadMs(); }
 
 CudaStatus RayCastSilhouetteCuda::setVolume(const VolumeView& hostVolume,

@@ -28,6 +28,8 @@ struct ZBufferCuda::Impl {
 
 ZBufferCuda::ZBufferCuda() : m_impl(std::make_unique<Impl>()) {}
 
+void ZBufferCuda::release() { m_impl = std::make_unique<Impl>(); }
+
 std::size_t ZBufferCuda::deviceBytes() const {
     const Impl& s = *m_impl;
     return s.screen.bytes() + s.surface.bytes() + s.lines.bytes() + s.mask.bytes() +

@@ -3,6 +3,7 @@
 #include "cuda_support.h"
 
 #include "lw/core/error.h"
+#include "lw/core/log.h"
 #include "lw/kernels/cpu/marching_cubes_cpu.h"
 #include "lw/kernels/cpu/voxel_ray.h"
 #include "lw/kernels/cuda/raycast_silhouette_cuda.h"
@@ -10,11 +11,21 @@
 
 #include <cmath>
 #include <limits>
+#include <stdexcept>
+#include <string>
 
 namespace lw::render {
 namespace {
 
+constexpr core::LogCategory kLog("lw.render");
+
+struct OutOfDeviceMemory : std::runtime_error {
+    using std::runtime_error::runtime_error;
+};
+
 void throwIfFailed(const kernels::cuda::CudaStatus& status) {
+    if (status.code == kernels::cuda::CudaStatus::Code::OutOfMemory)
+        throw OutOfDeviceMemory(status.describe());
     if (!status.ok())
         throw core::Error("method 2 (CUDA)", status.describe());
 }
@@ -59,6 +70,7 @@ struct CudaRayCastSilhouetteRenderer::State {
     bool prepared = false;
     double preparedIso = std::numeric_limits<double>::quiet_NaN();
     ChunkedOnCpu<RayCastSilhouetteRenderer> chunked; // L frames (see the header)
+    bool onCpu = false; // ran out of device memory with this volume
 };
 
 CudaRayCastSilhouetteRenderer::CudaRayCastSilhouetteRenderer()
@@ -66,7 +78,7 @@ CudaRayCastSilhouetteRenderer::CudaRayCastSilhouetteRenderer()
 CudaRayCastSilhouetteRenderer::~CudaRayCastSilhouetteRenderer() = default;
 
 std::string_view CudaRayCastSilhouetteRenderer::backendName() const {
-    return m_state->chunked.lastFrameWasChunked() ? "cpu" : "cuda";
+    return m_state->chunked.lastFrameWasChunked() || m_state->onCpu ? "cpu" : "cuda";
 }
 
 void CudaRayCastSilhouetteRenderer::setVolume(const volume::Volume& volume) {
@@ -74,11 +86,35 @@ void CudaRayCastSilhouetteRenderer::setVolume(const volume::Volume& volume) {
     s.volume = &volume;
     s.uploaded = false;
     s.prepared = false;
+    s.onCpu = false;
     s.chunked.setVolume(volume);
 }
 
 SilhouetteFrame CudaRayCastSilhouetteRenderer::render(const Camera& camera,
                                                        const SilhouetteSettings& settings) {
+    State& s = *m_state;
+    if (s.onCpu) {
+        SilhouetteFrame frame;
+        s.chunked.renderAlways(camera, settings, frame);
+        return frame;
+    }
+    try {
+        return renderOnGpu(camera, settings);
+    } catch (const OutOfDeviceMemory& error) {
+        // Method 2 has no streamed variant: out of device memory, it goes to the CPU for this
+        // volume (until the next setVolume).
+        kLog.warning(std::string("method 2 (CUDA): ") + error.what() + "; rendering on the CPU");
+        s.kernels.release();
+        s.uploaded = false;
+        s.onCpu = true;
+        SilhouetteFrame frame;
+        s.chunked.renderAlways(camera, settings, frame);
+        return frame;
+    }
+}
+
+SilhouetteFrame CudaRayCastSilhouetteRenderer::renderOnGpu(const Camera& camera,
+                                                            const SilhouetteSettings& settings) {
     State& s = *m_state;
     if (!s.volume)
         throw core::Error("method 2 (CUDA)", "no volume bound (setVolume)");

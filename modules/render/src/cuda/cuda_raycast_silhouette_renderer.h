@@ -5,7 +5,8 @@
 // active cells (and the macro occupancy the visibility rays skip with) are kept while the
 // iso-value stays (mode a) or rebuilt every frame (mode b). The volume is uploaded on the first
 // frame after setVolume. The chunked variant (brickCells > 0) runs on the CPU renderer for now
-// (no streaming through a device memory budget yet); backendName() then says "cpu".
+// (no streaming through a device memory budget yet), and so does every frame of a volume for which
+// the device ran out of memory; backendName() then says "cpu".
 
 #include "lw/render/raycast_silhouette_renderer.h"
 #include "lw/render/silhouette_renderer.h"
@@ -27,6 +28,8 @@ public:
     SilhouetteFrame render(const Camera& camera, const SilhouetteSettings& settings) override;
 
 private:
+    SilhouetteFrame renderOnGpu(const Camera& camera, const SilhouetteSettings& settings);
+
     struct State;
     std::unique_ptr<State> m_state;
 };

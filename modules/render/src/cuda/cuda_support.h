@@ -44,6 +44,15 @@ public:
         frame = m_renderer->render(camera, settings);
         return true;
     }
+    // Every frame on the CPU (after the device ran out of memory).
+    void renderAlways(const Camera& camera, const SilhouetteSettings& settings,
+                      SilhouetteFrame& frame) {
+        if (!m_renderer) {
+            m_renderer = std::make_unique<CpuRenderer>();
+            m_renderer->setVolume(*m_volume);
+        }
+        frame = m_renderer->render(camera, settings);
+    }
     bool lastFrameWasChunked() const { return m_lastFrame; }
     const CpuRenderer* renderer() const { return m_renderer.get(); }
 

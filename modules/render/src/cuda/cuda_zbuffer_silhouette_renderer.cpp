@@ -223,9 +223,16 @@ SilhouetteFrame CudaZBufferSilhouetteRenderer::render(const Camera& camera,
             return s.cpu->render(camera, settings);
         }
         SilhouetteFrame frame;
-        const CudaStatus status = where == GpuResidency::WholeVolume
-                                      ? s.renderWhole(camera, settings, frame)
-                                      : s.renderSlabs(camera, settings, budget, frame);
+        CudaStatus status = where == GpuResidency::WholeVolume
+                                ? s.renderWhole(camera, settings, frame)
+                                : s.renderSlabs(camera, settings, budget, frame);
+        // The budget is a limit, not a hint: a frame that held more than it (the whole volume's
+        // overhead is an estimate) counts as out of memory, and later frames take the next way.
+        if (status.ok() && frame.deviceBytes > budget)
+            status = CudaStatus::failure(
+                CudaStatus::Code::OutOfMemory, "method 3 (CUDA)",
+                "the frame held " + std::to_string(frame.deviceBytes >> 20) +
+                    " MiB, over the budget of " + std::to_string(budget >> 20) + " MiB");
         if (status.ok())
             return frame;
         if (status.code != CudaStatus::Code::OutOfMemory)
@@ -236,6 +243,7 @@ SilhouetteFrame CudaZBufferSilhouetteRenderer::render(const Camera& camera,
                      "); trying the " + std::string(residencyName(next)));
         // Free what the failed attempt holds before the next one allocates.
         s.marchingCubes.release();
+        s.zbuffer.release();
         s.resident = GpuResidency::Cpu;
         s.meshValid = false;
         s.floor = next;

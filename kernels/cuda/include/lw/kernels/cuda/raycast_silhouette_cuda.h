@@ -58,6 +58,8 @@ public:
                       const RayCastCudaSettings& settings, std::uint8_t* hostMask,
                       RayCastCudaFrame& frame);
 
+    void release(); // frees every device buffer (after running out of memory)
+
 private:
     struct Impl;
     std::unique_ptr<Impl> m_impl;

@@ -49,6 +49,7 @@ public:
                        ZBufferCudaFrame& frame);
 
     std::size_t deviceBytes() const; // buffers held now
+    void release(); // frees every buffer (after running out of memory)
 
     struct Impl;
 
