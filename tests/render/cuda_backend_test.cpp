@@ -206,24 +206,22 @@ TEST_P(CudaBackend, Method3GivesTheCpuImage) {
             EXPECT_EQ(differing, 0u) << where << ": the same rules should give the same pixels";
         }
     }
-    // The chunked variant streams slabs through the device under a budget smaller than the
-    // volume needs: still the CPU's image (ZBufferSilhouetteRenderer's L equals its S).
+    // The chunked variant streams slabs (7 cell layers each, so every case has several seams)
+    // through the device: still the CPU's image (ZBufferSilhouetteRenderer's L equals its S).
     auto streamed = createSilhouetteRenderer(SilhouetteMethod::ZBuffer, Backend::Cuda);
     streamed->setVolume(volume);
     const Camera camera = cameraAt(bounds, 40, 25, Projection::Perspective, 256, 256);
     SilhouetteSettings settings;
     settings.isoReal = GetParam().iso;
     settings.brickCells = 8;
-    const std::size_t volumeBytes = volume.dims().x * std::size_t(volume.dims().y) *
-                                    volume.dims().z * volume::voxelSize(volume.voxelType());
-    settings.gpuMemoryBudget = std::max<std::size_t>(volumeBytes / 2, std::size_t(1) << 20);
+    settings.gpuSlabLayers = 7;
     const SilhouetteFrame chunked = streamed->render(camera, settings);
     EXPECT_EQ(streamed->backendName(), "cuda");
     settings.brickCells = 0;
     const SilhouetteFrame expected = cpu.render(camera, settings);
     std::size_t differing = 0;
     agreement(chunked.lines, expected.lines, differing);
-    EXPECT_EQ(differing, 0u) << "slabs under a budget of " << settings.gpuMemoryBudget;
+    EXPECT_EQ(differing, 0u) << "slabs of 7 cell layers";
     EXPECT_EQ(chunked.segments, expected.segments);
     EXPECT_GT(chunked.deviceBytes, 0u);
 

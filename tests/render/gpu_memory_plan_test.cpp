@@ -52,6 +52,15 @@ INSTANTIATE_TEST_SUITE_P(
         std::make_tuple(glm::ivec3(512, 512, 40), std::size_t(2), std::size_t(1) << 20),
         std::make_tuple(glm::ivec3(17, 16, 2), std::size_t(1), std::size_t(1) << 30)));
 
+TEST(GpuMemoryPlan, ThicknessCanBeCapped) {
+    const std::vector<glm::ivec2> slabs =
+        planSlabs({64, 64, 64}, 2, std::size_t(1) << 30, 0, 7);
+    expectCover(slabs, 63);
+    EXPECT_EQ(slabs.size(), 9u);
+    for (const glm::ivec2& s : slabs)
+        EXPECT_LE(s.y - s.x, 7);
+}
+
 TEST(GpuMemoryPlan, NoSlabsWithoutCells) {
     EXPECT_TRUE(planSlabs({10, 10, 1}, 2, std::size_t(1) << 30, 0).empty());
     EXPECT_TRUE(planSlabs({0, 10, 10}, 2, std::size_t(1) << 30, 0).empty());

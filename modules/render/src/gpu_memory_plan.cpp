@@ -33,7 +33,7 @@ GpuResidency chooseResidency(glm::ivec3 dims, std::size_t voxelBytes, std::size_
 }
 
 std::vector<glm::ivec2> planSlabs(glm::ivec3 dims, std::size_t voxelBytes, std::size_t budget,
-                                  std::size_t reservedBytes) {
+                                  std::size_t reservedBytes, int maxLayers) {
     std::vector<glm::ivec2> slabs;
     const int layers = dims.z - 1;
     if (layers < 1 || dims.x < 1 || dims.y < 1)
@@ -42,7 +42,9 @@ std::vector<glm::ivec2> planSlabs(glm::ivec3 dims, std::size_t voxelBytes, std::
     const double available = budget > reservedBytes ? double(budget - reservedBytes) : 0.0;
     // A slab of t layers holds t + 3 slices (corner voxels and the gradient apron).
     const double fit = available / (kSlabOverhead * sliceBytes) - 3.0;
-    const int thickness = std::clamp(int(std::min(fit, double(layers))), 1, layers);
+    int thickness = std::clamp(int(std::min(fit, double(layers))), 1, layers);
+    if (maxLayers > 0)
+        thickness = std::min(thickness, maxLayers);
     const int count = (layers + thickness - 1) / thickness;
     // Even slabs: the last one is not a sliver.
     for (int i = 0; i < count; ++i)

@@ -190,7 +190,7 @@ CudaStatus CudaZBufferSilhouetteRenderer::State::renderSlabs(const Camera& camer
     }
     const std::vector<glm::ivec2> slabs =
         planSlabs(volume->dims(), volume::voxelSize(volume->voxelType()), budget,
-                  imageBytes(camera));
+                  imageBytes(camera), settings.gpuSlabLayers);
     return draw(camera, settings, meshClosed, nullptr, &slabs, storedIso, frame);
 }
 

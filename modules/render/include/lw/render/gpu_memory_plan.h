@@ -33,8 +33,9 @@ GpuResidency chooseResidency(glm::ivec3 dims, std::size_t voxelBytes, std::size_
 
 // Cell layers [first, end) of each slab: as thick as `budget` allows, at least one layer, the
 // cell grid (dims.z - 1 layers) covered in order without gaps. Empty for fewer than 2 slices.
+// maxLayers > 0 caps the thickness.
 std::vector<glm::ivec2> planSlabs(glm::ivec3 dims, std::size_t voxelBytes, std::size_t budget,
-                                  std::size_t reservedBytes);
+                                  std::size_t reservedBytes, int maxLayers = 0);
 
 // Where a frame goes when the device ran out of memory: the whole volume falls back to slabs,
 // slabs to the CPU (which is final).

@@ -38,6 +38,9 @@ struct SilhouetteSettings {
     // Method 3 streams the volume through it in slabs when the whole volume does not fit, and
     // always in the chunked (L) variant.
     std::size_t gpuMemoryBudget = 0;
+    // CUDA back-end, streamed slabs: at most this many cell layers a slab (0: as many as the
+    // budget allows). Thin slabs exercise the slab seams; the budget alone decides in normal use.
+    int gpuSlabLayers = 0;
     // A newer request (the GUI's iso slider) sets it: the frame stops at the next brick, stage or
     // kernel work unit and render() throws core::Cancelled. Not owned; null for none.
     const core::CancelToken* cancel = nullptr;
