@@ -1,4 +1,5 @@
 // Method 2 (silhouette from active cells + ray-cast visibility) and its voxel walk.
+#include "backends_under_test.h"
 #include "lw/evaluation/analytic_shapes.h"
 #include "lw/evaluation/contour_score.h"
 #include "lw/evaluation/true_contour.h"
@@ -7,6 +8,7 @@
 #include "lw/render/camera.h"
 #include "lw/render/iso_surface.h"
 #include "lw/render/raycast_silhouette_renderer.h"
+#include "lw/render/renderer_factory.h"
 
 #if __has_include("lw/render/zbuffer_silhouette_renderer.h")
 #include "lw/render/zbuffer_silhouette_renderer.h"
@@ -288,12 +290,21 @@ TEST(RayCastSilhouette, ChunkedEqualsWhole) {
     }
 }
 
-TEST(RayCastSilhouette, VisibilityOffIsASupersetOfOn) {
+// The renderer-level tests below run on every back-end present (backends_under_test.h).
+class RayCastBackend : public testing::TestWithParam<Backend> {
+protected:
+    std::unique_ptr<SilhouetteRenderer> make(SilhouetteMethod method) const {
+        return createSilhouetteRenderer(method, GetParam());
+    }
+};
+
+TEST_P(RayCastBackend, VisibilityOffIsASupersetOfOn) {
     const TorusShape torus;
     const volume::Volume v = sampleShape(torus, 48);
     // From slightly above: the far side of the hole is hidden behind the near tube.
     const Camera camera = shapeCamera(torus, v, 20.0, 20.0);
-    RayCastSilhouetteRenderer renderer;
+    const auto owned = make(SilhouetteMethod::RayCastVisibility);
+    SilhouetteRenderer& renderer = *owned;
     renderer.setVolume(v);
     SilhouetteSettings settings = shapeSettings();
     settings.visibility = false;
@@ -366,11 +377,12 @@ TEST(RayCastSilhouette, NormalConeCullKeepsEverySegment) {
         }
 }
 
-TEST(RayCastSilhouette, AlongSegmentSphereAccuracyAt64) {
+TEST_P(RayCastBackend, AlongSegmentSphereAccuracyAt64) {
     const SphereShape sphere;
     const volume::Volume v = sampleShape(sphere, 64);
     const Camera camera = shapeCamera(sphere, v, 30.0, 20.0);
-    RayCastSilhouetteRenderer renderer;
+    const auto owned = make(SilhouetteMethod::RayCastVisibility);
+    SilhouetteRenderer& renderer = *owned;
     renderer.setVolume(v);
     SilhouetteSettings settings = shapeSettings();
     settings.testAlongSegment = true;
@@ -384,7 +396,7 @@ TEST(RayCastSilhouette, AlongSegmentSphereAccuracyAt64) {
 #if LW_TEST_HAVE_METHOD3
 // Methods 2 and 3 draw the same visible silhouette: >= 99% of either's pixels within 1 px of the
 // other's (recall and precision of one against the other).
-TEST(RayCastSilhouette, AgreesWithMethod3) {
+TEST_P(RayCastBackend, AgreesWithMethod3) {
     for (const std::string name : {"sphere", "torus", "tori", "metaballs"}) {
         const auto shape = makeAnalyticShape(name);
         const volume::Volume v = sampleShape(*shape, 48);
@@ -393,12 +405,12 @@ TEST(RayCastSilhouette, AgreesWithMethod3) {
             SilhouetteSettings settings = shapeSettings();
             settings.brickCells = brick;
             settings.testAlongSegment = true;
-            RayCastSilhouetteRenderer method2;
-            method2.setVolume(v);
-            ZBufferSilhouetteRenderer method3;
-            method3.setVolume(v);
-            const PixelMask a = method2.render(camera, settings).lines;
-            const PixelMask b = method3.render(camera, settings).lines;
+            const auto method2 = make(SilhouetteMethod::RayCastVisibility);
+            method2->setVolume(v);
+            const auto method3 = make(SilhouetteMethod::ZBuffer);
+            method3->setVolume(v);
+            const PixelMask a = method2->render(camera, settings).lines;
+            const PixelMask b = method3->render(camera, settings).lines;
             const ContourScore score = scoreContours(a, b, 1);
             EXPECT_GE(score.recall, 0.99) << name << " brick " << brick;
             EXPECT_GE(score.precision, 0.99) << name << " brick " << brick;
@@ -406,6 +418,9 @@ TEST(RayCastSilhouette, AgreesWithMethod3) {
     }
 }
 #endif
+
+INSTANTIATE_TEST_SUITE_P(Backends, RayCastBackend, testing::ValuesIn(lw::test::backendsUnderTest()),
+                         lw::test::backendTestName);
 
 } // namespace
 } // namespace lw::render

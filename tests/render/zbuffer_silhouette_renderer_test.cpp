@@ -1,5 +1,7 @@
-// Method 3 on the CPU: accuracy against analytic contours, chunked == whole, visibility, golden
-// images of the silhouette and the shaded panel.
+// Method 3: accuracy against analytic contours, chunked == whole, visibility, golden images of the
+// silhouette and the shaded panel. The renderer-level tests run on every back-end present
+// (backends_under_test.h); the rasterizer and brick-surface tests are the CPU kernels'.
+#include "backends_under_test.h"
 #include "lw/core/image_compare.h"
 #include "lw/core/png_io.h"
 #include "lw/evaluation/analytic_shapes.h"
@@ -9,6 +11,7 @@
 #include "lw/kernels/cpu/zbuffer_rasterizer_cpu.h"
 #include "lw/kernels/marching_cubes_tables.h"
 #include "lw/render/phantom.h"
+#include "lw/render/renderer_factory.h"
 #include "lw/render/shaded_surface_cpu.h"
 #include "lw/render/zbuffer_silhouette_renderer.h"
 #include "lw/volume/bricks.h"
@@ -44,10 +47,18 @@ SilhouetteSettings settingsFor(double iso, int brickCells = 0, bool visibility =
     return settings;
 }
 
-TEST(ZBufferSilhouette, SphereContourWithinOnePixelOfTruth) {
+class ZBufferBackend : public testing::TestWithParam<Backend> {
+protected:
+    std::unique_ptr<SilhouetteRenderer> make() const {
+        return createSilhouetteRenderer(SilhouetteMethod::ZBuffer, GetParam());
+    }
+};
+
+TEST_P(ZBufferBackend, SphereContourWithinOnePixelOfTruth) {
     const SphereShape sphere;
     const lw::volume::Volume volume = sampleShape(sphere, 64);
-    ZBufferSilhouetteRenderer renderer;
+    const auto owned = make();
+    SilhouetteRenderer& renderer = *owned;
     renderer.setVolume(volume);
     for (const Projection projection : {Projection::Perspective, Projection::Orthographic}) {
         CameraSetup setup;
@@ -72,9 +83,11 @@ TEST(ZBufferSilhouette, SphereContourWithinOnePixelOfTruth) {
     }
 }
 
-TEST(ZBufferSilhouette, ChunkedEqualsWholeAndModesAgree) {
+TEST_P(ZBufferBackend, ChunkedEqualsWholeAndModesAgree) {
     const lw::volume::Volume phantom = makePhantom(glm::ivec3(64), PhantomKind::Ct);
-    ZBufferSilhouetteRenderer whole, chunked, everyFrame;
+    const auto ownedWhole = make(), ownedChunked = make(), ownedEveryFrame = make();
+    SilhouetteRenderer &whole = *ownedWhole, &chunked = *ownedChunked,
+                       &everyFrame = *ownedEveryFrame;
     whole.setVolume(phantom);
     chunked.setVolume(phantom);
     everyFrame.setVolume(phantom);
@@ -225,11 +238,12 @@ public:
     SphereShape m_back{{0.0, 35.0, 0.0}, 12.0};
 };
 
-TEST(ZBufferSilhouette, VisibilityHidesContourBehindFrontSphere) {
+TEST_P(ZBufferBackend, VisibilityHidesContourBehindFrontSphere) {
     const TwoSpheres shape;
     const lw::volume::Volume volume = sampleShape(shape, 64);
     const Camera camera = cameraFor(volume, 0.0, 0.0, Projection::Perspective, 200);
-    ZBufferSilhouetteRenderer renderer;
+    const auto owned = make();
+    SilhouetteRenderer& renderer = *owned;
     renderer.setVolume(volume);
     // Pixels within the back sphere's projected contour (plus 2 px) and well inside the front
     // sphere's disc: only the hidden contour can put lines there.
@@ -364,18 +378,20 @@ void expectMatchesBaseline(const lw::core::ImageRgba8& image, const std::string&
     EXPECT_TRUE(result.matches) << name << ": " << result.describe() << " (diff: " << diff << ")";
 }
 
-TEST(ZBufferSilhouette, GoldenPhantomSilhouetteAndShadedPanel) {
+TEST_P(ZBufferBackend, GoldenPhantomSilhouetteAndShadedPanel) {
     const lw::volume::Volume phantom = makePhantom(glm::ivec3(64), PhantomKind::Ct);
     const Camera camera = cameraFor(phantom, 30.0, 20.0, Projection::Perspective, 192);
-    ZBufferSilhouetteRenderer renderer;
+    const auto owned = make();
+    SilhouetteRenderer& renderer = *owned;
     renderer.setVolume(phantom);
     const SilhouetteFrame frame = renderer.render(camera, settingsFor(kPhantomBoneIso));
     // A few pixels may flip where a segment grazes a pixel border (float rounding differs
     // between compilers); a real regression moves hundreds.
     expectMatchesBaseline(frame.lines.toImage({0, 0, 0, 255}, {255, 255, 255, 255}),
                           "zbuffer_phantom64_silhouette", {0, 0.025, 0.5});
-    expectMatchesBaseline(shadeSurfaceCpu(renderer.mesh(), camera), "zbuffer_phantom64_shaded",
-                          {6, 0.02, 0.5});
+    ASSERT_NE(renderer.surfaceMesh(), nullptr);
+    expectMatchesBaseline(shadeSurfaceCpu(*renderer.surfaceMesh(), camera),
+                          "zbuffer_phantom64_shaded", {6, 0.02, 0.5});
 }
 
 TEST(ZBufferSilhouette, ShadedPanelLightsFacingSurfaceBrightest) {
@@ -397,6 +413,10 @@ TEST(ZBufferSilhouette, ShadedPanelLightsFacingSurfaceBrightest) {
     EXPECT_LT(int(rim.r), int(middle.r) - 60) << "grazing light near the rim is darker";
     EXPECT_GT(int(rim.r), 20);
 }
+
+INSTANTIATE_TEST_SUITE_P(Backends, ZBufferBackend,
+                         testing::ValuesIn(lw::test::backendsUnderTest()),
+                         lw::test::backendTestName);
 
 } // namespace
 
