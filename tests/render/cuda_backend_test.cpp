@@ -168,6 +168,19 @@ double agreement(const PixelMask& a, const PixelMask& b, std::size_t& differing)
     return either == 0 ? 1.0 : double(both) / double(either);
 }
 
+// The CUDA frame against the CPU's: the same counts and (the issue asks >= 99.5 %) the same pixels;
+// the shared rules give all of them.
+void expectSameFrame(const SilhouetteFrame& frame, const SilhouetteFrame& expected,
+                     const std::string& where) {
+    EXPECT_EQ(frame.triangles, expected.triangles) << where;
+    EXPECT_EQ(frame.segments, expected.segments) << where;
+    ASSERT_GT(expected.lines.count(), 0u) << where << ": an empty image tests nothing";
+    std::size_t differing = 0;
+    const double share = agreement(frame.lines, expected.lines, differing);
+    EXPECT_GE(share, 0.995) << where;
+    EXPECT_EQ(differing, 0u) << where << ": the same rules should give the same pixels";
+}
+
 TEST_P(CudaBackend, Method3GivesTheCpuImage) {
     const Volume volume = GetParam().make();
     auto cuda = createSilhouetteRenderer(SilhouetteMethod::ZBuffer, Backend::Cuda);
@@ -197,13 +210,7 @@ TEST_P(CudaBackend, Method3GivesTheCpuImage) {
             const SilhouetteFrame frame = cuda->render(camera, settings);
             const std::string where = "view az " + std::to_string(v.az) + " el " +
                                       std::to_string(v.el) + (v.visibility ? "" : " no visibility");
-            EXPECT_EQ(frame.triangles, expected.triangles) << where;
-            EXPECT_EQ(frame.segments, expected.segments) << where;
-            ASSERT_GT(expected.lines.count(), 0u) << where << ": an empty image tests nothing";
-            std::size_t differing = 0;
-            const double share = agreement(frame.lines, expected.lines, differing);
-            EXPECT_GE(share, 0.995) << where;
-            EXPECT_EQ(differing, 0u) << where << ": the same rules should give the same pixels";
+            expectSameFrame(frame, expected, where);
         }
     }
     // The chunked variant streams slabs (7 cell layers each, so every case has several seams)
@@ -261,13 +268,7 @@ TEST_P(CudaBackend, Method2GivesTheCpuImage) {
             const std::string where = "view az " + std::to_string(v.az) + " el " +
                                       std::to_string(v.el) + (v.visibility ? "" : " no visibility") +
                                       (v.along ? " along segments" : "");
-            EXPECT_EQ(frame.triangles, expected.triangles) << where;
-            EXPECT_EQ(frame.segments, expected.segments) << where;
-            ASSERT_GT(expected.lines.count(), 0u) << where << ": an empty image tests nothing";
-            std::size_t differing = 0;
-            const double share = agreement(frame.lines, expected.lines, differing);
-            EXPECT_GE(share, 0.995) << where;
-            EXPECT_EQ(differing, 0u) << where << ": the same rules should give the same pixels";
+            expectSameFrame(frame, expected, where);
         }
     }
 }
