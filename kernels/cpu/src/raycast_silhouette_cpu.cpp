@@ -119,12 +119,7 @@ public:
                 m_cellRadius = std::max(m_cellRadius, glm::length(d));
             }
         }
-        // Cell widths in grid units (i, j, s), for the self-occlusion distance.
-        m_cellScale = glm::dvec3(
-            1.0, 1.0,
-            m_dims.nz > 1 ? std::abs(m_offset.back() - m_offset.front()) / m_dims.cz : 1.0);
-        if (!(m_cellScale.z > 0.0))
-            m_cellScale.z = 1.0;
+        m_cellScale = rayGrid.cellScale();
     }
 
     bool findCells(const volume::BrickGrid& grid, bool withCones, unsigned threads,

@@ -16,7 +16,8 @@ CudaDeviceInfo probeCudaDevice() {
         else if (error == cudaErrorInsufficientDriver)
             info.reason = "no NVIDIA driver, or one older than this build's CUDA runtime" + detail;
         else
-            info.reason = std::string("CUDA is not usable here: ") + cudaGetErrorString(error) + detail;
+            info.reason =
+                std::string("CUDA is not usable here: ") + cudaGetErrorString(error) + detail;
         return info;
     }
     if (count == 0) {

@@ -6,9 +6,8 @@
 
 #include "lw/kernels/cuda/cuda_status.h"
 
-#include <cuda_runtime.h>
-
 #include <cstddef>
+#include <cuda_runtime.h>
 #include <string>
 #include <utility>
 
@@ -17,14 +16,14 @@ namespace lw::kernels::cuda::dispatch {
 inline CudaStatus statusOf(cudaError_t error, const char* where) {
     if (error == cudaSuccess)
         return CudaStatus::success();
-    const CudaStatus::Code code = error == cudaErrorMemoryAllocation
-                                      ? CudaStatus::Code::OutOfMemory
-                                      : (error == cudaErrorNoDevice ||
-                                                 error == cudaErrorInsufficientDriver
-                                             ? CudaStatus::Code::NoDevice
-                                             : CudaStatus::Code::Failed);
-    return CudaStatus::failure(code, where, std::string(cudaGetErrorName(error)) + ": " +
-                                                cudaGetErrorString(error));
+    const CudaStatus::Code code =
+        error == cudaErrorMemoryAllocation
+            ? CudaStatus::Code::OutOfMemory
+            : (error == cudaErrorNoDevice || error == cudaErrorInsufficientDriver
+                   ? CudaStatus::Code::NoDevice
+                   : CudaStatus::Code::Failed);
+    return CudaStatus::failure(
+        code, where, std::string(cudaGetErrorName(error)) + ": " + cudaGetErrorString(error));
 }
 
 // After a kernel launch: the launch error (configuration, resources). Asynchronous faults show
@@ -33,20 +32,20 @@ inline CudaStatus checkLaunch(const char* kernel) {
     return statusOf(cudaGetLastError(), kernel);
 }
 
-#define LW_CUDA_TRY(expr, where)                                                                  \
-    do {                                                                                          \
-        const ::lw::kernels::cuda::CudaStatus lwStatus_ =                                         \
-            ::lw::kernels::cuda::dispatch::statusOf((expr), (where));                             \
-        if (!lwStatus_.ok())                                                                      \
-            return lwStatus_;                                                                     \
+#define LW_CUDA_TRY(expr, where)                                                                   \
+    do {                                                                                           \
+        const ::lw::kernels::cuda::CudaStatus lwStatus_ =                                          \
+            ::lw::kernels::cuda::dispatch::statusOf((expr), (where));                              \
+        if (!lwStatus_.ok())                                                                       \
+            return lwStatus_;                                                                      \
     } while (0)
 
-#define LW_CUDA_LAUNCHED(kernel)                                                                  \
-    do {                                                                                          \
-        const ::lw::kernels::cuda::CudaStatus lwStatus_ =                                         \
-            ::lw::kernels::cuda::dispatch::checkLaunch(kernel);                                   \
-        if (!lwStatus_.ok())                                                                      \
-            return lwStatus_;                                                                     \
+#define LW_CUDA_LAUNCHED(kernel)                                                                   \
+    do {                                                                                           \
+        const ::lw::kernels::cuda::CudaStatus lwStatus_ =                                          \
+            ::lw::kernels::cuda::dispatch::checkLaunch(kernel);                                    \
+        if (!lwStatus_.ok())                                                                       \
+            return lwStatus_;                                                                      \
     } while (0)
 
 // Device memory of `T`, grown on demand and never shrunk (repeated frames allocate nothing).

@@ -1,8 +1,7 @@
 // CUDA-GL interop for method 1 (see gl_mesh_interop.h).
 
-#include "lw/kernels/cuda/gl_mesh_interop.h"
-
 #include "dispatch.h"
+#include "lw/kernels/cuda/gl_mesh_interop.h"
 
 #include <GL/gl.h>
 #include <cuda_gl_interop.h>
@@ -14,8 +13,7 @@ namespace {
 // One thread per triangle: kept unless all three d lie beyond the margin on one side.
 __global__ void lineCandidates(const glm::vec3* positions, const glm::vec3* normals,
                                const std::uint32_t* indices, std::uint32_t triangleCount,
-                               glm::vec4 viewer, std::uint32_t* out,
-                               unsigned long long* counter) {
+                               glm::vec4 viewer, std::uint32_t* out, unsigned long long* counter) {
     const std::uint32_t t = blockIdx.x * blockDim.x + threadIdx.x;
     if (t >= triangleCount)
         return;
@@ -72,9 +70,9 @@ CudaStatus GlMeshInterop::writeLineCandidates(const DeviceMeshView& mesh, glm::v
     LW_CUDA_TRY(cudaGraphicsMapResources(1, &resource, nullptr), "cudaGraphicsMapResources");
     void* target = nullptr;
     std::size_t size = 0;
-    CudaStatus status = dispatch::statusOf(
-        cudaGraphicsResourceGetMappedPointer(&target, &size, resource),
-        "cudaGraphicsResourceGetMappedPointer(candidates)");
+    CudaStatus status =
+        dispatch::statusOf(cudaGraphicsResourceGetMappedPointer(&target, &size, resource),
+                           "cudaGraphicsResourceGetMappedPointer(candidates)");
     if (status.ok() && size < mesh.triangleCount * 3 * sizeof(std::uint32_t))
         status = CudaStatus::failure(CudaStatus::Code::Failed, "GL line candidates",
                                      "the candidate buffer is smaller than the mesh");
@@ -83,17 +81,16 @@ CudaStatus GlMeshInterop::writeLineCandidates(const DeviceMeshView& mesh, glm::v
                                     "cudaMemset(counter)");
     if (status.ok() && mesh.triangleCount > 0) {
         lineCandidates<<<dispatch::blocksFor(mesh.triangleCount, 256), 256>>>(
-            mesh.positions, mesh.normals, mesh.indices, std::uint32_t(mesh.triangleCount),
-            viewer, static_cast<std::uint32_t*>(target), m_counter);
+            mesh.positions, mesh.normals, mesh.indices, std::uint32_t(mesh.triangleCount), viewer,
+            static_cast<std::uint32_t*>(target), m_counter);
         status = dispatch::checkLaunch("lineCandidates");
     }
     unsigned long long count = 0;
     if (status.ok())
-        status = dispatch::statusOf(cudaMemcpy(&count, m_counter, sizeof count,
-                                               cudaMemcpyDeviceToHost),
-                                    "lineCandidates");
-    const CudaStatus unmapped = dispatch::statusOf(cudaGraphicsUnmapResources(1, &resource, nullptr),
-                                                   "cudaGraphicsUnmapResources");
+        status = dispatch::statusOf(
+            cudaMemcpy(&count, m_counter, sizeof count, cudaMemcpyDeviceToHost), "lineCandidates");
+    const CudaStatus unmapped = dispatch::statusOf(
+        cudaGraphicsUnmapResources(1, &resource, nullptr), "cudaGraphicsUnmapResources");
     LW_RETURN_IF_FAILED(status);
     LW_RETURN_IF_FAILED(unmapped);
     triangles = std::size_t(count);
@@ -144,8 +141,9 @@ CudaStatus GlMeshInterop::copy(const DeviceMeshView& mesh, const GlMeshBuffers& 
     for (int i = 0; i < 3 && status.ok(); ++i) {
         void* target = nullptr;
         std::size_t size = 0;
-        status = dispatch::statusOf(cudaGraphicsResourceGetMappedPointer(&target, &size, resources[i]),
-                                    "cudaGraphicsResourceGetMappedPointer");
+        status =
+            dispatch::statusOf(cudaGraphicsResourceGetMappedPointer(&target, &size, resources[i]),
+                               "cudaGraphicsResourceGetMappedPointer");
         if (status.ok() && size < bytes[i])
             status = CudaStatus::failure(CudaStatus::Code::Failed, "GL mesh interop",
                                          "a GL buffer is smaller than the mesh (reserve it first)");

@@ -1,13 +1,11 @@
 // Host dispatch of marching cubes on the GPU (kernels in marching_cubes_kernels.cuh).
 
-#include "lw/kernels/cuda/marching_cubes_cuda.h"
-
 #include "dispatch.h"
+#include "lw/kernels/cuda/marching_cubes_cuda.h"
 #include "marching_cubes_impl.cuh"
 
-#include <cub/device/device_scan.cuh>
-
 #include <cstring>
+#include <cub/device/device_scan.cuh>
 #include <limits>
 #include <mutex>
 
@@ -19,11 +17,21 @@ using dispatch::DeviceBuffer;
 MarchingCubesCuda::MarchingCubesCuda() : m_impl(std::make_unique<Impl>()) {}
 MarchingCubesCuda::~MarchingCubesCuda() = default;
 
-double MarchingCubesCuda::uploadMs() const { return m_impl->uploadMs; }
-std::size_t MarchingCubesCuda::deviceBytes() const { return m_impl->deviceBytes(); }
-DeviceMeshView MarchingCubesCuda::mesh() const { return m_impl->mesh; }
-const McCudaTimes& MarchingCubesCuda::times() const { return m_impl->times; }
-std::size_t MarchingCubesCuda::activeVoxelCount() const { return m_impl->activeCount; }
+double MarchingCubesCuda::uploadMs() const {
+    return m_impl->uploadMs;
+}
+std::size_t MarchingCubesCuda::deviceBytes() const {
+    return m_impl->deviceBytes();
+}
+DeviceMeshView MarchingCubesCuda::mesh() const {
+    return m_impl->mesh;
+}
+const McCudaTimes& MarchingCubesCuda::times() const {
+    return m_impl->times;
+}
+std::size_t MarchingCubesCuda::activeVoxelCount() const {
+    return m_impl->activeCount;
+}
 
 template <typename T> CudaStatus MarchingCubesCuda::Impl::computeBrickMinMax() {
     const std::uint32_t count = bricksX * bricksY * bricksZ;
@@ -34,6 +42,18 @@ template <typename T> CudaStatus MarchingCubesCuda::Impl::computeBrickMinMax() {
     LW_CUDA_LAUNCHED("mc::brickMinMax");
     return CudaStatus::success();
 }
+
+namespace {
+
+// Marching cubes needs at least one cell along each axis.
+CudaStatus needsCells(glm::ivec3 dims, const char* where) {
+    if (dims.x < 2 || dims.y < 2 || dims.z < 2)
+        return CudaStatus::failure(CudaStatus::Code::TooLarge, where,
+                                   "the volume needs at least 2 voxels along each axis");
+    return CudaStatus::success();
+}
+
+} // namespace
 
 CudaStatus MarchingCubesCuda::Impl::uploadGridTables(const VoxelGridSetup& setup) {
     const std::vector<double>& offsets = setup.sliceOffsets();
@@ -64,9 +84,7 @@ CudaStatus MarchingCubesCuda::setVolume(const VolumeView& host, const VoxelGridS
     s.mesh = DeviceMeshView();
     s.activeCount = 0;
     const glm::ivec3 d = host.dims;
-    if (d.x < 2 || d.y < 2 || d.z < 2)
-        return CudaStatus::failure(CudaStatus::Code::TooLarge, "marching cubes (CUDA)",
-                                   "the volume needs at least 2 voxels along each axis");
+    LW_RETURN_IF_FAILED(needsCells(d, "marching cubes (CUDA)"));
     if (host.voxelCount() >= std::size_t(std::numeric_limits<std::uint32_t>::max()) - 1024)
         return CudaStatus::failure(CudaStatus::Code::TooLarge, "marching cubes (CUDA)",
                                    "more than 2^32 voxels: the kernels index voxels with 32 bits");
@@ -100,9 +118,8 @@ CudaStatus MarchingCubesCuda::setVolume(const VolumeView& host, const VoxelGridS
     LW_RETURN_IF_FAILED(s.brickMinMax.reserve(brickCount, "cudaMalloc(brickMinMax)"));
     LW_RETURN_IF_FAILED(s.brickActive.reserve(brickCount, "cudaMalloc(brickActive)"));
     LW_RETURN_IF_FAILED(s.flag.reserve(1, "cudaMalloc(flag)"));
-    LW_RETURN_IF_FAILED(dispatchVoxelKind(host.kind, [&](auto zero) {
-        return s.computeBrickMinMax<decltype(zero)>();
-    }));
+    LW_RETURN_IF_FAILED(dispatchVoxelKind(
+        host.kind, [&](auto zero) { return s.computeBrickMinMax<decltype(zero)>(); }));
     LW_CUDA_TRY(cudaStreamSynchronize(s.stream.get()), "mc::brickMinMax");
     s.uploadMs = upload.ms();
     s.notePeak();
@@ -125,9 +142,8 @@ template <typename T>
 CudaStatus MarchingCubesCuda::Impl::markBricksTyped(const mc::Grid<T>& g, bool& touchesBorder) {
     cudaStream_t st = stream.get();
     const std::uint32_t brickCount = bricksX * bricksY * bricksZ;
-    mc::markActiveBricks<<<blocksFor(brickCount, 256), 256, 0, st>>>(brickMinMax.data(),
-                                                                     brickCount, g.iso,
-                                                                     brickActive.data());
+    mc::markActiveBricks<<<blocksFor(brickCount, 256), 256, 0, st>>>(brickMinMax.data(), brickCount,
+                                                                     g.iso, brickActive.data());
     LW_CUDA_LAUNCHED("mc::markActiveBricks");
     LW_CUDA_TRY(cudaMemsetAsync(flag.data(), 0, sizeof(int), st), "cudaMemset(flag)");
     mc::borderInside<T><<<dim3(64, 6), 256, 0, st>>>(
@@ -155,8 +171,8 @@ template <typename T> CudaStatus MarchingCubesCuda::Impl::classifyGrid(const mc:
     LW_CUDA_LAUNCHED("mc::countTiles");
     LW_CUDA_TRY(cudaMemsetAsync(tileCounts.data() + tiles, 0, sizeof(std::uint32_t), st),
                 "cudaMemset(tileCounts)");
-    LW_RETURN_IF_FAILED(exclusiveSum(tileCounts.data(), tileOffsets.data(), tiles + 1,
-                                     "cub::DeviceScan(tiles)"));
+    LW_RETURN_IF_FAILED(
+        exclusiveSum(tileCounts.data(), tileOffsets.data(), tiles + 1, "cub::DeviceScan(tiles)"));
     std::uint32_t active = 0;
     LW_RETURN_IF_FAILED(readBack(tileOffsets.data() + tiles, active, "mc::countTiles"));
     activeCount = active;
@@ -164,9 +180,8 @@ template <typename T> CudaStatus MarchingCubesCuda::Impl::classifyGrid(const mc:
         return CudaStatus::success();
     LW_RETURN_IF_FAILED(activeVoxels.reserve(active, "cudaMalloc(activeVoxels)"));
     LW_RETURN_IF_FAILED(activeCodes.reserve(active, "cudaMalloc(activeCodes)"));
-    mc::writeTiles<T><<<tileGrid, tuning::kClassifyBlock, 0, st>>>(g, tileOffsets.data(),
-                                                                activeVoxels.data(),
-                                                                activeCodes.data());
+    mc::writeTiles<T><<<tileGrid, tuning::kClassifyBlock, 0, st>>>(
+        g, tileOffsets.data(), activeVoxels.data(), activeCodes.data());
     LW_CUDA_LAUNCHED("mc::writeTiles");
     return CudaStatus::success();
 }
@@ -198,8 +213,8 @@ template <typename T> CudaStatus MarchingCubesCuda::Impl::generate(const mc::Gri
     LW_CUDA_TRY(cudaMemcpyAsync(&vertexTotal, vertexOffsets.data() + active, sizeof vertexTotal,
                                 cudaMemcpyDeviceToHost, st),
                 "cub::DeviceScan(vertices)");
-    LW_RETURN_IF_FAILED(readBack(triangleOffsets.data() + active, triangleTotal,
-                                 "cub::DeviceScan(triangles)"));
+    LW_RETURN_IF_FAILED(
+        readBack(triangleOffsets.data() + active, triangleTotal, "cub::DeviceScan(triangles)"));
     LW_RETURN_IF_FAILED(timers[2].stop(st));
     // Each active voxel has at most 3 vertices and 5 triangles: with fewer than 2^32 / 16 active
     // voxels no 32-bit count can have wrapped.
@@ -211,10 +226,10 @@ template <typename T> CudaStatus MarchingCubesCuda::Impl::generate(const mc::Gri
     LW_RETURN_IF_FAILED(positions.reserve(vertexTotal, "cudaMalloc(positions)"));
     LW_RETURN_IF_FAILED(normals.reserve(vertexTotal, "cudaMalloc(normals)"));
     LW_RETURN_IF_FAILED(indices.reserve(std::size_t(triangleTotal) * 3, "cudaMalloc(indices)"));
-    mc::generateVertices<T><<<blocksFor(active, tuning::kActiveBlock), tuning::kActiveBlock, 0,
-                              st>>>(g, activeVoxels.data(), activeCodes.data(),
-                                    vertexOffsets.data(), active, positions.data(),
-                                    normals.data());
+    mc::generateVertices<T>
+        <<<blocksFor(active, tuning::kActiveBlock), tuning::kActiveBlock, 0, st>>>(
+            g, activeVoxels.data(), activeCodes.data(), vertexOffsets.data(), active,
+            positions.data(), normals.data());
     LW_CUDA_LAUNCHED("mc::generateVertices");
     // Box rows (S: the volume's rows): the active list holds box indices.
     const std::uint32_t boxZ = std::uint32_t(g.hi.z - g.boxOrigin.z + 1);
@@ -223,10 +238,9 @@ template <typename T> CudaStatus MarchingCubesCuda::Impl::generate(const mc::Gri
     mc::findRowStarts<<<blocksFor(std::size_t(rows) + 1, 256), 256, 0, st>>>(
         activeVoxels.data(), active, g.boxX, rows, rowStart.data());
     LW_CUDA_LAUNCHED("mc::findRowStarts");
-    mc::generateTriangles<<<blocksFor(active, tuning::kActiveBlock), tuning::kActiveBlock, 0,
-                            st>>>(activeVoxels.data(), activeCodes.data(), vertexOffsets.data(),
-                                  triangleOffsets.data(), rowStart.data(), active, g.boxX, g.boxY,
-                                  indices.data());
+    mc::generateTriangles<<<blocksFor(active, tuning::kActiveBlock), tuning::kActiveBlock, 0, st>>>(
+        activeVoxels.data(), activeCodes.data(), vertexOffsets.data(), triangleOffsets.data(),
+        rowStart.data(), active, g.boxX, g.boxY, indices.data());
     LW_CUDA_LAUNCHED("mc::generateTriangles");
     LW_RETURN_IF_FAILED(timers[3].stop(st));
     LW_CUDA_TRY(cudaStreamSynchronize(st), "mc::generate");
@@ -269,9 +283,7 @@ CudaStatus MarchingCubesCuda::setStreamedVolume(const VolumeView& host,
     s.mesh = DeviceMeshView();
     s.activeCount = 0;
     const glm::ivec3 d = host.dims;
-    if (d.x < 2 || d.y < 2 || d.z < 2)
-        return CudaStatus::failure(CudaStatus::Code::TooLarge, "marching cubes (CUDA, streamed)",
-                                   "the volume needs at least 2 voxels along each axis");
+    LW_RETURN_IF_FAILED(needsCells(d, "marching cubes (CUDA, streamed)"));
     if (std::size_t(d.x) * std::size_t(d.y) * 4 >= std::numeric_limits<std::uint32_t>::max())
         return CudaStatus::failure(CudaStatus::Code::TooLarge, "marching cubes (CUDA, streamed)",
                                    "slices of more than 2^30 voxels");
@@ -292,8 +304,8 @@ CudaStatus MarchingCubesCuda::setStreamedVolume(const VolumeView& host,
     s.hostVoxels = host.voxels;
     // Page-locking the volume lets every slab go up with one asynchronous copy. Where the driver
     // refuses (limits on locked memory), slabs are staged through two pinned buffers instead.
-    const cudaError_t registered = cudaHostRegister(const_cast<void*>(host.voxels), host.byteCount(),
-                                                    cudaHostRegisterReadOnly);
+    const cudaError_t registered = cudaHostRegister(const_cast<void*>(host.voxels),
+                                                    host.byteCount(), cudaHostRegisterReadOnly);
     s.hostRegistered = registered == cudaSuccess;
     if (!s.hostRegistered)
         cudaGetLastError();
@@ -304,8 +316,8 @@ CudaStatus MarchingCubesCuda::setStreamedVolume(const VolumeView& host,
 }
 
 CudaStatus MarchingCubesCuda::Impl::uploadSlab(int slot, int boxZ0, int boxZ1) {
-    const std::size_t slice = std::size_t(volume.dims.x) * std::size_t(volume.dims.y) *
-                              voxelKindSize(volume.kind);
+    const std::size_t slice =
+        std::size_t(volume.dims.x) * std::size_t(volume.dims.y) * voxelKindSize(volume.kind);
     const std::size_t bytes = std::size_t(boxZ1 - boxZ0) * slice;
     const unsigned char* source = static_cast<const unsigned char*>(hostVoxels) + boxZ0 * slice;
     LW_RETURN_IF_FAILED(slabBox[slot].reserve(bytes, "cudaMalloc(slab)"));
@@ -325,9 +337,9 @@ CudaStatus MarchingCubesCuda::Impl::uploadSlab(int slot, int boxZ0, int boxZ1) {
 }
 
 template <typename T>
-CudaStatus MarchingCubesCuda::Impl::extractSlabsTyped(double iso,
-                                                      const std::vector<glm::ivec2>& ranges,
-                                                      const MarchingCubesCuda::SlabCallback& onSlab) {
+CudaStatus
+MarchingCubesCuda::Impl::extractSlabsTyped(double iso, const std::vector<glm::ivec2>& ranges,
+                                           const MarchingCubesCuda::SlabCallback& onSlab) {
     const glm::ivec3 d = volume.dims;
     const auto boxOf = [&](const glm::ivec2& cells) {
         return glm::ivec2(cells.x > 0 ? cells.x - 1 : 0, cells.y + 2 < d.z ? cells.y + 2 : d.z);
@@ -345,10 +357,10 @@ CudaStatus MarchingCubesCuda::Impl::extractSlabsTyped(double iso,
         }
         LW_CUDA_TRY(cudaStreamWaitEvent(stream.get(), uploaded[slot], 0), "cudaStreamWaitEvent");
         const glm::ivec2 box = boxOf(ranges[k]);
-        const mc::Grid<T> g = brickGrid<T>(
-            iso, reinterpret_cast<const T*>(slabBox[slot].data()), glm::ivec3(0, 0, box.x),
-            glm::ivec3(d.x, d.y, box.y), glm::ivec3(0, 0, ranges[k].x),
-            glm::ivec3(d.x - 1, d.y - 1, ranges[k].y));
+        const mc::Grid<T> g =
+            brickGrid<T>(iso, reinterpret_cast<const T*>(slabBox[slot].data()),
+                         glm::ivec3(0, 0, box.x), glm::ivec3(d.x, d.y, box.y),
+                         glm::ivec3(0, 0, ranges[k].x), glm::ivec3(d.x - 1, d.y - 1, ranges[k].y));
         mesh = DeviceMeshView();
         LW_RETURN_IF_FAILED(classifyGrid<T>(g));
         LW_RETURN_IF_FAILED(generate<T>(g));
@@ -375,7 +387,9 @@ CudaStatus MarchingCubesCuda::extractSlabs(double storedIso,
     });
 }
 
-std::size_t MarchingCubesCuda::peakDeviceBytes() const { return m_impl->peakBytes; }
+std::size_t MarchingCubesCuda::peakDeviceBytes() const {
+    return m_impl->peakBytes;
+}
 
 void MarchingCubesCuda::release() {
     // A fresh state: every DeviceBuffer, event and stream frees itself; the host registration is
@@ -413,8 +427,7 @@ CudaStatus MarchingCubesCuda::download(std::vector<glm::vec3>& positions,
     }
     if (m.triangleCount > 0)
         LW_CUDA_TRY(cudaMemcpy(indices.data(), m.indices,
-                               m.triangleCount * 3 * sizeof(std::uint32_t),
-                               cudaMemcpyDeviceToHost),
+                               m.triangleCount * 3 * sizeof(std::uint32_t), cudaMemcpyDeviceToHost),
                     "cudaMemcpy(indices)");
     return CudaStatus::success();
 }

@@ -16,7 +16,7 @@ using dispatch::DeviceBuffer;
 
 struct MarchingCubesCuda::Impl {
     dispatch::Stream stream;
-    VolumeView volume;          // device voxels after setVolume (voxels points to `voxels`)
+    VolumeView volume; // device voxels after setVolume (voxels points to `voxels`)
     DeviceBuffer<unsigned char> voxels;
     DeviceBuffer<double> sliceOffset;
     DeviceBuffer<float> spanK, invSpanK;
@@ -96,8 +96,7 @@ struct MarchingCubesCuda::Impl {
                tileOffsets.bytes() + activeVoxels.bytes() + vertexCounts.bytes() +
                vertexOffsets.bytes() + triangleCounts.bytes() + triangleOffsets.bytes() +
                activeCodes.bytes() + rowStart.bytes() + slabBox[0].bytes() + slabBox[1].bytes() +
-               scanTemp.bytes() + positions.bytes() + normals.bytes() +
-               indices.bytes();
+               scanTemp.bytes() + positions.bytes() + normals.bytes() + indices.bytes();
     }
 
     // CUB's exclusive sum over `count` values (temporary storage grown on demand).
@@ -107,9 +106,9 @@ struct MarchingCubesCuda::Impl {
         LW_CUDA_TRY(cub::DeviceScan::ExclusiveSum(nullptr, bytes, in, out, count, stream.get()),
                     what);
         LW_RETURN_IF_FAILED(scanTemp.reserve(bytes, what));
-        LW_CUDA_TRY(cub::DeviceScan::ExclusiveSum(scanTemp.data(), bytes, in, out, count,
-                                                  stream.get()),
-                    what);
+        LW_CUDA_TRY(
+            cub::DeviceScan::ExclusiveSum(scanTemp.data(), bytes, in, out, count, stream.get()),
+            what);
         return CudaStatus::success();
     }
 
@@ -153,8 +152,8 @@ struct MarchingCubesCuda::Impl {
         g.boxY = std::uint32_t(size.y);
         g.boxOrigin = boxBegin;
         g.indexOrigin = std::size_t(boxBegin.x) +
-                        std::size_t(size.x) *
-                            (std::size_t(boxBegin.y) + std::size_t(size.y) * std::size_t(boxBegin.z));
+                        std::size_t(size.x) * (std::size_t(boxBegin.y) +
+                                               std::size_t(size.y) * std::size_t(boxBegin.z));
         g.spans.dims.sy = std::size_t(size.x);
         g.spans.dims.sz = std::size_t(size.x) * std::size_t(size.y);
         g.lo = cellBegin;
@@ -174,13 +173,12 @@ struct MarchingCubesCuda::Impl {
     template <typename T> CudaStatus classifyTyped(double iso);
     template <typename T> CudaStatus extractTyped(double iso);
     CudaStatus readBack(const std::uint32_t* device, std::uint32_t& host, const char* what) {
-        LW_CUDA_TRY(cudaMemcpyAsync(&host, device, sizeof host, cudaMemcpyDeviceToHost,
-                                    stream.get()),
-                    what);
+        LW_CUDA_TRY(
+            cudaMemcpyAsync(&host, device, sizeof host, cudaMemcpyDeviceToHost, stream.get()),
+            what);
         LW_CUDA_TRY(cudaStreamSynchronize(stream.get()), what);
         return CudaStatus::success();
     }
 };
-
 
 } // namespace lw::kernels::cuda

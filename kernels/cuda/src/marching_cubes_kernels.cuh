@@ -4,16 +4,15 @@
 // evaluates the shared host+device expressions of kernels/common, so the vertices equal the CPU
 // reference's bit for bit.
 
+#include "dispatch.h"
 #include "lw/kernels/marching_cubes.h"
 #include "lw/kernels/voxel_grid.h"
-#include "dispatch.h"
 #include "tuning.h"
-
-#include <cub/block/block_reduce.cuh>
-#include <cub/block/block_scan.cuh>
 
 #include <cfloat>
 #include <cstdint>
+#include <cub/block/block_reduce.cuh>
+#include <cub/block/block_scan.cuh>
 #include <mutex>
 
 namespace lw::kernels::cuda::mc {
@@ -32,26 +31,28 @@ static CudaStatus uploadTables() {
     static std::once_flag once;
     static CudaStatus status;
     std::call_once(once, [] {
-        const auto copy = [](const void* symbol, const void* source, std::size_t bytes,
-                             const char* what) {
-            return dispatch::statusOf(cudaMemcpyToSymbol(symbol, source, bytes), what);
+        struct Table {
+            const void* symbol;
+            const void* source;
+            std::size_t bytes;
+            const char* what;
         };
-        status = copy(c_triTable, kMcTriTable, sizeof kMcTriTable, "cudaMemcpyToSymbol(triTable)");
-        if (status.ok())
-            status = copy(c_triCount, kMcTriangleCount.count, sizeof kMcTriangleCount.count,
-                          "cudaMemcpyToSymbol(triCount)");
-        if (status.ok())
-            status = copy(c_edgeOwner, kMcEdgeOwner, sizeof kMcEdgeOwner,
-                          "cudaMemcpyToSymbol(edgeOwner)");
-        if (status.ok())
-            status = copy(c_edgeTable, kMcEdgeTable, sizeof kMcEdgeTable,
-                          "cudaMemcpyToSymbol(edgeTable)");
-        if (status.ok())
-            status = copy(c_edgeCorners, kMcEdgeCorners, sizeof kMcEdgeCorners,
-                          "cudaMemcpyToSymbol(edgeCorners)");
-        if (status.ok())
-            status = copy(c_cornerOffset, kMcCornerOffset, sizeof kMcCornerOffset,
-                          "cudaMemcpyToSymbol(cornerOffset)");
+        const Table tables[] = {
+            {c_triTable, kMcTriTable, sizeof kMcTriTable, "cudaMemcpyToSymbol(triTable)"},
+            {c_triCount, kMcTriangleCount.count, sizeof kMcTriangleCount.count,
+             "cudaMemcpyToSymbol(triCount)"},
+            {c_edgeOwner, kMcEdgeOwner, sizeof kMcEdgeOwner, "cudaMemcpyToSymbol(edgeOwner)"},
+            {c_edgeTable, kMcEdgeTable, sizeof kMcEdgeTable, "cudaMemcpyToSymbol(edgeTable)"},
+            {c_edgeCorners, kMcEdgeCorners, sizeof kMcEdgeCorners,
+             "cudaMemcpyToSymbol(edgeCorners)"},
+            {c_cornerOffset, kMcCornerOffset, sizeof kMcCornerOffset,
+             "cudaMemcpyToSymbol(cornerOffset)"},
+        };
+        for (const Table& t : tables) {
+            status = dispatch::statusOf(cudaMemcpyToSymbol(t.symbol, t.source, t.bytes), t.what);
+            if (!status.ok())
+                return;
+        }
     });
     return status;
 }
@@ -67,10 +68,10 @@ template <typename T> struct Grid {
     // The voxels classified, inclusive, in volume coordinates; their edges and cells end at hi
     // (S: 0 .. dims - 1; a brick: its cells' corner voxels cellBegin .. cellEnd).
     glm::ivec3 lo, hi;
-    std::uint32_t rowsY;      // hi.y - lo.y + 1
-    GridSpans spans;          // the volume's, with the box strides; spanK/invSpanK on the device
-    McGridFrame frame;        // sliceOffset on the device
-    T threshold;              // inside = voxel >= threshold (== value >= iso, exactly)
+    std::uint32_t rowsY; // hi.y - lo.y + 1
+    GridSpans spans;     // the volume's, with the box strides; spanK/invSpanK on the device
+    McGridFrame frame;   // sliceOffset on the device
+    T threshold;         // inside = voxel >= threshold (== value >= iso, exactly)
     double iso;
     float isoF;
     // Skip bricks (S only, null for a streamed brick): brick of voxel (x, y, z) =
@@ -86,9 +87,8 @@ template <typename T> struct Grid {
 // The code of a voxel: bits 0-7 its cell's case (0 when the cell has no triangles or does not
 // exist), bits 8-10 which of its +x, +y, +z edges cross the surface. 0 = inactive.
 template <typename T>
-__device__ __forceinline__ std::uint32_t voxelCode(const Grid<T>& g, std::uint32_t x,
-                                                   std::uint32_t y, std::uint32_t z,
-                                                   std::uint32_t v) {
+__device__ __forceinline__ std::uint32_t
+voxelCode(const Grid<T>& g, std::uint32_t x, std::uint32_t y, std::uint32_t z, std::uint32_t v) {
     if (g.brickActive) {
         const std::uint32_t cx = g.spans.dims.cx, cy = g.spans.dims.cy, cz = g.spans.dims.cz;
         const std::uint32_t bx = (x < cx ? x : cx - 1) >> tuning::kSkipBrickShift;
@@ -106,8 +106,8 @@ __device__ __forceinline__ std::uint32_t voxelCode(const Grid<T>& g, std::uint32
     const bool c1 = hasX && p[1] >= thr;
     const bool c3 = hasY && p[sy] >= thr;
     const bool c4 = hasZ && p[sz] >= thr;
-    std::uint32_t edges = (hasX && c0 != c1 ? 1u : 0u) | (hasY && c0 != c3 ? 2u : 0u) |
-                          (hasZ && c0 != c4 ? 4u : 0u);
+    std::uint32_t edges =
+        (hasX && c0 != c1 ? 1u : 0u) | (hasY && c0 != c3 ? 2u : 0u) | (hasZ && c0 != c4 ? 4u : 0u);
     std::uint32_t cubeCase = 0;
     if (hasX && hasY && hasZ) {
         const bool c2 = p[1 + sy] >= thr;
@@ -137,10 +137,12 @@ __global__ void brickMinMax(const T* voxels, std::uint32_t nx, std::uint32_t ny,
     using Reduce = cub::BlockReduce<float, tuning::kBrickReduceBlock>;
     __shared__ typename Reduce::TempStorage tempMin, tempMax;
     const std::uint32_t b = blockIdx.x;
-    const std::uint32_t bx = b % bricksX, by = (b / bricksX) % bricksY, bz = b / (bricksX * bricksY);
+    const std::uint32_t bx = b % bricksX, by = (b / bricksX) % bricksY,
+                        bz = b / (bricksX * bricksY);
     const std::uint32_t n = tuning::kSkipBrickCells;
     const std::uint32_t x0 = bx * n, y0 = by * n, z0 = bz * n;
-    const std::uint32_t x1 = min(x0 + n, nx - 1), y1 = min(y0 + n, ny - 1), z1 = min(z0 + n, nz - 1);
+    const std::uint32_t x1 = min(x0 + n, nx - 1), y1 = min(y0 + n, ny - 1),
+                        z1 = min(z0 + n, nz - 1);
     const std::uint32_t w = x1 - x0 + 1, h = y1 - y0 + 1, d = z1 - z0 + 1;
     float lo = FLT_MAX, hi = -FLT_MAX;
     for (std::uint32_t i = threadIdx.x; i < w * h * d; i += blockDim.x) {
@@ -156,7 +158,7 @@ __global__ void brickMinMax(const T* voxels, std::uint32_t nx, std::uint32_t ny,
 }
 
 static __global__ void markActiveBricks(const float2* minMax, std::uint32_t count, double iso,
-                                 std::uint8_t* active) {
+                                        std::uint8_t* active) {
     const std::uint32_t b = blockIdx.x * blockDim.x + threadIdx.x;
     if (b < count)
         active[b] = double(minMax[b].x) < iso && iso <= double(minMax[b].y) ? 1 : 0;
@@ -220,8 +222,8 @@ template <typename T> __global__ void countTiles(Grid<T> g, std::uint32_t* tileC
 // Pass 2: the tiles that hold active voxels write them at the scanned tile offset, in voxel
 // order (most tiles hold none and return before reading a voxel).
 template <typename T>
-__global__ void writeTiles(Grid<T> g, const std::uint32_t* tileOffsets,
-                           std::uint32_t* activeVoxels, std::uint16_t* activeCodes) {
+__global__ void writeTiles(Grid<T> g, const std::uint32_t* tileOffsets, std::uint32_t* activeVoxels,
+                           std::uint16_t* activeCodes) {
     using Scan = cub::BlockScan<std::uint32_t, tuning::kClassifyBlock>;
     __shared__ typename Scan::TempStorage temp;
     const TileCoords c = tileCoords(g);
@@ -240,7 +242,7 @@ __global__ void writeTiles(Grid<T> g, const std::uint32_t* tileOffsets,
 // Vertices and triangles per active voxel; entry `count` is 0 so the exclusive scans end with the
 // totals.
 static __global__ void countGeometry(const std::uint16_t* codes, std::uint32_t count,
-                              std::uint32_t* vertexCounts, std::uint32_t* triangleCounts) {
+                                     std::uint32_t* vertexCounts, std::uint32_t* triangleCounts) {
     const std::uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
     if (i > count)
         return;
@@ -274,7 +276,8 @@ __global__ void generateVertices(Grid<T> g, const std::uint32_t* activeVoxels,
         if (!(edges & (1u << axis)))
             continue;
         const McVec3 there = sampler.gradient(x + (axis == 0), y + (axis == 1), z + (axis == 2));
-        const McVertex vertex = sampler.edgeVertex(g.frame, x, y, z, axis, here, there, g.iso, g.isoF);
+        const McVertex vertex =
+            sampler.edgeVertex(g.frame, x, y, z, axis, here, there, g.iso, g.isoF);
         positions[id] = glm::vec3(vertex.position.x, vertex.position.y, vertex.position.z);
         normals[id] = glm::vec3(vertex.normal.x, vertex.normal.y, vertex.normal.z);
         ++id;
@@ -298,18 +301,19 @@ __device__ __forceinline__ std::uint32_t lowerBound(const std::uint32_t* voxels,
 // (r = z * boxY + y) or later; entry rows = count. A triangle corner's owning voxel is then found
 // within one row's few active voxels instead of the whole list.
 static __global__ void findRowStarts(const std::uint32_t* activeVoxels, std::uint32_t count,
-                              std::uint32_t nx, std::uint32_t rows, std::uint32_t* rowStart) {
+                                     std::uint32_t nx, std::uint32_t rows,
+                                     std::uint32_t* rowStart) {
     const std::uint32_t r = blockIdx.x * blockDim.x + threadIdx.x;
     if (r > rows)
         return;
     rowStart[r] = r == rows ? count : lowerBound(activeVoxels, 0, count, r * nx);
 }
 
-static __global__ void generateTriangles(const std::uint32_t* activeVoxels, const std::uint16_t* codes,
-                                  const std::uint32_t* vertexOffsets,
-                                  const std::uint32_t* triangleOffsets, const std::uint32_t* rowStart,
-                                  std::uint32_t count, std::uint32_t nx, std::uint32_t ny,
-                                  std::uint32_t* indices) {
+static __global__ void
+generateTriangles(const std::uint32_t* activeVoxels, const std::uint16_t* codes,
+                  const std::uint32_t* vertexOffsets, const std::uint32_t* triangleOffsets,
+                  const std::uint32_t* rowStart, std::uint32_t count, std::uint32_t nx,
+                  std::uint32_t ny, std::uint32_t* indices) {
     const std::uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
     if (i >= count)
         return;
@@ -322,13 +326,15 @@ static __global__ void generateTriangles(const std::uint32_t* activeVoxels, cons
     const std::int8_t* table = c_triTable[cubeCase];
     for (int k = 0; table[k] >= 0; ++k) {
         const std::int8_t* owner = c_edgeOwner[table[k]];
-        const std::uint32_t ownerVoxel = v + std::uint32_t(owner[0]) +
-                                         (std::uint32_t(owner[1]) + std::uint32_t(owner[2]) * ny) * nx;
+        const std::uint32_t ownerVoxel =
+            v + std::uint32_t(owner[0]) +
+            (std::uint32_t(owner[1]) + std::uint32_t(owner[2]) * ny) * nx;
         // The owner is this voxel or a later one in this row or one of the next rows; it is
         // active (its edge crosses).
         std::uint32_t slot = i;
         if (ownerVoxel != v) {
-            const std::uint32_t ownerRow = row + std::uint32_t(owner[1]) + std::uint32_t(owner[2]) * ny;
+            const std::uint32_t ownerRow =
+                row + std::uint32_t(owner[1]) + std::uint32_t(owner[2]) * ny;
             const std::uint32_t lo = ownerRow == row ? i + 1 : rowStart[ownerRow];
             slot = lowerBound(activeVoxels, lo, rowStart[ownerRow + 1], ownerVoxel);
         }

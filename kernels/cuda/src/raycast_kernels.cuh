@@ -134,9 +134,9 @@ __global__ void findSegments(mc::Grid<T> g, const std::uint32_t* activeVoxels,
     const std::size_t sy = g.boxX, sz = std::size_t(g.boxX) * g.boxY;
     float value[8];
     for (int c = 0; c < 8; ++c)
-        value[c] = float(g.box[v + std::size_t(c_cornerOffset[c][0]) +
-                                  std::size_t(c_cornerOffset[c][1]) * sy +
-                                  std::size_t(c_cornerOffset[c][2]) * sz]);
+        value[c] = float(
+            g.box[v + std::size_t(c_cornerOffset[c][0]) + std::size_t(c_cornerOffset[c][1]) * sy +
+                  std::size_t(c_cornerOffset[c][2]) * sz]);
     const int cubeCase = mcCaseIndex(value, g.isoF);
     const int triangles = c_triCount[cubeCase];
     if (triangles == 0)
@@ -159,13 +159,13 @@ __global__ void findSegments(mc::Grid<T> g, const std::uint32_t* activeVoxels,
                 haveGradient |= 1u << c;
             }
         const std::int8_t* owner = c_edgeOwner[e];
-        const McVertex vertex = mcEdgeVertex(g.frame, x + owner[0], y + owner[1], z + owner[2],
-                                             owner[3], value[c0], value[c1], gradient[c0],
-                                             gradient[c1], g.iso, g.isoF);
+        const McVertex vertex =
+            mcEdgeVertex(g.frame, x + owner[0], y + owner[1], z + owner[2], owner[3], value[c0],
+                         value[c1], gradient[c0], gradient[c1], g.iso, g.isoF);
         position[e] = glm::vec3(vertex.position.x, vertex.position.y, vertex.position.z);
         normal[e] = glm::vec3(vertex.normal.x, vertex.normal.y, vertex.normal.z);
-        distance[e] = silhouetteDistance(position[e], normal[e], view.eyeOrDirectionF,
-                                         view.orthographic);
+        distance[e] =
+            silhouetteDistance(position[e], normal[e], view.eyeOrDirectionF, view.orthographic);
     }
     const std::int8_t* row = c_triTable[cubeCase];
     for (int k = 0; row[k] >= 0; k += 3) {

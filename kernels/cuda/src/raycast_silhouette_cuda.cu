@@ -1,13 +1,11 @@
 // Host dispatch of method 2 on the GPU (kernels in raycast_kernels.cuh).
 
 #include "lw/kernels/cuda/raycast_silhouette_cuda.h"
-
 #include "marching_cubes_impl.cuh"
 #include "raycast_kernels.cuh"
 
-#include <cub/device/device_radix_sort.cuh>
-
 #include <algorithm>
+#include <cub/device/device_radix_sort.cuh>
 #include <utility>
 
 namespace lw::kernels::cuda {
@@ -20,12 +18,12 @@ struct RayCastSilhouetteCuda::Impl {
     glm::ivec3 macroDims{0};
     DeviceBuffer<std::uint8_t> mask;
     DeviceBuffer<rc::Counters> counters;
-    DeviceBuffer<SegmentEndpoints> segments; // phase 1's output, grown on demand
+    DeviceBuffer<SegmentEndpoints> segments;  // phase 1's output, grown on demand
     DeviceBuffer<std::uint32_t> segmentCells; // each segment's cell (voxel index): the sort key
     DeviceBuffer<SegmentEndpoints> sortedSegments;
     DeviceBuffer<std::uint32_t> sortedCells;
     DeviceBuffer<unsigned char> sortTemp;
-    DeviceBuffer<std::uint8_t> visible;      // phase 2's, two flags per segment
+    DeviceBuffer<std::uint8_t> visible; // phase 2's, two flags per segment
     double iso = 0.0;
     bool prepared = false;
     dispatch::StageTimer prepareTimer, renderTimer;
@@ -40,9 +38,13 @@ struct RayCastSilhouetteCuda::Impl {
 RayCastSilhouetteCuda::RayCastSilhouetteCuda() : m_impl(std::make_unique<Impl>()) {}
 RayCastSilhouetteCuda::~RayCastSilhouetteCuda() = default;
 
-void RayCastSilhouetteCuda::release() { m_impl = std::make_unique<Impl>(); }
+void RayCastSilhouetteCuda::release() {
+    m_impl = std::make_unique<Impl>();
+}
 
-double RayCastSilhouetteCuda::uploadMs() const { return m_impl->marchingCubes.uploadMs(); }
+double RayCastSilhouetteCuda::uploadMs() const {
+    return m_impl->marchingCubes.uploadMs();
+}
 
 CudaStatus RayCastSilhouetteCuda::setVolume(const VolumeView& hostVolume,
                                             const VoxelGridSetup& setup,
@@ -105,9 +107,8 @@ CudaStatus RayCastSilhouetteCuda::Impl::renderTyped(const rc::View& view, std::u
                                                     RayCastCudaFrame& frame) {
     MarchingCubesCuda::Impl& m = mc();
     cudaStream_t st = m.stream.get();
-    const std::size_t pixels =
-        std::size_t(view.camera.width > 0 ? view.camera.width : 0) *
-        std::size_t(view.camera.height > 0 ? view.camera.height : 0);
+    const std::size_t pixels = std::size_t(view.camera.width > 0 ? view.camera.width : 0) *
+                               std::size_t(view.camera.height > 0 ? view.camera.height : 0);
     LW_RETURN_IF_FAILED(mask.reserve(pixels > 0 ? pixels : 1, "cudaMalloc(mask)"));
     LW_RETURN_IF_FAILED(renderTimer.start(st));
     LW_CUDA_TRY(cudaMemsetAsync(mask.data(), 0, pixels, st), "cudaMemset(mask)");
@@ -118,12 +119,12 @@ CudaStatus RayCastSilhouetteCuda::Impl::renderTyped(const rc::View& view, std::u
         for (int attempt = 0; attempt < 2; ++attempt) {
             LW_CUDA_TRY(cudaMemsetAsync(counters.data(), 0, sizeof(rc::Counters), st),
                         "cudaMemset(counters)");
-            rc::findSegments<T><<<blocksFor(m.activeCount, tuning::kRayCastBlock),
-                                  tuning::kRayCastBlock, 0, st>>>(
-                g, m.activeVoxels.data(), m.activeCodes.data(), m.activeCount, view,
-                segments.data(), segmentCells.data(),
-                std::uint32_t(std::min(segments.capacity(), segmentCells.capacity())),
-                counters.data());
+            rc::findSegments<T>
+                <<<blocksFor(m.activeCount, tuning::kRayCastBlock), tuning::kRayCastBlock, 0, st>>>(
+                    g, m.activeVoxels.data(), m.activeCodes.data(), m.activeCount, view,
+                    segments.data(), segmentCells.data(),
+                    std::uint32_t(std::min(segments.capacity(), segmentCells.capacity())),
+                    counters.data());
             LW_CUDA_LAUNCHED("rc::findSegments");
             LW_CUDA_TRY(cudaMemcpyAsync(&counts, counters.data(), sizeof counts,
                                         cudaMemcpyDeviceToHost, st),
@@ -131,7 +132,8 @@ CudaStatus RayCastSilhouetteCuda::Impl::renderTyped(const rc::View& view, std::u
             LW_CUDA_TRY(cudaStreamSynchronize(st), "rc::findSegments");
             if (counts.segments <= std::min(segments.capacity(), segmentCells.capacity()))
                 break;
-            LW_RETURN_IF_FAILED(segments.reserve(std::size_t(counts.segments), "cudaMalloc(segments)"));
+            LW_RETURN_IF_FAILED(
+                segments.reserve(std::size_t(counts.segments), "cudaMalloc(segments)"));
             LW_RETURN_IF_FAILED(
                 segmentCells.reserve(std::size_t(counts.segments), "cudaMalloc(segmentCells)"));
         }
@@ -143,16 +145,14 @@ CudaStatus RayCastSilhouetteCuda::Impl::renderTyped(const rc::View& view, std::u
             LW_RETURN_IF_FAILED(sortedCells.reserve(found, "cudaMalloc(sortedCells)"));
             std::size_t bytes = 0;
             const int keyBits = 32 - __builtin_clz(std::max(m.activeVoxelLimit(), 1u));
-            LW_CUDA_TRY(cub::DeviceRadixSort::SortPairs(nullptr, bytes, segmentCells.data(),
-                                                        sortedCells.data(), segments.data(),
-                                                        sortedSegments.data(), found, 0, keyBits,
-                                                        st),
+            LW_CUDA_TRY(cub::DeviceRadixSort::SortPairs(
+                            nullptr, bytes, segmentCells.data(), sortedCells.data(),
+                            segments.data(), sortedSegments.data(), found, 0, keyBits, st),
                         "cub::DeviceRadixSort(segments)");
             LW_RETURN_IF_FAILED(sortTemp.reserve(bytes, "cudaMalloc(sortTemp)"));
-            LW_CUDA_TRY(cub::DeviceRadixSort::SortPairs(sortTemp.data(), bytes, segmentCells.data(),
-                                                        sortedCells.data(), segments.data(),
-                                                        sortedSegments.data(), found, 0, keyBits,
-                                                        st),
+            LW_CUDA_TRY(cub::DeviceRadixSort::SortPairs(
+                            sortTemp.data(), bytes, segmentCells.data(), sortedCells.data(),
+                            segments.data(), sortedSegments.data(), found, 0, keyBits, st),
                         "cub::DeviceRadixSort(segments)");
             swap(segments, sortedSegments); // dispatch::swap (ADL): the buffers trade places
         }
@@ -165,16 +165,17 @@ CudaStatus RayCastSilhouetteCuda::Impl::renderTyped(const rc::View& view, std::u
         rule.cellScale = rayGrid.cellScale;
         rule.iso = iso;
         if (found > 0 && view.visibility && view.alongSegment) {
-            rc::drawAlongSegments<T><<<blocksFor(found, tuning::kRayBlock), tuning::kRayBlock, 0,
-                                       st>>>(rule, view, segments.data(), found, mask.data());
+            rc::drawAlongSegments<T>
+                <<<blocksFor(found, tuning::kRayBlock), tuning::kRayBlock, 0, st>>>(
+                    rule, view, segments.data(), found, mask.data());
             LW_CUDA_LAUNCHED("rc::drawAlongSegments");
         } else if (found > 0) {
             const std::uint8_t* visibleFlags = nullptr;
             if (view.visibility) {
                 LW_RETURN_IF_FAILED(visible.reserve(2 * std::size_t(found), "cudaMalloc(visible)"));
-                rc::testEndpoints<T><<<blocksFor(2 * std::size_t(found), tuning::kRayBlock),
-                                       tuning::kRayBlock, 0, st>>>(rule, view, segments.data(),
-                                                                   found, visible.data());
+                rc::testEndpoints<T>
+                    <<<blocksFor(2 * std::size_t(found), tuning::kRayBlock), tuning::kRayBlock, 0,
+                       st>>>(rule, view, segments.data(), found, visible.data());
                 LW_CUDA_LAUNCHED("rc::testEndpoints");
                 visibleFlags = visible.data();
             }

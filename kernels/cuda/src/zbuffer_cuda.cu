@@ -1,8 +1,7 @@
 // Host dispatch of method 3 on the GPU (kernels in zbuffer_kernels.cuh).
 
-#include "lw/kernels/cuda/zbuffer_cuda.h"
-
 #include "dispatch.h"
+#include "lw/kernels/cuda/zbuffer_cuda.h"
 #include "tuning.h"
 #include "zbuffer_kernels.cuh"
 
@@ -28,7 +27,9 @@ struct ZBufferCuda::Impl {
 
 ZBufferCuda::ZBufferCuda() : m_impl(std::make_unique<Impl>()) {}
 
-void ZBufferCuda::release() { m_impl = std::make_unique<Impl>(); }
+void ZBufferCuda::release() {
+    m_impl = std::make_unique<Impl>();
+}
 
 std::size_t ZBufferCuda::deviceBytes() const {
     const Impl& s = *m_impl;

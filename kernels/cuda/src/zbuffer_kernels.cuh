@@ -68,8 +68,8 @@ __global__ void drawSilhouettes(const glm::vec3* positions, const std::uint32_t*
 }
 
 __global__ void drawTriangles(const std::uint32_t* indices, std::uint32_t triangleCount,
-                              const ScreenVertex* screen, int width, int height,
-                              bool cullBackFaces, std::uint32_t* surface) {
+                              const ScreenVertex* screen, int width, int height, bool cullBackFaces,
+                              std::uint32_t* surface) {
     const std::uint32_t t = blockIdx.x * blockDim.x + threadIdx.x;
     if (t >= triangleCount)
         return;

@@ -4,19 +4,16 @@
 #include "lw/render/renderer_factory.h"
 
 #if LINEWORK_CUDA
+#include "cuda/cuda_support.h"
 #include "lw/kernels/cpu/marching_cubes_cpu.h"
 #include "lw/kernels/cuda/marching_cubes_cuda.h"
-#include "cuda/cuda_support.h"
 #endif
 
 namespace lw::render {
 
 #if LINEWORK_CUDA
 namespace {
-void throwIfFailed(const kernels::cuda::CudaStatus& status) {
-    if (!status.ok())
-        throw core::Error("marching cubes (CUDA)", status.describe());
-}
+constexpr std::string_view kWhere = "marching cubes (CUDA)";
 } // namespace
 
 struct CudaIsoSurfaceExtractor::Impl {
@@ -29,24 +26,28 @@ CudaIsoSurfaceExtractor::CudaIsoSurfaceExtractor(const volume::Volume& volume) {
     if (!cuda.available)
         throw core::Error("marching cubes (CUDA)", cuda.reason);
     m_impl.reset(new Impl{volume});
-    throwIfFailed(m_impl->marchingCubes.setVolume(hostVolumeView(volume),
-                                                   kernels::cpu::voxelGridSetup(volume)));
+    throwIfCudaFailed(kWhere, m_impl->marchingCubes.setVolume(
+                                  hostVolumeView(volume), kernels::cpu::voxelGridSetup(volume)));
 }
 
 CudaIsoSurfaceExtractor::~CudaIsoSurfaceExtractor() = default;
 
-double CudaIsoSurfaceExtractor::uploadMs() const { return m_impl->marchingCubes.uploadMs(); }
+double CudaIsoSurfaceExtractor::uploadMs() const {
+    return m_impl->marchingCubes.uploadMs();
+}
 
 CudaExtraction CudaIsoSurfaceExtractor::extract(double isoReal) {
-    throwIfFailed(m_impl->marchingCubes.extract(storedIsoValue(m_impl->volume, isoReal)));
+    throwIfCudaFailed(kWhere,
+                      m_impl->marchingCubes.extract(storedIsoValue(m_impl->volume, isoReal)));
     const kernels::cuda::DeviceMeshView mesh = m_impl->marchingCubes.mesh();
     const kernels::cuda::McCudaTimes& t = m_impl->marchingCubes.times();
-    return {mesh.triangleCount, mesh.vertexCount, t.totalMs(), t.bricksMs, t.classifyMs,
-            t.countMs, t.generateMs};
+    return {mesh.triangleCount, mesh.vertexCount, t.totalMs(), t.bricksMs,
+            t.classifyMs,       t.countMs,        t.generateMs};
 }
 
 void CudaIsoSurfaceExtractor::download(Mesh& mesh) const {
-    throwIfFailed(m_impl->marchingCubes.download(mesh.positions, mesh.normals, mesh.indices));
+    throwIfCudaFailed(kWhere,
+                      m_impl->marchingCubes.download(mesh.positions, mesh.normals, mesh.indices));
 }
 #else
 struct CudaIsoSurfaceExtractor::Impl {};
@@ -55,8 +56,12 @@ CudaIsoSurfaceExtractor::CudaIsoSurfaceExtractor(const volume::Volume&) {
     throw core::Error("marching cubes (CUDA)", cudaAvailability().reason);
 }
 CudaIsoSurfaceExtractor::~CudaIsoSurfaceExtractor() = default;
-double CudaIsoSurfaceExtractor::uploadMs() const { return 0.0; }
-CudaExtraction CudaIsoSurfaceExtractor::extract(double) { return {}; }
+double CudaIsoSurfaceExtractor::uploadMs() const {
+    return 0.0;
+}
+CudaExtraction CudaIsoSurfaceExtractor::extract(double) {
+    return {};
+}
 void CudaIsoSurfaceExtractor::download(Mesh&) const {}
 #endif
 

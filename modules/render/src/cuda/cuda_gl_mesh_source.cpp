@@ -16,10 +16,7 @@ namespace {
 
 constexpr core::LogCategory kLog("lw.render");
 
-void throwIfFailed(const kernels::cuda::CudaStatus& status) {
-    if (!status.ok())
-        throw core::Error("method 1 (CUDA)", status.describe());
-}
+constexpr std::string_view kWhere = "method 1 (CUDA)";
 
 class CudaGlMeshSource final : public GlMeshSource {
 public:
@@ -34,17 +31,19 @@ public:
         if (!m_volume)
             throw core::Error("method 1 (CUDA)", "no volume bound");
         if (!m_uploaded) {
-            throwIfFailed(m_marchingCubes.setVolume(hostVolumeView(*m_volume),
-                                                    kernels::cpu::voxelGridSetup(*m_volume)));
+            throwIfCudaFailed(kWhere,
+                              m_marchingCubes.setVolume(hostVolumeView(*m_volume),
+                                                        kernels::cpu::voxelGridSetup(*m_volume)));
             m_uploaded = true;
         }
-        throwIfFailed(m_marchingCubes.extract(storedIsoValue(*m_volume, settings.isoReal)));
+        throwIfCudaFailed(kWhere,
+                          m_marchingCubes.extract(storedIsoValue(*m_volume, settings.isoReal)));
         const kernels::cuda::DeviceMeshView mesh = m_marchingCubes.mesh();
         gl.reserveMesh(mesh.vertexCount, mesh.triangleCount);
         if (m_interopWorks) {
-            const kernels::cuda::CudaStatus copied = m_interop.copy(
-                mesh, {gl.positionBuffer(), gl.normalBuffer(), gl.indexBuffer(),
-                       gl.storageGeneration()});
+            const kernels::cuda::CudaStatus copied =
+                m_interop.copy(mesh, {gl.positionBuffer(), gl.normalBuffer(), gl.indexBuffer(),
+                                      gl.storageGeneration()});
             if (copied.ok())
                 return;
             // E.g. the GL context runs on another device (Mesa) than CUDA: the host round trip
@@ -55,12 +54,14 @@ public:
             m_interopWorks = false;
         }
         Mesh host;
-        throwIfFailed(m_marchingCubes.download(host.positions, host.normals, host.indices));
+        throwIfCudaFailed(kWhere,
+                          m_marchingCubes.download(host.positions, host.normals, host.indices));
         gl.uploadMesh(host);
     }
 
     void download(Mesh& mesh) override {
-        throwIfFailed(m_marchingCubes.download(mesh.positions, mesh.normals, mesh.indices));
+        throwIfCudaFailed(kWhere,
+                          m_marchingCubes.download(mesh.positions, mesh.normals, mesh.indices));
     }
 
     bool writeLineCandidates(SilhouetteGlRenderer& gl, const Camera& camera,

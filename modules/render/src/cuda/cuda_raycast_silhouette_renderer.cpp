@@ -1,7 +1,6 @@
 #include "cuda_raycast_silhouette_renderer.h"
 
 #include "cuda_support.h"
-
 #include "lw/core/error.h"
 #include "lw/core/log.h"
 #include "lw/kernels/cpu/marching_cubes_cpu.h"
@@ -44,20 +43,13 @@ kernels::PixelCamera pixelCamera(const Camera& camera) {
     return c;
 }
 
-// The walk's grid and the cell widths in grid units, as the CPU engine sets them up.
+// The walk's grid and its cell widths, from the CPU engine's VoxelRayGrid.
 kernels::cuda::RayGridSetup rayGridSetup(const volume::Volume& volume) {
     const kernels::cpu::VoxelRayGrid grid(volume);
     kernels::cuda::RayGridSetup setup;
     setup.offsets = grid.offsets();
     setup.view = grid.view();
-    const glm::ivec3 dims = volume.dims();
-    const kernels::VoxelGridSetup voxelGrid = kernels::cpu::voxelGridSetup(volume);
-    const std::vector<double>& offset = voxelGrid.sliceOffsets();
-    const int cz = dims.z - 1;
-    setup.cellScale = glm::dvec3(
-        1.0, 1.0, dims.z > 1 ? std::abs(offset.back() - offset.front()) / cz : 1.0);
-    if (!(setup.cellScale.z > 0.0))
-        setup.cellScale.z = 1.0;
+    setup.cellScale = grid.cellScale();
     return setup;
 }
 
@@ -70,7 +62,7 @@ struct CudaRayCastSilhouetteRenderer::State {
     bool prepared = false;
     double preparedIso = std::numeric_limits<double>::quiet_NaN();
     ChunkedOnCpu<RayCastSilhouetteRenderer> chunked; // L frames (see the header)
-    bool onCpu = false; // ran out of device memory with this volume
+    bool onCpu = false;                              // ran out of device memory with this volume
 };
 
 CudaRayCastSilhouetteRenderer::CudaRayCastSilhouetteRenderer()
@@ -91,7 +83,7 @@ void CudaRayCastSilhouetteRenderer::setVolume(const volume::Volume& volume) {
 }
 
 SilhouetteFrame CudaRayCastSilhouetteRenderer::render(const Camera& camera,
-                                                       const SilhouetteSettings& settings) {
+                                                      const SilhouetteSettings& settings) {
     State& s = *m_state;
     if (s.onCpu) {
         SilhouetteFrame frame;
@@ -114,7 +106,7 @@ SilhouetteFrame CudaRayCastSilhouetteRenderer::render(const Camera& camera,
 }
 
 SilhouetteFrame CudaRayCastSilhouetteRenderer::renderOnGpu(const Camera& camera,
-                                                            const SilhouetteSettings& settings) {
+                                                           const SilhouetteSettings& settings) {
     State& s = *m_state;
     if (!s.volume)
         throw core::Error("method 2 (CUDA)", "no volume bound (setVolume)");
@@ -132,8 +124,7 @@ SilhouetteFrame CudaRayCastSilhouetteRenderer::renderOnGpu(const Camera& camera,
     }
     kernels::cuda::RayCastCudaFrame timing;
     const double storedIso = storedIsoValue(*s.volume, settings.isoReal);
-    if (!s.prepared || s.preparedIso != storedIso ||
-        settings.mode == ExtractionMode::EveryFrameB) {
+    if (!s.prepared || s.preparedIso != storedIso || settings.mode == ExtractionMode::EveryFrameB) {
         s.prepared = false;
         throwIfFailed(s.kernels.prepare(storedIso, timing));
         s.prepared = true;

@@ -1,16 +1,27 @@
 #pragma once
 
-// What the CUDA renderers share: the host volume as the kernels see it, and the CPU fallback for
+// What the CUDA renderers share: failed statuses as errors, the host volume as the kernels see it,
+// and the CPU fallback for
 // the chunked (L) variant, which runs on the CPU renderer of the same method until bricks stream
 // through a device memory budget (issue 8, item 7).
 
+#include "lw/core/error.h"
+#include "lw/kernels/cuda/cuda_status.h"
 #include "lw/kernels/volume_view.h"
 #include "lw/render/silhouette_renderer.h"
 #include "lw/volume/volume.h"
 
 #include <memory>
+#include <string>
+#include <string_view>
 
 namespace lw::render {
+
+// A failed status as core::Error("<where>", "<kernel or call>: <CUDA error>").
+inline void throwIfCudaFailed(std::string_view where, const kernels::cuda::CudaStatus& status) {
+    if (!status.ok())
+        throw core::Error(std::string(where), status.describe());
+}
 
 inline kernels::VolumeView hostVolumeView(const volume::Volume& volume) {
     static_assert(int(kernels::VoxelKind::UInt8) == int(volume::VoxelType::UInt8) &&
@@ -35,14 +46,9 @@ public:
     // false, and the caller renders on the GPU.
     bool render(const Camera& camera, const SilhouetteSettings& settings, SilhouetteFrame& frame) {
         m_lastFrame = settings.brickCells > 0;
-        if (!m_lastFrame)
-            return false;
-        if (!m_renderer) {
-            m_renderer = std::make_unique<CpuRenderer>();
-            m_renderer->setVolume(*m_volume);
-        }
-        frame = m_renderer->render(camera, settings);
-        return true;
+        if (m_lastFrame)
+            renderAlways(camera, settings, frame);
+        return m_lastFrame;
     }
     // Every frame on the CPU (after the device ran out of memory).
     void renderAlways(const Camera& camera, const SilhouetteSettings& settings,

@@ -11,6 +11,7 @@
 #include "lw/render/zbuffer_silhouette_renderer.h"
 
 #include <chrono>
+#include <cmath>
 #include <limits>
 #include <string>
 
@@ -20,10 +21,7 @@ namespace {
 using kernels::cuda::CudaStatus;
 constexpr core::LogCategory kLog("lw.render");
 
-void throwIfFailed(const CudaStatus& status) {
-    if (!status.ok())
-        throw core::Error("method 3 (CUDA)", status.describe());
-}
+constexpr std::string_view kWhere = "method 3 (CUDA)";
 
 double msSince(std::chrono::steady_clock::time_point start) {
     return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
@@ -55,9 +53,8 @@ struct CudaZBufferSilhouetteRenderer::State {
     CudaStatus renderSlabs(const Camera& camera, const SilhouetteSettings& settings,
                            std::size_t budget, SilhouetteFrame& frame);
     CudaStatus draw(const Camera& camera, const SilhouetteSettings& settings, bool closed,
-                    const kernels::cuda::DeviceMeshView* mesh,
-                    const std::vector<glm::ivec2>* slabs, double storedIso,
-                    SilhouetteFrame& frame);
+                    const kernels::cuda::DeviceMeshView* mesh, const std::vector<glm::ivec2>* slabs,
+                    double storedIso, SilhouetteFrame& frame);
     std::size_t imageBytes(const Camera& camera) const {
         // zbuffer1, zbuffer2 (4 bytes a pixel each) and the mask.
         return std::size_t(camera.width()) * std::size_t(camera.height()) * 9;
@@ -72,11 +69,12 @@ std::string_view CudaZBufferSilhouetteRenderer::backendName() const {
     return m_state->last == GpuResidency::Cpu ? "cpu" : "cuda";
 }
 
-GpuResidency CudaZBufferSilhouetteRenderer::lastResidency() const { return m_state->last; }
+GpuResidency CudaZBufferSilhouetteRenderer::lastResidency() const {
+    return m_state->last;
+}
 
 double CudaZBufferSilhouetteRenderer::uploadMs() const {
-    return m_state->resident == GpuResidency::WholeVolume ? m_state->marchingCubes.uploadMs()
-                                                           : 0.0;
+    return m_state->resident == GpuResidency::WholeVolume ? m_state->marchingCubes.uploadMs() : 0.0;
 }
 
 void CudaZBufferSilhouetteRenderer::setVolume(const volume::Volume& volume) {
@@ -95,10 +93,11 @@ const Mesh* CudaZBufferSilhouetteRenderer::surfaceMesh() const {
     const State& s = *m_state;
     if (s.last == GpuResidency::Cpu && s.cpu)
         return s.cpu->surfaceMesh();
-    if (!s.hostMeshValid && s.volume && !(s.lastIso != s.lastIso)) {
+    if (!s.hostMeshValid && s.volume && !std::isnan(s.lastIso)) {
         if (s.last == GpuResidency::WholeVolume && s.meshValid)
-            throwIfFailed(s.marchingCubes.download(s.hostMesh.positions, s.hostMesh.normals,
-                                                   s.hostMesh.indices));
+            throwIfCudaFailed(kWhere,
+                              s.marchingCubes.download(s.hostMesh.positions, s.hostMesh.normals,
+                                                       s.hostMesh.indices));
         else // slab frames keep no whole mesh: the CPU extracts it for the caller that asks
             extractIsoSurface(*s.volume, s.lastIso, IsoSurfaceOptions{}, s.hostMesh);
         s.hostMeshValid = true;
@@ -106,10 +105,12 @@ const Mesh* CudaZBufferSilhouetteRenderer::surfaceMesh() const {
     return &s.hostMesh;
 }
 
-CudaStatus CudaZBufferSilhouetteRenderer::State::draw(
-    const Camera& camera, const SilhouetteSettings& settings, bool closed,
-    const kernels::cuda::DeviceMeshView* mesh, const std::vector<glm::ivec2>* slabs,
-    double storedIso, SilhouetteFrame& frame) {
+CudaStatus CudaZBufferSilhouetteRenderer::State::draw(const Camera& camera,
+                                                      const SilhouetteSettings& settings,
+                                                      bool closed,
+                                                      const kernels::cuda::DeviceMeshView* mesh,
+                                                      const std::vector<glm::ivec2>* slabs,
+                                                      double storedIso, SilhouetteFrame& frame) {
     kernels::cuda::ZBufferCudaSettings zb;
     zb.visibility = settings.visibility;
     zb.cullBackFaces = closed;
@@ -178,8 +179,8 @@ CudaStatus CudaZBufferSilhouetteRenderer::State::renderSlabs(const Camera& camer
     if (resident != GpuResidency::Slabs) {
         meshValid = false;
         resident = GpuResidency::Cpu;
-        LW_RETURN_IF_FAILED(marchingCubes.setStreamedVolume(
-            hostVolumeView(*volume), kernels::cpu::voxelGridSetup(*volume)));
+        LW_RETURN_IF_FAILED(marchingCubes.setStreamedVolume(hostVolumeView(*volume),
+                                                            kernels::cpu::voxelGridSetup(*volume)));
         resident = GpuResidency::Slabs;
     }
     hostMeshValid = false;
@@ -195,22 +196,21 @@ CudaStatus CudaZBufferSilhouetteRenderer::State::renderSlabs(const Camera& camer
 }
 
 SilhouetteFrame CudaZBufferSilhouetteRenderer::render(const Camera& camera,
-                                                       const SilhouetteSettings& settings) {
+                                                      const SilhouetteSettings& settings) {
     State& s = *m_state;
     if (!s.volume)
-        throw core::Error("method 3 (CUDA)", "no volume bound: call setVolume first");
+        throw core::Error(std::string(kWhere), "no volume bound: call setVolume first");
     if (settings.brickCells < 0)
-        throw core::Error("method 3 (CUDA)", "brickCells must be 0 (whole volume) or positive");
+        throw core::Error(std::string(kWhere), "brickCells must be 0 (whole volume) or positive");
     if (settings.cancel && settings.cancel->isCancelled())
         throw core::Cancelled();
     s.lastIso = settings.isoReal;
     std::size_t budget = settings.gpuMemoryBudget;
     if (budget == 0) // what is free plus what this renderer holds already
-        budget = defaultGpuBudget(kernels::cuda::freeDeviceBytes() +
-                                  s.marchingCubes.deviceBytes() + s.zbuffer.deviceBytes());
-    GpuResidency where =
-        chooseResidency(s.volume->dims(), volume::voxelSize(s.volume->voxelType()), budget,
-                        s.imageBytes(camera), settings.brickCells > 0);
+        budget = defaultGpuBudget(kernels::cuda::freeDeviceBytes() + s.marchingCubes.deviceBytes() +
+                                  s.zbuffer.deviceBytes());
+    GpuResidency where = chooseResidency(s.volume->dims(), volume::voxelSize(s.volume->voxelType()),
+                                         budget, s.imageBytes(camera), settings.brickCells > 0);
     if (int(where) < int(s.floor))
         where = s.floor;
     for (;;) {
@@ -236,7 +236,7 @@ SilhouetteFrame CudaZBufferSilhouetteRenderer::render(const Camera& camera,
         if (status.ok())
             return frame;
         if (status.code != CudaStatus::Code::OutOfMemory)
-            throwIfFailed(status);
+            throwIfCudaFailed(kWhere, status);
         const GpuResidency next = afterOutOfMemory(where);
         kLog.warning("method 3 (CUDA): out of device memory with the " +
                      std::string(residencyName(where)) + " (" + status.describe() +

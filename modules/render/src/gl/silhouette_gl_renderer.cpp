@@ -568,17 +568,18 @@ void SilhouetteGlRenderer::readRedMask(std::uint8_t backgroundRed,
                                        std::vector<std::uint8_t>& mask) const {
     if (!m_framebuffer)
         throw core::Error("GL read-back", "nothing has been rendered yet");
-    std::vector<std::uint8_t> red(std::size_t(m_width) * std::size_t(m_height));
-    readFramebuffer(m_framebuffer, 0, 0, m_width, m_height, GL_RED, GL_UNSIGNED_BYTE, red.data(),
+    // Read straight into the mask (no second buffer per frame), then turn GL's bottom-up rows
+    // around and threshold in place.
+    const std::size_t width = std::size_t(m_width);
+    mask.resize(width * std::size_t(m_height));
+    readFramebuffer(m_framebuffer, 0, 0, m_width, m_height, GL_RED, GL_UNSIGNED_BYTE, mask.data(),
                     "SilhouetteGlRenderer::readRedMask");
-    mask.resize(red.size());
-    // GL's first row is the bottom one.
-    for (int y = 0; y < m_height; ++y) {
-        const std::uint8_t* from = red.data() + std::size_t(m_height - 1 - y) * std::size_t(m_width);
-        std::uint8_t* to = mask.data() + std::size_t(y) * std::size_t(m_width);
-        for (int x = 0; x < m_width; ++x)
-            to[x] = from[x] != backgroundRed ? 1 : 0;
-    }
+    for (int y = 0; y < m_height / 2; ++y)
+        std::swap_ranges(mask.begin() + std::ptrdiff_t(std::size_t(y) * width),
+                         mask.begin() + std::ptrdiff_t(std::size_t(y + 1) * width),
+                         mask.begin() + std::ptrdiff_t(std::size_t(m_height - 1 - y) * width));
+    for (std::uint8_t& red : mask)
+        red = red != backgroundRed ? 1 : 0;
 }
 
 std::vector<float> SilhouetteGlRenderer::readDepth() const {

@@ -65,6 +65,13 @@ public:
     }
     // Slice offsets after the flip described above (increasing).
     const std::vector<double>& offsets() const { return m_offsets; }
+    // Cell widths in grid units (i, j, s): the mean slab thickness along s. The visibility rule
+    // measures its self-occlusion distances in these units.
+    glm::dvec3 cellScale() const {
+        const double s =
+            m_dims.z > 1 ? std::abs(m_offsets.back() - m_offsets.front()) / (m_dims.z - 1) : 1.0;
+        return glm::dvec3(1.0, 1.0, s > 0.0 ? s : 1.0);
+    }
 
     // RayGridView::cellOf and ::walk (voxel_ray_walk.h).
     bool cellOf(glm::dvec3 u, glm::dvec3 direction, glm::ivec3& cell) const {

@@ -36,10 +36,9 @@ struct CudaStatus {
 } // namespace lw::kernels::cuda
 
 // Returns a failed status from the enclosing function (which returns CudaStatus).
-#define LW_RETURN_IF_FAILED(statusExpr)                                                           \
-    do {                                                                                          \
-        ::lw::kernels::cuda::CudaStatus lwStatus_ = (statusExpr);                                 \
-        if (!lwStatus_.ok())                                                                      \
-            return lwStatus_;                                                                     \
+#define LW_RETURN_IF_FAILED(statusExpr)                                                            \
+    do {                                                                                           \
+        ::lw::kernels::cuda::CudaStatus lwStatus_ = (statusExpr);                                  \
+        if (!lwStatus_.ok())                                                                       \
+            return lwStatus_;                                                                      \
     } while (0)
-

@@ -17,7 +17,7 @@ namespace lw::kernels::cuda {
 struct GlMeshBuffers {
     unsigned positions = 0; // GL buffer names; positions and normals 3 floats a vertex
     unsigned normals = 0;
-    unsigned indices = 0;   // uint32, three a triangle
+    unsigned indices = 0;       // uint32, three a triangle
     std::size_t generation = 0; // changes when GL reallocated the storage
 };
 

@@ -56,7 +56,7 @@ public:
     // Uploads the voxels (host memory) and the grid tables of `setup`, and computes the brick
     // min/max on the device. The host volume is not referenced afterwards.
     CudaStatus setVolume(const VolumeView& hostVolume, const VoxelGridSetup& setup);
-    double uploadMs() const;     // host -> device copy of the voxels, CUDA events
+    double uploadMs() const;         // host -> device copy of the voxels, CUDA events
     std::size_t deviceBytes() const; // device memory held now
 
     // Extracts the surface at `storedIso` (stored units; inside = value >= iso).

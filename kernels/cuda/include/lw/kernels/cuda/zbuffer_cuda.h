@@ -26,8 +26,8 @@ struct ZBufferCudaFrame {
 };
 
 struct ZBufferCudaSettings {
-    float epsilon = 0.0f;      // depth tolerance of the colour pass (keys)
-    bool visibility = true;    // false: every segment pixel is drawn
+    float epsilon = 0.0f;       // depth tolerance of the colour pass (keys)
+    bool visibility = true;     // false: every segment pixel is drawn
     bool cullBackFaces = false; // only exact for a closed surface
 };
 
@@ -49,7 +49,7 @@ public:
                        ZBufferCudaFrame& frame);
 
     std::size_t deviceBytes() const; // buffers held now
-    void release(); // frees every buffer (after running out of memory)
+    void release();                  // frees every buffer (after running out of memory)
 
     struct Impl;
 
