@@ -11,6 +11,7 @@
 #include <QRadioButton>
 #include <QSettings>
 #include <QSignalSpy>
+#include <QSpinBox>
 #include <QtTest>
 
 using namespace lw::gui;
@@ -52,6 +53,7 @@ void SettingsTest::roundTripThroughQSettings() {
     settings.method = lw::render::SilhouetteMethod(method);
     settings.chunking = Chunking(chunking);
     settings.fixedBrickCells = 48;
+    settings.gpuMemoryBudgetMiB = method * 256; // 0 (automatic) is the default: another value
     settings.mode =
         modeB ? lw::render::ExtractionMode::EveryFrameB : lw::render::ExtractionMode::CachedA;
     settings.projection =
@@ -74,9 +76,11 @@ void SettingsTest::brokenValuesFallBackToDefaults() {
     store.setValue("review/method", 7);
     store.setValue("review/lineColour", "not a colour");
     store.setValue("review/brickCells", "many");
+    store.setValue("review/gpuMemoryBudgetMiB", -5);
     const ReviewSettings loaded = ReviewSettings::load(store);
     const ReviewSettings defaults;
-    QCOMPARE(int(loaded.method), 3); // clamped into 1..3
+    QCOMPARE(int(loaded.method), 3);        // clamped into 1..3
+    QCOMPARE(loaded.gpuMemoryBudgetMiB, 0); // clamped: automatic
     QCOMPARE(loaded.lineColour, defaults.lineColour);
     QCOMPARE(loaded.fixedBrickCells, defaults.fixedBrickCells);
     QCOMPARE(loaded.presets, ReviewSettings::defaultPresets());
@@ -96,11 +100,18 @@ void SettingsTest::dialogReportsChangesAndStoresThem() {
     dialog.findChild<QComboBox*>("chunking")->setCurrentIndex(int(Chunking::Fixed));
     QCOMPARE(changed.size(), 2);
     QCOMPARE(dialog.settings().chunking, Chunking::Fixed);
+    auto* gpuBudget = dialog.findChild<QSpinBox*>("gpuMemoryBudget");
+    QVERIFY(gpuBudget);
+    QCOMPARE(gpuBudget->text(), QString("Automatic (free memory less a margin)")); // 0
+    gpuBudget->setValue(512);
+    QCOMPARE(changed.size(), 3);
+    QCOMPARE(dialog.settings().gpuMemoryBudgetMiB, 512);
     // Applied live and kept for the next start.
     QSettings store;
     const ReviewSettings stored = ReviewSettings::load(store);
     QCOMPARE(int(stored.method), 1);
     QCOMPARE(stored.chunking, Chunking::Fixed);
+    QCOMPARE(stored.gpuMemoryBudgetMiB, 512);
 }
 
 void SettingsTest::cudaIsGreyedOutWithTheReason() {

@@ -244,6 +244,7 @@ void ReviewWidget::requestFrame(bool newIso) {
     request.settings.mode = m_settings.mode;
     request.settings.visibility = m_settings.visibility;
     request.settings.testAlongSegment = m_settings.testAlongSegment;
+    request.settings.gpuMemoryBudget = std::size_t(m_settings.gpuMemoryBudgetMiB) << 20;
     request.settings.isoReal = m_iso;
     request.wantSilhouette = !methodOneInPanel();
     request.wantMesh = newIso || !m_meshCurrent || (modeB && methodOneInPanel());

@@ -53,6 +53,8 @@ ReviewSettings ReviewSettings::load(QSettings& settings) {
     s.chunking = Chunking(clampInt(settings.value("chunking"), 0, 2, int(s.chunking)));
     s.fixedBrickCells = clampInt(settings.value("brickCells"), 8, 1024, s.fixedBrickCells);
     s.memoryBudgetMiB = clampInt(settings.value("memoryBudgetMiB"), 64, 1 << 20, s.memoryBudgetMiB);
+    s.gpuMemoryBudgetMiB =
+        clampInt(settings.value("gpuMemoryBudgetMiB"), 0, 1 << 20, s.gpuMemoryBudgetMiB);
     s.mode = settings.value("mode", "a").toString() == "b" ? render::ExtractionMode::EveryFrameB
                                                            : render::ExtractionMode::CachedA;
     s.visibility = settings.value("visibility", s.visibility).toBool();
@@ -80,6 +82,7 @@ void ReviewSettings::save(QSettings& settings) const {
     settings.setValue("chunking", int(chunking));
     settings.setValue("brickCells", fixedBrickCells);
     settings.setValue("memoryBudgetMiB", memoryBudgetMiB);
+    settings.setValue("gpuMemoryBudgetMiB", gpuMemoryBudgetMiB);
     settings.setValue("mode", mode == render::ExtractionMode::EveryFrameB ? "b" : "a");
     settings.setValue("visibility", visibility);
     settings.setValue("alongSegment", testAlongSegment);

@@ -36,6 +36,9 @@ struct ReviewSettings {
     Chunking chunking = Chunking::Auto;
     int fixedBrickCells = 64;   // Chunking::Fixed
     int memoryBudgetMiB = 2048; // Chunking::Auto goes chunked (L) above this
+    // Device memory a CUDA frame may use (SilhouetteSettings::gpuMemoryBudget); 0 = automatic:
+    // the free device memory less a margin. Over it, frames stream slabs, then go to the CPU.
+    int gpuMemoryBudgetMiB = 0;
     render::ExtractionMode mode = render::ExtractionMode::CachedA;
     bool visibility = true;
     bool testAlongSegment = false; // method 2: along the segment, not only its endpoints

@@ -101,6 +101,16 @@ QWidget* SettingsDialog::makeMethodPage() {
     m_memoryBudget->setSingleStep(256);
     m_memoryBudget->setSuffix(tr(" MiB"));
     form->addRow(tr("Memory budget:"), m_memoryBudget);
+    m_gpuMemoryBudget = new QSpinBox;
+    m_gpuMemoryBudget->setObjectName("gpuMemoryBudget");
+    m_gpuMemoryBudget->setRange(0, 1 << 20);
+    m_gpuMemoryBudget->setSingleStep(256);
+    m_gpuMemoryBudget->setSuffix(tr(" MiB"));
+    m_gpuMemoryBudget->setSpecialValueText(tr("Automatic (free memory less a margin)"));
+    m_gpuMemoryBudget->setToolTip(tr("Device memory a CUDA frame may use. Above it the volume "
+                                     "streams through the GPU in slabs; below what one slab "
+                                     "needs, the frame is drawn on the CPU."));
+    form->addRow(tr("GPU memory budget:"), m_gpuMemoryBudget);
 
     m_mode = new QComboBox;
     m_mode->setObjectName("mode");
@@ -134,7 +144,7 @@ QWidget* SettingsDialog::makeMethodPage() {
     connect(m_backend, &QButtonGroup::idClicked, this, [this] { readControls(); });
     for (QComboBox* box : {m_chunking, m_mode})
         connect(box, &QComboBox::currentIndexChanged, this, [this] { readControls(); });
-    for (QSpinBox* box : {m_brickCells, m_memoryBudget})
+    for (QSpinBox* box : {m_brickCells, m_memoryBudget, m_gpuMemoryBudget})
         connect(box, &QSpinBox::valueChanged, this, [this] { readControls(); });
     for (QCheckBox* box : {m_visibility, m_alongSegment})
         connect(box, &QCheckBox::toggled, this, [this] { readControls(); });
@@ -221,6 +231,7 @@ void SettingsDialog::showSettings() {
     m_chunking->setCurrentIndex(int(m_settings.chunking));
     m_brickCells->setValue(m_settings.fixedBrickCells);
     m_memoryBudget->setValue(m_settings.memoryBudgetMiB);
+    m_gpuMemoryBudget->setValue(m_settings.gpuMemoryBudgetMiB);
     m_mode->setCurrentIndex(m_settings.mode == render::ExtractionMode::EveryFrameB ? 1 : 0);
     m_visibility->setChecked(m_settings.visibility);
     m_alongSegment->setChecked(m_settings.testAlongSegment);
@@ -249,6 +260,7 @@ void SettingsDialog::readControls() {
     s.chunking = Chunking(m_chunking->currentIndex());
     s.fixedBrickCells = m_brickCells->value();
     s.memoryBudgetMiB = m_memoryBudget->value();
+    s.gpuMemoryBudgetMiB = m_gpuMemoryBudget->value();
     s.mode = m_mode->currentIndex() == 1 ? render::ExtractionMode::EveryFrameB
                                          : render::ExtractionMode::CachedA;
     s.visibility = m_visibility->isChecked();
@@ -293,6 +305,8 @@ void SettingsDialog::pickColour(QColor& colour, QPushButton* button) {
 void SettingsDialog::updateEnabledControls() {
     m_brickCells->setEnabled(m_chunking->currentIndex() == int(Chunking::Fixed));
     m_memoryBudget->setEnabled(m_chunking->currentIndex() == int(Chunking::Auto));
+    m_gpuMemoryBudget->setEnabled(m_backend->checkedId() != int(render::Backend::Cpu) &&
+                                  cudaUnavailableReason().isEmpty());
     m_alongSegment->setEnabled(m_method->checkedId() == 2 && m_visibility->isChecked());
 }
 

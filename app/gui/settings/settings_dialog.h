@@ -44,6 +44,7 @@ private:
     QComboBox* m_chunking = nullptr;
     QSpinBox* m_brickCells = nullptr;
     QSpinBox* m_memoryBudget = nullptr;
+    QSpinBox* m_gpuMemoryBudget = nullptr;
     QComboBox* m_mode = nullptr;
     QCheckBox* m_visibility = nullptr;
     QCheckBox* m_alongSegment = nullptr;
