@@ -2,11 +2,15 @@
 # Where the GPU time goes (issue 11): Nsight Compute's kernel durations for the 512^3 phantom, one
 # bench frame per method, and the accuracy sweep with the CUDA back-end at sizes 32 and 256.
 # Run on the GPU machine after scripts/gpu_run.sh has built build-gpu (same device call):
-#   scripts/gpu_run.sh test && scripts/gpu_profile.sh "$OUT"
-# ncu runs with --clock-control none (the clocks the bench sees), one warm-up frame and two
-# measured ones (--repeat 2); kernel durations go to ncu_<what>.csv, a summary per kernel to stdout.
+#   scripts/gpu_run.sh test && scripts/gpu_profile.sh "$OUT" [mc m1a m2a m3b accuracy]
+# (default: all of them). ncu runs with --clock-control none (the clocks the bench sees), one
+# warm-up frame and two measured ones (--repeat 2); its report (CSV, after the bench's own output)
+# goes to ncu_<what>.csv, a summary per kernel to stdout.
 set -uo pipefail
 out=${1:-out/gpu}
+shift || true
+what=${*:-mc m1a m2a m3b accuracy}
+wanted() { [[ " $what " == *" $1 "* ]]; }
 cli=build-gpu/app/cli/linework-cli
 mkdir -p "$out"
 ncu=$(command -v ncu || ls /usr/local/cuda/bin/ncu 2>/dev/null || true)
@@ -14,10 +18,11 @@ rc=0
 profile() { # NAME METHOD MODE [more bench arguments]
     local name=$1 method=$2 mode=$3
     shift 3
+    wanted "$name" || return 0
     if [ -z "$ncu" ]; then echo "ncu not found: no kernel profile"; return; fi
-    "$ncu" --clock-control none --metrics gpu__time_duration.sum --csv --log-file "$out/ncu_$name.log" \
+    "$ncu" --clock-control none --metrics gpu__time_duration.sum --csv \
         "$cli" bench --backend cuda --sizes 512 --methods "$method" --variants S --modes "$mode" \
-        --repeat 2 --image 1024x1024 "$@" > "$out/ncu_$name.csv" 2>> "$out/ncu_$name.log" || rc=1
+        --repeat 2 --image 1024x1024 "$@" > "$out/ncu_$name.csv" 2> "$out/ncu_$name.log" || rc=1
     python3 - "$out/ncu_$name.csv" "$name" <<'PY'
 import csv, sys, collections
 path, name = sys.argv[1], sys.argv[2]
@@ -27,9 +32,10 @@ count = collections.Counter()
 for row in csv.DictReader(lines):
     if row.get("Metric Name") != "gpu__time_duration.sum":
         continue
-    kernel = row["Kernel Name"].split("(")[0].split("<")[0][:60]
+    kernel = row["Kernel Name"].split("(")[0][:70]
     value = float(row["Metric Value"].replace(",", ""))
-    scale = {"nsecond": 1e-6, "usecond": 1e-3, "msecond": 1.0}.get(row.get("Metric Unit"), 1e-6)
+    scale = {"ns": 1e-6, "us": 1e-3, "ms": 1.0, "nsecond": 1e-6, "usecond": 1e-3,
+             "msecond": 1.0}.get(row.get("Metric Unit"), 1e-6)
     total[kernel] = total.get(kernel, 0.0) + value * scale
     count[kernel] += 1
 print(f"== {name}: kernel time per kernel, mean over its launches (ms)")
@@ -42,6 +48,7 @@ profile m2a 2 a
 profile m3b 3 b
 profile m1a 1 a
 # The accuracy sweep (32 views, every shape) with the CUDA back-end at 32 and 256 (64: gpu_bench).
+wanted accuracy || exit $rc
 for size in 32 256; do
     timeout 240 "$cli" accuracy --backend cuda --methods 1,2,3 --sizes "$size" --views sweep --json \
         > "$out/accuracy_cuda_$size.json" 2> "$out/accuracy_cuda_$size.log" || rc=1

@@ -170,6 +170,16 @@ void measureShape(const std::string& shapeName, int n, const std::vector<View>& 
     const std::unique_ptr<evaluation::AnalyticShape> shape =
         evaluation::makeAnalyticShape(shapeName);
     const volume::Volume volume = evaluation::sampleShape(*shape, n);
+    // The renderers outlive this shape's volume: unbind them before it goes, however this
+    // function is left (the CUDA back-end may hold the volume's memory page-locked).
+    struct Unbind {
+        Renderers& renderers;
+        ~Unbind() {
+            for (auto& renderer : renderers)
+                if (renderer)
+                    renderer->releaseVolume();
+        }
+    } unbind{renderers};
     std::vector<render::Camera> cameras;
     std::vector<render::PixelMask> truths;
     for (const View& view : views) {

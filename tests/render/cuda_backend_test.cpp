@@ -5,11 +5,12 @@
 // gantry-tilted stack with uneven gaps, and surfaces cut open by the volume's border.
 
 #include "lw/core/error.h"
+#include "lw/evaluation/analytic_shapes.h"
 #include "lw/kernels/cpu/marching_cubes_cpu.h"
 #include "lw/kernels/cuda/marching_cubes_cuda.h"
+#include "lw/render/gpu_memory_plan.h"
 #include "lw/render/iso_surface.h"
 #include "lw/render/phantom.h"
-#include "lw/render/gpu_memory_plan.h"
 #include "lw/render/renderer_factory.h"
 #include "lw/render/zbuffer_silhouette_renderer.h"
 
@@ -34,7 +35,8 @@ struct Case {
 };
 
 template <typename T, typename F>
-Volume makeVolume(glm::ivec3 dims, VoxelType type, F&& value, volume::VolumeGeometry geometry = {}) {
+Volume makeVolume(glm::ivec3 dims, VoxelType type, F&& value,
+                  volume::VolumeGeometry geometry = {}) {
     Volume v(dims, type, std::move(geometry));
     T* data = v.dataAs<T>();
     for (int z = 0; z < dims.z; ++z)
@@ -58,8 +60,8 @@ Volume tiltedSphere() {
     return makeVolume<float>(
         {45, 61, 37}, VoxelType::Float32,
         [&](int x, int y, int z) {
-            return 11.0 - glm::length(geometry.indexToPatient({double(x), double(y), double(z)}) -
-                                      centre);
+            return 11.0 -
+                   glm::length(geometry.indexToPatient({double(x), double(y), double(z)}) - centre);
         },
         geometry);
 }
@@ -75,18 +77,42 @@ Volume noise(glm::ivec3 dims, VoxelType type, unsigned seed) {
 
 std::vector<Case> cases() {
     return {
-        {"phantom 64^3 int16", [] { return makePhantom({64, 64, 64}, PhantomKind::Ct); }, 300.5},
+        {"phantom 64^3 int16",
+         [] {
+             return makePhantom({64, 64, 64}, PhantomKind::Ct);
+         },
+         300.5},
         {"phantom 100x67x45 int16 (odd sizes)",
-         [] { return makePhantom({100, 67, 45}, PhantomKind::Ct); }, 300.5},
-        {"phantom soft tissue", [] { return makePhantom({96, 80, 70}, PhantomKind::Ct); }, -500.0},
-        {"sphere 33^3", [] { return makePhantom({33, 33, 33}, PhantomKind::Sphere); }, 300.5},
+         [] {
+             return makePhantom({100, 67, 45}, PhantomKind::Ct);
+         },
+         300.5},
+        {"phantom soft tissue",
+         [] {
+             return makePhantom({96, 80, 70}, PhantomKind::Ct);
+         },
+         -500.0},
+        {"sphere 33^3",
+         [] {
+             return makePhantom({33, 33, 33}, PhantomKind::Sphere);
+         },
+         300.5},
         {"tilted uneven float", tiltedSphere, 0.0},
-        {"noise uint8 (open at the border)", [] { return noise({40, 23, 19}, VoxelType::UInt8, 1); },
+        {"noise uint8 (open at the border)",
+         [] {
+             return noise({40, 23, 19}, VoxelType::UInt8, 1);
+         },
          100.0},
         {"noise uint16 17x16x257 (brick boundaries)",
-         [] { return noise({17, 16, 257}, VoxelType::UInt16, 2); }, 120.0},
+         [] {
+             return noise({17, 16, 257}, VoxelType::UInt16, 2);
+         },
+         120.0},
         {"noise int16 fractional iso",
-         [] { return noise({31, 29, 18}, VoxelType::Int16, 3); }, 99.5},
+         [] {
+             return noise({31, 29, 18}, VoxelType::Int16, 3);
+         },
+         99.5},
     };
 }
 
@@ -121,7 +147,8 @@ TEST_P(CudaBackend, MarchingCubesGivesTheCpuTrianglesInTheCpuOrder) {
 
     ASSERT_EQ(mesh.vertexCount(), reference.vertexCount());
     ASSERT_EQ(mesh.triangleCount(), reference.triangleCount());
-    EXPECT_TRUE(mesh.indices == reference.indices) << "triangles in another order or wired differently";
+    EXPECT_TRUE(mesh.indices == reference.indices)
+        << "triangles in another order or wired differently";
     double worstPosition = 0.0, worstNormal = 0.0;
     std::size_t identical = 0;
     for (std::size_t i = 0; i < mesh.vertexCount(); ++i) {
@@ -129,8 +156,9 @@ TEST_P(CudaBackend, MarchingCubesGivesTheCpuTrianglesInTheCpuOrder) {
                                  double(glm::length(mesh.positions[i] - reference.positions[i])));
         worstNormal =
             std::max(worstNormal, double(glm::length(mesh.normals[i] - reference.normals[i])));
-        identical += std::memcmp(&mesh.positions[i], &reference.positions[i], sizeof(glm::vec3)) == 0 &&
-                     std::memcmp(&mesh.normals[i], &reference.normals[i], sizeof(glm::vec3)) == 0;
+        identical +=
+            std::memcmp(&mesh.positions[i], &reference.positions[i], sizeof(glm::vec3)) == 0 &&
+            std::memcmp(&mesh.normals[i], &reference.normals[i], sizeof(glm::vec3)) == 0;
     }
     EXPECT_LE(worstPosition, 1e-4) << "mm";
     EXPECT_LE(worstNormal, 1e-5);
@@ -147,7 +175,7 @@ TEST_P(CudaBackend, MarchingCubesGivesTheCpuTrianglesInTheCpuOrder) {
 }
 
 Camera cameraAt(const Aabb& bounds, double az, double el, Projection projection, int width,
-               int height) {
+                int height) {
     CameraSetup setup;
     setup.bounds = bounds;
     setup.azimuthDeg = az;
@@ -265,9 +293,9 @@ TEST_P(CudaBackend, Method2GivesTheCpuImage) {
             settings.mode = mode;
             const SilhouetteFrame expected = cpu->render(camera, settings);
             const SilhouetteFrame frame = cuda->render(camera, settings);
-            const std::string where = "view az " + std::to_string(v.az) + " el " +
-                                      std::to_string(v.el) + (v.visibility ? "" : " no visibility") +
-                                      (v.along ? " along segments" : "");
+            const std::string where =
+                "view az " + std::to_string(v.az) + " el " + std::to_string(v.el) +
+                (v.visibility ? "" : " no visibility") + (v.along ? " along segments" : "");
             expectSameFrame(frame, expected, where);
         }
     }
@@ -379,18 +407,69 @@ TEST_P(CudaBudget, OverTheBudgetFallsBackAndKeepsTheImage) {
 
 INSTANTIATE_TEST_SUITE_P(
     Budgets, CudaBudget,
-    testing::Values(
-        BudgetCase{"TinyBudgetEndsOnTheCpu",
-                   [] { return makePhantom({96, 80, 70}, PhantomKind::Ct); }, 300.5,
-                   std::size_t(1) << 20},
-        BudgetCase{"NoisyMeshOverflowsTheEstimate",
-                   [] { return noise({64, 64, 64}, VoxelType::UInt8, 4); }, 100.0, 0}),
+    testing::Values(BudgetCase{"TinyBudgetEndsOnTheCpu",
+                               [] {
+                                   return makePhantom({96, 80, 70}, PhantomKind::Ct);
+                               },
+                               300.5, std::size_t(1) << 20},
+                    BudgetCase{"NoisyMeshOverflowsTheEstimate",
+                               [] {
+                                   return noise({64, 64, 64}, VoxelType::UInt8, 4);
+                               },
+                               100.0, 0}),
     [](const testing::TestParamInfo<BudgetCase>& info) { return info.param.name; });
+
+// The accuracy command's pattern: one renderer per method, bound to one analytic shape after the
+// other, each sampled at 256^3 (64 MiB of floats: the allocator tends to hand the next shape the
+// freed block of the last, at the same address), S frames and a streamed L frame, then unbound.
+// Every method's CUDA frame is the CPU's for every shape, so nothing of the previous volume
+// survives (before releaseVolume, a streamed frame's page-locked registration made the next
+// shape's uploads read the last shape's pages: the accuracy sweep at 256 failed so).
+TEST(CudaBackendRebinding, EachShapeInTurnGivesTheCpuImage) {
+    const SilhouetteMethod methods[3] = {SilhouetteMethod::GeometryShader,
+                                         SilhouetteMethod::RayCastVisibility,
+                                         SilhouetteMethod::ZBuffer};
+    std::unique_ptr<SilhouetteRenderer> cuda[3], cpu[3];
+    for (int m = 0; m < 3; ++m) {
+        try {
+            cuda[m] = createSilhouetteRenderer(methods[m], Backend::Cuda);
+            cpu[m] = createSilhouetteRenderer(methods[m], Backend::Cpu);
+        } catch (const core::Error& error) {
+            ASSERT_EQ(m, 0) << error.what(); // only method 1 may lack its GL context
+            std::printf("method 1 left out: %s\n", error.what());
+            cuda[m].reset();
+        }
+    }
+    for (const std::string shapeName : {"sphere", "torus", "tori"}) {
+        const auto shape = evaluation::makeAnalyticShape(shapeName);
+        const Volume volume = evaluation::sampleShape(*shape, 256);
+        const Camera camera = cameraAt(shape->bounds(), 30, -45, Projection::Perspective, 512, 512);
+        SilhouetteSettings settings;
+        settings.isoReal = evaluation::kShapeIso;
+        for (int m = 0; m < 3; ++m) {
+            if (!cuda[m])
+                continue;
+            cuda[m]->setVolume(volume);
+            cpu[m]->setVolume(volume);
+            const SilhouetteFrame expected = cpu[m]->render(camera, settings);
+            const SilhouetteFrame frame = cuda[m]->render(camera, settings);
+            expectSameFrame(frame, expected, shapeName + ", method " + std::to_string(m + 1));
+        }
+        // An L frame of method 3 streams the volume from page-locked host memory ...
+        SilhouetteSettings chunked = settings;
+        chunked.brickCells = 64;
+        cuda[2]->render(camera, chunked);
+        // ... which must not outlive the volume: the next shape may be allocated at its address.
+        for (auto& renderer : cuda)
+            if (renderer)
+                renderer->releaseVolume();
+    }
+}
 
 TEST(CudaBackendMethod2, RenderWithoutAVolumeNamesTheError) {
     auto cuda = createSilhouetteRenderer(SilhouetteMethod::RayCastVisibility, Backend::Cuda);
-    const Camera camera = cameraAt(Aabb{{-1, -1, -1}, {1, 1, 1}}, 0, 0, Projection::Perspective,
-                                   64, 64);
+    const Camera camera =
+        cameraAt(Aabb{{-1, -1, -1}, {1, 1, 1}}, 0, 0, Projection::Perspective, 64, 64);
     try {
         cuda->render(camera, SilhouetteSettings{});
         ADD_FAILURE() << "rendered without a volume";

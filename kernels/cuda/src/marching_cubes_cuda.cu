@@ -162,9 +162,10 @@ template <typename T> CudaStatus MarchingCubesCuda::Impl::classifyGrid(const mc:
     cudaStream_t st = stream.get();
     const std::uint32_t tilesPerRow =
         blocksFor(std::size_t(g.hi.x - g.lo.x + 1), tuning::kClassifyBlock);
-    const std::uint32_t rows = g.rowsY * std::uint32_t(g.hi.z - g.lo.z + 1);
-    const std::uint32_t tiles = tilesPerRow * rows;
-    const dim3 tileGrid(rows, tilesPerRow);
+    const std::uint32_t slices = std::uint32_t(g.hi.z - g.lo.z + 1);
+    const std::uint32_t tiles = tilesPerRow * g.rowsY * slices;
+    const std::uint32_t zGroups = (slices + tuning::kClassifyPlanes - 1) / tuning::kClassifyPlanes;
+    const dim3 tileGrid(g.rowsY * zGroups, tilesPerRow); // see mc::TileWalk
     LW_RETURN_IF_FAILED(tileCounts.reserve(std::size_t(tiles) + 1, "cudaMalloc(tileCounts)"));
     LW_RETURN_IF_FAILED(tileOffsets.reserve(std::size_t(tiles) + 1, "cudaMalloc(tileOffsets)"));
     mc::countTiles<T><<<tileGrid, tuning::kClassifyBlock, 0, st>>>(g, tileCounts.data());
@@ -315,21 +316,40 @@ CudaStatus MarchingCubesCuda::setStreamedVolume(const VolumeView& host,
     return CudaStatus::success();
 }
 
-CudaStatus MarchingCubesCuda::Impl::uploadSlab(int slot, int boxZ0, int boxZ1) {
-    const std::size_t slice =
-        std::size_t(volume.dims.x) * std::size_t(volume.dims.y) * voxelKindSize(volume.kind);
-    const std::size_t bytes = std::size_t(boxZ1 - boxZ0) * slice;
-    const unsigned char* source = static_cast<const unsigned char*>(hostVoxels) + boxZ0 * slice;
+MarchingCubesCuda::Impl::SlabBox MarchingCubesCuda::Impl::slabBoxOf(const CellSlab& slab) const {
+    const glm::ivec3 d = volume.dims;
+    const auto apron = [](glm::ivec2 cells, int voxels) {
+        return glm::ivec2(cells.x > 0 ? cells.x - 1 : 0,
+                          cells.y + 2 < voxels ? cells.y + 2 : voxels);
+    };
+    const glm::ivec2 y = apron(slab.rows, d.y), z = apron(slab.layers, d.z);
+    return SlabBox{glm::ivec3(0, y.x, z.x), glm::ivec3(d.x, y.y, z.y)};
+}
+
+CudaStatus MarchingCubesCuda::Impl::uploadSlab(int slot, const SlabBox& box) {
+    // Per slice of the box one contiguous run (rows box.begin.y .. box.end.y, whole x): a 2D copy
+    // with the host's slice pitch; slices the crop leaves whole make it one contiguous copy.
+    const std::size_t row = std::size_t(volume.dims.x) * voxelKindSize(volume.kind);
+    const std::size_t slicePitch = row * std::size_t(volume.dims.y);
+    const std::size_t run = row * std::size_t(box.end.y - box.begin.y);
+    const std::size_t slices = std::size_t(box.end.z - box.begin.z);
+    const std::size_t bytes = run * slices;
+    const unsigned char* source = static_cast<const unsigned char*>(hostVoxels) +
+                                  std::size_t(box.begin.z) * slicePitch +
+                                  std::size_t(box.begin.y) * row;
+    std::size_t sourcePitch = slicePitch;
     LW_RETURN_IF_FAILED(slabBox[slot].reserve(bytes, "cudaMalloc(slab)"));
     if (!hostRegistered) {
         // The staging buffer of this slot may still feed the upload of two slabs ago.
         LW_CUDA_TRY(cudaEventSynchronize(uploaded[slot]), "cudaEventSynchronize(upload)");
         LW_RETURN_IF_FAILED(staging[slot].reserve(bytes, "cudaMallocHost(staging)"));
-        std::memcpy(staging[slot].data(), source, bytes);
+        for (std::size_t k = 0; k < slices; ++k)
+            std::memcpy(staging[slot].data() + k * run, source + k * slicePitch, run);
         source = staging[slot].data();
+        sourcePitch = run;
     }
-    LW_CUDA_TRY(cudaMemcpyAsync(slabBox[slot].data(), source, bytes, cudaMemcpyHostToDevice,
-                                uploadStream.get()),
+    LW_CUDA_TRY(cudaMemcpy2DAsync(slabBox[slot].data(), run, source, sourcePitch, run, slices,
+                                  cudaMemcpyHostToDevice, uploadStream.get()),
                 "cudaMemcpy(slab)");
     LW_CUDA_TRY(cudaEventRecord(uploaded[slot], uploadStream.get()), "cudaEventRecord(upload)");
     notePeak();
@@ -338,29 +358,21 @@ CudaStatus MarchingCubesCuda::Impl::uploadSlab(int slot, int boxZ0, int boxZ1) {
 
 template <typename T>
 CudaStatus
-MarchingCubesCuda::Impl::extractSlabsTyped(double iso, const std::vector<glm::ivec2>& ranges,
+MarchingCubesCuda::Impl::extractSlabsTyped(double iso, const std::vector<CellSlab>& slabs,
                                            const MarchingCubesCuda::SlabCallback& onSlab) {
-    const glm::ivec3 d = volume.dims;
-    const auto boxOf = [&](const glm::ivec2& cells) {
-        return glm::ivec2(cells.x > 0 ? cells.x - 1 : 0, cells.y + 2 < d.z ? cells.y + 2 : d.z);
-    };
-    if (!ranges.empty()) {
-        const glm::ivec2 box = boxOf(ranges[0]);
-        LW_RETURN_IF_FAILED(uploadSlab(0, box.x, box.y));
-    }
-    for (std::size_t k = 0; k < ranges.size(); ++k) {
+    if (!slabs.empty())
+        LW_RETURN_IF_FAILED(uploadSlab(0, slabBoxOf(slabs[0])));
+    for (std::size_t k = 0; k < slabs.size(); ++k) {
         const int slot = int(k % 2);
-        if (k + 1 < ranges.size()) {
-            // Slot (k + 1) % 2 held slab k - 1, whose extraction has finished.
-            const glm::ivec2 next = boxOf(ranges[k + 1]);
-            LW_RETURN_IF_FAILED(uploadSlab(int((k + 1) % 2), next.x, next.y));
-        }
+        if (k + 1 < slabs.size()) // slot (k + 1) % 2 held slab k - 1, whose extraction has finished
+            LW_RETURN_IF_FAILED(uploadSlab(int((k + 1) % 2), slabBoxOf(slabs[k + 1])));
         LW_CUDA_TRY(cudaStreamWaitEvent(stream.get(), uploaded[slot], 0), "cudaStreamWaitEvent");
-        const glm::ivec2 box = boxOf(ranges[k]);
+        const SlabBox box = slabBoxOf(slabs[k]);
+        const CellSlab& cells = slabs[k];
         const mc::Grid<T> g =
-            brickGrid<T>(iso, reinterpret_cast<const T*>(slabBox[slot].data()),
-                         glm::ivec3(0, 0, box.x), glm::ivec3(d.x, d.y, box.y),
-                         glm::ivec3(0, 0, ranges[k].x), glm::ivec3(d.x - 1, d.y - 1, ranges[k].y));
+            brickGrid<T>(iso, reinterpret_cast<const T*>(slabBox[slot].data()), box.begin, box.end,
+                         glm::ivec3(0, cells.rows.x, cells.layers.x),
+                         glm::ivec3(volume.dims.x - 1, cells.rows.y, cells.layers.y));
         mesh = DeviceMeshView();
         LW_RETURN_IF_FAILED(classifyGrid<T>(g));
         LW_RETURN_IF_FAILED(generate<T>(g));
@@ -371,19 +383,20 @@ MarchingCubesCuda::Impl::extractSlabsTyped(double iso, const std::vector<glm::iv
     return CudaStatus::success();
 }
 
-CudaStatus MarchingCubesCuda::extractSlabs(double storedIso,
-                                           const std::vector<glm::ivec2>& cellLayerRanges,
+CudaStatus MarchingCubesCuda::extractSlabs(double storedIso, const std::vector<CellSlab>& slabs,
                                            const SlabCallback& onSlab) {
     Impl& s = *m_impl;
     if (!s.streamed)
         return CudaStatus::failure(CudaStatus::Code::Failed, "marching cubes (CUDA, streamed)",
                                    "no volume: call setStreamedVolume first");
-    for (const glm::ivec2& r : cellLayerRanges)
-        if (r.x < 0 || r.y <= r.x || r.y > s.volume.dims.z - 1)
+    const glm::ivec3 cells = s.volume.dims - 1;
+    for (const CellSlab& slab : slabs)
+        if (slab.layers.x < 0 || slab.layers.y <= slab.layers.x || slab.layers.y > cells.z ||
+            slab.rows.x < 0 || slab.rows.y <= slab.rows.x || slab.rows.y > cells.y)
             return CudaStatus::failure(CudaStatus::Code::Failed, "marching cubes (CUDA, streamed)",
-                                       "cell layers out of range");
+                                       "a slab's cell layers or rows are out of range");
     return dispatchVoxelKind(s.volume.kind, [&](auto zero) {
-        return s.extractSlabsTyped<decltype(zero)>(storedIso, cellLayerRanges, onSlab);
+        return s.extractSlabsTyped<decltype(zero)>(storedIso, slabs, onSlab);
     });
 }
 

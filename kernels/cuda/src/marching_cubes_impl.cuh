@@ -78,9 +78,14 @@ struct MarchingCubesCuda::Impl {
     void notePeak() { peakBytes = deviceBytes() > peakBytes ? deviceBytes() : peakBytes; }
     CudaStatus uploadGridTables(const VoxelGridSetup& setup);
     template <typename T>
-    CudaStatus extractSlabsTyped(double iso, const std::vector<glm::ivec2>& ranges,
+    CudaStatus extractSlabsTyped(double iso, const std::vector<CellSlab>& slabs,
                                  const MarchingCubesCuda::SlabCallback& onSlab);
-    CudaStatus uploadSlab(int slot, int boxZ0, int boxZ1);
+    // The voxel box of a slab: [begin, end), whole x rows.
+    struct SlabBox {
+        glm::ivec3 begin, end;
+    };
+    SlabBox slabBoxOf(const CellSlab& slab) const;
+    CudaStatus uploadSlab(int slot, const SlabBox& box);
 
     std::uint32_t activeCount = 0;
     // An upper bound of the active voxels' indices (the sort key range of method 2).

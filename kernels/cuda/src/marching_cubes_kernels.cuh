@@ -12,7 +12,6 @@
 #include <cfloat>
 #include <cstdint>
 #include <cub/block/block_reduce.cuh>
-#include <cub/block/block_scan.cuh>
 #include <mutex>
 
 namespace lw::kernels::cuda::mc {
@@ -84,39 +83,38 @@ template <typename T> struct Grid {
     }
 };
 
-// The code of a voxel: bits 0-7 its cell's case (0 when the cell has no triangles or does not
-// exist), bits 8-10 which of its +x, +y, +z edges cross the surface. 0 = inactive.
+// The inside bits of a voxel's four corners in one slice: (x, y), (x + 1, y), (x, y + 1),
+// (x + 1, y + 1); a corner beyond the classified range (hasX / hasY false) reads nothing and is 0.
+struct PlaneBits {
+    bool c00 = false, c10 = false, c01 = false, c11 = false;
+};
 template <typename T>
-__device__ __forceinline__ std::uint32_t
-voxelCode(const Grid<T>& g, std::uint32_t x, std::uint32_t y, std::uint32_t z, std::uint32_t v) {
-    if (g.brickActive) {
-        const std::uint32_t cx = g.spans.dims.cx, cy = g.spans.dims.cy, cz = g.spans.dims.cz;
-        const std::uint32_t bx = (x < cx ? x : cx - 1) >> tuning::kSkipBrickShift;
-        const std::uint32_t by = (y < cy ? y : cy - 1) >> tuning::kSkipBrickShift;
-        const std::uint32_t bz = (z < cz ? z : cz - 1) >> tuning::kSkipBrickShift;
-        if (!g.brickActive[(bz * g.bricksY + by) * g.bricksX + bx])
-            return 0;
-    }
-    const std::size_t sy = g.boxX, sz = std::size_t(g.boxX) * g.boxY;
-    const T* p = g.box + v;
-    const T thr = g.threshold;
-    const bool hasX = int(x) < g.hi.x, hasY = int(y) < g.hi.y, hasZ = int(z) < g.hi.z;
-    const bool c0 = p[0] >= thr;
+__device__ __forceinline__ PlaneBits planeBits(const T* p, std::size_t sy, T threshold, bool hasX,
+                                               bool hasY) {
+    PlaneBits b;
+    b.c00 = p[0] >= threshold;
+    b.c10 = hasX && p[1] >= threshold;
+    b.c01 = hasY && p[sy] >= threshold;
+    b.c11 = hasX && hasY && p[1 + sy] >= threshold;
+    return b;
+}
+
+// The code of a voxel from its corners in its slice (lower) and the next (upper): bits 0-7 its
+// cell's case (0 when the cell has no triangles or does not exist), bits 8-10 which of its +x,
+// +y, +z edges cross the surface. 0 = inactive.
+__device__ __forceinline__ std::uint32_t voxelCode(PlaneBits lower, PlaneBits upper, bool hasX,
+                                                   bool hasY, bool hasZ) {
     // Corners in diagram order: 0 (0,0,0) 1 (1,0,0) 2 (1,1,0) 3 (0,1,0), 4-7 the same at z + 1.
-    const bool c1 = hasX && p[1] >= thr;
-    const bool c3 = hasY && p[sy] >= thr;
-    const bool c4 = hasZ && p[sz] >= thr;
-    std::uint32_t edges =
-        (hasX && c0 != c1 ? 1u : 0u) | (hasY && c0 != c3 ? 2u : 0u) | (hasZ && c0 != c4 ? 4u : 0u);
+    const bool c0 = lower.c00;
+    const std::uint32_t edges = (hasX && c0 != lower.c10 ? 1u : 0u) |
+                                (hasY && c0 != lower.c01 ? 2u : 0u) |
+                                (hasZ && c0 != upper.c00 ? 4u : 0u);
     std::uint32_t cubeCase = 0;
     if (hasX && hasY && hasZ) {
-        const bool c2 = p[1 + sy] >= thr;
-        const bool c5 = p[1 + sz] >= thr;
-        const bool c6 = p[1 + sy + sz] >= thr;
-        const bool c7 = p[sy + sz] >= thr;
-        cubeCase = std::uint32_t(c0) | std::uint32_t(c1) << 1 | std::uint32_t(c2) << 2 |
-                   std::uint32_t(c3) << 3 | std::uint32_t(c4) << 4 | std::uint32_t(c5) << 5 |
-                   std::uint32_t(c6) << 6 | std::uint32_t(c7) << 7;
+        cubeCase = std::uint32_t(c0) | std::uint32_t(lower.c10) << 1 |
+                   std::uint32_t(lower.c11) << 2 | std::uint32_t(lower.c01) << 3 |
+                   std::uint32_t(upper.c00) << 4 | std::uint32_t(upper.c10) << 5 |
+                   std::uint32_t(upper.c11) << 6 | std::uint32_t(upper.c01) << 7;
         if (cubeCase == 255)
             cubeCase = 0;
     }
@@ -188,54 +186,123 @@ __global__ void borderInside(const T* voxels, std::uint32_t nx, std::uint32_t ny
     }
 }
 
-// The classification grid: blockIdx.x is the voxel row of the classified range (grids reach
-// 2^31 - 1 blocks along x, only 65535 along y), blockIdx.y the tile along it, one voxel per
-// thread; tiles are numbered row by row, so tile order is voxel order. Active voxels are listed by
-// their index in the box (ascending = voxel order).
-struct TileCoords {
-    std::uint32_t x, y, z, v, tile;
-    bool valid;
+// The classification grid. A tile is a run of kClassifyBlock voxels of one voxel row, one voxel
+// per thread, x fastest; tiles are numbered row by row (tile = row * tilesPerRow + column, row =
+// (z - lo.z) * rowsY + (y - lo.y)), so tile order is voxel order. A block walks its column of
+// kClassifyPlanes tiles up along z (blockIdx.x = zGroup * rowsY + y - lo.y, blockIdx.y = the
+// column): each slice's corner bits serve two voxels, and one block does the work of several
+// (block launches, not memory, bounded the one-tile-per-block version). Active voxels are listed
+// by their index in the box (ascending = voxel order).
+template <typename T> struct TileWalk {
+    const Grid<T>& g;
+    std::uint32_t x, y, z0, planes, column;
+    bool valid, hasX, hasY;
+    // The upper slice's bits of the last voxel, reused as the next voxel's lower slice.
+    PlaneBits upper;
+    bool haveUpper = false;
+
+    __device__ explicit TileWalk(const Grid<T>& grid) : g(grid) {
+        const std::uint32_t zGroup = blockIdx.x / g.rowsY;
+        column = blockIdx.y;
+        x = g.lo.x + column * tuning::kClassifyBlock + threadIdx.x;
+        y = g.lo.y + blockIdx.x % g.rowsY;
+        z0 = g.lo.z + zGroup * tuning::kClassifyPlanes;
+        const std::uint32_t left = std::uint32_t(g.hi.z) - z0 + 1;
+        planes = left < tuning::kClassifyPlanes ? left : tuning::kClassifyPlanes;
+        valid = int(x) <= g.hi.x;
+        hasX = int(x) < g.hi.x;
+        hasY = int(y) < g.hi.y;
+    }
+    __device__ std::uint32_t tile(std::uint32_t plane) const {
+        const std::uint32_t row = (z0 + plane - g.lo.z) * g.rowsY + (y - g.lo.y);
+        return row * gridDim.y + column;
+    }
+    __device__ std::uint32_t index(std::uint32_t plane) const {
+        return valid ? g.boxIndex(x, y, z0 + plane) : 0u;
+    }
+    __device__ bool brickActive(std::uint32_t z) const {
+        if (!g.brickActive)
+            return true;
+        const std::uint32_t cx = g.spans.dims.cx, cy = g.spans.dims.cy, cz = g.spans.dims.cz;
+        const std::uint32_t bx = (x < cx ? x : cx - 1) >> tuning::kSkipBrickShift;
+        const std::uint32_t by = (y < cy ? y : cy - 1) >> tuning::kSkipBrickShift;
+        const std::uint32_t bz = (z < cz ? z : cz - 1) >> tuning::kSkipBrickShift;
+        return g.brickActive[(bz * g.bricksY + by) * g.bricksX + bx] != 0;
+    }
+    // The code of this thread's voxel in `plane` (planes are visited in ascending order; a plane
+    // skipped by the caller must be reported with skip() so the reuse starts over).
+    __device__ std::uint32_t code(std::uint32_t plane) {
+        const std::uint32_t z = z0 + plane;
+        if (!valid || !brickActive(z)) {
+            haveUpper = false;
+            return 0u;
+        }
+        const bool hasZ = int(z) < g.hi.z;
+        const std::size_t sy = g.boxX, sz = std::size_t(g.boxX) * g.boxY;
+        const T* p = g.box + index(plane);
+        const PlaneBits lower = haveUpper ? upper : planeBits(p, sy, g.threshold, hasX, hasY);
+        upper = hasZ ? planeBits(p + sz, sy, g.threshold, hasX, hasY) : PlaneBits{};
+        haveUpper = hasZ;
+        return voxelCode(lower, upper, hasX, hasY, hasZ);
+    }
+    __device__ void skip() { haveUpper = false; }
 };
-template <typename T> __device__ __forceinline__ TileCoords tileCoords(const Grid<T>& g) {
-    TileCoords c;
-    const std::uint32_t row = blockIdx.x;
-    c.x = g.lo.x + blockIdx.y * tuning::kClassifyBlock + threadIdx.x;
-    c.y = g.lo.y + row % g.rowsY;
-    c.z = g.lo.z + row / g.rowsY;
-    c.valid = int(c.x) <= g.hi.x;
-    c.v = c.valid ? g.boxIndex(c.x, c.y, c.z) : 0u;
-    c.tile = row * gridDim.y + blockIdx.y;
-    return c;
+
+__device__ __forceinline__ std::uint32_t laneIndex() {
+    return threadIdx.x & 31u;
 }
 
-// Pass 1 of the compaction: active voxels per tile.
+// Pass 1 of the compaction: active voxels per tile (warp ballots, summed per tile).
 template <typename T> __global__ void countTiles(Grid<T> g, std::uint32_t* tileCounts) {
-    using Reduce = cub::BlockReduce<std::uint32_t, tuning::kClassifyBlock>;
-    __shared__ typename Reduce::TempStorage temp;
-    const TileCoords c = tileCoords(g);
-    const std::uint32_t active = c.valid && voxelCode(g, c.x, c.y, c.z, c.v) != 0 ? 1u : 0u;
-    const std::uint32_t sum = Reduce(temp).Sum(active);
-    if (threadIdx.x == 0)
-        tileCounts[c.tile] = sum;
+    constexpr int kWarps = tuning::kClassifyBlock / 32;
+    __shared__ std::uint32_t warpCounts[tuning::kClassifyPlanes][kWarps];
+    TileWalk<T> walk(g);
+    for (std::uint32_t plane = 0; plane < walk.planes; ++plane) {
+        const unsigned ballot = __ballot_sync(0xffffffffu, walk.code(plane) != 0);
+        if (laneIndex() == 0)
+            warpCounts[plane][threadIdx.x / 32] = __popc(ballot);
+    }
+    __syncthreads();
+    if (threadIdx.x < walk.planes) {
+        std::uint32_t sum = 0;
+        for (int w = 0; w < kWarps; ++w)
+            sum += warpCounts[threadIdx.x][w];
+        tileCounts[walk.tile(threadIdx.x)] = sum;
+    }
 }
 
 // Pass 2: the tiles that hold active voxels write them at the scanned tile offset, in voxel
-// order (most tiles hold none and return before reading a voxel).
+// order (a tile without any is skipped by the whole block: no voxel is read).
 template <typename T>
 __global__ void writeTiles(Grid<T> g, const std::uint32_t* tileOffsets, std::uint32_t* activeVoxels,
                            std::uint16_t* activeCodes) {
-    using Scan = cub::BlockScan<std::uint32_t, tuning::kClassifyBlock>;
-    __shared__ typename Scan::TempStorage temp;
-    const TileCoords c = tileCoords(g);
-    const std::uint32_t first = tileOffsets[c.tile];
-    if (tileOffsets[c.tile + 1] == first)
-        return; // the whole block returns together: no thread waits in the scan below
-    const std::uint32_t code = c.valid ? voxelCode(g, c.x, c.y, c.z, c.v) : 0u;
-    std::uint32_t rank = 0;
-    Scan(temp).ExclusiveSum(code != 0 ? 1u : 0u, rank);
-    if (code != 0) {
-        activeVoxels[first + rank] = c.v;
-        activeCodes[first + rank] = std::uint16_t(code);
+    constexpr int kWarps = tuning::kClassifyBlock / 32;
+    // Two sets of warp counts, alternating between the tiles written: a set is written again
+    // only after the __syncthreads of the tile between, when every thread has read it.
+    __shared__ std::uint32_t warpCounts[2][kWarps];
+    TileWalk<T> walk(g);
+    std::uint32_t written = 0;
+    for (std::uint32_t plane = 0; plane < walk.planes; ++plane) {
+        const std::uint32_t tile = walk.tile(plane);
+        const std::uint32_t first = tileOffsets[tile];
+        if (tileOffsets[tile + 1] == first) {
+            walk.skip();
+            continue;
+        }
+        const std::uint32_t code = walk.code(plane);
+        const unsigned ballot = __ballot_sync(0xffffffffu, code != 0);
+        std::uint32_t* counts = warpCounts[written++ & 1u];
+        const std::uint32_t warp = threadIdx.x / 32;
+        if (laneIndex() == 0)
+            counts[warp] = __popc(ballot);
+        __syncthreads();
+        if (code != 0) {
+            std::uint32_t rank = __popc(ballot & ((1u << laneIndex()) - 1u));
+            for (std::uint32_t w = 0; w < warp; ++w)
+                rank += counts[w];
+            activeVoxels[first + rank] = walk.index(plane);
+            activeCodes[first + rank] = std::uint16_t(code);
+        }
     }
 }
 

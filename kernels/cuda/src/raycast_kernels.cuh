@@ -117,18 +117,17 @@ __global__ void drawAlongSegments(RayVisibility<T> rule, View view,
     }
 }
 
-// Phase 1: one thread per active cell builds its vertices and appends the Burns segment of each
-// of its triangles to `segments` (slots past `capacity` are only counted: the caller grows the
-// buffer and runs again).
+// The Burns segments of one active cell (at most one per triangle, so at most 5), and its
+// triangle count; nothing for a cell without triangles.
+struct CellSegments {
+    SegmentEndpoints segment[5];
+    std::uint32_t segments = 0;
+    std::uint32_t triangles = 0;
+};
+
 template <typename T>
-__global__ void findSegments(mc::Grid<T> g, const std::uint32_t* activeVoxels,
-                             const std::uint16_t* codes, std::uint32_t count, View view,
-                             SegmentEndpoints* segments, std::uint32_t* segmentCells,
-                             std::uint32_t capacity, Counters* counters) {
-    const std::uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
-    if (i >= count || (codes[i] & 0xff) == 0)
-        return;
-    const std::uint32_t v = activeVoxels[i];
+__device__ void cellSegments(const mc::Grid<T>& g, std::uint32_t v, const View& view,
+                             CellSegments& out) {
     // S only: the box is the whole volume (origin 0).
     const int x = int(v % g.boxX), y = int((v / g.boxX) % g.boxY), z = int(v / (g.boxX * g.boxY));
     const std::size_t sy = g.boxX, sz = std::size_t(g.boxX) * g.boxY;
@@ -138,10 +137,9 @@ __global__ void findSegments(mc::Grid<T> g, const std::uint32_t* activeVoxels,
             g.box[v + std::size_t(c_cornerOffset[c][0]) + std::size_t(c_cornerOffset[c][1]) * sy +
                   std::size_t(c_cornerOffset[c][2]) * sz]);
     const int cubeCase = mcCaseIndex(value, g.isoF);
-    const int triangles = c_triCount[cubeCase];
-    if (triangles == 0)
+    out.triangles = c_triCount[cubeCase];
+    if (out.triangles == 0)
         return;
-    atomicAdd(&counters->triangles, (unsigned long long)triangles);
     const unsigned edges = c_edgeTable[cubeCase];
     const VoxelGradientSampler<T> sampler{g.box, g.spans, g.indexOrigin};
     McVec3 gradient[8];
@@ -171,15 +169,50 @@ __global__ void findSegments(mc::Grid<T> g, const std::uint32_t* activeVoxels,
     for (int k = 0; row[k] >= 0; k += 3) {
         const glm::vec3 q[3] = {position[row[k]], position[row[k + 1]], position[row[k + 2]]};
         const float d[3] = {distance[row[k]], distance[row[k + 1]], distance[row[k + 2]]};
-        SegmentEndpoints segment;
-        if (!silhouetteSegment(q, d, segment))
-            continue;
-        const unsigned long long slot = atomicAdd(&counters->segments, 1ull);
-        if (slot < capacity) {
-            segments[slot] = segment;
-            segmentCells[slot] = v; // the sort key that brings neighbouring rays together
-        }
+        if (silhouetteSegment(q, d, out.segment[out.segments]))
+            ++out.segments;
     }
+}
+
+// Phase 1: one thread per active cell builds its vertices and appends the Burns segment of each
+// of its triangles to `segments` (slots past `capacity` are only counted: the caller grows the
+// buffer and runs again). The counters are shared by every thread: each warp adds its sums with
+// one atomic (one atomic per cell on one address serialised the kernel: 2 ms at 512^3), and the
+// warp's segments go to consecutive slots, lane by lane.
+template <typename T>
+__global__ void findSegments(mc::Grid<T> g, const std::uint32_t* activeVoxels,
+                             const std::uint16_t* codes, std::uint32_t count, View view,
+                             SegmentEndpoints* segments, std::uint32_t* segmentCells,
+                             std::uint32_t capacity, Counters* counters) {
+    const std::uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
+    CellSegments cell;
+    std::uint32_t v = 0;
+    if (i < count && (codes[i] & 0xff) != 0) { // every lane stays for the warp's sums below
+        v = activeVoxels[i];
+        cellSegments(g, v, view, cell);
+    }
+    constexpr unsigned kWarp = 0xffffffffu;
+    const unsigned lane = threadIdx.x & 31u;
+    const unsigned triangles = __reduce_add_sync(kWarp, cell.triangles);
+    if (lane == 0 && triangles > 0)
+        atomicAdd(&counters->triangles, (unsigned long long)triangles);
+    unsigned before = cell.segments; // inclusive prefix sum over the lanes
+    for (unsigned offset = 1; offset < 32; offset <<= 1) {
+        const unsigned below = __shfl_up_sync(kWarp, before, offset);
+        if (lane >= offset)
+            before += below;
+    }
+    const unsigned warpTotal = __shfl_sync(kWarp, before, 31);
+    unsigned long long base = 0;
+    if (lane == 31 && warpTotal > 0)
+        base = atomicAdd(&counters->segments, (unsigned long long)warpTotal);
+    base = __shfl_sync(kWarp, base, 31);
+    const unsigned long long first = base + before - cell.segments;
+    for (std::uint32_t k = 0; k < cell.segments; ++k)
+        if (first + k < capacity) {
+            segments[first + k] = cell.segment[k];
+            segmentCells[first + k] = v; // the sort key that brings neighbouring rays together
+        }
 }
 
 } // namespace lw::kernels::cuda::rc

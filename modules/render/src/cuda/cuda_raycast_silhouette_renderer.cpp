@@ -82,6 +82,15 @@ void CudaRayCastSilhouetteRenderer::setVolume(const volume::Volume& volume) {
     s.chunked.setVolume(volume);
 }
 
+void CudaRayCastSilhouetteRenderer::releaseVolume() {
+    State& s = *m_state;
+    s.kernels.release();
+    s.volume = nullptr;
+    s.uploaded = false;
+    s.prepared = false;
+    s.onCpu = false;
+}
+
 SilhouetteFrame CudaRayCastSilhouetteRenderer::render(const Camera& camera,
                                                       const SilhouetteSettings& settings) {
     State& s = *m_state;

@@ -25,6 +25,7 @@ public:
     SilhouetteMethod method() const override { return SilhouetteMethod::RayCastVisibility; }
     std::string_view backendName() const override;
     void setVolume(const volume::Volume& volume) override;
+    void releaseVolume() override;
     SilhouetteFrame render(const Camera& camera, const SilhouetteSettings& settings) override;
 
 private:

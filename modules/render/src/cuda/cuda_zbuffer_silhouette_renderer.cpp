@@ -47,14 +47,23 @@ struct CudaZBufferSilhouetteRenderer::State {
     mutable bool hostMeshValid = false;
     double lastIso = std::numeric_limits<double>::quiet_NaN();
     std::unique_ptr<ZBufferSilhouetteRenderer> cpu; // the last fallback
+    // Slabs: the voxel rows' value ranges (once per volume) and the last frame's cropped slabs,
+    // reused while the iso-value and the layer plan stay (an orbit).
+    std::unique_ptr<VoxelRowRanges> rowRanges;
+    std::vector<glm::ivec2> plannedLayers;
+    double croppedIso = std::numeric_limits<double>::quiet_NaN();
+    std::vector<kernels::CellSlab> croppedSlabs;
 
     CudaStatus renderWhole(const Camera& camera, const SilhouetteSettings& settings,
                            SilhouetteFrame& frame);
     CudaStatus renderSlabs(const Camera& camera, const SilhouetteSettings& settings,
                            std::size_t budget, SilhouetteFrame& frame);
     CudaStatus draw(const Camera& camera, const SilhouetteSettings& settings, bool closed,
-                    const kernels::cuda::DeviceMeshView* mesh, const std::vector<glm::ivec2>* slabs,
-                    double storedIso, SilhouetteFrame& frame);
+                    const kernels::cuda::DeviceMeshView* mesh,
+                    const std::vector<kernels::CellSlab>* slabs, double storedIso,
+                    SilhouetteFrame& frame);
+    const std::vector<kernels::CellSlab>& slabsOf(const std::vector<glm::ivec2>& layers,
+                                                  double storedIso);
     std::size_t imageBytes(const Camera& camera) const {
         // zbuffer1, zbuffer2 (4 bytes a pixel each) and the mask.
         return std::size_t(camera.width()) * std::size_t(camera.height()) * 9;
@@ -85,8 +94,26 @@ void CudaZBufferSilhouetteRenderer::setVolume(const volume::Volume& volume) {
     s.meshValid = false;
     s.hostMeshValid = false;
     s.closedIso = std::numeric_limits<double>::quiet_NaN();
+    s.rowRanges.reset();
+    s.croppedIso = std::numeric_limits<double>::quiet_NaN();
     if (s.cpu)
         s.cpu->setVolume(volume);
+}
+
+void CudaZBufferSilhouetteRenderer::releaseVolume() {
+    State& s = *m_state;
+    s.marchingCubes.release(); // the device buffers and the host registration
+    s.zbuffer.release();
+    s.cpu.reset();
+    s.rowRanges.reset();
+    s.volume = nullptr;
+    s.resident = GpuResidency::Cpu;
+    s.floor = GpuResidency::WholeVolume;
+    s.meshValid = false;
+    s.hostMeshValid = false;
+    s.closedIso = std::numeric_limits<double>::quiet_NaN();
+    s.croppedIso = std::numeric_limits<double>::quiet_NaN();
+    s.lastIso = std::numeric_limits<double>::quiet_NaN();
 }
 
 const Mesh* CudaZBufferSilhouetteRenderer::surfaceMesh() const {
@@ -109,7 +136,7 @@ CudaStatus CudaZBufferSilhouetteRenderer::State::draw(const Camera& camera,
                                                       const SilhouetteSettings& settings,
                                                       bool closed,
                                                       const kernels::cuda::DeviceMeshView* mesh,
-                                                      const std::vector<glm::ivec2>* slabs,
+                                                      const std::vector<kernels::CellSlab>* slabs,
                                                       double storedIso, SilhouetteFrame& frame) {
     kernels::cuda::ZBufferCudaSettings zb;
     zb.visibility = settings.visibility;
@@ -189,10 +216,24 @@ CudaStatus CudaZBufferSilhouetteRenderer::State::renderSlabs(const Camera& camer
         meshClosed = !surfaceTouchesBorder(*volume, storedIso);
         closedIso = settings.isoReal;
     }
-    const std::vector<glm::ivec2> slabs =
+    const std::vector<glm::ivec2> layers =
         planSlabs(volume->dims(), volume::voxelSize(volume->voxelType()), budget,
                   imageBytes(camera), settings.gpuSlabLayers);
-    return draw(camera, settings, meshClosed, nullptr, &slabs, storedIso, frame);
+    return draw(camera, settings, meshClosed, nullptr, &slabsOf(layers, storedIso), storedIso,
+                frame);
+}
+
+const std::vector<kernels::CellSlab>&
+CudaZBufferSilhouetteRenderer::State::slabsOf(const std::vector<glm::ivec2>& layers,
+                                              double storedIso) {
+    if (!rowRanges)
+        rowRanges = std::make_unique<VoxelRowRanges>(*volume);
+    if (!(croppedIso == storedIso) || layers != plannedLayers) {
+        croppedSlabs = cropSlabsToSurface(layers, *rowRanges, storedIso);
+        plannedLayers = layers;
+        croppedIso = storedIso;
+    }
+    return croppedSlabs;
 }
 
 SilhouetteFrame CudaZBufferSilhouetteRenderer::render(const Camera& camera,

@@ -32,6 +32,7 @@ public:
     SilhouetteMethod method() const override { return SilhouetteMethod::ZBuffer; }
     std::string_view backendName() const override;
     void setVolume(const volume::Volume& volume) override;
+    void releaseVolume() override;
     SilhouetteFrame render(const Camera& camera, const SilhouetteSettings& settings) override;
     const Mesh* surfaceMesh() const override;
 

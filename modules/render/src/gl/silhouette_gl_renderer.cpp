@@ -141,6 +141,13 @@ private:
     GLint m_viewport[4] = {0, 0, 0, 0};
 };
 
+// A GL_TIME_ELAPSED query's result in ms (waits for it).
+double queryResultMs(GLuint query) {
+    GLuint64 ns = 0;
+    glGetQueryObjectui64v(query, GL_QUERY_RESULT, &ns);
+    return double(ns) * 1e-6;
+}
+
 } // namespace
 
 SilhouetteGlRenderer::~SilhouetteGlRenderer() {
@@ -308,8 +315,8 @@ bool SilhouetteGlRenderer::reserveMesh(std::size_t vertexCount, std::size_t tria
         const std::size_t capacity = std::max<std::size_t>(grow(triangleCount * 3), 3);
         glBindVertexArray(m_vertexArray);
         glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, m_indexBuffer);
-        glBufferData(GL_ELEMENT_ARRAY_BUFFER, GLsizeiptr(capacity * sizeof(std::uint32_t)),
-                     nullptr, GL_DYNAMIC_DRAW);
+        glBufferData(GL_ELEMENT_ARRAY_BUFFER, GLsizeiptr(capacity * sizeof(std::uint32_t)), nullptr,
+                     GL_DYNAMIC_DRAW);
         glBindVertexArray(0);
         m_indexCapacity = capacity;
         reallocated = true;
@@ -437,6 +444,8 @@ SilhouetteGlStats SilhouetteGlRenderer::render(const glm::mat4& viewProjection, 
     const GLsizei count = GLsizei(m_indexCount);
     glBindVertexArray(m_vertexArray);
 
+    bool timedSurface = false, timedLines = false, countedSegments = false;
+    unsigned segmentsPerPrimitive = 1;
     // Pass 1: the surface. The silhouette panel needs it only as the depth to test against.
     if (count > 0 && (iso || options.visibility)) {
         glUseProgram(m_surfaceProgram);
@@ -463,12 +472,9 @@ SilhouetteGlStats SilhouetteGlRenderer::render(const glm::mat4& viewProjection, 
         if (options.timePasses)
             glBeginQuery(GL_TIME_ELAPSED, m_timerQueries[0]);
         glDrawElements(GL_TRIANGLES, count, GL_UNSIGNED_INT, nullptr);
-        if (options.timePasses) {
+        if (options.timePasses)
             glEndQuery(GL_TIME_ELAPSED);
-            GLuint64 ns = 0;
-            glGetQueryObjectui64v(m_timerQueries[0], GL_QUERY_RESULT, &ns);
-            stats.surfacePassMs = double(ns) * 1e-6;
-        }
+        timedSurface = options.timePasses;
         glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
         glDisable(GL_POLYGON_OFFSET_FILL);
     }
@@ -508,20 +514,25 @@ SilhouetteGlStats SilhouetteGlRenderer::render(const glm::mat4& viewProjection, 
         } else {
             glDrawElements(GL_TRIANGLES, count, GL_UNSIGNED_INT, nullptr);
         }
-        if (options.timePasses) {
+        if (options.timePasses)
             glEndQuery(GL_TIME_ELAPSED);
-            GLuint64 ns = 0;
-            glGetQueryObjectui64v(m_timerQueries[1], GL_QUERY_RESULT, &ns);
-            stats.linePassMs = double(ns) * 1e-6;
-        }
-        if (options.countSegments) {
+        if (options.countSegments)
             glEndQuery(GL_PRIMITIVES_GENERATED);
-            GLuint primitives = 0;
-            glGetQueryObjectuiv(m_segmentQuery, GL_QUERY_RESULT, &primitives);
-            // A wide segment is one triangle strip of two triangles.
-            stats.segments = wide ? primitives / 2 : primitives;
-        }
+        timedLines = options.timePasses;
+        countedSegments = options.countSegments;
+        segmentsPerPrimitive = wide ? 2u : 1u; // a wide segment is a strip of two triangles
         glDepthMask(GL_TRUE);
+    }
+    // The queries are read once both passes are queued: reading one right after its pass would
+    // stall the CPU until the GPU had drained, with the next pass not yet sent.
+    if (timedSurface)
+        stats.surfacePassMs = queryResultMs(m_timerQueries[0]);
+    if (timedLines)
+        stats.linePassMs = queryResultMs(m_timerQueries[1]);
+    if (countedSegments) {
+        GLuint primitives = 0;
+        glGetQueryObjectuiv(m_segmentQuery, GL_QUERY_RESULT, &primitives);
+        stats.segments = primitives / segmentsPerPrimitive;
     }
     glDisable(GL_DEPTH_TEST);
     glBindVertexArray(0);

@@ -4,6 +4,9 @@
 // resident (S) or streams in slabs (L), how thick the slabs are, and what to try when the device
 // runs out of memory. Plain arithmetic, so it is tested on machines without a GPU.
 
+#include "lw/kernels/cell_slab.h"
+#include "lw/volume/volume.h"
+
 #include <cstddef>
 #include <glm/glm.hpp>
 #include <string_view>
@@ -36,6 +39,30 @@ GpuResidency chooseResidency(glm::ivec3 dims, std::size_t voxelBytes, std::size_
 // maxLayers > 0 caps the thickness.
 std::vector<glm::ivec2> planSlabs(glm::ivec3 dims, std::size_t voxelBytes, std::size_t budget,
                                   std::size_t reservedBytes, int maxLayers = 0);
+
+// The value range of every voxel row (all x of one y and z), computed once per volume: which cell
+// rows of a slab can hold the surface, so that a streamed slab uploads only those (on a CT at a
+// bone iso-value much of each slice is air and soft tissue).
+class VoxelRowRanges {
+public:
+    VoxelRowRanges() = default;
+    explicit VoxelRowRanges(const volume::Volume& volume); // all cores
+    glm::ivec3 dims() const { return m_dims; }
+    // Cell row j of cell layer k (corners: voxel rows j, j + 1 of slices k, k + 1) can hold the
+    // surface at `storedIso` (inside = value >= iso): min < iso <= max over its corners, the rule
+    // of volume::Brick::mayContainSurface.
+    bool cellRowMayHoldSurface(int j, int k, double storedIso) const;
+
+private:
+    glm::ivec3 m_dims{0};
+    std::vector<float> m_min, m_max; // per voxel row, index z * dims.y + y
+};
+
+// The slabs of `layerRanges` (planSlabs) cropped to the cell rows that can hold the surface at
+// `storedIso`; slabs with none are left out. The crop never adds voxels, so a slab still fits the
+// budget it was planned for.
+std::vector<kernels::CellSlab> cropSlabsToSurface(const std::vector<glm::ivec2>& layerRanges,
+                                                  const VoxelRowRanges& rows, double storedIso);
 
 // Where a frame goes when the device ran out of memory: the whole volume falls back to slabs,
 // slabs to the CPU (which is final).

@@ -57,9 +57,9 @@ struct StageTimes {
 };
 
 struct SilhouetteFrame {
-    PixelMask lines;           // silhouette pixels on the camera's viewport, row 0 at the top
-    std::size_t triangles = 0; // triangles extracted (method 2: triangles visited)
-    std::size_t segments = 0;  // silhouette segments found (before visibility)
+    PixelMask lines;             // silhouette pixels on the camera's viewport, row 0 at the top
+    std::size_t triangles = 0;   // triangles extracted (method 2: triangles visited)
+    std::size_t segments = 0;    // silhouette segments found (before visibility)
     std::size_t deviceBytes = 0; // CUDA back-end: device memory held at the most (0 on the CPU)
     StageTimes times;
 };
@@ -69,8 +69,15 @@ public:
     virtual ~SilhouetteRenderer() = default;
     virtual SilhouetteMethod method() const = 0;
     virtual std::string_view backendName() const = 0;
-    // Binds a volume; it must outlive the renderer or the next setVolume. Drops cached results.
+    // Binds a volume; it must outlive the renderer, the next setVolume or releaseVolume. Drops
+    // cached results.
     virtual void setVolume(const volume::Volume& volume) = 0;
+    // Unbinds the volume, for a renderer that outlives it (a new volume comes later): what was
+    // kept of it goes, on the host and on the device. The CUDA back-end page-locks a streamed
+    // volume's memory with the driver; left registered, a later allocation at the same address
+    // would be read through the old pages by every CUDA copy in the process. The renderers that
+    // keep nothing but the pointer need not override it.
+    virtual void releaseVolume() {}
     virtual SilhouetteFrame render(const Camera& camera, const SilhouetteSettings& settings) = 0;
     // The iso-surface mesh of the last frame, on the host, for the shaded panel (so both panels
     // show the same surface); null for a method that keeps no mesh (method 2). May extract or

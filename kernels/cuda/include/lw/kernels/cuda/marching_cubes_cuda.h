@@ -16,6 +16,7 @@
 // Output stays in device buffers (method 3 draws from there); download() copies it to the host.
 // Public header: no CUDA types.
 
+#include "lw/kernels/cell_slab.h"
 #include "lw/kernels/cuda/cuda_status.h"
 #include "lw/kernels/volume_view.h"
 #include "lw/kernels/voxel_grid.h"
@@ -66,20 +67,21 @@ public:
     std::size_t activeVoxelCount() const;
 
     // The streamed (L) variant: the volume stays in host memory and goes to the device one slab
-    // at a time. A slab is cells [cellBegin, cellEnd) along z over the whole x/y extent; its box
-    // (its corner voxels plus the one-voxel gradient apron) is contiguous in the host volume, so
-    // it is one asynchronous copy from page-locked memory (the volume is registered with the
-    // driver, or, where that fails, staged through a pinned buffer). Two slots: slab k + 1 uploads
-    // on its own stream while slab k is extracted. Each slab's mesh has the same triangles and
-    // bit-identical vertices as the whole mesh's triangles of those cells (only the numbering is
-    // slab-local), so per-pixel maxima drawn from the slabs equal those of the whole mesh.
+    // at a time. A slab (cell_slab.h) is cell layers along z, cropped to the cell rows along y
+    // that can hold the surface; its box (corner voxels plus the one-voxel gradient apron, whole
+    // x rows) is one contiguous run per slice in the host volume, so it goes up with one
+    // asynchronous 2D copy from page-locked memory (the volume is registered with the driver, or,
+    // where that fails, staged through a pinned buffer). Two slots: slab k + 1 uploads on its own
+    // stream while slab k is extracted. Each slab's mesh has the same triangles and bit-identical
+    // vertices as the whole mesh's triangles of those cells (only the numbering is slab-local),
+    // so per-pixel maxima drawn from the slabs equal those of the whole mesh.
     //
     // setStreamedVolume keeps `hostVolume` (it must outlive the calls) and uploads only the grid
-    // tables; extractSlabs calls onSlab(mesh) once per slab with cells, the mesh valid during the
-    // call; a failed status from onSlab stops the walk and is returned.
+    // tables; extractSlabs calls onSlab(mesh) once per slab with triangles, the mesh valid during
+    // the call; a failed status from onSlab stops the walk and is returned.
     CudaStatus setStreamedVolume(const VolumeView& hostVolume, const VoxelGridSetup& setup);
     using SlabCallback = std::function<CudaStatus(const DeviceMeshView&)>;
-    CudaStatus extractSlabs(double storedIso, const std::vector<glm::ivec2>& cellLayerRanges,
+    CudaStatus extractSlabs(double storedIso, const std::vector<CellSlab>& slabs,
                             const SlabCallback& onSlab);
     // Frees every device buffer (after running out of memory, before trying another way); the
     // next frame needs setVolume or setStreamedVolume again.
