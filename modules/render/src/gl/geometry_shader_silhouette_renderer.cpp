@@ -43,6 +43,9 @@ struct GeometryShaderSilhouetteRenderer::State {
     // What the uploaded mesh was extracted with; empty when there is none (or the volume changed).
     std::optional<double> meshIso;
     int meshBrickCells = 0;
+    // Whether the surface at closedIso is closed (touches no border voxel): pass 1 may cull.
+    std::optional<double> closedIso;
+    bool closed = false;
     GeometryShaderFrameStats stats;
 
     // L variant: the brick grid (per-brick min/max: small) is all that mode a keeps between
@@ -52,6 +55,14 @@ struct GeometryShaderSilhouetteRenderer::State {
     kernels::cpu::BrickSurface brick;
 
     // Drops the whole mesh (CPU and GPU) so that an L frame holds one brick at a time.
+    bool surfaceClosed(double isoReal) {
+        if (closedIso != isoReal) {
+            closed = !surfaceTouchesBorder(*volume, storedIsoValue(*volume, isoReal));
+            closedIso = isoReal;
+        }
+        return closed;
+    }
+
     void dropWholeMesh() {
         meshIso.reset();
         mesh = Mesh{};
@@ -133,6 +144,7 @@ void GeometryShaderSilhouetteRenderer::setVolume(const volume::Volume& volume) {
         m_state->source->setVolume(volume);
     m_state->volume = &volume;
     m_state->meshIso.reset();
+    m_state->closedIso.reset();
     m_state->mesh = Mesh{};
     m_state->gridBrickCells = 0;
     m_state->grid = volume::BrickGrid{};
@@ -172,6 +184,7 @@ SilhouetteFrame GeometryShaderSilhouetteRenderer::render(const Camera& camera,
     options.background = {1.0f, 1.0f, 1.0f, 1.0f};
     options.countSegments = true;
     options.timePasses = true;
+    options.cullBackFacesInDepthPass = settings.visibility && s.surfaceClosed(settings.isoReal);
     // With the CUDA back-end pass 2 sends only the triangles whose facing can change (a few
     // percent): the rest would enter the geometry shader only to emit nothing.
     glFinish();
@@ -244,6 +257,7 @@ SilhouetteFrame GeometryShaderSilhouetteRenderer::renderBricks(const Camera& cam
     options.clear = false;
     options.surfaceInBackground = true;
     options.linesWriteDepth = true;
+    options.cullBackFacesInDepthPass = settings.visibility && s.surfaceClosed(settings.isoReal);
 
     glFinish();
     start = Clock::now();

@@ -469,6 +469,11 @@ SilhouetteGlStats SilhouetteGlRenderer::render(const glm::mat4& viewProjection, 
         glPolygonOffset(options.polygonOffsetFactor, options.polygonOffsetUnits);
         if (!iso && !flat)
             glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+        if (!iso && options.cullBackFacesInDepthPass) {
+            glEnable(GL_CULL_FACE);
+            glFrontFace(GL_CCW);
+            glCullFace(GL_BACK);
+        }
         if (options.timePasses)
             glBeginQuery(GL_TIME_ELAPSED, m_timerQueries[0]);
         glDrawElements(GL_TRIANGLES, count, GL_UNSIGNED_INT, nullptr);
@@ -476,6 +481,7 @@ SilhouetteGlStats SilhouetteGlRenderer::render(const glm::mat4& viewProjection, 
             glEndQuery(GL_TIME_ELAPSED);
         timedSurface = options.timePasses;
         glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+        glDisable(GL_CULL_FACE);
         glDisable(GL_POLYGON_OFFSET_FILL);
     }
 

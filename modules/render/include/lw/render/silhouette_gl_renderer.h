@@ -48,6 +48,10 @@ struct SilhouetteGlOptions {
     float polygonOffsetFactor = 2.0f;
     float polygonOffsetUnits = 4.0f;
     float depthBias = 0.0f;
+    // The surface is closed and the camera outside it: on the silhouette panel pass 1 draws only
+    // front faces (counter-clockwise, as marching cubes winds them seen from outside), which
+    // always hold the nearest depth there; back faces would only cost fixed-function time.
+    bool cullBackFacesInDepthPass = false;
     bool countSegments = false; // query how many segments the geometry shader emitted
     bool timePasses = false;    // GPU time of pass 1 and pass 2 (GL_TIME_ELAPSED queries)
     // Pass 2 over a subset of the triangles: the candidate buffer (reserveLineCandidates) holding
@@ -72,7 +76,7 @@ struct SilhouetteGlOptions {
 
 struct SilhouetteGlStats {
     std::size_t triangles = 0;
-    std::size_t segments = 0; // only with countSegments (GL_PRIMITIVES_GENERATED)
+    std::size_t segments = 0;   // only with countSegments (GL_PRIMITIVES_GENERATED)
     double surfacePassMs = 0.0; // only with timePasses: pass 1 (surface), GPU time
     double linePassMs = 0.0;    // pass 2 (geometry-shader silhouette)
 };
