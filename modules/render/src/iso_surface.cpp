@@ -60,16 +60,9 @@ void IsoSurfaceExtractor::extract(double isoReal, Mesh& mesh, IsoSurfaceStats* s
                                   const core::CancelToken* cancel) const {
     const double storedIso = storedIsoValue(m_volume, isoReal);
 
-    kernels::cpu::McOutput out;
-    out.positions = std::move(mesh.positions);
-    out.normals = std::move(mesh.normals);
-    out.indices = std::move(mesh.indices);
     const kernels::cpu::McResult result =
-        kernels::cpu::marchingCubes(m_volume, m_impl->grid, storedIso, out, m_options.threads,
+        kernels::cpu::marchingCubes(m_volume, m_impl->grid, storedIso, mesh, m_options.threads,
                                     cancel ? cancel : m_options.cancel);
-    mesh.positions = std::move(out.positions);
-    mesh.normals = std::move(out.normals);
-    mesh.indices = std::move(out.indices);
     if (result.status == kernels::cpu::McStatus::Cancelled)
         throw core::Cancelled();
     if (result.status == kernels::cpu::McStatus::TooManyVertices)

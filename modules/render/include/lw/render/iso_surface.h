@@ -1,6 +1,7 @@
 #pragma once
 
 #include "lw/core/progress.h"
+#include "lw/kernels/triangle_mesh.h"
 #include "lw/volume/volume.h"
 
 #include <cstddef>
@@ -11,17 +12,9 @@
 
 namespace lw::render {
 
-// An indexed triangle mesh with shared vertices, in patient coordinates (mm).
-struct Mesh {
-    std::vector<glm::vec3> positions;
-    std::vector<glm::vec3>
-        normals; // unit, pointing outward (from value >= iso towards lower values)
-    std::vector<std::uint32_t> indices; // three per triangle, counter-clockwise seen from outside
-
-    std::size_t triangleCount() const { return indices.size() / 3; }
-    std::size_t vertexCount() const { return positions.size(); }
-    bool isEmpty() const { return indices.empty(); }
-};
+// An indexed triangle mesh with shared vertices, in patient coordinates (mm): the engine's one
+// mesh type (kernels/common/triangle_mesh.h), the same the marching-cubes kernels write.
+using Mesh = kernels::TriangleMesh;
 
 struct IsoSurfaceOptions {
     // Cells per brick along each axis; 0 extracts the whole volume as one brick (the paper's

@@ -10,6 +10,7 @@
 // the whole-volume ("S") variant is the one-brick case.
 
 #include "lw/core/progress.h"
+#include "lw/kernels/triangle_mesh.h"
 #include "lw/render/camera.h"
 #include "lw/render/pixel_mask.h"
 #include "lw/volume/volume.h"
@@ -19,7 +20,7 @@
 
 namespace lw::render {
 
-struct Mesh; // iso_surface.h
+using Mesh = kernels::TriangleMesh; // iso_surface.h
 
 enum class SilhouetteMethod { GeometryShader = 1, RayCastVisibility = 2, ZBuffer = 3 };
 

@@ -1,6 +1,7 @@
 #pragma once
 
 #include "lw/core/progress.h"
+#include "lw/kernels/triangle_mesh.h"
 #include "lw/kernels/voxel_grid.h"
 #include "lw/volume/bricks.h"
 #include "lw/volume/volume.h"
@@ -30,13 +31,9 @@ struct McResult {
     std::size_t workUnits = 0;    // (brick, slab) items handed to the threads
 };
 
-// Output buffers; reused across calls so repeated extraction (mode b) does not pay for fresh
-// pages every frame.
-struct McOutput {
-    std::vector<glm::vec3> positions; // patient mm
-    std::vector<glm::vec3> normals;   // unit, outward (from value >= iso towards value < iso)
-    std::vector<std::uint32_t> indices;
-};
+// Output buffers (the engine's one mesh type); reused across calls so repeated extraction
+// (mode b) does not pay for fresh pages every frame.
+using McOutput = TriangleMesh;
 
 // Marching cubes with per-vertex gradient normals over the active bricks of `grid`, on
 // `threads` threads (0 = all cores). `storedIso` is in stored units; inside = value >= iso.
@@ -72,16 +69,11 @@ using kernels::voxelInsideThreshold;
 // gradient and edge vertex from voxel_grid.h / marching_cubes.h -- so per-pixel maxima drawn
 // from it equal those of the whole mesh. Only the numbering differs: indices are brick-local,
 // and a vertex on a face shared with a neighbour brick is computed by both.
-struct BrickSurface {
-    std::vector<glm::vec3> positions;
-    std::vector<glm::vec3> normals;
-    std::vector<std::uint32_t> indices;
+struct BrickSurface : TriangleMesh {
     // Scratch over the brick's corner voxels, reused from brick to brick.
     std::vector<std::uint8_t> inside;
     std::vector<std::uint8_t> rowState; // per voxel row: 0 all outside, 1 all inside, 2 mixed
     std::vector<std::uint32_t> edgeIds[3];
-
-    std::size_t triangleCount() const { return indices.size() / 3; }
 };
 
 class BrickSurfaceExtractor {

@@ -1,0 +1,28 @@
+#pragma once
+
+// The one host mesh type of the engine: what marching cubes writes (CPU, whole volume or one
+// brick; the CUDA back-end's download), what the renderers draw and the shaded panel shows
+// (render::Mesh is this type). An indexed triangle mesh with shared vertices in patient
+// coordinates (mm); the CUDA back-end's device meshes are views of the same three arrays
+// (cuda::DeviceMeshView).
+
+#include <cstddef>
+#include <cstdint>
+#include <glm/glm.hpp>
+#include <vector>
+
+namespace lw::kernels {
+
+struct TriangleMesh {
+    std::vector<glm::vec3> positions;
+    // Unit, pointing outward (from value >= iso towards lower values).
+    std::vector<glm::vec3> normals;
+    // Three per triangle, counter-clockwise seen from outside.
+    std::vector<std::uint32_t> indices;
+
+    std::size_t triangleCount() const { return indices.size() / 3; }
+    std::size_t vertexCount() const { return positions.size(); }
+    bool isEmpty() const { return indices.empty(); }
+};
+
+} // namespace lw::kernels
