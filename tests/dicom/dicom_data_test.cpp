@@ -11,7 +11,11 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <cstdlib>
+#include <fstream>
+#include <iterator>
+#include <map>
 
 using namespace lw;
 using namespace lw::dicom;
@@ -354,4 +358,154 @@ TEST(DicomData, Dicom2niftiSeriesDefects) {
     const SeriesAssembly two = planVolumes(seriesOf(filesIn(dir / "slicecount")));
     ASSERT_EQ(two.volumes.size(), 1u);
     EXPECT_EQ(two.volumes[0].dims.z, 2);
+}
+
+namespace {
+
+bool isJpeg2000Syntax(const std::string& uid) { return uid.rfind("1.2.840.10008.1.2.4.9", 0) == 0; }
+
+// FNV-1a over the decoded values of every frame, or the error text when decoding fails.
+std::string decodedChecksum(const fs::path& path) {
+    try {
+        std::uint64_t hash = 14695981039346656037ull;
+        for (const std::int32_t value : decodeFile(path)) {
+            hash ^= std::uint32_t(value);
+            hash *= 1099511628211ull;
+        }
+        char text[17];
+        std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(hash));
+        return text;
+    } catch (const core::Error&) {
+        return "error";
+    }
+}
+
+} // namespace
+
+// Every JPEG 2000 file of the shared data decodes to the values GDCM produced before the
+// decoder moved to OpenJPEG (recorded with GDCM 3.0.21 at commit 76ec329), and the files
+// GDCM could not decode still fail cleanly. A new J2K file in the data must be added here.
+TEST(DicomData, Jpeg2000FilesDecodeAsRecordedWithGdcm) {
+    const std::map<std::string, std::string> recorded = {
+        {"dicom-odd/pydicom_broken_and_unusual/693_J2KI.dcm", "fed8b701b918806b"},
+        {"dicom-odd/pydicom_broken_and_unusual/693_J2KR.dcm", "686424c8340208c2"},
+        {"dicom-odd/pydicom_broken_and_unusual/J2K_pixelrep_mismatch.dcm", "c66d2a60d35ff453"},
+        {"dicom-odd/pydicom_broken_and_unusual/JPEG2000-embedded-sequence-delimiter.dcm", "error"},
+        {"dicom-odd/pydicom_broken_and_unusual/explicit_VR-UN.dcm", "44bf705550d0b509"},
+        {"dicom-odd/transfer_syntax_matrix_dcm_qa_ts/9.dcm", "9b748617abce10d0"},
+        {"dicom/ct_single_slices_nema_wg04_compression/CT1_J2KI.dcm", "0522068181739c78"},
+        {"dicom/ct_single_slices_nema_wg04_compression/CT1_J2KR.dcm", "4e84869105bacf8a"},
+        {"dicom/ct_single_slices_nema_wg04_compression/CT2_J2KI.dcm", "ff57c0ab6826489f"},
+        {"dicom/ct_single_slices_nema_wg04_compression/CT2_J2KR.dcm", "6660440f7f9f201a"},
+        {"dicom/mr_4slice_series_dicom2nifti_ts_matrix/compressed_j2k/IM-0001-0001-0001.dcm", "dd6847bdcb0f1993"},
+        {"dicom/mr_4slice_series_dicom2nifti_ts_matrix/compressed_j2k/IM-0001-0002-0001.dcm", "0ca5cf1a917b5810"},
+        {"dicom/mr_4slice_series_dicom2nifti_ts_matrix/compressed_j2k/IM-0001-0003-0001.dcm", "17d0edec9ed36a97"},
+        {"dicom/mr_4slice_series_dicom2nifti_ts_matrix/compressed_j2k/IM-0001-0004-0001.dcm", "b3dc411f7dd92ec8"},
+        {"dicom/mr_enhanced_multiframe_pydicom_emri_small/emri_small_jpeg_2k_lossless.dcm", "ffa2c120646329ad"},
+        {"dicom/mr_single_slice_pydicom_small_ts_matrix/MR_small_jp2klossless.dcm", "59cb1ff87f73feb1"},
+    };
+    std::map<std::string, std::string> found;
+    for (const auto& entry : fs::recursive_directory_iterator(dataDir())) {
+        if (!entry.is_regular_file())
+            continue;
+        std::string syntax;
+        try {
+            syntax = readInstanceHeader(entry.path()).transferSyntaxUid;
+        } catch (const core::Error&) {
+            continue; // not DICOM, or a header that cannot be read: not this test's business
+        }
+        if (isJpeg2000Syntax(syntax))
+            found[fs::relative(entry.path(), dataDir()).generic_string()] = decodedChecksum(entry.path());
+    }
+    EXPECT_EQ(found, recorded);
+}
+
+namespace {
+
+const char* const kJpeg2000File = "dicom-odd/transfer_syntax_matrix_dcm_qa_ts/9.dcm";
+
+std::string fileBytes(const fs::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+void writeBytes(const fs::path& path, const std::string& bytes) {
+    std::ofstream(path, std::ios::binary).write(bytes.data(), std::streamsize(bytes.size()));
+}
+
+// A copy of `source` with `replacement` written at the first occurrence of `anchor` plus `skip`.
+fs::path changedCopy(const fs::path& source, const fs::path& target, std::string_view anchor,
+                     std::size_t skip, std::string_view replacement) {
+    std::string bytes = fileBytes(source);
+    const std::size_t at = bytes.find(anchor);
+    if (at == std::string::npos)
+        throw std::runtime_error("anchor not found in " + source.string());
+    bytes.replace(at + skip, replacement.size(), replacement);
+    writeBytes(target, bytes);
+    return target;
+}
+
+const std::string kSamplesPerPixelTag("\x28\x00\x02\x00", 4);
+const std::string kImagePositionTag("\x20\x00\x32\x00", 4);
+const std::string kSizMarker("\xFF\x4F\xFF\x51", 4);
+
+} // namespace
+
+// Issue 10: two changed bytes, the VR of SamplesPerPixel or of ImagePositionPatient made UL,
+// made GDCM (which re-parsed the file to decode JPEG 2000) fail an assertion and abort the
+// process. OpenJPEG now decodes the fragments DCMTK parsed: the file loads, pixels unchanged.
+TEST(DicomData, Jpeg2000FileWithAWrongVrLoadsWithItsPixels) {
+    const fs::path source = dataDir() / kJpeg2000File;
+    const auto intact = decodeFile(source);
+    lw::test::TempDir dir;
+    for (const std::string& tag : {kSamplesPerPixelTag, kImagePositionTag}) {
+        const fs::path damaged = changedCopy(source, dir / "damaged.dcm", tag, 4, "UL");
+        EXPECT_EQ(decodeFile(damaged), intact);
+        SeriesInfo series = seriesOf({damaged});
+        const SeriesAssembly plan = planVolumes(series);
+        ASSERT_EQ(plan.volumes.size(), 1u);
+        EXPECT_EQ(loadVolume(series, plan.volumes[0]).dims(), glm::ivec3(384, 384, 1));
+    }
+}
+
+// Two bytes of the codestream's SIZ marker changed (its width): a clear core::Error naming the
+// file, raised before OpenJPEG allocates for the wrong size.
+TEST(DicomData, Jpeg2000CodestreamOfTheWrongSizeIsAnError) {
+    lw::test::TempDir dir;
+    // Xsiz is 6 bytes after the marker: its low half-word 0x0180 (384) becomes 0x4000.
+    const fs::path damaged = changedCopy(dataDir() / kJpeg2000File, dir / "wide.dcm", kSizMarker,
+                                         2 + 6 + 2, std::string("\x40\x00", 2));
+    try {
+        (void)decodeFile(damaged);
+        ADD_FAILURE() << "a codestream wider than the header was decoded";
+    } catch (const core::Error& error) {
+        EXPECT_NE(error.subject().find("wide.dcm"), std::string::npos) << error.subject();
+        EXPECT_NE(error.reason().find("the header says 384x384"), std::string::npos)
+            << error.reason();
+    }
+}
+
+// Two bytes set to FF FF at every third position of the codestream's first 300 bytes (the
+// main header and the first tile-part): each decodes or fails with core::Error, none aborts.
+TEST(DicomData, DamagedJpeg2000CodestreamsNeverAbort) {
+    const fs::path source = dataDir() / kJpeg2000File;
+    const std::string bytes = fileBytes(source);
+    const std::size_t codestream = bytes.find(kSizMarker);
+    ASSERT_NE(codestream, std::string::npos);
+    lw::test::TempDir dir;
+    int errors = 0, decoded = 0;
+    for (std::size_t offset = 4; offset < 300; offset += 3) {
+        std::string damaged = bytes;
+        damaged.replace(codestream + offset, 2, "\xFF\xFF");
+        writeBytes(dir / "damaged.dcm", damaged);
+        try {
+            (void)decodeFile(dir / "damaged.dcm");
+            ++decoded;
+        } catch (const core::Error& error) {
+            EXPECT_FALSE(error.reason().empty());
+            ++errors;
+        }
+    }
+    EXPECT_GT(errors, 0);
+    EXPECT_EQ(errors + decoded, 99);
 }

@@ -61,7 +61,7 @@ template <typename Seq> std::string joinNumbers(const Seq& values) {
     return text;
 }
 
-// DCMTK's JPEG-LS encoder calls JpegLsEncode, which GDCM's system CharLS 2 also exports with
+// DCMTK's JPEG-LS encoder calls JpegLsEncode, which the system CharLS 2 also exports with
 // another ABI; when that copy was loaded first the encoder crashes. Link the test with
 // DCMTK::dcmjpls first and --no-as-needed (see tests/dicom/CMakeLists.txt) to get DCMTK's.
 bool dcmtkCharlsIsBound() {
@@ -173,7 +173,7 @@ void writeTestSlice(const std::filesystem::path& path, const TestSlice& s) {
         if (s.transferSyntax == TestTransferSyntax::JpegLossless)
             params = std::make_unique<DJ_RPLossless>(1, 0);
         else if (s.transferSyntax == TestTransferSyntax::JpegLsLossless && !dcmtkCharlsIsBound())
-            throw std::runtime_error("test DICOM writer: JpegLsEncode resolves to GDCM's CharLS, not DCMTK's; "
+            throw std::runtime_error("test DICOM writer: JpegLsEncode resolves to the system CharLS, not DCMTK's; "
                                      "link DCMTK::dcmjpls first with --no-as-needed");
         else if (s.transferSyntax == TestTransferSyntax::JpegLsLossless)
             params = std::make_unique<DJLSRepresentationParameter>(2, OFTrue);

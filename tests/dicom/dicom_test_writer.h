@@ -34,7 +34,7 @@ enum class TestTransferSyntax {
     Deflated,        // 1.2.840.10008.1.2.1.99
     JpegLossless,    // 1.2.840.10008.1.2.4.70 (process 14, selection value 1)
     JpegLsLossless,  // 1.2.840.10008.1.2.4.80 (the test must link DCMTK::dcmjpls first with
-                     // LINKER:--no-as-needed, see tests/dicom/CMakeLists.txt: GDCM's CharLS clashes)
+                     // LINKER:--no-as-needed, see tests/dicom/CMakeLists.txt: a system CharLS clashes)
     Rle,             // 1.2.840.10008.1.2.5
 };
 

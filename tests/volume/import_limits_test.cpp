@@ -9,6 +9,7 @@
 #include "volume_test_files.h"
 
 #include <chrono>
+#include <functional>
 #include <gtest/gtest.h>
 
 namespace lw::volume {
@@ -84,6 +85,30 @@ TEST(VolumeImportLimits, RawDimensionsAreCheckedBeforeReading) {
     options.type = VoxelType::Float32;
     expectError([&] { (void)readRawVolume(dir / "data.raw", options); },
                 "more than the import limit");
+}
+
+// A detached NRRD header whose data file is a folder: reading a folder as a file makes the
+// standard library throw std::length_error (its "size" is the largest offset), which must leave
+// the reader as core::Error naming the file, never as the library's own type (issue 10).
+TEST(VolumeImportLimits, LibraryExceptionsLeaveTheReadersAsCoreError) {
+    test::TempDir dir;
+    std::filesystem::create_directories(dir / "folder.raw");
+    writeFile(dir / "d.nhdr", toBytes("NRRD0004\ntype: uint8\ndimension: 3\nsizes: 2 2 2\n"
+                                      "encoding: raw\ndata file: folder.raw\n\n"));
+    for (const auto& read : {std::function<void()>([&] { (void)readNrrd(dir / "d.nhdr"); }),
+                             std::function<void()>([&] { (void)readVolumeFile(dir / "d.nhdr"); }),
+                             std::function<void()>([&] { (void)readNrrd(dir / "folder.raw"); }),
+                             std::function<void()>([&] { (void)readPvm(dir / "folder.raw"); }),
+                             std::function<void()>([&] { (void)readNifti(dir / "folder.raw"); })}) {
+        try {
+            read();
+            ADD_FAILURE() << "a folder was read as volume data";
+        } catch (const core::Error& error) {
+            EXPECT_FALSE(error.reason().empty());
+        } catch (const std::exception& escaped) {
+            ADD_FAILURE() << "escaped: " << escaped.what();
+        }
+    }
 }
 
 } // namespace

@@ -14,6 +14,10 @@
 namespace lw::core {
 
 std::vector<std::byte> readFileBytes(const std::filesystem::path& path) {
+    // A folder opens as a stream whose "size" is the largest offset: refuse it before sizing.
+    std::error_code ec;
+    if (std::filesystem::exists(path, ec) && !std::filesystem::is_regular_file(path, ec))
+        throw Error(path.string(), "not a regular file");
     std::ifstream in(path, std::ios::binary);
     if (!in)
         throw Error(path.string(), std::string("cannot open for reading: ") + std::strerror(errno));
@@ -130,8 +134,8 @@ void writeFileAtomically(const std::filesystem::path& path, const void* data, st
     {
         std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
         if (!out)
-            throw Error(path.string(), std::string("cannot create a temporary file: ") +
-                                           std::strerror(errno));
+            throw Error(path.string(),
+                        std::string("cannot create a temporary file: ") + std::strerror(errno));
         out.write(static_cast<const char*>(data), static_cast<std::streamsize>(size));
         out.flush();
         if (!out) {

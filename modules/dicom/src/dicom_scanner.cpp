@@ -1,12 +1,12 @@
 #include "lw/dicom/dicom_scanner.h"
 
-#include "dicom_boundary.h"
 #include "dicom_file.h"
 #include "dicomdir_reader.h"
 #include "folder_walk.h"
 #include "instance_grouping.h"
 #include "lw/core/error.h"
 #include "lw/core/log.h"
+#include "lw/core/module_boundary.h"
 #include "scan_paths.h"
 
 #include <algorithm>
@@ -183,21 +183,21 @@ static bool looksLikeDicomInputUnguarded(const fs::path& path) {
 // The public entries: nothing but core::Error (naming the input) and core::Cancelled leaves them.
 DicomIndex scanDicom(const fs::path& path, core::Progress* progress,
                      const core::ImportLimits& limits) {
-    return detail::atModuleBoundary(path.string(),
-                                    [&] { return scanDicomUnguarded(path, progress, limits); });
+    return core::atModuleBoundary(path.string(),
+                                  [&] { return scanDicomUnguarded(path, progress, limits); });
 }
 
 DicomIndex scanDicomFiles(const std::vector<fs::path>& files, core::Progress* progress,
                           const core::ImportLimits& limits) {
     const std::string subject =
         files.empty() ? std::string("DICOM file list") : files.front().parent_path().string();
-    return detail::atModuleBoundary(
-        subject, [&] { return scanDicomFilesUnguarded(files, progress, limits); });
+    return core::atModuleBoundary(subject,
+                                  [&] { return scanDicomFilesUnguarded(files, progress, limits); });
 }
 
 bool looksLikeDicomInput(const fs::path& path) {
-    return detail::atModuleBoundary(path.string(),
-                                    [&] { return looksLikeDicomInputUnguarded(path); });
+    return core::atModuleBoundary(path.string(),
+                                  [&] { return looksLikeDicomInputUnguarded(path); });
 }
 
 } // namespace lw::dicom

@@ -1,9 +1,13 @@
 #include "dicom_dcmtk.h"
 #include "dicom_file.h"
-
+#include "jpeg2000_decoder.h"
 #include "lw/core/error.h"
 #include "lw/core/log.h"
 
+#include <algorithm>
+#include <cstdint>
+#include <cstring>
+#include <dcmtk/dcmdata/dccodec.h>
 #include <dcmtk/dcmdata/dcdeftag.h>
 #include <dcmtk/dcmdata/dcpixel.h>
 #include <dcmtk/dcmdata/dcpixseq.h>
@@ -12,21 +16,10 @@
 #include <dcmtk/dcmdata/dcxfer.h>
 #include <dcmtk/dcmjpeg/djdecode.h>
 #include <dcmtk/dcmjpls/djdecode.h>
-
-#ifdef LINEWORK_HAVE_GDCM
-#include <gdcmImage.h>
-#include <gdcmImageReader.h>
-#include <gdcmTrace.h>
-#endif
-
 #include <dlfcn.h>
-
-#include <algorithm>
-#include <cstdint>
-#include <cstring>
 #include <limits>
-#include <mutex>
-#include <sstream>
+#include <span>
+#include <utility>
 
 namespace lw::dicom {
 
@@ -49,53 +42,24 @@ struct DecoderRegistration {
     }
 };
 
-void ensureDecoders() { static DecoderRegistration registration; }
+void ensureDecoders() {
+    static DecoderRegistration registration;
+}
 
 bool isJpeg2000(const std::string& uid) {
     return uid == "1.2.840.10008.1.2.4.90" || uid == "1.2.840.10008.1.2.4.91" ||
            uid == "1.2.840.10008.1.2.4.92" || uid == "1.2.840.10008.1.2.4.93";
 }
 
-// Precision and signedness of the first component, from the SIZ marker of a JPEG 2000
-// codestream (raw or inside a JP2 box). The DICOM header can disagree with it (pydicom's
-// 693_* and J2K_pixelrep_mismatch files); the codestream is what the decoder produced.
-struct CodestreamPrecision {
-    int bits = 0;
-    bool isSigned = false;
-};
-
-std::optional<CodestreamPrecision> jpeg2000Precision(const Uint8* data, std::size_t size) {
-    // SIZ: FF51, Lsiz, Rsiz, Xsiz..YTOsiz (8 x 4 bytes), Csiz, then Ssiz per component.
-    constexpr std::size_t kSsizOffset = 2 + 2 + 2 + 8 * 4 + 2;
-    for (std::size_t i = 0; i + 3 < size && i < 4096; ++i) {
-        if (data[i] == 0xFF && data[i + 1] == 0x4F && data[i + 2] == 0xFF && data[i + 3] == 0x51) {
-            const std::size_t siz = i + 2;
-            if (siz + kSsizOffset >= size)
-                return std::nullopt;
-            const Uint8 ssiz = data[siz + kSsizOffset];
-            return CodestreamPrecision{int(ssiz & 0x7F) + 1, (ssiz & 0x80) != 0};
-        }
-    }
-    return std::nullopt;
-}
-
-#ifdef LINEWORK_HAVE_GDCM
-// GDCM's global state (dictionaries, codec registry) is not documented as thread-safe for
-// concurrent readers; JPEG 2000 files are rare enough that serialising them costs little.
-std::mutex& gdcmMutex() {
-    static std::mutex mutex;
-    return mutex;
-}
-#endif
-
 bool isJpegLs(const std::string& uid) {
     return uid == "1.2.840.10008.1.2.4.80" || uid == "1.2.840.10008.1.2.4.81";
 }
 
-// DCMTK 3.6.7 ships its own CharLS (libdcmtkcharls) and GDCM links the system CharLS 2; both
-// export JpegLsDecode with different ABIs, and the dynamic linker binds every caller to
-// whichever library was loaded first (link order). DCMTK's JPEG-LS codec is only safe when
-// the symbol resolves to DCMTK's copy; otherwise GDCM (which then has its own) decodes JPEG-LS.
+// DCMTK 3.6.7 ships its own CharLS (libdcmtkcharls); the system CharLS 2 exports JpegLsDecode
+// with another ABI, and the dynamic linker binds every caller to whichever library was loaded
+// first. Nothing in Linework links the system CharLS (GDCM did, until JPEG 2000 moved to
+// OpenJPEG), but a plug-in or a link order could bring it in: then DCMTK's JPEG-LS codec would
+// call the wrong function, so JPEG-LS files are refused instead of crashing.
 bool dcmtkJpegLsIsSafe() {
     static const bool safe = [] {
         void* symbol = dlsym(RTLD_DEFAULT, "JpegLsDecode");
@@ -112,6 +76,55 @@ template <typename T> T clampTo(std::int32_t value) {
                                       std::int32_t(std::numeric_limits<T>::max())));
 }
 
+// A frame of JPEG 2000 ends with the EOC marker (FFD9), perhaps followed by the one byte of
+// padding that makes a fragment's length even.
+bool endsJpeg2000Codestream(DcmPixelItem& fragment) {
+    Uint8* bytes = nullptr;
+    const Uint32 length = fragment.getLength();
+    if (fragment.getUint8Array(bytes).bad() || !bytes || length < 2)
+        return false;
+    const Uint32 end = (length >= 3 && bytes[length - 1] == 0) ? length - 1 : length;
+    return bytes[end - 2] == 0xFF && bytes[end - 1] == 0xD9;
+}
+
+// The fragments [first, last] of each frame (index 0 is the Basic Offset Table). One frame
+// takes every fragment; otherwise DCMTK's rule (one fragment per frame, or the offset table)
+// and, where the table is empty, the EOC marker that ends each frame's codestream.
+std::vector<std::pair<Uint32, Uint32>> frameFragments(DcmPixelSequence& sequence, int frames) {
+    const Uint32 items = Uint32(sequence.card());
+    if (items < 2 || frames < 1)
+        return {};
+    if (frames == 1)
+        return {{1, items - 1}};
+    std::vector<std::pair<Uint32, Uint32>> ranges;
+    for (int frame = 0; frame < frames; ++frame) {
+        Uint32 start = 0;
+        if (DcmCodec::determineStartFragment(Uint32(frame), frames, &sequence, start).bad() ||
+            (!ranges.empty() && start <= ranges.back().first)) {
+            ranges.clear();
+            break;
+        }
+        if (!ranges.empty())
+            ranges.back().second = start - 1;
+        ranges.push_back({start, items - 1});
+    }
+    if (!ranges.empty())
+        return ranges;
+    Uint32 first = 1;
+    for (Uint32 index = 1; index < items && int(ranges.size()) < frames; ++index) {
+        DcmPixelItem* fragment = nullptr;
+        if (sequence.getItem(fragment, index).good() && fragment &&
+            endsJpeg2000Codestream(*fragment)) {
+            ranges.push_back({first, index});
+            first = index + 1;
+        }
+    }
+    if (int(ranges.size()) != frames)
+        return {};
+    ranges.back().second = items - 1;
+    return ranges;
+}
+
 } // namespace
 
 struct FrameDecoder::Impl {
@@ -121,25 +134,34 @@ struct FrameDecoder::Impl {
     std::vector<std::byte> inflated; // gzip-wrapped files: the DICOM bytes
     bool loaded = false;
 
-    // The whole pixel data in native form (after decompression where needed), host order.
+    // Native pixel data (after DCMTK's decompression where needed), host order, every frame.
     const Uint8* bytes8 = nullptr;
     const Uint16* words16 = nullptr;
     std::size_t byteLength = 0;
-    std::vector<char> jpeg2000Buffer; // GDCM's output, owned here
+
+    // JPEG 2000: each frame is decoded from its fragments when asked for, into frameBuffer.
+    DcmPixelSequence* jpeg2000Sequence = nullptr;
+    std::vector<std::pair<Uint32, Uint32>> jpeg2000Frames;
+    std::vector<std::byte> frameBuffer;
+    int bufferedFrame = -1;
 
     int bitsStored = 0; // effective: may follow the codestream where the header is wrong
     int highBit = 0;
 
     std::string where(int frame) const {
-        return info.path + " (frame " + std::to_string(frame + 1) + " of " + std::to_string(info.numberOfFrames) + ")";
+        return info.path + " (frame " + std::to_string(frame + 1) + " of " +
+               std::to_string(info.numberOfFrames) + ")";
     }
 
-    [[noreturn]] void fail(int frame, const std::string& reason) const { throw core::Error(where(frame), reason); }
+    [[noreturn]] void fail(int frame, const std::string& reason) const {
+        throw core::Error(where(frame), reason);
+    }
 
     // What the header declares for the whole pixel data: a deflated data set may inflate to
     // little more than this (the header read checked it against the limits already).
     std::size_t declaredPixelBytes() const {
-        return core::checkedProduct({std::size_t(std::max(info.rows, 0)), std::size_t(std::max(info.columns, 0)),
+        return core::checkedProduct({std::size_t(std::max(info.rows, 0)),
+                                     std::size_t(std::max(info.columns, 0)),
                                      std::size_t(std::max(info.numberOfFrames, 1)),
                                      std::size_t(std::max(info.samplesPerPixel, 1)),
                                      std::size_t(std::max(1, (info.bitsAllocated + 7) / 8))},
@@ -147,8 +169,10 @@ struct FrameDecoder::Impl {
     }
 
     void load(int frame);
-    void loadJpeg2000(int frame, DcmPixelData& pixelData, E_TransferSyntax xfer);
-    void loadWithGdcm(int frame);
+    void prepareJpeg2000(int frame, DcmPixelData& pixelData, E_TransferSyntax xfer);
+    void followCodestreamPrecision(std::span<const std::uint8_t> codestream);
+    std::span<const std::uint8_t> jpeg2000Codestream(int frame, std::vector<std::uint8_t>& joined);
+    const void* frameSamples(int frame, std::size_t frameBytes);
 };
 
 void FrameDecoder::Impl::load(int frame) {
@@ -166,23 +190,23 @@ void FrameDecoder::Impl::load(int frame) {
     highBit = info.highBit;
     const E_TransferSyntax xfer = ds.getOriginalXfer();
     const DcmXfer xferInfo(xfer);
-    const std::string syntaxUid = info.transferSyntaxUid.empty() ? xferInfo.getXferID() : info.transferSyntaxUid;
-    if (xferInfo.isEncapsulated() || isJpeg2000(syntaxUid)) {
-        if (isJpeg2000(syntaxUid)) {
-            loadJpeg2000(frame, *pixelData, xfer);
-            loaded = true;
-            return;
-        }
-        if (isJpegLs(syntaxUid) && !dcmtkJpegLsIsSafe()) {
-            loadWithGdcm(frame);
-            loaded = true;
-            return;
-        }
+    const std::string syntaxUid =
+        info.transferSyntaxUid.empty() ? xferInfo.getXferID() : info.transferSyntaxUid;
+    if (isJpeg2000(syntaxUid)) {
+        prepareJpeg2000(frame, *pixelData, xfer);
+        loaded = true;
+        return;
+    }
+    if (xferInfo.isEncapsulated()) {
+        if (isJpegLs(syntaxUid) && !dcmtkJpegLsIsSafe())
+            fail(frame, "JPEG-LS cannot be decoded: another CharLS library was loaded before "
+                        "DCMTK's");
         // Decompress the whole object once: a multi-frame file is decoded a single time, and
         // DCMTK assembles frames split over several fragments itself.
         const OFCondition status = ds.chooseRepresentation(EXS_LittleEndianExplicit, nullptr);
         if (status.bad() || !ds.canWriteXfer(EXS_LittleEndianExplicit))
-            fail(frame, "cannot decode " + std::string(xferInfo.getXferName()) + " (" + syntaxUid + ")" +
+            fail(frame, "cannot decode " + std::string(xferInfo.getXferName()) + " (" + syntaxUid +
+                            ")" +
                             (status.bad() ? std::string(": ") + status.text() : std::string()));
     }
 
@@ -202,69 +226,77 @@ void FrameDecoder::Impl::load(int frame) {
     loaded = true;
 }
 
-void FrameDecoder::Impl::loadJpeg2000(int frame, DcmPixelData& pixelData, E_TransferSyntax xfer) {
-    // The codestream's own precision: where it disagrees with BitsStored, the header is the
-    // one that is wrong (pydicom's 693_* files), and masking to it would cut off real bits.
-    DcmPixelSequence* sequence = nullptr;
-    if (pixelData.getEncapsulatedRepresentation(xfer, nullptr, sequence).good() && sequence &&
-        sequence->card() > 1) {
-        DcmPixelItem* item = nullptr;
-        Uint8* fragment = nullptr;
-        if (sequence->getItem(item, 1).good() && item && item->getUint8Array(fragment).good() && fragment) {
-            if (auto precision = jpeg2000Precision(fragment, item->getLength())) {
-                if (precision->bits != info.bitsStored) {
-                    kLog.warning(info.path + ": BitsStored " + std::to_string(info.bitsStored) +
-                                 " disagrees with the JPEG 2000 precision " + std::to_string(precision->bits) +
-                                 "; using the codestream's");
-                    bitsStored = precision->bits;
-                    highBit = precision->bits - 1;
-                }
-                if (precision->isSigned != (info.pixelRepresentation == 1))
-                    kLog.warning(info.path + ": PixelRepresentation disagrees with the JPEG 2000 codestream; "
-                                             "values are read as the header says");
-            }
-        }
-    }
-    loadWithGdcm(frame);
+// Finds each frame's fragments in the sequence DCMTK parsed; nothing is decoded yet.
+void FrameDecoder::Impl::prepareJpeg2000(int frame, DcmPixelData& pixelData,
+                                         E_TransferSyntax xfer) {
+    if (pixelData.getEncapsulatedRepresentation(xfer, nullptr, jpeg2000Sequence).bad() ||
+        !jpeg2000Sequence)
+        fail(frame, "JPEG 2000 pixel data is not encapsulated");
+    jpeg2000Frames = frameFragments(*jpeg2000Sequence, info.numberOfFrames);
+    if (jpeg2000Frames.empty())
+        fail(frame, "cannot tell which of the " + std::to_string(jpeg2000Sequence->card()) +
+                        " pixel data items belong to which of the " +
+                        std::to_string(info.numberOfFrames) + " frames");
+    std::vector<std::uint8_t> joined;
+    followCodestreamPrecision(jpeg2000Codestream(0, joined));
 }
 
-void FrameDecoder::Impl::loadWithGdcm(int frame) {
-#ifdef LINEWORK_HAVE_GDCM
-    std::lock_guard lock(gdcmMutex());
-    // GDCM prints its warnings (missing spacing, corrected bit depths) to stderr; the ones that
-    // matter come back as a failed read and are reported with the file name.
-    static const bool quiet = [] {
-        gdcm::Trace::SetDebug(false);
-        gdcm::Trace::SetWarning(false);
-        gdcm::Trace::SetError(false);
-        return true;
-    }();
-    (void)quiet;
-    gdcm::ImageReader reader;
-    std::istringstream memory;
-    if (inflated.empty()) {
-        reader.SetFileName(info.path.c_str());
-    } else {
-        memory.str(std::string(reinterpret_cast<const char*>(inflated.data()), inflated.size()));
-        reader.SetStream(memory);
+// The codestream's own precision: where it disagrees with BitsStored, the header is the one
+// that is wrong (pydicom's 693_* files), and masking to it would cut off real bits.
+void FrameDecoder::Impl::followCodestreamPrecision(std::span<const std::uint8_t> codestream) {
+    const auto size = detail::readJpeg2000Size(codestream);
+    if (!size)
+        return; // the decode of the frame reports it
+    if (size->precision != info.bitsStored) {
+        kLog.warning(info.path + ": BitsStored " + std::to_string(info.bitsStored) +
+                     " disagrees with the JPEG 2000 precision " + std::to_string(size->precision) +
+                     "; using the codestream's");
+        bitsStored = size->precision;
+        highBit = size->precision - 1;
     }
-    if (!reader.Read())
-        fail(frame, "GDCM cannot read the file");
-    const gdcm::Image& image = reader.GetImage();
-    jpeg2000Buffer.resize(image.GetBufferLength());
-    if (jpeg2000Buffer.empty() || !image.GetBuffer(jpeg2000Buffer.data()))
-        fail(frame, "decoding " + info.transferSyntaxUid + " with GDCM failed");
-    byteLength = jpeg2000Buffer.size();
-    if (image.GetPixelFormat().GetBitsAllocated() != unsigned(info.bitsAllocated))
-        fail(frame, "GDCM returned " + std::to_string(image.GetPixelFormat().GetBitsAllocated()) +
-                        "-bit samples where BitsAllocated is " + std::to_string(info.bitsAllocated));
-    if (info.bitsAllocated == 16)
-        words16 = reinterpret_cast<const Uint16*>(jpeg2000Buffer.data());
-    else
-        bytes8 = reinterpret_cast<const Uint8*>(jpeg2000Buffer.data());
-#else
-    fail(frame, info.transferSyntaxUid + " is not supported in this build (GDCM was not found)");
-#endif
+    if (size->isSigned != (info.pixelRepresentation == 1))
+        kLog.warning(info.path + ": PixelRepresentation disagrees with the JPEG 2000 codestream; "
+                                 "values are read as the header says");
+}
+
+// One frame's codestream: its fragment in place, or several joined into `joined`.
+std::span<const std::uint8_t>
+FrameDecoder::Impl::jpeg2000Codestream(int frame, std::vector<std::uint8_t>& joined) {
+    const auto [first, last] = jpeg2000Frames[std::size_t(frame)];
+    for (Uint32 index = first; index <= last; ++index) {
+        DcmPixelItem* fragment = nullptr;
+        Uint8* bytes = nullptr;
+        if (jpeg2000Sequence->getItem(fragment, index).bad() || !fragment ||
+            fragment->getUint8Array(bytes).bad() || (!bytes && fragment->getLength() > 0))
+            fail(frame, "cannot read JPEG 2000 fragment " + std::to_string(index));
+        if (first == last)
+            return {bytes, fragment->getLength()};
+        joined.insert(joined.end(), bytes, bytes + fragment->getLength());
+    }
+    return joined;
+}
+
+// The samples of one frame in the native layout (bitsAllocated each, host order).
+const void* FrameDecoder::Impl::frameSamples(int frame, std::size_t frameBytes) {
+    if (jpeg2000Sequence) {
+        if (bufferedFrame != frame) {
+            std::vector<std::uint8_t> joined;
+            frameBuffer.resize(frameBytes);
+            bufferedFrame = -1;
+            detail::decodeJpeg2000(jpeg2000Codestream(frame, joined),
+                                   {info.rows, info.columns, info.bitsAllocated}, frameBuffer,
+                                   where(frame));
+            bufferedFrame = frame;
+        }
+        return frameBuffer.data();
+    }
+    const std::size_t needed = (std::size_t(frame) + 1) * frameBytes;
+    if (byteLength < needed)
+        fail(frame, "pixel data truncated: " + std::to_string(byteLength) + " bytes where " +
+                        std::to_string(needed) + " are needed");
+    if (words16)
+        return words16 + std::size_t(frame) * frameBytes / 2;
+    return bytes8 + std::size_t(frame) * frameBytes;
 }
 
 FrameDecoder::FrameDecoder(const InstanceInfo& instance, const core::ImportLimits& limits)
@@ -296,11 +328,7 @@ void FrameDecoder::decodeFrame(int frame, volume::VoxelType target, void* destin
 
     const std::size_t pixelCount = std::size_t(info.rows) * std::size_t(info.columns);
     const std::size_t sampleBytes = std::size_t(info.bitsAllocated / 8);
-    const std::size_t frameBytes = pixelCount * sampleBytes;
-    const std::size_t needed = (std::size_t(frame) + 1) * frameBytes;
-    if (d.byteLength < needed)
-        d.fail(frame, "pixel data truncated: " + std::to_string(d.byteLength) + " bytes where " +
-                          std::to_string(needed) + " are needed");
+    const void* samples = d.frameSamples(frame, pixelCount * sampleBytes);
 
     // Stored value: the bits [highBit - bitsStored + 1, highBit] of each sample. Bits outside
     // are not part of the value (overlays, garbage in dcm_qa_12bit) and are dropped.
@@ -318,8 +346,8 @@ void FrameDecoder::decodeFrame(int frame, volume::VoxelType target, void* destin
     const std::int32_t mirror = isSigned ? -1 : std::int32_t(mask);
 
     auto storedAt = [&](std::size_t i) -> std::int32_t {
-        const std::uint32_t raw = sampleBytes == 2 ? std::uint32_t(d.words16[std::size_t(frame) * pixelCount + i])
-                                                   : std::uint32_t(d.bytes8[std::size_t(frame) * frameBytes + i]);
+        const std::uint32_t raw = sampleBytes == 2 ? static_cast<const Uint16*>(samples)[i]
+                                                   : static_cast<const Uint8*>(samples)[i];
         std::int32_t value = std::int32_t((raw >> shift) & mask);
         if (isSigned && (value & signBit))
             value -= 2 * signBit;
@@ -345,7 +373,8 @@ void FrameDecoder::decodeFrame(int frame, volume::VoxelType target, void* destin
             out[i] = clampTo<std::uint16_t>(storedAt(i));
         break;
     }
-    case volume::VoxelType::Float32: break;
+    case volume::VoxelType::Float32:
+        break;
     }
 }
 

@@ -1,10 +1,10 @@
 #include "lw/dicom/volume_assembler.h"
 
-#include "dicom_boundary.h"
 #include "dicom_file.h"
 #include "lw/core/error.h"
 #include "lw/core/limits.h"
 #include "lw/core/log.h"
+#include "lw/core/module_boundary.h"
 #include "lw/core/parallel.h"
 
 #include <algorithm>
@@ -43,7 +43,8 @@ std::string formatNumber(double value) {
     return buffer;
 }
 
-bool sameOrientation(const std::optional<std::array<double, 6>>& a, const std::optional<std::array<double, 6>>& b) {
+bool sameOrientation(const std::optional<std::array<double, 6>>& a,
+                     const std::optional<std::array<double, 6>>& b) {
     if (a.has_value() != b.has_value())
         return false;
     if (!a)
@@ -59,12 +60,16 @@ bool sameSpacing(const std::optional<glm::dvec2>& a, const std::optional<glm::dv
         return false;
     if (!a)
         return true;
-    auto close = [](double x, double y) { return std::abs(x - y) <= kSpacingTolerance * std::max(std::abs(x), std::abs(y)); };
+    auto close = [](double x, double y) {
+        return std::abs(x - y) <= kSpacingTolerance * std::max(std::abs(x), std::abs(y));
+    };
     return close(a->x, b->x) && close(a->y, b->y);
 }
 
 bool sameRescale(const FrameInfo& a, const FrameInfo& b) {
-    auto close = [](double x, double y) { return std::abs(x - y) <= 1e-6 * std::max({1.0, std::abs(x), std::abs(y)}); };
+    auto close = [](double x, double y) {
+        return std::abs(x - y) <= 1e-6 * std::max({1.0, std::abs(x), std::abs(y)});
+    };
     return close(a.rescaleSlope, b.rescaleSlope) && close(a.rescaleIntercept, b.rescaleIntercept);
 }
 
@@ -84,10 +89,12 @@ struct GroupKey {
     std::optional<std::size_t> unplacedInstance;
 
     bool matches(const GroupKey& other) const {
-        return rows == other.rows && columns == other.columns && sameOrientation(orientation, other.orientation) &&
+        return rows == other.rows && columns == other.columns &&
+               sameOrientation(orientation, other.orientation) &&
                sameSpacing(spacing, other.spacing) && frameType == other.frameType &&
                std::abs(slope - other.slope) <= 1e-6 * std::max({1.0, std::abs(slope)}) &&
-               std::abs(intercept - other.intercept) <= 1e-6 * std::max({1.0, std::abs(intercept)}) &&
+               std::abs(intercept - other.intercept) <=
+                   1e-6 * std::max({1.0, std::abs(intercept)}) &&
                hasPosition == other.hasPosition && unplacedInstance == other.unplacedInstance;
     }
 };
@@ -142,7 +149,8 @@ double distanceAlongNormal(const FrameRef& f, const glm::dvec3& normal) {
 // Order of frames that share a position: acquisition order as far as the headers tell it.
 bool occurrenceLess(const FrameRef& a, const FrameRef& b) {
     auto rank = [](const FrameRef& f) {
-        return std::make_tuple(f.frameInfo->temporalPosition.value_or(0), f.info->acquisitionNumber.value_or(0),
+        return std::make_tuple(f.frameInfo->temporalPosition.value_or(0),
+                               f.info->acquisitionNumber.value_or(0),
                                f.info->instanceNumber.value_or(0), f.instance, f.frame);
     };
     return rank(a) < rank(b);
@@ -160,9 +168,10 @@ std::vector<Group> splitDuplicates(Group group, std::vector<std::string>& series
     std::vector<std::vector<FrameRef>> positions;
     for (const FrameRef& f : group.frames) {
         if (!positions.empty() &&
-            std::abs(distanceAlongNormal(f, normal) - distanceAlongNormal(positions.back().front(), normal)) <=
-                kPositionTolerance &&
-            glm::length(*f.frameInfo->position - *positions.back().front().frameInfo->position) <= 10 * kPositionTolerance)
+            std::abs(distanceAlongNormal(f, normal) -
+                     distanceAlongNormal(positions.back().front(), normal)) <= kPositionTolerance &&
+            glm::length(*f.frameInfo->position - *positions.back().front().frameInfo->position) <=
+                10 * kPositionTolerance)
             positions.back().push_back(f);
         else
             positions.push_back({f});
@@ -174,8 +183,9 @@ std::vector<Group> splitDuplicates(Group group, std::vector<std::string>& series
         return {std::move(group)};
 
     if (positions.size() == 1) {
-        seriesWarnings.push_back("all " + std::to_string(group.frames.size()) +
-                                 " slices share one position: not a volume (no volume made of them)");
+        seriesWarnings.push_back(
+            "all " + std::to_string(group.frames.size()) +
+            " slices share one position: not a volume (no volume made of them)");
         return {};
     }
 
@@ -227,9 +237,11 @@ std::vector<Group> splitDuplicates(Group group, std::vector<std::string>& series
     for (std::size_t v = 0; v < volumes; ++v) {
         result[v].key = group.key;
         result[v].label = "repeat " + std::to_string(v + 1);
-        result[v].warnings.push_back(std::to_string(duplicates) +
-                                     " duplicate positions in the series: frames at the same position were "
-                                     "split into " + std::to_string(volumes) + " volumes in acquisition order");
+        result[v].warnings.push_back(
+            std::to_string(duplicates) +
+            " duplicate positions in the series: frames at the same position were "
+            "split into " +
+            std::to_string(volumes) + " volumes in acquisition order");
     }
     for (const auto& p : positions)
         for (std::size_t k = 0; k < p.size(); ++k)
@@ -258,7 +270,8 @@ double commonGap(std::vector<double> gaps) {
     return best;
 }
 
-volume::VoxelType chooseVoxelType(const std::vector<const InstanceInfo*>& instances, std::vector<std::string>& warnings) {
+volume::VoxelType chooseVoxelType(const std::vector<const InstanceInfo*>& instances,
+                                  std::vector<std::string>& warnings) {
     std::set<volume::VoxelType> types;
     bool unsignedNeeds16Bits = false;
     for (const InstanceInfo* info : instances) {
@@ -271,7 +284,8 @@ volume::VoxelType chooseVoxelType(const std::vector<const InstanceInfo*>& instan
         return *types.begin();
     if (types.count(volume::VoxelType::Int16)) {
         if (unsignedNeeds16Bits)
-            warnings.push_back("signed and unsigned 16-bit slices mixed: unsigned values above 32767 are clipped");
+            warnings.push_back(
+                "signed and unsigned 16-bit slices mixed: unsigned values above 32767 are clipped");
         return volume::VoxelType::Int16;
     }
     return volume::VoxelType::UInt16; // uint8 and uint16 mixed
@@ -344,19 +358,22 @@ VolumePlan makePlan(const SeriesInfo& series, Group group) {
     const glm::dvec3 normal = normalOf(key);
 
     if (key.hasPosition) {
-        std::stable_sort(group.frames.begin(), group.frames.end(), [&](const FrameRef& a, const FrameRef& b) {
-            return distanceAlongNormal(a, normal) < distanceAlongNormal(b, normal);
-        });
+        std::stable_sort(group.frames.begin(), group.frames.end(),
+                         [&](const FrameRef& a, const FrameRef& b) {
+                             return distanceAlongNormal(a, normal) < distanceAlongNormal(b, normal);
+                         });
     } else {
         // Nothing places these frames in space: keep the order the headers imply (frame order
         // within a file, then InstanceNumber) and say so.
-        std::stable_sort(group.frames.begin(), group.frames.end(), [](const FrameRef& a, const FrameRef& b) {
-            return std::make_tuple(a.info->instanceNumber.value_or(0), a.instance, a.frame) <
-                   std::make_tuple(b.info->instanceNumber.value_or(0), b.instance, b.frame);
-        });
+        std::stable_sort(
+            group.frames.begin(), group.frames.end(), [](const FrameRef& a, const FrameRef& b) {
+                return std::make_tuple(a.info->instanceNumber.value_or(0), a.instance, a.frame) <
+                       std::make_tuple(b.info->instanceNumber.value_or(0), b.instance, b.frame);
+            });
         if (group.frames.size() > 1)
-            plan.warnings.push_back("no ImagePositionPatient: " + std::to_string(group.frames.size()) +
-                                    " frames stacked in frame/instance order with an assumed slice spacing");
+            plan.warnings.push_back(
+                "no ImagePositionPatient: " + std::to_string(group.frames.size()) +
+                " frames stacked in frame/instance order with an assumed slice spacing");
         else
             plan.warnings.push_back("no ImagePositionPatient: a single slice placed at the origin");
     }
@@ -384,23 +401,24 @@ VolumePlan makePlan(const SeriesInfo& series, Group group) {
     // PixelSpacing is (row spacing, column spacing): the distance between rows runs along
     // the column axis (J), the distance between columns along the row axis (I).
     const glm::dvec2 spacing = key.spacing.value_or(glm::dvec2(1.0, 1.0));
-    plan.geometry = volume::VolumeGeometry::fromSlicePositions(rowAxis(key), columnAxis(key), spacing.y, spacing.x,
-                                                               positions, step);
+    plan.geometry = volume::VolumeGeometry::fromSlicePositions(
+        rowAxis(key), columnAxis(key), spacing.y, spacing.x, positions, step);
     plan.dims = glm::ivec3(key.columns, key.rows, int(group.frames.size()));
     plan.tiltDegrees = plan.geometry.tiltDegrees();
     plan.valueMapping = volume::ValueMapping{key.slope, key.intercept};
 
     measureGaps(positions, plan);
     if (plan.tiltDegrees > 0.01)
-        plan.warnings.push_back("gantry tilt " + formatNumber(plan.tiltDegrees) + " degrees (sheared volume)");
+        plan.warnings.push_back("gantry tilt " + formatNumber(plan.tiltDegrees) +
+                                " degrees (sheared volume)");
 
     std::vector<const InstanceInfo*> instances;
     std::set<std::size_t> seen;
     for (const FrameRef& f : group.frames) {
         if (seen.insert(f.instance).second) {
             instances.push_back(f.info);
-            if (std::find(plan.transferSyntaxes.begin(), plan.transferSyntaxes.end(), f.info->transferSyntaxUid) ==
-                plan.transferSyntaxes.end())
+            if (std::find(plan.transferSyntaxes.begin(), plan.transferSyntaxes.end(),
+                          f.info->transferSyntaxUid) == plan.transferSyntaxes.end())
                 plan.transferSyntaxes.push_back(f.info->transferSyntaxUid);
         }
     }
@@ -418,16 +436,20 @@ void labelGroups(std::vector<Group>& groups) {
                 return true;
         return false;
     };
-    const bool size = differs([](const Group& g) { return std::make_pair(g.key.rows, g.key.columns); });
+    const bool size =
+        differs([](const Group& g) { return std::make_pair(g.key.rows, g.key.columns); });
     const bool type = differs([](const Group& g) { return g.key.frameType; });
-    const bool rescale = differs([](const Group& g) { return std::make_pair(g.key.slope, g.key.intercept); });
+    const bool rescale =
+        differs([](const Group& g) { return std::make_pair(g.key.slope, g.key.intercept); });
     const bool spacing = differs([](const Group& g) {
-        return g.key.spacing ? std::make_pair(g.key.spacing->x, g.key.spacing->y) : std::make_pair(0.0, 0.0);
+        return g.key.spacing ? std::make_pair(g.key.spacing->x, g.key.spacing->y)
+                             : std::make_pair(0.0, 0.0);
     });
     const bool placed = differs([](const Group& g) { return g.key.hasPosition; });
     bool orientation = false;
     for (const Group& g : groups)
-        orientation = orientation || !sameOrientation(g.key.orientation, groups.front().key.orientation);
+        orientation =
+            orientation || !sameOrientation(g.key.orientation, groups.front().key.orientation);
 
     std::vector<std::array<double, 6>> orientations;
     for (Group& g : groups) {
@@ -444,15 +466,19 @@ void labelGroups(std::vector<Group>& groups) {
             parts.push_back("orientation " + std::to_string(index + 1));
         }
         if (spacing && g.key.spacing)
-            parts.push_back("pixel spacing " + formatNumber(g.key.spacing->x) + "/" + formatNumber(g.key.spacing->y));
+            parts.push_back("pixel spacing " + formatNumber(g.key.spacing->x) + "/" +
+                            formatNumber(g.key.spacing->y));
         if (type)
-            parts.push_back(g.key.frameType.empty() ? std::string("no frame type") : g.key.frameType);
+            parts.push_back(g.key.frameType.empty() ? std::string("no frame type")
+                                                    : g.key.frameType);
         if (rescale)
-            parts.push_back("rescale " + formatNumber(g.key.slope) + "/" + formatNumber(g.key.intercept));
+            parts.push_back("rescale " + formatNumber(g.key.slope) + "/" +
+                            formatNumber(g.key.intercept));
         if (placed && !g.key.hasPosition)
             parts.push_back("without position");
         if (!g.key.hasPosition && groups.size() > 1)
-            parts.push_back("file " + std::filesystem::path(g.frames.front().info->path).filename().string());
+            parts.push_back("file " +
+                            std::filesystem::path(g.frames.front().info->path).filename().string());
         if (!g.label.empty())
             parts.push_back(g.label);
         std::string label;
@@ -492,14 +518,16 @@ static SeriesAssembly planVolumesUnguarded(const SeriesInfo& series) {
             frames.push_back(FrameRef{i, frame.frameIndex, &info, &frame});
     }
     if (withoutPixels > 0)
-        assembly.warnings.push_back(std::to_string(withoutPixels) + " instance(s) have no pixel data");
+        assembly.warnings.push_back(std::to_string(withoutPixels) +
+                                    " instance(s) have no pixel data");
     if (frames.empty())
         return assembly;
 
     std::vector<Group> groups;
     for (const FrameRef& f : frames) {
         const GroupKey key = keyOf(f);
-        auto it = std::find_if(groups.begin(), groups.end(), [&](const Group& g) { return g.key.matches(key); });
+        auto it = std::find_if(groups.begin(), groups.end(),
+                               [&](const Group& g) { return g.key.matches(key); });
         if (it == groups.end()) {
             groups.push_back(Group{key, {}, {}, {}});
             it = groups.end() - 1;
@@ -513,10 +541,12 @@ static SeriesAssembly planVolumesUnguarded(const SeriesInfo& series) {
                 !sameRescale(*g.frames.front().frameInfo, *h.frames.front().frameInfo))
                 classicRescaleSplit = true;
     if (classicRescaleSplit)
-        assembly.warnings.push_back("rescale slope/intercept varies between slices: the series is split by rescale");
+        assembly.warnings.push_back(
+            "rescale slope/intercept varies between slices: the series is split by rescale");
     if (groups.size() > 1)
-        assembly.warnings.push_back("series split into " + std::to_string(groups.size()) +
-                                    " groups (orientation, size, pixel spacing, frame type or rescale differ)");
+        assembly.warnings.push_back(
+            "series split into " + std::to_string(groups.size()) +
+            " groups (orientation, size, pixel spacing, frame type or rescale differ)");
 
     std::vector<Group> split;
     for (Group& g : groups) {
@@ -532,7 +562,8 @@ static SeriesAssembly planVolumesUnguarded(const SeriesInfo& series) {
         try {
             assembly.volumes.push_back(makePlan(series, std::move(g)));
         } catch (const core::Error& e) {
-            assembly.warnings.push_back(std::string("a group of frames could not be planned: ") + e.what());
+            assembly.warnings.push_back(std::string("a group of frames could not be planned: ") +
+                                        e.what());
         }
     }
     return assembly;
@@ -552,7 +583,8 @@ void checkBeforeLoading(const SeriesInfo& series, const VolumePlan& plan,
     std::map<std::size_t, int> lastFrame; // per instance: the highest frame the plan uses
     for (const SliceRef& slice : plan.slices) {
         if (slice.instance >= series.instances.size())
-            throw core::Error(series.seriesInstanceUid, "the volume plan does not match the series");
+            throw core::Error(series.seriesInstanceUid,
+                              "the volume plan does not match the series");
         const InstanceInfo& info = series.instances[slice.instance];
         if (info.rows != plan.dims.y || info.columns != plan.dims.x)
             throw core::Error(info.path, "image size differs from the volume's");
@@ -590,15 +622,17 @@ static volume::Volume loadVolumeUnguarded(const SeriesInfo& series, const Volume
     std::map<std::size_t, std::vector<int>> slicesByInstance;
     for (int z = 0; z < int(plan.slices.size()); ++z)
         slicesByInstance[plan.slices[std::size_t(z)].instance].push_back(z);
-    std::vector<std::pair<std::size_t, std::vector<int>>> work(slicesByInstance.begin(), slicesByInstance.end());
+    std::vector<std::pair<std::size_t, std::vector<int>>> work(slicesByInstance.begin(),
+                                                               slicesByInstance.end());
 
     if (progress)
-        progress->setTotal(plan.slices.size(), "Loading " + std::to_string(plan.slices.size()) + " slices");
+        progress->setTotal(plan.slices.size(),
+                           "Loading " + std::to_string(plan.slices.size()) + " slices");
     core::parallelFor(work.size(), [&](std::size_t item) {
         const auto& [instance, zs] = work[item];
         const InstanceInfo& info = series.instances[instance];
         // A library failure while decoding names this file, not just the series.
-        detail::atModuleBoundary(info.path, [&] {
+        core::atModuleBoundary(info.path, [&] {
             FrameDecoder decoder(info, limits);
             for (int z : zs) {
                 if (progress)
@@ -630,20 +664,20 @@ static volume::Volume loadSliceUnguarded(const SeriesInfo& series, const VolumeP
 // The public entries: nothing but core::Error and core::Cancelled leaves them. The subject is
 // the series; errors of one file already name that file.
 SeriesAssembly planVolumes(const SeriesInfo& series) {
-    return detail::atModuleBoundary(series.seriesInstanceUid,
-                                    [&] { return planVolumesUnguarded(series); });
+    return core::atModuleBoundary(series.seriesInstanceUid,
+                                  [&] { return planVolumesUnguarded(series); });
 }
 
 volume::Volume loadVolume(const SeriesInfo& series, const VolumePlan& plan,
                           core::Progress* progress, const core::ImportLimits& limits) {
-    return detail::atModuleBoundary(series.seriesInstanceUid, [&] {
+    return core::atModuleBoundary(series.seriesInstanceUid, [&] {
         return loadVolumeUnguarded(series, plan, progress, limits);
     });
 }
 
 volume::Volume loadSlice(const SeriesInfo& series, const VolumePlan& plan, std::size_t sliceIndex,
                          core::Progress* progress, const core::ImportLimits& limits) {
-    return detail::atModuleBoundary(series.seriesInstanceUid, [&] {
+    return core::atModuleBoundary(series.seriesInstanceUid, [&] {
         return loadSliceUnguarded(series, plan, sliceIndex, progress, limits);
     });
 }

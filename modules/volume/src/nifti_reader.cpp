@@ -322,9 +322,8 @@ VolumeGeometry niftiGeometry(const HeaderView& h, const NiftiHeader& header) {
                                    glm::dvec3(0, -1, 0), glm::dvec3(0, 0, 1));
 }
 
-} // namespace
-
-Volume readNifti(const std::filesystem::path& requested, const core::ImportLimits& limits) {
+Volume readNiftiUnguarded(const std::filesystem::path& requested,
+                          const core::ImportLimits& limits) {
     const std::filesystem::path path = headerPathFor(requested);
     StoredFile file = readStored(path);
     // The header first (from a gzip stream too): it says how large the rest may be.
@@ -347,6 +346,12 @@ Volume readNifti(const std::filesystem::path& requested, const core::ImportLimit
     const char* descrip = reinterpret_cast<const char*>(headerData + 148);
     volume.setDescription(std::string(descrip, strnlen(descrip, 80)));
     return volume;
+}
+
+} // namespace
+
+Volume readNifti(const std::filesystem::path& path, const core::ImportLimits& limits) {
+    return core::atModuleBoundary(path.string(), [&] { return readNiftiUnguarded(path, limits); });
 }
 
 } // namespace lw::volume

@@ -548,9 +548,7 @@ void applyMetadata(const NrrdHeader& header, Volume& volume) {
     }
 }
 
-} // namespace
-
-Volume readNrrd(const std::filesystem::path& path, const core::ImportLimits& limits) {
+Volume readNrrdUnguarded(const std::filesystem::path& path, const core::ImportLimits& limits) {
     std::vector<std::byte> bytes = core::readFileBytes(path);
     const NrrdHeader header = parseHeader(path, bytes);
     const DataLayout layout = parseLayout(path, header, limits);
@@ -561,6 +559,12 @@ Volume readNrrd(const std::filesystem::path& path, const core::ImportLimits& lim
                         : readFileList(path, header, files, layout, std::move(geometry));
     applyMetadata(header, volume);
     return volume;
+}
+
+} // namespace
+
+Volume readNrrd(const std::filesystem::path& path, const core::ImportLimits& limits) {
+    return core::atModuleBoundary(path.string(), [&] { return readNrrdUnguarded(path, limits); });
 }
 
 namespace {

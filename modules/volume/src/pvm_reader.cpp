@@ -171,9 +171,7 @@ std::string readCString(const std::byte* data, std::size_t size, std::size_t& po
     return std::string(start, length);
 }
 
-} // namespace
-
-Volume readPvm(const std::filesystem::path& path, const core::ImportLimits& limits) {
+Volume readPvmUnguarded(const std::filesystem::path& path, const core::ImportLimits& limits) {
     std::vector<std::byte> bytes = core::readFileBytes(path);
     const auto startsWith = [&](std::string_view magic) {
         return bytes.size() >= magic.size() &&
@@ -254,6 +252,12 @@ Volume readPvm(const std::filesystem::path& path, const core::ImportLimits& limi
         volume.setDescription(description);
     }
     return volume;
+}
+
+} // namespace
+
+Volume readPvm(const std::filesystem::path& path, const core::ImportLimits& limits) {
+    return core::atModuleBoundary(path.string(), [&] { return readPvmUnguarded(path, limits); });
 }
 
 } // namespace lw::volume

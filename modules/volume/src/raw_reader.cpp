@@ -5,9 +5,10 @@
 #include <limits>
 
 namespace lw::volume {
+namespace {
 
-Volume readRawVolume(const std::filesystem::path& path, const RawOptions& options,
-                     const core::ImportLimits& limits) {
+Volume readRawUnguarded(const std::filesystem::path& path, const RawOptions& options,
+                        const core::ImportLimits& limits) {
     using detail::fail;
     const std::size_t size = voxelSize(options.type);
     const auto expected =
@@ -37,6 +38,14 @@ Volume readRawVolume(const std::filesystem::path& path, const RawOptions& option
                   VolumeGeometry::regular(glm::dvec3(0.0), options.spacing));
     detail::fillVolume(volume, bytes.data() + options.headerBytes, options.bigEndian);
     return volume;
+}
+
+} // namespace
+
+Volume readRawVolume(const std::filesystem::path& path, const RawOptions& options,
+                     const core::ImportLimits& limits) {
+    return core::atModuleBoundary(path.string(),
+                                  [&] { return readRawUnguarded(path, options, limits); });
 }
 
 } // namespace lw::volume

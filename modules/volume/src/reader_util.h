@@ -5,6 +5,7 @@
 
 #include "lw/core/error.h"
 #include "lw/core/limits.h"
+#include "lw/core/module_boundary.h"
 #include "lw/volume/volume.h"
 
 #include <cstddef>
