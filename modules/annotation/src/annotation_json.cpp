@@ -5,6 +5,8 @@
 #include "lw/core/json_reader.h"
 #include "lw/core/json_writer.h"
 
+#include <cstdio>
+
 namespace lw::annotation {
 namespace {
 
@@ -67,7 +69,11 @@ Annotation readAnnotation(const JsonValue& value, const Place& place) {
         place.fail("missing \"points\"");
     for (std::size_t i = 0; i < points->array().size(); ++i)
         annotation.anchors.push_back(readPoint(points->array()[i], place.member("points").item(i)));
-    validate(annotation, place.subject + ": " + place.path);
+    try {
+        validate(annotation, place.subject);
+    } catch (const core::Error& error) {
+        place.fail(error.reason()); // the same reason, with the place in the file
+    }
     return annotation;
 }
 
@@ -86,9 +92,12 @@ std::vector<Annotation> parseAnnotationsJson(std::string_view text, const std::s
         } else if (name == "version") {
             const double version =
                 require(member, JsonValue::Type::Number, {subject, name}).number();
-            if (version != kAnnotationFileVersion)
-                root.fail("version " + std::to_string(version) + " is not supported (expected " +
-                          std::to_string(kAnnotationFileVersion) + ")");
+            if (version != kAnnotationFileVersion) {
+                char text[96];
+                std::snprintf(text, sizeof text, "version %g is not supported (expected %d)",
+                              version, kAnnotationFileVersion);
+                root.fail(text);
+            }
         } else {
             root.fail("unknown member \"" + name + "\" (expected version, annotations)");
         }
