@@ -115,40 +115,40 @@ struct ExportJob {
     std::vector<annotation::Annotation> annotations;
     report::PanelLayout layout = report::PanelLayout::SideBySide;
     report::ReportInfo info;
-    std::optional<input::DicomIdentity> identity;
 };
 
+// Writes the outputs one by one; when one fails, those written before it are removed again, so
+// a failed export leaves no partial set of files behind.
 void writeOutputs(const ExportJob& job, const ExportTargets& targets, std::ostream& out) {
     Stopwatch watch;
-    const QImage picture = report::composeExportImage(job.panels, job.annotations, job.layout);
-    if (targets.png) {
-        report::writeExportFile(*targets.png, report::encodePngBytes(picture, *targets.png),
-                                targets.overwrite);
-        reportWritten(out, *targets.png, watch.lapMs());
-    }
-    if (targets.svg) {
-        report::writeExportFile(*targets.svg,
-                                report::renderSvg(job.panels, job.annotations, job.layout),
-                                targets.overwrite);
-        reportWritten(out, *targets.svg, watch.lapMs());
-    }
-    if (targets.pdf) {
-        report::writeExportFile(*targets.pdf,
-                                report::renderPdfReport(job.info, picture, job.annotations),
-                                targets.overwrite);
-        reportWritten(out, *targets.pdf, watch.lapMs());
-    }
-    if (targets.sc) {
-        if (!job.identity)
-            throw core::Error(targets.sc->string(), "a Secondary Capture joins the source's "
-                                                    "study: the input must be DICOM");
-        report::SecondaryCaptureSeries series;
-        series.source = *job.identity;
-        series.derivationDescription = job.info.method;
-        series.softwareVersion = LINEWORK_VERSION;
-        for (const auto& file :
-             report::writeSecondaryCapture(*targets.sc, {picture}, series, targets.overwrite))
-            reportWritten(out, file, watch.lapMs());
+    std::vector<std::filesystem::path> written;
+    const auto write = [&](const std::filesystem::path& path, const QByteArray& bytes) {
+        report::writeExportFile(path, bytes, targets.overwrite);
+        written.push_back(path);
+        reportWritten(out, path, watch.lapMs());
+    };
+    try {
+        const QImage picture = report::composeExportImage(job.panels, job.annotations, job.layout);
+        if (targets.png)
+            write(*targets.png, report::encodePngBytes(picture, *targets.png));
+        if (targets.svg)
+            write(*targets.svg, report::renderSvg(job.panels, job.annotations, job.layout));
+        if (targets.pdf)
+            write(*targets.pdf, report::renderPdfReport(job.info, picture, job.annotations));
+        if (targets.sc) {
+            report::SecondaryCaptureSeries series;
+            series.source = job.info.identity.value();
+            series.derivationDescription = job.info.method;
+            series.softwareVersion = LINEWORK_VERSION;
+            for (const auto& file :
+                 report::writeSecondaryCapture(*targets.sc, {picture}, series, targets.overwrite))
+                reportWritten(out, file, watch.lapMs());
+        }
+    } catch (...) {
+        std::error_code ignored;
+        for (const std::filesystem::path& path : written)
+            std::filesystem::remove(path, ignored);
+        throw;
     }
 }
 
@@ -186,13 +186,15 @@ int runExport(const std::vector<std::string>& args, std::ostream& out) {
     input::OpenedVolume opened =
         openCliInput(arguments.positionals()[0], arguments.option("series"));
     volume = std::move(opened.volume);
+    if (targets.sc && !opened.dicom) // before rendering: nothing is written then
+        throw core::Error(targets.sc->string(), "a Secondary Capture joins the source's study: "
+                                                "the input must be DICOM");
     fitToVolume(arguments, volume, request, setup);
     job.panels.camera = render::Camera(setup, size.x, size.y);
     const RenderedPanels panels = renderPanels(*renderer, volume, job.panels.camera, request, out);
     job.panels.iso = report::toQImage(panels.iso);
     job.panels.silhouette = report::toQImage(panels.silhouette);
 
-    job.identity = opened.dicom;
     job.info.identity = opened.dicom;
     job.info.sourceDescription = opened.description;
     job.info.method = methodDescription(request, setup);

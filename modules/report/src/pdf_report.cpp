@@ -175,6 +175,11 @@ QByteArray renderPdfReport(const ReportInfo& info, const QImage& picture,
     writer.setTitle(QObject::tr("Linework report"));
     writer.setCreator(QString("Linework %1").arg(text(info.softwareVersion)));
     QPainter painter(&writer);
+    // No shaping, hence no ligatures: "finding" stays f-i in the PDF's text layer, so searching
+    // and copying the report finds it (a ligature extracts as U+FB01).
+    QFont font = painter.font();
+    font.setStyleStrategy(QFont::PreferNoShaping);
+    painter.setFont(font);
     const QRectF page(QPointF(0, 0), QSizeF(writer.width(), writer.height()));
 
     double y = drawTitle(painter, page, QObject::tr("Linework report"));
