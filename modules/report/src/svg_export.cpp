@@ -2,6 +2,7 @@
 
 #include "lw/annotation/annotation_projection.h"
 #include "lw/report/export_files.h"
+#include "overlay_shapes.h"
 
 #include <QString>
 #include <cmath>
@@ -9,77 +10,46 @@
 namespace lw::report {
 namespace {
 
-using annotation::AnnotationKind;
-using annotation::ProjectedAnnotation;
-
 QString number(double value) {
     return QString::number(value, 'f', 2);
 }
 
-QString line(glm::dvec2 a, glm::dvec2 b) {
-    return QString("<line x1=\"%1\" y1=\"%2\" x2=\"%3\" y2=\"%4\"/>\n")
-        .arg(number(a.x), number(a.y), number(b.x), number(b.y));
+QString point(glm::dvec2 p) {
+    return number(p.x) + "," + number(p.y);
 }
 
-QString textAt(glm::dvec2 at, const std::string& caption, double fontSize) {
-    if (caption.empty())
-        return {};
-    return QString("<text x=\"%1\" y=\"%2\" font-size=\"%3\" stroke=\"none\">%4</text>\n")
-        .arg(number(at.x), number(at.y), number(fontSize),
-             QString::fromStdString(caption).toHtmlEscaped());
-}
-
-std::string captionOf(const ProjectedAnnotation& projected) {
-    if (projected.text.empty())
-        return projected.measurement;
-    return projected.measurement.empty() ? projected.text
-                                         : projected.text + " " + projected.measurement;
-}
-
-glm::dvec2 unitPerpendicular(glm::dvec2 a, glm::dvec2 b) {
-    const glm::dvec2 d = b - a;
-    const double length = glm::length(d);
-    return length > 0.0 ? glm::dvec2(-d.y, d.x) / length : glm::dvec2(0.0, -1.0);
+// An arc as an SVG path: screen angles counter-clockwise (OverlayShapes::Arc), which is SVG's
+// negative sweep direction since its y axis points down.
+QString arcPath(const OverlayShapes::Arc& arc) {
+    const auto at = [&](double deg) {
+        const double t = glm::radians(deg);
+        return arc.centre + arc.radius * glm::dvec2(std::cos(t), -std::sin(t));
+    };
+    return QString("<path fill=\"none\" d=\"M %1 A %2 %2 0 %3 %4 %5\"/>\n")
+        .arg(point(at(arc.startDeg)), number(arc.radius))
+        .arg(std::abs(arc.spanDeg) > 180.0 ? 1 : 0)
+        .arg(arc.spanDeg > 0.0 ? 0 : 1)
+        .arg(point(at(arc.startDeg + arc.spanDeg)));
 }
 
 // One annotation's elements, in panel pixels (the caller's group moves them to the panel).
-QString annotationElements(const ProjectedAnnotation& p, double scale, double fontSize) {
-    const std::string caption = captionOf(p);
-    const auto& pts = p.points;
+QString svgElements(const OverlayShapes& shapes, double fontSize, const OverlayStyle& style) {
     QString out;
-    switch (p.kind) {
-    case AnnotationKind::Label: {
-        const double r = 4.0 * scale;
-        out += line(pts[0] - glm::dvec2(r, 0), pts[0] + glm::dvec2(r, 0));
-        out += line(pts[0] - glm::dvec2(0, r), pts[0] + glm::dvec2(0, r));
-        out += textAt(pts[0] + glm::dvec2(2.0 * r, -r), caption, fontSize);
-        break;
-    }
-    case AnnotationKind::Arrow: {
-        out += line(pts[0], pts[1]);
-        const glm::dvec2 side = unitPerpendicular(pts[0], pts[1]);
-        const glm::dvec2 back(side.y, -side.x);
-        const glm::dvec2 left = pts[1] + back * (14.0 * scale) + side * (5.0 * scale);
-        const glm::dvec2 right = pts[1] + back * (14.0 * scale) - side * (5.0 * scale);
-        out += QString("<polygon points=\"%1,%2 %3,%4 %5,%6\" stroke=\"none\"/>\n")
-                   .arg(number(pts[1].x), number(pts[1].y), number(left.x), number(left.y),
-                        number(right.x), number(right.y));
-        out += textAt(pts[0] + glm::dvec2(4.0 * scale, -4.0 * scale), caption, fontSize);
-        break;
-    }
-    case AnnotationKind::Ruler: {
-        out += line(pts[0], pts[1]);
-        const glm::dvec2 tick = unitPerpendicular(pts[0], pts[1]) * (6.0 * scale);
-        out += line(pts[0] - tick, pts[0] + tick) + line(pts[1] - tick, pts[1] + tick);
-        out += textAt((pts[0] + pts[1]) / 2.0 + glm::dvec2(6.0 * scale, -6.0 * scale), caption,
-                      fontSize);
-        break;
-    }
-    case AnnotationKind::Angle:
-        out += line(pts[1], pts[0]) + line(pts[1], pts[2]);
-        out += textAt(pts[1] + glm::dvec2(22.0 * scale, 4.0 * scale), caption, fontSize);
-        break;
-    }
+    for (const OverlayShapes::Segment& s : shapes.segments)
+        out += QString("<line x1=\"%1\" y1=\"%2\" x2=\"%3\" y2=\"%4\"/>\n")
+                   .arg(number(s.a.x), number(s.a.y), number(s.b.x), number(s.b.y));
+    for (const auto& t : shapes.triangles)
+        out += QString("<polygon stroke=\"none\" points=\"%1 %2 %3\"/>\n")
+                   .arg(point(t[0]), point(t[1]), point(t[2]));
+    for (const OverlayShapes::Arc& arc : shapes.arcs)
+        out += arcPath(arc);
+    // The halo as a wide stroke painted under the glyphs, like the raster's halo box.
+    for (const OverlayShapes::Caption& c : shapes.captions)
+        out += QString("<text x=\"%1\" y=\"%2\" font-size=\"%3\" stroke=\"%4\" "
+                       "stroke-width=\"%5\" paint-order=\"stroke\">%6</text>\n")
+                   .arg(number(c.baseline.x), number(c.baseline.y), number(fontSize),
+                        style.halo.name(), number(fontSize * 0.25),
+                        QString::fromStdString(c.text).toHtmlEscaped());
     return out;
 }
 
@@ -114,10 +84,10 @@ QByteArray renderSvg(const RenderedPanels& panels,
                    .arg(x)
                    .arg(colour, number(style.lineWidth * scale));
         for (const annotation::Annotation& item : annotations) {
-            const ProjectedAnnotation projected =
+            const annotation::ProjectedAnnotation projected =
                 annotation::projectAnnotation(item, panels.camera);
             if (projected.inFront)
-                svg += annotationElements(projected, scale, fontSize);
+                svg += svgElements(overlayShapes(projected, scale), fontSize, style);
         }
         svg += "</g>\n";
         x += panel.width();
