@@ -26,6 +26,15 @@ QString dicomDate(const std::string& date) {
     return text(date);
 }
 
+// The non-empty parts, two spaces apart.
+QString joined(const QStringList& parts) {
+    QStringList kept;
+    for (const QString& part : parts)
+        if (!part.trimmed().isEmpty())
+            kept.push_back(part.trimmed());
+    return kept.join("  ");
+}
+
 QString pointText(const glm::dvec3& p) {
     char buffer[96];
     std::snprintf(buffer, sizeof buffer, "(%.1f, %.1f, %.1f)", p.x, p.y, p.z);
@@ -147,14 +156,14 @@ std::vector<std::pair<QString, QString>> reportHeaderRows(const ReportInfo& info
             rows.emplace_back(QObject::tr("Patient"), text(id.patientName));
             rows.emplace_back(QObject::tr("Patient ID"), text(id.patientId));
             rows.emplace_back(QObject::tr("Birth date, sex"),
-                              dicomDate(id.patientBirthDate) + "  " + text(id.patientSex));
+                              joined({dicomDate(id.patientBirthDate), text(id.patientSex)}));
             rows.emplace_back(QObject::tr("Accession"), text(id.accessionNumber));
         }
         rows.emplace_back(QObject::tr("Study"),
-                          dicomDate(id.studyDate) + "  " + text(id.studyDescription));
+                          joined({dicomDate(id.studyDate), text(id.studyDescription)}));
         rows.emplace_back(QObject::tr("Series"),
-                          (id.seriesNumber ? QString::number(*id.seriesNumber) + "  " : QString()) +
-                              text(id.modality) + "  " + text(id.seriesDescription));
+                          joined({id.seriesNumber ? QString::number(*id.seriesNumber) : QString(),
+                                  text(id.modality), text(id.seriesDescription)}));
     } else {
         rows.emplace_back(QObject::tr("Source"), text(info.sourceDescription));
     }
