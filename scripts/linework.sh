@@ -25,7 +25,8 @@ cd "$root"
 packages=(build-essential cmake ninja-build file pkg-config zlib1g-dev libgtest-dev
           qt6-base-dev qt6-tools-dev qt6-l10n-tools libqt6opengl6-dev libqt6sql6-sqlite
           libdcmtk-dev dcmtk libopenjp2-7-dev libglm-dev libegl-dev libgl-dev libopengl-dev libegl-mesa0 libgl1-mesa-dri
-          xvfb xauth python3-numpy desktop-file-utils appstream)
+          xvfb xauth python3-numpy desktop-file-utils appstream
+          poppler-utils dicom3tools) # the report tests read the PDF and validate the DICOM SC
 
 install_packages() {
   local missing=()

@@ -59,10 +59,15 @@ glm::dvec2 parseView(const std::string& text) {
     return {values[0], values[1]};
 }
 
-volume::Volume loadInput(const std::string& input, const std::optional<std::string>& seriesUid) {
+input::OpenedVolume openCliInput(const std::string& input,
+                                 const std::optional<std::string>& seriesUid) {
     input::OpenOptions options;
     options.seriesUid = seriesUid;
-    return input::openInput(input, options).volume;
+    return input::openInput(input, options);
+}
+
+volume::Volume loadInput(const std::string& input, const std::optional<std::string>& seriesUid) {
+    return openCliInput(input, seriesUid).volume;
 }
 
 } // namespace lw::cli

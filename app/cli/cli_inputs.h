@@ -37,5 +37,8 @@ glm::dvec2 parseView(const std::string& text);
 // file (NRRD, NIfTI, PVM, raw), or, in a DICOM build, a DICOM folder / DICOMDIR / file, where
 // `seriesUid` picks the series (default: the one with the most slices).
 volume::Volume loadInput(const std::string& input, const std::optional<std::string>& seriesUid);
+// The same with what the input says about itself (description, DICOM patient/study/series).
+input::OpenedVolume openCliInput(const std::string& input,
+                                 const std::optional<std::string>& seriesUid);
 
 } // namespace lw::cli

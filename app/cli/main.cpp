@@ -11,6 +11,15 @@
 #include <string>
 #include <vector>
 
+#ifndef LINEWORK_HAVE_REPORT
+namespace lw::cli {
+int runExport(const std::vector<std::string>&, std::ostream&) {
+    throw core::Error("export", "this linework-cli was built without report support (it needs "
+                                "Qt 6 and DCMTK: LINEWORK_GUI and LINEWORK_DICOM)");
+}
+} // namespace lw::cli
+#endif
+
 namespace {
 
 constexpr const char* kUsage = R"(usage: linework-cli COMMAND [ARGS]
@@ -46,6 +55,16 @@ commands:
                               the paper's Tables 1-4: median ms of marching cubes and of each
                               method x S/L x mode a/b x visibility on/off (default phantom
                               32,256, 1024x1024, 5 runs), stage times, peak memory (VmHWM)
+  export INPUT [--series UID] --iso HU [--method 1|2|3] [--view AZ,EL] [--size WxH]
+         [--panel both|iso|silhouette] [--annotations FILE.json] [--comment TEXT] [--anonymise]
+         [--png OUT.png] [--pdf OUT.pdf] [--svg OUT.svg] [--sc FOLDER] [--force]
+         [--chunks ..] [--mode ..] [--visibility ..] [--camera ..] [--backend ..] [--threads N]
+                              the review as a report, any combination of outputs: PNG with the
+                              annotations burned in (lines and text scale with --size, the size
+                              of each panel), a 2-page PDF report (header, picture, measurements,
+                              comment), SVG (the panels as a raster, annotations as vectors),
+                              DICOM Secondary Capture (a new series in the source study, needs
+                              DICOM input); existing files are kept unless --force
   help                        this text
 
 Exit codes: 0 success, 1 error (the message names the file and the reason), 2 usage error.
@@ -78,13 +97,10 @@ int main(int argc, char** argv) {
     }
     using Command = std::function<int(const std::vector<std::string>&, std::ostream&)>;
     const std::map<std::string, Command> commands = {
-        {"info", lw::cli::runInfo},
-        {"bench-import", lw::cli::runBenchImport},
-        {"render", lw::cli::runRender},
-        {"phantom", lw::cli::runPhantom},
-        {"bench-mc", lw::cli::runBenchMc},
-        {"accuracy", lw::cli::runAccuracy},
-        {"bench", lw::cli::runBench},
+        {"info", lw::cli::runInfo},        {"bench-import", lw::cli::runBenchImport},
+        {"render", lw::cli::runRender},    {"phantom", lw::cli::runPhantom},
+        {"bench-mc", lw::cli::runBenchMc}, {"accuracy", lw::cli::runAccuracy},
+        {"bench", lw::cli::runBench},      {"export", lw::cli::runExport},
     };
     const auto command = commands.find(args[0]);
     if (command == commands.end()) {

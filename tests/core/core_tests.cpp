@@ -114,6 +114,29 @@ TEST(FileUtil, AtomicWriteReplacesAndLeavesNoTemporary) {
     EXPECT_THROW(readFileBytes(dir / "missing.bin"), Error);
 }
 
+// Exports never replace a file unless asked: the existing file keeps its bytes and no temporary
+// file stays behind; a missing folder is named before anything is written.
+TEST(FileUtil, AtomicWriteRefusingOverwriteKeepsTheExistingFile) {
+    lw::test::TempDir dir;
+    const auto path = dir / "report.pdf";
+    writeFileAtomically(path, "first", 5, Overwrite::Refuse);
+    try {
+        writeFileAtomically(path, "second", 6, Overwrite::Refuse);
+        FAIL() << "an existing file was overwritten";
+    } catch (const Error& error) {
+        EXPECT_EQ(error.subject(), path.string());
+        EXPECT_NE(error.reason().find("exists already"), std::string::npos) << error.reason();
+    }
+    EXPECT_EQ(readFileText(path), "first");
+    EXPECT_THROW(checkWritableTarget(path, Overwrite::Refuse), Error);
+    EXPECT_NO_THROW(checkWritableTarget(path, Overwrite::Allow));
+    EXPECT_THROW(checkWritableTarget(dir / "missing" / "x.png", Overwrite::Allow), Error);
+    int entries = 0;
+    for ([[maybe_unused]] const auto& e : std::filesystem::directory_iterator(dir.path()))
+        ++entries;
+    EXPECT_EQ(entries, 1);
+}
+
 TEST(Log, SinkReceivesCategoryAndThresholdFilters) {
     std::vector<std::string> seen;
     auto previous = setLogSink([&](LogLevel level, std::string_view category, const std::string& m) {

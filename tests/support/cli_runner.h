@@ -9,7 +9,8 @@ namespace lw::test {
 
 struct CliResult {
     int exitCode = -1; // -1 when the program could not be run or did not exit normally
-    std::string out;   // stdout; stderr is dropped
+    std::string out;   // stdout
+    std::string err;   // stderr
 };
 
 // Runs `"PROGRAM" ARGUMENTS` through the shell, `environment` (e.g. "LW_X=1 ") put in front.

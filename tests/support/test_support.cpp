@@ -2,14 +2,31 @@
 
 #include "lw/core/log.h"
 
-#include <gtest/gtest.h>
-
 #include <cstdio>
 #include <cstdlib>
+#include <gtest/gtest.h>
 #include <random>
+#include <sstream>
 #include <string>
+#include <unistd.h>
 
 namespace lw::test {
+
+std::string firstMissingProgram(const std::string& names) {
+    const char* path = std::getenv("PATH");
+    std::istringstream programs(names);
+    std::string program;
+    while (programs >> program) {
+        bool found = false;
+        std::istringstream folders(path ? path : "");
+        std::string folder;
+        while (!found && std::getline(folders, folder, ':'))
+            found = !folder.empty() && ::access((folder + "/" + program).c_str(), X_OK) == 0;
+        if (!found)
+            return program;
+    }
+    return {};
+}
 
 void installFailingLogSink() {
     lw::core::setLogSink([](lw::core::LogLevel level, std::string_view category,

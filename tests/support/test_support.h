@@ -2,6 +2,7 @@
 
 #include <filesystem>
 #include <optional>
+#include <string>
 
 namespace lw::test {
 
@@ -12,6 +13,9 @@ void installFailingLogSink();
 std::optional<std::filesystem::path> sharedDataDir();
 // The source tree (for tests/data and resources/).
 std::filesystem::path sourceDir();
+// The first of the programs in `names` (separated by spaces) that is not on PATH; empty when all
+// are there. Tests that run a tool (pdftotext, dciodvfy) SKIP without it.
+std::string firstMissingProgram(const std::string& names);
 // A fresh temporary directory removed when the object goes out of scope.
 class TempDir {
 public:
@@ -20,7 +24,9 @@ public:
     TempDir(const TempDir&) = delete;
     TempDir& operator=(const TempDir&) = delete;
     const std::filesystem::path& path() const { return m_path; }
-    std::filesystem::path operator/(const std::filesystem::path& name) const { return m_path / name; }
+    std::filesystem::path operator/(const std::filesystem::path& name) const {
+        return m_path / name;
+    }
 
 private:
     std::filesystem::path m_path;

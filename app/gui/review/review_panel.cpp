@@ -1,6 +1,7 @@
 #include "review/review_panel.h"
 
 #include "lw/core/error.h"
+#include "lw/render/surface_picking.h"
 #include "review/camera_controller.h"
 #include "review/qt_image.h"
 
@@ -328,17 +329,11 @@ QImage ReviewPanel::renderImage(QSize size, const ReviewSettings* appearance) {
 std::optional<glm::dvec3> ReviewPanel::pickFromDepthImage(QPoint position) const {
     // The worker's depth buffer of the image on screen (stretched to the widget, as drawn).
     const int w = m_depthCamera.width(), h = m_depthCamera.height();
-    if (m_depth.size() != std::size_t(w) * std::size_t(h) || width() <= 0 || height() <= 0)
+    if (width() <= 0 || height() <= 0)
         return std::nullopt;
-    const double x = (position.x() + 0.5) * w / width();
-    const double y = (position.y() + 0.5) * h / height();
-    if (x < 0 || y < 0 || x >= w || y >= h)
-        return std::nullopt;
-    const float depth = m_depth[std::size_t(y) * std::size_t(w) + std::size_t(x)];
-    if (depth >= 1.0f)
-        return std::nullopt;
-    return m_depthCamera.unproject({std::floor(x) + 0.5, std::floor(y) + 0.5},
-                                   2.0 * double(depth) - 1.0);
+    return render::pickFromDepthBuffer(
+        m_depth, m_depthCamera,
+        {(position.x() + 0.5) * w / width(), (position.y() + 0.5) * h / height()});
 }
 
 std::optional<glm::dvec3> ReviewPanel::pickPatientPoint(QPoint position) {

@@ -9,6 +9,7 @@
 #include <fstream>
 #include <limits>
 #include <random>
+#include <unistd.h>
 #include <zlib.h>
 
 namespace lw::core {
@@ -124,13 +125,64 @@ std::vector<std::byte> gunzipPrefix(const std::byte* data, std::size_t size,
     return inflateAtMost(data, size, subject, count, &exceeded);
 }
 
-void writeFileAtomically(const std::filesystem::path& path, const void* data, std::size_t size) {
+namespace {
+
+std::filesystem::path folderOf(const std::filesystem::path& path) {
+    return path.has_parent_path() ? path.parent_path() : std::filesystem::path(".");
+}
+
+void removeQuietly(const std::filesystem::path& path) {
+    std::error_code ignored;
+    std::filesystem::remove(path, ignored);
+}
+
+// Moves the finished temporary file onto the target. link() refuses an existing target
+// atomically, where a test for existence followed by rename() would race with another writer.
+void commitTemporary(const std::filesystem::path& temporary, const std::filesystem::path& path,
+                     Overwrite overwrite) {
+    if (overwrite == Overwrite::Refuse) {
+        if (::link(temporary.c_str(), path.c_str()) != 0) {
+            const int error = errno;
+            removeQuietly(temporary);
+            throw Error(path.string(), error == EEXIST ? "the file exists already (not overwritten)"
+                                                       : std::string("cannot create the file: ") +
+                                                             std::strerror(error));
+        }
+        removeQuietly(temporary);
+        return;
+    }
+    std::error_code ec;
+    std::filesystem::rename(temporary, path, ec);
+    if (ec) {
+        removeQuietly(temporary);
+        throw Error(path.string(), "cannot replace the file: " + ec.message());
+    }
+}
+
+} // namespace
+
+void checkWritableTarget(const std::filesystem::path& path, Overwrite overwrite) {
+    std::error_code ec;
+    if (overwrite == Overwrite::Refuse && std::filesystem::exists(path, ec))
+        throw Error(path.string(), "the file exists already (not overwritten)");
+    const std::filesystem::path folder = folderOf(path);
+    if (!std::filesystem::is_directory(folder, ec))
+        throw Error(path.string(), "the folder " + folder.string() + " does not exist");
+    if (::access(folder.c_str(), W_OK | X_OK) != 0)
+        throw Error(path.string(), "cannot write into the folder " + folder.string() + ": " +
+                                       std::strerror(errno));
+}
+
+void writeFileAtomically(const std::filesystem::path& path, const void* data, std::size_t size,
+                         Overwrite overwrite) {
+    if (overwrite == Overwrite::Refuse && std::filesystem::exists(path))
+        throw Error(path.string(), "the file exists already (not overwritten)");
     std::random_device random;
     std::string temporaryName = ".";
     temporaryName += path.filename().string();
     temporaryName += ".tmp";
     temporaryName += std::to_string(random());
-    const auto temporary = path.parent_path() / temporaryName;
+    const auto temporary = folderOf(path) / temporaryName;
     {
         std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
         if (!out)
@@ -140,18 +192,11 @@ void writeFileAtomically(const std::filesystem::path& path, const void* data, st
         out.flush();
         if (!out) {
             out.close();
-            std::error_code ignored;
-            std::filesystem::remove(temporary, ignored);
+            removeQuietly(temporary);
             throw Error(path.string(), "write failed (disk full?)");
         }
     }
-    std::error_code ec;
-    std::filesystem::rename(temporary, path, ec);
-    if (ec) {
-        std::error_code ignored;
-        std::filesystem::remove(temporary, ignored);
-        throw Error(path.string(), "cannot replace the file: " + ec.message());
-    }
+    commitTemporary(temporary, path, overwrite);
 }
 
 } // namespace lw::core

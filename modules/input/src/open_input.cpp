@@ -88,6 +88,25 @@ const dicom::SeriesInfo& chooseSeries(const dicom::DicomIndex& index, const std:
     return *chosen;
 }
 
+DicomIdentity identityOf(const dicom::InstanceInfo& first) {
+    DicomIdentity identity;
+    identity.patientName = first.patientName;
+    identity.patientId = first.patientId;
+    identity.patientBirthDate = first.patientBirthDate;
+    identity.patientSex = first.patientSex;
+    identity.studyInstanceUid = first.studyInstanceUid;
+    identity.studyId = first.studyId;
+    identity.studyDate = first.studyDate;
+    identity.studyTime = first.studyTime;
+    identity.studyDescription = first.studyDescription;
+    identity.accessionNumber = first.accessionNumber;
+    identity.seriesInstanceUid = first.seriesInstanceUid;
+    identity.seriesDescription = first.seriesDescription;
+    identity.modality = first.modality;
+    identity.seriesNumber = first.seriesNumber;
+    return identity;
+}
+
 OpenedVolume assemble(const dicom::DicomIndex& index, const std::string& path,
                       const OpenOptions& options, core::Progress* progress) {
     const dicom::SeriesInfo& series = chooseSeries(index, path, options);
@@ -115,6 +134,7 @@ OpenedVolume assemble(const dicom::DicomIndex& index, const std::string& path,
         opened.description += (opened.description.empty() ? "" : " — ") + series.description;
     opened.description +=
         (opened.description.empty() ? "" : " — ") + series.modality + " " + dimsText(plan->dims);
+    opened.dicom = identityOf(first);
     opened.warnings = planWarnings(*plan, assembly);
     for (const dicom::FileError& error : index.errors)
         opened.warnings.push_back(error.file + ": " + error.reason);

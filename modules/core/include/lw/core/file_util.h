@@ -23,8 +23,20 @@ std::vector<std::byte> gunzipPrefix(const std::byte* data, std::size_t size,
                                     const std::string& subject, std::size_t count);
 bool looksGzipped(const std::byte* data, std::size_t size);
 
+// Whether an atomic write may replace a file that is already there.
+enum class Overwrite { Allow, Refuse };
+
 // Writes a file atomically: to a temporary sibling first, then renamed over the target, so
-// an interrupted write never leaves a half-written file behind.
-void writeFileAtomically(const std::filesystem::path& path, const void* data, std::size_t size);
+// an interrupted write never leaves a half-written file behind. With Overwrite::Refuse an
+// existing target is an Error and stays untouched: the temporary file is linked to the target,
+// which fails when it exists, so a file appearing during the write is not replaced either.
+// On every failure the temporary file is removed: nothing is left behind.
+void writeFileAtomically(const std::filesystem::path& path, const void* data, std::size_t size,
+                         Overwrite overwrite = Overwrite::Allow);
+
+// Throws Error naming `path` when it exists and `overwrite` is Refuse, or when its folder does
+// not exist or is not writable: checked before expensive work, so an export that is bound to be
+// refused fails at once (writeFileAtomically checks again when it writes).
+void checkWritableTarget(const std::filesystem::path& path, Overwrite overwrite);
 
 } // namespace lw::core

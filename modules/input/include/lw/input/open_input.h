@@ -21,12 +21,23 @@ struct OpenOptions {
     std::optional<std::string> seriesUid;
 };
 
+// Whom and which study and series a DICOM volume shows, from the first instance of its series:
+// what a derived object repeats (a report's header; a Secondary Capture joins the same study
+// with the same patient module).
+struct DicomIdentity {
+    std::string patientName, patientId, patientBirthDate, patientSex;
+    std::string studyInstanceUid, studyId, studyDate, studyTime, studyDescription, accessionNumber;
+    std::string seriesInstanceUid, seriesDescription, modality;
+    std::optional<int> seriesNumber;
+};
+
 struct OpenedVolume {
     volume::Volume volume;
-    std::string source;                // the path or phantom spec
-    std::string seriesUid;             // DICOM only
-    std::string description;           // one line for titles and logs
-    std::vector<std::string> warnings; // tilt, uneven gaps, missing slices, files that failed
+    std::string source;                 // the path or phantom spec
+    std::string seriesUid;              // DICOM only
+    std::string description;            // one line for titles and logs
+    std::vector<std::string> warnings;  // tilt, uneven gaps, missing slices, files that failed
+    std::optional<DicomIdentity> dicom; // DICOM only
 };
 
 // Throws core::Error naming the path and the reason; core::Cancelled when `progress` is

@@ -1,0 +1,175 @@
+#include "panel_rendering.h"
+
+#include "cli_inputs.h"
+#include "lw/core/error.h"
+#include "lw/render/iso_surface.h"
+#include "lw/render/renderer_factory.h"
+#include "lw/render/shaded_surface_cpu.h"
+
+#if LINEWORK_GL
+#include "lw/render/geometry_shader_silhouette_renderer.h"
+#endif
+
+#include <algorithm>
+#include <cstdio>
+#include <ostream>
+
+namespace lw::cli {
+namespace {
+
+// Lines black on white, like the GL renderer's defaults and a printed report.
+core::ImageRgba8 maskToImage(const render::PixelMask& mask) {
+    return mask.toImage({0, 0, 0, 255}, {255, 255, 255, 255});
+}
+
+void reportFrame(const render::SilhouetteFrame& frame, std::ostream& out) {
+    char line[256];
+    std::snprintf(
+        line, sizeof line,
+        "triangles %zu, segments %zu, silhouette pixels %zu; ms: extract %.1f silhouette %.1f "
+        "visibility %.1f draw %.1f total %.1f\n",
+        frame.triangles, frame.segments, frame.lines.count(), frame.times.extractMs,
+        frame.times.silhouetteMs, frame.times.visibilityMs, frame.times.drawMs,
+        frame.times.totalMs());
+    out << line;
+}
+
+// Renders the same view `repeat` more times, turning the view by a degree each time so every
+// frame is a new view (mode a then measures what the goal asks: a new view, mesh cached).
+void repeatFrames(render::SilhouetteRenderer& renderer, render::Camera camera,
+                  const RenderRequest& request, std::ostream& out) {
+    std::vector<double> totals, extract, silhouette, visibility, draw;
+    for (int i = 1; i <= request.repeat; ++i) {
+        camera.setView(camera.setup().azimuthDeg + 1.0, camera.setup().elevationDeg);
+        const render::StageTimes times = renderer.render(camera, request.settings).times;
+        totals.push_back(times.totalMs());
+        extract.push_back(times.extractMs);
+        silhouette.push_back(times.silhouetteMs);
+        visibility.push_back(times.visibilityMs);
+        draw.push_back(times.drawMs);
+    }
+    if (totals.empty())
+        return;
+    auto median = [](std::vector<double>& values) {
+        std::sort(values.begin(), values.end());
+        return values[values.size() / 2];
+    };
+    const double middle = median(totals);
+    char line[256];
+    std::snprintf(line, sizeof line,
+                  "median of %d new views: %.1f ms (min %.1f, max %.1f); stages: extract %.1f "
+                  "silhouette %.1f "
+                  "visibility %.1f draw %.1f\n",
+                  request.repeat, middle, totals.front(), totals.back(), median(extract),
+                  median(silhouette), median(visibility), median(draw));
+    out << line;
+}
+
+// The shaded iso-surface for the same view: method 1 shades it in GL; methods 2 and 3 on the CPU,
+// method 3 from the mesh its silhouette frame extracted so both panels show the same surface.
+core::ImageRgba8 renderIsoPanel(render::SilhouetteRenderer& renderer, const volume::Volume& volume,
+                                const render::Camera& camera, const RenderRequest& request) {
+#if LINEWORK_GL
+    if (auto* gl = dynamic_cast<render::GeometryShaderSilhouetteRenderer*>(&renderer))
+        return gl->renderIsoPanel(camera, request.settings);
+#endif
+    render::Mesh extracted;
+    const render::Mesh* mesh = &extracted;
+    const render::Mesh* kept =
+        renderer.method() == render::SilhouetteMethod::ZBuffer ? renderer.surfaceMesh() : nullptr;
+    if (kept && request.wantSilhouette) {
+        mesh = kept;
+    } else {
+        render::IsoSurfaceOptions options;
+        options.brickCells = request.settings.brickCells;
+        options.threads = request.settings.threads;
+        extracted = render::extractIsoSurface(volume, request.settings.isoReal, options);
+    }
+    render::SurfaceShading shading;
+    shading.threads = request.settings.threads;
+    return render::shadeSurfaceCpu(*mesh, camera, shading);
+}
+
+} // namespace
+
+RenderedPanels renderPanels(render::SilhouetteRenderer& renderer, const volume::Volume& volume,
+                            const render::Camera& camera, const RenderRequest& request,
+                            std::ostream& out) {
+    RenderedPanels panels;
+    renderer.setVolume(volume);
+    if (request.wantSilhouette) {
+        const render::SilhouetteFrame frame = renderer.render(camera, request.settings);
+        reportFrame(frame, out);
+        repeatFrames(renderer, camera, request, out);
+        panels.silhouette = maskToImage(
+            request.lineRadius > 0 ? frame.lines.dilated(request.lineRadius) : frame.lines);
+    }
+    if (request.wantIso)
+        panels.iso = renderIsoPanel(renderer, volume, camera, request);
+    return panels;
+}
+
+const std::set<std::string>& panelRenderOptions() {
+    static const std::set<std::string> names = {"iso",  "method", "chunks", "mode",    "visibility",
+                                                "view", "camera", "size",   "backend", "threads"};
+    return names;
+}
+
+RenderRequest parseRenderRequest(const Arguments& arguments, const std::string& command) {
+    RenderRequest request;
+    request.method =
+        parseUsage([&] { return render::parseSilhouetteMethod(arguments.option("method", "3")); });
+    request.backend =
+        parseUsage([&] { return render::parseBackend(arguments.option("backend", "auto")); });
+    const std::string mode = arguments.option("mode", "a");
+    if (mode != "a" && mode != "b")
+        throw UsageError("--mode " + mode, "expected a or b");
+    request.settings.mode =
+        mode == "a" ? render::ExtractionMode::CachedA : render::ExtractionMode::EveryFrameB;
+    const std::string visibility = arguments.option("visibility", "on");
+    if (visibility != "on" && visibility != "off")
+        throw UsageError("--visibility " + visibility, "expected on or off");
+    request.settings.visibility = visibility == "on";
+    request.settings.threads = unsigned(std::max(0.0, arguments.number("threads", 0)));
+    if (!arguments.option("iso"))
+        throw UsageError(command, "needs --iso HU");
+    request.settings.isoReal = arguments.number("iso", 0.0);
+    return request;
+}
+
+render::CameraSetup parseCameraView(const Arguments& arguments) {
+    render::CameraSetup setup;
+    const glm::dvec2 view = parseView(arguments.option("view", "0,0"));
+    setup.azimuthDeg = view.x;
+    setup.elevationDeg = view.y;
+    const std::string projection = arguments.option("camera", "perspective");
+    if (projection != "perspective" && projection != "ortho")
+        throw UsageError("--camera " + projection, "expected perspective or ortho");
+    setup.projection =
+        projection == "ortho" ? render::Projection::Orthographic : render::Projection::Perspective;
+    return setup;
+}
+
+glm::ivec2 parsePanelSize(const Arguments& arguments) {
+    return parseImageSize("--size", arguments.option("size", "512x512"), 1);
+}
+
+void fitToVolume(const Arguments& arguments, const volume::Volume& volume, RenderRequest& request,
+                 render::CameraSetup& setup) {
+    request.settings.brickCells = parseUsage(
+        [&] { return render::parseChunks(arguments.option("chunks", "off"), volume.dims()); });
+    // Frame the surface, not the field of view around it.
+    setup.bounds = render::surfaceBounds(volume, request.settings.isoReal);
+}
+
+core::ImageRgba8 sideBySide(const core::ImageRgba8& left, const core::ImageRgba8& right) {
+    const int height = std::max(left.height(), right.height());
+    core::ImageRgba8 image(left.width() + right.width(), height, {255, 255, 255, 255});
+    for (int y = 0; y < left.height(); ++y)
+        std::copy_n(left.row(y), left.width(), image.row(y));
+    for (int y = 0; y < right.height(); ++y)
+        std::copy_n(right.row(y), right.width(), image.row(y) + left.width());
+    return image;
+}
+
+} // namespace lw::cli

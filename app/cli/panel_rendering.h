@@ -1,0 +1,59 @@
+#pragma once
+
+// Rendering the two panels of one view headless, shared by `render` and `export`: the options
+// both accept (method, back-end, chunks, mode, visibility, threads, view, camera, size, iso) and
+// the frame itself (the silhouette by the chosen method, the shaded iso-surface beside it).
+
+#include "arguments.h"
+#include "lw/core/image.h"
+#include "lw/render/camera.h"
+#include "lw/render/renderer_factory.h"
+#include "lw/render/silhouette_renderer.h"
+#include "lw/volume/volume.h"
+
+#include <glm/glm.hpp>
+#include <iosfwd>
+#include <set>
+#include <string>
+
+namespace lw::cli {
+
+struct RenderRequest {
+    render::SilhouetteMethod method = render::SilhouetteMethod::ZBuffer;
+    render::Backend backend = render::Backend::Auto;
+    render::SilhouetteSettings settings; // isoReal set, brickCells once the volume is known
+    bool wantIso = false;
+    bool wantSilhouette = true;
+    int repeat = 0;
+    int lineRadius = 0; // silhouette lines widened to 2 * lineRadius + 1 pixels (exports)
+};
+
+struct RenderedPanels {
+    core::ImageRgba8 iso;
+    core::ImageRgba8 silhouette;
+};
+
+// The option names parseRenderRequest and parseCameraView read.
+const std::set<std::string>& panelRenderOptions();
+
+// --method, --backend, --mode, --visibility, --threads, --iso (required; `command` names the
+// command in the usage error). Panels and repeat are left to the caller.
+RenderRequest parseRenderRequest(const Arguments& arguments, const std::string& command);
+// --view, --camera; the bounds are set once the volume is known (frameSurface).
+render::CameraSetup parseCameraView(const Arguments& arguments);
+// --size, default 512x512.
+glm::ivec2 parsePanelSize(const Arguments& arguments);
+// --chunks for this volume and the camera bounds around its surface at the request's iso-value.
+void fitToVolume(const Arguments& arguments, const volume::Volume& volume, RenderRequest& request,
+                 render::CameraSetup& setup);
+
+// Renders the panels the request wants (the renderer's volume is set here) and reports the
+// silhouette frame's counts and stage times on `out`.
+RenderedPanels renderPanels(render::SilhouetteRenderer& renderer, const volume::Volume& volume,
+                            const render::Camera& camera, const RenderRequest& request,
+                            std::ostream& out);
+
+// The iso-surface left, its silhouette right, the same height.
+core::ImageRgba8 sideBySide(const core::ImageRgba8& left, const core::ImageRgba8& right);
+
+} // namespace lw::cli

@@ -1,0 +1,19 @@
+#include "lw/annotation/annotation_projection.h"
+
+namespace lw::annotation {
+
+ProjectedAnnotation projectAnnotation(const Annotation& annotation, const render::Camera& camera) {
+    ProjectedAnnotation projected;
+    projected.kind = annotation.kind;
+    projected.text = annotation.text;
+    projected.measurement = measurementText(annotation);
+    for (const glm::dvec3& anchor : annotation.anchors) {
+        const render::ProjectedPoint point = camera.project(anchor);
+        projected.points.push_back(point.pixel);
+        if (!camera.isOrthographic() && point.depth <= 0.0)
+            projected.inFront = false;
+    }
+    return projected;
+}
+
+} // namespace lw::annotation

@@ -1,0 +1,38 @@
+#pragma once
+
+// The PDF report (QPdfWriter, A4): page 1 the patient / study / series header (optionally
+// anonymised) and the exported picture, page 2 the annotations and measurements as a table and
+// the free-text comment; every page carries the date and the software version.
+
+#include "lw/annotation/annotation.h"
+#include "lw/input/open_input.h"
+
+#include <QByteArray>
+#include <QDateTime>
+#include <QImage>
+#include <QString>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace lw::report {
+
+struct ReportInfo {
+    std::optional<input::DicomIdentity> identity; // none for volume files and phantoms
+    std::string sourceDescription;                // OpenedVolume::description
+    std::string method;     // how the picture was made: method, iso-value, view
+    std::string comment;    // free text (UTF-8), wrapped
+    bool anonymise = false; // patient name, ID, birth date, sex and accession left out
+    QDateTime created = QDateTime::currentDateTime();
+    std::string softwareVersion;
+};
+
+// The header's rows (label, value) as page 1 shows them.
+std::vector<std::pair<QString, QString>> reportHeaderRows(const ReportInfo& info);
+
+// The PDF's bytes. `picture` is the exported image with the annotations burned in.
+QByteArray renderPdfReport(const ReportInfo& info, const QImage& picture,
+                           const std::vector<annotation::Annotation>& annotations);
+
+} // namespace lw::report

@@ -1,0 +1,194 @@
+#include "lw/report/secondary_capture.h"
+
+#include "lw/core/error.h"
+
+#include <QDateTime>
+#include <cstdio>
+#include <dcmtk/dcmdata/dcdeftag.h>
+#include <dcmtk/dcmdata/dcfilefo.h>
+#include <dcmtk/dcmdata/dcostrmb.h>
+#include <dcmtk/dcmdata/dcuid.h>
+#include <vector>
+
+namespace lw::report {
+namespace {
+
+std::string newUid(const char* root) {
+    char buffer[100];
+    dcmGenerateUniqueIdentifier(buffer, root);
+    return buffer;
+}
+
+bool isAscii(const std::string& text) {
+    for (const unsigned char c : text)
+        if (c >= 0x80)
+            return false;
+    return true;
+}
+
+// Puts a string attribute; a DCMTK refusal (a value its VR cannot hold) names the attribute.
+void put(DcmDataset& dataset, const DcmTagKey& tag, const std::string& value,
+         const std::string& subject) {
+    const OFCondition status = dataset.putAndInsertString(tag, value.c_str());
+    if (status.bad())
+        throw core::Error(subject, "cannot set " + std::string(DcmTag(tag).getTagName()) + " to '" +
+                                       value + "': " + status.text());
+}
+
+// Patient and General Study modules: repeated from the source so the series joins its study.
+void putPatientAndStudy(DcmDataset& dataset, const input::DicomIdentity& source,
+                        const std::string& subject) {
+    put(dataset, DCM_PatientName, source.patientName, subject);
+    put(dataset, DCM_PatientID, source.patientId, subject);
+    put(dataset, DCM_PatientBirthDate, source.patientBirthDate, subject);
+    put(dataset, DCM_PatientSex, source.patientSex, subject);
+    put(dataset, DCM_StudyInstanceUID, source.studyInstanceUid, subject);
+    put(dataset, DCM_StudyDate, source.studyDate, subject);
+    put(dataset, DCM_StudyTime, source.studyTime, subject);
+    put(dataset, DCM_ReferringPhysicianName, "", subject);
+    put(dataset, DCM_StudyID, source.studyId, subject);
+    put(dataset, DCM_AccessionNumber, source.accessionNumber, subject);
+    if (!source.studyDescription.empty())
+        put(dataset, DCM_StudyDescription, source.studyDescription, subject);
+}
+
+struct InstanceIds {
+    std::string seriesUid;
+    int seriesNumber = 0;
+    int instanceNumber = 1;
+    QDateTime created;
+};
+
+// General Series, SC Equipment, General Image, SC Image and SOP Common modules.
+void putSeriesAndImage(DcmDataset& dataset, const SecondaryCaptureSeries& series,
+                       const InstanceIds& ids, const std::string& subject) {
+    const std::string date = ids.created.toString("yyyyMMdd").toStdString();
+    const std::string time = ids.created.toString("HHmmss").toStdString();
+    put(dataset, DCM_SOPClassUID, UID_SecondaryCaptureImageStorage, subject);
+    put(dataset, DCM_SOPInstanceUID, newUid(SITE_INSTANCE_UID_ROOT), subject);
+    put(dataset, DCM_InstanceCreationDate, date, subject);
+    put(dataset, DCM_InstanceCreationTime, time, subject);
+    put(dataset, DCM_Modality, "OT", subject); // derived pictures, not CT values
+    put(dataset, DCM_SeriesInstanceUID, ids.seriesUid, subject);
+    put(dataset, DCM_SeriesNumber, std::to_string(ids.seriesNumber), subject);
+    put(dataset, DCM_SeriesDescription, series.seriesDescription, subject);
+    // Type 2C, required for paired body parts; a picture of the review has no side of its own
+    // (dciodvfy cannot tell the condition and wants it present, empty is its "unknown").
+    put(dataset, DCM_Laterality, "", subject);
+    put(dataset, DCM_ConversionType, "WSD", subject); // workstation
+    put(dataset, DCM_Manufacturer, "Linework", subject);
+    put(dataset, DCM_SoftwareVersions, series.softwareVersion, subject);
+    put(dataset, DCM_InstanceNumber, std::to_string(ids.instanceNumber), subject);
+    put(dataset, DCM_PatientOrientation, "", subject);
+    put(dataset, DCM_ContentDate, date, subject);
+    put(dataset, DCM_ContentTime, time, subject);
+    put(dataset, DCM_ImageType, "DERIVED\\SECONDARY", subject);
+    put(dataset, DCM_DerivationDescription, series.derivationDescription, subject);
+    put(dataset, DCM_BurnedInAnnotation, "YES", subject);
+    put(dataset, DCM_DateOfSecondaryCapture, date, subject);
+    put(dataset, DCM_TimeOfSecondaryCapture, time, subject);
+}
+
+void putPixels(DcmDataset& dataset, const QImage& picture, const std::string& subject) {
+    const QImage rgb = picture.convertToFormat(QImage::Format_RGB888);
+    std::vector<Uint8> pixels(std::size_t(rgb.width()) * std::size_t(rgb.height()) * 3);
+    for (int y = 0; y < rgb.height(); ++y)
+        std::copy_n(rgb.constScanLine(y), std::size_t(rgb.width()) * 3,
+                    pixels.data() + std::size_t(y) * std::size_t(rgb.width()) * 3);
+    dataset.putAndInsertUint16(DCM_SamplesPerPixel, 3);
+    put(dataset, DCM_PhotometricInterpretation, "RGB", subject);
+    dataset.putAndInsertUint16(DCM_PlanarConfiguration, 0);
+    dataset.putAndInsertUint16(DCM_Rows, Uint16(rgb.height()));
+    dataset.putAndInsertUint16(DCM_Columns, Uint16(rgb.width()));
+    dataset.putAndInsertUint16(DCM_BitsAllocated, 8);
+    dataset.putAndInsertUint16(DCM_BitsStored, 8);
+    dataset.putAndInsertUint16(DCM_HighBit, 7);
+    dataset.putAndInsertUint16(DCM_PixelRepresentation, 0);
+    const OFCondition status = dataset.putAndInsertUint8Array(
+        DCM_PixelData, pixels.data(), static_cast<unsigned long>(pixels.size()));
+    if (status.bad())
+        throw core::Error(subject, std::string("cannot store the pixel data: ") + status.text());
+}
+
+// The Part 10 file's bytes (preamble, meta header, explicit VR little endian data set).
+std::vector<char> encodeFile(DcmFileFormat& file, std::size_t pixelBytes,
+                             const std::string& subject) {
+    std::vector<char> buffer(pixelBytes + (1 << 16));
+    DcmOutputBufferStream stream(buffer.data(), offile_off_t(buffer.size()));
+    file.transferInit();
+    const OFCondition status =
+        file.write(stream, EXS_LittleEndianExplicit, EET_ExplicitLength, nullptr);
+    file.transferEnd();
+    if (status.bad())
+        throw core::Error(subject, std::string("DICOM encoding failed: ") + status.text());
+    void* data = nullptr;
+    offile_off_t length = 0;
+    stream.flushBuffer(data, length);
+    buffer.resize(std::size_t(length));
+    return buffer;
+}
+
+std::vector<char> secondaryCaptureFile(const QImage& picture, const SecondaryCaptureSeries& series,
+                                       const InstanceIds& ids, const std::string& subject) {
+    if (picture.width() > 65535 || picture.height() > 65535 || picture.isNull())
+        throw core::Error(subject, "a Secondary Capture holds 1 to 65535 pixels per side");
+    DcmFileFormat file;
+    DcmDataset& dataset = *file.getDataset();
+    const input::DicomIdentity& source = series.source;
+    const bool utf8 = !isAscii(source.patientName) || !isAscii(source.studyDescription) ||
+                      !isAscii(series.derivationDescription);
+    if (utf8)
+        put(dataset, DCM_SpecificCharacterSet, "ISO_IR 192", subject);
+    putPatientAndStudy(dataset, source, subject);
+    putSeriesAndImage(dataset, series, ids, subject);
+    putPixels(dataset, picture, subject);
+    return encodeFile(file, std::size_t(picture.width()) * std::size_t(picture.height()) * 3,
+                      subject);
+}
+
+} // namespace
+
+std::string secondaryCaptureFileName(int number) {
+    char name[32];
+    std::snprintf(name, sizeof name, "LWSC%04d.dcm", number);
+    return name;
+}
+
+std::vector<std::filesystem::path> writeSecondaryCapture(const std::filesystem::path& folder,
+                                                         const std::vector<QImage>& pictures,
+                                                         const SecondaryCaptureSeries& series,
+                                                         core::Overwrite overwrite) {
+    if (series.source.studyInstanceUid.empty())
+        throw core::Error(folder.string(), "a Secondary Capture joins the source's study, but "
+                                           "the input is not DICOM (no StudyInstanceUID)");
+    std::error_code ec;
+    const bool created = std::filesystem::create_directory(folder, ec);
+    if (ec)
+        throw core::Error(folder.string(), "cannot create the folder: " + ec.message());
+    InstanceIds ids;
+    ids.seriesUid = newUid(SITE_SERIES_UID_ROOT);
+    ids.seriesNumber = series.source.seriesNumber.value_or(0) + 1000;
+    ids.created = QDateTime::currentDateTime();
+    std::vector<std::filesystem::path> written;
+    try {
+        for (std::size_t i = 0; i < pictures.size(); ++i) {
+            ids.instanceNumber = int(i) + 1;
+            const std::filesystem::path path =
+                folder / secondaryCaptureFileName(ids.instanceNumber);
+            core::checkWritableTarget(path, overwrite);
+            const std::vector<char> bytes =
+                secondaryCaptureFile(pictures[i], series, ids, path.string());
+            core::writeFileAtomically(path, bytes.data(), bytes.size(), overwrite);
+            written.push_back(path);
+        }
+    } catch (...) {
+        for (const std::filesystem::path& path : written)
+            std::filesystem::remove(path, ec);
+        if (created)
+            std::filesystem::remove(folder, ec);
+        throw;
+    }
+    return written;
+}
+
+} // namespace lw::report

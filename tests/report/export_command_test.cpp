@@ -1,0 +1,94 @@
+// `linework-cli export` as a user runs it: every output at once, existing files refused without
+// --force (and kept byte for byte), bad annotation files named, usage errors, and on the shared
+// data (label data) a Secondary Capture of the tilted GE head that dciodvfy passes.
+#include "cli_runner.h"
+#include "lw/core/file_util.h"
+#include "lw/core/png_io.h"
+#include "test_support.h"
+
+#include <filesystem>
+#include <gtest/gtest.h>
+
+using namespace lw;
+using test::quoted;
+using test::runCli;
+
+namespace {
+
+constexpr const char* kAnnotations = R"({"version": 1, "annotations": [
+  {"type": "ruler", "points": [[-20, 0, 0], [20, 0, 0]]},
+  {"type": "label", "points": [[0, -10, 15]], "text": "Finding B"},
+  {"type": "angle", "points": [[-20, 0, -10], [0, 0, -20], [20, 0, -10]]}
+]})";
+
+std::filesystem::path writeText(const std::filesystem::path& path, const std::string& text) {
+    core::writeFileAtomically(path, text.data(), text.size());
+    return path;
+}
+
+std::string exportArguments(const test::TempDir& dir, const std::string& outputs) {
+    return "export phantom:48:sphere --iso 300 --size 300x200 --view 20,10 --annotations " +
+           quoted((dir / "notes.json").string()) + " --comment 'CLI comment' " + outputs;
+}
+
+std::size_t entries(const std::filesystem::path& folder) {
+    return std::size_t(std::distance(std::filesystem::directory_iterator(folder), {}));
+}
+
+} // namespace
+
+TEST(ExportCommand, WritesEveryOutputAndRefusesToOverwrite) {
+    test::TempDir dir;
+    writeText(dir / "notes.json", kAnnotations);
+    const std::string outputs = "--png " + quoted((dir / "a.png").string()) + " --pdf " +
+                                quoted((dir / "a.pdf").string()) + " --svg " +
+                                quoted((dir / "a.svg").string());
+    const test::CliResult first = runCli(exportArguments(dir, outputs));
+    ASSERT_EQ(first.exitCode, 0) << first.out << first.err;
+    for (const char* name : {"a.png", "a.pdf", "a.svg"})
+        EXPECT_NE(first.out.find(std::string("wrote ") + (dir / name).string()), std::string::npos)
+            << first.out;
+    const core::ImageRgba8 png = core::readPng(dir / "a.png");
+    EXPECT_EQ(png.width(), 600); // two 300 x 200 panels side by side
+    EXPECT_EQ(png.height(), 200);
+    EXPECT_EQ(core::readFileText(dir / "a.pdf").rfind("%PDF", 0), 0u);
+    EXPECT_NE(core::readFileText(dir / "a.svg").find(">Finding B</text>"), std::string::npos);
+
+    const auto before = core::readFileBytes(dir / "a.png");
+    const test::CliResult again = runCli(exportArguments(dir, outputs));
+    EXPECT_EQ(again.exitCode, 1);
+    EXPECT_NE(again.err.find("exists already"), std::string::npos) << again.err;
+    EXPECT_EQ(core::readFileBytes(dir / "a.png"), before);
+    EXPECT_EQ(entries(dir.path()), 4u); // notes.json and the three outputs, no temporaries
+    EXPECT_EQ(runCli(exportArguments(dir, outputs + " --force")).exitCode, 0);
+}
+
+TEST(ExportCommand, RefusedExportsWriteNothing) {
+    test::TempDir dir;
+    writeText(dir / "notes.json", R"({"annotations": [{"type": "ruler", "points": [[0,0,0]]}]})");
+    const test::CliResult bad =
+        runCli(exportArguments(dir, "--png " + quoted((dir / "a.png").string())));
+    EXPECT_EQ(bad.exitCode, 1);
+    EXPECT_NE(bad.err.find((dir / "notes.json").string()), std::string::npos) << bad.err;
+    EXPECT_NE(bad.err.find("annotations[0]: a ruler needs 2 points"), std::string::npos) << bad.err;
+    writeText(dir / "notes.json", kAnnotations);
+    const test::CliResult missingFolder =
+        runCli(exportArguments(dir, "--pdf " + quoted((dir / "no" / "a.pdf").string())));
+    EXPECT_EQ(missingFolder.exitCode, 1);
+    EXPECT_NE(missingFolder.err.find("does not exist"), std::string::npos) << missingFolder.err;
+    // A phantom has no study for a Secondary Capture to join: refused before the PNG is written.
+    const test::CliResult notDicom =
+        runCli(exportArguments(dir, "--png " + quoted((dir / "a.png").string()) + " --sc " +
+                                        quoted((dir / "sc").string())));
+    EXPECT_EQ(notDicom.exitCode, 1);
+    EXPECT_NE(notDicom.err.find("must be DICOM"), std::string::npos) << notDicom.err;
+    EXPECT_EQ(entries(dir.path()), 1u); // only notes.json
+}
+
+TEST(ExportCommand, UsageErrors) {
+    EXPECT_EQ(runCli("export phantom:32:sphere --iso 300").exitCode, 2);   // no output
+    EXPECT_EQ(runCli("export --png x.png").exitCode, 2);                   // no input
+    EXPECT_EQ(runCli("export phantom:32:sphere --png x.png").exitCode, 2); // no --iso
+    EXPECT_EQ(runCli("export phantom:32:sphere --iso 300 --png x.png --panel left").exitCode, 2);
+    EXPECT_NE(runCli("help").out.find("export INPUT"), std::string::npos);
+}

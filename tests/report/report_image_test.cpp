@@ -1,0 +1,168 @@
+// The exported picture: re-rendered panels with the annotations burned in at 2x and 4x the
+// window's size (lines and text scale with it), PNG and SVG written atomically, and refused
+// exports that leave nothing behind.
+#include "lw/core/error.h"
+#include "lw/core/file_util.h"
+#include "lw/core/png_io.h"
+#include "lw/report/annotation_overlay.h"
+#include "lw/report/export_files.h"
+#include "lw/report/svg_export.h"
+#include "report_test_support.h"
+#include "test_support.h"
+
+#include <filesystem>
+#include <gtest/gtest.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+using namespace lw;
+
+namespace {
+
+constexpr int kWindowPanel = 256; // the panel size "on screen" the exports multiply
+
+bool isAnnotationColour(QRgb pixel) {
+    const QColor colour = report::OverlayStyle().colour;
+    return std::abs(qRed(pixel) - colour.red()) < 40 &&
+           std::abs(qGreen(pixel) - colour.green()) < 40 &&
+           std::abs(qBlue(pixel) - colour.blue()) < 40;
+}
+
+struct PanelCounts {
+    int surface = 0;    // grey shaded pixels (iso) or black line pixels (silhouette)
+    int annotation = 0; // in the annotation colour
+};
+
+PanelCounts countPanel(const QImage& image, int x0, int width, bool iso) {
+    PanelCounts counts;
+    for (int y = 0; y < image.height(); ++y)
+        for (int x = x0; x < x0 + width; ++x) {
+            const QRgb p = image.pixel(x, y);
+            if (isAnnotationColour(p))
+                ++counts.annotation;
+            else if (iso ? (qGray(p) < 240 && qRed(p) == qBlue(p)) : qGray(p) < 60)
+                ++counts.surface;
+        }
+    return counts;
+}
+
+// Pixels in the annotation colour inside the box where the label's text goes (right of and above
+// its anchor, up to 8 reference pixels per character by 1.5 lines).
+int labelTextPixels(const QImage& picture, const report::RenderedPanels& panels) {
+    const annotation::Annotation label = test::sphereAnnotations()[1];
+    const glm::dvec2 at = panels.camera.project(label.anchors[0]).pixel;
+    const double scale = report::overlayScale(panels.camera.height());
+    int count = 0;
+    for (int y = int(at.y - 30 * scale); y < int(at.y); ++y)
+        for (int x = int(at.x + 7 * scale); x < int(at.x + 90 * scale); ++x)
+            if (picture.valid(x, y) && isAnnotationColour(picture.pixel(x, y)))
+                ++count;
+    return count;
+}
+
+} // namespace
+
+TEST(ReportImage, PanelsAndTextScaleWithTheExportSize) {
+    test::ensureGuiApplication();
+    int textPixels[2] = {0, 0};
+    for (const int factor : {2, 4}) {
+        const int size = factor * kWindowPanel;
+        const report::RenderedPanels panels = test::renderSphereReview(size);
+        const QImage picture = report::composeExportImage(panels, test::sphereAnnotations(),
+                                                          report::PanelLayout::SideBySide);
+        ASSERT_EQ(picture.width(), 2 * size);
+        ASSERT_EQ(picture.height(), size);
+        const PanelCounts iso = countPanel(picture, 0, size, true);
+        const PanelCounts lines = countPanel(picture, size, size, false);
+        SCOPED_TRACE(factor);
+        EXPECT_GT(iso.surface, size * size / 10); // the shaded sphere
+        EXPECT_GT(lines.surface, size);           // its outline
+        EXPECT_GT(iso.annotation, 0);
+        EXPECT_GT(lines.annotation, 0); // burned into both panels
+        textPixels[factor / 4] = labelTextPixels(picture, panels);
+        EXPECT_GT(textPixels[factor / 4], 20 * factor * factor) << "the label's text is missing";
+        // Kept for a look (build/test/tests/report/output).
+        std::filesystem::create_directories(LINEWORK_TEST_OUTPUT_DIR);
+        picture.save(QString(LINEWORK_TEST_OUTPUT_DIR "/review_%1x.png").arg(factor));
+    }
+    // Text scales with the picture: twice the size, about four times the pixels.
+    const double ratio = double(textPixels[1]) / double(textPixels[0]);
+    EXPECT_GT(ratio, 2.5);
+    EXPECT_LT(ratio, 6.0);
+}
+
+TEST(ReportImage, SinglePanelLayoutsAndTheWrittenPng) {
+    test::ensureGuiApplication();
+    test::TempDir dir;
+    const report::RenderedPanels panels = test::renderSphereReview(kWindowPanel);
+    for (const auto layout :
+         {report::PanelLayout::IsoPanel, report::PanelLayout::SilhouettePanel}) {
+        const QImage picture =
+            report::composeExportImage(panels, test::sphereAnnotations(), layout);
+        EXPECT_EQ(picture.width(), kWindowPanel);
+        const auto path = dir / (layout == report::PanelLayout::IsoPanel ? "iso.png" : "lines.png");
+        report::writeExportFile(path, report::encodePngBytes(picture, path),
+                                core::Overwrite::Refuse);
+        const core::ImageRgba8 read = core::readPng(path);
+        EXPECT_EQ(read.width(), kWindowPanel);
+        EXPECT_EQ(read, report::toCoreImage(picture.convertToFormat(QImage::Format_RGB32)));
+    }
+}
+
+TEST(ReportImage, SvgHoldsTheRasterAndVectorAnnotations) {
+    test::ensureGuiApplication();
+    const QString svg = QString::fromUtf8(report::renderSvg(test::renderSphereReview(kWindowPanel),
+                                                            test::sphereAnnotations(),
+                                                            report::PanelLayout::SideBySide));
+    EXPECT_TRUE(svg.startsWith("<?xml"));
+    EXPECT_TRUE(svg.contains("data:image/png;base64,iVBOR")); // the panels, as PNG
+    EXPECT_EQ(svg.count("<g transform"), 2);                  // annotations over each panel
+    EXPECT_EQ(svg.count(">40.0 mm</text>"), 2);
+    EXPECT_EQ(svg.count(">Finding A</text>"), 2);
+    EXPECT_EQ(svg.count(">90.0\u00b0</text>"), 2);
+    EXPECT_TRUE(svg.trimmed().endsWith("</svg>"));
+}
+
+// An existing file is kept byte for byte, and nothing else appears in the folder.
+TEST(ReportExportRefused, ExistingFileIsKeptAndNothingIsLeftBehind) {
+    test::TempDir dir;
+    const auto path = dir / "review.png";
+    core::writeFileAtomically(path, "original", 8);
+    EXPECT_THROW(report::writeExportFile(path, QByteArray("new"), core::Overwrite::Refuse),
+                 core::Error);
+    EXPECT_EQ(core::readFileText(path), "original");
+    EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir.path()), {}), 1);
+    report::writeExportFile(path, QByteArray("new"), core::Overwrite::Allow); // --force
+    EXPECT_EQ(core::readFileText(path), "new");
+}
+
+TEST(ReportExportRefused, MissingFolderIsNamedAndNothingIsCreated) {
+    test::TempDir dir;
+    try {
+        report::writeExportFile(dir / "absent" / "a.pdf", QByteArray("x"), core::Overwrite::Refuse);
+        FAIL() << "wrote into a missing folder";
+    } catch (const core::Error& error) {
+        EXPECT_NE(std::string(error.what()).find("absent"), std::string::npos);
+    }
+    EXPECT_TRUE(std::filesystem::is_empty(dir.path()));
+}
+
+TEST(ReportExportRefused, ReadOnlyFolderGivesAClearMessageAndStaysEmpty) {
+    if (::geteuid() == 0)
+        GTEST_SKIP() << "running as root: permissions do not stop root from writing";
+    test::TempDir dir;
+    const auto folder = dir / "readonly";
+    std::filesystem::create_directory(folder);
+    ::chmod(folder.c_str(), 0555);
+    try {
+        core::checkWritableTarget(folder / "a.png", core::Overwrite::Refuse);
+        ADD_FAILURE() << "a read-only folder was accepted";
+    } catch (const core::Error& error) {
+        EXPECT_NE(error.reason().find("cannot write into the folder"), std::string::npos);
+    }
+    EXPECT_THROW(
+        report::writeExportFile(folder / "a.png", QByteArray("x"), core::Overwrite::Refuse),
+        core::Error);
+    EXPECT_TRUE(std::filesystem::is_empty(folder));
+    ::chmod(folder.c_str(), 0755);
+}

@@ -1,0 +1,120 @@
+// DICOM Secondary Capture: a new series in the source's study that Linework's own import reads
+// back as such, and (report_sc_tests, SKIP without dicom3tools) that dciodvfy passes without
+// errors.
+#include "cli_runner.h"
+#include "dicom_test_writer.h"
+#include "lw/core/error.h"
+#include "lw/dicom/dicom_scanner.h"
+#include "lw/input/open_input.h"
+#include "lw/report/secondary_capture.h"
+#include "report_test_support.h"
+#include "test_support.h"
+
+#include <cstdio>
+#include <gtest/gtest.h>
+
+using namespace lw;
+
+namespace {
+
+constexpr const char* kStudyUid = "1.2.826.0.1.3680043.9.4245.999.1";
+
+// Three 16 x 16 CT slices of one series in `folder`, opened through lw::input as the CLI does.
+input::OpenedVolume writeAndOpenSourceSeries(const std::filesystem::path& folder) {
+    std::filesystem::create_directories(folder);
+    const std::string seriesUid = dicom::test::makeTestUid();
+    for (int k = 0; k < 3; ++k) {
+        dicom::test::TestSlice slice;
+        slice.rows = slice.columns = 16;
+        slice.pixels = dicom::test::rampPixels(16, 16, -1000 + 100 * k, 7);
+        slice.position = glm::dvec3(0, 0, 2.5 * k);
+        slice.studyUid = kStudyUid;
+        slice.seriesUid = seriesUid;
+        slice.patientName = "Doe^Jane";
+        slice.patientId = "LW-0042";
+        slice.seriesNumber = 4;
+        dicom::test::writeTestSlice(folder / ("ct" + std::to_string(k) + ".dcm"), slice);
+    }
+    return input::openInput(folder.string());
+}
+
+std::vector<std::filesystem::path>
+writeCapture(const input::OpenedVolume& source, const std::filesystem::path& folder,
+             core::Overwrite overwrite = core::Overwrite::Refuse) {
+    report::SecondaryCaptureSeries series;
+    series.source = source.dicom.value();
+    series.derivationDescription = "Linework silhouette method 3, iso-value 300 HU";
+    series.softwareVersion = "0.1.0";
+    const QImage picture = report::composeExportImage(
+        test::renderSphereReview(128), test::sphereAnnotations(), report::PanelLayout::SideBySide);
+    return report::writeSecondaryCapture(folder, {picture}, series, overwrite);
+}
+
+} // namespace
+
+TEST(SecondaryCapture, ReimportsAsANewSeriesOfTheSameStudy) {
+    test::ensureGuiApplication();
+    test::TempDir dir;
+    const input::OpenedVolume source = writeAndOpenSourceSeries(dir / "ct");
+    ASSERT_TRUE(source.dicom);
+    EXPECT_EQ(source.dicom->studyInstanceUid, kStudyUid);
+    const auto files = writeCapture(source, dir / "sc");
+    ASSERT_EQ(files.size(), 1u);
+    EXPECT_EQ(files[0].filename(), "LWSC0001.dcm");
+
+    const dicom::DicomIndex index = dicom::scanDicom(dir.path());
+    ASSERT_EQ(index.patients.size(), 1u);
+    EXPECT_EQ(index.patients[0].patientId, "LW-0042");
+    EXPECT_EQ(index.patients[0].name, "Doe^Jane");
+    ASSERT_EQ(index.patients[0].studies.size(), 1u); // the capture joined the source's study
+    const dicom::StudyInfo& study = index.patients[0].studies[0];
+    EXPECT_EQ(study.studyInstanceUid, kStudyUid);
+    ASSERT_EQ(study.series.size(), 2u);
+    const dicom::SeriesInfo* capture = nullptr;
+    for (const dicom::SeriesInfo& series : study.series)
+        if (series.seriesInstanceUid != source.dicom->seriesInstanceUid)
+            capture = &series;
+    ASSERT_NE(capture, nullptr);
+    EXPECT_EQ(capture->seriesNumber, 1004);
+    ASSERT_EQ(capture->instances.size(), 1u);
+    const dicom::InstanceInfo& instance = capture->instances[0];
+    EXPECT_EQ(instance.sopClassUid, "1.2.840.10008.5.1.4.1.1.7");
+    EXPECT_EQ(instance.samplesPerPixel, 3);
+    EXPECT_EQ(instance.columns, 256);
+    EXPECT_EQ(instance.rows, 128);
+    EXPECT_NE(instance.sopInstanceUid, "");
+}
+
+TEST(SecondaryCapture, RefusedWritesLeaveNothingBehind) {
+    test::ensureGuiApplication();
+    test::TempDir dir;
+    const input::OpenedVolume source = writeAndOpenSourceSeries(dir / "ct");
+    const auto first = writeCapture(source, dir / "sc");
+    const auto bytes = core::readFileBytes(first[0]);
+    EXPECT_THROW(writeCapture(source, dir / "sc"), core::Error); // exists already
+    EXPECT_EQ(core::readFileBytes(first[0]), bytes);
+    EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir / "sc"), {}), 1);
+    EXPECT_NO_THROW(writeCapture(source, dir / "sc", core::Overwrite::Allow)); // --force
+    // A folder whose parent is missing: named, nothing created.
+    EXPECT_THROW(writeCapture(source, dir / "absent" / "sc"), core::Error);
+    EXPECT_FALSE(std::filesystem::exists(dir / "absent"));
+    // Not DICOM: no study to join.
+    input::OpenedVolume phantom;
+    phantom.dicom = input::DicomIdentity{};
+    EXPECT_THROW(writeCapture(phantom, dir / "sc2"), core::Error);
+    EXPECT_FALSE(std::filesystem::exists(dir / "sc2"));
+}
+
+TEST(SecondaryCaptureValidation, DciodvfyReportsNoErrors) {
+    test::ensureGuiApplication();
+    test::TempDir dir;
+    const auto files = writeCapture(writeAndOpenSourceSeries(dir / "ct"), dir / "sc");
+    // dciodvfy reports on stderr, which runProgram drops: a shell turns it into stdout.
+    const std::string output =
+        test::runProgram("sh",
+                         "-c " + test::quoted("dciodvfy \"" + files.at(0).string() + "\" 2>&1"))
+            .out;
+    EXPECT_NE(output.find("SCImage"), std::string::npos) << output; // validated as SC
+    EXPECT_EQ(output.find("Error"), std::string::npos) << output;
+    std::printf("dciodvfy:\n%s", output.c_str());
+}
