@@ -110,8 +110,9 @@ RenderedPanels renderPanels(render::SilhouetteRenderer& renderer, const volume::
 }
 
 const std::set<std::string>& panelRenderOptions() {
-    static const std::set<std::string> names = {"iso",  "method", "chunks", "mode",    "visibility",
-                                                "view", "camera", "size",   "backend", "threads"};
+    static const std::set<std::string> names = {"iso",        "method",  "chunks",    "mode",
+                                                "visibility", "view",    "camera",    "size",
+                                                "backend",    "threads", "min-stroke"};
     return names;
 }
 
@@ -131,6 +132,11 @@ RenderRequest parseRenderRequest(const Arguments& arguments, const std::string& 
         throw UsageError("--visibility " + visibility, "expected on or off");
     request.settings.visibility = visibility == "on";
     request.settings.threads = unsigned(std::max(0.0, arguments.number("threads", 0)));
+    // Strokes under this many pixels are speckle of noise, not contours (0: keep every pixel).
+    const double minStroke = arguments.number("min-stroke", render::kDefaultMinStrokePixels);
+    if (!(minStroke >= 0.0 && minStroke <= 1e6))
+        throw UsageError("--min-stroke", "expected a number of pixels >= 0");
+    request.settings.minStrokePixels = int(minStroke);
     if (!arguments.option("iso"))
         throw UsageError(command, "needs --iso HU");
     request.settings.isoReal = arguments.number("iso", 0.0);

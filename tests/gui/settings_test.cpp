@@ -54,6 +54,7 @@ void SettingsTest::roundTripThroughQSettings() {
     settings.chunking = Chunking(chunking);
     settings.fixedBrickCells = 48;
     settings.gpuMemoryBudgetMiB = method * 256; // 0 (automatic) is the default: another value
+    settings.minStrokePixels = method * 4;
     settings.mode =
         modeB ? lw::render::ExtractionMode::EveryFrameB : lw::render::ExtractionMode::CachedA;
     settings.projection =
@@ -106,12 +107,19 @@ void SettingsTest::dialogReportsChangesAndStoresThem() {
     gpuBudget->setValue(512);
     QCOMPARE(changed.size(), 3);
     QCOMPARE(dialog.settings().gpuMemoryBudgetMiB, 512);
+    auto* minStroke = dialog.findChild<QSpinBox*>("minStroke");
+    QVERIFY(minStroke);
+    QCOMPARE(minStroke->value(), lw::render::kDefaultMinStrokePixels);
+    minStroke->setValue(0);
+    QCOMPARE(minStroke->text(), QString("Keep every line pixel"));
+    QCOMPARE(dialog.settings().minStrokePixels, 0);
     // Applied live and kept for the next start.
     QSettings store;
     const ReviewSettings stored = ReviewSettings::load(store);
     QCOMPARE(int(stored.method), 1);
     QCOMPARE(stored.chunking, Chunking::Fixed);
     QCOMPARE(stored.gpuMemoryBudgetMiB, 512);
+    QCOMPARE(stored.minStrokePixels, 0);
 }
 
 void SettingsTest::cudaIsGreyedOutWithTheReason() {

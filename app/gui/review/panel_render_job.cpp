@@ -62,6 +62,7 @@ std::pair<QImage, QImage> renderPanelJob(const PanelRenderJob& job) {
     settings.brickCells = job.brickCells;
     settings.visibility = job.appearance.visibility;
     settings.testAlongSegment = job.appearance.testAlongSegment;
+    settings.minStrokePixels = job.appearance.minStrokePixels;
     const render::SilhouetteFrame frame = renderer->render(job.camera, settings);
     return {iso, linesToImage(frame.lines, job.appearance, false, job.appearance.lineWidth)};
 }

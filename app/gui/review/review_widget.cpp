@@ -244,6 +244,7 @@ void ReviewWidget::requestFrame(bool newIso) {
     request.settings.mode = m_settings.mode;
     request.settings.visibility = m_settings.visibility;
     request.settings.testAlongSegment = m_settings.testAlongSegment;
+    request.settings.minStrokePixels = m_settings.minStrokePixels;
     request.settings.gpuMemoryBudget = std::size_t(m_settings.gpuMemoryBudgetMiB) << 20;
     request.settings.isoReal = m_iso;
     request.wantSilhouette = !methodOneInPanel();
@@ -374,6 +375,8 @@ PanelRenderJob ReviewWidget::renderJob(QSize size) const {
     job.appearance = m_settings;
     const double scale = double(size.height()) / double(m_silhouettePanel->renderSize().height());
     job.appearance.lineWidth = std::max(1.0, m_settings.lineWidth * scale);
+    // A stroke's pixel count grows with the picture's size: the same strokes go as on screen.
+    job.appearance.minStrokePixels = int(std::lround(m_settings.minStrokePixels * scale));
     job.iso = m_iso;
     job.brickCells = brickCells();
     job.isoOnCpu = displayGlInfo().prefersCpu();

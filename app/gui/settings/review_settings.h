@@ -42,7 +42,8 @@ struct ReviewSettings {
     render::ExtractionMode mode = render::ExtractionMode::CachedA;
     bool visibility = true;
     bool testAlongSegment = false; // method 2: along the segment, not only its endpoints
-    double lineWidth = 1.0;        // pixels
+    int minStrokePixels = render::kDefaultMinStrokePixels; // 0: keep every line pixel
+    double lineWidth = 1.0;                                // pixels
     QColor lineColour = QColor(0, 0, 0);
     QColor background = QColor(255, 255, 255);
     bool silhouetteOnIso = false;

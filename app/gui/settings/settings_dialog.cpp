@@ -120,6 +120,14 @@ QWidget* SettingsDialog::makeMethodPage() {
     form->addRow(tr("Visibility:"), m_visibility);
     m_alongSegment = new QCheckBox(tr("Test along each segment (method 2), not only its ends"));
     form->addRow(QString(), m_alongSegment);
+    m_minStroke = new QSpinBox;
+    m_minStroke->setObjectName("minStroke");
+    m_minStroke->setRange(0, 1000);
+    m_minStroke->setSuffix(tr(" px"));
+    m_minStroke->setSpecialValueText(tr("Keep every line pixel"));
+    m_minStroke->setToolTip(tr("Line fragments with fewer pixels are dropped: the speckle that "
+                               "noise on nearly flat surfaces draws. Contours are longer."));
+    form->addRow(tr("Drop strokes under:"), m_minStroke);
 
     auto* backends = new QHBoxLayout;
     m_backend = new QButtonGroup(page);
@@ -144,7 +152,7 @@ QWidget* SettingsDialog::makeMethodPage() {
     connect(m_backend, &QButtonGroup::idClicked, this, [this] { readControls(); });
     for (QComboBox* box : {m_chunking, m_mode})
         connect(box, &QComboBox::currentIndexChanged, this, [this] { readControls(); });
-    for (QSpinBox* box : {m_brickCells, m_memoryBudget, m_gpuMemoryBudget})
+    for (QSpinBox* box : {m_brickCells, m_memoryBudget, m_gpuMemoryBudget, m_minStroke})
         connect(box, &QSpinBox::valueChanged, this, [this] { readControls(); });
     for (QCheckBox* box : {m_visibility, m_alongSegment})
         connect(box, &QCheckBox::toggled, this, [this] { readControls(); });
@@ -235,6 +243,7 @@ void SettingsDialog::showSettings() {
     m_mode->setCurrentIndex(m_settings.mode == render::ExtractionMode::EveryFrameB ? 1 : 0);
     m_visibility->setChecked(m_settings.visibility);
     m_alongSegment->setChecked(m_settings.testAlongSegment);
+    m_minStroke->setValue(m_settings.minStrokePixels);
     m_backend->button(int(m_settings.backend))->setChecked(true);
     m_lineWidth->setValue(m_settings.lineWidth);
     showColour(m_lineColour, m_settings.lineColour);
@@ -265,6 +274,7 @@ void SettingsDialog::readControls() {
                                          : render::ExtractionMode::CachedA;
     s.visibility = m_visibility->isChecked();
     s.testAlongSegment = m_alongSegment->isChecked();
+    s.minStrokePixels = m_minStroke->value();
     s.backend = render::Backend(m_backend->checkedId());
     s.lineWidth = m_lineWidth->value();
     s.silhouetteOnIso = m_silhouetteOnIso->isChecked();

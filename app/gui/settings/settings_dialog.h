@@ -45,6 +45,7 @@ private:
     QSpinBox* m_brickCells = nullptr;
     QSpinBox* m_memoryBudget = nullptr;
     QSpinBox* m_gpuMemoryBudget = nullptr;
+    QSpinBox* m_minStroke = nullptr;
     QComboBox* m_mode = nullptr;
     QCheckBox* m_visibility = nullptr;
     QCheckBox* m_alongSegment = nullptr;

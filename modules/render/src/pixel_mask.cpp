@@ -44,6 +44,64 @@ PixelMask PixelMask::dilated(int radius) const {
     return out;
 }
 
+namespace {
+
+// Visits the 8-connected groups of on pixels of `pixels` (width x height): fn(group) with the
+// pixel indices of each group. `seen` is scratch of the same size.
+template <typename Fn>
+void forEachComponent(const std::vector<std::uint8_t>& pixels, int width, int height, Fn&& fn) {
+    std::vector<std::uint8_t> seen(pixels.size(), 0);
+    std::vector<std::size_t> group, stack;
+    for (std::size_t start = 0; start < pixels.size(); ++start) {
+        if (!pixels[start] || seen[start])
+            continue;
+        group.clear();
+        stack.assign(1, start);
+        seen[start] = 1;
+        while (!stack.empty()) {
+            const std::size_t i = stack.back();
+            stack.pop_back();
+            group.push_back(i);
+            const int x = int(i % std::size_t(width)), y = int(i / std::size_t(width));
+            for (int dy = -1; dy <= 1; ++dy)
+                for (int dx = -1; dx <= 1; ++dx) {
+                    const int nx = x + dx, ny = y + dy;
+                    if (nx < 0 || ny < 0 || nx >= width || ny >= height)
+                        continue;
+                    const std::size_t n = std::size_t(ny) * std::size_t(width) + std::size_t(nx);
+                    if (pixels[n] && !seen[n]) {
+                        seen[n] = 1;
+                        stack.push_back(n);
+                    }
+                }
+        }
+        fn(group);
+    }
+}
+
+} // namespace
+
+std::size_t PixelMask::removeComponentsSmallerThan(int minPixels) {
+    std::size_t removed = 0;
+    if (minPixels <= 1)
+        return removed;
+    forEachComponent(m_pixels, m_width, m_height, [&](const std::vector<std::size_t>& group) {
+        if (group.size() >= std::size_t(minPixels))
+            return;
+        for (const std::size_t i : group)
+            m_pixels[i] = 0;
+        removed += group.size();
+    });
+    return removed;
+}
+
+std::vector<std::size_t> PixelMask::componentSizes() const {
+    std::vector<std::size_t> sizes;
+    forEachComponent(m_pixels, m_width, m_height,
+                     [&](const std::vector<std::size_t>& group) { sizes.push_back(group.size()); });
+    return sizes;
+}
+
 core::ImageRgba8 PixelMask::toImage(core::Rgba8 on, core::Rgba8 off) const {
     core::ImageRgba8 image(m_width, m_height);
     for (std::size_t i = 0; i < m_pixels.size(); ++i)

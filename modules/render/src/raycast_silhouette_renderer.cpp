@@ -70,7 +70,7 @@ bool RayCastSilhouetteRenderer::isPointVisible(const Camera& camera, glm::dvec3 
     return m_cache->kernel.isVisible(point, viewOf(camera));
 }
 
-SilhouetteFrame RayCastSilhouetteRenderer::render(const Camera& camera,
+SilhouetteFrame RayCastSilhouetteRenderer::renderFrame(const Camera& camera,
                                                   const SilhouetteSettings& settings) {
     if (!m_volume)
         throw core::Error("method 2", "no volume bound (setVolume)");

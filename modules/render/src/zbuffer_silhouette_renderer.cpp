@@ -112,7 +112,7 @@ const Mesh& ZBufferSilhouetteRenderer::mesh() const {
     return s.mesh;
 }
 
-SilhouetteFrame ZBufferSilhouetteRenderer::render(const Camera& camera,
+SilhouetteFrame ZBufferSilhouetteRenderer::renderFrame(const Camera& camera,
                                                   const SilhouetteSettings& settings) {
     State& s = *m_state;
     if (!s.volume)

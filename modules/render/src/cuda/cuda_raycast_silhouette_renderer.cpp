@@ -91,7 +91,7 @@ void CudaRayCastSilhouetteRenderer::releaseVolume() {
     s.onCpu = false;
 }
 
-SilhouetteFrame CudaRayCastSilhouetteRenderer::render(const Camera& camera,
+SilhouetteFrame CudaRayCastSilhouetteRenderer::renderFrame(const Camera& camera,
                                                       const SilhouetteSettings& settings) {
     State& s = *m_state;
     if (s.onCpu) {

@@ -26,7 +26,7 @@ public:
     std::string_view backendName() const override;
     void setVolume(const volume::Volume& volume) override;
     void releaseVolume() override;
-    SilhouetteFrame render(const Camera& camera, const SilhouetteSettings& settings) override;
+    SilhouetteFrame renderFrame(const Camera& camera, const SilhouetteSettings& settings) override;
 
 private:
     SilhouetteFrame renderOnGpu(const Camera& camera, const SilhouetteSettings& settings);

@@ -236,7 +236,7 @@ CudaZBufferSilhouetteRenderer::State::slabsOf(const std::vector<glm::ivec2>& lay
     return croppedSlabs;
 }
 
-SilhouetteFrame CudaZBufferSilhouetteRenderer::render(const Camera& camera,
+SilhouetteFrame CudaZBufferSilhouetteRenderer::renderFrame(const Camera& camera,
                                                       const SilhouetteSettings& settings) {
     State& s = *m_state;
     if (!s.volume)

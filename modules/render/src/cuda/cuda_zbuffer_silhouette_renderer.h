@@ -33,7 +33,7 @@ public:
     std::string_view backendName() const override;
     void setVolume(const volume::Volume& volume) override;
     void releaseVolume() override;
-    SilhouetteFrame render(const Camera& camera, const SilhouetteSettings& settings) override;
+    SilhouetteFrame renderFrame(const Camera& camera, const SilhouetteSettings& settings) override;
     const Mesh* surfaceMesh() const override;
 
     // Host -> device copy of the voxels of the bound volume (0 before the first whole-volume

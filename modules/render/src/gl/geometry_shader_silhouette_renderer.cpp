@@ -167,7 +167,7 @@ std::string GeometryShaderSilhouetteRenderer::contextDescription() const {
     return m_state->context->description();
 }
 
-SilhouetteFrame GeometryShaderSilhouetteRenderer::render(const Camera& camera,
+SilhouetteFrame GeometryShaderSilhouetteRenderer::renderFrame(const Camera& camera,
                                                          const SilhouetteSettings& settings) {
     m_state->lastFrameChunked = settings.brickCells > 0;
     if (settings.brickCells > 0)

@@ -61,7 +61,7 @@ public:
     // "gl", or "cuda+gl" after useCudaExtraction() (for S frames; L frames extract on the CPU).
     std::string_view backendName() const override;
     void setVolume(const volume::Volume& volume) override;
-    SilhouetteFrame render(const Camera& camera, const SilhouetteSettings& settings) override;
+    SilhouetteFrame renderFrame(const Camera& camera, const SilhouetteSettings& settings) override;
 
     // Whole-volume (S) frames extract on the CUDA back-end, which writes the GL buffers directly
     // (CUDA-GL interop; through host memory where interop fails). Throws core::Error where this

@@ -31,7 +31,7 @@ public:
     SilhouetteMethod method() const override { return SilhouetteMethod::RayCastVisibility; }
     std::string_view backendName() const override { return "cpu"; }
     void setVolume(const volume::Volume& volume) override;
-    SilhouetteFrame render(const Camera& camera, const SilhouetteSettings& settings) override;
+    SilhouetteFrame renderFrame(const Camera& camera, const SilhouetteSettings& settings) override;
 
     // Segments (patient mm) of the last render, before the visibility test.
     struct Segment {

@@ -31,7 +31,7 @@ public:
     SilhouetteMethod method() const override { return SilhouetteMethod::ZBuffer; }
     std::string_view backendName() const override { return "cpu"; }
     void setVolume(const volume::Volume& volume) override;
-    SilhouetteFrame render(const Camera& camera, const SilhouetteSettings& settings) override;
+    SilhouetteFrame renderFrame(const Camera& camera, const SilhouetteSettings& settings) override;
 
     // The mesh of the last frame (cached in mode a); empty before the first frame. The shaded
     // iso-surface panel draws this one, so both panels show the same surface. After an L frame

@@ -1,0 +1,130 @@
+// Stroke pruning (SilhouetteSettings::minStrokePixels): the 8-connected groups of a line drawing
+// under a size go, on every method and back-end present, after the method has drawn; the
+// contours stay pixel for pixel.
+#include "backends_under_test.h"
+#include "lw/render/camera.h"
+#include "lw/render/pixel_mask.h"
+#include "lw/render/renderer_factory.h"
+#include "lw/volume/volume.h"
+
+#include <algorithm>
+#include <gtest/gtest.h>
+#include <random>
+
+namespace {
+
+using namespace lw::render;
+
+struct MaskCase {
+    const char* name;
+    std::vector<glm::ivec2> on;
+    int minPixels;
+    std::size_t removed;
+};
+
+class ComponentFilter : public testing::TestWithParam<MaskCase> {};
+
+TEST_P(ComponentFilter, RemovesExactlyTheSmallGroups) {
+    PixelMask mask(12, 8);
+    for (const glm::ivec2 p : GetParam().on)
+        mask.set(p.x, p.y);
+    const std::size_t before = mask.count();
+    EXPECT_EQ(mask.removeComponentsSmallerThan(GetParam().minPixels), GetParam().removed);
+    EXPECT_EQ(mask.count(), before - GetParam().removed);
+    for (const std::size_t size : mask.componentSizes())
+        EXPECT_GE(size, std::size_t(std::max(GetParam().minPixels, 1)));
+}
+
+// A 6-pixel row, a diagonal of 3 (8-connected: one group), and a lone pixel.
+const std::vector<glm::ivec2> kRowDiagonalDot = {{0, 0}, {1, 0}, {2, 0}, {3, 0},  {4, 0},
+                                                 {5, 0}, {8, 2}, {9, 3}, {10, 4}, {1, 6}};
+
+INSTANTIATE_TEST_SUITE_P(Masks, ComponentFilter,
+                         testing::Values(MaskCase{"off", kRowDiagonalDot, 0, 0},
+                                         MaskCase{"one keeps everything", kRowDiagonalDot, 1, 0},
+                                         MaskCase{"lone pixel", kRowDiagonalDot, 2, 1},
+                                         MaskCase{"diagonal is one group of three", kRowDiagonalDot,
+                                                  4, 4},
+                                         MaskCase{"the row goes too", kRowDiagonalDot, 7, 10},
+                                         MaskCase{"empty", {}, 10, 0}),
+                         [](const testing::TestParamInfo<MaskCase>& info) {
+                             std::string name = info.param.name;
+                             std::replace(name.begin(), name.end(), ' ', '_');
+                             return name;
+                         });
+
+// A sphere of radius 18 voxels with dust: single voxels above the iso-value far from it, each a
+// tiny closed surface whose contour is a speck of a few pixels.
+lw::volume::Volume sphereWithDust() {
+    const glm::ivec3 dims(64, 64, 64);
+    lw::volume::Volume volume(dims, lw::volume::VoxelType::Float32);
+    float* voxels = volume.dataAs<float>();
+    const glm::vec3 centre(31.5f);
+    for (int z = 0; z < dims.z; ++z)
+        for (int y = 0; y < dims.y; ++y)
+            for (int x = 0; x < dims.x; ++x)
+                voxels[volume.index(x, y, z)] = 18.0f - glm::length(glm::vec3(x, y, z) - centre);
+    std::mt19937 random(11);
+    for (int dust = 0; dust < 24; ++dust) {
+        glm::ivec3 p;
+        do {
+            p = glm::ivec3(2 + int(random() % 60), 2 + int(random() % 60), 2 + int(random() % 60));
+        } while (glm::length(glm::vec3(p) - centre) < 24.0f);
+        voxels[volume.index(p.x, p.y, p.z)] = 1.0f;
+    }
+    return volume;
+}
+
+struct MethodOnBackend {
+    SilhouetteMethod method;
+    Backend backend;
+};
+
+class StrokePruning : public testing::TestWithParam<MethodOnBackend> {};
+
+TEST_P(StrokePruning, DropsTheDustAndKeepsTheContour) {
+    const lw::volume::Volume volume = sphereWithDust();
+    auto renderer = createSilhouetteRenderer(GetParam().method, GetParam().backend);
+    renderer->setVolume(volume);
+    CameraSetup setup;
+    setup.bounds = volumeBounds(volume);
+    setup.azimuthDeg = 30;
+    setup.elevationDeg = 20;
+    const Camera camera(setup, 256, 256);
+    SilhouetteSettings settings;
+    settings.isoReal = 0.5;
+    const SilhouetteFrame raw = renderer->render(camera, settings);
+    const std::vector<std::size_t> sizes = raw.lines.componentSizes();
+    const std::size_t specks = std::size_t(
+        std::count_if(sizes.begin(), sizes.end(), [](std::size_t s) { return s < 12; }));
+    ASSERT_GE(specks, 5u) << "the dust should draw specks to remove";
+    const std::size_t largest = *std::max_element(sizes.begin(), sizes.end());
+    ASSERT_GT(largest, 200u) << "the sphere's contour";
+
+    settings.minStrokePixels = 12;
+    const SilhouetteFrame pruned = renderer->render(camera, settings);
+    for (const std::size_t size : pruned.lines.componentSizes())
+        EXPECT_GE(size, 12u);
+    // What stays is exactly what the unpruned frame had there: the contour is untouched.
+    PixelMask expected = raw.lines;
+    expected.removeComponentsSmallerThan(12);
+    EXPECT_EQ(pruned.lines, expected);
+    EXPECT_GE(pruned.lines.count(), largest);
+}
+
+std::vector<MethodOnBackend> methodsOnBackends() {
+    std::vector<MethodOnBackend> cases;
+    for (const Backend backend : lw::test::backendsUnderTest())
+        for (const SilhouetteMethod method :
+             {SilhouetteMethod::RayCastVisibility, SilhouetteMethod::ZBuffer})
+            cases.push_back({method, backend});
+    return cases;
+}
+
+INSTANTIATE_TEST_SUITE_P(Methods, StrokePruning, testing::ValuesIn(methodsOnBackends()),
+                         [](const testing::TestParamInfo<MethodOnBackend>& info) {
+                             return "method" + std::to_string(int(info.param.method)) + "_" +
+                                    std::string(backendName(info.param.backend));
+                         });
+
+} // namespace
