@@ -5,12 +5,13 @@
 #include "lw/core/progress.h"
 #include "test_support.h"
 
-#include <cstring>
+#include <gtest/gtest.h>
+#include <zlib.h>
+
 #include <filesystem>
 #include <fstream>
-#include <gtest/gtest.h>
+#include <cstring>
 #include <thread>
-#include <zlib.h>
 
 using namespace lw::core;
 
@@ -44,14 +45,12 @@ TEST(Progress, ReportsFractionsAndCancels) {
     auto token = std::make_shared<CancelToken>();
     double last = -1.0;
     int calls = 0;
-    Progress progress(
-        [&](double f, const std::string& message) {
-            EXPECT_GE(f, last);
-            EXPECT_EQ(message, "decoding");
-            last = f;
-            ++calls;
-        },
-        token);
+    Progress progress([&](double f, const std::string& message) {
+        EXPECT_GE(f, last);
+        EXPECT_EQ(message, "decoding");
+        last = f;
+        ++calls;
+    }, token);
     progress.setTotal(4, "decoding");
     for (int i = 0; i < 4; ++i)
         progress.step();
@@ -67,14 +66,8 @@ TEST(Progress, StepIsThreadSafe) {
     std::atomic<int> calls{0};
     Progress progress([&](double, const std::string&) { ++calls; });
     progress.setTotal(20000);
-    std::thread a([&] {
-        for (int i = 0; i < 10000; ++i)
-            progress.step();
-    });
-    std::thread b([&] {
-        for (int i = 0; i < 10000; ++i)
-            progress.step();
-    });
+    std::thread a([&] { for (int i = 0; i < 10000; ++i) progress.step(); });
+    std::thread b([&] { for (int i = 0; i < 10000; ++i) progress.step(); });
     a.join();
     b.join();
     // Throttled to per-mille changes: at most 1001 callbacks, and the last one reached 100%.
@@ -146,8 +139,7 @@ TEST(FileUtil, AtomicWriteRefusingOverwriteKeepsTheExistingFile) {
 
 TEST(Log, SinkReceivesCategoryAndThresholdFilters) {
     std::vector<std::string> seen;
-    auto previous = setLogSink([&](LogLevel level, std::string_view category,
-                                   const std::string& m) {
+    auto previous = setLogSink([&](LogLevel level, std::string_view category, const std::string& m) {
         seen.push_back(std::string(logLevelName(level)) + " " + std::string(category) + " " + m);
     });
     const LogCategory category("lw.test");
