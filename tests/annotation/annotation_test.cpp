@@ -69,8 +69,7 @@ TEST(Annotation, BadFilesAreRefusedNamingTheFileAndThePlace) {
     const Case cases[] = {
         {R"({"annotations": [ {"type": "ruler", "points": [[0,0,0]]} ]})",
          "annotations[0]: a ruler needs 2 points, not 1"},
-        {R"({"annotations": [ {"type": "label", "points": [[0,0,0]]} ]})",
-         "a label needs a text"},
+        {R"({"annotations": [ {"type": "label", "points": [[0,0,0]]} ]})", "a label needs a text"},
         {R"({"annotations": [ {"type": "circle", "points": []} ]})",
          "annotations[0].type: unknown type \"circle\""},
         {R"({"annotations": [ {"type": "arrow", "points": [[0,0,0],[1,1]]} ]})",

@@ -37,10 +37,11 @@ TEST_P(RulerOnVolume, MeasuresTheDiameterOfTheKnownSphere) {
     const double voxel = std::max({volume.geometry().spacingI(), volume.geometry().spacingJ(),
                                    volume.geometry().sliceStep()});
     // Opposite views: left-right, anterior-posterior, superior-inferior and an oblique pair.
-    const double views[][4] = {{90, 0, -90, 0}, {0, 0, 180, 0}, {0, 89.9, 0, -89.9},
-                               {35, 25, 215, -25}};
+    const double views[][4] = {
+        {90, 0, -90, 0}, {0, 0, 180, 0}, {0, 89.9, 0, -89.9}, {35, 25, 215, -25}};
     for (const auto& v : views)
-        for (const auto projection : {render::Projection::Orthographic, render::Projection::Perspective}) {
+        for (const auto projection :
+             {render::Projection::Orthographic, render::Projection::Perspective}) {
             annotation::Annotation ruler{annotation::AnnotationKind::Ruler,
                                          {pickCentre(mesh, sphere, v[0], v[1], projection),
                                           pickCentre(mesh, sphere, v[2], v[3], projection)},

@@ -28,8 +28,7 @@ inline volume::Volume sampleSphere(glm::ivec3 dims, const volume::VolumeGeometry
         for (int y = 0; y < dims.y; ++y)
             for (int x = 0; x < dims.x; ++x) {
                 const glm::dvec3 p = geometry.indexToPatient({x, y, z});
-                voxels[out.index(x, y, z)] =
-                    float(sphere.radius - glm::distance(p, sphere.centre));
+                voxels[out.index(x, y, z)] = float(sphere.radius - glm::distance(p, sphere.centre));
             }
     return out;
 }
@@ -37,8 +36,7 @@ inline volume::Volume sampleSphere(glm::ivec3 dims, const volume::VolumeGeometry
 // A regular, anisotropic grid (0.7 x 0.8 x 1.3 mm) around a sphere of radius 20 mm.
 inline volume::Volume regularSphereVolume(KnownSphere* sphere) {
     const glm::ivec3 dims{72, 64, 40};
-    const auto geometry =
-        volume::VolumeGeometry::regular({-120.0, 40.0, 300.0}, {0.7, 0.8, 1.3});
+    const auto geometry = volume::VolumeGeometry::regular({-120.0, 40.0, 300.0}, {0.7, 0.8, 1.3});
     *sphere = {geometry.indexToPatient(glm::dvec3(dims - 1) / 2.0), 20.0};
     return sampleSphere(dims, geometry, *sphere);
 }
@@ -66,7 +64,8 @@ inline volume::Volume tiltedSphereVolume(KnownSphere* sphere) {
 inline render::Camera cameraOnSphere(const KnownSphere& sphere, double az, double el,
                                      render::Projection projection, int size = 256) {
     render::CameraSetup setup;
-    setup.bounds = {sphere.centre - glm::dvec3(sphere.radius), sphere.centre + glm::dvec3(sphere.radius)};
+    setup.bounds = {sphere.centre - glm::dvec3(sphere.radius),
+                    sphere.centre + glm::dvec3(sphere.radius)};
     setup.azimuthDeg = az;
     setup.elevationDeg = el;
     setup.projection = projection;

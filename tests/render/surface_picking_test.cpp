@@ -60,7 +60,8 @@ TEST_P(SurfacePicking, PicksLieOnTheKnownSphereInEveryView) {
     ASSERT_FALSE(mesh.isEmpty());
     const double views[][2] = {{0, 0}, {90, 0}, {-135, 30}, {40, -60}, {10, 89}};
     for (const auto& view : views)
-        for (const auto projection : {render::Projection::Orthographic, render::Projection::Perspective}) {
+        for (const auto projection :
+             {render::Projection::Orthographic, render::Projection::Perspective}) {
             SCOPED_TRACE(std::to_string(view[0]) + "," + std::to_string(view[1]));
             const PickErrors errors = pickAcrossTheView(
                 mesh, sphere, test::cameraOnSphere(sphere, view[0], view[1], projection));

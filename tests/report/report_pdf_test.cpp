@@ -102,3 +102,31 @@ TEST(ReportPdf, PagesAreNotBlank) {
     EXPECT_GT(first, 1000) << "page 1: header text and the picture";
     EXPECT_GT(second, 200) << "page 2: the table and the comment";
 }
+
+// A long table is not cut off: it continues on further pages with the table's header row again,
+// and every page's footer counts them all.
+TEST(ReportPdf, ManyAnnotationsContinueOnFurtherPages) {
+    test::ensureGuiApplication();
+    test::TempDir dir;
+    std::vector<annotation::Annotation> rulers;
+    for (int i = 0; i < 90; ++i)
+        rulers.push_back({annotation::AnnotationKind::Ruler, {{0, 0, 0}, {0, 0, 10.0 + i}}, {}});
+    const auto path = dir / "long.pdf";
+    report::writeExportFile(path, report::renderPdfReport(sampleInfo(), QImage(), rulers),
+                            core::Overwrite::Refuse);
+    const std::string info = run("pdfinfo", test::quoted(path.string()));
+    const std::size_t pagesAt = info.find("Pages:");
+    ASSERT_NE(pagesAt, std::string::npos);
+    const int pages = std::stoi(info.substr(pagesAt + 6));
+    EXPECT_GE(pages, 3);
+    const std::string text = run("pdftotext", "-layout " + test::quoted(path.string()) + " -");
+    EXPECT_NE(text.find("99.0 mm"), std::string::npos); // the last ruler
+    EXPECT_NE(text.find("Stable since the last study"), std::string::npos);
+    EXPECT_NE(text.find("page " + std::to_string(pages) + " of " + std::to_string(pages)),
+              std::string::npos);
+    std::size_t headers = 0;
+    for (std::size_t at = text.find("Points (LPS, mm)"); at != std::string::npos;
+         at = text.find("Points (LPS, mm)", at + 1))
+        ++headers;
+    EXPECT_GE(headers, 2u); // the header row again where the table continues
+}

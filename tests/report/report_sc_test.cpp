@@ -11,6 +11,9 @@
 #include "test_support.h"
 
 #include <cstdio>
+#include <cstring>
+#include <dcmtk/dcmdata/dcdeftag.h>
+#include <dcmtk/dcmdata/dcfilefo.h>
 #include <gtest/gtest.h>
 
 using namespace lw;
@@ -38,6 +41,11 @@ input::OpenedVolume writeAndOpenSourceSeries(const std::filesystem::path& folder
     return input::openInput(folder.string());
 }
 
+QImage capturedPicture() {
+    return report::composeExportImage(test::renderSphereReview(128), test::sphereAnnotations(),
+                                      report::PanelLayout::SideBySide);
+}
+
 std::vector<std::filesystem::path>
 writeCapture(const input::OpenedVolume& source, const std::filesystem::path& folder,
              core::Overwrite overwrite = core::Overwrite::Refuse) {
@@ -45,9 +53,7 @@ writeCapture(const input::OpenedVolume& source, const std::filesystem::path& fol
     series.source = source.dicom.value();
     series.derivationDescription = "Linework silhouette method 3, iso-value 300 HU";
     series.softwareVersion = "0.1.0";
-    const QImage picture = report::composeExportImage(
-        test::renderSphereReview(128), test::sphereAnnotations(), report::PanelLayout::SideBySide);
-    return report::writeSecondaryCapture(folder, {picture}, series, overwrite);
+    return report::writeSecondaryCapture(folder, {capturedPicture()}, series, overwrite);
 }
 
 } // namespace
@@ -83,6 +89,41 @@ TEST(SecondaryCapture, ReimportsAsANewSeriesOfTheSameStudy) {
     EXPECT_EQ(instance.columns, 256);
     EXPECT_EQ(instance.rows, 128);
     EXPECT_NE(instance.sopInstanceUid, "");
+}
+
+// DCMTK reads the file back: the pixels are the picture's, row by row, RGB interleaved, and the
+// attributes that make it a derived series of the source's study are there.
+TEST(SecondaryCapture, DcmtkReadsBackThePictureAndTheDerivation) {
+    test::ensureGuiApplication();
+    test::TempDir dir;
+    const auto files = writeCapture(writeAndOpenSourceSeries(dir / "ct"), dir / "sc");
+    DcmFileFormat file;
+    ASSERT_TRUE(file.loadFile(files.at(0).c_str()).good());
+    DcmDataset& dataset = *file.getDataset();
+    const QImage expected = capturedPicture().convertToFormat(QImage::Format_RGB888);
+    Uint16 rows = 0, columns = 0;
+    dataset.findAndGetUint16(DCM_Rows, rows);
+    dataset.findAndGetUint16(DCM_Columns, columns);
+    ASSERT_EQ(int(rows), expected.height());
+    ASSERT_EQ(int(columns), expected.width());
+    const Uint8* pixels = nullptr;
+    unsigned long count = 0;
+    ASSERT_TRUE(dataset.findAndGetUint8Array(DCM_PixelData, pixels, &count).good());
+    ASSERT_EQ(count, std::size_t(rows) * columns * 3);
+    for (int y = 0; y < expected.height(); ++y)
+        ASSERT_EQ(std::memcmp(pixels + std::size_t(y) * columns * 3, expected.constScanLine(y),
+                              std::size_t(columns) * 3),
+                  0)
+            << "row " << y;
+    OFString value;
+    dataset.findAndGetOFString(DCM_DerivationDescription, value);
+    EXPECT_EQ(value, "Linework silhouette method 3, iso-value 300 HU");
+    dataset.findAndGetOFString(DCM_StudyInstanceUID, value);
+    EXPECT_EQ(value, kStudyUid);
+    dataset.findAndGetOFString(DCM_BurnedInAnnotation, value);
+    EXPECT_EQ(value, "YES");
+    dataset.findAndGetOFStringArray(DCM_ImageType, value);
+    EXPECT_EQ(value, "DERIVED\\SECONDARY");
 }
 
 TEST(SecondaryCapture, RefusedWritesLeaveNothingBehind) {

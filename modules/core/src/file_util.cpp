@@ -6,6 +6,7 @@
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
+#include <fcntl.h>
 #include <fstream>
 #include <limits>
 #include <random>
@@ -136,19 +137,34 @@ void removeQuietly(const std::filesystem::path& path) {
     std::filesystem::remove(path, ignored);
 }
 
-// Moves the finished temporary file onto the target. link() refuses an existing target
-// atomically, where a test for existence followed by rename() would race with another writer.
+// Puts the finished temporary file in place without replacing an existing target, atomically:
+// a test for existence followed by rename() would race with another writer. link() does it
+// where hard links exist; file systems without them (FAT on a USB stick, some network shares)
+// get renameat2(RENAME_NOREPLACE). Returns 0 or the errno of the failure.
+int placeWithoutReplacing(const std::filesystem::path& temporary,
+                          const std::filesystem::path& path) {
+    if (::link(temporary.c_str(), path.c_str()) == 0) {
+        removeQuietly(temporary);
+        return 0;
+    }
+    const int linkError = errno;
+    if (linkError != EPERM && linkError != EOPNOTSUPP && linkError != ENOSYS)
+        return linkError;
+    if (::renameat2(AT_FDCWD, temporary.c_str(), AT_FDCWD, path.c_str(), RENAME_NOREPLACE) == 0)
+        return 0;
+    return errno;
+}
+
+// Moves the finished temporary file onto the target.
 void commitTemporary(const std::filesystem::path& temporary, const std::filesystem::path& path,
                      Overwrite overwrite) {
     if (overwrite == Overwrite::Refuse) {
-        if (::link(temporary.c_str(), path.c_str()) != 0) {
-            const int error = errno;
+        if (const int error = placeWithoutReplacing(temporary, path); error != 0) {
             removeQuietly(temporary);
             throw Error(path.string(), error == EEXIST ? "the file exists already (not overwritten)"
                                                        : std::string("cannot create the file: ") +
                                                              std::strerror(error));
         }
-        removeQuietly(temporary);
         return;
     }
     std::error_code ec;

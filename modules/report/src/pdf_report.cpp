@@ -41,53 +41,95 @@ QString pointText(const glm::dvec3& p) {
     return QString::fromLatin1(buffer);
 }
 
-void drawFooter(QPainter& painter, QRectF area, const ReportInfo& info, int page) {
+void drawFooter(QPainter& painter, QRectF area, const ReportInfo& info, int page, int pages) {
     QFont font = painter.font();
     font.setPointSizeF(8);
+    font.setBold(false);
     painter.setFont(font);
-    const QString footer = QObject::tr("Created %1 with Linework %2 — page %3 of 2")
+    const QString footer = QObject::tr("Created %1 with Linework %2 — page %3 of %4")
                                .arg(info.created.toString(Qt::ISODate), text(info.softwareVersion))
-                               .arg(page);
+                               .arg(page)
+                               .arg(pages);
     painter.setPen(Qt::darkGray);
     painter.drawText(area, Qt::AlignLeft | Qt::AlignBottom, footer);
     painter.setPen(Qt::black);
 }
 
-double drawTitle(QPainter& painter, QRectF area, const QString& title) {
+// What flows down the pages: a title, a table row (cells in columns of `widths`, fractions of
+// the width, wrapped at word boundaries) or a paragraph. Each is measured before it is drawn,
+// so the pages, and with them "page i of N", are known first.
+struct Block {
+    enum class Kind { Title, Row, Paragraph };
+    Kind kind = Kind::Paragraph;
+    QStringList cells;
+    bool bold = false;
+    std::vector<double> widths{1.0};
+};
+
+QFont blockFont(const QPainter& painter, const Block& block) {
     QFont font = painter.font();
-    font.setPointSizeF(16);
-    font.setBold(true);
-    painter.setFont(font);
-    const double height = QFontMetricsF(font, painter.device()).height() * 1.4;
-    painter.drawText(area, Qt::AlignLeft | Qt::AlignTop, title);
-    return height;
+    font.setPointSizeF(block.kind == Block::Kind::Title ? 16 : 10);
+    font.setBold(block.bold || block.kind == Block::Kind::Title);
+    return font;
 }
 
-// A table: each row's cells in columns of `widths` (fractions of the area's width), wrapped at
-// word boundaries; the first row bold when `headed`. Returns the height used.
-double drawTable(QPainter& painter, QRectF area, const std::vector<double>& widths,
-                 const std::vector<QStringList>& rows, bool headed) {
-    QFont font = painter.font();
-    font.setPointSizeF(10);
-    font.setBold(false);
-    const double gap = QFontMetricsF(font, painter.device()).height() * 0.25;
-    double y = area.top();
-    for (std::size_t r = 0; r < rows.size(); ++r) {
-        QFont rowFont = font;
-        rowFont.setBold(headed && r == 0);
-        painter.setFont(rowFont);
-        double x = area.left(), rowHeight = 0.0;
-        for (std::size_t c = 0; c < widths.size() && c < std::size_t(rows[r].size()); ++c) {
-            const QRectF cell(x, y, area.width() * widths[c] - gap, area.bottom() - y);
-            const int flags = Qt::AlignLeft | Qt::AlignTop | Qt::TextWordWrap;
-            const QRectF used = painter.boundingRect(cell, flags, rows[r][int(c)]);
-            painter.drawText(cell, flags, rows[r][int(c)]);
-            rowHeight = std::max(rowHeight, used.height());
-            x += area.width() * widths[c];
-        }
-        y += rowHeight + gap;
+// Lays the block out at `topLeft` across `width` and returns its height; draws it when `draw`.
+double layoutBlock(QPainter& painter, QPointF topLeft, double width, const Block& block,
+                   bool draw) {
+    painter.setFont(blockFont(painter, block));
+    const double line = QFontMetricsF(painter.font(), painter.device()).height();
+    if (block.kind == Block::Kind::Title) {
+        if (draw)
+            painter.drawText(QRectF(topLeft, QSizeF(width, line * 1.4)), Qt::AlignLeft,
+                             block.cells.value(0));
+        return line * 1.5;
     }
-    return y - area.top();
+    const double gap = line * 0.25;
+    const int flags = Qt::AlignLeft | Qt::AlignTop | Qt::TextWordWrap;
+    double x = topLeft.x(), height = 0.0;
+    for (std::size_t c = 0; c < block.widths.size() && c < std::size_t(block.cells.size()); ++c) {
+        const QRectF cell(x, topLeft.y(), width * block.widths[c] - gap, 1e6);
+        const QString& value = block.cells[int(c)];
+        height = std::max(height, painter.boundingRect(cell, flags, value).height());
+        if (draw)
+            painter.drawText(cell, flags, value);
+        x += width * block.widths[c];
+    }
+    return height + gap;
+}
+
+double drawBlocks(QPainter& painter, QPointF topLeft, double width,
+                  const std::vector<Block>& blocks) {
+    double y = topLeft.y();
+    for (const Block& block : blocks)
+        y += layoutBlock(painter, {topLeft.x(), y}, width, block, true);
+    return y - topLeft.y();
+}
+
+// Greedy pages of `area`'s height; a table continued on a new page repeats its header row.
+std::vector<std::vector<Block>> paginate(QPainter& painter, QRectF area,
+                                         const std::vector<Block>& blocks) {
+    std::vector<std::vector<Block>> pages(1);
+    double y = area.top();
+    const Block* tableHeader = nullptr;
+    for (const Block& block : blocks) {
+        const double height = layoutBlock(painter, {area.left(), y}, area.width(), block, false);
+        if (y + height > area.bottom() && !pages.back().empty()) {
+            pages.emplace_back();
+            y = area.top();
+            if (block.kind == Block::Kind::Row && tableHeader && &block != tableHeader) {
+                pages.back().push_back(*tableHeader);
+                y += layoutBlock(painter, {area.left(), y}, area.width(), *tableHeader, false);
+            }
+        }
+        if (block.kind != Block::Kind::Row)
+            tableHeader = nullptr;
+        else if (block.bold)
+            tableHeader = &block;
+        pages.back().push_back(block);
+        y += height;
+    }
+    return pages;
 }
 
 void drawPicture(QPainter& painter, QRectF area, const QImage& picture) {
@@ -107,41 +149,37 @@ void drawPicture(QPainter& painter, QRectF area, const QImage& picture) {
     painter.setPen(Qt::black);
 }
 
-std::vector<QStringList> annotationRows(const std::vector<annotation::Annotation>& annotations) {
-    std::vector<QStringList> rows = {{QObject::tr("#"), QObject::tr("Type"), QObject::tr("Text"),
-                                      QObject::tr("Measurement"), QObject::tr("Points (LPS, mm)")}};
+const std::vector<double> kAnnotationColumns = {0.05, 0.1, 0.22, 0.18, 0.45};
+
+// The pages after the first: the annotations table and the comment.
+std::vector<Block> measurementBlocks(const ReportInfo& info,
+                                     const std::vector<annotation::Annotation>& annotations) {
+    using Kind = Block::Kind;
+    std::vector<Block> blocks = {{Kind::Title, {QObject::tr("Annotations and measurements")}}};
+    if (annotations.empty())
+        blocks.push_back({Kind::Row, {QObject::tr("none")}});
+    else
+        blocks.push_back({Kind::Row,
+                          {QObject::tr("#"), QObject::tr("Type"), QObject::tr("Text"),
+                           QObject::tr("Measurement"), QObject::tr("Points (LPS, mm)")},
+                          true,
+                          kAnnotationColumns});
     for (std::size_t i = 0; i < annotations.size(); ++i) {
         const annotation::Annotation& item = annotations[i];
         QString points;
         for (const glm::dvec3& anchor : item.anchors)
             points += (points.isEmpty() ? "" : " ") + pointText(anchor);
-        rows.push_back({QString::number(i + 1), QString(annotation::kindName(item.kind)),
-                        text(item.text), text(annotation::measurementText(item)), points});
+        blocks.push_back({Kind::Row,
+                          {QString::number(i + 1), QString(annotation::kindName(item.kind)),
+                           text(item.text), text(annotation::measurementText(item)), points},
+                          false,
+                          kAnnotationColumns});
     }
-    return rows;
-}
-
-void drawCommentAndMeasurements(QPainter& painter, QRectF body, const ReportInfo& info,
-                                const std::vector<annotation::Annotation>& annotations) {
-    double y = body.top();
-    y += drawTitle(painter, QRectF(body.left(), y, body.width(), body.height()),
-                   QObject::tr("Annotations and measurements"));
-    const QRectF below(body.left(), y, body.width(), body.bottom() - y);
-    if (annotations.empty())
-        y += drawTable(painter, below, {1.0}, {{QObject::tr("none")}}, false);
-    else
-        y += drawTable(painter, below, {0.05, 0.1, 0.22, 0.18, 0.45}, annotationRows(annotations),
-                       true);
-    y += drawTitle(painter, QRectF(body.left(), y + 40, body.width(), body.height()),
-                   QObject::tr("Comment")) +
-         40;
-    QFont font = painter.font();
-    font.setPointSizeF(10);
-    font.setBold(false);
-    painter.setFont(font);
-    painter.drawText(QRectF(body.left(), y, body.width(), body.bottom() - y),
-                     Qt::AlignLeft | Qt::AlignTop | Qt::TextWordWrap,
-                     info.comment.empty() ? QObject::tr("(none)") : text(info.comment));
+    blocks.push_back({Kind::Paragraph, {QStringLiteral(" ")}}); // a blank line before the comment
+    blocks.push_back({Kind::Title, {QObject::tr("Comment")}});
+    blocks.push_back(
+        {Kind::Paragraph, {info.comment.empty() ? QObject::tr("(none)") : text(info.comment)}});
+    return blocks;
 }
 
 } // namespace
@@ -190,20 +228,21 @@ QByteArray renderPdfReport(const ReportInfo& info, const QImage& picture,
     font.setStyleStrategy(QFont::PreferNoShaping);
     painter.setFont(font);
     const QRectF page(QPointF(0, 0), QSizeF(writer.width(), writer.height()));
+    const QRectF body = page.adjusted(0, 0, 0, -page.height() * 0.05); // above the footer
+    const auto later = paginate(painter, body, measurementBlocks(info, annotations));
+    const int pages = 1 + int(later.size());
 
-    double y = drawTitle(painter, page, QObject::tr("Linework report"));
-    std::vector<QStringList> header;
+    std::vector<Block> header = {{Block::Kind::Title, {QObject::tr("Linework report")}}};
     for (const auto& [label, value] : reportHeaderRows(info))
-        header.push_back({label, value});
-    y += drawTable(painter, QRectF(0, y, page.width(), page.height() - y), {0.22, 0.78}, header,
-                   false);
-    y += 60;
-    drawPicture(painter, QRectF(0, y, page.width(), page.height() * 0.9 - y), picture);
-    drawFooter(painter, page, info, 1);
-
-    writer.newPage();
-    drawCommentAndMeasurements(painter, page.adjusted(0, 0, 0, -100), info, annotations);
-    drawFooter(painter, page, info, 2);
+        header.push_back({Block::Kind::Row, {label, value}, false, {0.22, 0.78}});
+    const double y = drawBlocks(painter, page.topLeft(), page.width(), header) + 60;
+    drawPicture(painter, QRectF(0, y, page.width(), body.bottom() - y), picture);
+    drawFooter(painter, page, info, 1, pages);
+    for (std::size_t i = 0; i < later.size(); ++i) {
+        writer.newPage();
+        drawBlocks(painter, page.topLeft(), page.width(), later[i]);
+        drawFooter(painter, page, info, int(i) + 2, pages);
+    }
     painter.end();
     return bytes;
 }

@@ -1,8 +1,9 @@
 #pragma once
 
 // The PDF report (QPdfWriter, A4): page 1 the patient / study / series header (optionally
-// anonymised) and the exported picture, page 2 the annotations and measurements as a table and
-// the free-text comment; every page carries the date and the software version.
+// anonymised) and the exported picture; from page 2 the annotations and measurements as a table
+// (continued over further pages when long) and the free-text comment; every page carries the
+// date, the software version and "page i of N".
 
 #include "lw/annotation/annotation.h"
 #include "lw/input/open_input.h"
