@@ -358,6 +358,9 @@ TEST(CudaBackendMethod1, CudaExtractionDrawsTheCpuImage) {
         agreement(frame.lines, expected.lines, differing);
         EXPECT_EQ(differing, 0u);
     }
+    // The iso panel's mesh, downloaded on demand, is the CPU's.
+    ASSERT_NE(cuda->surfaceMesh(), nullptr);
+    EXPECT_EQ(cuda->surfaceMesh()->triangleCount(), cpu->surfaceMesh()->triangleCount());
     // The chunked (L) variant streams slabs of 7 cell layers through the device into the GL
     // buffers: still the CPU's whole-volume image.
     SilhouetteSettings chunked;
@@ -373,9 +376,6 @@ TEST(CudaBackendMethod1, CudaExtractionDrawsTheCpuImage) {
     agreement(streamed.lines, expected.lines, differing);
     EXPECT_EQ(differing, 0u) << "method 1 L streamed on the GPU";
     EXPECT_EQ(streamed.triangles, expected.triangles);
-    // The iso panel's mesh, downloaded on demand, is the CPU's.
-    ASSERT_NE(cuda->surfaceMesh(), nullptr);
-    EXPECT_EQ(cuda->surfaceMesh()->triangleCount(), cpu->surfaceMesh()->triangleCount());
 }
 
 // The device memory budget is a limit: a frame that would hold more falls back (whole volume ->
