@@ -133,8 +133,16 @@ void writeOutputs(const ExportJob& job, const ExportTargets& targets, std::ostre
             write(*targets.png, report::encodePngBytes(picture, *targets.png));
         if (targets.svg)
             write(*targets.svg, report::renderSvg(job.panels, job.annotations, job.layout));
-        if (targets.pdf)
-            write(*targets.pdf, report::renderPdfReport(job.info, picture, job.annotations));
+        if (targets.pdf) {
+            // The silhouette as vector paths over a picture that leaves it out.
+            const QImage base =
+                report::composeExportImage(job.panels, job.annotations, job.layout, Qt::white, {},
+                                           report::SilhouetteLines::LeftOut);
+            const report::PictureLines lines{report::pictureLines(job.panels, job.layout),
+                                             job.panels.silhouetteLineWidth,
+                                             job.panels.silhouetteLineColour};
+            write(*targets.pdf, report::renderPdfReport(job.info, base, job.annotations, lines));
+        }
         if (targets.sc) {
             report::SecondaryCaptureSeries series;
             series.source = job.info.identity.value();
@@ -194,6 +202,12 @@ int runExport(const std::vector<std::string>& args, std::ostream& out) {
     const RenderedPanels panels = renderPanels(*renderer, volume, job.panels.camera, request, out);
     job.panels.iso = report::toQImage(panels.iso);
     job.panels.silhouette = report::toQImage(panels.silhouette);
+    if (request.wantSilhouette) {
+        // The lines as vectors too: antialiased in the PNG, paths in the SVG and the PDF.
+        job.panels.silhouetteLines =
+            silhouettePolylines(*renderer, volume, job.panels.camera, request, panels.lines);
+        job.panels.silhouetteLineWidth = 2.0 * request.lineRadius + 1.0;
+    }
 
     job.info.identity = opened.dicom;
     job.info.sourceDescription = opened.description;

@@ -47,12 +47,18 @@ std::string silhouetteSvg(const std::vector<Polyline>& polylines, int width, int
     if (!style.background.empty())
         svg +=
             "<rect width=\"100%\" height=\"100%\" fill=\"" + attribute(style.background) + "\"/>\n";
+    svg += silhouettePaths(polylines, style);
+    svg += "</svg>\n";
+    return svg;
+}
+
+std::string silhouettePaths(const std::vector<Polyline>& polylines, const SvgLineStyle& style) {
     char group[256];
     std::snprintf(group, sizeof group,
                   "<g fill=\"none\" stroke-width=\"%.3f\" stroke-linecap=\"round\" "
                   "stroke-linejoin=\"round\" stroke=\"",
                   style.widthPx);
-    svg += group + attribute(style.colour) + "\">\n";
+    std::string svg = group + attribute(style.colour) + "\">\n";
     for (const Polyline& line : polylines) {
         if (line.points.size() < 2)
             continue;
@@ -64,7 +70,7 @@ std::string silhouetteSvg(const std::vector<Polyline>& polylines, int width, int
             svg += "Z";
         svg += "\"/>\n";
     }
-    svg += "</g>\n</svg>\n";
+    svg += "</g>\n";
     return svg;
 }
 

@@ -20,5 +20,7 @@ struct SvgLineStyle {
 
 std::string silhouetteSvg(const std::vector<Polyline>& polylines, int width, int height,
                           const SvgLineStyle& style = {});
+// Only the <g> element with the paths, for a document that has its own <svg> (the report).
+std::string silhouettePaths(const std::vector<Polyline>& polylines, const SvgLineStyle& style);
 
 } // namespace lw::render

@@ -7,8 +7,10 @@
 
 #include "lw/annotation/annotation.h"
 #include "lw/input/open_input.h"
+#include "lw/render/visible_polylines.h"
 
 #include <QByteArray>
+#include <QColor>
 #include <QDateTime>
 #include <QImage>
 #include <QString>
@@ -32,8 +34,17 @@ struct ReportInfo {
 // The header's rows (label, value) as page 1 shows them.
 std::vector<std::pair<QString, QString>> reportHeaderRows(const ReportInfo& info);
 
-// The PDF's bytes. `picture` is the exported image with the annotations burned in.
+// Vector lines over the report's picture, in its pixels (pictureLines()).
+struct PictureLines {
+    std::vector<render::Polyline> lines;
+    double width = 1.0;
+    QColor colour = Qt::black;
+};
+
+// The PDF's bytes. `picture` is the exported image with the annotations burned in; `lines`, when
+// given, are drawn over it as vector paths (the silhouette, sharp at any zoom).
 QByteArray renderPdfReport(const ReportInfo& info, const QImage& picture,
-                           const std::vector<annotation::Annotation>& annotations);
+                           const std::vector<annotation::Annotation>& annotations,
+                           const PictureLines& lines = {});
 
 } // namespace lw::report
