@@ -10,6 +10,7 @@
 class QButtonGroup;
 class QCheckBox;
 class QComboBox;
+class QFormLayout;
 class QDoubleSpinBox;
 class QLabel;
 class QPushButton;
@@ -31,6 +32,8 @@ signals:
 
 private:
     QWidget* makeMethodPage();
+    void addMemoryRows(QFormLayout* form);
+    void addBackendRows(QFormLayout* form, QWidget* page);
     QWidget* makeAppearancePage();
     QWidget* makePresetPage();
     void showSettings();
