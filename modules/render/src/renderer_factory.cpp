@@ -9,7 +9,6 @@
 #include "lw/render/geometry_shader_silhouette_renderer.h"
 #endif
 #if LINEWORK_CUDA
-#include "cuda/cuda_raycast_silhouette_renderer.h"
 #include "lw/kernels/cuda/cuda_device.h"
 #endif
 
@@ -132,11 +131,8 @@ createSilhouetteRenderer(SilhouetteMethod method, Backend requested, std::string
                           "no OpenGL context: this build has no OpenGL/EGL (LINEWORK_GL=0)");
 #endif
     case SilhouetteMethod::RayCastVisibility:
-#if LINEWORK_CUDA
-        if (backend == Backend::Cuda)
-            return std::make_unique<CudaRayCastSilhouetteRenderer>();
-#endif
-        return std::make_unique<RayCastSilhouetteRenderer>();
+        return std::make_unique<RayCastSilhouetteRenderer>(backend == Backend::Cuda ? Backend::Cuda
+                                                                                    : Backend::Cpu);
     case SilhouetteMethod::ZBuffer:
         return std::make_unique<ZBufferSilhouetteRenderer>(backend == Backend::Cuda ? Backend::Cuda
                                                                                     : Backend::Cpu);

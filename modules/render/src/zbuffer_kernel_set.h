@@ -15,18 +15,12 @@
 #include "lw/render/iso_surface.h"
 #include "lw/render/silhouette_renderer.h"
 #include "lw/volume/volume.h"
+#include "out_of_device_memory.h"
 
 #include <memory>
-#include <stdexcept>
 #include <string_view>
 
 namespace lw::render {
-
-// A back-end ran out of device memory (or over its budget) in the middle of a frame: the frame
-// is repeated on the next way down (ZBufferKernelSet::fallBack, then the CPU).
-struct OutOfDeviceMemory : std::runtime_error {
-    using std::runtime_error::runtime_error;
-};
 
 class ZBufferKernelSet {
 public:
