@@ -113,7 +113,7 @@ SilhouetteFrame RayCastSilhouetteRenderer::renderFrame(const Camera& camera,
                                                        const SilhouetteSettings& settings) {
     State& s = *m_state;
     if (!s.volume)
-        throw core::Error("method 2", "no volume bound (setVolume)");
+        throw core::Error(s.device ? "method 2 (CUDA)" : "method 2", "no volume bound (setVolume)");
     if (settings.cancel && settings.cancel->isCancelled())
         throw core::Cancelled();
     SilhouetteFrame frame;
