@@ -7,6 +7,7 @@
 #include "review/review_widget.h"
 #include "shell/main_window.h"
 #include "shell/review_export.h"
+#include "window_test_support.h"
 
 #include <QMimeData>
 #include <QSignalSpy>
@@ -17,53 +18,7 @@
 using namespace lw::gui;
 using lw::report::PanelLayout;
 
-namespace {
-
-QString demoStudy() {
-    return lw::test::sourcePath() + "/resources/demo/ct_head_ge_tilt";
-}
-
-bool waitForReview(MainWindow& window, int timeoutMs = 60000) {
-    QElapsedTimer timer;
-    timer.start();
-    while (timer.elapsed() < timeoutMs) {
-        QTest::qWait(20);
-        ReviewWidget* review = window.currentReview();
-        if (review && review->status().framesShown > 0 && !review->isBusy())
-            return true;
-    }
-    return false;
-}
-
-QString importAndFindSeries(MainWindow& window, const QString& path) {
-    QSignalSpy finished(&window.browser(), &StudyBrowser::importFinished);
-    window.browser().importPath(path);
-    if (!finished.wait(60000))
-        return {};
-    for (const auto& patient : window.browser().database().patients())
-        for (const auto& study : patient.studies)
-            for (const auto& series : study.series)
-                if (series.sliceCount > 1)
-                    return series.uid;
-    return {};
-}
-
-// Shows the window and opens `path` in a review, waiting for its first frame.
-bool showAndOpen(MainWindow& window, const QString& path) {
-    window.show();
-    if (!QTest::qWaitForWindowExposed(&window))
-        return false;
-    window.openPath(path);
-    return waitForReview(window);
-}
-
-MainWindowOptions isolatedOptions(const QTemporaryDir& dir) {
-    MainWindowOptions options;
-    options.databasePath = dir.filePath("studies.sqlite");
-    return options;
-}
-
-} // namespace
+using namespace lw::test;
 
 class MainWindowTest : public QObject {
     Q_OBJECT
