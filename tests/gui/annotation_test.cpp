@@ -168,6 +168,9 @@ void AnnotationTest::undoAndRedoAddMoveDelete() {
     QCOMPARE(document.count(), 1);
     const Annotation added = document.at(0);
     review->annotationTools().setTool(AnnotationTool::None);
+    click(target, widgetPosition(target, added.anchors[0])); // a click on a handle only selects
+    QCOMPARE(history.count(), 1);
+    QCOMPARE(document.at(0).anchors, added.anchors);
 
     // Drag the first end up: it is picked again where it is dropped.
     const QPoint dropAt = centre + QPoint(-20, -60);
@@ -201,7 +204,7 @@ void AnnotationTest::labelAsksForItsTextAndCanBeEdited() {
     const auto review = showSphere(PanelGl::OnWorker);
     QVERIFY(settleShown(*review));
     QList<std::optional<QString>> answers{QString(" Lesion "), std::nullopt, QString("Cyst"),
-                                          QString("  ")};
+                                          QString("  "), QString("Mass")};
     QStringList asked;
     review->annotationTools().setTextPrompt([&](const QString&, const QString& initial) {
         asked << initial;
@@ -227,6 +230,12 @@ void AnnotationTest::labelAsksForItsTextAndCanBeEdited() {
     QCOMPARE(refused.count(), 1);
     document.undoStack().undo();
     QCOMPARE(document.at(0).text, std::string("Lesion"));
+    document.select(-1);
+    review->annotationTools().setTool(AnnotationTool::None); // with the tool, clicks place labels
+    const std::vector<glm::dvec3> placed = document.at(0).anchors;
+    QTest::mouseDClick(&iso, Qt::LeftButton, {}, widgetPosition(iso, placed[0]));
+    QCOMPARE(document.at(0).text, std::string("Mass")); // a double-click edits the text too
+    QCOMPARE(document.at(0).anchors, placed);           // and moves nothing
     QVERIFY(answers.isEmpty());
 }
 

@@ -4,6 +4,7 @@
 #include "annotate/annotation_document.h"
 #include "review/review_panel.h"
 
+#include <QApplication>
 #include <QEvent>
 #include <QInputDialog>
 #include <QMouseEvent>
@@ -174,7 +175,7 @@ bool AnnotationToolController::mousePress(ReviewPanel& panel, QMouseEvent& event
     m_document.select(hit->annotation);
     m_swallowDrag = true;
     if (hit->anchor >= 0) {
-        m_drag = Drag{hit->annotation, hit->anchor};
+        m_drag = Drag{hit->annotation, hit->anchor, position};
         m_pointerPanel = &panel;
         m_pointer = position;
     }
@@ -241,6 +242,10 @@ void AnnotationToolController::finishPlacement() {
 void AnnotationToolController::finishDrag(ReviewPanel& panel, QPoint position) {
     const Drag drag = *m_drag;
     m_drag.reset();
+    if ((position - drag.pressedAt).manhattanLength() < QApplication::startDragDistance()) {
+        repaint(); // a click on a handle: selected, not moved
+        return;
+    }
     const std::optional<glm::dvec3> point = m_pick(panel, position);
     if (!point) {
         emit refused(tr("No surface under the pointer: the point stays where it was"));

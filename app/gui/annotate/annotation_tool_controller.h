@@ -73,6 +73,7 @@ private:
     struct Drag {
         int annotation = -1;
         int anchor = -1;
+        QPoint pressedAt; // a click without a drag selects and moves nothing
     };
 
     bool mousePress(ReviewPanel& panel, QMouseEvent& event);
