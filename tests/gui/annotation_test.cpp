@@ -91,6 +91,7 @@ private slots:
     void rulerByTwoClicksMeasuresTheSphere();
     void undoAndRedoAddMoveDelete_data();
     void undoAndRedoAddMoveDelete();
+    void anEditDuringADragEndsIt();
     void labelAsksForItsTextAndCanBeEdited();
     void keysPickToolsAndEscapeBacksOut_data();
     void keysPickToolsAndEscapeBacksOut();
@@ -198,6 +199,20 @@ void AnnotationTest::undoAndRedoAddMoveDelete() {
     QCOMPARE(document.at(0).anchors, moved.anchors);
     history.redo();
     QCOMPARE(document.count(), 0);
+}
+
+void AnnotationTest::anEditDuringADragEndsIt() {
+    const auto review = showSphere(PanelGl::OnWorker);
+    QVERIFY(settleShown(*review));
+    AnnotationDocument& document = review->annotations();
+    document.add({AnnotationKind::Ruler, {{-10, -15, 0}, {10, -15, 0}}, {}});
+    ReviewPanel& iso = review->isoPanel();
+    const QPoint handle = widgetPosition(iso, document.at(0).anchors[0]);
+    QTest::mousePress(&iso, Qt::LeftButton, {}, handle);
+    document.undoStack().undo(); // Ctrl+Z while the mouse button is down: the ruler goes
+    QTest::mouseRelease(&iso, Qt::LeftButton, {}, handle + QPoint(30, 30));
+    QCOMPARE(document.count(), 0); // and the drop moves nothing that is not there
+    QCOMPARE(document.undoStack().index(), 0);
 }
 
 void AnnotationTest::labelAsksForItsTextAndCanBeEdited() {

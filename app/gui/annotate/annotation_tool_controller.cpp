@@ -45,7 +45,11 @@ std::optional<QString> askWithDialog(const QString& title, const QString& initia
 AnnotationToolController::AnnotationToolController(AnnotationDocument& document, Picker pick,
                                                    QObject* parent)
     : QObject(parent), m_document(document), m_pick(std::move(pick)), m_prompt(askWithDialog) {
-    connect(&m_document, &AnnotationDocument::changed, this, &AnnotationToolController::repaint);
+    // An edit from elsewhere (Ctrl+Z, Del) during a drag may remove what is dragged: the drag ends.
+    connect(&m_document, &AnnotationDocument::changed, this, [this] {
+        m_drag.reset();
+        repaint();
+    });
     connect(&m_document, &AnnotationDocument::selectionChanged, this,
             &AnnotationToolController::repaint);
 }
@@ -162,6 +166,8 @@ bool AnnotationToolController::mousePress(ReviewPanel& panel, QMouseEvent& event
         return false; // zoom, pan and roll stay the camera's, whatever the tool
     const QPoint position = event.position().toPoint();
     panel.setFocus(); // the tools' keys (Esc, Del) act on the review clicked last
+    // A release lost to a dialog (a label's text) must not keep swallowing later drags.
+    m_swallowDrag = false;
     if (m_tool != AnnotationTool::None) {
         m_swallowDrag = true;
         placeAnchor(panel, position);
