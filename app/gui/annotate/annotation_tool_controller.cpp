@@ -35,8 +35,9 @@ AnnotationKind kindOf(AnnotationTool tool) {
 
 std::optional<QString> askWithDialog(const QString& title, const QString& initial) {
     bool ok = false;
-    const QString text = QInputDialog::getText(nullptr, title, QObject::tr("Text:"),
-                                               QLineEdit::Normal, initial, &ok);
+    // Over the window being annotated, not wherever the window manager puts a parentless dialog.
+    const QString text = QInputDialog::getText(
+        QApplication::activeWindow(), title, QObject::tr("Text:"), QLineEdit::Normal, initial, &ok);
     return ok ? std::optional<QString>(text) : std::nullopt;
 }
 
