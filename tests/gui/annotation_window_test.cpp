@@ -1,9 +1,10 @@
 // The annotations in the workstation's window: kept with the series in the study database (every
 // change saved at once; closing the window and opening the series again, on a fresh connection,
-// brings them back), undo and redo from the Edit menu's keys, and the File menu's exports through
-// modules/report: the PNG burns them in, the PDF report's text holds the measurement and the
-// comment (pdftotext; SKIP without poppler-utils), the Secondary Capture re-imports as a series of
-// the same study, and an existing file is only replaced when the caller says the user agreed.
+// brings them back; opening it once more shows its review rather than a second one), undo and
+// redo from the Edit menu's keys, and the File menu's exports through modules/report: the PNG
+// burns them in, the PDF report's text holds the measurement and the comment (pdftotext; SKIP
+// without poppler-utils), the Secondary Capture re-imports as a series of the same study, and an
+// existing file is only replaced when the caller says the user agreed.
 #include "annotate/annotation_document.h"
 #include "lw/annotation/annotation_json.h"
 #include "lw/report/secondary_capture.h"
@@ -114,6 +115,13 @@ void AnnotationWindowTest::annotationsSurviveClosingAndReopening() {
     QCOMPARE(document.at(1).anchors, kLabel.anchors);
     // Loaded, not edited: nothing to undo yet.
     QCOMPARE(window.currentReview()->annotations().undoStack().count(), 0);
+    // Opened again (here by its folder), the series' review comes forward: a second review
+    // would save its own list over the first one's.
+    QSignalSpy opened(&window, &MainWindow::reviewOpened);
+    window.openPath(demoStudy());
+    QVERIFY(opened.wait(60000));
+    QCOMPARE(window.reviews().size(), 1);
+    QCOMPARE(window.currentReview()->annotations().count(), 2);
 }
 
 void AnnotationWindowTest::undoAndRedoFromTheKeys() {

@@ -257,6 +257,13 @@ QList<ReviewWidget*> MainWindow::reviews() const {
     return result;
 }
 
+ReviewWidget* MainWindow::reviewOfSeries(const QString& seriesUid) const {
+    for (ReviewWidget* review : reviews())
+        if (!seriesUid.isEmpty() && review->source().seriesUid == seriesUid)
+            return review;
+    return nullptr;
+}
+
 bool MainWindow::isLoading() const {
     return m_loader->isRunning();
 }
@@ -316,6 +323,13 @@ void MainWindow::setLoadingVisible(bool visible) {
 
 void MainWindow::showReview(std::shared_ptr<ReviewSource> source) {
     setLoadingVisible(false);
+    // One review per series: two would each save their own list of annotations over the other's.
+    if (ReviewWidget* open = reviewOfSeries(source->seriesUid)) {
+        m_tabs->setCurrentWidget(open);
+        statusBar()->showMessage(tr("%1 is open already").arg(open->source().title), 8000);
+        emit reviewOpened(open);
+        return;
+    }
     auto* review = new ReviewWidget(std::move(*source), m_settings);
     m_undoGroup->addStack(&review->annotations().undoStack());
     if (!review->source().seriesUid.isEmpty())

@@ -42,6 +42,8 @@ public:
     StudyBrowser& browser() { return *m_browser; }
     ReviewWidget* currentReview() const;
     QList<ReviewWidget*> reviews() const;
+    // The open review of a DICOM series, or null (phantoms and volume files have no UID).
+    ReviewWidget* reviewOfSeries(const QString& seriesUid) const;
     const ReviewSettings& settings() const { return m_settings; }
     bool isLoading() const;
     QString lastError() const { return m_lastError; }
