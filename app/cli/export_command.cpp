@@ -57,14 +57,8 @@ void checkTargets(const ExportTargets& targets) {
     for (const auto& path : {targets.png, targets.pdf, targets.svg})
         if (path)
             core::checkWritableTarget(*path, targets.overwrite);
-    if (targets.sc) {
-        std::error_code ec;
-        const std::filesystem::path first = *targets.sc / report::secondaryCaptureFileName(1);
-        if (std::filesystem::is_directory(*targets.sc, ec))
-            core::checkWritableTarget(first, targets.overwrite);
-        else
-            core::checkWritableTarget(*targets.sc, core::Overwrite::Refuse); // created later
-    }
+    if (targets.sc)
+        report::checkSecondaryCaptureTarget(*targets.sc, targets.overwrite);
 }
 
 report::PanelLayout parseLayout(const Arguments& arguments) {
@@ -76,19 +70,6 @@ report::PanelLayout parseLayout(const Arguments& arguments) {
     if (panel == "silhouette")
         return report::PanelLayout::SilhouettePanel;
     throw UsageError("--panel " + panel, "expected iso, silhouette or both");
-}
-
-std::string methodDescription(const RenderRequest& request, const render::CameraSetup& setup) {
-    static const char* const names[] = {"", "marching cubes + geometry-shader silhouette",
-                                        "silhouette with ray-cast visibility",
-                                        "z-buffer silhouette"};
-    char text[256];
-    std::snprintf(text, sizeof text,
-                  "Linework silhouette method %d (%s, Morar et al. 2013), iso-value %g, "
-                  "view azimuth %g, elevation %g",
-                  int(request.method), names[int(request.method)], request.settings.isoReal,
-                  setup.azimuthDeg, setup.elevationDeg);
-    return text;
 }
 
 class Stopwatch {
@@ -211,7 +192,7 @@ int runExport(const std::vector<std::string>& args, std::ostream& out) {
 
     job.info.identity = opened.dicom;
     job.info.sourceDescription = opened.description;
-    job.info.method = methodDescription(request, setup);
+    job.info.method = report::describeRendering(request.method, request.settings.isoReal, setup);
     job.info.comment = arguments.option("comment", "");
     job.info.anonymise = arguments.flag("anonymise");
     job.info.softwareVersion = LINEWORK_VERSION;

@@ -194,6 +194,20 @@ std::vector<Block> measurementBlocks(const ReportInfo& info,
 
 } // namespace
 
+std::string describeRendering(render::SilhouetteMethod method, double iso,
+                              const render::CameraSetup& view) {
+    static const char* const names[] = {"", "marching cubes + geometry-shader silhouette",
+                                        "silhouette with ray-cast visibility",
+                                        "z-buffer silhouette"};
+    const int number = std::clamp(int(method), 1, 3);
+    char text[256];
+    std::snprintf(text, sizeof text,
+                  "Linework silhouette method %d (%s, Morar et al. 2013), iso-value %g, "
+                  "view azimuth %g, elevation %g",
+                  number, names[number], iso, view.azimuthDeg, view.elevationDeg);
+    return text;
+}
+
 std::vector<std::pair<QString, QString>> reportHeaderRows(const ReportInfo& info) {
     std::vector<std::pair<QString, QString>> rows;
     if (info.identity) {

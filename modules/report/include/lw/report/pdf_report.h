@@ -7,6 +7,8 @@
 
 #include "lw/annotation/annotation.h"
 #include "lw/input/open_input.h"
+#include "lw/render/camera.h"
+#include "lw/render/silhouette_renderer.h"
 #include "lw/render/visible_polylines.h"
 
 #include <QByteArray>
@@ -30,6 +32,12 @@ struct ReportInfo {
     QDateTime created = QDateTime::currentDateTime();
     std::string softwareVersion;
 };
+
+// How a picture was made, for ReportInfo::method and the Secondary Capture's derivation:
+// "Linework silhouette method 3 (z-buffer silhouette, Morar et al. 2013), iso-value 400, view
+// azimuth 30, elevation 10".
+std::string describeRendering(render::SilhouetteMethod method, double iso,
+                              const render::CameraSetup& view);
 
 // The header's rows (label, value) as page 1 shows them.
 std::vector<std::pair<QString, QString>> reportHeaderRows(const ReportInfo& info);
