@@ -61,6 +61,7 @@ for target in "${targets[@]}"; do
   mkdir -p "$corpus" "$findings"
   seeds=("$build/seeds/$target")
   [ -d "tests/data/fuzz/$target" ] && seeds+=("tests/data/fuzz/$target")
+  earlier=$(find "$corpus" -type f | wc -l) # kept from earlier runs in this build folder
   start=$(date +%s)
   status=0
   # The first folder receives what libFuzzer finds new; the seed folders are only read.
@@ -71,8 +72,8 @@ for target in "${targets[@]}"; do
   inited=$(grep -m1 -o 'INITED cov: [0-9]*' "$log" | grep -o '[0-9]*$' || echo "?")
   done_cov=$(grep -o 'DONE *cov: [0-9]*' "$log" | grep -o '[0-9]*$' || echo "?")
   runs=$(grep -o 'stat::number_of_executed_units: [0-9]*' "$log" | grep -o '[0-9]*$' || echo "?")
-  echo "fuzz $target: $seed_count seeds, edge coverage $inited after the seeds, $done_cov after" \
-       "$runs runs in $(( $(date +%s) - start )) s"
+  echo "fuzz $target: $seed_count seeds + $earlier from earlier runs, edge coverage $inited" \
+       "after reading them, $done_cov after $runs runs in $(( $(date +%s) - start )) s"
   if [ $status -ne 0 ]; then
     echo "fuzz $target: FINDING (exit $status), input in $findings/; the end of $log:" >&2
     tail -n 40 "$log" >&2
