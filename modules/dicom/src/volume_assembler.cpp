@@ -3,7 +3,6 @@
 #include "dicom_file.h"
 #include "lw/core/error.h"
 #include "lw/core/limits.h"
-#include "lw/core/log.h"
 #include "lw/core/module_boundary.h"
 #include "lw/core/parallel.h"
 
@@ -22,8 +21,6 @@
 namespace lw::dicom {
 
 namespace {
-
-const core::LogCategory kLog("lw.dicom");
 
 constexpr double kOrientationTolerance = 1e-4;
 constexpr double kSpacingTolerance = 1e-4;   // relative
