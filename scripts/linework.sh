@@ -2,14 +2,17 @@
 # One entry point for a fresh Debian 12 machine (2 cores, maybe no GPU, maybe no display):
 #
 #   scripts/linework.sh run    install what is missing, build, run the main job on the demo study
-#   scripts/linework.sh test   install what is missing, build, run the whole test suite (CTest)
+#   scripts/linework.sh test   install what is missing, build, run the whole test suite (CTest),
+#                              then the same suite built with AddressSanitizer + UBSan (build/asan)
+#                              and each fuzz target for a bounded time (scripts/fuzz.sh, clang)
 #
 # Both are idempotent: packages already present are not reinstalled, builds are incremental.
 # Both build into one folder, so `test` after `run` (or the reverse) only builds what is new:
 # `run` builds the two programs it needs, `test` everything.
 # Environment: LINEWORK_BUILD_DIR (default build/linework), LINEWORK_JOBS (default: cores),
 # LINEWORK_CUDA_ARCHITECTURES (default 90, the H100/H200 of the GPU machine and what CI
-# compiles; e.g. "75;80;86;89;90" for other GPUs).
+# compiles; e.g. "75;80;86;89;90" for other GPUs). For `test`: LINEWORK_SANITIZERS=0 skips the
+# sanitizer build and suite, LINEWORK_FUZZ_SECONDS (default 45; 0 skips) bounds each fuzz target.
 set -euo pipefail
 
 command=${1:-}
@@ -25,7 +28,7 @@ cd "$root"
 packages=(build-essential cmake ninja-build file pkg-config zlib1g-dev libgtest-dev
           qt6-base-dev qt6-tools-dev qt6-l10n-tools libqt6opengl6-dev libqt6sql6-sqlite
           libdcmtk-dev dcmtk libopenjp2-7-dev libglm-dev libegl-dev libgl-dev libopengl-dev libegl-mesa0 libgl1-mesa-dri
-          xvfb xauth python3-numpy desktop-file-utils appstream
+          xvfb xauth python3-numpy desktop-file-utils appstream clang libclang-rt-14-dev
           poppler-utils dicom3tools) # the report tests read the PDF and validate the DICOM SC
 
 install_packages() {
@@ -90,8 +93,38 @@ if [ "$command" = run ]; then
 fi
 
 # Tests: GL and GUI tests need a display; give them a virtual one when there is none.
-ctest_cmd=(ctest --test-dir "$build_dir" --output-on-failure --parallel "$jobs" --timeout 1500)
-if [ -z "${DISPLAY:-}" ] && command -v xvfb-run >/dev/null; then
-  exec xvfb-run -a -s "-screen 0 1920x1080x24" "${ctest_cmd[@]}"
+run_ctest() { # BUILD_DIR [ctest arguments...]
+  local ctest_cmd=(ctest --test-dir "$1" --output-on-failure --parallel "$jobs" --timeout 1500 "${@:2}")
+  if [ -z "${DISPLAY:-}" ] && command -v xvfb-run >/dev/null; then
+    xvfb-run -a -s "-screen 0 1920x1080x24" "${ctest_cmd[@]}"
+  else
+    "${ctest_cmd[@]}"
+  fi
+}
+failed=()
+run_ctest "$build_dir" || failed+=("test suite")
+
+# The same suite under AddressSanitizer + UndefinedBehaviorSanitizer (CMake preset `asan`: no
+# CUDA, -O1). The package test is left out: it packs and unpacks the build, it reads no input.
+if [ "${LINEWORK_SANITIZERS:-1}" != 0 ]; then
+  echo "linework: the test suite with AddressSanitizer + UndefinedBehaviorSanitizer (build/asan)"
+  started=$(date +%s)
+  if cmake --preset asan >/dev/null && cmake --build build/asan --parallel "$jobs"; then
+    run_ctest build/asan -E '^installer_package_test$' || failed+=("sanitizer suite")
+  else
+    failed+=("sanitizer build")
+  fi
+  echo "linework: sanitizer build and suite took $(( $(date +%s) - started )) s"
 fi
-exec "${ctest_cmd[@]}"
+
+# Each fuzz target for a bounded time (scripts/fuzz.sh; nothing without clang).
+if [ "${LINEWORK_FUZZ_SECONDS:-45}" != 0 ]; then
+  started=$(date +%s)
+  LINEWORK_JOBS=$jobs scripts/fuzz.sh "${LINEWORK_FUZZ_SECONDS:-45}" || failed+=("fuzzing")
+  echo "linework: fuzzing took $(( $(date +%s) - started )) s"
+fi
+
+if [ ${#failed[@]} -ne 0 ]; then
+  echo "linework: FAILED: ${failed[*]}" >&2
+  exit 1
+fi

@@ -314,6 +314,42 @@ TEST(DicomScanner, DicomdirPathsMustStayInsideTheFileSet) {
     EXPECT_TRUE(anyWarningContains(index, "lists 1 series"));
 }
 
+// Issue 10, paths: a ReferencedFileID is relative to the file-set root. Absolute IDs (either
+// separator), drive letters and links inside the file-set that point out of it are refused
+// with the reason, and the file outside is never read, although it exists.
+TEST(DicomScanner, DicomdirReferencesCannotEscapeByAbsolutePathsDrivesOrLinks) {
+    test::TempDir dir;
+    const fs::path root = dir / "media";
+    writeSeries(root / "SUB", newSeries(1, 1));
+    writeSeries(dir / "OUTSIDE", newSeries(2, 1));
+    std::error_code ec;
+    fs::create_directory_symlink(dir / "OUTSIDE", root / "LINKDIR", ec);
+    if (!ec)
+        fs::create_symlink(dir / "OUTSIDE" / "IM1", root / "SUB" / "LINKFILE", ec);
+    if (ec)
+        GTEST_SKIP() << "cannot create symlinks here: " << ec.message();
+    const std::string outside = (dir / "OUTSIDE" / "IM1").string();
+    writeRawDicomdir(root / "DICOMDIR", {{"IMAGE", "\\OUTSIDE\\IM1", "", ""},
+                                         {"IMAGE", outside, "", ""},
+                                         {"IMAGE", "C:\\OUTSIDE\\IM1", "", ""},
+                                         {"IMAGE", "C:OUTSIDE\\IM1", "", ""},
+                                         {"IMAGE", "LINKDIR\\IM1", "", ""},
+                                         {"IMAGE", "SUB\\LINKFILE", "", ""},
+                                         {"IMAGE", "SUB\\IM1", "", ""}});
+    if (HasFatalFailure())
+        return;
+    const dicom::DicomIndex index = dicom::scanDicom(root / "DICOMDIR");
+    EXPECT_EQ(index.instanceCount(), 1u); // SUB/IM1 only
+    int refusedIds = 0, refusedLinks = 0;
+    for (const auto& error : index.errors) {
+        refusedIds += error.reason.find("leaves the file-set root") != std::string::npos;
+        refusedLinks += error.reason.find("through a link) outside") != std::string::npos;
+    }
+    EXPECT_EQ(refusedIds, 4);
+    EXPECT_EQ(refusedLinks, 2);
+    EXPECT_EQ(index.errors.size(), 6u);
+}
+
 TEST(DicomScanner, NestedDicomdirsAreFollowedOnceEvenInACycle) {
     test::TempDir dir;
     writeSeries(dir / "S1" / "SER", newSeries(1, 2));
@@ -431,9 +467,9 @@ TEST(DicomScanner, TruncatedTopLevelDicomdirKeepsTheWholeRecords) {
     const SeriesSpec first = newSeries(1, 2);
     writeSeries(dir / "S1", first);
     writeSeries(dir / "S2", newSeries(2, 1));
-    writeRawDicomdir(dir / "DICOMDIR", {{"IMAGE", "S1\\IM1", "", ""},
-                                        {"IMAGE", "S1\\IM2", "", ""},
-                                        {"IMAGE", "S2\\IM1", "", ""}});
+    writeRawDicomdir(
+        dir / "DICOMDIR",
+        {{"IMAGE", "S1\\IM1", "", ""}, {"IMAGE", "S1\\IM2", "", ""}, {"IMAGE", "S2\\IM1", "", ""}});
     if (HasFatalFailure())
         return;
     fs::resize_file(dir / "DICOMDIR", fs::file_size(dir / "DICOMDIR") - 6);

@@ -137,6 +137,10 @@ ReviewPanel::ReviewPanel(PanelKind kind, CameraController& camera, QWidget* pare
 
 ReviewPanel::~ReviewPanel() {
     releaseGl();
+    // The GL view's context announces its end while ~QWidget deletes the children, when this is
+    // no longer a ReviewPanel (UBSan: member call on a QWidget): nothing of ours may run then.
+    if (m_glView && m_glView->context())
+        disconnect(m_glView->context(), nullptr, this, nullptr);
 }
 
 void ReviewPanel::setGlView(bool glView) {

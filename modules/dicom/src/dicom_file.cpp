@@ -5,7 +5,6 @@
 
 #include "lw/core/error.h"
 #include "lw/core/file_util.h"
-#include "lw/core/log.h"
 
 #include <dcmtk/dcmdata/dcdeftag.h>
 #include <dcmtk/dcmdata/dcfilefo.h>
@@ -23,8 +22,6 @@
 namespace lw::dicom {
 
 namespace {
-
-const core::LogCategory kLog("lw.dicom");
 
 // Elements longer than this are skipped while parsing and only loaded on demand: reading a
 // header must not pull 500 KB of pixel data (or a 200 MB multi-frame) into memory.

@@ -236,56 +236,78 @@ void walkDicomdir(const fs::path& dicomdir, DicomdirState& state, int depth, boo
     state.errors.push_back({dicomdir.string(), reason});
 }
 
+namespace {
+
+// The patient a listed series without readable files goes under: found by ID, or added.
+PatientInfo& patientOf(DicomIndex& index, const ListedSeries& listed) {
+    auto patient =
+        std::find_if(index.patients.begin(), index.patients.end(),
+                     [&](const PatientInfo& p) { return p.patientId == listed.patientId; });
+    if (patient != index.patients.end())
+        return *patient;
+    PatientInfo added;
+    added.patientId = listed.patientId;
+    added.name = listed.patientName;
+    return index.patients.emplace_back(std::move(added));
+}
+
+StudyInfo& studyOf(PatientInfo& patient, const ListedSeries& listed) {
+    auto study =
+        std::find_if(patient.studies.begin(), patient.studies.end(), [&](const StudyInfo& s) {
+            return s.studyInstanceUid == listed.studyInstanceUid;
+        });
+    if (study != patient.studies.end())
+        return *study;
+    StudyInfo added;
+    added.studyInstanceUid = listed.studyInstanceUid;
+    added.studyId = listed.studyId;
+    added.description = listed.studyDescription;
+    added.date = listed.studyDate;
+    added.time = listed.studyTime;
+    return patient.studies.emplace_back(std::move(added));
+}
+
+void noteReferencedCounts(DicomIndex& index, const std::string& uid, const ListedSeries& listed) {
+    for (auto& patient : index.patients)
+        for (auto& study : patient.studies)
+            for (auto& series : study.series)
+                if (series.seriesInstanceUid == uid) {
+                    series.referencedFiles = listed.referenced;
+                    series.missingFiles = listed.missing;
+                }
+}
+
+// A series the DICOMDIR lists but none of whose files could be read: shown with its counts.
+void addUnreadSeries(DicomIndex& index, const std::string& uid, const ListedSeries& listed) {
+    StudyInfo& study = studyOf(patientOf(index, listed), listed);
+    SeriesInfo series;
+    series.seriesInstanceUid = uid;
+    series.modality = listed.modality;
+    series.description = listed.description;
+    series.seriesNumber = listed.seriesNumber;
+    series.referencedFiles = listed.referenced;
+    series.missingFiles = listed.missing;
+    const auto position =
+        std::find_if(study.series.begin(), study.series.end(), [&](const SeriesInfo& s) {
+            return std::tuple(optionalKey(series.seriesNumber), series.seriesInstanceUid) <
+                   std::tuple(optionalKey(s.seriesNumber), s.seriesInstanceUid);
+        });
+    study.series.insert(position, std::move(series));
+}
+
+} // namespace
+
+// Structured bindings are not captured by the lambdas below (clang 14 cannot): the entries are
+// handed on by name.
 void addListedSeries(DicomIndex& index, const DicomdirState& state) {
-    for (const auto& [uid, listed] : state.listedSeriesRecords) {
+    for (const auto& entry : state.listedSeriesRecords) {
+        const std::string& uid = entry.first;
+        const ListedSeries& listed = entry.second;
         if (listed.referenced == 0)
             continue; // a series record without image records: nothing to say about it
-        for (auto& patient : index.patients)
-            for (auto& study : patient.studies)
-                for (auto& series : study.series)
-                    if (series.seriesInstanceUid == uid) {
-                        series.referencedFiles = listed.referenced;
-                        series.missingFiles = listed.missing;
-                    }
-        if (index.findSeries(uid) != nullptr || !state.recordsInOrder)
-            continue;
-        auto patient =
-            std::find_if(index.patients.begin(), index.patients.end(),
-                         [&](const PatientInfo& p) { return p.patientId == listed.patientId; });
-        if (patient == index.patients.end()) {
-            PatientInfo added;
-            added.patientId = listed.patientId;
-            added.name = listed.patientName;
-            index.patients.push_back(std::move(added));
-            patient = index.patients.end() - 1;
-        }
-        auto study =
-            std::find_if(patient->studies.begin(), patient->studies.end(), [&](const StudyInfo& s) {
-                return s.studyInstanceUid == listed.studyInstanceUid;
-            });
-        if (study == patient->studies.end()) {
-            StudyInfo added;
-            added.studyInstanceUid = listed.studyInstanceUid;
-            added.studyId = listed.studyId;
-            added.description = listed.studyDescription;
-            added.date = listed.studyDate;
-            added.time = listed.studyTime;
-            patient->studies.push_back(std::move(added));
-            study = patient->studies.end() - 1;
-        }
-        SeriesInfo series;
-        series.seriesInstanceUid = uid;
-        series.modality = listed.modality;
-        series.description = listed.description;
-        series.seriesNumber = listed.seriesNumber;
-        series.referencedFiles = listed.referenced;
-        series.missingFiles = listed.missing;
-        const auto position =
-            std::find_if(study->series.begin(), study->series.end(), [&](const SeriesInfo& s) {
-                return std::tuple(optionalKey(series.seriesNumber), series.seriesInstanceUid) <
-                       std::tuple(optionalKey(s.seriesNumber), s.seriesInstanceUid);
-            });
-        study->series.insert(position, std::move(series));
+        noteReferencedCounts(index, uid, listed);
+        if (index.findSeries(uid) == nullptr && state.recordsInOrder)
+            addUnreadSeries(index, uid, listed);
     }
 }
 

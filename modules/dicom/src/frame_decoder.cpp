@@ -18,6 +18,7 @@
 #include <dcmtk/dcmjpls/djdecode.h>
 #include <dlfcn.h>
 #include <limits>
+#include <memory>
 #include <span>
 #include <utility>
 
@@ -76,53 +77,88 @@ template <typename T> T clampTo(std::int32_t value) {
                                       std::int32_t(std::numeric_limits<T>::max())));
 }
 
-// A frame of JPEG 2000 ends with the EOC marker (FFD9), perhaps followed by the one byte of
-// padding that makes a fragment's length even.
-bool endsJpeg2000Codestream(DcmPixelItem& fragment) {
-    Uint8* bytes = nullptr;
-    const Uint32 length = fragment.getLength();
-    if (fragment.getUint8Array(bytes).bad() || !bytes || length < 2)
-        return false;
-    const Uint32 end = (length >= 3 && bytes[length - 1] == 0) ? length - 1 : length;
-    return bytes[end - 2] == 0xFF && bytes[end - 1] == 0xD9;
+// The items of an encapsulated pixel sequence, taken out of it: item 0 is the Basic Offset
+// Table, the others the fragments. DCMTK's getItem(i) walks its list from the start, so reading
+// n fragments that way costs n²/2 steps, which a small file of 100 000 empty fragments turns
+// into minutes; remove(0) costs one step.
+using PixelItems = std::vector<std::unique_ptr<DcmPixelItem>>;
+
+PixelItems takeItems(DcmPixelSequence& sequence) {
+    PixelItems items;
+    DcmPixelItem* item = nullptr;
+    while (sequence.card() > 0 && sequence.remove(item, 0).good() && item)
+        items.emplace_back(item);
+    return items;
 }
 
-// The fragments [first, last] of each frame (index 0 is the Basic Offset Table). One frame
-// takes every fragment; otherwise DCMTK's rule (one fragment per frame, or the offset table)
-// and, where the table is empty, the EOC marker that ends each frame's codestream.
-std::vector<std::pair<Uint32, Uint32>> frameFragments(DcmPixelSequence& sequence, int frames) {
-    const Uint32 items = Uint32(sequence.card());
-    if (items < 2 || frames < 1)
+std::span<const std::uint8_t> bytesOf(DcmPixelItem& item) {
+    Uint8* bytes = nullptr;
+    if (item.getUint8Array(bytes).bad() || !bytes)
+        return {};
+    return {bytes, item.getLength()};
+}
+
+// Fragment index ranges [first, last] of each frame.
+using FrameRanges = std::vector<std::pair<std::size_t, std::size_t>>;
+
+// The ranges from each frame's first fragment, the last frame taking the rest.
+FrameRanges rangesFromStarts(const std::vector<std::size_t>& starts, std::size_t items) {
+    FrameRanges ranges;
+    for (std::size_t f = 0; f < starts.size(); ++f)
+        ranges.push_back({starts[f], f + 1 < starts.size() ? starts[f + 1] - 1 : items - 1});
+    return ranges;
+}
+
+// The Basic Offset Table: each frame's first fragment by the byte offset of its item from the
+// first fragment's (PS3.5 A.4). Empty when the table is absent or does not match the fragments.
+FrameRanges framesByOffsetTable(const PixelItems& items, int frames) {
+    const auto table = bytesOf(*items[0]);
+    if (table.size() != 4 * std::size_t(frames))
+        return {};
+    std::vector<std::size_t> starts;
+    std::uint64_t offset = 0;
+    for (std::size_t index = 1; index < items.size() && int(starts.size()) < frames; ++index) {
+        const std::uint8_t* entry = table.data() + 4 * starts.size();
+        const std::uint32_t wanted = std::uint32_t(entry[0]) | std::uint32_t(entry[1]) << 8 |
+                                     std::uint32_t(entry[2]) << 16 | std::uint32_t(entry[3]) << 24;
+        if (wanted < offset)
+            return {}; // offsets must grow: a frame cannot start inside another
+        if (wanted == offset)
+            starts.push_back(index);
+        offset += std::uint64_t(items[index]->getLength()) + 8; // the item tag and length
+    }
+    return int(starts.size()) == frames ? rangesFromStarts(starts, items.size()) : FrameRanges{};
+}
+
+// Without a usable table: a JPEG 2000 frame ends with the EOC marker (FFD9), perhaps followed by
+// the one byte of padding that makes a fragment's length even.
+FrameRanges framesByEndMarkers(const PixelItems& items, int frames) {
+    std::vector<std::size_t> starts{1};
+    for (std::size_t index = 1; index + 1 < items.size() && int(starts.size()) < frames; ++index) {
+        auto bytes = bytesOf(*items[index]);
+        if (bytes.size() >= 3 && bytes.back() == 0)
+            bytes = bytes.first(bytes.size() - 1);
+        if (bytes.size() >= 2 && bytes[bytes.size() - 2] == 0xFF && bytes.back() == 0xD9)
+            starts.push_back(index + 1);
+    }
+    return int(starts.size()) == frames ? rangesFromStarts(starts, items.size()) : FrameRanges{};
+}
+
+// Which fragments make each frame: all of them for one frame, one each when there are as many
+// as frames, else the offset table, else the end markers. Empty when none of these tells.
+FrameRanges frameFragments(const PixelItems& items, int frames) {
+    if (items.size() < 2 || frames < 1)
         return {};
     if (frames == 1)
-        return {{1, items - 1}};
-    std::vector<std::pair<Uint32, Uint32>> ranges;
-    for (int frame = 0; frame < frames; ++frame) {
-        Uint32 start = 0;
-        if (DcmCodec::determineStartFragment(Uint32(frame), frames, &sequence, start).bad() ||
-            (!ranges.empty() && start <= ranges.back().first)) {
-            ranges.clear();
-            break;
-        }
-        if (!ranges.empty())
-            ranges.back().second = start - 1;
-        ranges.push_back({start, items - 1});
-    }
-    if (!ranges.empty())
+        return {{1, items.size() - 1}};
+    if (items.size() - 1 == std::size_t(frames)) {
+        FrameRanges ranges;
+        for (std::size_t index = 1; index < items.size(); ++index)
+            ranges.push_back({index, index});
         return ranges;
-    Uint32 first = 1;
-    for (Uint32 index = 1; index < items && int(ranges.size()) < frames; ++index) {
-        DcmPixelItem* fragment = nullptr;
-        if (sequence.getItem(fragment, index).good() && fragment &&
-            endsJpeg2000Codestream(*fragment)) {
-            ranges.push_back({first, index});
-            first = index + 1;
-        }
     }
-    if (int(ranges.size()) != frames)
-        return {};
-    ranges.back().second = items - 1;
-    return ranges;
+    FrameRanges ranges = framesByOffsetTable(items, frames);
+    return ranges.empty() ? framesByEndMarkers(items, frames) : ranges;
 }
 
 } // namespace
@@ -140,8 +176,8 @@ struct FrameDecoder::Impl {
     std::size_t byteLength = 0;
 
     // JPEG 2000: each frame is decoded from its fragments when asked for, into frameBuffer.
-    DcmPixelSequence* jpeg2000Sequence = nullptr;
-    std::vector<std::pair<Uint32, Uint32>> jpeg2000Frames;
+    PixelItems jpeg2000Items;
+    FrameRanges jpeg2000Frames;
     std::vector<std::byte> frameBuffer;
     int bufferedFrame = -1;
 
@@ -229,12 +265,13 @@ void FrameDecoder::Impl::load(int frame) {
 // Finds each frame's fragments in the sequence DCMTK parsed; nothing is decoded yet.
 void FrameDecoder::Impl::prepareJpeg2000(int frame, DcmPixelData& pixelData,
                                          E_TransferSyntax xfer) {
-    if (pixelData.getEncapsulatedRepresentation(xfer, nullptr, jpeg2000Sequence).bad() ||
-        !jpeg2000Sequence)
+    DcmPixelSequence* sequence = nullptr;
+    if (pixelData.getEncapsulatedRepresentation(xfer, nullptr, sequence).bad() || !sequence)
         fail(frame, "JPEG 2000 pixel data is not encapsulated");
-    jpeg2000Frames = frameFragments(*jpeg2000Sequence, info.numberOfFrames);
+    jpeg2000Items = takeItems(*sequence);
+    jpeg2000Frames = frameFragments(jpeg2000Items, info.numberOfFrames);
     if (jpeg2000Frames.empty())
-        fail(frame, "cannot tell which of the " + std::to_string(jpeg2000Sequence->card()) +
+        fail(frame, "cannot tell which of the " + std::to_string(jpeg2000Items.size()) +
                         " pixel data items belong to which of the " +
                         std::to_string(info.numberOfFrames) + " frames");
     std::vector<std::uint8_t> joined;
@@ -263,22 +300,18 @@ void FrameDecoder::Impl::followCodestreamPrecision(std::span<const std::uint8_t>
 std::span<const std::uint8_t>
 FrameDecoder::Impl::jpeg2000Codestream(int frame, std::vector<std::uint8_t>& joined) {
     const auto [first, last] = jpeg2000Frames[std::size_t(frame)];
-    for (Uint32 index = first; index <= last; ++index) {
-        DcmPixelItem* fragment = nullptr;
-        Uint8* bytes = nullptr;
-        if (jpeg2000Sequence->getItem(fragment, index).bad() || !fragment ||
-            fragment->getUint8Array(bytes).bad() || (!bytes && fragment->getLength() > 0))
-            fail(frame, "cannot read JPEG 2000 fragment " + std::to_string(index));
-        if (first == last)
-            return {bytes, fragment->getLength()};
-        joined.insert(joined.end(), bytes, bytes + fragment->getLength());
+    if (first == last)
+        return bytesOf(*jpeg2000Items[first]);
+    for (std::size_t index = first; index <= last; ++index) {
+        const auto bytes = bytesOf(*jpeg2000Items[index]);
+        joined.insert(joined.end(), bytes.begin(), bytes.end());
     }
     return joined;
 }
 
 // The samples of one frame in the native layout (bitsAllocated each, host order).
 const void* FrameDecoder::Impl::frameSamples(int frame, std::size_t frameBytes) {
-    if (jpeg2000Sequence) {
+    if (!jpeg2000Frames.empty()) {
         if (bufferedFrame != frame) {
             std::vector<std::uint8_t> joined;
             frameBuffer.resize(frameBytes);

@@ -3,7 +3,6 @@
 #include "dicom_file.h"
 #include "lw/core/error.h"
 #include "lw/core/limits.h"
-#include "lw/core/log.h"
 #include "lw/core/module_boundary.h"
 #include "lw/core/parallel.h"
 
@@ -22,8 +21,6 @@
 namespace lw::dicom {
 
 namespace {
-
-const core::LogCategory kLog("lw.dicom");
 
 constexpr double kOrientationTolerance = 1e-4;
 constexpr double kSpacingTolerance = 1e-4;   // relative
@@ -629,8 +626,9 @@ static volume::Volume loadVolumeUnguarded(const SeriesInfo& series, const Volume
         progress->setTotal(plan.slices.size(),
                            "Loading " + std::to_string(plan.slices.size()) + " slices");
     core::parallelFor(work.size(), [&](std::size_t item) {
-        const auto& [instance, zs] = work[item];
-        const InstanceInfo& info = series.instances[instance];
+        // Named, not a structured binding: clang 14 cannot capture one in the lambda below.
+        const InstanceInfo& info = series.instances[work[item].first];
+        const std::vector<int>& zs = work[item].second;
         // A library failure while decoding names this file, not just the series.
         core::atModuleBoundary(info.path, [&] {
             FrameDecoder decoder(info, limits);

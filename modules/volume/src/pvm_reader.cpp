@@ -171,32 +171,36 @@ std::string readCString(const std::byte* data, std::size_t size, std::size_t& po
     return std::string(start, length);
 }
 
-Volume readPvmUnguarded(const std::filesystem::path& path, const core::ImportLimits& limits) {
-    std::vector<std::byte> bytes = core::readFileBytes(path);
-    const auto startsWith = [&](std::string_view magic) {
-        return bytes.size() >= magic.size() &&
-               std::memcmp(bytes.data(), magic.data(), magic.size()) == 0;
-    };
-    if (startsWith(kDdsMagic) || startsWith(kDdsMagicBlocked)) {
-        const bool blocked = startsWith(kDdsMagicBlocked);
-        bytes = decodeDds(path, bytes.data() + 8, bytes.size() - 8, blocked, limits);
-    }
-    const auto isMagic = [&](std::string_view magic) {
-        return bytes.size() >= magic.size() &&
-               std::memcmp(bytes.data(), magic.data(), magic.size()) == 0;
-    };
-    int version = 0;
-    if (isMagic("PVM\n"))
-        version = 1;
-    else if (isMagic("PVM2\n"))
-        version = 2;
-    else if (isMagic("PVM3\n"))
-        version = 3;
-    else
-        fail(path, "not a PVM file (expected PVM, PVM2 or PVM3, raw or DDS-compressed)");
+bool startsWith(const std::vector<std::byte>& bytes, std::string_view magic) {
+    return bytes.size() >= magic.size() &&
+           std::memcmp(bytes.data(), magic.data(), magic.size()) == 0;
+}
 
-    HeaderCursor cursor(path, bytes.data(), bytes.size(), version == 1 ? 4 : 5);
-    if (version == 1)
+// The PVM version from the magic: 1, 2 or 3.
+int pvmVersion(const std::filesystem::path& path, const std::vector<std::byte>& bytes) {
+    if (startsWith(bytes, "PVM\n"))
+        return 1;
+    if (startsWith(bytes, "PVM2\n"))
+        return 2;
+    if (startsWith(bytes, "PVM3\n"))
+        return 3;
+    fail(path, "not a PVM file (expected PVM, PVM2 or PVM3, raw or DDS-compressed)");
+}
+
+// What the header lines declare; the data follows at dataStart.
+struct PvmHeader {
+    int version = 0;
+    glm::ivec3 dims{0};
+    glm::dvec3 spacing{1.0};
+    VoxelType type = VoxelType::UInt8;
+    std::size_t dataStart = 0;
+};
+
+PvmHeader parsePvmHeader(const std::filesystem::path& path, const std::vector<std::byte>& bytes) {
+    PvmHeader header;
+    header.version = pvmVersion(path, bytes);
+    HeaderCursor cursor(path, bytes.data(), bytes.size(), header.version == 1 ? 4 : 5);
+    if (header.version == 1)
         cursor.skipComments();
     const auto badLine = [&](const std::string& what, const std::string& text) {
         fail(path, "bad header line " + std::to_string(cursor.lineNumber()) + ": " + what + " '" +
@@ -204,17 +208,15 @@ Volume readPvmUnguarded(const std::filesystem::path& path, const core::ImportLim
     };
     const std::string dimsLine = cursor.line("dimensions");
     const auto dimParts = detail::splitWhitespace(dimsLine);
-    glm::ivec3 dims(0);
     if (dimParts.size() != 3)
         badLine("expected 'width height depth', got", dimsLine);
     for (int a = 0; a < 3; ++a) {
         const auto n = detail::parseInteger(dimParts[std::size_t(a)]);
         if (!n || *n < 1 || *n > 1 << 20)
             badLine("bad dimension in", dimsLine);
-        dims[a] = int(*n);
+        header.dims[a] = int(*n);
     }
-    glm::dvec3 spacing(1.0);
-    if (version >= 2) {
+    if (header.version >= 2) {
         const std::string scaleLine = cursor.line("scale");
         const auto parts = detail::splitWhitespace(scaleLine);
         if (parts.size() != 3)
@@ -223,7 +225,7 @@ Volume readPvmUnguarded(const std::filesystem::path& path, const core::ImportLim
             const auto s = detail::parseDouble(parts[std::size_t(a)]);
             if (!s || !std::isfinite(*s) || *s <= 0.0)
                 badLine("bad scale in", scaleLine);
-            spacing[a] = *s;
+            header.spacing[a] = *s;
         }
     }
     const std::string componentsLine = cursor.line("components");
@@ -234,22 +236,32 @@ Volume readPvmUnguarded(const std::filesystem::path& path, const core::ImportLim
         fail(path,
              std::to_string(*components) +
                  "-component (colour) PVM volumes are not supported; only 8 and 16 bit scalars");
-    const VoxelType type = *components == 1 ? VoxelType::UInt8 : VoxelType::UInt16;
-    const auto expected = std::optional(
-        detail::checkVolumeSize(path, dims, voxelSize(type), voxelSize(type), limits));
-    const std::size_t dataStart = cursor.pos();
-    if (bytes.size() - dataStart < *expected)
-        fail(path, "truncated volume data: " + std::to_string(bytes.size() - dataStart) +
-                       " bytes, expected " + std::to_string(*expected) + " for " +
-                       detail::describeShape(dims, type));
+    header.type = *components == 1 ? VoxelType::UInt8 : VoxelType::UInt16;
+    header.dataStart = cursor.pos();
+    return header;
+}
 
-    Volume volume(dims, type, VolumeGeometry::regular(glm::dvec3(0.0), spacing));
+Volume readPvmUnguarded(const std::filesystem::path& path, const core::ImportLimits& limits) {
+    std::vector<std::byte> bytes = core::readFileBytes(path);
+    if (startsWith(bytes, kDdsMagic) || startsWith(bytes, kDdsMagicBlocked)) {
+        const bool blocked = startsWith(bytes, kDdsMagicBlocked);
+        bytes = decodeDds(path, bytes.data() + 8, bytes.size() - 8, blocked, limits);
+    }
+    const PvmHeader header = parsePvmHeader(path, bytes);
+    const std::size_t expected = detail::checkVolumeSize(path, header.dims, voxelSize(header.type),
+                                                         voxelSize(header.type), limits);
+    if (bytes.size() - header.dataStart < expected)
+        fail(path, "truncated volume data: " + std::to_string(bytes.size() - header.dataStart) +
+                       " bytes, expected " + std::to_string(expected) + " for " +
+                       detail::describeShape(header.dims, header.type));
+
+    Volume volume(header.dims, header.type,
+                  VolumeGeometry::regular(glm::dvec3(0.0), header.spacing));
     // 16-bit PVM stores the high byte first.
-    detail::fillVolume(volume, bytes.data() + dataStart, true);
-    if (version == 3) {
-        std::size_t pos = dataStart + *expected;
-        const std::string description = readCString(bytes.data(), bytes.size(), pos);
-        volume.setDescription(description);
+    detail::fillVolume(volume, bytes.data() + header.dataStart, true);
+    if (header.version == 3) {
+        std::size_t pos = header.dataStart + expected;
+        volume.setDescription(readCString(bytes.data(), bytes.size(), pos));
     }
     return volume;
 }
