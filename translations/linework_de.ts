@@ -427,7 +427,7 @@
     </message>
     <message>
         <source>Drag: rotate · Shift/middle drag: pan · wheel/right drag: zoom · Ctrl drag: roll</source>
-        <translation>Ziehen: drehen · Umschalt/mittlere Taste ziehen: verschieben · Rad/rechte Taste ziehen: zoomen · Strg ziehen: rollen</translation>
+        <translation>Ziehen: drehen · Umschalt- oder Mitteltaste+Ziehen: verschieben · Mausrad oder rechte Taste+Ziehen: zoomen · Strg+Ziehen: rollen</translation>
     </message>
     <message>
         <source>No surface at %1 HU</source>

@@ -427,7 +427,7 @@
     </message>
     <message>
         <source>Drag: rotate · Shift/middle drag: pan · wheel/right drag: zoom · Ctrl drag: roll</source>
-        <translation>Tragere: rotire · Shift/tragere cu butonul din mijloc: deplasare · rotiță/tragere cu butonul drept: zoom · Ctrl și tragere: ruliu</translation>
+        <translation>Tragere: rotire · Shift sau butonul din mijloc + tragere: deplasare · rotiță sau butonul drept + tragere: zoom · Ctrl + tragere: ruliu</translation>
     </message>
     <message>
         <source>No surface at %1 HU</source>
