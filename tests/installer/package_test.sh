@@ -78,7 +78,7 @@ grep -q "Isoflächen- und Silhouettenbefundung" <<<"$german_help" ||
   fail "linework --help under a German locale is not German (installed .qm not found): $german_help"
 
 # The manual page describes every command linework-cli has.
-manual=$(zcat "$root/usr/share/man/man1/linework-cli.1.gz")
+manual=$(zcat "$root/usr/share/man/man1/linework-cli.1.gz" | sed 's/\\-/-/g') # roff's \- is a -
 commands=$(sed -n '/^commands:/,/^$/s/^  \([a-z][a-z-]*\)\( .*\)\?$/\1/p' <<<"$cli_help")
 [ -n "$commands" ] || fail "no commands found in linework-cli help"
 for command in $commands; do
