@@ -9,8 +9,8 @@ mkdir -p "$out"
 rc=0
 "$cli" bench --backend cuda --sizes 256,512,512x512x140 --methods mc,1,2,3 --variants S --modes a,b \
     --repeat 20 --image 1024x1024 --json > "$out/bench_cuda.json" 2> "$out/bench_cuda.log" || rc=1
-# Streamed L: method 3 on 512 x 512 x 1024 under a 256 MiB device budget, and S beside it.
-"$cli" bench --backend cuda --sizes 512x512x1024 --methods mc,3 --variants S,L --modes a,b \
+# Streamed L: methods 1 and 3 on 512 x 512 x 1024 under a 256 MiB device budget, and S beside it.
+"$cli" bench --backend cuda --sizes 512x512x1024 --methods mc,1,3 --variants S,L --modes a,b \
     --repeat 20 --image 1024x1024 --gpu-budget 256 --json > "$out/bench_cuda_1024.json" \
     2> "$out/bench_cuda_1024.log" || rc=1
 "$cli" bench --backend cpu --sizes 256,512,512x512x140 --methods mc,1,2,3 --variants S --modes a,b \

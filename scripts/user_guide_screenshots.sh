@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
-# Regenerates docs/screenshots/{browser,review,settings}.png from the real windows: imports the
-# demo study (and, when ../shared/data is beside the project, the Philips DICOMDIR export with its
-# missing files) into a temporary database, opens the review and the settings page under Xvfb
+# Regenerates docs/screenshots/{browser,review,review_annotations,settings}.png from the real
+# windows: imports the demo study (and, when ../shared/data is beside the project, the Philips
+# DICOMDIR export with its missing files) into a temporary database, opens the review (once more
+# with a ruler, a label, an arrow and an angle placed by clicks) and the settings page under Xvfb
 # and grabs what the X server shows. Run after `scripts/linework.sh test` (or give a build dir).
 #
 #   scripts/user_guide_screenshots.sh [BUILD_DIR]
@@ -13,7 +14,7 @@ if ! log=$(cmake --build "$build_dir" --target linework-screenshots 2>&1); then
   exit 1
 fi
 inputs=("$root/resources/demo/ct_head_ge_tilt")
-philips="$root/../shared/data/dicom/ct_headphantom_philips_dicomdir_export/DICOMDIR"
+philips="$(cd "$root/.." && pwd)/shared/data/dicom/ct_headphantom_philips_dicomdir_export/DICOMDIR"
 [ -f "$philips" ] && inputs+=("$philips")
 xvfb-run -a -s "-screen 0 1920x1080x24" \
     "$build_dir/app/gui/linework-screenshots" "$root/docs/screenshots" "${inputs[@]}"

@@ -8,10 +8,9 @@
 #include "lw/core/log.h"
 #include "lw/render/aabb.h"
 #include "lw/render/camera.h"
+#include "lw/render/cuda_iso_surface.h"
 #include "lw/render/iso_surface.h"
-#include "lw/render/cuda_iso_surface.h"
 #include "lw/render/phantom.h"
-#include "lw/render/cuda_iso_surface.h"
 #include "lw/render/renderer_factory.h"
 #include "lw/volume/volume_reader.h"
 
@@ -22,6 +21,7 @@
 #include <memory>
 #include <optional>
 #include <ostream>
+#include <set>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -92,7 +92,7 @@ struct Row {
     std::size_t segments = 0;
     render::StageTimes stages; // median of each stage over the runs
     int runs = 0;
-    std::string skipped; // why the row did not run; empty when it did
+    std::string skipped;         // why the row did not run; empty when it did
     std::size_t deviceBytes = 0; // CUDA: device memory the first frame held at the most
 };
 
@@ -115,8 +115,9 @@ int brickCellsFor(const std::string& variant, const volume::Volume& volume) {
 // Marching cubes alone (Table 1): the brick grid is built once, as a viewer does for one
 // volume, and the extraction is timed; the same path as `bench-mc`.
 // On CUDA (S only: the chunked extraction runs on the CPU) the volume is uploaded once, then each
-// extraction is timed: ms_median is the wall time of the call (kernels, scans and the two read-backs
-// of the counts), stages.extract the kernels alone from CUDA events; the upload is a note.
+// extraction is timed: ms_median is the wall time of the call (kernels, scans and the two
+// read-backs of the counts), stages.extract the kernels alone from CUDA events; the upload is a
+// note.
 Row benchMarchingCubesCuda(const BenchVolume& input, const Plan& plan,
                            std::vector<std::string>& notes) {
     Row row;
@@ -272,7 +273,8 @@ void benchVolume(const BenchVolume& input, const Plan& plan, std::vector<Row>& r
                     row.variant = variant;
                     row.mode = mode;
                     row.visibility = visibility;
-                    row.backend = method == "1" ? "gl" : std::string(render::backendName(plan.backend));
+                    row.backend =
+                        method == "1" ? "gl" : std::string(render::backendName(plan.backend));
                     row.volume = input.label;
                     row.brickCells = brickCellsFor(variant, input.volume);
                     row.skipped = skipped;
@@ -365,14 +367,15 @@ std::vector<std::string> parseChoiceList(const std::string& text, const std::str
 
 } // namespace
 
-int runBench(const std::vector<std::string>& args, std::ostream& out) {
-    const Arguments arguments(args, {"json"},
-                              {"sizes", "input", "iso", "backend", "methods", "variants", "modes",
-                               "repeat", "image", "threads", "peak-memory-of", "gpu-budget"});
-    if (!arguments.positionals().empty())
-        throw UsageError("bench", "takes no positional arguments");
-    const bool json = arguments.flag("json");
+namespace {
 
+const std::set<std::string> kBenchOptions = {
+    "sizes", "input",  "iso",   "backend", "methods",        "variants",
+    "modes", "repeat", "image", "threads", "peak-memory-of", "gpu-budget"};
+
+// What to run: methods, variants, modes, repeat, image, threads, budget; --peak-memory-of
+// narrows it to one configuration (returned in `peakMethod`).
+Plan parsePlan(const Arguments& arguments, std::optional<std::string>& peakMethod) {
     Plan plan;
     plan.backend =
         parseUsage([&] { return render::parseBackend(arguments.option("backend", "auto")); });
@@ -392,8 +395,6 @@ int runBench(const std::vector<std::string>& args, std::ostream& out) {
     plan.gpuMemoryBudget = std::size_t(budgetMiB * 1024.0 * 1024.0);
     if (const auto image = arguments.option("image"))
         plan.image = parseImageSize("--image", *image, 2);
-
-    std::optional<std::string> peakMethod;
     if (const auto peak = arguments.option("peak-memory-of")) {
         const std::vector<std::string> parts = splitList(*peak);
         if (parts.size() != 2)
@@ -402,33 +403,114 @@ int runBench(const std::vector<std::string>& args, std::ostream& out) {
         plan.variants = parseChoiceList(parts[1], "--peak-memory-of", {"S", "L"});
         peakMethod = *peak;
     }
+    return plan;
+}
 
-    // Volumes: the phantom at each size, or the given file (one volume).
-    std::vector<std::string> volumeSpecs;
-    const auto input = arguments.option("input");
-    if (input) {
+// The volumes: the phantom at each size, or the given file (one volume); checked before the
+// first (possibly long) run.
+std::vector<std::string> parseVolumeSpecs(const Arguments& arguments, bool onePerProcess) {
+    std::vector<std::string> specs;
+    if (const auto input = arguments.option("input")) {
         if (arguments.option("sizes"))
             throw UsageError("bench", "--input and --sizes exclude each other");
         if (!arguments.option("iso"))
             throw UsageError("--input " + *input,
                              "needs --iso HU (the iso-value of the surface to extract)");
-        volumeSpecs.push_back(*input);
+        specs.push_back(*input);
     } else {
-        volumeSpecs = splitList(arguments.option("sizes", "32,256"));
-        if (volumeSpecs.empty())
+        specs = splitList(arguments.option("sizes", "32,256"));
+        if (specs.empty())
             throw UsageError("--sizes", "the list is empty");
-        for (const std::string& size : volumeSpecs)
-            parseDimsOption("--sizes", size, 2); // fail before the first (possibly long) run
+        for (const std::string& size : specs)
+            parseDimsOption("--sizes", size, 2);
     }
-    if (peakMethod && volumeSpecs.size() != 1)
+    if (onePerProcess && specs.size() != 1)
         throw UsageError("--peak-memory-of",
                          "measures one volume per process: give one size or --input");
+    return specs;
+}
 
-    // The process before any volume exists: what the peak is compared with.
-    const std::size_t baselineRss = procStatusBytes("VmRSS");
-    std::size_t volumeBytes = 0;
+// What the whole run measured, for either report.
+struct BenchResult {
     std::vector<Row> rows;
     std::vector<std::string> notes;
+    std::optional<std::string> peakMethod;
+    std::size_t baselineRss = 0, peakRss = 0, volumeBytes = 0;
+    // Over the volume and the process's own start-up footprint: what the methods added.
+    double extraPercent() const {
+        const double extra = double(peakRss) - double(baselineRss) - double(volumeBytes);
+        return volumeBytes ? 100.0 * extra / double(volumeBytes) : 0.0;
+    }
+};
+
+void writeJsonReport(const Plan& plan, const BenchResult& result, std::ostream& out) {
+    core::JsonWriter writer;
+    writer.beginObject();
+    writer.field("view", "az " + std::to_string(int(kAzimuthDeg)) + " el " +
+                             std::to_string(int(kElevationDeg)) + " perspective, +" +
+                             std::to_string(int(kViewStepDeg)) + " deg az per run");
+    writer.field("image", std::to_string(plan.image.x) + "x" + std::to_string(plan.image.y));
+    writer.field("repeat", plan.repeat);
+    writer.key("notes").beginArray();
+    for (const std::string& note : result.notes)
+        writer.value(note);
+    writer.endArray();
+    writer.key("rows").beginArray();
+    for (const Row& row : result.rows)
+        writeJsonRow(writer, row);
+    writer.endArray();
+    writer.key("memory").beginObject();
+    if (result.peakMethod)
+        writer.field("configuration", *result.peakMethod);
+    writer.field("peak_rss_mib", mib(result.peakRss))
+        .field("baseline_rss_mib", mib(result.baselineRss));
+    writer.field("volume_mib", mib(result.volumeBytes))
+        .field("extra_over_volume_percent", result.extraPercent());
+    writer.endObject();
+    writer.endObject();
+    out << writer.str() << "\n";
+}
+
+void writeTextReport(const Plan& plan, const BenchResult& result, std::ostream& out) {
+    char line[512];
+    std::snprintf(line, sizeof line,
+                  "bench: view az %g el %g perspective (+%g deg per run), image %dx%d, median of "
+                  "%d runs after a warm-up\n",
+                  kAzimuthDeg, kElevationDeg, kViewStepDeg, plan.image.x, plan.image.y,
+                  plan.repeat);
+    out << line;
+    std::snprintf(line, sizeof line,
+                  "%-6s %-7s %-4s %-4s %-5s %-14s %9s %9s %10s %9s %8s %8s %8s %8s\n", "method",
+                  "variant", "mode", "vis", "back", "volume", "ms_median", "ms_min", "triangles",
+                  "segments", "extract", "silh", "visib", "draw");
+    out << line;
+    for (const Row& row : result.rows)
+        writeTextRow(out, row);
+    for (const std::string& note : result.notes)
+        out << "note: " << note << "\n";
+    const std::optional<std::string>& peak = result.peakMethod;
+    std::snprintf(line, sizeof line,
+                  "peak memory%s%s: %.1f MiB (VmHWM); start-up %.1f MiB, volume %.1f MiB, extra "
+                  "%.1f%% of the volume\n",
+                  peak ? " of " : "", peak ? peak->c_str() : "", mib(result.peakRss),
+                  mib(result.baselineRss), mib(result.volumeBytes), result.extraPercent());
+    out << line;
+}
+
+} // namespace
+
+int runBench(const std::vector<std::string>& args, std::ostream& out) {
+    const Arguments arguments(args, {"json"}, kBenchOptions);
+    if (!arguments.positionals().empty())
+        throw UsageError("bench", "takes no positional arguments");
+    BenchResult result;
+    const Plan plan = parsePlan(arguments, result.peakMethod);
+    const auto input = arguments.option("input");
+    const std::vector<std::string> volumeSpecs =
+        parseVolumeSpecs(arguments, result.peakMethod.has_value());
+
+    // The process before any volume exists: what the peak is compared with.
+    result.baselineRss = procStatusBytes("VmRSS");
     for (const std::string& spec : volumeSpecs) {
         BenchVolume bench{
             .label = {}, .volume = {}, .iso = arguments.number("iso", render::kPhantomBoneIso)};
@@ -440,67 +522,15 @@ int runBench(const std::vector<std::string>& args, std::ostream& out) {
             bench.volume = render::makePhantom(dims, render::PhantomKind::Ct, plan.threads);
             bench.label = "phantom " + dimsText(dims);
         }
-        volumeBytes = std::max(volumeBytes, bench.volume.byteSize());
+        result.volumeBytes = std::max(result.volumeBytes, bench.volume.byteSize());
         kLog.info("bench: " + bench.label + " (" + dimsText(bench.volume.dims()) + ")");
-        benchVolume(bench, plan, rows, notes);
+        benchVolume(bench, plan, result.rows, result.notes);
     }
-    const std::size_t peakRss = procStatusBytes("VmHWM");
-    // Over the volume and the process's own start-up footprint: what the methods added.
-    const double extraBytes = double(peakRss) - double(baselineRss) - double(volumeBytes);
-    const double extraPercent = volumeBytes ? 100.0 * extraBytes / double(volumeBytes) : 0.0;
-
-    if (json) {
-        core::JsonWriter writer;
-        writer.beginObject();
-        writer.field("view", "az " + std::to_string(int(kAzimuthDeg)) + " el " +
-                                 std::to_string(int(kElevationDeg)) + " perspective, +" +
-                                 std::to_string(int(kViewStepDeg)) + " deg az per run");
-        writer.field("image", std::to_string(plan.image.x) + "x" + std::to_string(plan.image.y));
-        writer.field("repeat", plan.repeat);
-        writer.key("notes").beginArray();
-        for (const std::string& note : notes)
-            writer.value(note);
-        writer.endArray();
-        writer.key("rows").beginArray();
-        for (const Row& row : rows)
-            writeJsonRow(writer, row);
-        writer.endArray();
-        writer.key("memory").beginObject();
-        if (peakMethod)
-            writer.field("configuration", *peakMethod);
-        writer.field("peak_rss_mib", mib(peakRss)).field("baseline_rss_mib", mib(baselineRss));
-        writer.field("volume_mib", mib(volumeBytes))
-            .field("extra_over_volume_percent", extraPercent);
-        writer.endObject();
-        writer.endObject();
-        out << writer.str() << "\n";
-        return 0;
-    }
-
-    char line[512];
-    std::snprintf(line, sizeof line,
-                  "bench: view az %g el %g perspective (+%g deg per run), image %dx%d, median of "
-                  "%d runs after a "
-                  "warm-up\n",
-                  kAzimuthDeg, kElevationDeg, kViewStepDeg, plan.image.x, plan.image.y,
-                  plan.repeat);
-    out << line;
-    std::snprintf(line, sizeof line,
-                  "%-6s %-7s %-4s %-4s %-5s %-14s %9s %9s %10s %9s %8s %8s %8s %8s\n", "method",
-                  "variant", "mode", "vis", "back", "volume", "ms_median", "ms_min", "triangles",
-                  "segments", "extract", "silh", "visib", "draw");
-    out << line;
-    for (const Row& row : rows)
-        writeTextRow(out, row);
-    for (const std::string& note : notes)
-        out << "note: " << note << "\n";
-    std::snprintf(line, sizeof line,
-                  "peak memory%s%s: %.1f MiB (VmHWM); start-up %.1f MiB, volume %.1f MiB, extra "
-                  "%.1f%% of the "
-                  "volume\n",
-                  peakMethod ? " of " : "", peakMethod ? peakMethod->c_str() : "", mib(peakRss),
-                  mib(baselineRss), mib(volumeBytes), extraPercent);
-    out << line;
+    result.peakRss = procStatusBytes("VmHWM");
+    if (arguments.flag("json"))
+        writeJsonReport(plan, result, out);
+    else
+        writeTextReport(plan, result, out);
     return 0;
 }
 

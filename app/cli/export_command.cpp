@@ -57,14 +57,8 @@ void checkTargets(const ExportTargets& targets) {
     for (const auto& path : {targets.png, targets.pdf, targets.svg})
         if (path)
             core::checkWritableTarget(*path, targets.overwrite);
-    if (targets.sc) {
-        std::error_code ec;
-        const std::filesystem::path first = *targets.sc / report::secondaryCaptureFileName(1);
-        if (std::filesystem::is_directory(*targets.sc, ec))
-            core::checkWritableTarget(first, targets.overwrite);
-        else
-            core::checkWritableTarget(*targets.sc, core::Overwrite::Refuse); // created later
-    }
+    if (targets.sc)
+        report::checkSecondaryCaptureTarget(*targets.sc, targets.overwrite);
 }
 
 report::PanelLayout parseLayout(const Arguments& arguments) {
@@ -76,19 +70,6 @@ report::PanelLayout parseLayout(const Arguments& arguments) {
     if (panel == "silhouette")
         return report::PanelLayout::SilhouettePanel;
     throw UsageError("--panel " + panel, "expected iso, silhouette or both");
-}
-
-std::string methodDescription(const RenderRequest& request, const render::CameraSetup& setup) {
-    static const char* const names[] = {"", "marching cubes + geometry-shader silhouette",
-                                        "silhouette with ray-cast visibility",
-                                        "z-buffer silhouette"};
-    char text[256];
-    std::snprintf(text, sizeof text,
-                  "Linework silhouette method %d (%s, Morar et al. 2013), iso-value %g, "
-                  "view azimuth %g, elevation %g",
-                  int(request.method), names[int(request.method)], request.settings.isoReal,
-                  setup.azimuthDeg, setup.elevationDeg);
-    return text;
 }
 
 class Stopwatch {
@@ -133,8 +114,16 @@ void writeOutputs(const ExportJob& job, const ExportTargets& targets, std::ostre
             write(*targets.png, report::encodePngBytes(picture, *targets.png));
         if (targets.svg)
             write(*targets.svg, report::renderSvg(job.panels, job.annotations, job.layout));
-        if (targets.pdf)
-            write(*targets.pdf, report::renderPdfReport(job.info, picture, job.annotations));
+        if (targets.pdf) {
+            // The silhouette as vector paths over a picture that leaves it out.
+            const QImage base =
+                report::composeExportImage(job.panels, job.annotations, job.layout, Qt::white, {},
+                                           report::SilhouetteLines::LeftOut);
+            const report::PictureLines lines{report::pictureLines(job.panels, job.layout),
+                                             job.panels.silhouetteLineWidth,
+                                             job.panels.silhouetteLineColour};
+            write(*targets.pdf, report::renderPdfReport(job.info, base, job.annotations, lines));
+        }
         if (targets.sc) {
             report::SecondaryCaptureSeries series;
             series.source = job.info.identity.value();
@@ -194,10 +183,16 @@ int runExport(const std::vector<std::string>& args, std::ostream& out) {
     const RenderedPanels panels = renderPanels(*renderer, volume, job.panels.camera, request, out);
     job.panels.iso = report::toQImage(panels.iso);
     job.panels.silhouette = report::toQImage(panels.silhouette);
+    if (request.wantSilhouette) {
+        // The lines as vectors too: antialiased in the PNG, paths in the SVG and the PDF.
+        job.panels.silhouetteLines =
+            silhouettePolylines(*renderer, volume, job.panels.camera, request, panels.lines);
+        job.panels.silhouetteLineWidth = 2.0 * request.lineRadius + 1.0;
+    }
 
     job.info.identity = opened.dicom;
     job.info.sourceDescription = opened.description;
-    job.info.method = methodDescription(request, setup);
+    job.info.method = report::describeRendering(request.method, request.settings.isoReal, setup);
     job.info.comment = arguments.option("comment", "");
     job.info.anonymise = arguments.flag("anonymise");
     job.info.softwareVersion = LINEWORK_VERSION;

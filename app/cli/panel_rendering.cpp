@@ -103,6 +103,7 @@ RenderedPanels renderPanels(render::SilhouetteRenderer& renderer, const volume::
         repeatFrames(renderer, camera, request, out);
         panels.silhouette = maskToImage(
             request.lineRadius > 0 ? frame.lines.dilated(request.lineRadius) : frame.lines);
+        panels.lines = frame.lines;
     }
     if (request.wantIso)
         panels.iso = renderIsoPanel(renderer, volume, camera, request);
@@ -176,6 +177,25 @@ core::ImageRgba8 sideBySide(const core::ImageRgba8& left, const core::ImageRgba8
     for (int y = 0; y < right.height(); ++y)
         std::copy_n(right.row(y), right.width(), image.row(y) + left.width());
     return image;
+}
+
+std::vector<render::Polyline> silhouettePolylines(render::SilhouetteRenderer& renderer,
+                                                  const volume::Volume& volume,
+                                                  const render::Camera& camera,
+                                                  const RenderRequest& request,
+                                                  const render::PixelMask& lines) {
+    render::Mesh extracted;
+    const render::Mesh* mesh = renderer.surfaceMesh();
+    if (!mesh) {
+        render::IsoSurfaceOptions options;
+        options.brickCells = request.settings.brickCells;
+        options.threads = request.settings.threads;
+        extracted = render::extractIsoSurface(volume, request.settings.isoReal, options);
+        mesh = &extracted;
+    }
+    render::PolylineOptions options;
+    options.minLengthPx = double(request.settings.minStrokePixels);
+    return render::visiblePolylines(*mesh, camera, lines, options);
 }
 
 } // namespace lw::cli

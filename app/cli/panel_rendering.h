@@ -9,6 +9,7 @@
 #include "lw/render/camera.h"
 #include "lw/render/renderer_factory.h"
 #include "lw/render/silhouette_renderer.h"
+#include "lw/render/visible_polylines.h"
 #include "lw/volume/volume.h"
 
 #include <glm/glm.hpp>
@@ -31,6 +32,7 @@ struct RenderRequest {
 struct RenderedPanels {
     core::ImageRgba8 iso;
     core::ImageRgba8 silhouette;
+    render::PixelMask lines; // the silhouette frame's mask, before any widening
 };
 
 // The option names parseRenderRequest and parseCameraView read.
@@ -52,6 +54,14 @@ void fitToVolume(const Arguments& arguments, const volume::Volume& volume, Rende
 RenderedPanels renderPanels(render::SilhouetteRenderer& renderer, const volume::Volume& volume,
                             const render::Camera& camera, const RenderRequest& request,
                             std::ostream& out);
+
+// The visible silhouette of `lines` (a frame of `renderer` for `camera`) as polylines: the mesh
+// the frame drew (or, for method 2, which keeps none, the same surface extracted on the CPU).
+std::vector<render::Polyline> silhouettePolylines(render::SilhouetteRenderer& renderer,
+                                                  const volume::Volume& volume,
+                                                  const render::Camera& camera,
+                                                  const RenderRequest& request,
+                                                  const render::PixelMask& lines);
 
 // The iso-surface left, its silhouette right, the same height.
 core::ImageRgba8 sideBySide(const core::ImageRgba8& left, const core::ImageRgba8& right);

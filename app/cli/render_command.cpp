@@ -1,9 +1,12 @@
-// `linework-cli render`: one view of an iso-surface and/or its silhouette as a PNG.
+// `linework-cli render`: one view of an iso-surface and/or its silhouette as a PNG, or the visible
+// silhouette as SVG lines (--format svg, or an OUT ending in .svg).
 #include "arguments.h"
 #include "cli_inputs.h"
 #include "commands.h"
+#include "lw/core/file_util.h"
 #include "lw/core/png_io.h"
 #include "lw/render/renderer_factory.h"
+#include "lw/render/svg_lines.h"
 #include "panel_rendering.h"
 
 #include <memory>
@@ -13,7 +16,7 @@ namespace lw::cli {
 
 int runRender(const std::vector<std::string>& args, std::ostream& out) {
     std::set<std::string> options = panelRenderOptions();
-    options.insert({"series", "panel", "repeat"});
+    options.insert({"series", "panel", "repeat", "format"});
     const Arguments arguments(args, {}, options);
     if (arguments.positionals().size() != 1)
         throw UsageError("render", "expects exactly one INPUT");
@@ -25,6 +28,12 @@ int runRender(const std::vector<std::string>& args, std::ostream& out) {
     const std::string panel = arguments.option("panel", "silhouette");
     if (panel != "iso" && panel != "silhouette" && panel != "both")
         throw UsageError("--panel " + panel, "expected iso, silhouette or both");
+    const bool svgName = output->size() > 4 && output->substr(output->size() - 4) == ".svg";
+    const std::string format = arguments.option("format", svgName ? "svg" : "png");
+    if (format != "png" && format != "svg")
+        throw UsageError("--format " + format, "expected png or svg");
+    if (format == "svg" && panel != "silhouette")
+        throw UsageError("--format svg", "holds the silhouette lines only (--panel silhouette)");
     RenderRequest request = parseRenderRequest(arguments, "render");
     request.wantIso = panel != "silhouette";
     request.wantSilhouette = panel != "iso";
@@ -41,6 +50,18 @@ int runRender(const std::vector<std::string>& args, std::ostream& out) {
     const render::Camera camera(setup, size.x, size.y);
 
     RenderedPanels panels = renderPanels(*renderer, volume, camera, request, out);
+    if (format == "svg") {
+        const std::vector<render::Polyline> lines =
+            silhouettePolylines(*renderer, volume, camera, request, panels.lines);
+        render::SvgLineStyle style;
+        style.background = "#ffffff";
+        const std::string svg =
+            render::silhouetteSvg(lines, camera.width(), camera.height(), style);
+        core::writeFileAtomically(*output, svg.data(), svg.size());
+        out << "wrote " << *output << " (" << lines.size() << " polylines, " << camera.width()
+            << "x" << camera.height() << ")\n";
+        return 0;
+    }
 
     core::ImageRgba8 image;
     if (request.wantIso && request.wantSilhouette)

@@ -48,6 +48,19 @@ inline int pixelsDifferentFrom(const QImage& image, QColor background, int toler
     return count;
 }
 
+// Whether the annotations' burnt-in orange (report::OverlayStyle) is within `radius` pixels of
+// `at`: where the camera puts an anchor, the annotation must be drawn.
+inline bool annotationColourNear(const QImage& image, QPointF at, int radius = 4) {
+    for (int y = int(at.y()) - radius; y <= int(at.y()) + radius; ++y)
+        for (int x = int(at.x()) - radius; x <= int(at.x()) + radius; ++x)
+            if (image.valid(x, y)) {
+                const QColor c = image.pixelColor(x, y);
+                if (c.red() > 190 && c.green() > 40 && c.green() < 130 && c.blue() < 60)
+                    return true;
+            }
+    return false;
+}
+
 // Runs a Qt Test class the way the workstation starts: isolated settings and data folders, an
 // OpenGL 4.5 core default format, SKIP without a display.
 template <typename TestClass> int runGuiTest(int argc, char** argv, bool needsData = false) {

@@ -6,7 +6,8 @@
 #include "review/review_panel.h"
 #include "review/review_widget.h"
 #include "shell/main_window.h"
-#include "shell/png_export.h"
+#include "shell/review_export.h"
+#include "window_test_support.h"
 
 #include <QMimeData>
 #include <QSignalSpy>
@@ -15,54 +16,9 @@
 #include <filesystem>
 
 using namespace lw::gui;
+using lw::report::PanelLayout;
 
-namespace {
-
-QString demoStudy() {
-    return lw::test::sourcePath() + "/resources/demo/ct_head_ge_tilt";
-}
-
-bool waitForReview(MainWindow& window, int timeoutMs = 60000) {
-    QElapsedTimer timer;
-    timer.start();
-    while (timer.elapsed() < timeoutMs) {
-        QTest::qWait(20);
-        ReviewWidget* review = window.currentReview();
-        if (review && review->status().framesShown > 0 && !review->isBusy())
-            return true;
-    }
-    return false;
-}
-
-QString importAndFindSeries(MainWindow& window, const QString& path) {
-    QSignalSpy finished(&window.browser(), &StudyBrowser::importFinished);
-    window.browser().importPath(path);
-    if (!finished.wait(60000))
-        return {};
-    for (const auto& patient : window.browser().database().patients())
-        for (const auto& study : patient.studies)
-            for (const auto& series : study.series)
-                if (series.sliceCount > 1)
-                    return series.uid;
-    return {};
-}
-
-// Shows the window and opens `path` in a review, waiting for its first frame.
-bool showAndOpen(MainWindow& window, const QString& path) {
-    window.show();
-    if (!QTest::qWaitForWindowExposed(&window))
-        return false;
-    window.openPath(path);
-    return waitForReview(window);
-}
-
-MainWindowOptions isolatedOptions(const QTemporaryDir& dir) {
-    MainWindowOptions options;
-    options.databasePath = dir.filePath("studies.sqlite");
-    return options;
-}
-
-} // namespace
+using namespace lw::test;
 
 class MainWindowTest : public QObject {
     Q_OBJECT
@@ -220,9 +176,9 @@ void MainWindowTest::droppingAFolderOnAReviewImportsIt() {
 void MainWindowTest::exportPng_data() {
     QTest::addColumn<int>("layout");
     QTest::addColumn<int>("widthFactor"); // of the picture, in panels
-    QTest::addRow("side by side") << int(ExportLayout::SideBySide) << 2;
-    QTest::addRow("iso panel") << int(ExportLayout::IsoPanel) << 1;
-    QTest::addRow("silhouette panel") << int(ExportLayout::SilhouettePanel) << 1;
+    QTest::addRow("side by side") << int(PanelLayout::SideBySide) << 2;
+    QTest::addRow("iso panel") << int(PanelLayout::IsoPanel) << 1;
+    QTest::addRow("silhouette panel") << int(PanelLayout::SilhouettePanel) << 1;
 }
 
 void MainWindowTest::exportPng() {
@@ -234,17 +190,17 @@ void MainWindowTest::exportPng() {
     ReviewWidget& review = *window.currentReview();
     const QSize screen = review.silhouettePanel().renderSize();
     const QString path = dir.filePath("review.png");
-    QCOMPARE(exportReviewPng(review, path, screen * 2, ExportLayout(layout)), QString());
+    QCOMPARE(exportReviewPng(review, path, {screen * 2, PanelLayout(layout)}), QString());
     const QImage written(path);
     if (qEnvironmentVariableIsSet("LINEWORK_KEEP_EXPORT"))
         written.save(qEnvironmentVariable("LINEWORK_KEEP_EXPORT"));
     QCOMPARE(written.size(), QSize(widthFactor * 2 * screen.width(), 2 * screen.height()));
     QVERIFY(lw::test::pixelsDifferentFrom(written, Qt::white) > 500);
-    if (ExportLayout(layout) == ExportLayout::SilhouettePanel) {
+    if (PanelLayout(layout) == PanelLayout::SilhouettePanel) {
         // Re-rendered, not scaled, and the lines widen with the picture: twice the size gives
         // about four times the line pixels (twice as long, twice as wide).
         const QString small = dir.filePath("small.png");
-        QCOMPARE(exportReviewPng(review, small, screen, ExportLayout(layout)), QString());
+        QCOMPARE(exportReviewPng(review, small, {screen, PanelLayout(layout)}), QString());
         const int thin = lw::test::pixelsDifferentFrom(QImage(small), Qt::white, 100);
         const int wide = lw::test::pixelsDifferentFrom(written, Qt::white, 100);
         QVERIFY2(wide > 3 * thin, qPrintable(QString("%1 vs %2").arg(wide).arg(thin)));
@@ -257,7 +213,7 @@ void MainWindowTest::exportIntoAMissingFolderSaysWhy() {
     QVERIFY(showAndOpen(window, "phantom:32"));
     const QString path = dir.filePath("no/such/folder/review.png");
     const QString error =
-        exportReviewPng(*window.currentReview(), path, QSize(200, 150), ExportLayout::SideBySide);
+        exportReviewPng(*window.currentReview(), path, {QSize(200, 150), PanelLayout::SideBySide});
     QVERIFY2(error.contains(path), qPrintable(error));
     QVERIFY(!QFileInfo::exists(path));
 }

@@ -9,6 +9,7 @@
 #include "review/review_panel.h"
 #include "review/review_widget.h"
 #include "review/volume_loader.h"
+#include "review_test_support.h"
 
 #include <QDoubleSpinBox>
 #include <QLabel>
@@ -21,37 +22,9 @@
 
 using namespace lw::gui;
 
-namespace {
-
-ReviewSource phantomSource(const QString& spec, double iso) {
-    LoadRequest request;
-    request.path = spec;
-    request.iso = iso;
-    return VolumeLoader::load(request, nullptr);
-}
-
-// Waits until the worker is idle and at least `frames` results have been shown.
-bool waitSettled(ReviewWidget& review, std::uint64_t frames = 1, int timeoutMs = 60000) {
-    QElapsedTimer timer;
-    timer.start();
-    while (timer.elapsed() < timeoutMs) {
-        QTest::qWait(20);
-        if (!review.isBusy() && review.status().framesShown >= frames)
-            return true;
-    }
-    return false;
-}
-
-ReviewSettings settingsFor(int method, Chunking chunking, PanelGl panelGl = PanelGl::Auto) {
-    ReviewSettings settings;
-    settings.panelGl = panelGl;
-    settings.method = lw::render::SilhouetteMethod(method);
-    settings.chunking = chunking;
-    settings.fixedBrickCells = 16;
-    return settings;
-}
-
-} // namespace
+using lw::test::phantomSource;
+using lw::test::settingsFor;
+using lw::test::waitSettled;
 
 class ReviewTest : public QObject {
     Q_OBJECT

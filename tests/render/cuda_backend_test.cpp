@@ -361,6 +361,21 @@ TEST(CudaBackendMethod1, CudaExtractionDrawsTheCpuImage) {
     // The iso panel's mesh, downloaded on demand, is the CPU's.
     ASSERT_NE(cuda->surfaceMesh(), nullptr);
     EXPECT_EQ(cuda->surfaceMesh()->triangleCount(), cpu->surfaceMesh()->triangleCount());
+    // The chunked (L) variant streams slabs of 7 cell layers through the device into the GL
+    // buffers: still the CPU's whole-volume image.
+    SilhouetteSettings chunked;
+    chunked.isoReal = 300.5;
+    chunked.brickCells = 16;
+    chunked.gpuSlabLayers = 7;
+    const SilhouetteFrame streamed = cuda->render(camera, chunked);
+    EXPECT_EQ(cuda->backendName(), "cuda+gl");
+    SilhouetteSettings whole = chunked;
+    whole.brickCells = 0;
+    const SilhouetteFrame expected = cpu->render(camera, whole);
+    std::size_t differing = 0;
+    agreement(streamed.lines, expected.lines, differing);
+    EXPECT_EQ(differing, 0u) << "method 1 L streamed on the GPU";
+    EXPECT_EQ(streamed.triangles, expected.triangles);
 }
 
 // The device memory budget is a limit: a frame that would hold more falls back (whole volume ->

@@ -2,8 +2,9 @@
 #include "cli_runner.h"
 #include "lw/core/png_io.h"
 
-#include <filesystem>
 #include <cstdlib>
+#include <filesystem>
+#include <fstream>
 #include <gtest/gtest.h>
 #include <string>
 
@@ -50,6 +51,27 @@ TEST(RenderCommand, PhantomSilhouetteHasRequestedSize) {
     EXPECT_EQ(image.width(), 160);
     EXPECT_EQ(image.height(), 120);
     EXPECT_GT(darkPixels(image, 0, 160), 100u) << "black silhouette lines on white";
+}
+
+// --format svg (or an .svg name): the visible silhouette as vector paths of the frame's size;
+// the iso panel has no vector form, so asking for it is a usage error.
+TEST(RenderCommand, SvgHoldsTheSilhouetteAsPaths) {
+    for (const std::string how : {"-o '%s'", "--format svg -o '%s'"}) {
+        const auto out = outputPath(how.size() > 8 ? "lines_format.xml" : "lines.svg");
+        std::string arguments = "render phantom:64:sphere --iso 300.5 --method 3 --size 200x160 "
+                                "--view 30,10 --backend cpu ";
+        arguments += how.substr(0, how.find("%s")) + out.string() + "'";
+        ASSERT_EQ(runCli(arguments), 0) << arguments;
+        std::ifstream in(out);
+        const std::string svg((std::istreambuf_iterator<char>(in)), {});
+        EXPECT_EQ(svg.rfind("<?xml", 0), 0u);
+        EXPECT_NE(svg.find("viewBox=\"0 0 200 160\""), std::string::npos);
+        EXPECT_NE(svg.find("<path d=\"M"), std::string::npos) << "the sphere's contour";
+        EXPECT_NE(svg.find("Z\"/>"), std::string::npos) << "a whole sphere's contour is closed";
+    }
+    const auto out = outputPath("both.svg");
+    EXPECT_EQ(runCli("render phantom:32 --iso 300.5 --panel both -o '" + out.string() + "'"), 2);
+    EXPECT_FALSE(std::filesystem::exists(out));
 }
 
 TEST(RenderCommand, BothPanelsSideBySideChunkedOrtho) {

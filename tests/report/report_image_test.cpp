@@ -4,6 +4,7 @@
 #include "lw/core/error.h"
 #include "lw/core/file_util.h"
 #include "lw/core/png_io.h"
+#include "lw/render/visible_polylines.h"
 #include "lw/report/annotation_overlay.h"
 #include "lw/report/export_files.h"
 #include "lw/report/svg_export.h"
@@ -121,6 +122,52 @@ TEST(ReportImage, SvgHoldsTheRasterAndVectorAnnotations) {
     EXPECT_EQ(svg.count(">Finding A</text>"), 2);
     EXPECT_EQ(svg.count(">90.0\u00b0</text>"), 2);
     EXPECT_TRUE(svg.trimmed().endsWith("</svg>"));
+}
+
+// With the silhouette's visible polylines the exports carry it as vectors: paths in the SVG (one
+// per polyline, over a raster whose silhouette panel is blank), antialiased strokes in the
+// picture where the raster lines were.
+TEST(ReportImage, SilhouetteLinesGoInAsVectors) {
+    test::ensureGuiApplication();
+    report::RenderedPanels panels = test::renderSphereReview(kWindowPanel);
+    const QImage rasterLines = panels.silhouette;
+    const test::SphereReview& review = test::sphereReview();
+    panels.silhouetteLines = render::visiblePolylines(
+        review.mesh, panels.camera,
+        render::PixelMask::fromImage(report::toCoreImage(rasterLines), {255, 255, 255, 255}));
+    ASSERT_FALSE(panels.silhouetteLines.empty());
+    const QString svg =
+        QString::fromUtf8(report::renderSvg(panels, {}, report::PanelLayout::SideBySide));
+    EXPECT_EQ(svg.count("<path d=\"M"), qsizetype(panels.silhouetteLines.size()));
+    // The paths sit on the silhouette panel: shifted right by the iso panel's width.
+    const QString firstX = svg.mid(svg.indexOf("<path d=\"M") + 10, 12).section(' ', 0, 0);
+    EXPECT_GE(firstX.toDouble(), double(panels.iso.width()));
+
+    // The picture: where the raster had line pixels the strokes darken the panel too, and the
+    // panel is not the raster (antialiased grey levels appear).
+    const QImage picture =
+        report::composeExportImage(panels, {}, report::PanelLayout::SilhouettePanel);
+    std::size_t linePixels = 0, stroked = 0, grey = 0;
+    for (int y = 0; y < picture.height(); ++y)
+        for (int x = 0; x < picture.width(); ++x) {
+            const int value = qGray(picture.pixel(x, y));
+            grey += value > 30 && value < 225 ? 1 : 0;
+            if (qGray(rasterLines.pixel(x, y)) < 128) {
+                ++linePixels;
+                stroked += value < 200 ? 1 : 0;
+            }
+        }
+    ASSERT_GT(linePixels, 100u);
+    EXPECT_GE(double(stroked) / double(linePixels), 0.95);
+    EXPECT_GT(grey, 100u) << "antialiased strokes";
+    const QImage leftOut =
+        report::composeExportImage(panels, {}, report::PanelLayout::SilhouettePanel, Qt::white, {},
+                                   report::SilhouetteLines::LeftOut);
+    std::size_t dark = 0;
+    for (int y = 0; y < leftOut.height(); ++y)
+        for (int x = 0; x < leftOut.width(); ++x)
+            dark += qGray(leftOut.pixel(x, y)) < 250 ? 1 : 0;
+    EXPECT_EQ(dark, 0u) << "left out for the PDF to draw as paths: the panel stays blank";
 }
 
 // An existing file is kept byte for byte, and nothing else appears in the folder.

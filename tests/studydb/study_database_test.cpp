@@ -1,5 +1,6 @@
-// Study database and importer on synthetic series: schema and versions, upsert on re-import,
-// filter, remove, cancel (before and during the write), warnings and file errors.
+// Study database and importer on synthetic series: schema and versions (a version 1 file
+// migrated), upsert on re-import, filter, remove, cancel (before and during the write), warnings
+// and file errors, annotations per series.
 
 #include "lw/core/error.h"
 #include "lw/studydb/study_database.h"
@@ -219,6 +220,57 @@ private slots:
             QVERIFY2(QFile::exists(file), qPrintable(file));
         for (const QString& row : test::snapshot(dbPath()))
             QVERIFY2(!row.contains(b), qPrintable(row));
+    }
+
+    void annotationsAreKeptPerSeries() {
+        const QString json =
+            QStringLiteral("{\"version\": 1, \"annotations\": [{\"type\": \"ruler\", "
+                           "\"points\": [[0, 0, 0], [0, 10.5, 0]]}]}");
+        {
+            StudyDatabase db(dbPath());
+            db.write({QString(),
+                      {record(QStringLiteral("1.2.3"), QStringLiteral("P"), QStringLiteral("s"),
+                              QStringLiteral("x"), QStringLiteral("20240101"))},
+                      {}});
+            QVERIFY(!db.seriesAnnotations(QStringLiteral("1.2.3")));
+            db.setSeriesAnnotations(QStringLiteral("1.2.3"), QStringLiteral("first"));
+            db.setSeriesAnnotations(QStringLiteral("1.2.3"), json); // replaced, not added
+            // A series opened without importing it has no row, and keeps its annotations too.
+            db.setSeriesAnnotations(QStringLiteral("9.9.9"), QStringLiteral("{}"));
+        }
+        StudyDatabase fresh(dbPath()); // a new connection reads what was committed
+        QCOMPARE(fresh.seriesAnnotations(QStringLiteral("1.2.3")), std::optional<QString>(json));
+        QCOMPARE(fresh.seriesAnnotations(QStringLiteral("9.9.9")),
+                 std::optional<QString>(QStringLiteral("{}")));
+        // Forgetting the series in the index keeps the radiologist's work for a re-import.
+        QVERIFY(fresh.removeSeries(QStringLiteral("1.2.3")));
+        QCOMPARE(fresh.seriesAnnotations(QStringLiteral("1.2.3")), std::optional<QString>(json));
+    }
+
+    void migrationFromVersion1KeepsTheData() {
+        test::loadSqlScript(dbPath(),
+                            QStringLiteral(LINEWORK_STUDYDB_TEST_DATA "/studies_schema_v1.sql"));
+        const QStringList before = test::snapshot(dbPath());
+        QCOMPARE(before.size(), 12); // 1 patient, 1 study, 2 series, 6 files, 1 message, 1 log
+        const QString bone = QStringLiteral("1.2.826.0.1.3680043.10.1001.1");
+        {
+            StudyDatabase db(dbPath());
+            QCOMPARE(db.schemaVersion(), StudyDatabase::kSchemaVersion);
+            QCOMPARE(test::snapshot(dbPath()), before); // every row as it was
+            const std::optional<SeriesRecord> series = db.series(bone);
+            QVERIFY(series);
+            QCOMPARE(series->description, QStringLiteral("bone"));
+            QCOMPARE(series->tiltDegrees, 12.0);
+            QCOMPARE(series->warnings(), QStringList{QStringLiteral("gantry tilt 12 degrees")});
+            QCOMPARE(db.seriesFiles(bone).size(), 3);
+            QCOMPARE(db.importLog().size(), 1);
+            QVERIFY(!db.seriesAnnotations(bone));
+            db.setSeriesAnnotations(bone, QStringLiteral("{}")); // the new table works
+        }
+        StudyDatabase again(dbPath()); // already migrated: opened as it is
+        QCOMPARE(again.schemaVersion(), StudyDatabase::kSchemaVersion);
+        QCOMPARE(again.seriesAnnotations(bone), std::optional<QString>(QStringLiteral("{}")));
+        QCOMPARE(again.seriesCount(), 2);
     }
 
     void cancelLeavesTheDatabaseUnchanged_data() {

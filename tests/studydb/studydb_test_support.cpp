@@ -3,6 +3,7 @@
 #include "dicom_test_writer.h"
 
 #include <QDir>
+#include <QFile>
 #include <QFileInfo>
 #include <QSqlDatabase>
 #include <QSqlError>
@@ -86,6 +87,22 @@ void execRaw(const QString& databasePath, const QString& sql) {
     QSqlQuery query(connection.db());
     if (!query.exec(sql))
         throw std::runtime_error(query.lastError().text().toStdString());
+}
+
+void loadSqlScript(const QString& databasePath, const QString& scriptPath) {
+    QFile script(scriptPath);
+    if (!script.open(QIODevice::ReadOnly | QIODevice::Text))
+        throw std::runtime_error("cannot read " + scriptPath.toStdString());
+    RawConnection connection(databasePath);
+    QSqlQuery query(connection.db());
+    const QStringList lines = QString::fromUtf8(script.readAll()).split(QLatin1Char('\n'));
+    for (const QString& line : lines) {
+        if (line.trimmed().isEmpty() || line.startsWith(QStringLiteral("--")))
+            continue;
+        if (!query.exec(line))
+            throw std::runtime_error(scriptPath.toStdString() + ": " + line.toStdString() + ": " +
+                                     query.lastError().text().toStdString());
+    }
 }
 
 std::optional<QString> sharedDataDir() {

@@ -13,7 +13,7 @@
 #include "review/review_panel.h"
 #include "review/review_widget.h"
 #include "shell/main_window.h"
-#include "shell/png_export.h"
+#include "shell/review_export.h"
 
 #include <QApplication>
 #include <QCommandLineParser>
@@ -262,8 +262,10 @@ int main(int argc, char* argv[]) {
         monitor.start();
         QElapsedTimer exportTimer;
         exportTimer.start();
-        const QString error = exportReviewPng(*review, home.filePath("export.png"),
-                                              QSize(2048, 2048), ExportLayout::SideBySide);
+        // Both methods write the same file: the second replaces the first.
+        const QString error = exportReviewPng(
+            *review, home.filePath("export.png"),
+            {QSize(2048, 2048), lw::report::PanelLayout::SideBySide}, lw::core::Overwrite::Allow);
         char line[160];
         std::snprintf(line, sizeof line, "method %d: export 4096x2048 side-by-side PNG%s", method,
                       error.isEmpty() ? "" : " (FAILED)");

@@ -1,8 +1,10 @@
-// linework-screenshots: the user guide's pictures of the real windows (browser, review,
-// settings), taken from the X server as displayed. scripts/user_guide_screenshots.sh runs it
-// under Xvfb so they can be regenerated after a change.
+// linework-screenshots: the user guide's pictures of the real windows (browser, review, the
+// review with annotations, settings), taken from the X server as displayed.
+// scripts/user_guide_screenshots.sh runs it under Xvfb so they can be regenerated after a change.
 //
 //   linework-screenshots OUTDIR PATH...    (imports every PATH, reviews the first series)
+#include "annotate/annotation_document.h"
+#include "annotate/annotation_tool_controller.h"
 #include "bench/bench_support.h"
 #include "browser/study_browser.h"
 #include "review/review_panel.h"
@@ -16,6 +18,7 @@
 #include <QScreen>
 #include <QTemporaryDir>
 #include <QTest>
+#include <cmath>
 #include <cstdio>
 #include <functional>
 
@@ -31,6 +34,53 @@ bool saveWindow(QWidget& widget, const QString& path) {
     std::printf("%s %s (%dx%d)\n", saved ? "wrote" : "could not write", qPrintable(path),
                 shot.width(), shot.height());
     return saved;
+}
+
+// The point nearest `wanted` (within 40 pixels) under which the panel shows the surface, so the
+// clicks land on any head CT; `wanted` itself when there is none.
+QPoint onSurface(ReviewWidget& review, ReviewPanel& panel, QPoint wanted) {
+    for (int radius = 0; radius <= 40; radius += 2)
+        for (int dy = -radius; dy <= radius; dy += 2)
+            for (int dx = -radius; dx <= radius; dx += 2)
+                if (std::max(std::abs(dx), std::abs(dy)) == radius &&
+                    review.pickSurface(panel, wanted + QPoint(dx, dy)))
+                    return wanted + QPoint(dx, dy);
+    return wanted;
+}
+
+// Annotates the review as a user does: each tool, then clicks on the iso panel at fractions of
+// its size (chosen on the head CTs in the 30/15 view), the arrow's caption by F2. A click off the
+// surface is refused, so the count says whether the picture shows them all.
+bool annotate(ReviewWidget& review) {
+    AnnotationToolController& tools = review.annotationTools();
+    QStringList texts{"Frontal bone", "Slice gap"}; // the label's, then the arrow's caption
+    tools.setTextPrompt([&](const QString&, const QString&) { return texts.takeFirst(); });
+    ReviewPanel& panel = review.isoPanel();
+    const auto clickAt = [&](double x, double y) {
+        const QPoint wanted(int(x * panel.width()), int(y * panel.height()));
+        QTest::mouseClick(&panel, Qt::LeftButton, {}, onSurface(review, panel, wanted));
+    };
+    const struct {
+        AnnotationTool tool;
+        std::vector<std::pair<double, double>> clicks;
+    } steps[] = {
+        {AnnotationTool::Ruler, {{0.284, 0.494}, {0.633, 0.468}}},
+        {AnnotationTool::Label, {{0.350, 0.407}}},
+        {AnnotationTool::Arrow, {{0.509, 0.329}, {0.448, 0.359}}},
+        {AnnotationTool::Angle, {{0.422, 0.563}, {0.509, 0.624}, {0.597, 0.555}}},
+    };
+    for (const auto& step : steps) {
+        tools.setTool(step.tool);
+        for (const auto& [x, y] : step.clicks)
+            clickAt(x, y);
+        if (step.tool == AnnotationTool::Arrow)
+            tools.editSelectedText();
+    }
+    tools.setTool(AnnotationTool::None);
+    review.annotations().select(0); // the ruler, with its handles
+    const int made = review.annotations().count();
+    std::printf("annotations placed: %d of 4\n", made);
+    return made == 4;
 }
 
 } // namespace
@@ -93,6 +143,8 @@ int main(int argc, char* argv[]) {
     window.currentReview()->camera().setView(30.0, 15.0);
     bench::waitFor([&] { return !window.currentReview()->isBusy(); });
     ok = saveWindow(window, out.filePath("review.png")) && ok;
+    ok = annotate(*window.currentReview()) && ok;
+    ok = saveWindow(window, out.filePath("review_annotations.png")) && ok;
 
     window.showSettings();
     auto* settings = window.findChild<SettingsDialog*>();

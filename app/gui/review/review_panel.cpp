@@ -266,6 +266,7 @@ void ReviewPanel::paintGlView() {
     {
         QPainter painter(m_glView);
         drawImages(painter);
+        drawOverlayPainter(painter);
         drawMessage(painter);
     } // the painter ends while the widget's context is current, before anyone hears of it
     reportPaint(double(timer.nsecsElapsed()) / 1e6);
@@ -276,6 +277,7 @@ void ReviewPanel::paintImageView(QPainter& painter) {
     timer.start();
     painter.fillRect(m_imageView->rect(), m_appearance.background);
     drawImages(painter);
+    drawOverlayPainter(painter);
     drawMessage(painter);
     reportPaint(double(timer.nsecsElapsed()) / 1e6);
 }
@@ -292,6 +294,31 @@ void ReviewPanel::drawImages(QPainter& painter) {
         painter.drawImage(rect(), m_image);
     if (m_kind == PanelKind::Iso && !m_overlay.isNull())
         painter.drawImage(rect(), m_overlay);
+}
+
+void ReviewPanel::setOverlayPainter(OverlayPainter painter) {
+    m_overlayPainter = std::move(painter);
+    updateView();
+}
+
+void ReviewPanel::drawOverlayPainter(QPainter& painter) {
+    if (!m_overlayPainter)
+        return;
+    painter.save();
+    // The overlay draws in device pixels, as the camera projects.
+    painter.scale(1.0 / devicePixelRatioF(), 1.0 / devicePixelRatioF());
+    m_overlayPainter(painter, viewCamera());
+    painter.restore();
+}
+
+render::Camera ReviewPanel::viewCamera() const {
+    const QSize size = renderSize();
+    return m_camera.camera(size.width(), size.height());
+}
+
+glm::dvec2 ReviewPanel::cameraPixel(QPointF position) const {
+    const qreal ratio = devicePixelRatioF();
+    return {position.x() * ratio, position.y() * ratio};
 }
 
 void ReviewPanel::drawMessage(QPainter& painter) {

@@ -22,6 +22,7 @@
 #include <QImage>
 #include <QString>
 #include <QWidget>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <vector>
@@ -93,6 +94,17 @@ public:
     // Segments the geometry shader emitted in the last GL paint (method 1 silhouette panel).
     std::size_t lastSegmentCount() const { return m_lastStats.segments; }
     QSize renderSize() const; // the viewport in device pixels
+    // The camera of what the panel shows now, at renderSize().
+    render::Camera viewCamera() const;
+    // A widget position in the camera's continuous pixel coordinates (device pixels).
+    glm::dvec2 cameraPixel(QPointF position) const;
+
+    // Drawn over the picture at every paint, in viewCamera()'s pixels (the annotations): the
+    // panel knows nothing of what it draws. An empty function draws nothing.
+    using OverlayPainter = std::function<void(QPainter& painter, const render::Camera& camera)>;
+    void setOverlayPainter(OverlayPainter painter);
+    // The overlay changed (the picture did not): paint again.
+    void repaintOverlay() { updateView(); }
 
     // For the views: the drawing itself.
     void initializeGlView();
@@ -119,6 +131,7 @@ private:
     void drawGl(const render::Camera& camera);
     void drawImages(QPainter& painter);
     void drawMessage(QPainter& painter);
+    void drawOverlayPainter(QPainter& painter);
     void releaseGl();
     void updateView();
     void reportPaint(double milliseconds);
@@ -143,6 +156,7 @@ private:
     QString m_message;
     QPoint m_lastMouse;
     QTimer* m_hoverTimer = nullptr; // picks once the mouse rests, not on every move
+    OverlayPainter m_overlayPainter;
     double m_lastPaintMs = 0.0;
     render::SilhouetteGlStats m_lastStats;
 };

@@ -1,9 +1,13 @@
 #include "review/review_widget.h"
 
+#include "annotate/annotation_actions.h"
+#include "annotate/annotation_document.h"
+#include "annotate/annotation_tool_controller.h"
 #include "lw/core/error.h"
 #include "lw/render/gl_context.h"
 #include "lw/render/renderer_factory.h"
 #include "lw/render/silhouette_gl_renderer.h"
+#include "lw/render/surface_picking.h"
 #include "review/iso_control.h"
 #include "review/panel_render_job.h"
 #include "review/render_scheduler.h"
@@ -36,6 +40,13 @@ QString patientPositionText(glm::dvec3 p) {
         .arg(axis(p.x, "R", "L"), axis(p.y, "A", "P"), axis(p.z, "I", "S"));
 }
 
+const char* const kErrorStyle = "QLabel { background: #f8d7da; color: #721c24; padding: 4px; }";
+
+QString navigationHint() {
+    return QObject::tr("Drag: rotate · Shift/middle drag: pan · wheel/right drag: zoom · "
+                       "Ctrl drag: roll");
+}
+
 QString count(std::size_t value) {
     return QLocale().toString(qulonglong(value));
 }
@@ -52,6 +63,7 @@ ReviewWidget::ReviewWidget(ReviewSource source, const ReviewSettings& settings, 
     displayGlInfo(); // probe the display's GL now, not from inside a panel's paint
     m_camera.setBounds(m_source.bounds);
     m_camera.setProjection(settings.projection);
+    setUpAnnotations();
     buildLayout();
     m_scheduler = std::make_unique<RenderScheduler>(m_source.volume);
     connectParts();
@@ -66,9 +78,29 @@ ReviewWidget::ReviewWidget(ReviewSource source, const ReviewSettings& settings, 
     applySettings(settings);
 }
 
-void ReviewWidget::buildLayout() {
+void ReviewWidget::setUpAnnotations() {
     m_isoPanel = new ReviewPanel(PanelKind::Iso, m_camera);
     m_silhouettePanel = new ReviewPanel(PanelKind::Silhouette, m_camera);
+    m_annotations = new AnnotationDocument(this);
+    m_annotationTools = new AnnotationToolController(
+        *m_annotations,
+        [this](ReviewPanel& panel, QPoint position) { return pickSurface(panel, position); }, this);
+    m_annotationTools->attach(*m_isoPanel);
+    m_annotationTools->attach(*m_silhouettePanel);
+    m_annotationActions = new AnnotationActions(*m_annotationTools, *this);
+}
+
+std::optional<glm::dvec3> ReviewWidget::pickSurface(ReviewPanel& panel, QPoint position) {
+    if (&panel == m_isoPanel)
+        return m_isoPanel->pickPatientPoint(position);
+    // The silhouette panel keeps no depth of its own: a ray against the mesh both panels show.
+    if (!m_mesh || !m_meshCurrent)
+        return std::nullopt;
+    return render::pickMeshSurface(*m_mesh, panel.viewCamera(),
+                                   panel.cameraPixel(QPointF(position) + QPointF(0.5, 0.5)));
+}
+
+void ReviewWidget::buildLayout() {
     m_isoControl = new IsoControl;
     m_isoControl->setObjectName("isoControl");
     m_statusLine = new QLabel;
@@ -79,8 +111,13 @@ void ReviewWidget::buildLayout() {
     m_errorLine = new QLabel;
     m_errorLine->setObjectName("reviewError");
     m_errorLine->setWordWrap(true);
-    m_errorLine->setStyleSheet("QLabel { background: #f8d7da; color: #721c24; padding: 4px; }");
+    m_errorLine->setStyleSheet(kErrorStyle);
     m_errorLine->hide();
+    m_storageLine = new QLabel;
+    m_storageLine->setObjectName("reviewStorageProblem");
+    m_storageLine->setWordWrap(true);
+    m_storageLine->setStyleSheet(kErrorStyle);
+    m_storageLine->hide();
     m_warningLine = new QLabel(m_source.warnings.join(QStringLiteral(" · ")));
     m_warningLine->setObjectName("reviewWarnings");
     m_warningLine->setWordWrap(true);
@@ -96,6 +133,7 @@ void ReviewWidget::buildLayout() {
     layout->addWidget(makeViewBar());
     layout->addWidget(m_warningLine);
     layout->addWidget(m_errorLine);
+    layout->addWidget(m_storageLine);
     layout->addWidget(splitter, 1);
     layout->addWidget(m_isoControl);
     layout->addWidget(m_statusLine);
@@ -159,15 +197,39 @@ QWidget* ReviewWidget::makeViewBar() {
     reset->setToolTip(tr("Reset the camera (Home)"));
     connect(reset, &QToolButton::clicked, this, &ReviewWidget::resetCamera);
     layout->addWidget(reset);
+    addToolButtons(*layout);
     m_cursorLine = new QLabel;
     m_cursorLine->setObjectName("cursorPosition");
     m_cursorLine->setMinimumWidth(260);
     layout->addWidget(m_cursorLine);
-    auto* hint = new QLabel(tr("Drag: rotate · Shift/middle drag: pan · wheel/right drag: zoom · "
-                               "Ctrl drag: roll"));
-    hint->setEnabled(false);
-    layout->addWidget(hint, 1, Qt::AlignRight);
+    m_hintLine = new QLabel(navigationHint());
+    m_hintLine->setObjectName("reviewHint");
+    m_hintLine->setEnabled(false);
+    // Like the status line: a long hint is cut at the window's edge rather than widen it.
+    m_hintLine->setSizePolicy(QSizePolicy::Ignored, QSizePolicy::Preferred);
+    layout->addWidget(m_hintLine, 1);
+    // With a tool the line says what to click next; a refused click says why.
+    connect(m_annotationTools, &AnnotationToolController::promptChanged, this,
+            [this](const QString& prompt) {
+                m_hintLine->setText(prompt.isEmpty() ? navigationHint() : prompt);
+                m_hintLine->setEnabled(!prompt.isEmpty());
+            });
+    connect(m_annotationTools, &AnnotationToolController::refused, this,
+            [this](const QString& reason) {
+                m_hintLine->setText(reason);
+                m_hintLine->setEnabled(true);
+            });
     return bar;
+}
+
+void ReviewWidget::addToolButtons(QLayout& layout) {
+    layout.addItem(new QSpacerItem(16, 1));
+    for (QAction* action : m_annotationActions->toolActions()) {
+        auto* button = new QToolButton;
+        button->setDefaultAction(action);
+        button->setObjectName(action->objectName() + "Button");
+        layout.addWidget(button);
+    }
 }
 
 bool ReviewWidget::drawsInPanels() const {
@@ -320,6 +382,15 @@ void ReviewWidget::showSilhouette(const FrameResult& result) {
 void ReviewWidget::showError(const QString& message) {
     m_errorLine->setText(message);
     m_errorLine->show();
+}
+
+void ReviewWidget::setStorageProblem(const QString& problem) {
+    m_storageLine->setText(problem);
+    m_storageLine->setVisible(!problem.isEmpty());
+}
+
+QString ReviewWidget::storageProblem() const {
+    return m_storageLine->isHidden() ? QString() : m_storageLine->text();
 }
 
 QString ReviewWidget::errorText() const {

@@ -4,6 +4,7 @@
 // both, the iso-value control below and a status line with what each stage cost. Owns the
 // render scheduler (worker thread); the UI thread only uploads, draws and reacts.
 
+#include "lw/input/open_input.h"
 #include "lw/render/aabb.h"
 #include "lw/render/iso_surface.h"
 #include "lw/volume/volume.h"
@@ -22,6 +23,9 @@ class QLabel;
 
 namespace lw::gui {
 
+class AnnotationActions;
+class AnnotationDocument;
+class AnnotationToolController;
 class IsoControl;
 class RenderScheduler;
 class ReviewPanel;
@@ -30,8 +34,9 @@ struct FrameResult;
 // What a review needs of an opened volume; the loader computes the scans off the UI thread.
 struct ReviewSource {
     std::shared_ptr<const volume::Volume> volume;
-    QString title;        // patient / series / dims, for the tab and reports
-    QString seriesUid;    // empty for non-DICOM input
+    QString title;                             // patient / series / dims, for the tab and reports
+    QString seriesUid;                         // empty for non-DICOM input
+    std::optional<input::DicomIdentity> dicom; // patient / study / series, DICOM only
     QStringList warnings; // tilt, uneven gaps, missing slices, files that failed
     render::Aabb bounds;  // the surface at the initial iso-value (camera framing)
     volume::ValueRange range;
@@ -69,6 +74,12 @@ public:
     QString statusText() const;
     QString errorText() const;
     double iso() const { return m_iso; }
+    AnnotationDocument& annotations() { return *m_annotations; }
+    AnnotationToolController& annotationTools() { return *m_annotationTools; }
+    AnnotationActions& annotationActions() { return *m_annotationActions; }
+    // The iso-surface point under a widget position of either panel (LPS, mm): the iso panel
+    // through its depth buffer, the silhouette panel by a ray against the mesh on screen.
+    std::optional<glm::dvec3> pickSurface(ReviewPanel& panel, QPoint position);
     // True while the worker has work (tests wait for it to settle).
     bool isBusy() const;
 
@@ -88,6 +99,10 @@ public slots:
     void setIso(double iso);
     void setStandardView(lw::gui::StandardView view);
     void resetCamera();
+    // A red bar of its own that stays until cleared with an empty text: what the study database
+    // could not load or save (unlike render errors, a new frame does not make it go away).
+    void setStorageProblem(const QString& problem);
+    QString storageProblem() const;
 
 signals:
     void statusChanged();
@@ -102,6 +117,8 @@ private:
     void showSilhouette(const FrameResult& result);
     void showError(const QString& message);
     void updateStatusLine();
+    void setUpAnnotations();
+    void addToolButtons(QLayout& layout);
     bool methodOneInPanel() const;
     bool drawsInPanels() const;
     int brickCells() const;
@@ -120,7 +137,12 @@ private:
     QLabel* m_statusLine = nullptr;
     QLabel* m_errorLine = nullptr;
     QLabel* m_warningLine = nullptr;
+    QLabel* m_storageLine = nullptr;
     QLabel* m_cursorLine = nullptr; // the surface point under the mouse, in patient terms
+    QLabel* m_hintLine = nullptr;   // how to use the mouse, or the annotation tool's next step
+    AnnotationDocument* m_annotations = nullptr;
+    AnnotationToolController* m_annotationTools = nullptr;
+    AnnotationActions* m_annotationActions = nullptr;
     std::unique_ptr<RenderScheduler> m_scheduler;
     ReviewStatus m_status;
 };

@@ -40,6 +40,7 @@ ReviewSource VolumeLoader::load(const LoadRequest& request, core::Progress* prog
     ReviewSource source;
     source.title = QString::fromStdString(opened.description);
     source.seriesUid = QString::fromStdString(opened.seriesUid);
+    source.dicom = opened.dicom;
     for (const std::string& warning : opened.warnings)
         source.warnings << QString::fromStdString(warning);
     source.range = opened.volume.realRange();

@@ -89,6 +89,40 @@ QWidget* SettingsDialog::makeMethodPage() {
     }
     form->addRow(tr("Silhouette method:"), methods);
 
+    addMemoryRows(form);
+
+    m_mode = new QComboBox;
+    m_mode->setObjectName("mode");
+    m_mode->addItems({tr("a: extract when the iso-value changes"), tr("b: extract every frame")});
+    form->addRow(tr("Mode:"), m_mode);
+    m_visibility = new QCheckBox(tr("Hide occluded silhouette lines"));
+    form->addRow(tr("Visibility:"), m_visibility);
+    m_alongSegment = new QCheckBox(tr("Test along each segment (method 2), not only its ends"));
+    form->addRow(QString(), m_alongSegment);
+    m_minStroke = new QSpinBox;
+    m_minStroke->setObjectName("minStroke");
+    m_minStroke->setRange(0, 1000);
+    m_minStroke->setSuffix(tr(" px"));
+    m_minStroke->setSpecialValueText(tr("Keep every line pixel"));
+    m_minStroke->setToolTip(tr("Line fragments with fewer pixels are dropped: the speckle that "
+                               "noise on nearly flat surfaces draws. Contours are longer."));
+    form->addRow(tr("Drop strokes under:"), m_minStroke);
+
+    addBackendRows(form, page);
+
+    connect(m_method, &QButtonGroup::idClicked, this, [this] { readControls(); });
+    connect(m_backend, &QButtonGroup::idClicked, this, [this] { readControls(); });
+    for (QComboBox* box : {m_chunking, m_mode})
+        connect(box, &QComboBox::currentIndexChanged, this, [this] { readControls(); });
+    for (QSpinBox* box : {m_brickCells, m_memoryBudget, m_gpuMemoryBudget, m_minStroke})
+        connect(box, &QSpinBox::valueChanged, this, [this] { readControls(); });
+    for (QCheckBox* box : {m_visibility, m_alongSegment})
+        connect(box, &QCheckBox::toggled, this, [this] { readControls(); });
+    return page;
+}
+
+// Chunking, brick size and the host and device memory budgets.
+void SettingsDialog::addMemoryRows(QFormLayout* form) {
     m_chunking = new QComboBox;
     m_chunking->setObjectName("chunking");
     m_chunking->addItems({tr("Off: whole volume (S)"), tr("Auto: chunked above the memory budget"),
@@ -114,24 +148,10 @@ QWidget* SettingsDialog::makeMethodPage() {
                                      "streams through the GPU in slabs; below what one slab "
                                      "needs, the frame is drawn on the CPU."));
     form->addRow(tr("GPU memory budget:"), m_gpuMemoryBudget);
+}
 
-    m_mode = new QComboBox;
-    m_mode->setObjectName("mode");
-    m_mode->addItems({tr("a: extract when the iso-value changes"), tr("b: extract every frame")});
-    form->addRow(tr("Mode:"), m_mode);
-    m_visibility = new QCheckBox(tr("Hide occluded silhouette lines"));
-    form->addRow(tr("Visibility:"), m_visibility);
-    m_alongSegment = new QCheckBox(tr("Test along each segment (method 2), not only its ends"));
-    form->addRow(QString(), m_alongSegment);
-    m_minStroke = new QSpinBox;
-    m_minStroke->setObjectName("minStroke");
-    m_minStroke->setRange(0, 1000);
-    m_minStroke->setSuffix(tr(" px"));
-    m_minStroke->setSpecialValueText(tr("Keep every line pixel"));
-    m_minStroke->setToolTip(tr("Line fragments with fewer pixels are dropped: the speckle that "
-                               "noise on nearly flat surfaces draws. Contours are longer."));
-    form->addRow(tr("Drop strokes under:"), m_minStroke);
-
+// CPU, CUDA or Auto; CUDA greyed out with the reason where it is not available.
+void SettingsDialog::addBackendRows(QFormLayout* form, QWidget* page) {
     auto* backends = new QHBoxLayout;
     m_backend = new QButtonGroup(page);
     const QStringList names{tr("CPU"), tr("CUDA"), tr("Auto")};
@@ -150,16 +170,6 @@ QWidget* SettingsDialog::makeMethodPage() {
         m_backendNote->setText(tr("CUDA is not available: %1").arg(reason));
     }
     form->addRow(QString(), m_backendNote);
-
-    connect(m_method, &QButtonGroup::idClicked, this, [this] { readControls(); });
-    connect(m_backend, &QButtonGroup::idClicked, this, [this] { readControls(); });
-    for (QComboBox* box : {m_chunking, m_mode})
-        connect(box, &QComboBox::currentIndexChanged, this, [this] { readControls(); });
-    for (QSpinBox* box : {m_brickCells, m_memoryBudget, m_gpuMemoryBudget, m_minStroke})
-        connect(box, &QSpinBox::valueChanged, this, [this] { readControls(); });
-    for (QCheckBox* box : {m_visibility, m_alongSegment})
-        connect(box, &QCheckBox::toggled, this, [this] { readControls(); });
-    return page;
 }
 
 QWidget* SettingsDialog::makeAppearancePage() {

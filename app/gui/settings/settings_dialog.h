@@ -11,6 +11,7 @@
 class QButtonGroup;
 class QCheckBox;
 class QComboBox;
+class QFormLayout;
 class QDoubleSpinBox;
 class QLabel;
 class QPushButton;
@@ -32,6 +33,8 @@ signals:
 
 private:
     QWidget* makeMethodPage();
+    void addMemoryRows(QFormLayout* form);
+    void addBackendRows(QFormLayout* form, QWidget* page);
     QWidget* makeAppearancePage();
     QWidget* makePresetPage();
     void showSettings();

@@ -1,12 +1,15 @@
 #include "shell/main_window.h"
 
+#include "annotate/annotation_actions.h"
+#include "annotate/annotation_document.h"
 #include "browser/study_browser.h"
 #include "lw/core/error.h"
 #include "review/review_panel.h"
 #include "review/review_widget.h"
 #include "review/volume_loader.h"
 #include "settings/settings_dialog.h"
-#include "shell/png_export.h"
+#include "shell/annotation_persistence.h"
+#include "shell/export_actions.h"
 
 #include <QAction>
 #include <QApplication>
@@ -28,6 +31,7 @@
 #include <QTabBar>
 #include <QTabWidget>
 #include <QToolBar>
+#include <QUndoGroup>
 #include <QUrl>
 
 namespace lw::gui {
@@ -92,8 +96,14 @@ MainWindow::MainWindow(const MainWindowOptions& options, QWidget* parent) : QMai
     statusBar()->addPermanentWidget(m_cancel);
     setLoadingVisible(false);
 
+    m_undoGroup = new QUndoGroup(this);
+    m_exports = new ExportActions(*this, [this] { return currentReview(); });
     createActions();
+    createEditMenu();
     createViewMenu();
+    m_annotateMenu = menuBar()->addMenu(tr("&Annotate"));
+    connect(m_tabs, &QTabWidget::currentChanged, this, &MainWindow::reviewBecameCurrent);
+    reviewBecameCurrent();
     resize(1400, 900);
     // Where the user left the window last time.
     restoreGeometry(store.value("window/geometry").toByteArray());
@@ -125,7 +135,11 @@ void MainWindow::closeEvent(QCloseEvent* event) {
     QMainWindow::closeEvent(event);
 }
 
-MainWindow::~MainWindow() = default;
+MainWindow::~MainWindow() {
+    // Reviews save their annotations through the browser's database: they go first.
+    for (ReviewWidget* review : reviews())
+        delete review;
+}
 
 void MainWindow::createActions() {
     QMenu* file = menuBar()->addMenu(tr("&File"));
@@ -150,9 +164,11 @@ void MainWindow::createActions() {
         tr("&Open path without importing…"), QKeySequence::Open, [this] { chooseAndOpenPath(); },
         true);
     file->addSeparator();
-    add(
-        tr("&Export PNG…"), QKeySequence(tr("Ctrl+E")), [this] { chooseAndExportPng(); }, true)
-        ->setObjectName("exportPngAction");
+    for (QAction* action :
+         {m_exports->pngAction(), m_exports->reportAction(), m_exports->secondaryCaptureAction()})
+        file->addAction(action);
+    toolbar->addAction(m_exports->pngAction());
+    toolbar->addAction(m_exports->reportAction());
     file->addSeparator();
     add(
         tr("&Settings…"), QKeySequence(tr("Ctrl+,")), [this] { showSettings(); }, true);
@@ -167,6 +183,39 @@ void MainWindow::createActions() {
         false);
     add(
         tr("&Quit"), QKeySequence::Quit, [] { QApplication::closeAllWindows(); }, false);
+}
+
+void MainWindow::createEditMenu() {
+    QMenu* edit = menuBar()->addMenu(tr("&Edit"));
+    QAction* undo = m_undoGroup->createUndoAction(this, tr("&Undo"));
+    undo->setObjectName("undoAction");
+    undo->setShortcut(QKeySequence(tr("Ctrl+Z")));
+    QAction* redo = m_undoGroup->createRedoAction(this, tr("&Redo"));
+    redo->setObjectName("redoAction");
+    redo->setShortcuts({QKeySequence(tr("Ctrl+Shift+Z")), QKeySequence(tr("Ctrl+Y"))});
+    edit->addAction(undo);
+    edit->addAction(redo);
+}
+
+// The Annotate menu lists the current review's own actions: their keys work while the focus is
+// in that review (each review has its own tools and selection).
+void MainWindow::fillAnnotateMenu() {
+    m_annotateMenu->clear();
+    ReviewWidget* review = currentReview();
+    m_annotateMenu->setEnabled(review != nullptr);
+    if (!review)
+        return;
+    const AnnotationActions& actions = review->annotationActions();
+    m_annotateMenu->addActions(actions.toolActions());
+    m_annotateMenu->addSeparator();
+    m_annotateMenu->addActions(
+        {actions.editTextAction(), actions.deleteAction(), actions.cancelAction()});
+}
+
+void MainWindow::reviewBecameCurrent() {
+    ReviewWidget* review = currentReview();
+    m_undoGroup->setActiveStack(review ? &review->annotations().undoStack() : nullptr);
+    fillAnnotateMenu();
 }
 
 void MainWindow::createViewMenu() {
@@ -206,6 +255,13 @@ QList<ReviewWidget*> MainWindow::reviews() const {
         if (auto* review = qobject_cast<ReviewWidget*>(m_tabs->widget(i)))
             result.append(review);
     return result;
+}
+
+ReviewWidget* MainWindow::reviewOfSeries(const QString& seriesUid) const {
+    for (ReviewWidget* review : reviews())
+        if (!seriesUid.isEmpty() && review->source().seriesUid == seriesUid)
+            return review;
+    return nullptr;
 }
 
 bool MainWindow::isLoading() const {
@@ -267,13 +323,33 @@ void MainWindow::setLoadingVisible(bool visible) {
 
 void MainWindow::showReview(std::shared_ptr<ReviewSource> source) {
     setLoadingVisible(false);
+    // One review per series: two would each save their own list of annotations over the other's.
+    if (ReviewWidget* open = reviewOfSeries(source->seriesUid)) {
+        m_tabs->setCurrentWidget(open);
+        statusBar()->showMessage(tr("%1 is open already").arg(open->source().title), 8000);
+        emit reviewOpened(open);
+        return;
+    }
     auto* review = new ReviewWidget(std::move(*source), m_settings);
+    m_undoGroup->addStack(&review->annotations().undoStack());
+    if (!review->source().seriesUid.isEmpty())
+        keepAnnotations(*review);
     const QString title = review->source().title;
     const int index = m_tabs->addTab(review, title.left(40));
     m_tabs->setTabToolTip(index, title);
     m_tabs->setCurrentIndex(index);
+    review->isoPanel().setFocus(); // the annotation keys work at once
 
     emit reviewOpened(review);
+}
+
+void MainWindow::keepAnnotations(ReviewWidget& review) {
+    try {
+        new AnnotationPersistence(m_browser->database(), review);
+    } catch (const core::Error& error) {
+        review.setStorageProblem(
+            tr("Annotations will not be saved: %1").arg(QString::fromStdString(error.what())));
+    }
 }
 
 void MainWindow::showLoadError(const QString& reason) {
@@ -287,34 +363,6 @@ void MainWindow::showLoadError(const QString& reason) {
     box->setObjectName("loadErrorBox");
     box->setAttribute(Qt::WA_DeleteOnClose);
     box->open();
-}
-
-void MainWindow::chooseAndExportPng() {
-    ReviewWidget* review = currentReview();
-    if (!review) {
-        statusBar()->showMessage(tr("Open a review to export it"), 5000);
-        return;
-    }
-    PngExportDialog dialog(review->silhouettePanel().renderSize(), this);
-    if (dialog.exec() != QDialog::Accepted)
-        return;
-    // The file dialog asks before overwriting an existing file.
-    QString path =
-        QFileDialog::getSaveFileName(this, tr("Export PNG"), QString(), tr("PNG images (*.png)"));
-    if (path.isEmpty())
-        return;
-    if (!path.endsWith(".png", Qt::CaseInsensitive)) {
-        path += ".png";
-        if (QFileInfo::exists(path) &&
-            QMessageBox::question(this, tr("Export PNG"), tr("%1 exists. Replace it?").arg(path)) !=
-                QMessageBox::Yes)
-            return;
-    }
-    const QString error = exportReviewPng(*review, path, dialog.panelSize(), dialog.layout(), this);
-    if (error.isEmpty())
-        statusBar()->showMessage(tr("Exported %1").arg(path), 8000);
-    else
-        QMessageBox::warning(this, tr("Export failed"), error);
 }
 
 void MainWindow::showSettings() {

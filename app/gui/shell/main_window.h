@@ -2,7 +2,9 @@
 
 // The workstation's window: the study browser as the first tab, one tab per open review, the
 // menus and toolbar, a progress bar with Cancel for opening a volume, and the settings page.
-// It only wires these together; each part lives in its own class.
+// It only wires these together; each part lives in its own class. The Edit menu's undo and redo
+// act on the current review's annotations (one QUndoGroup), the Annotate menu shows its tools,
+// and the reviews of DICOM series keep their annotations in the study database.
 
 #include "settings/review_settings.h"
 
@@ -11,12 +13,15 @@
 #include <optional>
 
 class QLabel;
+class QMenu;
 class QProgressBar;
 class QPushButton;
 class QTabWidget;
+class QUndoGroup;
 
 namespace lw::gui {
 
+class ExportActions;
 class ReviewWidget;
 class SettingsDialog;
 class StudyBrowser;
@@ -37,6 +42,8 @@ public:
     StudyBrowser& browser() { return *m_browser; }
     ReviewWidget* currentReview() const;
     QList<ReviewWidget*> reviews() const;
+    // The open review of a DICOM series, or null (phantoms and volume files have no UID).
+    ReviewWidget* reviewOfSeries(const QString& seriesUid) const;
     const ReviewSettings& settings() const { return m_settings; }
     bool isLoading() const;
     QString lastError() const { return m_lastError; }
@@ -48,8 +55,8 @@ public slots:
     // Opens a series stored in the study database.
     void openSeries(const QString& seriesUid);
     void chooseAndOpenPath();
-    // Asks what and how large, then where, and writes the review as a PNG (atomically).
-    void chooseAndExportPng();
+    // The File menu's exports (PNG, PDF report, Secondary Capture) of the current review.
+    ExportActions& exports() { return *m_exports; }
     void showSettings();
     void applySettings(const lw::gui::ReviewSettings& settings);
     void cancelLoading();
@@ -67,8 +74,12 @@ protected:
 private:
     void createActions();
     void createViewMenu();
+    void createEditMenu();
+    void fillAnnotateMenu();
+    void reviewBecameCurrent();
     void startLoading(const LoadRequest& request, const QString& what);
     void showReview(std::shared_ptr<ReviewSource> source);
+    void keepAnnotations(ReviewWidget& review);
     void showLoadError(const QString& reason);
     void setLoadingVisible(bool visible);
 
@@ -82,6 +93,9 @@ private:
     QLabel* m_loadingLabel = nullptr;
     QString m_loadingWhat;
     QString m_lastError;
+    ExportActions* m_exports = nullptr;
+    QUndoGroup* m_undoGroup = nullptr;
+    QMenu* m_annotateMenu = nullptr;
 };
 
 } // namespace lw::gui

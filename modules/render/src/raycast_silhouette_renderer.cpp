@@ -1,55 +1,155 @@
 #include "lw/render/raycast_silhouette_renderer.h"
 
 #include "lw/core/error.h"
-#include "lw/core/parallel.h"
-#include "lw/kernels/cpu/raycast_silhouette_cpu.h"
+#include "lw/core/log.h"
 #include "lw/render/iso_surface.h"
-#include "lw/render/line_raster.h"
-#include "lw/volume/bricks.h"
+#include "raycast_kernels_cpu.h"
 
-#include <algorithm>
-#include <chrono>
-#include <cmath>
+#include <limits>
+#include <string>
 
 namespace lw::render {
 namespace {
 
-using Clock = std::chrono::steady_clock;
-double msSince(Clock::time_point start) {
-    return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-}
+constexpr core::LogCategory kLog("lw.render");
 
 } // namespace
 
-struct RayCastSilhouetteRenderer::Cache {
-    kernels::cpu::RayCastSilhouetteCpu kernel;
-    double storedIso = 0.0;
-    int brickCells = -1;
-    bool valid = false;
-    bool withCones = false;
-    // Per segment chunk of the kernel, reused between frames: the projected lines to draw
-    // (pairs of float pixel points) and, along segments, the single pixels of visible steps.
-    // Projected points are rounded to float once, and every mode draws from the rounded
-    // values, so a visible piece is pixel for pixel part of the line drawn with visibility off.
-    std::vector<std::vector<glm::vec2>> chunkLines;
-    std::vector<std::vector<glm::ivec2>> chunkDots;
+struct RayCastSilhouetteRenderer::State {
+    const volume::Volume* volume = nullptr;
+    std::unique_ptr<RayCastKernelSet> device; // null: the CPU is the back-end
+    std::unique_ptr<CpuRayCastKernels> cpu;
+    bool deviceFailed = false; // ran out of device memory with this volume: the CPU from now on
+    RayCastKernelSet* last = nullptr;
+
+    // The prepared cells are for this iso-value, brick size and mode, on `prepared` (null: none).
+    RayCastKernelSet* prepared = nullptr;
+    double preparedIso = std::numeric_limits<double>::quiet_NaN();
+    int preparedBrickCells = -1;
+    ExtractionMode preparedMode = ExtractionMode::CachedA;
+
+    CpuRayCastKernels& cpuSet() {
+        if (!cpu) {
+            cpu = makeCpuRayCastKernels();
+            cpu->bind(volume);
+        }
+        return *cpu;
+    }
+    // Who draws this frame: the device unless it cannot (L) or failed.
+    RayCastKernelSet& setFor(const SilhouetteSettings& settings) {
+        if (device && !deviceFailed && (settings.brickCells == 0 || device->drawsPieces()))
+            return *device;
+        return cpuSet();
+    }
+    void frameOn(RayCastKernelSet& set, const Camera& camera, const SilhouetteSettings& settings,
+                 SilhouetteFrame& frame);
 };
 
-RayCastSilhouetteRenderer::RayCastSilhouetteRenderer() : m_cache(std::make_unique<Cache>()) {}
+// Mode a keeps the active cells while the iso-value, brick size and mode stay; segments depend on
+// the eye and are found anew for every view. Mode b finds the cells every frame.
+void RayCastSilhouetteRenderer::State::frameOn(RayCastKernelSet& set, const Camera& camera,
+                                               const SilhouetteSettings& settings,
+                                               SilhouetteFrame& frame) {
+    const double storedIso = storedIsoValue(*volume, settings.isoReal);
+    const bool stale = prepared != &set || !(preparedIso == storedIso) ||
+                       preparedBrickCells != settings.brickCells || preparedMode != settings.mode ||
+                       settings.mode == ExtractionMode::EveryFrameB;
+    if (stale) {
+        prepared = nullptr; // until a prepare completes
+        set.prepare(storedIso, settings, frame);
+        prepared = &set;
+        preparedIso = storedIso;
+        preparedBrickCells = settings.brickCells;
+        preparedMode = settings.mode;
+    }
+    if (settings.cancel && settings.cancel->isCancelled())
+        throw core::Cancelled();
+    set.drawView(camera, settings, frame);
+    last = &set;
+}
+
+RayCastSilhouetteRenderer::RayCastSilhouetteRenderer(Backend backend)
+    : m_state(std::make_unique<State>()) {
+    if (backend == Backend::Cuda) {
+        m_state->device = makeCudaRayCastKernels();
+        if (!m_state->device)
+            throw core::Error("method 2", "this build has no CUDA back-end");
+    }
+}
+
 RayCastSilhouetteRenderer::~RayCastSilhouetteRenderer() = default;
 
+std::string_view RayCastSilhouetteRenderer::backendName() const {
+    const State& s = *m_state;
+    if (s.last)
+        return s.last->backendName();
+    return s.device ? s.device->backendName() : "cpu";
+}
+
 void RayCastSilhouetteRenderer::setVolume(const volume::Volume& volume) {
-    m_volume = &volume;
-    m_cache = std::make_unique<Cache>();
+    State& s = *m_state;
+    s.volume = &volume;
+    if (s.device)
+        s.device->bind(&volume);
+    if (s.cpu)
+        s.cpu->bind(&volume);
+    s.deviceFailed = false;
+    s.prepared = nullptr;
+    s.last = nullptr;
+}
+
+void RayCastSilhouetteRenderer::releaseVolume() {
+    State& s = *m_state;
+    if (s.device)
+        s.device->bind(nullptr);
+    if (s.cpu)
+        s.cpu->bind(nullptr);
+    s.volume = nullptr;
+    s.prepared = nullptr;
+    s.last = nullptr;
+}
+
+SilhouetteFrame RayCastSilhouetteRenderer::renderFrame(const Camera& camera,
+                                                       const SilhouetteSettings& settings) {
+    State& s = *m_state;
+    if (!s.volume)
+        throw core::Error(s.device ? "method 2 (CUDA)" : "method 2", "no volume bound (setVolume)");
+    if (settings.cancel && settings.cancel->isCancelled())
+        throw core::Cancelled();
+    SilhouetteFrame frame;
+    RayCastKernelSet& set = s.setFor(settings);
+    try {
+        s.frameOn(set, camera, settings, frame);
+    } catch (const OutOfDeviceMemory& error) {
+        // Method 2 has no streamed variant: out of device memory, it goes to the CPU for this
+        // volume (until the next setVolume).
+        kLog.warning("method 2 (" + std::string(set.backendName()) + "): " + error.what() +
+                     "; rendering on the CPU");
+        s.device->bind(nullptr);
+        s.device->bind(s.volume); // frees what the failed attempt holds, uploads again later
+        s.deviceFailed = true;
+        s.prepared = nullptr;
+        frame = SilhouetteFrame();
+        s.frameOn(s.cpuSet(), camera, settings, frame);
+    }
+    return frame;
+}
+
+static const CpuRayCastKernels& cpuFrameOf(const RayCastKernelSet* last,
+                                           const CpuRayCastKernels* cpu) {
+    if (!cpu || last != cpu)
+        throw core::Error("method 2", "the last frame was not drawn on the CPU");
+    return *cpu;
 }
 
 std::size_t RayCastSilhouetteRenderer::activeCellCount() const {
-    return m_cache->kernel.activeCellCount();
+    const State& s = *m_state;
+    return s.cpu && s.last == s.cpu.get() ? s.cpu->kernel().activeCellCount() : 0;
 }
 
 std::vector<RayCastSilhouetteRenderer::Segment> RayCastSilhouetteRenderer::lastSegments() const {
+    const auto& kernel = cpuFrameOf(m_state->last, m_state->cpu.get()).kernel();
     std::vector<Segment> out;
-    const auto& kernel = m_cache->kernel;
     out.reserve(kernel.segmentCount());
     for (std::size_t c = 0; c < kernel.segmentChunkCount(); ++c)
         for (const auto& s : kernel.segmentChunk(c))
@@ -57,119 +157,10 @@ std::vector<RayCastSilhouetteRenderer::Segment> RayCastSilhouetteRenderer::lastS
     return out;
 }
 
-static kernels::cpu::SilhouetteView viewOf(const Camera& camera) {
-    kernels::cpu::SilhouetteView view;
-    view.orthographic = camera.isOrthographic();
-    view.eyeOrDirection = view.orthographic ? -camera.forward() : camera.eye();
-    return view;
-}
-
 bool RayCastSilhouetteRenderer::isPointVisible(const Camera& camera, glm::dvec3 point) const {
-    if (!m_cache->kernel.isPrepared())
+    if (!m_state->cpu)
         throw core::Error("method 2", "isPointVisible() needs a render() first");
-    return m_cache->kernel.isVisible(point, viewOf(camera));
-}
-
-SilhouetteFrame RayCastSilhouetteRenderer::renderFrame(const Camera& camera,
-                                                  const SilhouetteSettings& settings) {
-    if (!m_volume)
-        throw core::Error("method 2", "no volume bound (setVolume)");
-    const volume::Volume& volume = *m_volume;
-    const double storedIso = storedIsoValue(volume, settings.isoReal);
-    Cache& cache = *m_cache;
-
-    SilhouetteFrame frame;
-    frame.lines = PixelMask(camera.width(), camera.height());
-
-    auto start = Clock::now();
-    const bool cachedMode = settings.mode == ExtractionMode::CachedA;
-    const bool stale = !cache.valid || cache.storedIso != storedIso ||
-                       cache.brickCells != settings.brickCells || (cachedMode && !cache.withCones);
-    if (stale || !cachedMode) {
-        const glm::ivec3 cells = glm::max(volume.dims() - 1, glm::ivec3(0));
-        const int edge = settings.brickCells > 0 ? settings.brickCells
-                                                 : std::max({cells.x, cells.y, cells.z, 1});
-        const volume::BrickGrid grid = volume::BrickGrid::build(volume, glm::ivec3(edge));
-        // Normal cones pay off only when the cells serve several views (mode a).
-        cache.valid = false; // until a prepare completes
-        if (!cache.kernel.prepare(volume, grid, storedIso, cachedMode, settings.threads,
-                                  settings.cancel))
-            throw core::Cancelled();
-        cache.withCones = cachedMode;
-        cache.storedIso = storedIso;
-        cache.brickCells = settings.brickCells;
-        cache.valid = true;
-        frame.times.extractMs = msSince(start);
-    }
-
-    const auto throwIfCancelled = [&] {
-        if (settings.cancel && settings.cancel->isCancelled())
-            throw core::Cancelled();
-    };
-    throwIfCancelled();
-    start = Clock::now();
-    const kernels::cpu::SilhouetteView view = viewOf(camera);
-    frame.triangles = cache.kernel.extractSegments(view, settings.threads);
-    frame.segments = cache.kernel.segmentCount();
-    frame.times.silhouetteMs = msSince(start);
-
-    start = Clock::now();
-    const std::size_t chunks = cache.kernel.segmentChunkCount();
-    if (cache.chunkLines.size() < chunks) {
-        cache.chunkLines.resize(chunks);
-        cache.chunkDots.resize(chunks);
-    }
-    auto pixelOf = [&](glm::dvec3 p) { return glm::vec2(camera.project(p).pixel); };
-    core::parallelFor(
-        chunks,
-        [&](std::size_t c) {
-            throwIfCancelled();
-            auto& lines = cache.chunkLines[c];
-            auto& dots = cache.chunkDots[c];
-            lines.clear();
-            dots.clear();
-            for (const kernels::SegmentEndpoints& segment : cache.kernel.segmentChunk(c)) {
-                const glm::dvec3 a(segment.a), b(segment.b);
-                if (!settings.visibility) {
-                    lines.push_back(pixelOf(a));
-                    lines.push_back(pixelOf(b));
-                } else if (!settings.testAlongSegment) {
-                    if (cache.kernel.isVisible(a, view) && cache.kernel.isVisible(b, view)) {
-                        lines.push_back(pixelOf(a));
-                        lines.push_back(pixelOf(b));
-                    }
-                } else {
-                    // One test per step of rasterizeLine (at most a pixel apart), with its own
-                    // arithmetic, keeping exactly the pixels whose step is visible.
-                    const glm::dvec2 pa(pixelOf(a)), pb(pixelOf(b));
-                    const glm::dvec2 delta = pb - pa;
-                    const int count =
-                        int(std::ceil(std::max(std::abs(delta.x), std::abs(delta.y))));
-                    for (int step = 0; step <= count; ++step) {
-                        const double t = count == 0 ? 0.0 : double(step) / double(count);
-                        if (cache.kernel.isVisible(a + t * (b - a), view)) {
-                            const glm::dvec2 q = pa + t * delta;
-                            dots.push_back({int(std::floor(q.x)), int(std::floor(q.y))});
-                        }
-                    }
-                }
-            }
-        },
-        settings.threads);
-    frame.times.visibilityMs = msSince(start);
-
-    // Drawing is serial: a pass over the pieces is cheap and needs no atomic pixel writes.
-    start = Clock::now();
-    for (std::size_t c = 0; c < chunks; ++c) {
-        const auto& lines = cache.chunkLines[c];
-        for (std::size_t i = 0; i + 1 < lines.size(); i += 2)
-            rasterizeLine(frame.lines, glm::dvec2(lines[i]), glm::dvec2(lines[i + 1]));
-        for (const glm::ivec2 dot : cache.chunkDots[c])
-            if (frame.lines.contains(dot.x, dot.y))
-                frame.lines.set(dot.x, dot.y);
-    }
-    frame.times.drawMs = msSince(start);
-    return frame;
+    return m_state->cpu->isPointVisible(camera, point);
 }
 
 } // namespace lw::render

@@ -9,8 +9,6 @@
 #include "lw/render/geometry_shader_silhouette_renderer.h"
 #endif
 #if LINEWORK_CUDA
-#include "cuda/cuda_raycast_silhouette_renderer.h"
-#include "cuda/cuda_zbuffer_silhouette_renderer.h"
 #include "lw/kernels/cuda/cuda_device.h"
 #endif
 
@@ -83,15 +81,16 @@ Backend resolveBackend(Backend requested, SilhouetteMethod method, std::string* 
     Backend chosen = Backend::Cpu;
     if (requested != Backend::Cpu) {
         const CudaAvailability cuda = cudaAvailability();
-        const bool hasKernels =
-            method == SilhouetteMethod::ZBuffer || method == SilhouetteMethod::RayCastVisibility ||
-            (method == SilhouetteMethod::GeometryShader && kCudaGlInterop);
+        const bool hasKernels = method == SilhouetteMethod::ZBuffer ||
+                                method == SilhouetteMethod::RayCastVisibility ||
+                                (method == SilhouetteMethod::GeometryShader && kCudaGlInterop);
         if (requested == Backend::Cuda) {
             if (!cuda.available)
                 throw core::Error("--backend cuda", cuda.reason);
             if (!hasKernels)
-                throw core::Error("--backend cuda", "method " + std::to_string(int(method)) +
-                                                        " has no CUDA implementation in this build");
+                throw core::Error("--backend cuda",
+                                  "method " + std::to_string(int(method)) +
+                                      " has no CUDA implementation in this build");
             chosen = Backend::Cuda;
         } else if (!cuda.available) {
             note = "auto: " + cuda.reason + ", using CPU";
@@ -132,17 +131,11 @@ createSilhouetteRenderer(SilhouetteMethod method, Backend requested, std::string
                           "no OpenGL context: this build has no OpenGL/EGL (LINEWORK_GL=0)");
 #endif
     case SilhouetteMethod::RayCastVisibility:
-#if LINEWORK_CUDA
-        if (backend == Backend::Cuda)
-            return std::make_unique<CudaRayCastSilhouetteRenderer>();
-#endif
-        return std::make_unique<RayCastSilhouetteRenderer>();
+        return std::make_unique<RayCastSilhouetteRenderer>(backend == Backend::Cuda ? Backend::Cuda
+                                                                                    : Backend::Cpu);
     case SilhouetteMethod::ZBuffer:
-#if LINEWORK_CUDA
-        if (backend == Backend::Cuda)
-            return std::make_unique<CudaZBufferSilhouetteRenderer>();
-#endif
-        return std::make_unique<ZBufferSilhouetteRenderer>();
+        return std::make_unique<ZBufferSilhouetteRenderer>(backend == Backend::Cuda ? Backend::Cuda
+                                                                                    : Backend::Cpu);
     }
     throw core::Error("silhouette method", std::to_string(int(method)) + " is not 1, 2 or 3");
 }

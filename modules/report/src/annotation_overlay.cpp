@@ -56,24 +56,31 @@ double overlayScale(int height, const OverlayStyle& style) {
     return std::max(0.5, height / style.referenceHeight);
 }
 
-void burnInAnnotations(QImage& panel, const std::vector<annotation::Annotation>& annotations,
-                       const render::Camera& camera, const OverlayStyle& style) {
-    if (annotations.empty() || panel.isNull())
+void drawAnnotation(QPainter& painter, const annotation::Annotation& annotation,
+                    const render::Camera& camera, double scale, const OverlayStyle& style) {
+    const annotation::ProjectedAnnotation projected =
+        annotation::projectAnnotation(annotation, camera);
+    if (!projected.inFront)
         return;
-    const double scale = overlayScale(panel.height(), style);
-    QPainter painter(&panel);
+    painter.save();
     painter.setRenderHint(QPainter::Antialiasing);
     painter.setRenderHint(QPainter::TextAntialiasing);
     painter.setPen(QPen(style.colour, style.lineWidth * scale, Qt::SolidLine, Qt::RoundCap));
     QFont font = painter.font();
     font.setPixelSize(std::max(6, int(std::lround(style.fontPixelSize * scale))));
     painter.setFont(font);
-    for (const annotation::Annotation& item : annotations) {
-        const annotation::ProjectedAnnotation projected =
-            annotation::projectAnnotation(item, camera);
-        if (projected.inFront)
-            drawShapes(painter, overlayShapes(projected, scale), style);
-    }
+    drawShapes(painter, overlayShapes(projected, scale), style);
+    painter.restore();
+}
+
+void burnInAnnotations(QImage& panel, const std::vector<annotation::Annotation>& annotations,
+                       const render::Camera& camera, const OverlayStyle& style) {
+    if (annotations.empty() || panel.isNull())
+        return;
+    const double scale = overlayScale(panel.height(), style);
+    QPainter painter(&panel);
+    for (const annotation::Annotation& item : annotations)
+        drawAnnotation(painter, item, camera, scale, style);
 }
 
 } // namespace lw::report

@@ -1,5 +1,7 @@
 #include "lw/report/pdf_report.h"
 
+#include "lw/report/export_image.h"
+
 #include <QBuffer>
 #include <QFont>
 #include <QFontMetricsF>
@@ -132,7 +134,7 @@ std::vector<std::vector<Block>> paginate(QPainter& painter, QRectF area,
     return pages;
 }
 
-void drawPicture(QPainter& painter, QRectF area, const QImage& picture) {
+void drawPicture(QPainter& painter, QRectF area, const QImage& picture, const PictureLines& lines) {
     if (picture.isNull())
         return;
     QSizeF size = picture.size();
@@ -144,6 +146,14 @@ void drawPicture(QPainter& painter, QRectF area, const QImage& picture) {
             ? picture.scaled(size.toSize(), Qt::KeepAspectRatio, Qt::SmoothTransformation)
             : picture;
     painter.drawImage(QRectF(area.topLeft(), size), embedded);
+    if (!lines.lines.empty()) {
+        // In the picture's pixels, scaled like it: paths in the PDF, not pixels.
+        painter.save();
+        painter.translate(area.topLeft());
+        painter.scale(size.width() / picture.width(), size.height() / picture.height());
+        strokeLines(painter, lines.lines, lines.width, lines.colour);
+        painter.restore();
+    }
     painter.setPen(QPen(Qt::lightGray, 2));
     painter.drawRect(QRectF(area.topLeft(), size));
     painter.setPen(Qt::black);
@@ -184,6 +194,20 @@ std::vector<Block> measurementBlocks(const ReportInfo& info,
 
 } // namespace
 
+std::string describeRendering(render::SilhouetteMethod method, double iso,
+                              const render::CameraSetup& view) {
+    static const char* const names[] = {"", "marching cubes + geometry-shader silhouette",
+                                        "silhouette with ray-cast visibility",
+                                        "z-buffer silhouette"};
+    const int number = std::clamp(int(method), 1, 3);
+    char text[256];
+    std::snprintf(text, sizeof text,
+                  "Linework silhouette method %d (%s, Morar et al. 2013), iso-value %g, "
+                  "view azimuth %g, elevation %g",
+                  number, names[number], iso, view.azimuthDeg, view.elevationDeg);
+    return text;
+}
+
 std::vector<std::pair<QString, QString>> reportHeaderRows(const ReportInfo& info) {
     std::vector<std::pair<QString, QString>> rows;
     if (info.identity) {
@@ -211,7 +235,8 @@ std::vector<std::pair<QString, QString>> reportHeaderRows(const ReportInfo& info
 }
 
 QByteArray renderPdfReport(const ReportInfo& info, const QImage& picture,
-                           const std::vector<annotation::Annotation>& annotations) {
+                           const std::vector<annotation::Annotation>& annotations,
+                           const PictureLines& lines) {
     QByteArray bytes;
     QBuffer buffer(&bytes);
     buffer.open(QIODevice::WriteOnly);
@@ -236,7 +261,7 @@ QByteArray renderPdfReport(const ReportInfo& info, const QImage& picture,
     for (const auto& [label, value] : reportHeaderRows(info))
         header.push_back({Block::Kind::Row, {label, value}, false, {0.22, 0.78}});
     const double y = drawBlocks(painter, page.topLeft(), page.width(), header) + 60;
-    drawPicture(painter, QRectF(0, y, page.width(), body.bottom() - y), picture);
+    drawPicture(painter, QRectF(0, y, page.width(), body.bottom() - y), picture, lines);
     drawFooter(painter, page, info, 1, pages);
     for (std::size_t i = 0; i < later.size(); ++i) {
         writer.newPage();

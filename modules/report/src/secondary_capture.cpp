@@ -154,6 +154,14 @@ std::string secondaryCaptureFileName(int number) {
     return name;
 }
 
+void checkSecondaryCaptureTarget(const std::filesystem::path& folder, core::Overwrite overwrite) {
+    std::error_code ec;
+    if (std::filesystem::is_directory(folder, ec))
+        core::checkWritableTarget(folder / secondaryCaptureFileName(1), overwrite);
+    else
+        core::checkWritableTarget(folder, core::Overwrite::Refuse); // created when written
+}
+
 std::vector<std::filesystem::path> writeSecondaryCapture(const std::filesystem::path& folder,
                                                          const std::vector<QImage>& pictures,
                                                          const SecondaryCaptureSeries& series,

@@ -1,6 +1,7 @@
 #include "lw/report/svg_export.h"
 
 #include "lw/annotation/annotation_projection.h"
+#include "lw/render/svg_lines.h"
 #include "lw/report/export_files.h"
 #include "overlay_shapes.h"
 
@@ -75,6 +76,15 @@ QByteArray renderSvg(const RenderedPanels& panels,
                .arg(raster.width())
                .arg(raster.height())
                .arg(QString::fromLatin1(png.toBase64()));
+    // The silhouette's vector lines (when the panels carry them) over the embedded raster, whose
+    // silhouette panel is then blank (panelsOf).
+    const std::vector<render::Polyline> lines = pictureLines(panels, layout);
+    if (!lines.empty()) {
+        render::SvgLineStyle lineStyle;
+        lineStyle.colour = panels.silhouetteLineColour.name().toStdString();
+        lineStyle.widthPx = panels.silhouetteLineWidth;
+        svg += QString::fromStdString(render::silhouettePaths(lines, lineStyle));
+    }
     const QString colour = style.colour.name();
     int x = 0;
     for (const QImage& panel : images) {

@@ -60,6 +60,14 @@ const char* const kSchemaV1[] = {
     " imported_at TEXT NOT NULL, source_root TEXT, file TEXT, reason TEXT NOT NULL)",
 };
 
+// Version 2 adds the annotations, one JSON document per series UID (no foreign key: they outlive
+// the series' row, see seriesAnnotations).
+const char* const kSchemaV2Additions[] = {
+    "CREATE TABLE series_annotations ("
+    " series_uid TEXT PRIMARY KEY,"
+    " json TEXT NOT NULL, updated_at TEXT NOT NULL)",
+};
+
 const char* kindName(SeriesMessage::Kind kind) {
     return kind == SeriesMessage::Kind::Error ? "error" : "warning";
 }
@@ -209,9 +217,12 @@ void StudyDatabase::migrate() {
         return;
     QSqlDatabase db = QSqlDatabase::database(m_connectionName);
     Transaction transaction(db, m_path);
+    // Each step takes the file from one version to the next, in the same transaction: an older
+    // database keeps its rows and gains what is new.
     if (version < 1)
         createSchemaV1();
-    // Later versions: if (version < 2) migrateToV2(); ...
+    if (version < 2)
+        migrateToV2();
     QSqlQuery query(db);
     exec(query, QStringLiteral("PRAGMA user_version = %1").arg(kSchemaVersion), m_path,
          "cannot set the schema version");
@@ -222,6 +233,12 @@ void StudyDatabase::createSchemaV1() {
     QSqlQuery query(QSqlDatabase::database(m_connectionName));
     for (const char* statement : kSchemaV1)
         exec(query, QString::fromLatin1(statement), m_path, "cannot create the schema");
+}
+
+void StudyDatabase::migrateToV2() {
+    QSqlQuery query(QSqlDatabase::database(m_connectionName));
+    for (const char* statement : kSchemaV2Additions)
+        exec(query, QString::fromLatin1(statement), m_path, "cannot add the annotations table");
 }
 
 int StudyDatabase::seriesCount() const {
@@ -605,6 +622,35 @@ bool StudyDatabase::removeSeries(const QString& seriesUid) {
     removeEmptyParents();
     transaction.commit();
     return removed;
+}
+
+// ---- annotations ---------------------------------------------------------------------------
+
+std::optional<QString> StudyDatabase::seriesAnnotations(const QString& seriesUid) const {
+    QSqlQuery query(QSqlDatabase::database(m_connectionName));
+    query.prepare(QStringLiteral("SELECT json FROM series_annotations WHERE series_uid = ?"));
+    query.addBindValue(seriesUid);
+    exec(query, m_path, "cannot read the annotations of a series");
+    if (!query.next())
+        return std::nullopt;
+    return query.value(0).toString();
+}
+
+void StudyDatabase::setSeriesAnnotations(const QString& seriesUid, const QString& json) {
+    QSqlDatabase db = QSqlDatabase::database(m_connectionName);
+    Transaction transaction(db, m_path);
+    QSqlQuery query(db);
+    query.prepare(QStringLiteral(
+        "INSERT INTO series_annotations (series_uid, json, updated_at) VALUES (?, ?, ?)"
+        " ON CONFLICT(series_uid) DO UPDATE SET json = excluded.json,"
+        " updated_at = excluded.updated_at"));
+    query.addBindValue(seriesUid);
+    query.addBindValue(json);
+    query.addBindValue(QDateTime::currentDateTimeUtc().toString(Qt::ISODate));
+    if (!query.exec())
+        throw core::Error(str(m_path), "cannot save the annotations of series " + str(seriesUid) +
+                                           ": " + str(query.lastError().text()));
+    transaction.commit();
 }
 
 } // namespace lw::studydb

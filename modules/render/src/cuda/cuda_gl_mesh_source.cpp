@@ -5,8 +5,10 @@
 #include "lw/core/error.h"
 #include "lw/core/log.h"
 #include "lw/kernels/cpu/marching_cubes_cpu.h"
+#include "lw/kernels/cuda/cuda_device.h"
 #include "lw/kernels/cuda/gl_mesh_interop.h"
 #include "lw/kernels/cuda/marching_cubes_cuda.h"
+#include "lw/render/gpu_memory_plan.h"
 #endif
 
 namespace lw::render {
@@ -25,12 +27,55 @@ public:
     void setVolume(const volume::Volume& volume) override {
         m_volume = &volume;
         m_uploaded = false;
+        m_streamed = false;
+        m_rowRanges.reset();
+    }
+
+    void releaseVolume() override {
+        m_marchingCubes.release(); // the device copy and a streamed volume's host registration
+        m_volume = nullptr;
+        m_uploaded = false;
+        m_streamed = false;
+        m_rowRanges.reset();
+    }
+
+    bool extractPiecesInto(SilhouetteGlRenderer& gl, const SilhouetteSettings& settings,
+                           const PieceDrawer& drawPiece) override {
+        if (!m_volume)
+            throw core::Error("method 1 (CUDA)", "no volume bound");
+        if (!m_streamed) {
+            m_uploaded = false; // the streamed state replaces a resident volume
+            throwIfCudaFailed(
+                kWhere, m_marchingCubes.setStreamedVolume(hostVolumeView(*m_volume),
+                                                          kernels::cpu::voxelGridSetup(*m_volume)));
+            m_streamed = true;
+            m_rowRanges = std::make_unique<VoxelRowRanges>(*m_volume);
+        }
+        const double storedIso = storedIsoValue(*m_volume, settings.isoReal);
+        std::size_t budget = settings.gpuMemoryBudget;
+        if (budget == 0)
+            budget =
+                defaultGpuBudget(kernels::cuda::freeDeviceBytes() + m_marchingCubes.deviceBytes());
+        const std::vector<glm::ivec2> layers =
+            planSlabs(m_volume->dims(), volume::voxelSize(m_volume->voxelType()), budget, 0,
+                      settings.gpuSlabLayers);
+        const std::vector<kernels::CellSlab> slabs =
+            cropSlabsToSurface(layers, *m_rowRanges, storedIso);
+        throwIfCudaFailed(
+            kWhere, m_marchingCubes.extractSlabs(storedIso, slabs,
+                                                 [&](const kernels::cuda::DeviceMeshView& mesh) {
+                                                     writeIntoGl(gl, mesh);
+                                                     drawPiece(mesh.triangleCount);
+                                                     return kernels::cuda::CudaStatus::success();
+                                                 }));
+        return true;
     }
 
     void extractInto(SilhouetteGlRenderer& gl, const SilhouetteSettings& settings) override {
         if (!m_volume)
             throw core::Error("method 1 (CUDA)", "no volume bound");
         if (!m_uploaded) {
+            m_streamed = false; // a resident volume replaces the streamed state
             throwIfCudaFailed(kWhere,
                               m_marchingCubes.setVolume(hostVolumeView(*m_volume),
                                                         kernels::cpu::voxelGridSetup(*m_volume)));
@@ -38,7 +83,12 @@ public:
         }
         throwIfCudaFailed(kWhere,
                           m_marchingCubes.extract(storedIsoValue(*m_volume, settings.isoReal)));
-        const kernels::cuda::DeviceMeshView mesh = m_marchingCubes.mesh();
+        writeIntoGl(gl, m_marchingCubes.mesh());
+    }
+
+    // The device mesh into gl's buffers: device to device through interop, or through host
+    // memory where interop fails (a GL context on another device).
+    void writeIntoGl(SilhouetteGlRenderer& gl, const kernels::cuda::DeviceMeshView& mesh) {
         gl.reserveMesh(mesh.vertexCount, mesh.triangleCount);
         if (m_interopWorks) {
             const kernels::cuda::CudaStatus copied =
@@ -91,6 +141,8 @@ public:
 private:
     const volume::Volume* m_volume = nullptr;
     bool m_uploaded = false;
+    bool m_streamed = false; // setStreamedVolume done (L frames); exclusive with m_uploaded
+    std::unique_ptr<VoxelRowRanges> m_rowRanges; // L frames: which rows of a slab can matter
     bool m_interopWorks = true;
     std::size_t m_candidateGeneration = 0;
     kernels::cuda::MarchingCubesCuda m_marchingCubes;

@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <functional>
 #include <optional>
 
 namespace lw::render {
@@ -40,6 +41,7 @@ struct GeometryShaderSilhouetteRenderer::State {
     std::unique_ptr<GlMeshSource> source;
     bool meshOnHost = true;
     bool lastFrameChunked = false;
+    bool lastFrameOnSource = false; // an L frame the source streamed (else the CPU's bricks)
     // What the uploaded mesh was extracted with; empty when there is none (or the volume changed).
     std::optional<double> meshIso;
     int meshBrickCells = 0;
@@ -61,6 +63,34 @@ struct GeometryShaderSilhouetteRenderer::State {
             closedIso = isoReal;
         }
         return closed;
+    }
+
+    // The L frame's pieces on the CPU: the active bricks of the brick grid (kept in mode a,
+    // rebuilt in mode b, as S's mode b rebuilds its extractor), each extracted and uploaded
+    // (billed to extraction, as S's upload is), then drawn.
+    void drawCpuBricks(const SilhouetteSettings& settings, double storedIso, SilhouetteFrame& frame,
+                       const std::function<void(std::size_t)>& drawPiece) {
+        auto start = Clock::now();
+        if (settings.mode == ExtractionMode::EveryFrameB || gridBrickCells != settings.brickCells) {
+            gridBrickCells = 0;
+            grid = volume::BrickGrid::build(*volume, glm::ivec3(settings.brickCells));
+            gridBrickCells = settings.brickCells;
+        }
+        const std::vector<int> active = grid.activeBricks(storedIso);
+        const kernels::cpu::BrickSurfaceExtractor extractor(*volume, storedIso);
+        frame.times.extractMs += msSince(start);
+        for (const int index : active) {
+            start = Clock::now();
+            extractor.extract(grid.bricks()[std::size_t(index)], brick);
+            const std::size_t triangles = brick.triangleCount();
+            if (triangles > 0) {
+                gl.uploadMesh(brick.positions, brick.normals, brick.indices);
+                glFinish();
+            }
+            frame.times.extractMs += msSince(start);
+            if (triangles > 0)
+                drawPiece(triangles);
+        }
     }
 
     void dropWholeMesh() {
@@ -125,8 +155,9 @@ GeometryShaderSilhouetteRenderer::~GeometryShaderSilhouetteRenderer() {
 }
 
 std::string_view GeometryShaderSilhouetteRenderer::backendName() const {
-    // L frames extract brick by brick on the CPU whatever the source.
-    return m_state->source && !m_state->lastFrameChunked ? m_state->source->backendName() : "gl";
+    // L frames stream slabs on the source's device (CUDA) or extract bricks on the CPU.
+    const bool onSource = !m_state->lastFrameChunked || m_state->lastFrameOnSource;
+    return m_state->source && onSource ? m_state->source->backendName() : "gl";
 }
 
 void GeometryShaderSilhouetteRenderer::useCudaExtraction() {
@@ -137,6 +168,18 @@ void GeometryShaderSilhouetteRenderer::useCudaExtraction() {
         source->setVolume(*m_state->volume);
     m_state->source = std::move(source);
     m_state->meshIso.reset();
+}
+
+void GeometryShaderSilhouetteRenderer::releaseVolume() {
+    State& s = *m_state;
+    if (s.source)
+        s.source->releaseVolume();
+    s.volume = nullptr;
+    s.meshIso.reset();
+    s.closedIso.reset();
+    s.mesh = Mesh{};
+    s.gridBrickCells = 0;
+    s.grid = volume::BrickGrid{};
 }
 
 void GeometryShaderSilhouetteRenderer::setVolume(const volume::Volume& volume) {
@@ -168,7 +211,7 @@ std::string GeometryShaderSilhouetteRenderer::contextDescription() const {
 }
 
 SilhouetteFrame GeometryShaderSilhouetteRenderer::renderFrame(const Camera& camera,
-                                                         const SilhouetteSettings& settings) {
+                                                              const SilhouetteSettings& settings) {
     m_state->lastFrameChunked = settings.brickCells > 0;
     if (settings.brickCells > 0)
         return renderBricks(camera, settings);
@@ -237,17 +280,6 @@ SilhouetteFrame GeometryShaderSilhouetteRenderer::renderBricks(const Camera& cam
     s.stats = {};
     SilhouetteFrame frame;
 
-    // The brick grid: kept in mode a, rebuilt in mode b (as S's mode b rebuilds its extractor).
-    auto start = Clock::now();
-    if (settings.mode == ExtractionMode::EveryFrameB || s.gridBrickCells != settings.brickCells) {
-        s.gridBrickCells = 0;
-        s.grid = volume::BrickGrid::build(*s.volume, glm::ivec3(settings.brickCells));
-        s.gridBrickCells = settings.brickCells;
-    }
-    const std::vector<int> active = s.grid.activeBricks(storedIso);
-    const kernels::cpu::BrickSurfaceExtractor extractor(*s.volume, storedIso);
-    frame.times.extractMs += msSince(start);
-
     SilhouetteGlOptions options;
     options.panel = GlPanel::Silhouette;
     options.visibility = settings.visibility;
@@ -260,35 +292,32 @@ SilhouetteFrame GeometryShaderSilhouetteRenderer::renderBricks(const Camera& cam
     options.cullBackFacesInDepthPass = settings.visibility && s.surfaceClosed(settings.isoReal);
 
     glFinish();
-    start = Clock::now();
+    auto start = Clock::now();
     s.gl.clear(camera.width(), camera.height(), options.background);
     glFinish();
     frame.times.drawMs += msSince(start);
-    for (const int index : active) {
+    // Each piece of the surface, once in the GL buffers, is drawn over the frame so far: its
+    // surface (depth + background colour), then its silhouette lines.
+    const auto drawPiece = [&](std::size_t triangles) {
         if (settings.cancel && settings.cancel->isCancelled())
             throw core::Cancelled();
-        // Extract and upload one brick (billed to extraction, as S's upload is) ...
-        start = Clock::now();
-        extractor.extract(s.grid.bricks()[std::size_t(index)], s.brick);
-        const std::size_t triangles = s.brick.triangleCount();
-        if (triangles > 0) {
-            s.gl.uploadMesh(s.brick.positions, s.brick.normals, s.brick.indices);
-            glFinish();
-        }
-        frame.times.extractMs += msSince(start);
-        if (triangles == 0)
-            continue;
-        // ... then draw it over the frame so far: its surface (depth + background colour), then
-        // its silhouette lines.
-        start = Clock::now();
+        const auto drawStart = Clock::now();
         const SilhouetteGlStats stats = s.gl.render(camera, options);
         glFinish();
-        frame.times.drawMs += msSince(start);
+        frame.times.drawMs += msSince(drawStart);
         frame.triangles += stats.triangles;
         frame.segments += stats.segments;
         s.stats.peakUploadedTriangles = std::max(s.stats.peakUploadedTriangles, triangles);
         ++s.stats.bricksDrawn;
-    }
+    };
+    // The CUDA source streams slabs through its device budget; the CPU extracts bricks.
+    start = Clock::now();
+    const double drawnBefore = frame.times.drawMs;
+    s.lastFrameOnSource = s.source && s.source->extractPiecesInto(s.gl, settings, drawPiece);
+    if (s.lastFrameOnSource)
+        frame.times.extractMs += msSince(start) - (frame.times.drawMs - drawnBefore);
+    else
+        s.drawCpuBricks(settings, storedIso, frame, drawPiece);
     start = Clock::now();
     frame.lines = PixelMask(camera.width(), camera.height());
     s.gl.readRedMask(kBackground.r, frame.lines.pixels());

@@ -5,10 +5,12 @@
 // runs on the GPU and writes the GL buffers directly through CUDA-GL interop, no host round trip.
 
 #include "lw/render/iso_surface.h"
-#include "lw/render/silhouette_renderer.h"
 #include "lw/render/silhouette_gl_renderer.h"
+#include "lw/render/silhouette_renderer.h"
 #include "lw/volume/volume.h"
 
+#include <cstddef>
+#include <functional>
 #include <memory>
 #include <string_view>
 
@@ -31,6 +33,18 @@ public:
                                      std::size_t& indices) = 0;
     // GL objects the source registered: released while the context is still current.
     virtual void releaseGl() = 0;
+    // The chunked (L) variant on the source's device: the surface in pieces that fit its memory
+    // budget (settings.gpuMemoryBudget), each piece written into gl's mesh buffers and then
+    // drawn by drawPiece(triangles) before the next one replaces it. False when the source has
+    // no such path (the CPU: the renderer extracts bricks itself).
+    using PieceDrawer = std::function<void(std::size_t triangles)>;
+    virtual bool extractPiecesInto(SilhouetteGlRenderer& /*gl*/,
+                                   const SilhouetteSettings& /*settings*/,
+                                   const PieceDrawer& /*drawPiece*/) {
+        return false;
+    }
+    // Forget the bound volume (SilhouetteRenderer::releaseVolume).
+    virtual void releaseVolume() {}
 };
 
 // The CUDA source, or null where this build has no CUDA-GL interop.

@@ -23,7 +23,10 @@
 // (only the brick grid's per-brick min/max) and re-extracts every active brick every frame;
 // mode b also rebuilds the grid. extractMs = grid + per-brick extraction and upload; drawMs =
 // clear + per-brick draws + read-back. An L frame frees the whole mesh (mesh() is then empty);
-// renderIsoPanel() still extracts and draws the whole mesh.
+// renderIsoPanel() still extracts and draws the whole mesh. With the CUDA extraction the pieces
+// are the CUDA back-end's streamed slabs instead of CPU bricks (cell layers cropped to the rows
+// that can hold the surface, through settings.gpuMemoryBudget, written into the GL buffers by
+// interop): the same triangles, so the same mask.
 //
 // Only built with LINEWORK_GL=1 (src/gl/); use createSilhouetteRenderer() to get one portably.
 
@@ -58,14 +61,15 @@ public:
     GeometryShaderSilhouetteRenderer& operator=(const GeometryShaderSilhouetteRenderer&) = delete;
 
     SilhouetteMethod method() const override { return SilhouetteMethod::GeometryShader; }
-    // "gl", or "cuda+gl" after useCudaExtraction() (for S frames; L frames extract on the CPU).
+    // "gl", or "cuda+gl" after useCudaExtraction().
     std::string_view backendName() const override;
     void setVolume(const volume::Volume& volume) override;
+    void releaseVolume() override;
     SilhouetteFrame renderFrame(const Camera& camera, const SilhouetteSettings& settings) override;
 
     // Whole-volume (S) frames extract on the CUDA back-end, which writes the GL buffers directly
     // (CUDA-GL interop; through host memory where interop fails). Throws core::Error where this
-    // build has no CUDA with GL interop. The L variant still extracts brick by brick on the CPU.
+    // build has no CUDA with GL interop. L frames then stream slabs through the device.
     void useCudaExtraction();
 
     // The shaded iso-surface panel for the same camera and settings (extracts first if the

@@ -1,5 +1,6 @@
 #pragma once
 
+#include "lw/render/renderer_factory.h"
 #include "lw/render/silhouette_renderer.h"
 
 #include <cstddef>
@@ -9,8 +10,12 @@
 
 namespace lw::render {
 
-// Method 2 on the CPU: silhouette segments from the active cells (no mesh kept) and the paper's
-// ray-cast visibility test (kernels/cpu/raycast_silhouette_cpu.h).
+// Method 2: silhouette segments from the active cells (no mesh kept) and the paper's ray-cast
+// visibility test, on the CPU (kernels/cpu/raycast_silhouette_cpu.h) or the CUDA back-end
+// (kernels/cuda/raycast_silhouette_cuda.h) behind one frame logic (this class; per back-end
+// src/raycast_kernel_set.h). The CUDA back-end has no streamed variant, so its L frames, and every
+// frame of a volume for which the device ran out of memory, run on the CPU (backendName() says
+// which ran the last frame).
 //
 // Visibility rules:
 //   endpoint-only (the paper): a segment is drawn when both of its endpoints are visible, so
@@ -25,15 +30,20 @@ namespace lw::render {
 // against the whole volume, so its image equals the S variant's.
 class RayCastSilhouetteRenderer final : public SilhouetteRenderer {
 public:
-    RayCastSilhouetteRenderer();
+    // Backend::Cuda throws core::Error where this build has no CUDA back-end.
+    explicit RayCastSilhouetteRenderer(Backend backend = Backend::Cpu);
     ~RayCastSilhouetteRenderer() override;
+    RayCastSilhouetteRenderer(const RayCastSilhouetteRenderer&) = delete;
+    RayCastSilhouetteRenderer& operator=(const RayCastSilhouetteRenderer&) = delete;
 
     SilhouetteMethod method() const override { return SilhouetteMethod::RayCastVisibility; }
-    std::string_view backendName() const override { return "cpu"; }
+    std::string_view backendName() const override;
     void setVolume(const volume::Volume& volume) override;
+    void releaseVolume() override;
     SilhouetteFrame renderFrame(const Camera& camera, const SilhouetteSettings& settings) override;
 
-    // Segments (patient mm) of the last render, before the visibility test.
+    // Of the last frame drawn on the CPU (core::Error after a CUDA frame):
+    // segments (patient mm), before the visibility test.
     struct Segment {
         glm::vec3 a;
         glm::vec3 b;
@@ -45,9 +55,8 @@ public:
     bool isPointVisible(const Camera& camera, glm::dvec3 point) const;
 
 private:
-    struct Cache;
-    const volume::Volume* m_volume = nullptr;
-    std::unique_ptr<Cache> m_cache;
+    struct State;
+    std::unique_ptr<State> m_state;
 };
 
 } // namespace lw::render

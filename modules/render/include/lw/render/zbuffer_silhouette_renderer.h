@@ -1,20 +1,25 @@
 #pragma once
 
-// Method 3 on the CPU: an own software z-buffer rasterizer (see
-// lw/kernels/cpu/zbuffer_rasterizer_cpu.h). Per frame:
-//   depth pass   the mesh's triangles into zbuffer1 (top-left rule, perspective-correct depth)
+// Method 3: an own z-buffer rasterizer, on the CPU (lw/kernels/cpu/zbuffer_rasterizer_cpu.h) or
+// the CUDA back-end (lw/kernels/cuda/zbuffer_cuda.h) behind one frame logic. Per frame:
+//   depth pass   the surface's triangles into zbuffer1 (top-left rule, perspective-correct depth)
 //   silhouette   Burns' segment of every triangle from the per-vertex normals, into zbuffer2
 //                (nearest segment per pixel, atomic max on the inverted depth as in the paper)
 //   colour pass  silhouette where zbuffer2 is not behind zbuffer1 (see resolveSilhouette)
-// Chunked (settings.brickCells > 0), the paper's L variant for memory-limited devices: no mesh is
-// kept. Each active brick (its min/max admit the iso-value) is extracted on its own, its
-// silhouette segments drawn into zbuffer2 and its triangles into zbuffer1, and its geometry dropped
-// before the next brick (one brick in flight per worker thread); the colour pass runs once. The
-// brick's vertices are bit-identical to the whole mesh's and both buffers keep per-pixel maxima, so
-// the image is identical to the whole-volume pass. L trades time for memory: it re-extracts every
-// frame, mode a included (only the brick grid is cached).
+// What every back-end shares is this class: mode a keeps the whole surface between frames at one
+// iso-value, mode b extracts every frame; whether the surface is closed (then back faces are
+// culled); the depth tolerance; and, out of device memory, the next way down (CUDA: whole volume
+// -> slabs -> the CPU, logged). What a back-end does is its kernel set (src/zbuffer_kernel_set.h).
+// Chunked (settings.brickCells > 0), the paper's L variant for memory-limited devices: no surface
+// is kept. Each piece (CPU: an active brick, its min/max admitting the iso-value; CUDA: a slab of
+// cell layers streamed through the device budget) is extracted on its own, its silhouette
+// segments drawn into zbuffer2 and its triangles into zbuffer1, and its geometry dropped before
+// the next; the colour pass runs once. A piece's vertices are bit-identical to the whole
+// surface's and both buffers keep per-pixel maxima, so the image is identical to S's. L trades
+// time for memory: it re-extracts every frame, mode a included.
 
 #include "lw/render/iso_surface.h"
+#include "lw/render/renderer_factory.h"
 #include "lw/render/silhouette_renderer.h"
 
 #include <memory>
@@ -23,19 +28,23 @@ namespace lw::render {
 
 class ZBufferSilhouetteRenderer final : public SilhouetteRenderer {
 public:
-    ZBufferSilhouetteRenderer();
+    // Backend::Cuda throws core::Error where this build has no CUDA back-end; Auto is the CPU
+    // here (renderer_factory resolves Auto).
+    explicit ZBufferSilhouetteRenderer(Backend backend = Backend::Cpu);
     ~ZBufferSilhouetteRenderer() override;
     ZBufferSilhouetteRenderer(const ZBufferSilhouetteRenderer&) = delete;
     ZBufferSilhouetteRenderer& operator=(const ZBufferSilhouetteRenderer&) = delete;
 
     SilhouetteMethod method() const override { return SilhouetteMethod::ZBuffer; }
-    std::string_view backendName() const override { return "cpu"; }
+    // The back-end of the last frame: "cuda", or "cpu" (also after a fall back to the CPU).
+    std::string_view backendName() const override;
     void setVolume(const volume::Volume& volume) override;
+    void releaseVolume() override;
     SilhouetteFrame renderFrame(const Camera& camera, const SilhouetteSettings& settings) override;
 
-    // The mesh of the last frame (cached in mode a); empty before the first frame. The shaded
-    // iso-surface panel draws this one, so both panels show the same surface. After an L frame
-    // the whole mesh is extracted here, on the first call (L frames themselves never hold it).
+    // The surface of the last frame (kept in mode a); empty before the first frame. The shaded
+    // iso-surface panel draws this one, so both panels show the same surface. After a frame
+    // that kept none (L) the whole surface is extracted here, on the first call.
     const Mesh& mesh() const;
     const Mesh* surfaceMesh() const override { return &mesh(); }
 

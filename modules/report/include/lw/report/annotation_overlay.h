@@ -10,6 +10,7 @@
 
 #include <QColor>
 #include <QImage>
+#include <QPainter>
 #include <vector>
 
 namespace lw::report {
@@ -26,6 +27,11 @@ struct OverlayStyle {
 // Annotations with an anchor behind the eye are skipped.
 void burnInAnnotations(QImage& panel, const std::vector<annotation::Annotation>& annotations,
                        const render::Camera& camera, const OverlayStyle& style = {});
+
+// Draws one annotation with `painter` in the camera's pixel coordinates, sizes multiplied by
+// `scale`: the same shapes the burn-in makes, for the workstation's live overlay.
+void drawAnnotation(QPainter& painter, const annotation::Annotation& annotation,
+                    const render::Camera& camera, double scale, const OverlayStyle& style = {});
 
 // How many pixels one reference pixel is in an image of `height` (lines and text scale by it).
 double overlayScale(int height, const OverlayStyle& style = {});

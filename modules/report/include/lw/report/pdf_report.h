@@ -7,8 +7,12 @@
 
 #include "lw/annotation/annotation.h"
 #include "lw/input/open_input.h"
+#include "lw/render/camera.h"
+#include "lw/render/silhouette_renderer.h"
+#include "lw/render/visible_polylines.h"
 
 #include <QByteArray>
+#include <QColor>
 #include <QDateTime>
 #include <QImage>
 #include <QString>
@@ -29,11 +33,26 @@ struct ReportInfo {
     std::string softwareVersion;
 };
 
+// How a picture was made, for ReportInfo::method and the Secondary Capture's derivation:
+// "Linework silhouette method 3 (z-buffer silhouette, Morar et al. 2013), iso-value 400, view
+// azimuth 30, elevation 10".
+std::string describeRendering(render::SilhouetteMethod method, double iso,
+                              const render::CameraSetup& view);
+
 // The header's rows (label, value) as page 1 shows them.
 std::vector<std::pair<QString, QString>> reportHeaderRows(const ReportInfo& info);
 
-// The PDF's bytes. `picture` is the exported image with the annotations burned in.
+// Vector lines over the report's picture, in its pixels (pictureLines()).
+struct PictureLines {
+    std::vector<render::Polyline> lines;
+    double width = 1.0;
+    QColor colour = Qt::black;
+};
+
+// The PDF's bytes. `picture` is the exported image with the annotations burned in; `lines`, when
+// given, are drawn over it as vector paths (the silhouette, sharp at any zoom).
 QByteArray renderPdfReport(const ReportInfo& info, const QImage& picture,
-                           const std::vector<annotation::Annotation>& annotations);
+                           const std::vector<annotation::Annotation>& annotations,
+                           const PictureLines& lines = {});
 
 } // namespace lw::report

@@ -30,6 +30,11 @@ std::string secondaryCaptureFileName(int number);
 // file is an error unless `overwrite` allows it; on any failure the files written so far (and
 // a folder created here) are removed. Throws core::Error naming the file and the reason, or the
 // source when it has no StudyInstanceUID.
+// Before rendering: throws core::Error naming the file or folder when writing a series into
+// `folder` is bound to be refused (its first file exists and `overwrite` is Refuse, or the folder
+// or its parent cannot be written), so a refused export stops before any work.
+void checkSecondaryCaptureTarget(const std::filesystem::path& folder, core::Overwrite overwrite);
+
 std::vector<std::filesystem::path> writeSecondaryCapture(const std::filesystem::path& folder,
                                                          const std::vector<QImage>& pictures,
                                                          const SecondaryCaptureSeries& series,

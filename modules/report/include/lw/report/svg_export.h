@@ -1,8 +1,9 @@
 #pragma once
 
-// SVG export. The engine does not hand out the visible silhouette as polylines yet (the line
-// quality issue adds them), so the panels go in as one embedded PNG raster; the annotations are
-// real vector elements over it (lines, arrow heads, arcs, text), editable in a drawing program.
+// SVG export. The iso panel goes in as an embedded PNG raster; the silhouette as vector paths
+// when the panels carry its visible polylines (RenderedPanels::silhouetteLines), otherwise as
+// part of the raster; the annotations are real vector elements over it (lines, arrow heads,
+// arcs, text), editable in a drawing program.
 
 #include "lw/annotation/annotation.h"
 #include "lw/report/export_image.h"

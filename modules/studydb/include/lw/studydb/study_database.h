@@ -39,7 +39,9 @@ struct WriteResult {
 
 class StudyDatabase {
 public:
-    static constexpr int kSchemaVersion = 1;
+    // 1: patients, studies, series, their files and messages, the import log.
+    // 2: the annotations of a series (series_annotations).
+    static constexpr int kSchemaVersion = 2;
 
     // Opens (creating when missing) and migrates the database at `path`. Throws core::Error
     // naming the file when it cannot be opened, is not a database, or was written by a newer
@@ -74,11 +76,20 @@ public:
     // Returns false when no such series exists.
     bool removeSeries(const QString& seriesUid);
 
+    // The review's annotations of a series, as the annotation JSON (lw/annotation/
+    // annotation_json.h) the GUI wrote; nullopt when none were ever saved. Keyed by the series
+    // UID, not the series row: they outlive removing the series from the index (a re-import
+    // finds them again) and a series opened without importing keeps them too.
+    std::optional<QString> seriesAnnotations(const QString& seriesUid) const;
+    // Replaces them in one transaction (throws core::Error naming the file and the series).
+    void setSeriesAnnotations(const QString& seriesUid, const QString& json);
+
 private:
     class Transaction;
     void open();
     void migrate();
     void createSchemaV1();
+    void migrateToV2();
     qint64 upsertPatient(const PatientRecord& patient);
     qint64 upsertStudy(const StudyRecord& study, qint64 patientRef);
     bool upsertSeries(const SeriesImport& import, qint64 studyRef, const QString& sourceRoot);

@@ -1,0 +1,48 @@
+#pragma once
+
+// What an export shows and at which size (the file or folder is asked for afterwards): the PNG
+// and the Secondary Capture ask for the picture; the PDF report also for a comment and whether
+// to leave the patient out.
+
+#include "shell/review_export.h"
+
+#include <QDialog>
+
+class QCheckBox;
+class QComboBox;
+class QFormLayout;
+class QPlainTextEdit;
+class QSpinBox;
+
+namespace lw::gui {
+
+class PictureExportDialog : public QDialog {
+    Q_OBJECT
+public:
+    // `screenPanelSize`: a panel on screen; the default is twice that (print resolution).
+    PictureExportDialog(const QString& title, QSize screenPanelSize, QWidget* parent = nullptr);
+    ExportPicture picture() const;
+
+protected:
+    // Rows go above the buttons.
+    QFormLayout& form() { return *m_form; }
+
+private:
+    QFormLayout* m_form = nullptr;
+    QComboBox* m_layout = nullptr;
+    QSpinBox* m_width = nullptr;
+    QSpinBox* m_height = nullptr;
+};
+
+class ReportExportDialog : public PictureExportDialog {
+    Q_OBJECT
+public:
+    explicit ReportExportDialog(QSize screenPanelSize, QWidget* parent = nullptr);
+    ReportOptions options() const;
+
+private:
+    QPlainTextEdit* m_comment = nullptr;
+    QCheckBox* m_anonymise = nullptr;
+};
+
+} // namespace lw::gui

@@ -1,0 +1,170 @@
+#include "shell/review_export.h"
+
+#include "annotate/annotation_document.h"
+#include "lw/core/error.h"
+#include "lw/report/export_files.h"
+#include "lw/report/pdf_report.h"
+#include "lw/report/secondary_capture.h"
+#include "review/panel_render_job.h"
+#include "review/review_widget.h"
+
+#include <QEventLoop>
+#include <QFileInfo>
+#include <QFutureWatcher>
+#include <QProgressDialog>
+#include <QtConcurrent/QtConcurrentRun>
+#include <functional>
+#include <new>
+
+#ifndef LINEWORK_VERSION
+#define LINEWORK_VERSION "unknown"
+#endif
+
+namespace lw::gui {
+namespace {
+
+// What a writer gets: a copy of everything it needs, so it can run on any thread.
+struct ExportContent {
+    report::RenderedPanels panels;
+    std::vector<annotation::Annotation> annotations;
+    report::PanelLayout layout = report::PanelLayout::SideBySide;
+    QColor background;
+
+    QImage picture() const {
+        return report::composeExportImage(panels, annotations, layout, background);
+    }
+};
+
+// Writes the files of one export; throws core::Error naming the file.
+using ExportWriter = std::function<void(const ExportContent&)>;
+
+std::filesystem::path fsPath(const QString& path) {
+    return std::filesystem::path(path.toStdString());
+}
+
+template <typename Work> QString guarded(const QString& target, QSize size, Work&& work) {
+    try {
+        work();
+        return {};
+    } catch (const core::Error& error) {
+        return QString::fromStdString(error.what());
+    } catch (const std::bad_alloc&) {
+        return QObject::tr("%1: out of memory rendering %2 x %3 pixels; choose a smaller size")
+            .arg(target)
+            .arg(size.width())
+            .arg(size.height());
+    }
+}
+
+// Renders (as the job says, on the calling thread) and writes.
+void renderAndWrite(ExportContent content, const std::pair<QImage, QImage>& panels,
+                    const render::Camera& camera, const QString& target,
+                    const ExportWriter& write) {
+    if (panels.first.isNull() && panels.second.isNull())
+        throw core::Error(target.toStdString(),
+                          "nothing to export yet (the surface is still being computed)");
+    content.panels = {panels.first, panels.second, camera};
+    write(content);
+}
+
+// Runs `future` to its end with a progress dialog over `parent` (shown after a moment only).
+QString waitWithProgress(QFuture<QString> future, const QString& what, QWidget* parent) {
+    QProgressDialog progress(what, QString(), 0, 0, parent);
+    progress.setWindowModality(Qt::WindowModal);
+    progress.setMinimumDuration(300);
+    QFutureWatcher<QString> watcher;
+    QEventLoop loop;
+    QObject::connect(&watcher, &QFutureWatcher<QString>::finished, &loop, &QEventLoop::quit);
+    watcher.setFuture(future);
+    if (!future.isFinished())
+        loop.exec();
+    return future.result();
+}
+
+// Checks the target (`precheck`, before any work), renders the review's panels at the
+// picture's size and hands them to `write`: off the UI thread unless the panels' own GL
+// contexts must draw.
+QString runExport(ReviewWidget& review, const ExportPicture& picture, const QString& target,
+                  const std::function<void()>& precheck, ExportWriter write,
+                  QWidget* progressParent) {
+    const QSize size = picture.panelSize;
+    if (QString error = guarded(target, size, precheck); !error.isEmpty())
+        return error;
+    const PanelRenderJob job = review.renderJob(size);
+    const ExportContent content{
+        {}, review.annotations().annotations(), picture.layout, review.settings().background};
+    if (review.rendersOnUiThread()) // a GPU draws in the panels' contexts: fast, and only here
+        return guarded(target, size, [&] {
+            renderAndWrite(content, review.renderPanels(size), job.camera, target, write);
+        });
+    QFuture<QString> future = QtConcurrent::run([job, content, target, size, write] {
+        return guarded(target, size, [&] {
+            renderAndWrite(content, renderPanelJob(job), job.camera, target, write);
+        });
+    });
+    return waitWithProgress(future,
+                            QObject::tr("Exporting %1 at %2 x %3…")
+                                .arg(QFileInfo(target).fileName())
+                                .arg(size.width())
+                                .arg(size.height()),
+                            progressParent);
+}
+
+std::string renderingOf(ReviewWidget& review) {
+    return report::describeRendering(review.settings().method, review.iso(),
+                                     review.camera().cameraSetup());
+}
+
+} // namespace
+
+QString exportReviewPng(ReviewWidget& review, const QString& path, const ExportPicture& picture,
+                        core::Overwrite overwrite, QWidget* progressParent) {
+    return runExport(
+        review, picture, path, [&] { core::checkWritableTarget(fsPath(path), overwrite); },
+        [path, overwrite](const ExportContent& content) {
+            report::writeExportFile(
+                fsPath(path), report::encodePngBytes(content.picture(), fsPath(path)), overwrite);
+        },
+        progressParent);
+}
+
+QString exportReviewReport(ReviewWidget& review, const QString& path, const ReportOptions& options,
+                           core::Overwrite overwrite, QWidget* progressParent) {
+    report::ReportInfo info;
+    info.identity = review.source().dicom;
+    info.sourceDescription = review.source().title.toStdString();
+    info.method = renderingOf(review);
+    info.comment = options.comment.toStdString();
+    info.anonymise = options.anonymise;
+    info.softwareVersion = LINEWORK_VERSION;
+    return runExport(
+        review, options.picture, path, [&] { core::checkWritableTarget(fsPath(path), overwrite); },
+        [path, overwrite, info](const ExportContent& content) {
+            report::writeExportFile(
+                fsPath(path), report::renderPdfReport(info, content.picture(), content.annotations),
+                overwrite);
+        },
+        progressParent);
+}
+
+QString exportReviewSecondaryCapture(ReviewWidget& review, const QString& folder,
+                                     const ExportPicture& picture, core::Overwrite overwrite,
+                                     QWidget* progressParent) {
+    if (!review.source().dicom)
+        return QObject::tr("%1: a Secondary Capture joins the source's study, and %2 is not a "
+                           "DICOM series")
+            .arg(folder, review.source().title);
+    report::SecondaryCaptureSeries series;
+    series.source = *review.source().dicom;
+    series.derivationDescription = renderingOf(review);
+    series.softwareVersion = LINEWORK_VERSION;
+    return runExport(
+        review, picture, folder,
+        [&] { report::checkSecondaryCaptureTarget(fsPath(folder), overwrite); },
+        [folder, overwrite, series](const ExportContent& content) {
+            report::writeSecondaryCapture(fsPath(folder), {content.picture()}, series, overwrite);
+        },
+        progressParent);
+}
+
+} // namespace lw::gui

@@ -1,0 +1,54 @@
+#pragma once
+
+// The visible silhouette as polylines in image coordinates, for vector output (SVG, the PDF
+// report) and for drawing lines of any width: whatever method drew the frame, its surface's
+// Burns segments (the contour of the mesh for the camera) are chained through the mesh edges
+// they cross — both triangles that share an edge put an endpoint on it, so the edge names the
+// neighbour — and cut to the parts the frame's line mask shows, sampled at pixel resolution
+// (methods 1 and 3 test visibility per pixel; method 2's mask is what its rays left visible).
+// So the polylines are the frame's own lines, with sub-pixel positions.
+//
+//   mesh edge (u, v) --- segment of triangle T1 --- edge (v, w) --- segment of T2 --- ...
+//   an edge shared by exactly two crossing triangles joins their segments; a border edge or a
+//   fold ends a chain; a chain that comes back to its first edge is closed.
+
+#include "lw/render/camera.h"
+#include "lw/render/iso_surface.h"
+#include "lw/render/pixel_mask.h"
+
+#include <glm/glm.hpp>
+#include <vector>
+
+namespace lw::render {
+
+struct Polyline {
+    std::vector<glm::vec2> points; // image coordinates: x right, y down, pixel (i, j) = [i, i+1)
+    bool closed = false;           // the last point joins the first
+};
+
+struct PolylineOptions {
+    // A sample counts as visible when the mask is on within this many pixels of it (the
+    // accuracy score's tolerance; 0: the pixel itself).
+    int tolerancePx = 1;
+    // Samples per pixel of length along a segment when cutting at visibility changes.
+    double samplesPerPixel = 2.0;
+    // Visible runs shorter than this (pixels of length) are dropped (see minStrokePixels).
+    double minLengthPx = 0.0;
+    // Points within this many pixels of the line through their kept neighbours are dropped
+    // (Douglas-Peucker): far below what a screen or a printer shows, and a much smaller file.
+    double simplifyPx = 0.05;
+};
+
+// The Burns segments of `mesh` for `camera`, chained (3D, patient mm, before visibility): one
+// entry per chain, its points the segment endpoints in order.
+struct SilhouetteChain {
+    std::vector<glm::vec3> points;
+    bool closed = false;
+};
+std::vector<SilhouetteChain> chainSilhouette(const Mesh& mesh, const Camera& camera);
+
+// The parts of the chains that `lines` shows, projected to the image.
+std::vector<Polyline> visiblePolylines(const Mesh& mesh, const Camera& camera,
+                                       const PixelMask& lines, const PolylineOptions& options = {});
+
+} // namespace lw::render

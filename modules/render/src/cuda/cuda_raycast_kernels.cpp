@@ -1,0 +1,100 @@
+// Method 2's CUDA kernel set (raycast_kernel_set.h, lw/kernels/cuda/raycast_silhouette_cuda.h):
+// the volume uploaded on the first frame after bind, the active cells (and the macro occupancy
+// the visibility rays skip with) found on the device, then per view the segments, one ray per
+// endpoint (or per line step) and the lines. No streamed variant: its rays cross the whole
+// volume, so L frames go to the CPU's kernel set (RayCastSilhouetteRenderer).
+#include "../raycast_kernel_set.h"
+#include "cuda_support.h"
+#include "lw/kernels/cpu/marching_cubes_cpu.h"
+#include "lw/kernels/cpu/voxel_ray.h"
+#include "lw/kernels/cuda/raycast_silhouette_cuda.h"
+#include "lw/render/iso_surface.h"
+
+namespace lw::render {
+namespace {
+
+constexpr std::string_view kWhere = "method 2 (CUDA)";
+
+void check(const kernels::cuda::CudaStatus& status) {
+    if (status.code == kernels::cuda::CudaStatus::Code::OutOfMemory)
+        throw OutOfDeviceMemory(status.describe());
+    throwIfCudaFailed(kWhere, status);
+}
+
+kernels::PixelCamera pixelCamera(const Camera& camera) {
+    kernels::PixelCamera c;
+    c.eye = camera.eye();
+    c.right = camera.right();
+    c.up = camera.up();
+    c.forward = camera.forward();
+    c.halfWidth = camera.halfWidth();
+    c.halfHeight = camera.halfHeight();
+    c.width = camera.width();
+    c.height = camera.height();
+    c.orthographic = camera.isOrthographic();
+    return c;
+}
+
+// The walk's grid and its cell widths, from the CPU engine's VoxelRayGrid.
+kernels::cuda::RayGridSetup rayGridSetup(const volume::Volume& volume) {
+    const kernels::cpu::VoxelRayGrid grid(volume);
+    kernels::cuda::RayGridSetup setup;
+    setup.offsets = grid.offsets();
+    setup.view = grid.view();
+    setup.cellScale = grid.cellScale();
+    return setup;
+}
+
+class CudaRayCastKernels final : public RayCastKernelSet {
+public:
+    std::string_view backendName() const override { return "cuda"; }
+
+    void bind(const volume::Volume* volume) override {
+        m_kernels.release();
+        m_volume = volume;
+        m_uploaded = false;
+    }
+
+    bool drawsPieces() const override { return false; }
+
+    void prepare(double storedIso, const SilhouetteSettings&, SilhouetteFrame& frame) override {
+        if (!m_uploaded) {
+            check(m_kernels.setVolume(hostVolumeView(*m_volume),
+                                      kernels::cpu::voxelGridSetup(*m_volume),
+                                      rayGridSetup(*m_volume)));
+            m_uploaded = true;
+        }
+        kernels::cuda::RayCastCudaFrame timing;
+        check(m_kernels.prepare(storedIso, timing));
+        frame.times.extractMs += timing.prepareMs;
+    }
+
+    void drawView(const Camera& camera, const SilhouetteSettings& settings,
+                  SilhouetteFrame& frame) override {
+        kernels::cuda::RayCastCudaSettings rc;
+        rc.visibility = settings.visibility;
+        rc.alongSegment = settings.testAlongSegment;
+        const bool orthographic = camera.isOrthographic();
+        kernels::cuda::RayCastCudaFrame timing;
+        frame.lines = PixelMask(camera.width(), camera.height());
+        check(m_kernels.render(pixelCamera(camera), orthographic ? -camera.forward() : camera.eye(),
+                               orthographic, rc, frame.lines.pixels().data(), timing));
+        frame.triangles = timing.triangles;
+        frame.segments = timing.segments;
+        // The kernels find the segments and test them in one go: their time is visibility.
+        frame.times.visibilityMs += timing.renderMs;
+    }
+
+private:
+    const volume::Volume* m_volume = nullptr;
+    kernels::cuda::RayCastSilhouetteCuda m_kernels;
+    bool m_uploaded = false;
+};
+
+} // namespace
+
+std::unique_ptr<RayCastKernelSet> makeCudaRayCastKernels() {
+    return std::make_unique<CudaRayCastKernels>();
+}
+
+} // namespace lw::render

@@ -1,0 +1,217 @@
+// Method 3's CUDA kernel set (zbuffer_kernel_set.h): marching cubes and the z-buffer rasterizer
+// as CUDA kernels (lw/kernels/cuda). The image equals the CPU's: both back-ends evaluate
+// kernels/common's rules.
+//
+// Where the volume lives (gpu_memory_plan.h), decided per frame from settings.gpuMemoryBudget:
+//   whole volume  uploaded once per volume; mode a keeps the surface on the device and only the
+//                 view passes run per frame
+//   slabs         the chunked (L) variant, and any volume too large for the budget: slabs of cell
+//                 layers, cropped to the rows that can hold the surface, stream from host memory
+//                 through two device slots, each slab's mesh drawn into the shared z-buffers and
+//                 dropped; re-extracted every frame (as the CPU's L)
+// A frame over the budget or out of device memory throws OutOfDeviceMemory: the renderer asks
+// fallBack() (whole volume -> slabs) and then goes to the CPU.
+#include "../view_transform.h"
+#include "../zbuffer_kernel_set.h"
+#include "cuda_support.h"
+#include "lw/kernels/cpu/marching_cubes_cpu.h"
+#include "lw/kernels/cuda/cuda_device.h"
+#include "lw/kernels/cuda/marching_cubes_cuda.h"
+#include "lw/kernels/cuda/zbuffer_cuda.h"
+#include "lw/render/gpu_memory_plan.h"
+
+#include <chrono>
+#include <string>
+
+namespace lw::render {
+namespace {
+
+using kernels::cuda::CudaStatus;
+constexpr std::string_view kWhere = "method 3 (CUDA)";
+
+double msSince(std::chrono::steady_clock::time_point start) {
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+        .count();
+}
+
+// A failed status: out of memory goes down a way, anything else is an error naming the kernel.
+void check(const CudaStatus& status) {
+    if (status.code == CudaStatus::Code::OutOfMemory)
+        throw OutOfDeviceMemory(status.describe());
+    throwIfCudaFailed(kWhere, status);
+}
+
+class CudaZBufferKernels final : public ZBufferKernelSet {
+public:
+    std::string_view backendName() const override { return "cuda"; }
+
+    void bind(const volume::Volume* volume) override {
+        m_marchingCubes.release(); // device buffers and a streamed volume's host registration
+        m_zbuffer.release();
+        m_volume = volume;
+        m_resident = GpuResidency::Cpu;
+        m_floor = GpuResidency::WholeVolume;
+        m_rowRanges.reset();
+        m_croppedIso = std::numeric_limits<double>::quiet_NaN();
+        m_hostMeshValid = false;
+    }
+
+    bool keepsWholeSurface(const Camera& camera, const SilhouetteSettings&) override {
+        const GpuResidency where =
+            chooseResidency(m_volume->dims(), volume::voxelSize(m_volume->voxelType()), m_budget,
+                            imageBytes(camera), false);
+        return where == GpuResidency::WholeVolume && m_floor == GpuResidency::WholeVolume;
+    }
+
+    bool extractWhole(double storedIso, const SilhouetteSettings&,
+                      SilhouetteFrame& frame) override {
+        m_hostMeshValid = false;
+        if (m_resident != GpuResidency::WholeVolume) {
+            m_resident = GpuResidency::Cpu;
+            check(m_marchingCubes.setVolume(hostVolumeView(*m_volume),
+                                            kernels::cpu::voxelGridSetup(*m_volume)));
+            m_resident = GpuResidency::WholeVolume;
+        }
+        check(m_marchingCubes.extract(storedIso));
+        frame.times.extractMs += m_marchingCubes.times().totalMs();
+        return m_marchingCubes.mesh().touchesBorder;
+    }
+
+    std::size_t keptTriangles() const override { return m_marchingCubes.mesh().triangleCount; }
+
+    const Mesh* keptMesh() override {
+        if (m_resident != GpuResidency::WholeVolume)
+            return nullptr;
+        if (!m_hostMeshValid) {
+            throwIfCudaFailed(kWhere,
+                              m_marchingCubes.download(m_hostMesh.positions, m_hostMesh.normals,
+                                                       m_hostMesh.indices));
+            m_hostMeshValid = true;
+        }
+        return &m_hostMesh;
+    }
+
+    void beginFrame(const Camera& camera, const SilhouetteSettings& settings,
+                    SilhouetteFrame&) override {
+        m_budget = settings.gpuMemoryBudget;
+        if (m_budget == 0) // what is free plus what this back-end holds already
+            m_budget = defaultGpuBudget(kernels::cuda::freeDeviceBytes() +
+                                        m_marchingCubes.deviceBytes() + m_zbuffer.deviceBytes());
+        m_timing = kernels::cuda::ZBufferCudaFrame();
+        m_draw = kernels::cuda::ZBufferCudaSettings();
+        m_draw.visibility = settings.visibility;
+        m_width = camera.width();
+        m_height = camera.height();
+        check(m_zbuffer.begin(toViewTransform(camera)));
+    }
+
+    void drawWhole(const Camera&, const SilhouetteSettings&, bool closed,
+                   SilhouetteFrame& frame) override {
+        const kernels::cuda::DeviceMeshView mesh = m_marchingCubes.mesh();
+        m_draw.cullBackFaces = closed;
+        check(m_zbuffer.draw(mesh, m_draw, m_timing));
+        frame.triangles = mesh.triangleCount;
+    }
+
+    void drawPieces(const Camera& camera, const SilhouetteSettings& settings, double storedIso,
+                    bool closed, SilhouetteFrame& frame) override;
+
+    void resolve(const SilhouetteSettings&, float epsilon, SilhouetteFrame& frame) override {
+        m_draw.epsilon = epsilon;
+        frame.lines = PixelMask(m_width, m_height);
+        check(m_zbuffer.resolve(m_draw, frame.lines.pixels().data(), m_timing));
+        frame.segments = m_timing.segments;
+        frame.times.silhouetteMs += m_timing.projectMs + m_timing.silhouetteMs;
+        frame.times.visibilityMs += m_timing.depthMs;
+        frame.times.drawMs += m_timing.resolveMs;
+        frame.deviceBytes = m_marchingCubes.peakDeviceBytes() + m_zbuffer.deviceBytes();
+        // The budget is a limit, not a hint: a frame that held more (the whole volume's overhead
+        // is an estimate) counts as out of memory, and the frame goes the next way down.
+        if (frame.deviceBytes > m_budget)
+            throw OutOfDeviceMemory("the frame held " + std::to_string(frame.deviceBytes >> 20) +
+                                    " MiB, over the budget of " + std::to_string(m_budget >> 20) +
+                                    " MiB");
+    }
+
+    bool fallBack() override {
+        if (m_floor != GpuResidency::WholeVolume)
+            return false;
+        m_floor = afterOutOfMemory(m_floor);
+        m_marchingCubes.release(); // free what the failed attempt holds before slabs allocate
+        m_zbuffer.release();
+        m_resident = GpuResidency::Cpu;
+        return true;
+    }
+
+private:
+    // zbuffer1, zbuffer2 (4 bytes a pixel each) and the mask.
+    static std::size_t imageBytes(const Camera& camera) {
+        return std::size_t(camera.width()) * std::size_t(camera.height()) * 9;
+    }
+    const std::vector<kernels::CellSlab>& slabsOf(const std::vector<glm::ivec2>& layers,
+                                                  double storedIso);
+
+    const volume::Volume* m_volume = nullptr;
+    kernels::cuda::MarchingCubesCuda m_marchingCubes;
+    kernels::cuda::ZBufferCuda m_zbuffer;
+    GpuResidency m_resident = GpuResidency::Cpu;      // where the voxels are now
+    GpuResidency m_floor = GpuResidency::WholeVolume; // raised by fallBack until the next volume
+    std::size_t m_budget = 0;
+    Mesh m_hostMesh;
+    bool m_hostMeshValid = false;
+    // This frame's draw settings, timings and size.
+    kernels::cuda::ZBufferCudaSettings m_draw;
+    kernels::cuda::ZBufferCudaFrame m_timing;
+    int m_width = 0, m_height = 0;
+    // Slabs: the voxel rows' value ranges (once per volume) and the last cropped slabs, reused
+    // while the iso-value and the layer plan stay (an orbit).
+    std::unique_ptr<VoxelRowRanges> m_rowRanges;
+    std::vector<glm::ivec2> m_plannedLayers;
+    double m_croppedIso = std::numeric_limits<double>::quiet_NaN();
+    std::vector<kernels::CellSlab> m_croppedSlabs;
+};
+
+const std::vector<kernels::CellSlab>&
+CudaZBufferKernels::slabsOf(const std::vector<glm::ivec2>& layers, double storedIso) {
+    if (!m_rowRanges)
+        m_rowRanges = std::make_unique<VoxelRowRanges>(*m_volume);
+    if (!(m_croppedIso == storedIso) || layers != m_plannedLayers) {
+        m_croppedSlabs = cropSlabsToSurface(layers, *m_rowRanges, storedIso);
+        m_plannedLayers = layers;
+        m_croppedIso = storedIso;
+    }
+    return m_croppedSlabs;
+}
+
+void CudaZBufferKernels::drawPieces(const Camera& camera, const SilhouetteSettings& settings,
+                                    double storedIso, bool closed, SilhouetteFrame& frame) {
+    m_hostMeshValid = false;
+    if (m_resident != GpuResidency::Slabs) {
+        m_resident = GpuResidency::Cpu;
+        check(m_marchingCubes.setStreamedVolume(hostVolumeView(*m_volume),
+                                                kernels::cpu::voxelGridSetup(*m_volume)));
+        m_resident = GpuResidency::Slabs;
+    }
+    const std::vector<glm::ivec2> layers =
+        planSlabs(m_volume->dims(), volume::voxelSize(m_volume->voxelType()), m_budget,
+                  imageBytes(camera), settings.gpuSlabLayers);
+    m_draw.cullBackFaces = closed;
+    const auto start = std::chrono::steady_clock::now();
+    check(m_marchingCubes.extractSlabs(storedIso, slabsOf(layers, storedIso),
+                                       [&](const kernels::cuda::DeviceMeshView& slab) {
+                                           frame.triangles += slab.triangleCount;
+                                           return m_zbuffer.draw(slab, m_draw, m_timing);
+                                       }));
+    // The slabs' extraction and drawing interleave: extraction is the loop's wall time less the
+    // drawing kernels' time.
+    const double drawn = m_timing.projectMs + m_timing.silhouetteMs + m_timing.depthMs;
+    frame.times.extractMs += std::max(0.0, msSince(start) - drawn);
+}
+
+} // namespace
+
+std::unique_ptr<ZBufferKernelSet> makeCudaZBufferKernels() {
+    return std::make_unique<CudaZBufferKernels>();
+}
+
+} // namespace lw::render

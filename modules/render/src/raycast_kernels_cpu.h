@@ -1,0 +1,44 @@
+#pragma once
+
+// Method 2's CPU kernel set (raycast_kernel_set.h): the active cells and segments of
+// kernels/cpu/raycast_silhouette_cpu.h on all cores, with the ray visibility test per endpoint or
+// per line step, and the lines drawn serially.
+
+#include "lw/kernels/cpu/raycast_silhouette_cpu.h"
+#include "raycast_kernel_set.h"
+
+#include <glm/glm.hpp>
+#include <memory>
+#include <vector>
+
+namespace lw::render {
+
+class CpuRayCastKernels final : public RayCastKernelSet {
+public:
+    std::string_view backendName() const override { return "cpu"; }
+    void bind(const volume::Volume* volume) override;
+    bool drawsPieces() const override { return true; }
+    void prepare(double storedIso, const SilhouetteSettings& settings,
+                 SilhouetteFrame& frame) override;
+    void drawView(const Camera& camera, const SilhouetteSettings& settings,
+                  SilhouetteFrame& frame) override;
+
+    // Of the last frame (see RayCastSilhouetteRenderer).
+    const kernels::cpu::RayCastSilhouetteCpu& kernel() const { return *m_kernel; }
+    bool isPointVisible(const Camera& camera, glm::dvec3 point) const;
+
+private:
+    void testVisibility(const Camera& camera, const SilhouetteSettings& settings);
+
+    const volume::Volume* m_volume = nullptr;
+    std::unique_ptr<kernels::cpu::RayCastSilhouetteCpu> m_kernel =
+        std::make_unique<kernels::cpu::RayCastSilhouetteCpu>();
+    // Per segment chunk of the kernel, reused between frames: the projected lines to draw
+    // (pairs of float pixel points) and, along segments, the single pixels of visible steps.
+    // Projected points are rounded to float once, and every mode draws from the rounded
+    // values, so a visible piece is pixel for pixel part of the line drawn with visibility off.
+    std::vector<std::vector<glm::vec2>> m_chunkLines;
+    std::vector<std::vector<glm::ivec2>> m_chunkDots;
+};
+
+} // namespace lw::render

@@ -1,0 +1,77 @@
+#include "lw/render/svg_lines.h"
+
+#include <cstdio>
+
+namespace lw::render {
+namespace {
+
+// Two decimals: a hundredth of a pixel is below anything a printer or a screen shows.
+void appendPoint(std::string& out, char command, glm::vec2 p) {
+    char text[64];
+    std::snprintf(text, sizeof text, "%c%.2f %.2f", command, double(p.x), double(p.y));
+    out += text;
+}
+
+// The attribute value with the XML specials escaped (colours come from settings).
+std::string attribute(const std::string& value) {
+    std::string out;
+    for (const char c : value) {
+        switch (c) {
+        case '&':
+            out += "&amp;";
+            break;
+        case '<':
+            out += "&lt;";
+            break;
+        case '"':
+            out += "&quot;";
+            break;
+        default:
+            out += c;
+        }
+    }
+    return out;
+}
+
+} // namespace
+
+std::string silhouetteSvg(const std::vector<Polyline>& polylines, int width, int height,
+                          const SvgLineStyle& style) {
+    char header[512];
+    std::snprintf(header, sizeof header,
+                  "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
+                  "<svg xmlns=\"http://www.w3.org/2000/svg\" version=\"1.1\" width=\"%d\" "
+                  "height=\"%d\" viewBox=\"0 0 %d %d\">\n",
+                  width, height, width, height);
+    std::string svg = header;
+    if (!style.background.empty())
+        svg +=
+            "<rect width=\"100%\" height=\"100%\" fill=\"" + attribute(style.background) + "\"/>\n";
+    svg += silhouettePaths(polylines, style);
+    svg += "</svg>\n";
+    return svg;
+}
+
+std::string silhouettePaths(const std::vector<Polyline>& polylines, const SvgLineStyle& style) {
+    char group[256];
+    std::snprintf(group, sizeof group,
+                  "<g fill=\"none\" stroke-width=\"%.3f\" stroke-linecap=\"round\" "
+                  "stroke-linejoin=\"round\" stroke=\"",
+                  style.widthPx);
+    std::string svg = group + attribute(style.colour) + "\">\n";
+    for (const Polyline& line : polylines) {
+        if (line.points.size() < 2)
+            continue;
+        svg += "<path d=\"";
+        appendPoint(svg, 'M', line.points.front());
+        for (std::size_t i = 1; i < line.points.size(); ++i)
+            appendPoint(svg, 'L', line.points[i]);
+        if (line.closed)
+            svg += "Z";
+        svg += "\"/>\n";
+    }
+    svg += "</g>\n";
+    return svg;
+}
+
+} // namespace lw::render

@@ -1,0 +1,66 @@
+#pragma once
+
+// Method 3's seam between the frame logic every back-end shares (ZBufferSilhouetteRenderer: the
+// mode a/b cache, whether the surface is closed, the depth tolerance, the fallback after running
+// out of device memory, the host mesh for the shaded panel) and what a back-end does (this
+// interface: extract, draw into the two z-buffers, resolve). One implementation per back-end:
+// zbuffer_kernels_cpu.cpp, cuda/cuda_zbuffer_kernels.cpp. S is the one-piece case: a back-end
+// that keeps the whole surface draws it as one piece; one that cannot (L, or a device budget too
+// small for the volume) draws the pieces it streams, and both give the same image.
+//
+// A frame:  beginFrame -> [extractWhole when the cache is stale] -> drawWhole
+//                       or drawPieces                              -> resolve
+
+#include "lw/render/camera.h"
+#include "lw/render/iso_surface.h"
+#include "lw/render/silhouette_renderer.h"
+#include "lw/volume/volume.h"
+#include "out_of_device_memory.h"
+
+#include <memory>
+#include <string_view>
+
+namespace lw::render {
+
+class ZBufferKernelSet {
+public:
+    virtual ~ZBufferKernelSet() = default;
+    virtual std::string_view backendName() const = 0;
+    // A new volume, or none: whatever was kept of the last one goes (device memory, host
+    // registrations, the kept surface).
+    virtual void bind(const volume::Volume* volume) = 0;
+
+    // Whether this frame can keep the whole surface (the CPU: always; CUDA: the volume and its
+    // surface within settings.gpuMemoryBudget). When not, the frame draws pieces.
+    virtual bool keepsWholeSurface(const Camera& camera, const SilhouetteSettings& settings) = 0;
+    // Extracts the whole surface at `storedIso` and keeps it; returns whether it touches the
+    // volume's border (then back faces stay: the surface may be open).
+    virtual bool extractWhole(double storedIso, const SilhouetteSettings& settings,
+                              SilhouetteFrame& frame) = 0;
+    virtual std::size_t keptTriangles() const = 0;
+    // The kept surface on the host (downloaded on first use); null when none is kept.
+    virtual const Mesh* keptMesh() = 0;
+
+    // Clears both z-buffers at the camera's size.
+    virtual void beginFrame(const Camera& camera, const SilhouetteSettings& settings,
+                            SilhouetteFrame& frame) = 0;
+    // The kept surface's silhouette segments and triangles into the z-buffers.
+    virtual void drawWhole(const Camera& camera, const SilhouetteSettings& settings, bool closed,
+                           SilhouetteFrame& frame) = 0;
+    // Every piece of the surface (bricks, slabs) extracted, drawn and dropped; nothing is kept.
+    virtual void drawPieces(const Camera& camera, const SilhouetteSettings& settings,
+                            double storedIso, bool closed, SilhouetteFrame& frame) = 0;
+    // The colour pass: frame.lines from the two z-buffers.
+    virtual void resolve(const SilhouetteSettings& settings, float epsilon,
+                         SilhouetteFrame& frame) = 0;
+
+    // After OutOfDeviceMemory: whether this back-end has a leaner way to try (CUDA: slabs after
+    // the whole volume); false sends the frame to the CPU.
+    virtual bool fallBack() { return false; }
+};
+
+std::unique_ptr<ZBufferKernelSet> makeCpuZBufferKernels();
+// Null where this build has no CUDA back-end.
+std::unique_ptr<ZBufferKernelSet> makeCudaZBufferKernels();
+
+} // namespace lw::render

@@ -1,0 +1,156 @@
+// Visible polylines and their SVG: the frame's own lines as vectors. On analytic shapes drawn by
+// method 3 the silhouette chains close into loops, the polylines lie on the mask, cover it, and
+// the SVG holds exactly them.
+#include "lw/evaluation/analytic_shapes.h"
+#include "lw/render/renderer_factory.h"
+#include "lw/render/svg_lines.h"
+#include "lw/render/visible_polylines.h"
+
+#include <cstdio>
+#include <gtest/gtest.h>
+#include <sstream>
+#include <string>
+
+namespace {
+
+using namespace lw::render;
+using namespace lw::evaluation;
+
+struct ShapeView {
+    const char* shape;
+    double az, el;
+    std::size_t closedLoopsAtLeast; // of the chains before visibility
+};
+
+class VisiblePolylines : public testing::TestWithParam<ShapeView> {
+protected:
+    void SetUp() override {
+        const auto shape = makeAnalyticShape(GetParam().shape);
+        volume = sampleShape(*shape, 64);
+        CameraSetup setup;
+        setup.bounds = shape->bounds();
+        setup.azimuthDeg = GetParam().az;
+        setup.elevationDeg = GetParam().el;
+        camera = Camera(setup, 300, 300);
+        auto renderer = createSilhouetteRenderer(SilhouetteMethod::ZBuffer, Backend::Cpu);
+        renderer->setVolume(volume);
+        SilhouetteSettings settings;
+        settings.isoReal = kShapeIso;
+        frame = renderer->render(camera, settings);
+        mesh = *renderer->surfaceMesh();
+    }
+
+    lw::volume::Volume volume;
+    Camera camera;
+    SilhouetteFrame frame;
+    Mesh mesh;
+};
+
+// The pixels a polyline passes through (sampled at a quarter pixel).
+PixelMask rasterize(const std::vector<Polyline>& lines, int width, int height) {
+    PixelMask mask(width, height);
+    for (const Polyline& line : lines) {
+        const std::size_t n = line.points.size();
+        for (std::size_t i = 0; i + 1 < n + (line.closed ? 1 : 0); ++i) {
+            const glm::vec2 a = line.points[i], b = line.points[(i + 1) % n];
+            const int steps = std::max(1, int(glm::length(b - a) * 4.0f));
+            for (int s = 0; s <= steps; ++s) {
+                const glm::vec2 p = a + (b - a) * (float(s) / float(steps));
+                if (mask.contains(int(p.x), int(p.y)))
+                    mask.set(int(p.x), int(p.y));
+            }
+        }
+    }
+    return mask;
+}
+
+// Share of `a`'s on pixels that have an on pixel of `b` within one pixel.
+double coveredWithinOnePixel(const PixelMask& a, const PixelMask& b) {
+    const PixelMask near = b.dilated(1);
+    std::size_t on = 0, covered = 0;
+    for (std::size_t i = 0; i < a.pixels().size(); ++i)
+        if (a.pixels()[i]) {
+            ++on;
+            covered += near.pixels()[i] != 0;
+        }
+    return on == 0 ? 1.0 : double(covered) / double(on);
+}
+
+TEST_P(VisiblePolylines, ChainsCloseAndThePolylinesAreTheFramesLines) {
+    ASSERT_GT(frame.lines.count(), 100u) << "an empty frame tests nothing";
+    const std::vector<SilhouetteChain> chains = chainSilhouette(mesh, camera);
+    std::size_t closed = 0;
+    for (const SilhouetteChain& chain : chains)
+        closed += chain.closed ? 1 : 0;
+    EXPECT_GE(closed, GetParam().closedLoopsAtLeast) << chains.size() << " chains";
+
+    const std::vector<Polyline> lines = visiblePolylines(mesh, camera, frame.lines);
+    ASSERT_FALSE(lines.empty());
+    const PixelMask drawn = rasterize(lines, camera.width(), camera.height());
+    // On the mask (within the one-pixel tolerance they were cut with) and covering it.
+    EXPECT_GE(coveredWithinOnePixel(drawn, frame.lines), 0.999);
+    EXPECT_GE(coveredWithinOnePixel(frame.lines, drawn), 0.97);
+}
+
+TEST_P(VisiblePolylines, SvgHoldsExactlyThePolylines) {
+    const std::vector<Polyline> lines = visiblePolylines(mesh, camera, frame.lines);
+    const std::string svg =
+        silhouetteSvg(lines, camera.width(), camera.height(), {"#102030", 1.5, "#ffffff"});
+    EXPECT_EQ(svg.rfind("<?xml", 0), 0u);
+    EXPECT_NE(svg.find("viewBox=\"0 0 300 300\""), std::string::npos);
+    EXPECT_NE(svg.find("stroke=\"#102030\""), std::string::npos);
+    EXPECT_EQ(svg.substr(svg.size() - 7), "</svg>\n");
+    // One path per polyline, its points the polyline's (to the two decimals written).
+    std::size_t paths = 0, closedPaths = 0, at = 0;
+    while ((at = svg.find("<path d=\"", at)) != std::string::npos) {
+        const std::size_t end = svg.find('"', at + 9);
+        const std::string d = svg.substr(at + 9, end - at - 9);
+        ASSERT_LT(paths, lines.size());
+        const Polyline& line = lines[paths];
+        std::istringstream in(d);
+        char command = 0;
+        float x = 0, y = 0;
+        std::size_t points = 0;
+        while (in >> command && command != 'Z' && in >> x >> y) {
+            ASSERT_LT(points, line.points.size());
+            EXPECT_NEAR(x, line.points[points].x, 0.006f);
+            EXPECT_NEAR(y, line.points[points].y, 0.006f);
+            ++points;
+        }
+        EXPECT_EQ(points, line.points.size());
+        closedPaths += command == 'Z' ? 1 : 0;
+        ++paths;
+        at = end;
+    }
+    EXPECT_EQ(paths, lines.size());
+    std::size_t closedLines = 0;
+    for (const Polyline& line : lines)
+        closedLines += line.closed ? 1 : 0;
+    EXPECT_EQ(closedPaths, closedLines);
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Shapes, VisiblePolylines,
+    testing::Values(ShapeView{"sphere", 30, 20, 1}, ShapeView{"torus", 30, 60, 2},
+                    ShapeView{"tori", 200, -35, 2}, ShapeView{"superquadric", 75, 70, 1}),
+    [](const testing::TestParamInfo<ShapeView>& info) { return std::string(info.param.shape); });
+
+// The sphere seen whole: its contour is one closed polyline.
+TEST(VisiblePolylinesSphere, TheWholeContourIsOneClosedPolyline) {
+    const SphereShape sphere;
+    const lw::volume::Volume volume = sampleShape(sphere, 64);
+    CameraSetup setup;
+    setup.bounds = sphere.bounds();
+    const Camera camera(setup, 256, 256);
+    auto renderer = createSilhouetteRenderer(SilhouetteMethod::ZBuffer, Backend::Cpu);
+    renderer->setVolume(volume);
+    SilhouetteSettings settings;
+    settings.isoReal = kShapeIso;
+    const SilhouetteFrame frame = renderer->render(camera, settings);
+    const std::vector<Polyline> lines =
+        visiblePolylines(*renderer->surfaceMesh(), camera, frame.lines);
+    ASSERT_EQ(lines.size(), 1u);
+    EXPECT_TRUE(lines[0].closed);
+}
+
+} // namespace
