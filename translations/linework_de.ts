@@ -40,16 +40,8 @@
         <translation>Systemsprache</translation>
     </message>
     <message>
-        <source>%1: nothing to export yet (the surface is still being computed)</source>
-        <translation>%1: noch nichts zu exportieren (die Oberfläche wird noch berechnet)</translation>
-    </message>
-    <message>
         <source>%1: out of memory rendering %2 x %3 pixels; choose a smaller size</source>
         <translation>%1: zu wenig Speicher zum Rendern von %2 x %3 Pixeln; eine kleinere Größe wählen</translation>
-    </message>
-    <message>
-        <source>Rendering %1 at %2 x %3…</source>
-        <translation>%1 wird mit %2 x %3 gerendert…</translation>
     </message>
     <message>
         <source>Created %1 with Linework %2 — page %3 of %4</source>
@@ -135,6 +127,248 @@
         <source>Linework report</source>
         <translation>Linework-Bericht</translation>
     </message>
+    <message>
+        <source>Text:</source>
+        <translation>Text:</translation>
+    </message>
+    <message>
+        <source>Drag: rotate · Shift/middle drag: pan · wheel/right drag: zoom · Ctrl drag: roll</source>
+        <translation>Ziehen: drehen · Umschalt- oder Mitteltaste+Ziehen: verschieben · Mausrad oder rechte Taste+Ziehen: zoomen · Strg+Ziehen: rollen</translation>
+    </message>
+    <message>
+        <source>%1 exists. Replace it?</source>
+        <translation>%1 existiert bereits. Ersetzen?</translation>
+    </message>
+    <message>
+        <source>%1 holds a Secondary Capture already (%2). Replace it?</source>
+        <translation>%1 enthält bereits eine Secondary Capture (%2). Ersetzen?</translation>
+    </message>
+    <message>
+        <source>Exporting %1 at %2 x %3…</source>
+        <translation>%1 wird mit %2 x %3 exportiert…</translation>
+    </message>
+    <message>
+        <source>%1: a Secondary Capture joins the source&apos;s study, and %2 is not a DICOM series</source>
+        <translation>%1: Eine Secondary Capture gehört zur Studie der Quelle, und %2 ist keine DICOM-Serie</translation>
+    </message>
+</context>
+<context>
+    <name>lw::gui::AnnotationActions</name>
+    <message>
+        <source>&amp;Text label</source>
+        <translation>&amp;Textbeschriftung</translation>
+    </message>
+    <message>
+        <source>T</source>
+        <translation>T</translation>
+    </message>
+    <message>
+        <source>&amp;Arrow</source>
+        <translation>&amp;Pfeil</translation>
+    </message>
+    <message>
+        <source>A</source>
+        <translation>A</translation>
+    </message>
+    <message>
+        <source>&amp;Ruler</source>
+        <translation>&amp;Lineal</translation>
+    </message>
+    <message>
+        <source>R</source>
+        <translation>R</translation>
+    </message>
+    <message>
+        <source>An&amp;gle</source>
+        <translation>&amp;Winkel</translation>
+    </message>
+    <message>
+        <source>G</source>
+        <translation>G</translation>
+    </message>
+    <message>
+        <source>&amp;Cancel tool</source>
+        <translation>Werkzeug &amp;abbrechen</translation>
+    </message>
+    <message>
+        <source>&amp;Delete annotation</source>
+        <translation>Anmerkung lös&amp;chen</translation>
+    </message>
+    <message>
+        <source>&amp;Edit text…</source>
+        <translation>Text &amp;bearbeiten…</translation>
+    </message>
+</context>
+<context>
+    <name>lw::gui::AnnotationDocument</name>
+    <message>
+        <source>Add %1</source>
+        <translation>%1 hinzufügen</translation>
+    </message>
+    <message>
+        <source>Delete %1</source>
+        <translation>%1 löschen</translation>
+    </message>
+    <message>
+        <source>Move %1 point</source>
+        <translation>Punkt verschieben (%1)</translation>
+    </message>
+    <message>
+        <source>Edit %1 text</source>
+        <translation>Text bearbeiten (%1)</translation>
+    </message>
+</context>
+<context>
+    <name>lw::gui::AnnotationPersistence</name>
+    <message>
+        <source>Annotations not loaded, and not saved for this series so the stored ones are kept: %1</source>
+        <translation>Anmerkungen nicht geladen und für diese Serie nicht gespeichert, damit die gespeicherten erhalten bleiben: %1</translation>
+    </message>
+    <message>
+        <source>Annotations not saved: %1</source>
+        <translation>Anmerkungen nicht gespeichert: %1</translation>
+    </message>
+</context>
+<context>
+    <name>lw::gui::AnnotationToolController</name>
+    <message>
+        <source>Text of the %1</source>
+        <translation>Text (%1)</translation>
+    </message>
+    <message>
+        <source>A text label needs a text: delete it with Del instead</source>
+        <translation>Eine Textbeschriftung braucht einen Text: zum Löschen Entf drücken</translation>
+    </message>
+    <message>
+        <source>Text label: click the point on the surface to label</source>
+        <translation>Textbeschriftung: den zu beschriftenden Punkt auf der Oberfläche anklicken</translation>
+    </message>
+    <message>
+        <source>Arrow: click where its tail goes</source>
+        <translation>Pfeil: anklicken, wo sein Ende liegen soll</translation>
+    </message>
+    <message>
+        <source>Arrow: click the point it shows (Esc cancels)</source>
+        <translation>Pfeil: den Punkt anklicken, auf den er zeigt (Esc bricht ab)</translation>
+    </message>
+    <message>
+        <source>Ruler: click the first point on the surface</source>
+        <translation>Lineal: den ersten Punkt auf der Oberfläche anklicken</translation>
+    </message>
+    <message>
+        <source>Ruler: click the second point (Esc cancels)</source>
+        <translation>Lineal: den zweiten Punkt anklicken (Esc bricht ab)</translation>
+    </message>
+    <message>
+        <source>Angle: click the end of the first arm</source>
+        <translation>Winkel: das Ende des ersten Schenkels anklicken</translation>
+    </message>
+    <message>
+        <source>Angle: click the vertex (Esc cancels)</source>
+        <translation>Winkel: den Scheitelpunkt anklicken (Esc bricht ab)</translation>
+    </message>
+    <message>
+        <source>Angle: click the end of the second arm (Esc cancels)</source>
+        <translation>Winkel: das Ende des zweiten Schenkels anklicken (Esc bricht ab)</translation>
+    </message>
+    <message>
+        <source>No surface under the pointer: click on the surface</source>
+        <translation>Keine Oberfläche unter dem Mauszeiger: auf die Oberfläche klicken</translation>
+    </message>
+    <message>
+        <source>Text label</source>
+        <translation>Textbeschriftung</translation>
+    </message>
+    <message>
+        <source>No surface under the pointer: the point stays where it was</source>
+        <translation>Keine Oberfläche unter dem Mauszeiger: der Punkt bleibt, wo er war</translation>
+    </message>
+</context>
+<context>
+    <name>lw::gui::Annotations</name>
+    <message>
+        <source>text label</source>
+        <translation>Textbeschriftung</translation>
+    </message>
+    <message>
+        <source>arrow</source>
+        <translation>Pfeil</translation>
+    </message>
+    <message>
+        <source>ruler</source>
+        <translation>Lineal</translation>
+    </message>
+    <message>
+        <source>angle</source>
+        <translation>Winkel</translation>
+    </message>
+</context>
+<context>
+    <name>lw::gui::ExportActions</name>
+    <message>
+        <source>&amp;Export PNG…</source>
+        <translation>PNG &amp;exportieren…</translation>
+    </message>
+    <message>
+        <source>Ctrl+E</source>
+        <translation>Ctrl+E</translation>
+    </message>
+    <message>
+        <source>Export &amp;report (PDF)…</source>
+        <translation>Beric&amp;ht exportieren (PDF)…</translation>
+    </message>
+    <message>
+        <source>Ctrl+Shift+E</source>
+        <translation>Ctrl+Shift+E</translation>
+    </message>
+    <message>
+        <source>Export Secondary &amp;Capture (DICOM)…</source>
+        <translation>Secondary &amp;Capture exportieren (DICOM)…</translation>
+    </message>
+    <message>
+        <source>Open a review to export it</source>
+        <translation>Eine Befundung öffnen, um sie zu exportieren</translation>
+    </message>
+    <message>
+        <source>Exported %1</source>
+        <translation>%1 exportiert</translation>
+    </message>
+    <message>
+        <source>Export failed</source>
+        <translation>Export fehlgeschlagen</translation>
+    </message>
+    <message>
+        <source>Export PNG</source>
+        <translation>PNG exportieren</translation>
+    </message>
+    <message>
+        <source>PNG images (*.png)</source>
+        <translation>PNG-Bilder (*.png)</translation>
+    </message>
+    <message>
+        <source>Export report</source>
+        <translation>Bericht exportieren</translation>
+    </message>
+    <message>
+        <source>PDF documents (*.pdf)</source>
+        <translation>PDF-Dokumente (*.pdf)</translation>
+    </message>
+    <message>
+        <source>A Secondary Capture joins the source&apos;s study, and %1 is not a DICOM series</source>
+        <translation>Eine Secondary Capture gehört zur Studie der Quelle, und %1 ist keine DICOM-Serie</translation>
+    </message>
+    <message>
+        <source>Export Secondary Capture</source>
+        <translation>Secondary Capture exportieren</translation>
+    </message>
+    <message>
+        <source>Folder for the Secondary Capture</source>
+        <translation>Ordner für die Secondary Capture</translation>
+    </message>
+    <message>
+        <source>a Secondary Capture into %1</source>
+        <translation>eine Secondary Capture nach %1</translation>
+    </message>
 </context>
 <context>
     <name>lw::gui::HistogramView</name>
@@ -209,14 +443,6 @@
         <translation>Pfad ohne Import ö&amp;ffnen…</translation>
     </message>
     <message>
-        <source>&amp;Export PNG…</source>
-        <translation>PNG &amp;exportieren…</translation>
-    </message>
-    <message>
-        <source>Ctrl+E</source>
-        <translation>Ctrl+E</translation>
-    </message>
-    <message>
         <source>&amp;Settings…</source>
         <translation>Einstellun&amp;gen…</translation>
     </message>
@@ -289,36 +515,44 @@
         <translation>Öffnen nicht möglich</translation>
     </message>
     <message>
-        <source>Open a review to export it</source>
-        <translation>Eine Befundung öffnen, um sie zu exportieren</translation>
+        <source>&amp;Annotate</source>
+        <translation>A&amp;nmerkungen</translation>
     </message>
     <message>
-        <source>Export PNG</source>
-        <translation>PNG exportieren</translation>
+        <source>&amp;Edit</source>
+        <translation>&amp;Bearbeiten</translation>
     </message>
     <message>
-        <source>PNG images (*.png)</source>
-        <translation>PNG-Bilder (*.png)</translation>
+        <source>&amp;Undo</source>
+        <translation>&amp;Rückgängig</translation>
     </message>
     <message>
-        <source>%1 exists. Replace it?</source>
-        <translation>%1 existiert bereits. Ersetzen?</translation>
+        <source>Ctrl+Z</source>
+        <translation>Ctrl+Z</translation>
     </message>
     <message>
-        <source>Exported %1</source>
-        <translation>%1 exportiert</translation>
+        <source>&amp;Redo</source>
+        <translation>&amp;Wiederherstellen</translation>
     </message>
     <message>
-        <source>Export failed</source>
-        <translation>Export fehlgeschlagen</translation>
+        <source>Ctrl+Shift+Z</source>
+        <translation>Ctrl+Shift+Z</translation>
+    </message>
+    <message>
+        <source>Ctrl+Y</source>
+        <translation>Ctrl+Y</translation>
+    </message>
+    <message>
+        <source>%1 is open already</source>
+        <translation>%1 ist bereits geöffnet</translation>
+    </message>
+    <message>
+        <source>Annotations will not be saved: %1</source>
+        <translation>Anmerkungen werden nicht gespeichert: %1</translation>
     </message>
 </context>
 <context>
-    <name>lw::gui::PngExportDialog</name>
-    <message>
-        <source>Export PNG</source>
-        <translation>PNG exportieren</translation>
-    </message>
+    <name>lw::gui::PictureExportDialog</name>
     <message>
         <source>Both panels side by side</source>
         <translation>Beide Bereiche nebeneinander</translation>
@@ -344,8 +578,27 @@
         <translation>Größe jedes Bereichs:</translation>
     </message>
     <message>
-        <source>The panels are rendered again at this size; lines widen with it.</source>
-        <translation>Die Bereiche werden in dieser Größe neu gerendert; die Linien werden entsprechend breiter.</translation>
+        <source>The panels are rendered again at this size; lines, annotations and text grow with it.</source>
+        <translation>Die Bereiche werden in dieser Größe neu gerendert; Linien, Anmerkungen und Text wachsen mit.</translation>
+    </message>
+</context>
+<context>
+    <name>lw::gui::ReportExportDialog</name>
+    <message>
+        <source>Export report</source>
+        <translation>Bericht exportieren</translation>
+    </message>
+    <message>
+        <source>Findings, comparison, recommendation…</source>
+        <translation>Befund, Vergleich, Empfehlung…</translation>
+    </message>
+    <message>
+        <source>Anonymise (leave out the patient&apos;s name, ID, birth date, sex and the accession number)</source>
+        <translation>Anonymisieren (Name, ID, Geburtsdatum und Geschlecht des Patienten sowie die Auftragsnummer weglassen)</translation>
+    </message>
+    <message>
+        <source>Comment:</source>
+        <translation>Kommentar:</translation>
     </message>
 </context>
 <context>
@@ -424,10 +677,6 @@
     <message>
         <source>Reset the camera (Home)</source>
         <translation>Kamera zurücksetzen (Pos1)</translation>
-    </message>
-    <message>
-        <source>Drag: rotate · Shift/middle drag: pan · wheel/right drag: zoom · Ctrl drag: roll</source>
-        <translation>Ziehen: drehen · Umschalt- oder Mitteltaste+Ziehen: verschieben · Mausrad oder rechte Taste+Ziehen: zoomen · Strg+Ziehen: rollen</translation>
     </message>
     <message>
         <source>No surface at %1 HU</source>

@@ -40,16 +40,8 @@
         <translation>Limba sistemului</translation>
     </message>
     <message>
-        <source>%1: nothing to export yet (the surface is still being computed)</source>
-        <translation>%1: nimic de exportat încă (suprafața este încă în calcul)</translation>
-    </message>
-    <message>
         <source>%1: out of memory rendering %2 x %3 pixels; choose a smaller size</source>
         <translation>%1: memorie insuficientă pentru randarea a %2 x %3 pixeli; alegeți o dimensiune mai mică</translation>
-    </message>
-    <message>
-        <source>Rendering %1 at %2 x %3…</source>
-        <translation>Se randează %1 la %2 x %3…</translation>
     </message>
     <message>
         <source>Created %1 with Linework %2 — page %3 of %4</source>
@@ -135,6 +127,248 @@
         <source>Linework report</source>
         <translation>Raport Linework</translation>
     </message>
+    <message>
+        <source>Text:</source>
+        <translation>Text:</translation>
+    </message>
+    <message>
+        <source>Drag: rotate · Shift/middle drag: pan · wheel/right drag: zoom · Ctrl drag: roll</source>
+        <translation>Tragere: rotire · Shift sau butonul din mijloc + tragere: deplasare · rotiță sau butonul drept + tragere: zoom · Ctrl + tragere: ruliu</translation>
+    </message>
+    <message>
+        <source>%1 exists. Replace it?</source>
+        <translation>%1 există deja. O înlocuiți?</translation>
+    </message>
+    <message>
+        <source>%1 holds a Secondary Capture already (%2). Replace it?</source>
+        <translation>%1 conține deja o Secondary Capture (%2). O înlocuiți?</translation>
+    </message>
+    <message>
+        <source>Exporting %1 at %2 x %3…</source>
+        <translation>Se exportă %1 la %2 x %3…</translation>
+    </message>
+    <message>
+        <source>%1: a Secondary Capture joins the source&apos;s study, and %2 is not a DICOM series</source>
+        <translation>%1: o Secondary Capture se alătură studiului sursei, iar %2 nu este o serie DICOM</translation>
+    </message>
+</context>
+<context>
+    <name>lw::gui::AnnotationActions</name>
+    <message>
+        <source>&amp;Text label</source>
+        <translation>Etichetă &amp;text</translation>
+    </message>
+    <message>
+        <source>T</source>
+        <translation>T</translation>
+    </message>
+    <message>
+        <source>&amp;Arrow</source>
+        <translation>S&amp;ăgeată</translation>
+    </message>
+    <message>
+        <source>A</source>
+        <translation>A</translation>
+    </message>
+    <message>
+        <source>&amp;Ruler</source>
+        <translation>&amp;Riglă</translation>
+    </message>
+    <message>
+        <source>R</source>
+        <translation>R</translation>
+    </message>
+    <message>
+        <source>An&amp;gle</source>
+        <translation>&amp;Unghi</translation>
+    </message>
+    <message>
+        <source>G</source>
+        <translation>G</translation>
+    </message>
+    <message>
+        <source>&amp;Cancel tool</source>
+        <translation>Anulează &amp;instrumentul</translation>
+    </message>
+    <message>
+        <source>&amp;Delete annotation</source>
+        <translation>Șter&amp;ge adnotarea</translation>
+    </message>
+    <message>
+        <source>&amp;Edit text…</source>
+        <translation>&amp;Editează textul…</translation>
+    </message>
+</context>
+<context>
+    <name>lw::gui::AnnotationDocument</name>
+    <message>
+        <source>Add %1</source>
+        <translation>Adaugă %1</translation>
+    </message>
+    <message>
+        <source>Delete %1</source>
+        <translation>Șterge %1</translation>
+    </message>
+    <message>
+        <source>Move %1 point</source>
+        <translation>Mută punctul (%1)</translation>
+    </message>
+    <message>
+        <source>Edit %1 text</source>
+        <translation>Editează textul (%1)</translation>
+    </message>
+</context>
+<context>
+    <name>lw::gui::AnnotationPersistence</name>
+    <message>
+        <source>Annotations not loaded, and not saved for this series so the stored ones are kept: %1</source>
+        <translation>Adnotările nu au fost încărcate și nu se salvează pentru această serie, ca să se păstreze cele stocate: %1</translation>
+    </message>
+    <message>
+        <source>Annotations not saved: %1</source>
+        <translation>Adnotările nu au fost salvate: %1</translation>
+    </message>
+</context>
+<context>
+    <name>lw::gui::AnnotationToolController</name>
+    <message>
+        <source>Text of the %1</source>
+        <translation>Textul (%1)</translation>
+    </message>
+    <message>
+        <source>A text label needs a text: delete it with Del instead</source>
+        <translation>O etichetă text are nevoie de un text: ștergeți-o cu Del</translation>
+    </message>
+    <message>
+        <source>Text label: click the point on the surface to label</source>
+        <translation>Etichetă text: faceți clic pe punctul de pe suprafață de etichetat</translation>
+    </message>
+    <message>
+        <source>Arrow: click where its tail goes</source>
+        <translation>Săgeată: faceți clic unde începe coada ei</translation>
+    </message>
+    <message>
+        <source>Arrow: click the point it shows (Esc cancels)</source>
+        <translation>Săgeată: faceți clic pe punctul indicat (Esc anulează)</translation>
+    </message>
+    <message>
+        <source>Ruler: click the first point on the surface</source>
+        <translation>Riglă: faceți clic pe primul punct de pe suprafață</translation>
+    </message>
+    <message>
+        <source>Ruler: click the second point (Esc cancels)</source>
+        <translation>Riglă: faceți clic pe al doilea punct (Esc anulează)</translation>
+    </message>
+    <message>
+        <source>Angle: click the end of the first arm</source>
+        <translation>Unghi: faceți clic pe capătul primei laturi</translation>
+    </message>
+    <message>
+        <source>Angle: click the vertex (Esc cancels)</source>
+        <translation>Unghi: faceți clic pe vârf (Esc anulează)</translation>
+    </message>
+    <message>
+        <source>Angle: click the end of the second arm (Esc cancels)</source>
+        <translation>Unghi: faceți clic pe capătul celei de-a doua laturi (Esc anulează)</translation>
+    </message>
+    <message>
+        <source>No surface under the pointer: click on the surface</source>
+        <translation>Nicio suprafață sub cursor: faceți clic pe suprafață</translation>
+    </message>
+    <message>
+        <source>Text label</source>
+        <translation>Etichetă text</translation>
+    </message>
+    <message>
+        <source>No surface under the pointer: the point stays where it was</source>
+        <translation>Nicio suprafață sub cursor: punctul rămâne unde era</translation>
+    </message>
+</context>
+<context>
+    <name>lw::gui::Annotations</name>
+    <message>
+        <source>text label</source>
+        <translation>etichetă text</translation>
+    </message>
+    <message>
+        <source>arrow</source>
+        <translation>săgeată</translation>
+    </message>
+    <message>
+        <source>ruler</source>
+        <translation>riglă</translation>
+    </message>
+    <message>
+        <source>angle</source>
+        <translation>unghi</translation>
+    </message>
+</context>
+<context>
+    <name>lw::gui::ExportActions</name>
+    <message>
+        <source>&amp;Export PNG…</source>
+        <translation>&amp;Exportă PNG…</translation>
+    </message>
+    <message>
+        <source>Ctrl+E</source>
+        <translation>Ctrl+E</translation>
+    </message>
+    <message>
+        <source>Export &amp;report (PDF)…</source>
+        <translation>Exportă r&amp;aportul (PDF)…</translation>
+    </message>
+    <message>
+        <source>Ctrl+Shift+E</source>
+        <translation>Ctrl+Shift+E</translation>
+    </message>
+    <message>
+        <source>Export Secondary &amp;Capture (DICOM)…</source>
+        <translation>Exportă Secondary &amp;Capture (DICOM)…</translation>
+    </message>
+    <message>
+        <source>Open a review to export it</source>
+        <translation>Deschideți o examinare pentru a o exporta</translation>
+    </message>
+    <message>
+        <source>Exported %1</source>
+        <translation>S-a exportat %1</translation>
+    </message>
+    <message>
+        <source>Export failed</source>
+        <translation>Exportul a eșuat</translation>
+    </message>
+    <message>
+        <source>Export PNG</source>
+        <translation>Exportă PNG</translation>
+    </message>
+    <message>
+        <source>PNG images (*.png)</source>
+        <translation>Imagini PNG (*.png)</translation>
+    </message>
+    <message>
+        <source>Export report</source>
+        <translation>Exportă raportul</translation>
+    </message>
+    <message>
+        <source>PDF documents (*.pdf)</source>
+        <translation>Documente PDF (*.pdf)</translation>
+    </message>
+    <message>
+        <source>A Secondary Capture joins the source&apos;s study, and %1 is not a DICOM series</source>
+        <translation>O Secondary Capture se alătură studiului sursei, iar %1 nu este o serie DICOM</translation>
+    </message>
+    <message>
+        <source>Export Secondary Capture</source>
+        <translation>Exportă Secondary Capture</translation>
+    </message>
+    <message>
+        <source>Folder for the Secondary Capture</source>
+        <translation>Dosarul pentru Secondary Capture</translation>
+    </message>
+    <message>
+        <source>a Secondary Capture into %1</source>
+        <translation>o Secondary Capture în %1</translation>
+    </message>
 </context>
 <context>
     <name>lw::gui::HistogramView</name>
@@ -209,14 +443,6 @@
         <translation>Desc&amp;hide o cale fără import…</translation>
     </message>
     <message>
-        <source>&amp;Export PNG…</source>
-        <translation>&amp;Exportă PNG…</translation>
-    </message>
-    <message>
-        <source>Ctrl+E</source>
-        <translation>Ctrl+E</translation>
-    </message>
-    <message>
         <source>&amp;Settings…</source>
         <translation>&amp;Setări…</translation>
     </message>
@@ -226,7 +452,7 @@
     </message>
     <message>
         <source>&amp;Close review</source>
-        <translation>În&amp;chide examinarea</translation>
+        <translation>Închide e&amp;xaminarea</translation>
     </message>
     <message>
         <source>&amp;Quit</source>
@@ -289,36 +515,44 @@
         <translation>Nu se poate deschide</translation>
     </message>
     <message>
-        <source>Open a review to export it</source>
-        <translation>Deschideți o examinare pentru a o exporta</translation>
+        <source>&amp;Annotate</source>
+        <translation>&amp;Adnotări</translation>
     </message>
     <message>
-        <source>Export PNG</source>
-        <translation>Exportă PNG</translation>
+        <source>&amp;Edit</source>
+        <translation>&amp;Editare</translation>
     </message>
     <message>
-        <source>PNG images (*.png)</source>
-        <translation>Imagini PNG (*.png)</translation>
+        <source>&amp;Undo</source>
+        <translation>&amp;Anulează</translation>
     </message>
     <message>
-        <source>%1 exists. Replace it?</source>
-        <translation>%1 există deja. O înlocuiți?</translation>
+        <source>Ctrl+Z</source>
+        <translation>Ctrl+Z</translation>
     </message>
     <message>
-        <source>Exported %1</source>
-        <translation>S-a exportat %1</translation>
+        <source>&amp;Redo</source>
+        <translation>&amp;Refă</translation>
     </message>
     <message>
-        <source>Export failed</source>
-        <translation>Exportul a eșuat</translation>
+        <source>Ctrl+Shift+Z</source>
+        <translation>Ctrl+Shift+Z</translation>
+    </message>
+    <message>
+        <source>Ctrl+Y</source>
+        <translation>Ctrl+Y</translation>
+    </message>
+    <message>
+        <source>%1 is open already</source>
+        <translation>%1 este deja deschis</translation>
+    </message>
+    <message>
+        <source>Annotations will not be saved: %1</source>
+        <translation>Adnotările nu vor fi salvate: %1</translation>
     </message>
 </context>
 <context>
-    <name>lw::gui::PngExportDialog</name>
-    <message>
-        <source>Export PNG</source>
-        <translation>Exportă PNG</translation>
-    </message>
+    <name>lw::gui::PictureExportDialog</name>
     <message>
         <source>Both panels side by side</source>
         <translation>Ambele panouri alăturate</translation>
@@ -344,8 +578,27 @@
         <translation>Dimensiunea fiecărui panou:</translation>
     </message>
     <message>
-        <source>The panels are rendered again at this size; lines widen with it.</source>
-        <translation>Panourile sunt randate din nou la această dimensiune; liniile se îngroașă proporțional.</translation>
+        <source>The panels are rendered again at this size; lines, annotations and text grow with it.</source>
+        <translation>Panourile sunt randate din nou la această dimensiune; liniile, adnotările și textul cresc proporțional.</translation>
+    </message>
+</context>
+<context>
+    <name>lw::gui::ReportExportDialog</name>
+    <message>
+        <source>Export report</source>
+        <translation>Exportă raportul</translation>
+    </message>
+    <message>
+        <source>Findings, comparison, recommendation…</source>
+        <translation>Constatări, comparație, recomandare…</translation>
+    </message>
+    <message>
+        <source>Anonymise (leave out the patient&apos;s name, ID, birth date, sex and the accession number)</source>
+        <translation>Anonimizează (omite numele, ID-ul, data nașterii și sexul pacientului, precum și numărul de acces)</translation>
+    </message>
+    <message>
+        <source>Comment:</source>
+        <translation>Comentariu:</translation>
     </message>
 </context>
 <context>
@@ -424,10 +677,6 @@
     <message>
         <source>Reset the camera (Home)</source>
         <translation>Resetează camera (Home)</translation>
-    </message>
-    <message>
-        <source>Drag: rotate · Shift/middle drag: pan · wheel/right drag: zoom · Ctrl drag: roll</source>
-        <translation>Tragere: rotire · Shift sau butonul din mijloc + tragere: deplasare · rotiță sau butonul drept + tragere: zoom · Ctrl + tragere: ruliu</translation>
     </message>
     <message>
         <source>No surface at %1 HU</source>

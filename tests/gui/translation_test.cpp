@@ -87,7 +87,8 @@ void TranslationTest::germanLabelsInTheMainWindowAndSettingsPage() {
     MainWindow window(isolatedOptions(dir));
     window.show();
     QVERIFY(QTest::qWaitForWindowExposed(&window));
-    QCOMPARE(menuTitles(window), (QStringList{"&Datei", "&Ansicht"}));
+    QCOMPARE(menuTitles(window),
+             (QStringList{"&Datei", "&Bearbeiten", "&Ansicht", "A&nmerkungen"}));
     auto* import = window.findChild<QAction*>("importFolderAction");
     QVERIFY(import);
     QCOMPARE(import->text(), QStringLiteral("Ordner &importieren…"));
@@ -114,7 +115,7 @@ void TranslationTest::romanianLabelsInTheMainWindowAndSettingsPage() {
     QCOMPARE(installUiTranslation(QStringLiteral("ro"), kBuiltTranslations), QStringLiteral("ro"));
     QTemporaryDir dir;
     MainWindow window(isolatedOptions(dir));
-    QCOMPARE(menuTitles(window), (QStringList{"&Fișier", "&Vizualizare"}));
+    QCOMPARE(menuTitles(window), (QStringList{"&Fișier", "&Editare", "&Vizualizare", "&Adnotări"}));
     SettingsDialog dialog(ReviewSettings{});
     QCOMPARE(dialog.windowTitle(), QStringLiteral("Setări Linework"));
     QVERIFY(labelTexts(dialog).contains(QStringLiteral("Metoda siluetei:")));
