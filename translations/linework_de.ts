@@ -151,6 +151,22 @@
         <source>%1: a Secondary Capture joins the source&apos;s study, and %2 is not a DICOM series</source>
         <translation>%1: Eine Secondary Capture gehört zur Studie der Quelle, und %2 ist keine DICOM-Serie</translation>
     </message>
+    <message>
+        <source>label</source>
+        <translation>Beschriftung</translation>
+    </message>
+    <message>
+        <source>arrow</source>
+        <translation>Pfeil</translation>
+    </message>
+    <message>
+        <source>ruler</source>
+        <translation>Lineal</translation>
+    </message>
+    <message>
+        <source>angle</source>
+        <translation>Winkel</translation>
+    </message>
 </context>
 <context>
     <name>lw::gui::AnnotationActions</name>

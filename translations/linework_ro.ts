@@ -151,6 +151,22 @@
         <source>%1: a Secondary Capture joins the source&apos;s study, and %2 is not a DICOM series</source>
         <translation>%1: o Secondary Capture se alătură studiului sursei, iar %2 nu este o serie DICOM</translation>
     </message>
+    <message>
+        <source>label</source>
+        <translation>etichetă</translation>
+    </message>
+    <message>
+        <source>arrow</source>
+        <translation>săgeată</translation>
+    </message>
+    <message>
+        <source>ruler</source>
+        <translation>riglă</translation>
+    </message>
+    <message>
+        <source>angle</source>
+        <translation>unghi</translation>
+    </message>
 </context>
 <context>
     <name>lw::gui::AnnotationActions</name>
