@@ -30,6 +30,7 @@ packages=(build-essential cmake ninja-build file pkg-config zlib1g-dev libgtest-
           libdcmtk-dev dcmtk libopenjp2-7-dev libglm-dev libegl-dev libgl-dev libopengl-dev libegl-mesa0 libgl1-mesa-dri
           xvfb xauth python3-numpy desktop-file-utils appstream clang libclang-rt-14-dev
           poppler-utils dicom3tools) # the report tests read the PDF and validate the DICOM SC
+packages+=(lintian) # tests/installer checks the Debian package with it
 
 install_packages() {
   local missing=()

@@ -43,7 +43,8 @@ QList<IsoPreset> readPresets(QSettings& settings) {
 QList<IsoPreset> ReviewSettings::defaultPresets() {
     // Bone at 400 HU keeps the skull and spine closed on typical head and body CT; skin at
     // -500 HU sits between air (-1000) and soft tissue (~0-60).
-    return {{QStringLiteral("Bone"), 400.0}, {QStringLiteral("Skin"), -500.0}};
+    // The names are the interface language's; once stored they are the user's own.
+    return {{QObject::tr("Bone"), 400.0}, {QObject::tr("Skin"), -500.0}};
 }
 
 ReviewSettings ReviewSettings::load(QSettings& settings) {

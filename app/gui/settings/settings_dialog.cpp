@@ -2,6 +2,7 @@
 
 #include "lw/core/error.h"
 #include "review/review_panel.h"
+#include "settings/ui_language.h"
 
 #include <QButtonGroup>
 #include <QCheckBox>
@@ -20,6 +21,7 @@
 #include <QTabWidget>
 #include <QTableWidget>
 #include <QVBoxLayout>
+#include <algorithm>
 
 namespace lw::gui {
 namespace {
@@ -58,6 +60,7 @@ SettingsDialog::SettingsDialog(const ReviewSettings& settings, QWidget* parent)
             [this] {
                 setSettings(ReviewSettings{});
                 readControls();
+                showLanguage(QString()); // follow the system again
             });
     auto* layout = new QVBoxLayout(this);
     layout->addWidget(tabs);
@@ -200,6 +203,23 @@ QWidget* SettingsDialog::makeAppearancePage() {
     glNote->setWordWrap(true);
     form->addRow(QString(), glNote);
 
+    m_language = new QComboBox;
+    m_language->setObjectName("language");
+    for (const UiLanguage& language : uiLanguages())
+        m_language->addItem(language.nativeName, language.code);
+    form->addRow(tr("Language:"), m_language);
+    auto* languageNote = new QLabel(tr("A new language applies the next time Linework starts."));
+    languageNote->setWordWrap(true);
+    form->addRow(QString(), languageNote);
+    {
+        QSettings store;
+        showLanguage(storedUiLanguage(store));
+    }
+    connect(m_language, &QComboBox::currentIndexChanged, this, [this] {
+        QSettings store;
+        storeUiLanguage(store, m_language->currentData().toString());
+    });
+
     connect(m_lineWidth, &QDoubleSpinBox::valueChanged, this, [this] { readControls(); });
     connect(m_silhouetteOnIso, &QCheckBox::toggled, this, [this] { readControls(); });
     connect(m_projection, &QComboBox::currentIndexChanged, this, [this] { readControls(); });
@@ -320,6 +340,10 @@ void SettingsDialog::pickColour(QColor& colour, QPushButton* button) {
     QSettings store;
     m_settings.save(store);
     emit settingsChanged(m_settings);
+}
+
+void SettingsDialog::showLanguage(const QString& code) {
+    m_language->setCurrentIndex(std::max(0, m_language->findData(code)));
 }
 
 void SettingsDialog::updateEnabledControls() {

@@ -1,7 +1,8 @@
 #pragma once
 
 // The settings page: every change is applied at once to the open review (settingsChanged) and
-// stored in QSettings; Close keeps what is set, "Restore defaults" resets it.
+// stored in QSettings; Close keeps what is set, "Restore defaults" resets it. The interface
+// language is stored too but applies at the next start (settings/ui_language.h).
 
 #include "settings/review_settings.h"
 
@@ -40,6 +41,7 @@ private:
     void readControls();
     void pickColour(QColor& colour, QPushButton* button);
     void updateEnabledControls();
+    void showLanguage(const QString& code);
 
     ReviewSettings m_settings;
     bool m_updating = false;
@@ -58,6 +60,7 @@ private:
     QCheckBox* m_silhouetteOnIso = nullptr;
     QComboBox* m_projection = nullptr;
     QComboBox* m_panelGl = nullptr;
+    QComboBox* m_language = nullptr;
     QButtonGroup* m_backend = nullptr;
     QLabel* m_backendNote = nullptr;
     QTableWidget* m_presets = nullptr;

@@ -161,6 +161,21 @@ void drawPicture(QPainter& painter, QRectF area, const QImage& picture, const Pi
 
 const std::vector<double> kAnnotationColumns = {0.05, 0.1, 0.22, 0.18, 0.45};
 
+// The kind in the table: the annotation file's name for it, in the interface's language.
+QString kindLabel(annotation::AnnotationKind kind) {
+    switch (kind) {
+    case annotation::AnnotationKind::Label:
+        return QObject::tr("label");
+    case annotation::AnnotationKind::Arrow:
+        return QObject::tr("arrow");
+    case annotation::AnnotationKind::Ruler:
+        return QObject::tr("ruler");
+    case annotation::AnnotationKind::Angle:
+        return QObject::tr("angle");
+    }
+    return QString(annotation::kindName(kind));
+}
+
 // The pages after the first: the annotations table and the comment.
 std::vector<Block> measurementBlocks(const ReportInfo& info,
                                      const std::vector<annotation::Annotation>& annotations) {
@@ -180,8 +195,8 @@ std::vector<Block> measurementBlocks(const ReportInfo& info,
         for (const glm::dvec3& anchor : item.anchors)
             points += (points.isEmpty() ? "" : " ") + pointText(anchor);
         blocks.push_back({Kind::Row,
-                          {QString::number(i + 1), QString(annotation::kindName(item.kind)),
-                           text(item.text), text(annotation::measurementText(item)), points},
+                          {QString::number(i + 1), kindLabel(item.kind), text(item.text),
+                           text(annotation::measurementText(item)), points},
                           false,
                           kAnnotationColumns});
     }
