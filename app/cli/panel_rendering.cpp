@@ -65,6 +65,15 @@ void repeatFrames(render::SilhouetteRenderer& renderer, render::Camera camera,
     out << line;
 }
 
+// The surface of the request extracted on the CPU (for a renderer that kept none, or a panel
+// without the silhouette frame that would have kept it).
+render::Mesh extractForRequest(const volume::Volume& volume, const RenderRequest& request) {
+    render::IsoSurfaceOptions options;
+    options.brickCells = request.settings.brickCells;
+    options.threads = request.settings.threads;
+    return render::extractIsoSurface(volume, request.settings.isoReal, options);
+}
+
 // The shaded iso-surface for the same view: method 1 shades it in GL; methods 2 and 3 on the CPU,
 // method 3 from the mesh its silhouette frame extracted so both panels show the same surface.
 core::ImageRgba8 renderIsoPanel(render::SilhouetteRenderer& renderer, const volume::Volume& volume,
@@ -77,14 +86,10 @@ core::ImageRgba8 renderIsoPanel(render::SilhouetteRenderer& renderer, const volu
     const render::Mesh* mesh = &extracted;
     const render::Mesh* kept =
         renderer.method() == render::SilhouetteMethod::ZBuffer ? renderer.surfaceMesh() : nullptr;
-    if (kept && request.wantSilhouette) {
+    if (kept && request.wantSilhouette)
         mesh = kept;
-    } else {
-        render::IsoSurfaceOptions options;
-        options.brickCells = request.settings.brickCells;
-        options.threads = request.settings.threads;
-        extracted = render::extractIsoSurface(volume, request.settings.isoReal, options);
-    }
+    else
+        extracted = extractForRequest(volume, request);
     render::SurfaceShading shading;
     shading.threads = request.settings.threads;
     return render::shadeSurfaceCpu(*mesh, camera, shading);
@@ -187,10 +192,7 @@ std::vector<render::Polyline> silhouettePolylines(render::SilhouetteRenderer& re
     render::Mesh extracted;
     const render::Mesh* mesh = renderer.surfaceMesh();
     if (!mesh) {
-        render::IsoSurfaceOptions options;
-        options.brickCells = request.settings.brickCells;
-        options.threads = request.settings.threads;
-        extracted = render::extractIsoSurface(volume, request.settings.isoReal, options);
+        extracted = extractForRequest(volume, request);
         mesh = &extracted;
     }
     render::PolylineOptions options;

@@ -37,7 +37,6 @@ public:
     // volume's border (then back faces stay: the surface may be open).
     virtual bool extractWhole(double storedIso, const SilhouetteSettings& settings,
                               SilhouetteFrame& frame) = 0;
-    virtual std::size_t keptTriangles() const = 0;
     // The kept surface on the host (downloaded on first use); null when none is kept.
     virtual const Mesh* keptMesh() = 0;
 

@@ -65,7 +65,6 @@ public:
         return surfaceTouchesBorder(*m_volume, storedIso);
     }
 
-    std::size_t keptTriangles() const override { return m_mesh.triangleCount(); }
     const Mesh* keptMesh() override { return m_meshKept ? &m_mesh : nullptr; }
 
     void beginFrame(const Camera& camera, const SilhouetteSettings& settings,

@@ -77,8 +77,6 @@ public:
         return m_marchingCubes.mesh().touchesBorder;
     }
 
-    std::size_t keptTriangles() const override { return m_marchingCubes.mesh().triangleCount; }
-
     const Mesh* keptMesh() override {
         if (m_resident != GpuResidency::WholeVolume)
             return nullptr;
