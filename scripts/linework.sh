@@ -12,7 +12,8 @@
 # Environment: LINEWORK_BUILD_DIR (default build/linework), LINEWORK_JOBS (default: cores),
 # LINEWORK_CUDA_ARCHITECTURES (default 90, the H100/H200 of the GPU machine and what CI
 # compiles; e.g. "75;80;86;89;90" for other GPUs). For `test`: LINEWORK_SANITIZERS=0 skips the
-# sanitizer build and suite, LINEWORK_FUZZ_SECONDS (default 45; 0 skips) bounds each fuzz target.
+# sanitizer build and suite, LINEWORK_FUZZ_SECONDS (default 45; 0 skips) bounds each fuzz target,
+# LINEWORK_FUZZ_STRICT=1 makes a fuzz finding fail the command.
 set -euo pipefail
 
 command=${1:-}
@@ -121,7 +122,17 @@ fi
 # Each fuzz target for a bounded time (scripts/fuzz.sh; nothing without clang).
 if [ "${LINEWORK_FUZZ_SECONDS:-45}" != 0 ]; then
   started=$(date +%s)
-  LINEWORK_JOBS=$jobs scripts/fuzz.sh "${LINEWORK_FUZZ_SECONDS:-45}" || failed+=("fuzzing")
+  # A new finding is a bug to fix (and then a regression input in tests/data/fuzz, replayed by
+  # every build), but the mutations are random: one run may find what the last did not. It fails
+  # the command only with LINEWORK_FUZZ_STRICT=1, so CI stays a function of the commit; the
+  # finding and its log are printed either way (build/fuzz/findings).
+  if ! LINEWORK_JOBS=$jobs scripts/fuzz.sh "${LINEWORK_FUZZ_SECONDS:-45}"; then
+    if [ "${LINEWORK_FUZZ_STRICT:-0}" = 1 ]; then
+      failed+=("fuzzing")
+    else
+      echo "linework: WARNING: fuzzing found something (see above and build/fuzz/findings)" >&2
+    fi
+  fi
   echo "linework: fuzzing took $(( $(date +%s) - started )) s"
 fi
 
