@@ -63,6 +63,7 @@ std::pair<QImage, QImage> renderPanelJob(const PanelRenderJob& job) {
     settings.visibility = job.appearance.visibility;
     settings.testAlongSegment = job.appearance.testAlongSegment;
     settings.minStrokePixels = job.appearance.minStrokePixels;
+    settings.closeAtBorder = job.appearance.closeAtBorder;
     const render::SilhouetteFrame frame = renderer->render(job.camera, settings);
     return {iso, linesToImage(frame.lines, job.appearance, false, job.appearance.lineWidth)};
 }

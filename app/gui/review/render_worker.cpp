@@ -104,8 +104,8 @@ void RenderWorker::renderSilhouette(const FrameRequest& request, FrameResult& re
     keepRendererMesh(request, result);
 }
 
-// Methods 1 and 3 (S, CPU or CUDA) keep the mesh they drew: the iso panel shows exactly that surface and
-// marching cubes does not run twice for one iso-value.
+// Methods 1 and 3 (S, CPU or CUDA) keep the mesh they drew: the iso panel shows exactly that
+// surface and marching cubes does not run twice for one iso-value.
 void RenderWorker::keepRendererMesh(const FrameRequest& request, FrameResult& result) {
     if (!(request.wantMesh || request.wantIsoImage) || request.settings.brickCells != 0)
         return;
@@ -161,6 +161,9 @@ void RenderWorker::renderIsoImage(const FrameRequest& request, FrameResult& resu
 void RenderWorker::extractMesh(const FrameRequest& request, FrameResult& result) {
     if (result.mesh)
         return;
+    const bool closes = request.settings.closeAtBorder;
+    if (m_extractorCloses != closes)
+        m_mesh.reset(); // the kept mesh is the other surface (open / closed at the border)
     if (m_mesh && m_meshIso == request.iso && !request.forceExtract && !request.wantMesh)
         return; // the iso image re-draws the mesh it has
     if (m_mesh && m_meshIso == request.iso && !request.forceExtract) {
@@ -171,12 +174,14 @@ void RenderWorker::extractMesh(const FrameRequest& request, FrameResult& result)
     // The iso panel's mesh is the same whatever the brick schedule (canonical order), so the
     // extractor keeps one brick grid and reuses it across iso-values.
     const int bricks = request.settings.brickCells;
-    if (!m_extractor || m_extractorBricks != bricks) {
+    if (!m_extractor || m_extractorBricks != bricks || m_extractorCloses != closes) {
         render::IsoSurfaceOptions options;
         options.brickCells = bricks;
         options.threads = request.settings.threads;
+        options.closeAtBorder = request.settings.closeAtBorder;
         m_extractor = std::make_unique<render::IsoSurfaceExtractor>(*m_volume, options);
         m_extractorBricks = bricks;
+        m_extractorCloses = closes;
     }
     auto mesh = std::make_shared<render::Mesh>();
     m_extractor->extract(request.iso, *mesh, nullptr, request.cancel.get());

@@ -88,6 +88,7 @@ private:
     std::shared_ptr<const volume::Volume> m_volume;
     std::unique_ptr<render::IsoSurfaceExtractor> m_extractor;
     int m_extractorBricks = -1;
+    bool m_extractorCloses = false; // the extractor's IsoSurfaceOptions::closeAtBorder
     std::unique_ptr<render::SilhouetteRenderer> m_renderer;
     render::Backend m_rendererBackend = render::Backend::Auto;
     QString m_backendNote;

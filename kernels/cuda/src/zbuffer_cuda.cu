@@ -18,6 +18,9 @@ struct ZBufferCuda::Impl {
     DeviceBuffer<std::uint32_t> surface, lines;
     DeviceBuffer<std::uint8_t> mask;
     DeviceBuffer<unsigned long long> segmentCount;
+    // drawHost's copy of a host mesh.
+    DeviceBuffer<glm::vec3> hostPositions, hostNormals;
+    DeviceBuffer<std::uint32_t> hostIndices;
     dispatch::StageTimer timers[4];
     std::size_t pixels() const {
         return std::size_t(view.width > 0 ? view.width : 0) *
@@ -34,7 +37,8 @@ void ZBufferCuda::release() {
 std::size_t ZBufferCuda::deviceBytes() const {
     const Impl& s = *m_impl;
     return s.screen.bytes() + s.surface.bytes() + s.lines.bytes() + s.mask.bytes() +
-           s.segmentCount.bytes();
+           s.segmentCount.bytes() + s.hostPositions.bytes() + s.hostNormals.bytes() +
+           s.hostIndices.bytes();
 }
 ZBufferCuda::~ZBufferCuda() = default;
 
@@ -96,6 +100,35 @@ CudaStatus ZBufferCuda::draw(const DeviceMeshView& mesh, const ZBufferCudaSettin
     frame.silhouetteMs += s.timers[1].ms();
     frame.depthMs += s.timers[2].ms();
     return CudaStatus::success();
+}
+
+CudaStatus ZBufferCuda::drawHost(const TriangleMesh& mesh, const ZBufferCudaSettings& settings,
+                                 ZBufferCudaFrame& frame) {
+    Impl& s = *m_impl;
+    if (mesh.isEmpty())
+        return CudaStatus::success();
+    cudaStream_t st = s.stream.get();
+    const std::size_t vertices = mesh.vertexCount();
+    LW_RETURN_IF_FAILED(s.hostPositions.reserve(vertices, "cudaMalloc(hostPositions)"));
+    LW_RETURN_IF_FAILED(s.hostNormals.reserve(vertices, "cudaMalloc(hostNormals)"));
+    LW_RETURN_IF_FAILED(s.hostIndices.reserve(mesh.indices.size(), "cudaMalloc(hostIndices)"));
+    LW_CUDA_TRY(cudaMemcpyAsync(s.hostPositions.data(), mesh.positions.data(),
+                                vertices * sizeof(glm::vec3), cudaMemcpyHostToDevice, st),
+                "cudaMemcpy(hostPositions)");
+    LW_CUDA_TRY(cudaMemcpyAsync(s.hostNormals.data(), mesh.normals.data(),
+                                vertices * sizeof(glm::vec3), cudaMemcpyHostToDevice, st),
+                "cudaMemcpy(hostNormals)");
+    LW_CUDA_TRY(cudaMemcpyAsync(s.hostIndices.data(), mesh.indices.data(),
+                                mesh.indices.size() * sizeof(std::uint32_t), cudaMemcpyHostToDevice,
+                                st),
+                "cudaMemcpy(hostIndices)");
+    DeviceMeshView view;
+    view.positions = s.hostPositions.data();
+    view.normals = s.hostNormals.data();
+    view.indices = s.hostIndices.data();
+    view.vertexCount = vertices;
+    view.triangleCount = mesh.triangleCount();
+    return draw(view, settings, frame);
 }
 
 CudaStatus ZBufferCuda::resolve(const ZBufferCudaSettings& settings, std::uint8_t* hostMask,

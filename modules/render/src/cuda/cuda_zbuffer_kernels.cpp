@@ -14,6 +14,7 @@
 #include "../view_transform.h"
 #include "../zbuffer_kernel_set.h"
 #include "cuda_support.h"
+#include "lw/kernels/cpu/border_cap_cpu.h"
 #include "lw/kernels/cpu/marching_cubes_cpu.h"
 #include "lw/kernels/cuda/cuda_device.h"
 #include "lw/kernels/cuda/marching_cubes_cuda.h"
@@ -54,6 +55,8 @@ public:
         m_rowRanges.reset();
         m_croppedIso = std::numeric_limits<double>::quiet_NaN();
         m_hostMeshValid = false;
+        m_cap.clear();
+        m_capKept = nullptr;
     }
 
     bool keepsWholeSurface(const Camera& camera, const SilhouetteSettings&) override {
@@ -63,7 +66,7 @@ public:
         return where == GpuResidency::WholeVolume && m_floor == GpuResidency::WholeVolume;
     }
 
-    bool extractWhole(double storedIso, const SilhouetteSettings&,
+    bool extractWhole(double storedIso, const SilhouetteSettings& settings,
                       SilhouetteFrame& frame) override {
         m_hostMeshValid = false;
         if (m_resident != GpuResidency::WholeVolume) {
@@ -72,8 +75,13 @@ public:
                                             kernels::cpu::voxelGridSetup(*m_volume)));
             m_resident = GpuResidency::WholeVolume;
         }
+        m_capKept = nullptr;
         check(m_marchingCubes.extract(storedIso));
         frame.times.extractMs += m_marchingCubes.times().totalMs();
+        if (settings.closeAtBorder) {
+            m_capKept = &m_cap.cap(*m_volume, storedIso);
+            return false;
+        }
         return m_marchingCubes.mesh().touchesBorder;
     }
 
@@ -84,6 +92,8 @@ public:
             throwIfCudaFailed(kWhere,
                               m_marchingCubes.download(m_hostMesh.positions, m_hostMesh.normals,
                                                        m_hostMesh.indices));
+            if (m_capKept)
+                kernels::cpu::appendMesh(m_hostMesh, *m_capKept);
             m_hostMeshValid = true;
         }
         return &m_hostMesh;
@@ -109,6 +119,10 @@ public:
         m_draw.cullBackFaces = closed;
         check(m_zbuffer.draw(mesh, m_draw, m_timing));
         frame.triangles = mesh.triangleCount;
+        if (m_capKept) {
+            check(m_zbuffer.drawHost(*m_capKept, m_draw, m_timing));
+            frame.triangles += m_capKept->triangleCount();
+        }
     }
 
     void drawPieces(const Camera& camera, const SilhouetteSettings& settings, double storedIso,
@@ -157,6 +171,10 @@ private:
     std::size_t m_budget = 0;
     Mesh m_hostMesh;
     bool m_hostMeshValid = false;
+    // The border cap (settings.closeAtBorder): drawn after the kept mesh or the last slab.
+    BorderCapCache m_cap;
+    const Mesh* m_capKept = nullptr; // with the kept whole mesh, if closed
+
     // This frame's draw settings, timings and size.
     kernels::cuda::ZBufferCudaSettings m_draw;
     kernels::cuda::ZBufferCudaFrame m_timing;
@@ -200,6 +218,11 @@ void CudaZBufferKernels::drawPieces(const Camera& camera, const SilhouetteSettin
                                            frame.triangles += slab.triangleCount;
                                            return m_zbuffer.draw(slab, m_draw, m_timing);
                                        }));
+    if (settings.closeAtBorder) {
+        const Mesh& cap = m_cap.cap(*m_volume, storedIso);
+        check(m_zbuffer.drawHost(cap, m_draw, m_timing));
+        frame.triangles += cap.triangleCount();
+    }
     // The slabs' extraction and drawing interleave: extraction is the loop's wall time less the
     // drawing kernels' time.
     const double drawn = m_timing.projectMs + m_timing.silhouetteMs + m_timing.depthMs;

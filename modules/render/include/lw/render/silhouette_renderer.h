@@ -51,6 +51,9 @@ struct SilhouetteSettings {
     // method has drawn: the speckle of noise on real CT. 0 or 1: every pixel kept (the methods
     // as published; the accuracy and speed measurements use that).
     int minStrokePixels = 0;
+    // Close the iso-surface where the volume's border cuts it (iso_surface.h): the cut outline is
+    // then a contour like any other. Off only to compare with the methods as published.
+    bool closeAtBorder = true;
     // A newer request (the GUI's iso slider) sets it: the frame stops at the next brick, stage or
     // kernel work unit and render() throws core::Cancelled. Not owned; null for none.
     const core::CancelToken* cancel = nullptr;

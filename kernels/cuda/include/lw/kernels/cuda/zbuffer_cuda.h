@@ -12,6 +12,7 @@
 
 #include "lw/kernels/cuda/cuda_status.h"
 #include "lw/kernels/cuda/marching_cubes_cuda.h"
+#include "lw/kernels/triangle_mesh.h"
 #include "lw/kernels/zbuffer_rules.h"
 
 #include <cstddef>
@@ -44,6 +45,9 @@ public:
     // zbuffer1. Called once per frame (S) or once per brick (L): both buffers keep maxima.
     CudaStatus draw(const DeviceMeshView& mesh, const ZBufferCudaSettings& settings,
                     ZBufferCudaFrame& frame);
+    // The same for a mesh in host memory (the border cap: small), copied to the device first.
+    CudaStatus drawHost(const TriangleMesh& mesh, const ZBufferCudaSettings& settings,
+                        ZBufferCudaFrame& frame);
     // The colour pass into `hostMask` (width * height bytes, 1 = silhouette).
     CudaStatus resolve(const ZBufferCudaSettings& settings, std::uint8_t* hostMask,
                        ZBufferCudaFrame& frame);
