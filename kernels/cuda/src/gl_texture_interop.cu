@@ -21,9 +21,14 @@ CudaStatus GlTextureInterop::attach(unsigned texture, int width, int height) {
                                    "no texture or an empty one");
     cudaGraphicsResource_t resource = nullptr;
     // Surface load/store: the compose kernel writes texels through a surface object.
-    LW_CUDA_TRY(cudaGraphicsGLRegisterImage(&resource, GLuint(texture), GL_TEXTURE_2D,
-                                            cudaGraphicsRegisterFlagsSurfaceLoadStore),
-                "cudaGraphicsGLRegisterImage");
+    const cudaError_t error = cudaGraphicsGLRegisterImage(
+        &resource, GLuint(texture), GL_TEXTURE_2D, cudaGraphicsRegisterFlagsSurfaceLoadStore);
+    if (error != cudaSuccess) {
+        // Not sticky, but left as the runtime's last error: the caller's host path would find it
+        // at its next launch check (seen on the GPU without a GL context current).
+        cudaGetLastError();
+        return dispatch::statusOf(error, "cudaGraphicsGLRegisterImage");
+    }
     m_resource = resource;
     m_texture = texture;
     m_width = width;

@@ -189,14 +189,22 @@ CudaStatus ZBufferCuda::resolveInto(const ZBufferCudaSettings& settings,
     auto resource = static_cast<cudaGraphicsResource_t>(target.resource());
     LW_RETURN_IF_FAILED(s.timers[3].start(st));
     // Mapped on the frame's stream: GL's earlier use of the texture completes before the kernel.
-    LW_CUDA_TRY(cudaGraphicsMapResources(1, &resource, st),
-                "cudaGraphicsMapResources(mask texture)");
-    const CudaStatus composed = composeIntoTexture(s, settings, resource);
-    // Unmapped whatever happened: GL may not use a texture CUDA still holds.
-    const CudaStatus unmapped = dispatch::statusOf(cudaGraphicsUnmapResources(1, &resource, st),
-                                                   "cudaGraphicsUnmapResources(mask texture)");
-    LW_RETURN_IF_FAILED(composed);
-    LW_RETURN_IF_FAILED(unmapped);
+    CudaStatus status = dispatch::statusOf(cudaGraphicsMapResources(1, &resource, st),
+                                           "cudaGraphicsMapResources(mask texture)");
+    if (status.ok()) {
+        status = composeIntoTexture(s, settings, resource);
+        // Unmapped whatever happened: GL may not use a texture CUDA still holds.
+        const CudaStatus unmapped = dispatch::statusOf(cudaGraphicsUnmapResources(1, &resource, st),
+                                                       "cudaGraphicsUnmapResources(mask texture)");
+        if (status.ok())
+            status = unmapped;
+    }
+    if (!status.ok()) {
+        // An interop failure is not sticky: drop it as the last error, so that the host path the
+        // caller takes next does not report it at its first launch check.
+        cudaGetLastError();
+        return status;
+    }
     return finishResolve(frame);
 }
 
