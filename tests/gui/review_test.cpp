@@ -14,6 +14,7 @@
 
 #include <QDoubleSpinBox>
 #include <QLabel>
+#include <QOffscreenSurface>
 #include <QOpenGLFunctions>
 #include <QOpenGLWidget>
 #include <QPainter>
@@ -44,6 +45,7 @@ private slots:
     void windowMatchesBaseline();
     void hoverShowsThePatientPosition();
     void linesTextureDrawsAsTheHostImage();
+    void silhouetteTexturesAreNeverHandedOutTwice();
 };
 
 void ReviewTest::panelsDraw_data() {
@@ -356,6 +358,54 @@ void ReviewTest::linesTextureDrawsAsTheHostImage() {
         for (int x = 0; x < shown.width(); ++x)
             differing += shown.pixel(x, y) != expected.pixel(x, y);
     QCOMPARE(differing, 0);
+}
+
+// The worker's texture slots: a slot held by a result or the panel is never written again until
+// let go; a size change makes a new texture; with every slot held the frame gets none (it then
+// takes the host path). The textures live in Qt's share group, so the panels' contexts see them.
+void ReviewTest::silhouetteTexturesAreNeverHandedOutTwice() {
+    QOpenGLContext* global = QOpenGLContext::globalShareContext();
+    QVERIFY2(global, "requestCoreProfileFormat() shares every context with Qt's global one");
+    QOffscreenSurface surface;
+    surface.setFormat(global->format());
+    surface.create();
+    SilhouetteTextures textures(&surface);
+    std::shared_ptr<const LinesTexture> held[3];
+    lw::render::GlFrameTarget* targets[3] = {};
+    for (int i = 0; i < 3; ++i) {
+        targets[i] = textures.acquire(64, 48, held[i]);
+        QVERIFY(targets[i]);
+        QVERIFY(held[i]);
+        QCOMPARE(held[i]->texture, targets[i]->texture());
+        QCOMPARE(targets[i]->width(), 64);
+        for (int j = 0; j < i; ++j)
+            QVERIFY(held[j]->texture != held[i]->texture);
+    }
+    std::shared_ptr<const LinesTexture> none;
+    QVERIFY(!textures.acquire(64, 48, none));
+    QVERIFY(!none);
+    const unsigned second = held[1]->texture;
+    held[1].reset(); // the panel let go of it
+    std::shared_ptr<const LinesTexture> again;
+    QCOMPARE(textures.acquire(64, 48, again), targets[1]);
+    QCOMPARE(again->texture, second);
+    textures.done();
+    again.reset();
+    std::shared_ptr<const LinesTexture> resized;
+    lw::render::GlFrameTarget* bigger = textures.acquire(80, 60, resized);
+    QVERIFY(bigger);
+    QCOMPARE(bigger->width(), 80);
+    QCOMPARE(resized->height, 60);
+    const unsigned name = resized->texture;
+    textures.done();
+    QOpenGLContext other; // e.g. a panel's
+    other.setShareContext(global);
+    other.setFormat(global->format());
+    QVERIFY(other.create());
+    QVERIFY(other.makeCurrent(&surface));
+    QVERIFY(other.functions()->glIsTexture(name));
+    other.doneCurrent();
+    textures.release();
 }
 
 LW_GUI_TEST_MAIN(ReviewTest)

@@ -341,6 +341,8 @@ void ReviewWidget::takeFrame(const std::shared_ptr<const FrameResult>& result) {
         showError(result->error);
         m_isoPanel->setMessage(result->error);
         m_silhouettePanel->setMessage(result->error);
+        // A worker that failed may have released its textures (out of memory).
+        m_silhouettePanel->setLinesTexture(nullptr);
         return;
     }
     m_errorLine->hide();

@@ -19,6 +19,7 @@
 #include "../view_transform.h"
 #include "../zbuffer_kernel_set.h"
 #include "cuda_support.h"
+#include "lw/core/log.h"
 #include "lw/kernels/cpu/marching_cubes_cpu.h"
 #include "lw/kernels/cuda/cuda_device.h"
 #include "lw/kernels/cuda/marching_cubes_cuda.h"
@@ -29,7 +30,6 @@
 #if LINEWORK_CUDA_GL_INTEROP
 #include "lw/kernels/cuda/gl_texture_interop.h"
 #endif
-#include "lw/core/log.h"
 
 #include <chrono>
 #include <string>
