@@ -29,6 +29,9 @@ RenderWorker::RenderWorker(std::shared_ptr<const volume::Volume> volume)
 RenderWorker::~RenderWorker() = default;
 
 void RenderWorker::release() {
+    if (m_textures)
+        m_textures->release(); // their CUDA registrations and GL textures, in their context
+    m_textures.reset();
     if (m_isoGl && m_glContext) {
         m_glContext->makeCurrent();
         m_isoGl->release();
@@ -100,8 +103,40 @@ void RenderWorker::renderSilhouette(const FrameRequest& request, FrameResult& re
     settings.isoReal = request.iso;
     settings.cancel = request.cancel.get(); // a newer iso-value stops this frame in the kernels
     render::SilhouetteRenderer& renderer = rendererFor(request, result);
-    result.silhouette = renderer.render(request.camera, settings);
+    std::shared_ptr<const LinesTexture> texture;
+    settings.frameTarget = frameTargetFor(request, renderer, texture);
+    {
+        // The worker's context is current from acquire() to here, whatever the frame does.
+        struct ContextDone {
+            SilhouetteTextures* textures;
+            ~ContextDone() {
+                if (textures)
+                    textures->done();
+            }
+        } contextDone{settings.frameTarget ? m_textures.get() : nullptr};
+        result.silhouette = renderer.render(request.camera, settings);
+    }
+    if (result.silhouette->drewToTarget)
+        result.linesTexture = std::move(texture);
     keepRendererMesh(request, result);
+}
+
+// A texture for this frame where one can be drawn: the panel asks for it, and the renderer is
+// method 3 on CUDA with nothing to do on the host mask afterwards. Anywhere else no GL context
+// is made for nothing.
+render::GlFrameTarget* RenderWorker::frameTargetFor(const FrameRequest& request,
+                                                    const render::SilhouetteRenderer& renderer,
+                                                    std::shared_ptr<const LinesTexture>& token) {
+    const glm::ivec2 size(request.camera.width(), request.camera.height());
+    if (!request.silhouetteToTexture || !request.textureSurface ||
+        renderer.method() != render::SilhouetteMethod::ZBuffer ||
+        renderer.backendName() != "cuda" ||
+        render::frameTargetUse(size, size, request.settings.minStrokePixels) !=
+            render::FrameTargetUse::Texture)
+        return nullptr;
+    if (!m_textures)
+        m_textures = std::make_unique<SilhouetteTextures>(request.textureSurface);
+    return m_textures->acquire(size.x, size.y, token);
 }
 
 // Methods 1 and 3 (S, CPU or CUDA) keep the mesh they drew: the iso panel shows exactly that
