@@ -47,6 +47,8 @@ QString demoInput() {
 // What the driver announced: its phases and when each began (ms after the start).
 struct DriverRun {
     QStringList phases;
+    int exitCode = -1; // of a run not killed: a sanitizer's finding makes it non-zero
+    QString errors;
     QList<qint64> startedAt;
     QString lastPhase() const { return phases.isEmpty() ? "starting" : phases.last(); }
 };
@@ -79,6 +81,8 @@ DriverRun runDriver(const QString& folder, qint64 killAfterMs) {
         collect();
     }
     collect();
+    run.exitCode = driver.exitStatus() == QProcess::NormalExit ? driver.exitCode() : -1;
+    run.errors = QString::fromLocal8Bit(driver.readAllStandardError());
     return run;
 }
 
@@ -170,6 +174,7 @@ void StudyDbKillTest::initTestCase() {
     QVERIFY2(QFile::exists(demoInput()), qPrintable(demoInput()));
     QTemporaryDir dir;
     const DriverRun run = runDriver(dir.path(), -1);
+    QVERIFY2(run.exitCode == 0, qPrintable(run.errors));
     QCOMPARE(run.phases, QStringList({"import", "thumbnail", "export png", "export pdf", "done"}));
     m_reference.milliseconds = run.startedAt.last();
     m_reference.importMilliseconds = run.startedAt[1];
