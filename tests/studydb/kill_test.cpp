@@ -1,6 +1,8 @@
 // Issue 10, "nothing lost": a real process (lw_studydb_kill_driver: an import into the study
-// database, then a PNG and a PDF export) is killed with SIGKILL at random points (fixed seed),
-// and after every kill
+// database, then a PNG and a PDF export) is killed with SIGKILL at random points (fixed seed):
+// a quarter anywhere in the run, the others within the three short windows where a kill could
+// do harm (the import's database transaction, the PNG's and the PDF's atomic write), timed from
+// the driver's announcement that the window begins. After every kill
 //  - the database (when the process got as far as creating it) opens, passes
 //    PRAGMA integrity_check and foreign_key_check, and shows the import whole or not at all: the
 //    schema complete or absent, every series or none, each with all its files, no patient
@@ -26,12 +28,21 @@
 
 namespace {
 
-constexpr int kRuns = 30;
+constexpr int kRuns = 32;
 constexpr unsigned kSeed = 20261123;
+
+// Where a run is killed: `delayMs` after the driver announces `after` ("" : after the start).
+struct KillPlan {
+    QString after;
+    qint64 delayMs = -1; // never
+};
+
+// The windows the kills aim at, each from its announcement to the next phase's.
+const QStringList kWindows = {"write database", "write png", "write pdf"};
 
 struct Reference {
     qint64 milliseconds = 0;
-    qint64 importMilliseconds = 0; // until the import has committed
+    QMap<QString, qint64> windowMilliseconds; // kWindows' lengths in an uninterrupted run
     int seriesCount = 0;
     QByteArray png;
 };
@@ -53,9 +64,9 @@ struct DriverRun {
     QString lastPhase() const { return phases.isEmpty() ? "starting" : phases.last(); }
 };
 
-// Runs the driver in `folder` (database in db/, exports in out/) and kills it with SIGKILL
-// after `killAfterMs` (never when negative).
-DriverRun runDriver(const QString& folder, qint64 killAfterMs) {
+// Runs the driver in `folder` (database in db/, exports in out/) and kills it with SIGKILL as
+// `plan` says.
+DriverRun runDriver(const QString& folder, const KillPlan& plan) {
     QDir(folder).mkpath("db");
     QDir(folder).mkpath("out");
     QProcess driver;
@@ -64,20 +75,23 @@ DriverRun runDriver(const QString& folder, qint64 killAfterMs) {
     driver.start(QStringLiteral(LINEWORK_KILL_DRIVER),
                  {folder + "/db/studies.sqlite", demoInput(), folder + "/out"});
     DriverRun run;
+    qint64 killAt = plan.delayMs >= 0 && plan.after.isEmpty() ? plan.delayMs : -1;
     const auto collect = [&] {
         while (driver.canReadLine()) {
             run.phases.append(QString::fromLocal8Bit(driver.readLine()).trimmed());
             run.startedAt.append(clock.elapsed());
+            if (plan.delayMs >= 0 && run.phases.last() == plan.after)
+                killAt = run.startedAt.last() + plan.delayMs;
         }
     };
     while (driver.state() != QProcess::NotRunning) {
-        const qint64 left = killAfterMs < 0 ? 50 : killAfterMs - clock.elapsed();
+        const qint64 left = killAt < 0 ? 20 : killAt - clock.elapsed();
         if (left <= 0) {
             driver.kill();
             driver.waitForFinished();
             break;
         }
-        driver.waitForReadyRead(int(std::min<qint64>(left, 50)));
+        driver.waitForReadyRead(int(std::min<qint64>(left, 20)));
         collect();
     }
     collect();
@@ -173,33 +187,46 @@ private:
 void StudyDbKillTest::initTestCase() {
     QVERIFY2(QFile::exists(demoInput()), qPrintable(demoInput()));
     QTemporaryDir dir;
-    const DriverRun run = runDriver(dir.path(), -1);
+    const DriverRun run = runDriver(dir.path(), {});
     QVERIFY2(run.exitCode == 0, qPrintable(run.errors));
-    QCOMPARE(run.phases, QStringList({"import", "thumbnail", "export png", "export pdf", "done"}));
+    QCOMPARE(run.phases, QStringList({"import", "write database", "thumbnail", "export png",
+                                      "write png", "export pdf", "write pdf", "done"}));
     m_reference.milliseconds = run.startedAt.last();
-    m_reference.importMilliseconds = run.startedAt[1];
+    for (const QString& window : kWindows) {
+        const qsizetype at = run.phases.indexOf(window);
+        m_reference.windowMilliseconds[window] = run.startedAt[at + 1] - run.startedAt[at];
+    }
     const lw::studydb::StudyDatabase database(dir.path() + "/db/studies.sqlite");
     m_reference.seriesCount = database.seriesCount();
     QVERIFY(m_reference.seriesCount > 0);
     QFile png(dir.path() + "/out/review.png");
     QVERIFY(png.open(QIODevice::ReadOnly));
     m_reference.png = png.readAll();
-    qInfo("uninterrupted: %lld ms (import %lld ms), %d series", m_reference.milliseconds,
-          m_reference.importMilliseconds, m_reference.seriesCount);
+    qInfo("uninterrupted: %lld ms (writing the database %lld ms, the PNG %lld ms, the PDF %lld "
+          "ms), %d series",
+          m_reference.milliseconds, m_reference.windowMilliseconds["write database"],
+          m_reference.windowMilliseconds["write png"], m_reference.windowMilliseconds["write pdf"],
+          m_reference.seriesCount);
 }
 
 void StudyDbKillTest::killedAnywhereLeavesNothingHalfDone() {
     std::mt19937 random(kSeed);
-    // Every other kill within the import (the database's part); the rest anywhere up to a
-    // little past the uninterrupted run's end, so some land after it.
-    std::uniform_int_distribution<qint64> duringImport(0, m_reference.importMilliseconds);
-    std::uniform_int_distribution<qint64> anywhere(0, m_reference.milliseconds * 11 / 10);
     for (int run = 0; run < kRuns; ++run) {
         QTemporaryDir dir;
-        const qint64 killAfter = run % 2 == 0 ? duringImport(random) : anywhere(random);
-        const QString phase = runDriver(dir.path(), killAfter).lastPhase();
-        const QString where =
-            QString("run %1, killed at %2 ms during \"%3\"").arg(run).arg(killAfter).arg(phase);
+        // Run 0, 4, 8 ... anywhere up to a little past the end; the others within a window (a
+        // little past it too, where the announcement came late).
+        KillPlan plan;
+        plan.after = run % 4 == 0 ? QString() : kWindows[run % 4 - 1];
+        const qint64 span = plan.after.isEmpty() ? m_reference.milliseconds
+                                                 : m_reference.windowMilliseconds[plan.after] + 2;
+        // Squared: early in the window more often, where a later (warm) run writes faster.
+        const double u = std::uniform_real_distribution<double>(0.0, 1.0)(random);
+        plan.delayMs = qint64(double(span) * 1.1 * u * u);
+        const QString phase = runDriver(dir.path(), plan).lastPhase();
+        const QString where = QString("run %1, killed %2 ms after %3, during \"%4\"")
+                                  .arg(run)
+                                  .arg(plan.delayMs)
+                                  .arg(plan.after.isEmpty() ? "the start" : plan.after, phase);
         QString why;
         const QString databasePath = dir.path() + "/db/studies.sqlite";
         if (QFile::exists(databasePath)) {
