@@ -38,10 +38,12 @@ commands:
   bench-mc [--size N|NXxNYxNZ] [--kind ct|sphere] [--chunks off|auto|N] [--repeat R] [--iso HU]
                               marching cubes on the phantom: median ms, triangles
   accuracy [--methods 1,2,3] [--sizes 32,64,256] [--shapes sphere,...]
-           [--views sweep|N | --view AZ,EL] [--backend cpu|cuda|auto] [--json]
+           [--views sweep|N | --view AZ,EL] [--backend cpu|cuda|auto] [--images DIR] [--json]
                               the paper's Table 5 measured: recall/precision (1 px) of each
                               method (S and L) against analytic contours, worst and median
-                              over 32 views (cube faces, edges, corners, 6 seeded) or one view
+                              over 32 views (cube faces, edges, corners, 6 seeded) or one view;
+                              --images: each row's drawing, truth and diff (red: drawn, no true
+                              pixel within 1 px; blue: true, not drawn) as PNGs in DIR
   render INPUT [--series UID] --iso HU --method 1|2|3 [--chunks off|auto|N] [--mode a|b]
          [--visibility on|off] [--view AZ,EL] [--camera perspective|ortho] [--size WxH]
          [--panel iso|silhouette|both] [--backend cpu|cuda|auto] [--repeat N] [--threads N] -o OUT.png
