@@ -17,6 +17,7 @@
 #include "lw/evaluation/view_sweep.h"
 #include "lw/render/camera.h"
 #include "lw/render/renderer_factory.h"
+#include "panel_rendering.h"
 
 #include <algorithm>
 #include <charconv>
@@ -98,31 +99,6 @@ struct Options {
     std::optional<std::filesystem::path> imagesDir;
 };
 
-// --view AZ,EL: one view (the command's behaviour before the sweep); --views sweep|N: the first
-// N views of the sweep (faces, edges, corners, then random ones); default: the sweep.
-void parseViews(const Arguments& arguments, Options& options) {
-    const auto single = arguments.option("view");
-    const auto sweep = arguments.option("views");
-    if (single && sweep)
-        throw UsageError("--view and --views", "give one view or a sweep, not both");
-    if (single) {
-        const glm::dvec2 parsed = parseView(*single);
-        if (std::abs(parsed.y) > 90.0)
-            throw UsageError("--view " + *single, "expected AZ,EL in degrees with |EL| <= 90");
-        options.sweep = false;
-        options.views = {View{parsed.x, parsed.y}};
-        return;
-    }
-    int count = evaluation::kDefaultSweepViewCount;
-    if (sweep && *sweep != "sweep") {
-        const auto [end, error] =
-            std::from_chars(sweep->data(), sweep->data() + sweep->size(), count);
-        if (error != std::errc() || end != sweep->data() + sweep->size() || count < 1)
-            throw UsageError("--views " + *sweep, "expected 'sweep' or a number of views >= 1");
-    }
-    options.views = evaluation::viewSweep(count);
-}
-
 Options parseOptions(const std::vector<std::string>& args) {
     const Arguments arguments(args, {"json"},
                               {"backend", "methods", "sizes", "shapes", "view", "views", "images"});
@@ -145,7 +121,9 @@ Options parseOptions(const std::vector<std::string>& args) {
     options.json = arguments.flag("json");
     if (const auto images = arguments.option("images"))
         options.imagesDir = *images;
-    parseViews(arguments, options);
+    const ViewChoice choice = parseViewChoice(arguments, evaluation::kDefaultSweepViewCount);
+    options.sweep = !choice.single;
+    options.views = choice.views;
     return options;
 }
 
@@ -155,18 +133,10 @@ using Renderers = std::unique_ptr<render::SilhouetteRenderer>[4];
 // (no OpenGL context), and then it is skipped with a note.
 void createRenderers(const Options& options, Renderers& renderers,
                      std::vector<std::string>& notes) {
-    for (int m = 1; m <= 3; ++m) {
-        if (std::find(options.methods.begin(), options.methods.end(), m) == options.methods.end())
-            continue;
-        try {
+    for (int m = 1; m <= 3; ++m)
+        if (std::find(options.methods.begin(), options.methods.end(), m) != options.methods.end())
             renderers[m] =
-                render::createSilhouetteRenderer(render::SilhouetteMethod(m), options.backend);
-        } catch (const core::Error& error) {
-            if (m != 1)
-                throw;
-            notes.push_back("method 1 skipped: " + error.reason());
-        }
-    }
+                createRendererOrSkip(render::SilhouetteMethod(m), options.backend, notes);
 }
 
 // "metaballs-64-m3-on-S-az180-el45": names a row's images.
