@@ -1,10 +1,11 @@
 // `linework-cli quality` end to end on the bundled demo CT (GE head, tilted, 512x512x28): JSON
 // rows carry their view and every measure in range, pruning is on by default, the table reports
-// worst, median and goals, an iso-value with no surface fails instead of passing, and the
-// options `quality` sets itself are refused.
+// worst, median and goals (and --images writes each view's pictures), an iso-value with no surface
+// fails instead of passing, and the options `quality` sets itself are refused.
 #include "cli_runner.h"
 #include "test_support.h"
 
+#include <filesystem>
 #include <gtest/gtest.h>
 #include <regex>
 #include <string>
@@ -58,8 +59,16 @@ TEST(QualityCommand, JsonRowOfOneViewOfTheDemo) {
 }
 
 TEST(QualityCommand, TableOverTwoViewsHasWorstMedianAndGoals) {
-    const CliResult r = runCli("quality " + demo() + " --iso 400 --views 2 --size 256x256");
+    const lw::test::TempDir images;
+    const CliResult r =
+        runCli("quality " + demo() + " --iso 400 --views 2 --size 256x256 --images " +
+               quoted(images.path().string()));
     ASSERT_EQ(r.exitCode, 0) << r.out << r.err;
+    // What each view looks like: the panels, the outline against method 3's lines.
+    for (const char* view : {"az0-el-90", "az0-el0"})
+        for (const char* kind : {"-panels.png", "-outline-m3.png"})
+            EXPECT_TRUE(std::filesystem::is_regular_file(images / (std::string(view) + kind)))
+                << view << kind;
     // The sweep's first two views: the faces toward -z and -y (az 0 el -90, az 0 el 0).
     EXPECT_NE(r.out.find("\n(0,-90)"), std::string::npos) << r.out;
     EXPECT_NE(r.out.find("\n(0,0)"), std::string::npos) << r.out;
