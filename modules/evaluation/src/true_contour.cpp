@@ -1,10 +1,12 @@
 #include "lw/evaluation/true_contour.h"
 
 #include "lw/core/parallel.h"
+#include "neighbour_pairs.h"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <utility>
 
 namespace lw::evaluation {
@@ -154,43 +156,27 @@ PixelMask trueContourMask(const AnalyticShape& shape, const Camera& camera) {
                 summarise(shape, box, camera.rayThroughPixel(x, int(row)), stepFloor);
     });
 
-    // Pixel pairs are examined per row (the pair to the right and the one below), so the marks
-    // are collected per row and merged afterwards: a pair may mark a pixel of the next row.
-    std::vector<std::vector<std::pair<int, int>>> marks(static_cast<std::size_t>(height));
-    core::parallelFor(std::size_t(height), [&](std::size_t row) {
-        const int y = int(row);
-        for (int x = 0; x < width; ++x) {
+    return detail::markNeighbourPairs(
+        width, height, [&](int x, int y, int bx, int by) -> std::optional<std::pair<int, int>> {
+            const int dx = bx - x, dy = by - y;
             const RaySummary& a = rays[std::size_t(y) * std::size_t(width) + std::size_t(x)];
-            for (const auto& [dx, dy] : {std::pair{1, 0}, std::pair{0, 1}}) {
-                const int bx = x + dx, by = y + dy;
-                if (bx >= width || by >= height)
-                    continue;
-                const RaySummary& b = rays[std::size_t(by) * std::size_t(width) + std::size_t(bx)];
-                const bool foldOnA = visibleFoldBetween(a, b);
-                if (!foldOnA && !visibleFoldBetween(b, a))
-                    continue;
-                // Bisect along the segment between the pixel centres: sMore keeps the fold side.
-                const RaySummary& fewer = foldOnA ? b : a;
-                double sMore = foldOnA ? 0.0 : 1.0;
-                double sFewer = foldOnA ? 1.0 : 0.0;
-                for (int i = 0; i < kSegmentBisections; ++i) {
-                    const double s = 0.5 * (sMore + sFewer);
-                    const glm::dvec2 p{x + 0.5 + s * dx, y + 0.5 + s * dy};
-                    const RaySummary mid =
-                        summarise(shape, box, camera.rayThroughPoint(p), stepFloor);
-                    (visibleFoldBetween(mid, fewer) ? sMore : sFewer) = s;
-                }
+            const RaySummary& b = rays[std::size_t(by) * std::size_t(width) + std::size_t(bx)];
+            const bool foldOnA = visibleFoldBetween(a, b);
+            if (!foldOnA && !visibleFoldBetween(b, a))
+                return std::nullopt;
+            // Bisect along the segment between the pixel centres: sMore keeps the fold side.
+            const RaySummary& fewer = foldOnA ? b : a;
+            double sMore = foldOnA ? 0.0 : 1.0;
+            double sFewer = foldOnA ? 1.0 : 0.0;
+            for (int i = 0; i < kSegmentBisections; ++i) {
                 const double s = 0.5 * (sMore + sFewer);
-                marks[row].push_back(s < 0.5 ? std::pair{x, y} : std::pair{bx, by});
+                const glm::dvec2 p{x + 0.5 + s * dx, y + 0.5 + s * dy};
+                const RaySummary mid = summarise(shape, box, camera.rayThroughPoint(p), stepFloor);
+                (visibleFoldBetween(mid, fewer) ? sMore : sFewer) = s;
             }
-        }
-    });
-
-    PixelMask mask(width, height);
-    for (const auto& rowMarks : marks)
-        for (const auto& [x, y] : rowMarks)
-            mask.set(x, y);
-    return mask;
+            const double s = 0.5 * (sMore + sFewer);
+            return s < 0.5 ? std::pair{x, y} : std::pair{bx, by};
+        });
 }
 
 } // namespace lw::evaluation
