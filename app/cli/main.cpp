@@ -44,11 +44,14 @@ commands:
                               over 32 views (cube faces, edges, corners, 6 seeded) or one view
   render INPUT [--series UID] --iso HU --method 1|2|3 [--chunks off|auto|N] [--mode a|b]
          [--visibility on|off] [--view AZ,EL] [--camera perspective|ortho] [--size WxH]
-         [--panel iso|silhouette|both] [--backend cpu|cuda|auto] [--repeat N] [--threads N] -o OUT.png
+         [--panel iso|silhouette|both] [--backend cpu|cuda|auto] [--repeat N] [--threads N]
+         [--suggestive [--suggestive-threshold TAU]] -o OUT.png
                               one view as PNG (default 512x512, silhouette, method 3, view 0,0);
                               INPUT: volume file, DICOM folder/DICOMDIR or phantom:N[xNYxNZ][:sphere];
                               both = shaded iso-surface left, silhouette right (width 2W);
                               --repeat N: N more views 1 degree apart, prints their median ms
+                              --suggestive: suggestive contours drawn with the silhouette
+                              (PNG only; TAU: their derivative test, default 1)
   bench [--sizes 32,256,512,512x512x1024] [--input FILE --iso HU] [--backend cpu|cuda|auto]
         [--methods mc,1,2,3] [--variants S,L] [--modes a,b] [--repeat N] [--image WxH]
         [--peak-memory-of METHOD,VARIANT] [--gpu-budget MIB] [--json]
