@@ -135,14 +135,6 @@ render::PixelMask renderSuggestive(render::SilhouetteRenderer& renderer,
     return frame.lines;
 }
 
-// Black where either mask is on (the suggestive contours drawn with the silhouette).
-render::PixelMask unite(const render::PixelMask& a, const render::PixelMask& b) {
-    render::PixelMask out = a;
-    for (std::size_t i = 0; i < out.pixels().size(); ++i)
-        out.pixels()[i] = out.pixels()[i] || b.pixels()[i];
-    return out;
-}
-
 } // namespace
 
 RenderedPanels renderPanels(render::SilhouetteRenderer& renderer, const volume::Volume& volume,
@@ -158,7 +150,7 @@ RenderedPanels renderPanels(render::SilhouetteRenderer& renderer, const volume::
         render::PixelMask drawn = frame.lines;
         if (request.suggestive) {
             panels.suggestive = renderSuggestive(renderer, volume, camera, request, out);
-            drawn = unite(drawn, panels.suggestive);
+            render::addLines(drawn, panels.suggestive);
         }
         panels.silhouette =
             maskToImage(request.lineRadius > 0 ? drawn.dilated(request.lineRadius) : drawn);

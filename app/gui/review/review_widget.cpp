@@ -310,6 +310,8 @@ void ReviewWidget::requestFrame(bool newIso) {
     request.settings.gpuMemoryBudget = std::size_t(m_settings.gpuMemoryBudgetMiB) << 20;
     request.settings.isoReal = m_iso;
     request.wantSilhouette = !methodOneInPanel();
+    // Drawn on the worker with the silhouette (CPU); method 1 in the panel's own GL has none yet.
+    request.suggestive = m_settings.suggestiveContours && request.wantSilhouette;
     request.wantMesh = newIso || !m_meshCurrent || (modeB && methodOneInPanel());
     request.forceExtract = modeB && methodOneInPanel() && !newIso;
     if (!m_drawsInPanels) {

@@ -107,6 +107,12 @@ QWidget* SettingsDialog::makeMethodPage() {
     m_minStroke->setToolTip(tr("Line fragments with fewer pixels are dropped: the speckle that "
                                "noise on nearly flat surfaces draws. Contours are longer."));
     form->addRow(tr("Drop strokes under:"), m_minStroke);
+    m_suggestive = new QCheckBox(tr("Suggestive contours"));
+    m_suggestive->setObjectName("suggestive");
+    m_suggestive->setToolTip(tr("Also draw where the surface almost turns away from the view "
+                                "(concave folds, necks), beside the silhouette. On thick-slice "
+                                "CT they follow the slice steps."));
+    form->addRow(QString(), m_suggestive);
 
     addBackendRows(form, page);
 
@@ -116,7 +122,7 @@ QWidget* SettingsDialog::makeMethodPage() {
         connect(box, &QComboBox::currentIndexChanged, this, [this] { readControls(); });
     for (QSpinBox* box : {m_brickCells, m_memoryBudget, m_gpuMemoryBudget, m_minStroke})
         connect(box, &QSpinBox::valueChanged, this, [this] { readControls(); });
-    for (QCheckBox* box : {m_visibility, m_alongSegment})
+    for (QCheckBox* box : {m_visibility, m_alongSegment, m_suggestive})
         connect(box, &QCheckBox::toggled, this, [this] { readControls(); });
     return page;
 }
@@ -274,6 +280,7 @@ void SettingsDialog::showSettings() {
     m_visibility->setChecked(m_settings.visibility);
     m_alongSegment->setChecked(m_settings.testAlongSegment);
     m_minStroke->setValue(m_settings.minStrokePixels);
+    m_suggestive->setChecked(m_settings.suggestiveContours);
     m_backend->button(int(m_settings.backend))->setChecked(true);
     m_lineWidth->setValue(m_settings.lineWidth);
     showColour(m_lineColour, m_settings.lineColour);
@@ -305,6 +312,7 @@ void SettingsDialog::readControls() {
     s.visibility = m_visibility->isChecked();
     s.testAlongSegment = m_alongSegment->isChecked();
     s.minStrokePixels = m_minStroke->value();
+    s.suggestiveContours = m_suggestive->isChecked();
     s.backend = render::Backend(m_backend->checkedId());
     s.lineWidth = m_lineWidth->value();
     s.silhouetteOnIso = m_silhouetteOnIso->isChecked();

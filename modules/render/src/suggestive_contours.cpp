@@ -1,5 +1,6 @@
 #include "lw/render/suggestive_contours.h"
 
+#include "lw/core/error.h"
 #include "lw/core/parallel.h"
 #include "lw/kernels/cpu/zbuffer_rasterizer_cpu.h"
 #include "lw/render/zbuffer_silhouette_renderer.h"
@@ -71,6 +72,13 @@ bool passesSuggestiveTest(double derivative, double nDotV, double featureSize,
     const double sinTheta = std::sqrt(std::max(0.0, 1.0 - nDotV * nDotV));
     return derivative * sinTheta / nDotV >
            settings.derivativeThreshold / (featureSize * featureSize);
+}
+
+void addLines(PixelMask& into, const PixelMask& lines) {
+    if (into.width() != lines.width() || into.height() != lines.height())
+        throw core::Error("suggestive contours", "the line masks differ in size");
+    for (std::size_t i = 0; i < into.pixels().size(); ++i)
+        into.pixels()[i] = into.pixels()[i] || lines.pixels()[i];
 }
 
 struct SuggestiveContourRenderer::State {

@@ -54,6 +54,10 @@ struct SuggestiveContourSettings {
 bool passesSuggestiveTest(double derivative, double nDotV, double featureSize,
                           const SuggestiveContourSettings& settings);
 
+// Sets every pixel of `into` that `lines` has on (suggestive contours drawn with the silhouette;
+// the sizes must agree, else core::Error).
+void addLines(PixelMask& into, const PixelMask& lines);
+
 struct SuggestiveSegment {
     glm::vec3 a{0.0f};
     glm::vec3 b{0.0f};
