@@ -86,7 +86,8 @@ PixelMask trueSuggestiveContourMask(const AnalyticShape& shape, const Camera& ca
                                     const render::SuggestiveContourSettings& settings,
                                     double featureSize) {
     const int width = camera.width(), height = camera.height();
-    const double size = settings.featureSize > 0.0 ? settings.featureSize : featureSize;
+    const render::SuggestiveTest test(settings, settings.featureSize > 0.0 ? settings.featureSize
+                                                                           : featureSize);
     // As trueContourMask: a hundredth of a pixel at the target.
     const double stepFloor =
         1e-2 * camera.pixelFootprint(glm::length(camera.target() - camera.eye()));
@@ -113,7 +114,7 @@ PixelMask trueSuggestiveContourMask(const AnalyticShape& shape, const Camera& ca
                 ((last.kr >= 0.0) == (a.kr >= 0.0) ? sA : sB) = s;
             }
             const AnalyticRadialCurvature c = analyticRadialCurvature(shape, last.point, camera);
-            if (!render::passesSuggestiveTest(c.derivative, c.nDotV, size, settings))
+            if (!test.passes(c.derivative, c.nDotV))
                 return std::nullopt;
             return 0.5 * (sA + sB) < 0.5 ? std::pair{x, y} : std::pair{bx, by};
         });

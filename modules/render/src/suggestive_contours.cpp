@@ -65,13 +65,15 @@ glm::vec3 triangleGradient(const Mesh& mesh, std::size_t t, const std::vector<fl
 
 } // namespace
 
-bool passesSuggestiveTest(double derivative, double nDotV, double featureSize,
-                          const SuggestiveContourSettings& settings) {
-    if (!(nDotV > std::cos(settings.maxViewAngleDeg * std::numbers::pi / 180.0)))
+SuggestiveTest::SuggestiveTest(const SuggestiveContourSettings& settings, double featureSize)
+    : m_minCosine(std::cos(settings.maxViewAngleDeg * std::numbers::pi / 180.0)),
+      m_threshold(settings.derivativeThreshold / (featureSize * featureSize)) {}
+
+bool SuggestiveTest::passes(double derivative, double nDotV) const {
+    if (!(nDotV > m_minCosine))
         return false;
     const double sinTheta = std::sqrt(std::max(0.0, 1.0 - nDotV * nDotV));
-    return derivative * sinTheta / nDotV >
-           settings.derivativeThreshold / (featureSize * featureSize);
+    return derivative * sinTheta / nDotV > m_threshold;
 }
 
 void addLines(PixelMask& into, const PixelMask& lines) {
@@ -154,16 +156,42 @@ SuggestiveContourRenderer::vertexCurvature(const Camera& camera, unsigned thread
 std::vector<float> SuggestiveContourRenderer::State::crossingDerivatives(
     const std::vector<kernels::RadialCurvature>& curvature, const std::vector<float>& kr,
     unsigned threads) const {
-    // Only the vertices of crossed triangles need the derivative: a few percent of them.
-    std::vector<std::uint8_t> wanted(kr.size(), 0);
-    for (std::size_t t = 0; t < mesh.triangleCount(); ++t) {
-        const std::uint32_t* v = &mesh.indices[3 * t];
-        const bool s0 = kr[v[0]] >= 0.0f;
-        if (s0 != (kr[v[1]] >= 0.0f) || s0 != (kr[v[2]] >= 0.0f))
-            wanted[v[0]] = wanted[v[1]] = wanted[v[2]] = 1;
-    }
-    std::vector<float> derivative(kr.size(), 0.0f);
-    forChunks(kr.size(), threads, [&](std::size_t first, std::size_t end) {
+    // Only the vertices of crossed triangles need the derivative (a few percent of them on
+    // smooth shapes), and only the triangles around those need a gradient.
+    const std::size_t triangles = mesh.triangleCount(), vertices = kr.size();
+    std::vector<std::uint8_t> crossed(triangles, 0);
+    forChunks(triangles, threads, [&](std::size_t first, std::size_t end) {
+        for (std::size_t t = first; t < end; ++t) {
+            const std::uint32_t* v = &mesh.indices[3 * t];
+            const bool s0 = kr[v[0]] >= 0.0f;
+            crossed[t] = s0 != (kr[v[1]] >= 0.0f) || s0 != (kr[v[2]] >= 0.0f);
+        }
+    });
+    const auto anyAround = [&](std::size_t v, const std::vector<std::uint8_t>& flag) {
+        for (std::uint32_t i = adjacency.start[v]; i < adjacency.start[v + 1]; ++i)
+            if (flag[adjacency.triangles[i]])
+                return true;
+        return false;
+    };
+    std::vector<std::uint8_t> wanted(vertices, 0);
+    forChunks(vertices, threads, [&](std::size_t first, std::size_t end) {
+        for (std::size_t v = first; v < end; ++v)
+            wanted[v] = anyAround(v, crossed);
+    });
+    // Gradients (times twice the area) of the triangles touching a wanted vertex.
+    std::vector<glm::vec3> weighted(triangles);
+    std::vector<float> weight(triangles, -1.0f);
+    forChunks(triangles, threads, [&](std::size_t first, std::size_t end) {
+        for (std::size_t t = first; t < end; ++t) {
+            const std::uint32_t* v = &mesh.indices[3 * t];
+            if (!(wanted[v[0]] || wanted[v[1]] || wanted[v[2]]))
+                continue;
+            const glm::vec3 gradient = triangleGradient(mesh, t, kr, weight[t]);
+            weighted[t] = gradient * weight[t];
+        }
+    });
+    std::vector<float> derivative(vertices, 0.0f);
+    forChunks(vertices, threads, [&](std::size_t first, std::size_t end) {
         for (std::size_t v = first; v < end; ++v) {
             if (!wanted[v])
                 continue;
@@ -172,10 +200,8 @@ std::vector<float> SuggestiveContourRenderer::State::crossingDerivatives(
             glm::vec3 sum(0.0f);
             float weights = 0.0f;
             for (std::uint32_t i = adjacency.start[v]; i < adjacency.start[v + 1]; ++i) {
-                float weight = 0.0f;
-                const glm::vec3 g = triangleGradient(mesh, adjacency.triangles[i], kr, weight);
-                sum += weight * g;
-                weights += weight;
+                sum += weighted[adjacency.triangles[i]];
+                weights += weight[adjacency.triangles[i]];
             }
             if (weights > 0.0f)
                 derivative[v] = glm::dot(sum / weights, curvature[v].w);
@@ -196,7 +222,7 @@ SuggestiveContourRenderer::segments(const Camera& camera,
         nDotV[v] = curvature[v].nDotV;
     }
     const std::vector<float> derivative = s.crossingDerivatives(curvature, kr, settings.threads);
-    const double size = featureSize(settings);
+    const SuggestiveTest test(settings, featureSize(settings));
     const std::size_t triangles = s.mesh.triangleCount();
     std::vector<std::vector<SuggestiveSegment>> chunks((triangles + kChunk - 1) / kChunk);
     forChunks(triangles, settings.threads, [&](std::size_t first, std::size_t end) {
@@ -213,7 +239,7 @@ SuggestiveContourRenderer::segments(const Camera& camera,
                 return 0.5 * (double(a[lone]) + c.ta * (a[o1] - a[lone]) + a[lone] +
                               c.tb * (a[o2] - a[lone]));
             };
-            if (!passesSuggestiveTest(atMid(derivative), atMid(nDotV), size, settings))
+            if (!test.passes(atMid(derivative), atMid(nDotV)))
                 continue;
             const glm::vec3 p = s.mesh.positions[lone];
             out.push_back(

@@ -2,7 +2,7 @@
 
 // Ground truth for suggestive contours, from the analytic function alone (no volume, no marching
 // cubes, no mesh), as trueContourMask() is for the occluding contour: it judges
-// render::SuggestiveContourRenderer with the same thresholds (render::passesSuggestiveTest).
+// render::SuggestiveContourRenderer with the same thresholds (render::SuggestiveTest).
 //
 // At a surface point p: the analytic gradient, the Hessian as central differences of the
 // analytic gradient (step 1e-4 mm), kappa_r from them (kernels::radialCurvature, in double), and

@@ -49,10 +49,18 @@ struct SuggestiveContourSettings {
     unsigned threads = 0; // 0 = all cores
 };
 
-// The test above at one point, shared with the analytic reference (lw_evaluation) so both judge
-// the same definition: `derivative` is D_w kappa_r along the unit w, `nDotV` cos(theta).
-bool passesSuggestiveTest(double derivative, double nDotV, double featureSize,
-                          const SuggestiveContourSettings& settings);
+// The test above, shared with the analytic reference (lw_evaluation) so both judge the same
+// definition; `featureSize` is L (mm).
+class SuggestiveTest {
+public:
+    SuggestiveTest(const SuggestiveContourSettings& settings, double featureSize);
+    // `derivative`: D_w kappa_r along the unit w (1/mm^2); `nDotV`: cos(theta).
+    bool passes(double derivative, double nDotV) const;
+
+private:
+    double m_minCosine;
+    double m_threshold; // tau / L^2
+};
 
 // Sets every pixel of `into` that `lines` has on (suggestive contours drawn with the silhouette;
 // the sizes must agree, else core::Error).
