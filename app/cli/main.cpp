@@ -51,7 +51,7 @@ commands:
                               both = shaded iso-surface left, silhouette right (width 2W);
                               --repeat N: N more views 1 degree apart, prints their median ms
                               --suggestive: suggestive contours drawn with the silhouette
-                              (PNG only; TAU: their derivative test, default 1)
+                              (PNG or SVG; TAU: their derivative test, default 1)
   bench [--sizes 32,256,512,512x512x1024] [--input FILE --iso HU] [--backend cpu|cuda|auto]
         [--methods mc,1,2,3] [--variants S,L] [--modes a,b] [--repeat N] [--image WxH]
         [--peak-memory-of METHOD,VARIANT] [--gpu-budget MIB] [--json]

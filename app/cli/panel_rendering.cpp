@@ -98,9 +98,9 @@ core::ImageRgba8 renderIsoPanel(render::SilhouetteRenderer& renderer, const volu
 // The suggestive contours of the request's surface (the mesh the silhouette frame drew, or the
 // same surface extracted here), reported like the frame; with --repeat, the median of as many
 // new views as the silhouette had.
-render::PixelMask renderSuggestive(render::SilhouetteRenderer& renderer,
-                                   const volume::Volume& volume, render::Camera camera,
-                                   const RenderRequest& request, std::ostream& out) {
+void renderSuggestive(render::SilhouetteRenderer& renderer, const volume::Volume& volume,
+                      render::Camera camera, const RenderRequest& request, RenderedPanels& panels,
+                      std::ostream& out) {
     render::Mesh extracted;
     const render::Mesh* mesh = renderer.surfaceMesh();
     if (!mesh) {
@@ -114,6 +114,11 @@ render::PixelMask renderSuggestive(render::SilhouetteRenderer& renderer,
     render::SuggestiveContourRenderer suggestive(volume, *mesh, request.settings.isoReal,
                                                  settings.threads);
     const render::SuggestiveFrame frame = suggestive.render(camera, settings);
+    panels.suggestive = frame.lines;
+    render::PolylineOptions lines;
+    lines.minLengthPx = double(settings.minStrokePixels);
+    panels.suggestivePolylines = render::visiblePolylines(
+        render::chainSegments(suggestive.segments(camera, settings)), camera, frame.lines, lines);
     char line[256];
     std::snprintf(line, sizeof line,
                   "suggestive contours: segments %zu, pixels %zu; ms: derivatives %.1f (once per "
@@ -132,7 +137,6 @@ render::PixelMask renderSuggestive(render::SilhouetteRenderer& renderer,
                       request.repeat, times[times.size() / 2], times.front(), times.back());
         out << line;
     }
-    return frame.lines;
 }
 
 } // namespace
@@ -149,7 +153,7 @@ RenderedPanels renderPanels(render::SilhouetteRenderer& renderer, const volume::
         panels.lines = frame.lines;
         render::PixelMask drawn = frame.lines;
         if (request.suggestive) {
-            panels.suggestive = renderSuggestive(renderer, volume, camera, request, out);
+            renderSuggestive(renderer, volume, camera, request, panels, out);
             render::addLines(drawn, panels.suggestive);
         }
         panels.silhouette =

@@ -39,6 +39,7 @@ struct RenderedPanels {
     core::ImageRgba8 silhouette;
     render::PixelMask lines;      // the silhouette frame's mask, before any widening
     render::PixelMask suggestive; // the suggestive contours' mask (empty unless requested)
+    std::vector<render::Polyline> suggestivePolylines; // their visible parts, for SVG
 };
 
 // The option names parseRenderRequest and parseCameraView read.

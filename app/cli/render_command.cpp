@@ -36,9 +36,8 @@ int runRender(const std::vector<std::string>& args, std::ostream& out) {
         throw UsageError("--format svg", "holds the silhouette lines only (--panel silhouette)");
     RenderRequest request = parseRenderRequest(arguments, "render");
     request.suggestive = arguments.flag("suggestive");
-    if (request.suggestive && (format == "svg" || panel == "iso"))
-        throw UsageError("--suggestive",
-                         "draws into the silhouette panel's raster (PNG) only, not into SVG");
+    if (request.suggestive && panel == "iso")
+        throw UsageError("--suggestive", "draws into the silhouette panel (--panel iso has none)");
     const double threshold =
         arguments.number("suggestive-threshold", request.suggestiveSettings.derivativeThreshold);
     if (!(threshold >= 0.0))
@@ -60,8 +59,10 @@ int runRender(const std::vector<std::string>& args, std::ostream& out) {
 
     RenderedPanels panels = renderPanels(*renderer, volume, camera, request, out);
     if (format == "svg") {
-        const std::vector<render::Polyline> lines =
+        std::vector<render::Polyline> lines =
             silhouettePolylines(*renderer, volume, camera, request, panels.lines);
+        lines.insert(lines.end(), panels.suggestivePolylines.begin(),
+                     panels.suggestivePolylines.end());
         render::SvgLineStyle style;
         style.background = "#ffffff";
         const std::string svg =

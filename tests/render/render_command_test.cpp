@@ -151,8 +151,8 @@ TEST(CliUsage, UnreadableInputExitsOne) {
 }
 
 // --suggestive draws the suggestive contours with the silhouette: the silhouette's pixels stay
-// and new ones come (the CT phantom's bone has concave folds); SVG holds no suggestive
-// contours, so asking for both is a usage error.
+// and new ones come (the CT phantom's bone has concave folds), in PNG and in SVG; the iso panel
+// alone has no lines to add them to.
 TEST(RenderCommand, SuggestiveAddsLinesToTheSilhouette) {
     const auto plain = outputPath("suggestive_off.png");
     const auto with = outputPath("suggestive_on.png");
@@ -174,8 +174,24 @@ TEST(RenderCommand, SuggestiveAddsLinesToTheSilhouette) {
     ASSERT_GT(silhouette, 100u);
     EXPECT_EQ(kept, silhouette);
     EXPECT_GT(added, 50u);
-    EXPECT_EQ(runCli(common + "--suggestive -o '" + outputPath("suggestive.svg").string() + "'"),
-              2);
+    // SVG: the suggestive contours' visible parts are paths beside the silhouette's.
+    const auto countPaths = [](const std::filesystem::path& path) {
+        std::ifstream in(path);
+        const std::string svg((std::istreambuf_iterator<char>(in)), {});
+        std::size_t paths = 0;
+        for (std::size_t at = svg.find("<path"); at != std::string::npos;
+             at = svg.find("<path", at + 1))
+            ++paths;
+        return paths;
+    };
+    const auto plainSvg = outputPath("suggestive_off.svg");
+    const auto withSvg = outputPath("suggestive_on.svg");
+    ASSERT_EQ(runCli(common + "-o '" + plainSvg.string() + "'"), 0);
+    ASSERT_EQ(runCli(common + "--suggestive -o '" + withSvg.string() + "'"), 0);
+    EXPECT_GT(countPaths(plainSvg), 0u);
+    EXPECT_GT(countPaths(withSvg), countPaths(plainSvg));
+    EXPECT_EQ(
+        runCli(common + "--suggestive --panel iso -o '" + outputPath("iso.png").string() + "'"), 2);
 }
 
 } // namespace

@@ -180,6 +180,30 @@ TEST(SuggestiveContours, SphereHasNone) {
     }
 }
 
+// The segments chain through the mesh edges they share like the silhouette's (the torus from
+// 45 degrees up: two strokes, left and right of the hole), and their visible polylines lie on
+// the drawn pixels.
+TEST(SuggestiveContours, SegmentsChainIntoStrokesOnTheMask) {
+    const evaluation::TorusShape torus;
+    const volume::Volume volume = evaluation::sampleShape(torus, 128);
+    const render::Mesh mesh = render::extractIsoSurface(volume, 0.0);
+    render::SuggestiveContourRenderer renderer(volume, mesh, 0.0);
+    const render::Camera camera = shapeCamera(torus, volume, {0.0, 45.0});
+    const render::SuggestiveContourSettings settings;
+    const std::vector<render::EdgeSegment> segments = renderer.segments(camera, settings);
+    ASSERT_GT(segments.size(), 20u);
+    const std::vector<render::SilhouetteChain> chains = render::chainSegments(segments);
+    EXPECT_GE(chains.size(), 2u);
+    EXPECT_LE(chains.size(), 4u) << "one chain a stroke, not one a segment";
+    const render::PixelMask drawn = renderer.render(camera, settings).lines;
+    const std::vector<render::Polyline> polylines = render::visiblePolylines(chains, camera, drawn);
+    ASSERT_GE(polylines.size(), 2u);
+    const render::PixelMask near = drawn.dilated(1);
+    for (const render::Polyline& line : polylines)
+        for (const glm::vec2 p : line.points)
+            EXPECT_TRUE(near.get(int(p.x), int(p.y))) << p.x << "," << p.y;
+}
+
 // Pooled over the views (the lines are short, tens to a few hundred pixels a view, so one
 // view's ratio moves by several percent with a pixel or two); every view must draw something
 // where the truth has lines, so an empty drawing fails.

@@ -210,7 +210,7 @@ std::vector<float> SuggestiveContourRenderer::State::crossingDerivatives(
     return derivative;
 }
 
-std::vector<SuggestiveSegment>
+std::vector<EdgeSegment>
 SuggestiveContourRenderer::segments(const Camera& camera,
                                     const SuggestiveContourSettings& settings) const {
     const State& s = *m_state;
@@ -224,9 +224,9 @@ SuggestiveContourRenderer::segments(const Camera& camera,
     const std::vector<float> derivative = s.crossingDerivatives(curvature, kr, settings.threads);
     const SuggestiveTest test(settings, featureSize(settings));
     const std::size_t triangles = s.mesh.triangleCount();
-    std::vector<std::vector<SuggestiveSegment>> chunks((triangles + kChunk - 1) / kChunk);
+    std::vector<std::vector<EdgeSegment>> chunks((triangles + kChunk - 1) / kChunk);
     forChunks(triangles, settings.threads, [&](std::size_t first, std::size_t end) {
-        std::vector<SuggestiveSegment>& out = chunks[first / kChunk];
+        std::vector<EdgeSegment>& out = chunks[first / kChunk];
         for (std::size_t t = first; t < end; ++t) {
             const std::uint32_t* v = &s.mesh.indices[3 * t];
             const float value[3] = {kr[v[0]], kr[v[1]], kr[v[2]]};
@@ -243,10 +243,11 @@ SuggestiveContourRenderer::segments(const Camera& camera,
                 continue;
             const glm::vec3 p = s.mesh.positions[lone];
             out.push_back(
-                {p + c.ta * (s.mesh.positions[o1] - p), p + c.tb * (s.mesh.positions[o2] - p)});
+                {{p + c.ta * (s.mesh.positions[o1] - p), p + c.tb * (s.mesh.positions[o2] - p)},
+                 {meshEdgeKey(lone, o1), meshEdgeKey(lone, o2)}});
         }
     });
-    std::vector<SuggestiveSegment> all;
+    std::vector<EdgeSegment> all;
     for (const auto& chunk : chunks)
         all.insert(all.end(), chunk.begin(), chunk.end());
     return all;
@@ -257,14 +258,14 @@ SuggestiveFrame SuggestiveContourRenderer::render(const Camera& camera,
     const auto start = Clock::now();
     State& s = *m_state;
     const unsigned threads = settings.threads;
-    const std::vector<SuggestiveSegment> kept = segments(camera, settings);
+    const std::vector<EdgeSegment> kept = segments(camera, settings);
     const kernels::cpu::ViewTransform view = toViewTransform(camera);
     std::vector<kernels::cpu::ScreenSegment> screen;
     screen.reserve(kept.size());
-    for (const SuggestiveSegment& segment : kept) {
+    for (const EdgeSegment& segment : kept) {
         kernels::cpu::ScreenSegment out;
-        if (kernels::cpu::projectPoint(view, glm::dvec3(segment.a), out.a, out.keyA) &&
-            kernels::cpu::projectPoint(view, glm::dvec3(segment.b), out.b, out.keyB))
+        if (kernels::cpu::projectPoint(view, glm::dvec3(segment.point[0]), out.a, out.keyA) &&
+            kernels::cpu::projectPoint(view, glm::dvec3(segment.point[1]), out.b, out.keyB))
             screen.push_back(out);
     }
     s.lineDepth.reset(camera.width(), camera.height(), threads);

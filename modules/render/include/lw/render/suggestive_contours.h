@@ -27,6 +27,7 @@
 #include "lw/render/iso_surface.h"
 #include "lw/render/pixel_mask.h"
 #include "lw/render/surface_derivatives.h"
+#include "lw/render/visible_polylines.h"
 #include "lw/volume/volume.h"
 
 #include <cstddef>
@@ -66,11 +67,6 @@ private:
 // the sizes must agree, else core::Error).
 void addLines(PixelMask& into, const PixelMask& lines);
 
-struct SuggestiveSegment {
-    glm::vec3 a{0.0f};
-    glm::vec3 b{0.0f};
-};
-
 struct SuggestiveFrame {
     PixelMask lines;
     std::size_t segments = 0; // kept segments (before visibility)
@@ -95,9 +91,10 @@ public:
     // kappa_r per vertex for the camera.
     std::vector<kernels::RadialCurvature> vertexCurvature(const Camera& camera,
                                                           unsigned threads = 0) const;
-    // The kept segments (patient mm), before visibility.
-    std::vector<SuggestiveSegment> segments(const Camera& camera,
-                                            const SuggestiveContourSettings& settings) const;
+    // The kept segments (patient mm, with the mesh edges their ends lie on, so chainSegments()
+    // joins them), before visibility.
+    std::vector<EdgeSegment> segments(const Camera& camera,
+                                      const SuggestiveContourSettings& settings) const;
     // The visible segments drawn into a mask of the camera's size.
     SuggestiveFrame render(const Camera& camera, const SuggestiveContourSettings& settings);
 
