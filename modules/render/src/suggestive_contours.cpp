@@ -100,9 +100,11 @@ struct SuggestiveContourRenderer::State {
     State(const volume::Volume& v, const Mesh& m, unsigned threads)
         : volume(v), mesh(m), derivatives(surfaceDerivatives(v, m, threads)), adjacency(m) {}
 
-    // D_w kappa_r at the vertices of triangles that kappa_r crosses zero in (others: 0).
+    // D_w kappa_r at the vertices of triangles that kappa_r crosses zero in and that face the
+    // viewer within the test's angle (others: 0).
     std::vector<float> crossingDerivatives(const std::vector<kernels::RadialCurvature>& curvature,
-                                           const std::vector<float>& kr, unsigned threads) const;
+                                           const std::vector<float>& kr, double minCosine,
+                                           unsigned threads) const;
 };
 
 SuggestiveContourRenderer::SuggestiveContourRenderer(const volume::Volume& volume, const Mesh& mesh,
@@ -155,16 +157,19 @@ SuggestiveContourRenderer::vertexCurvature(const Camera& camera, unsigned thread
 
 std::vector<float> SuggestiveContourRenderer::State::crossingDerivatives(
     const std::vector<kernels::RadialCurvature>& curvature, const std::vector<float>& kr,
-    unsigned threads) const {
+    double minCosine, unsigned threads) const {
     // Only the vertices of crossed triangles need the derivative (a few percent of them on
-    // smooth shapes), and only the triangles around those need a gradient.
+    // smooth shapes; back faces never), and only the triangles around those need a gradient.
     const std::size_t triangles = mesh.triangleCount(), vertices = kr.size();
     std::vector<std::uint8_t> crossed(triangles, 0);
     forChunks(triangles, threads, [&](std::size_t first, std::size_t end) {
         for (std::size_t t = first; t < end; ++t) {
             const std::uint32_t* v = &mesh.indices[3 * t];
             const bool s0 = kr[v[0]] >= 0.0f;
-            crossed[t] = s0 != (kr[v[1]] >= 0.0f) || s0 != (kr[v[2]] >= 0.0f);
+            const bool facing = curvature[v[0]].nDotV > minCosine ||
+                                curvature[v[1]].nDotV > minCosine ||
+                                curvature[v[2]].nDotV > minCosine;
+            crossed[t] = facing && (s0 != (kr[v[1]] >= 0.0f) || s0 != (kr[v[2]] >= 0.0f));
         }
     });
     const auto anyAround = [&](std::size_t v, const std::vector<std::uint8_t>& flag) {
@@ -221,8 +226,9 @@ SuggestiveContourRenderer::segments(const Camera& camera,
         kr[v] = curvature[v].kr;
         nDotV[v] = curvature[v].nDotV;
     }
-    const std::vector<float> derivative = s.crossingDerivatives(curvature, kr, settings.threads);
     const SuggestiveTest test(settings, featureSize(settings));
+    const std::vector<float> derivative =
+        s.crossingDerivatives(curvature, kr, test.minCosine(), settings.threads);
     const std::size_t triangles = s.mesh.triangleCount();
     std::vector<std::vector<EdgeSegment>> chunks((triangles + kChunk - 1) / kChunk);
     forChunks(triangles, settings.threads, [&](std::size_t first, std::size_t end) {

@@ -57,6 +57,9 @@ public:
     SuggestiveTest(const SuggestiveContourSettings& settings, double featureSize);
     // `derivative`: D_w kappa_r along the unit w (1/mm^2); `nDotV`: cos(theta).
     bool passes(double derivative, double nDotV) const;
+    // cos of the largest view angle passed: a triangle whose vertices all have n.v at or below
+    // it cannot hold a passing point (n.v is interpolated), so it needs no derivative.
+    double minCosine() const { return m_minCosine; }
 
 private:
     double m_minCosine;
