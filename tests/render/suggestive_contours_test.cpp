@@ -180,6 +180,20 @@ TEST(SuggestiveContours, SphereHasNone) {
     }
 }
 
+// An iso-value above every voxel: no surface, no lines, no failure.
+TEST(SuggestiveContours, EmptySurfaceDrawsNothing) {
+    const evaluation::SphereShape sphere;
+    const volume::Volume volume = evaluation::sampleShape(sphere, 16);
+    const render::Mesh mesh = render::extractIsoSurface(volume, 1000.0);
+    ASSERT_TRUE(mesh.isEmpty());
+    render::SuggestiveContourRenderer renderer(volume, mesh, 1000.0);
+    const render::SuggestiveFrame frame =
+        renderer.render(shapeCamera(sphere, volume, {30.0, 20.0}), {});
+    EXPECT_EQ(frame.segments, 0u);
+    EXPECT_EQ(frame.lines.count(), 0u);
+    EXPECT_GT(frame.lines.width(), 0);
+}
+
 // The segments chain through the mesh edges they share like the silhouette's (the torus from
 // 45 degrees up: two strokes, left and right of the hole), and their visible polylines lie on
 // the drawn pixels.
