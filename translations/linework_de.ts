@@ -954,6 +954,18 @@
         <translation>Farbe wählen</translation>
     </message>
     <message>
+        <source>Close the surface where the scan ends</source>
+        <translation>Oberfläche am Ende des Scans schließen</translation>
+    </message>
+    <message>
+        <source>Where the first or last slice cuts bone, the cut face becomes part of the surface and its edge is drawn as a line.</source>
+        <translation>Wo die erste oder letzte Schicht Knochen schneidet, wird die Schnittfläche Teil der Oberfläche und ihr Rand als Linie gezeichnet.</translation>
+    </message>
+    <message>
+        <source>Volume border:</source>
+        <translation>Volumenrand:</translation>
+    </message>
+    <message>
         <source>Suggestive contours</source>
         <translation>Suggestive Konturen</translation>
     </message>

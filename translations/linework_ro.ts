@@ -954,6 +954,18 @@
         <translation>Alegeți o culoare</translation>
     </message>
     <message>
+        <source>Close the surface where the scan ends</source>
+        <translation>Închide suprafața acolo unde se termină scanarea</translation>
+    </message>
+    <message>
+        <source>Where the first or last slice cuts bone, the cut face becomes part of the surface and its edge is drawn as a line.</source>
+        <translation>Acolo unde prima sau ultima secțiune taie osul, fața tăiată devine parte a suprafeței, iar marginea ei este desenată ca linie.</translation>
+    </message>
+    <message>
+        <source>Volume border:</source>
+        <translation>Marginea volumului:</translation>
+    </message>
+    <message>
         <source>Suggestive contours</source>
         <translation>Contururi sugestive</translation>
     </message>

@@ -128,6 +128,7 @@ Row benchMarchingCubesCuda(const BenchVolume& input, const Plan& plan,
     render::CudaIsoSurfaceExtractor extractor(input.volume);
     notes.push_back(input.label + ": volume upload " + std::to_string(extractor.uploadMs()) +
                     " ms (pageable host memory)");
+    // Marching cubes as other libraries do it (the comparison): the surface open at the border.
     render::CudaExtraction result = extractor.extract(input.iso); // warm-up
     std::vector<double> times, device, stages[4];
     for (int i = 0; i < plan.repeat; ++i) {

@@ -71,6 +71,7 @@ render::Mesh extractForRequest(const volume::Volume& volume, const RenderRequest
     render::IsoSurfaceOptions options;
     options.brickCells = request.settings.brickCells;
     options.threads = request.settings.threads;
+    options.closeAtBorder = request.settings.closeAtBorder;
     return render::extractIsoSurface(volume, request.settings.isoReal, options);
 }
 
@@ -165,9 +166,9 @@ RenderedPanels renderPanels(render::SilhouetteRenderer& renderer, const volume::
 }
 
 const std::set<std::string>& panelRenderOptions() {
-    static const std::set<std::string> names = {"iso",        "method",  "chunks",    "mode",
-                                                "visibility", "view",    "camera",    "size",
-                                                "backend",    "threads", "min-stroke"};
+    static const std::set<std::string> names = {"iso",        "method",  "chunks",     "mode",
+                                                "visibility", "view",    "camera",     "size",
+                                                "backend",    "threads", "min-stroke", "border"};
     return names;
 }
 
@@ -192,6 +193,12 @@ RenderRequest parseRenderRequest(const Arguments& arguments, const std::string& 
     if (!(minStroke >= 0.0 && minStroke <= 1e6))
         throw UsageError("--min-stroke", "expected a number of pixels >= 0");
     request.settings.minStrokePixels = int(minStroke);
+    // Where the first or last slice cuts bone, the surface is closed there (its outline drawn)
+    // unless --border open asks for marching cubes' open surface.
+    const std::string border = arguments.option("border", "closed");
+    if (border != "closed" && border != "open")
+        throw UsageError("--border " + border, "expected closed or open");
+    request.settings.closeAtBorder = border == "closed";
     if (!arguments.option("iso"))
         throw UsageError(command, "needs --iso HU");
     request.settings.isoReal = arguments.number("iso", 0.0);

@@ -8,11 +8,15 @@
 #include "review/qt_image.h"
 #include "review/review_panel.h"
 #include "review/review_widget.h"
+#include "review/silhouette_textures.h"
 #include "review/volume_loader.h"
 #include "review_test_support.h"
 
 #include <QDoubleSpinBox>
 #include <QLabel>
+#include <QOffscreenSurface>
+#include <QOpenGLFunctions>
+#include <QOpenGLWidget>
 #include <QPainter>
 #include <QSlider>
 #include <QtTest>
@@ -41,6 +45,8 @@ private slots:
     void pickingFindsTheSphereSurface();
     void windowMatchesBaseline();
     void hoverShowsThePatientPosition();
+    void linesTextureDrawsAsTheHostImage();
+    void silhouetteTexturesAreNeverHandedOutTwice();
 };
 
 void ReviewTest::panelsDraw_data() {
@@ -322,6 +328,114 @@ void ReviewTest::hoverShowsThePatientPosition() {
              qPrintable(cursor->text()));
     hover(QPoint(3, 3)); // background: no surface there
     QTRY_VERIFY_WITH_TIMEOUT(cursor->text().isEmpty(), 3000);
+}
+
+// The silhouette panel's GL view draws a lines texture (what method 3 on CUDA writes on the
+// GPU machine) exactly as it draws the host mask's image: flipped right, widened to the line
+// width, in the line and background colours. Here the texture comes from the test.
+void ReviewTest::linesTextureDrawsAsTheHostImage() {
+    ReviewSettings settings = settingsFor(3, Chunking::Off, PanelGl::InPanels);
+    settings.lineWidth = 3.0;
+    settings.lineColour = QColor(200, 30, 60);
+    settings.background = QColor(20, 40, 90);
+    ReviewWidget review(phantomSource("phantom:48", 300.5), settings);
+    review.resize(700, 420);
+    review.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&review));
+    QVERIFY(waitSettled(review));
+    ReviewPanel& panel = review.silhouettePanel();
+    QVERIFY(panel.hasGlView());
+    auto* view = panel.findChild<QOpenGLWidget*>();
+    QVERIFY(view);
+    const QSize size = panel.renderSize();
+    lw::render::PixelMask mask(size.width(), size.height());
+    for (int x = 0; x < size.width(); ++x) // a diagonal, a row near the top, the corners
+        mask.set(x, std::min(size.height() - 1, x * size.height() / size.width()));
+    for (int x = 10; x < size.width() - 10; ++x)
+        mask.set(x, 3);
+    mask.set(0, 0);
+    mask.set(size.width() - 1, size.height() - 1);
+
+    view->makeCurrent(); // the panel's context shares its textures with the worker's
+    QOpenGLFunctions* f = view->context()->functions();
+    GLuint texture = 0;
+    f->glGenTextures(1, &texture);
+    f->glBindTexture(GL_TEXTURE_2D, texture);
+    f->glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    f->glTexImage2D(GL_TEXTURE_2D, 0, GL_R8, size.width(), size.height(), 0, GL_RED,
+                    GL_UNSIGNED_BYTE, mask.pixels().data());
+    f->glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+    // One level, as render::GlFrameTarget makes it: without mipmaps the default filter would
+    // leave the texture incomplete.
+    f->glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    f->glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    f->glBindTexture(GL_TEXTURE_2D, 0);
+    view->doneCurrent();
+    panel.setImage({});
+    panel.setLinesTexture(
+        std::make_shared<const LinesTexture>(LinesTexture{texture, size.width(), size.height()}));
+    QVERIFY(panel.showsLinesTexture());
+    const QImage shown = panel.grabImage().convertToFormat(QImage::Format_RGB32);
+    const QImage expected = linesToImage(mask, settings, false, settings.lineWidth)
+                                .convertToFormat(QImage::Format_RGB32);
+    panel.setLinesTexture(nullptr);
+    view->makeCurrent();
+    f->glDeleteTextures(1, &texture);
+    view->doneCurrent();
+    QCOMPARE(shown.size(), expected.size());
+    int differing = 0;
+    for (int y = 0; y < shown.height(); ++y)
+        for (int x = 0; x < shown.width(); ++x)
+            differing += shown.pixel(x, y) != expected.pixel(x, y);
+    QCOMPARE(differing, 0);
+}
+
+// The worker's texture slots: a slot held by a result or the panel is never written again until
+// let go; a size change makes a new texture; with every slot held the frame gets none (it then
+// takes the host path). The textures live in Qt's share group, so the panels' contexts see them.
+void ReviewTest::silhouetteTexturesAreNeverHandedOutTwice() {
+    QOpenGLContext* global = QOpenGLContext::globalShareContext();
+    QVERIFY2(global, "requestCoreProfileFormat() shares every context with Qt's global one");
+    QOffscreenSurface surface;
+    surface.setFormat(global->format());
+    surface.create();
+    SilhouetteTextures textures(&surface);
+    std::shared_ptr<const LinesTexture> held[3];
+    lw::render::GlFrameTarget* targets[3] = {};
+    for (int i = 0; i < 3; ++i) {
+        targets[i] = textures.acquire(64, 48, held[i]);
+        QVERIFY(targets[i]);
+        QVERIFY(held[i]);
+        QCOMPARE(held[i]->texture, targets[i]->texture());
+        QCOMPARE(targets[i]->width(), 64);
+        for (int j = 0; j < i; ++j)
+            QVERIFY(held[j]->texture != held[i]->texture);
+    }
+    std::shared_ptr<const LinesTexture> none;
+    QVERIFY(!textures.acquire(64, 48, none));
+    QVERIFY(!none);
+    const unsigned second = held[1]->texture;
+    held[1].reset(); // the panel let go of it
+    std::shared_ptr<const LinesTexture> again;
+    QCOMPARE(textures.acquire(64, 48, again), targets[1]);
+    QCOMPARE(again->texture, second);
+    textures.done();
+    again.reset();
+    std::shared_ptr<const LinesTexture> resized;
+    lw::render::GlFrameTarget* bigger = textures.acquire(80, 60, resized);
+    QVERIFY(bigger);
+    QCOMPARE(bigger->width(), 80);
+    QCOMPARE(resized->height, 60);
+    const unsigned name = resized->texture;
+    textures.done();
+    QOpenGLContext other; // e.g. a panel's
+    other.setShareContext(global);
+    other.setFormat(global->format());
+    QVERIFY(other.create());
+    QVERIFY(other.makeCurrent(&surface));
+    QVERIFY(other.functions()->glIsTexture(name));
+    other.doneCurrent();
+    textures.release();
 }
 
 LW_GUI_TEST_MAIN(ReviewTest)

@@ -37,9 +37,13 @@ QImage shadeIsoOnCpu(const render::Mesh* mesh, const render::Camera& camera,
     return toQImage(render::shadeSurfaceCpu(mesh ? *mesh : render::Mesh(), camera, shading, depth));
 }
 
+int lineDilationRadius(double lineWidth) {
+    return int((lineWidth - 1.0) / 2.0 + 0.5);
+}
+
 QImage linesToImage(const render::PixelMask& lines, const ReviewSettings& appearance,
                     bool transparent, double lineWidth) {
-    const int radius = int((lineWidth - 1.0) / 2.0 + 0.5);
+    const int radius = lineDilationRadius(lineWidth);
     const render::PixelMask mask = radius > 0 ? lines.dilated(radius) : lines;
     QImage image(mask.width(), mask.height(), QImage::Format_ARGB32);
     const QRgb line = appearance.lineColour.rgb();
@@ -64,6 +68,7 @@ std::pair<QImage, QImage> renderPanelJob(const PanelRenderJob& job) {
     settings.visibility = job.appearance.visibility;
     settings.testAlongSegment = job.appearance.testAlongSegment;
     settings.minStrokePixels = job.appearance.minStrokePixels;
+    settings.closeAtBorder = job.appearance.closeAtBorder;
     render::SilhouetteFrame frame = renderer->render(job.camera, settings);
     if (job.appearance.suggestiveContours) {
         // The surface the frame drew (method 2 keeps none: extracted here).

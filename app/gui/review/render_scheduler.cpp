@@ -1,6 +1,8 @@
 #include "review/render_scheduler.h"
 
 #include <QMetaObject>
+#include <QOffscreenSurface>
+#include <QOpenGLContext>
 #include <QPointer>
 
 namespace lw::gui {
@@ -29,6 +31,12 @@ RenderScheduler::~RenderScheduler() {
 
 std::uint64_t RenderScheduler::request(FrameRequest request) {
     request.id = ++m_nextId;
+    if (request.silhouetteToTexture && !m_textureSurface && QOpenGLContext::globalShareContext()) {
+        m_textureSurface = std::make_unique<QOffscreenSurface>();
+        m_textureSurface->setFormat(QOpenGLContext::globalShareContext()->format());
+        m_textureSurface->create();
+    }
+    request.textureSurface = m_textureSurface.get();
     if (m_running) {
         if (m_running->iso != request.iso ||
             m_running->settingsGeneration != request.settingsGeneration)

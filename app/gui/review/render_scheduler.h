@@ -11,6 +11,8 @@
 #include <memory>
 #include <optional>
 
+class QOffscreenSurface;
+
 namespace lw::gui {
 
 class RenderScheduler : public QObject {
@@ -32,6 +34,9 @@ private:
     void dispatch(FrameRequest request);
     void finished(std::shared_ptr<const FrameResult> result);
 
+    // For the worker's GL context (silhouette textures): Qt makes offscreen surfaces on the UI
+    // thread only; made at the first request that wants one, destroyed after the worker stopped.
+    std::unique_ptr<QOffscreenSurface> m_textureSurface;
     std::shared_ptr<RenderWorker> m_worker;
     QThread m_thread;
     QObject* m_threadContext = nullptr; // lives in m_thread; queued calls run there

@@ -29,6 +29,9 @@ RenderWorker::RenderWorker(std::shared_ptr<const volume::Volume> volume)
 RenderWorker::~RenderWorker() = default;
 
 void RenderWorker::release() {
+    if (m_textures)
+        m_textures->release(); // their CUDA registrations and GL textures, in their context
+    m_textures.reset();
     if (m_isoGl && m_glContext) {
         m_glContext->makeCurrent();
         m_isoGl->release();
@@ -102,9 +105,23 @@ void RenderWorker::renderSilhouette(const FrameRequest& request, FrameResult& re
     settings.isoReal = request.iso;
     settings.cancel = request.cancel.get(); // a newer iso-value stops this frame in the kernels
     render::SilhouetteRenderer& renderer = rendererFor(request, result);
-    result.silhouette = renderer.render(request.camera, settings);
+    std::shared_ptr<const LinesTexture> texture;
+    settings.frameTarget = frameTargetFor(request, renderer, texture);
+    {
+        // The worker's context is current from acquire() to here, whatever the frame does.
+        struct ContextDone {
+            SilhouetteTextures* textures;
+            ~ContextDone() {
+                if (textures)
+                    textures->done();
+            }
+        } contextDone{settings.frameTarget ? m_textures.get() : nullptr};
+        result.silhouette = renderer.render(request.camera, settings);
+    }
+    if (result.silhouette->drewToTarget)
+        result.linesTexture = std::move(texture);
     keepRendererMesh(request, result);
-    if (request.suggestive)
+    if (request.suggestive && !result.silhouette->drewToTarget) // the texture path is off then
         addSuggestive(request, result);
 }
 
@@ -136,6 +153,24 @@ void RenderWorker::addSuggestive(const FrameRequest& request, FrameResult& resul
     const render::SuggestiveFrame frame = m_suggestive->render(request.camera, settings);
     render::addLines(result.silhouette->lines, frame.lines);
     result.silhouette->times.drawMs += frame.ms;
+}
+
+// A texture for this frame where one can be drawn: the panel asks for it, and the renderer is
+// method 3 on CUDA with nothing to do on the host mask afterwards. Anywhere else no GL context
+// is made for nothing.
+render::GlFrameTarget* RenderWorker::frameTargetFor(const FrameRequest& request,
+                                                    const render::SilhouetteRenderer& renderer,
+                                                    std::shared_ptr<const LinesTexture>& token) {
+    const glm::ivec2 size(request.camera.width(), request.camera.height());
+    if (!request.silhouetteToTexture || !request.textureSurface ||
+        renderer.method() != render::SilhouetteMethod::ZBuffer ||
+        renderer.backendName() != "cuda" ||
+        render::frameTargetUse(size, size, request.settings.minStrokePixels) !=
+            render::FrameTargetUse::Texture)
+        return nullptr;
+    if (!m_textures)
+        m_textures = std::make_unique<SilhouetteTextures>(request.textureSurface);
+    return m_textures->acquire(size.x, size.y, token);
 }
 
 // Methods 1 and 3 (S, CPU or CUDA) keep the mesh they drew: the iso panel shows exactly that
@@ -195,6 +230,9 @@ void RenderWorker::renderIsoImage(const FrameRequest& request, FrameResult& resu
 void RenderWorker::extractMesh(const FrameRequest& request, FrameResult& result) {
     if (result.mesh)
         return;
+    const bool closes = request.settings.closeAtBorder;
+    if (m_extractorCloses != closes)
+        m_mesh.reset(); // the kept mesh is the other surface (open / closed at the border)
     if (m_mesh && m_meshIso == request.iso && !request.forceExtract && !request.wantMesh)
         return; // the iso image re-draws the mesh it has
     if (m_mesh && m_meshIso == request.iso && !request.forceExtract) {
@@ -205,12 +243,14 @@ void RenderWorker::extractMesh(const FrameRequest& request, FrameResult& result)
     // The iso panel's mesh is the same whatever the brick schedule (canonical order), so the
     // extractor keeps one brick grid and reuses it across iso-values.
     const int bricks = request.settings.brickCells;
-    if (!m_extractor || m_extractorBricks != bricks) {
+    if (!m_extractor || m_extractorBricks != bricks || m_extractorCloses != closes) {
         render::IsoSurfaceOptions options;
         options.brickCells = bricks;
         options.threads = request.settings.threads;
+        options.closeAtBorder = request.settings.closeAtBorder;
         m_extractor = std::make_unique<render::IsoSurfaceExtractor>(*m_volume, options);
         m_extractorBricks = bricks;
+        m_extractorCloses = closes;
     }
     auto mesh = std::make_shared<render::Mesh>();
     m_extractor->extract(request.iso, *mesh, nullptr, request.cancel.get());

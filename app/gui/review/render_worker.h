@@ -14,12 +14,15 @@
 #include "lw/render/silhouette_renderer.h"
 #include "lw/render/suggestive_contours.h"
 #include "lw/volume/volume.h"
+#include "review/silhouette_textures.h"
 
 #include <QImage>
 #include <QString>
 #include <cstdint>
 #include <memory>
 #include <optional>
+
+class QOffscreenSurface;
 
 namespace lw::gui {
 
@@ -44,6 +47,11 @@ struct FrameRequest {
     render::Backend backend = render::Backend::Auto;
     render::SilhouetteSettings settings;
     render::Camera camera;
+    // The silhouette panel can draw a texture (its GL view): method 3 on CUDA then writes its
+    // lines into one of the worker's textures (silhouette_textures.h) instead of host memory.
+    bool silhouetteToTexture = false;
+    // For those textures: made on the UI thread by RenderScheduler, which outlives the worker.
+    QOffscreenSurface* textureSurface = nullptr;
     std::shared_ptr<core::CancelToken> cancel = std::make_shared<core::CancelToken>();
 };
 
@@ -55,6 +63,8 @@ struct FrameResult {
     std::shared_ptr<const render::Mesh> mesh; // set when the request wanted one
     double meshMs = 0.0;
     std::optional<render::SilhouetteFrame> silhouette;
+    // Set when the silhouette went into a texture (silhouette->lines is then empty).
+    std::shared_ptr<const LinesTexture> linesTexture;
     QImage isoImage;             // when the request wanted it
     std::vector<float> isoDepth; // its depth buffer, top row first (picking)
     render::Camera isoCamera;
@@ -87,10 +97,14 @@ private:
     void renderIsoImage(const FrameRequest& request, FrameResult& result);
     void keepRendererMesh(const FrameRequest& request, FrameResult& result);
     void addSuggestive(const FrameRequest& request, FrameResult& result);
+    render::GlFrameTarget* frameTargetFor(const FrameRequest& request,
+                                          const render::SilhouetteRenderer& renderer,
+                                          std::shared_ptr<const LinesTexture>& token);
 
     std::shared_ptr<const volume::Volume> m_volume;
     std::unique_ptr<render::IsoSurfaceExtractor> m_extractor;
     int m_extractorBricks = -1;
+    bool m_extractorCloses = false; // the extractor's IsoSurfaceOptions::closeAtBorder
     std::unique_ptr<render::SilhouetteRenderer> m_renderer;
     render::Backend m_rendererBackend = render::Backend::Auto;
     QString m_backendNote;
@@ -106,6 +120,8 @@ private:
     std::unique_ptr<render::SilhouetteGlRenderer> m_isoGl;
     const render::Mesh* m_uploadedMesh = nullptr;
     std::shared_ptr<const render::Mesh> m_uploadedMeshOwner;
+    // The silhouette panel's textures (made at the first request for one).
+    std::unique_ptr<SilhouetteTextures> m_textures;
 };
 
 } // namespace lw::gui

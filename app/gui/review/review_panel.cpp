@@ -3,8 +3,10 @@
 #include "lw/core/error.h"
 #include "lw/render/surface_picking.h"
 #include "review/camera_controller.h"
+#include "review/panel_render_job.h"
 #include "review/qt_image.h"
 
+#include <QCoreApplication>
 #include <QElapsedTimer>
 #include <QKeyEvent>
 #include <QMouseEvent>
@@ -88,6 +90,9 @@ const GlInfo& displayGlInfo() {
 }
 
 void requestCoreProfileFormat() {
+    // Every context shares Qt's global one: the render worker's context writes the silhouette
+    // textures the panels' contexts draw (silhouette_textures.h).
+    QCoreApplication::setAttribute(Qt::AA_ShareOpenGLContexts);
     QSurfaceFormat format;
     format.setRenderableType(QSurfaceFormat::OpenGL);
     format.setVersion(4, 5);
@@ -155,10 +160,11 @@ void ReviewPanel::setGlView(bool glView) {
 
 void ReviewPanel::releaseGl() {
     // GL objects die with the context they were made in: release them while it still exists.
-    if (!m_glView || !m_glView->context() || !m_gl.isInitialized())
+    if (!m_glView || !m_glView->context() || (!m_gl.isInitialized() && !m_linesView.holdsGl()))
         return;
     m_glView->makeCurrent();
     m_gl.release();
+    m_linesView.release();
     m_glView->doneCurrent();
 }
 
@@ -189,6 +195,11 @@ void ReviewPanel::setUseGl(bool enabled) {
 
 void ReviewPanel::setImage(const QImage& image) {
     m_image = image;
+    updateView();
+}
+
+void ReviewPanel::setLinesTexture(std::shared_ptr<const LinesTexture> texture) {
+    m_linesTexture = std::move(texture);
     updateView();
 }
 
@@ -266,6 +277,8 @@ void ReviewPanel::paintGlView() {
             m_message = tr("Out of memory uploading the surface to OpenGL");
             m_mesh.reset();
         }
+    } else if (m_linesTexture) {
+        drawLinesTexture();
     }
     {
         QPainter painter(m_glView);
@@ -274,6 +287,16 @@ void ReviewPanel::paintGlView() {
         drawMessage(painter);
     } // the painter ends while the widget's context is current, before anyone hears of it
     reportPaint(double(timer.nsecsElapsed()) / 1e6);
+}
+
+void ReviewPanel::drawLinesTexture() {
+    try {
+        m_linesView.draw(*m_linesTexture, lineDilationRadius(m_appearance.lineWidth),
+                         m_appearance.lineColour, m_appearance.background);
+    } catch (const core::Error& error) {
+        m_linesTexture.reset();
+        m_message = tr("OpenGL failed: %1").arg(error.what());
+    }
 }
 
 void ReviewPanel::paintImageView(QPainter& painter) {

@@ -17,6 +17,7 @@
 
 #include "lw/render/iso_surface.h"
 #include "lw/render/silhouette_gl_renderer.h"
+#include "review/silhouette_textures.h"
 #include "settings/review_settings.h"
 
 #include <QImage>
@@ -53,7 +54,8 @@ struct GlInfo {
 const GlInfo& displayGlInfo();
 
 // The OpenGL 4.5 core profile the engine's pipeline needs (geometry shaders), as the default
-// format of every window and context; call before QApplication is made.
+// format of every window and context, all sharing Qt's global context (the render worker's
+// silhouette textures); call before QApplication is made.
 void requestCoreProfileFormat();
 
 class ReviewPanel : public QWidget {
@@ -73,6 +75,10 @@ public:
     void setUseGl(bool enabled);
     bool usesGl() const { return m_useGl && hasGlView(); }
     void setImage(const QImage& image);
+    // The silhouette as a texture the render worker's CUDA wrote (GL view): drawn as setImage()
+    // draws the host mask's image, with nothing uploaded; null: the image again.
+    void setLinesTexture(std::shared_ptr<const LinesTexture> texture);
+    bool showsLinesTexture() const { return m_linesTexture && hasGlView(); }
     // The worker's iso image comes with its depth buffer and camera, for picking.
     void setDepth(std::vector<float> depth, const render::Camera& camera);
     // Lines drawn over the iso panel by a CPU method (transparent elsewhere); null for none.
@@ -130,6 +136,7 @@ private:
     void uploadPendingMesh();
     void drawGl(const render::Camera& camera);
     void drawImages(QPainter& painter);
+    void drawLinesTexture();
     void drawMessage(QPainter& painter);
     void drawOverlayPainter(QPainter& painter);
     void releaseGl();
@@ -149,6 +156,8 @@ private:
     bool m_useGl = false;
     bool m_glBroken = false;
     QImage m_image;
+    std::shared_ptr<const LinesTexture> m_linesTexture; // held while shown: not written meanwhile
+    LinesTextureView m_linesView;
     QImage m_overlay;
     std::vector<float> m_depth;
     render::Camera m_depthCamera;

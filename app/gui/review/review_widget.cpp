@@ -269,6 +269,7 @@ void ReviewWidget::applySettings(const ReviewSettings& settings) {
     m_isoPanel->setUseGl(m_drawsInPanels);
     m_silhouettePanel->setUseGl(methodOneInPanel());
     m_silhouettePanel->setImage({});
+    m_silhouettePanel->setLinesTexture(nullptr);
     m_isoPanel->setOverlay({});
     m_isoControl->setPresets(settings.presets);
     m_meshCurrent = false; // the new settings' first frame brings the mesh again
@@ -307,11 +308,17 @@ void ReviewWidget::requestFrame(bool newIso) {
     request.settings.visibility = m_settings.visibility;
     request.settings.testAlongSegment = m_settings.testAlongSegment;
     request.settings.minStrokePixels = m_settings.minStrokePixels;
+    request.settings.closeAtBorder = m_settings.closeAtBorder;
     request.settings.gpuMemoryBudget = std::size_t(m_settings.gpuMemoryBudgetMiB) << 20;
     request.settings.isoReal = m_iso;
     request.wantSilhouette = !methodOneInPanel();
     // Drawn on the worker with the silhouette (CPU); method 1 in the panel's own GL has none yet.
     request.suggestive = m_settings.suggestiveContours && request.wantSilhouette;
+    // The GL panel draws a texture the worker's CUDA writes; the iso panel's overlay and the
+    // suggestive contours (added to the mask on the host) still need the mask on the host.
+    request.silhouetteToTexture = m_drawsInPanels && !m_settings.silhouetteOnIso &&
+                                  !request.suggestive &&
+                                  m_settings.method == render::SilhouetteMethod::ZBuffer;
     request.wantMesh = newIso || !m_meshCurrent || (modeB && methodOneInPanel());
     request.forceExtract = modeB && methodOneInPanel() && !newIso;
     if (!m_drawsInPanels) {
@@ -338,6 +345,8 @@ void ReviewWidget::takeFrame(const std::shared_ptr<const FrameResult>& result) {
         showError(result->error);
         m_isoPanel->setMessage(result->error);
         m_silhouettePanel->setMessage(result->error);
+        // A worker that failed may have released its textures (out of memory).
+        m_silhouettePanel->setLinesTexture(nullptr);
         return;
     }
     m_errorLine->hide();
@@ -375,6 +384,15 @@ void ReviewWidget::showSilhouette(const FrameResult& result) {
     m_status.silhouetteTimes = frame.times;
     if (!result.mesh)
         m_status.triangles = std::max(m_status.triangles, frame.triangles);
+    if (result.linesTexture && m_silhouettePanel->hasGlView()) {
+        // Method 3 on CUDA wrote the lines into a texture the panel draws: nothing to upload.
+        // Such frames are asked for only without the overlay on the iso panel.
+        m_silhouettePanel->setLinesTexture(result.linesTexture);
+        m_silhouettePanel->setImage({});
+        m_isoPanel->setOverlay({});
+        return;
+    }
+    m_silhouettePanel->setLinesTexture(nullptr);
     m_silhouettePanel->setImage(linesToImage(frame.lines, m_settings, false, m_settings.lineWidth));
     m_isoPanel->setOverlay(m_settings.silhouetteOnIso
                                ? linesToImage(frame.lines, m_settings, true, m_settings.lineWidth)

@@ -43,6 +43,7 @@ struct ReviewSettings {
     bool visibility = true;
     bool testAlongSegment = false; // method 2: along the segment, not only its endpoints
     int minStrokePixels = render::kDefaultMinStrokePixels; // 0: keep every line pixel
+    bool closeAtBorder = true; // the surface closed where the volume's border cuts it
     bool suggestiveContours = false; // drawn with the silhouette (render/suggestive_contours.h)
     double lineWidth = 1.0;          // pixels
     QColor lineColour = QColor(0, 0, 0);

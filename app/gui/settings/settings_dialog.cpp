@@ -107,6 +107,11 @@ QWidget* SettingsDialog::makeMethodPage() {
     m_minStroke->setToolTip(tr("Line fragments with fewer pixels are dropped: the speckle that "
                                "noise on nearly flat surfaces draws. Contours are longer."));
     form->addRow(tr("Drop strokes under:"), m_minStroke);
+    m_closeAtBorder = new QCheckBox(tr("Close the surface where the scan ends"));
+    m_closeAtBorder->setObjectName("closeAtBorder");
+    m_closeAtBorder->setToolTip(tr("Where the first or last slice cuts bone, the cut face becomes "
+                                   "part of the surface and its edge is drawn as a line."));
+    form->addRow(tr("Volume border:"), m_closeAtBorder);
     m_suggestive = new QCheckBox(tr("Suggestive contours"));
     m_suggestive->setObjectName("suggestive");
     m_suggestive->setToolTip(tr("Also draw where the surface almost turns away from the view "
@@ -122,7 +127,7 @@ QWidget* SettingsDialog::makeMethodPage() {
         connect(box, &QComboBox::currentIndexChanged, this, [this] { readControls(); });
     for (QSpinBox* box : {m_brickCells, m_memoryBudget, m_gpuMemoryBudget, m_minStroke})
         connect(box, &QSpinBox::valueChanged, this, [this] { readControls(); });
-    for (QCheckBox* box : {m_visibility, m_alongSegment, m_suggestive})
+    for (QCheckBox* box : {m_visibility, m_alongSegment, m_closeAtBorder, m_suggestive})
         connect(box, &QCheckBox::toggled, this, [this] { readControls(); });
     return page;
 }
@@ -280,6 +285,7 @@ void SettingsDialog::showSettings() {
     m_visibility->setChecked(m_settings.visibility);
     m_alongSegment->setChecked(m_settings.testAlongSegment);
     m_minStroke->setValue(m_settings.minStrokePixels);
+    m_closeAtBorder->setChecked(m_settings.closeAtBorder);
     m_suggestive->setChecked(m_settings.suggestiveContours);
     m_backend->button(int(m_settings.backend))->setChecked(true);
     m_lineWidth->setValue(m_settings.lineWidth);
@@ -312,6 +318,7 @@ void SettingsDialog::readControls() {
     s.visibility = m_visibility->isChecked();
     s.testAlongSegment = m_alongSegment->isChecked();
     s.minStrokePixels = m_minStroke->value();
+    s.closeAtBorder = m_closeAtBorder->isChecked();
     s.suggestiveContours = m_suggestive->isChecked();
     s.backend = render::Backend(m_backend->checkedId());
     s.lineWidth = m_lineWidth->value();

@@ -51,6 +51,7 @@ private:
     QSpinBox* m_memoryBudget = nullptr;
     QSpinBox* m_gpuMemoryBudget = nullptr;
     QSpinBox* m_minStroke = nullptr;
+    QCheckBox* m_closeAtBorder = nullptr;
     QComboBox* m_mode = nullptr;
     QCheckBox* m_visibility = nullptr;
     QCheckBox* m_alongSegment = nullptr;

@@ -49,6 +49,22 @@ GlMeshInterop::~GlMeshInterop() {
 CudaStatus GlMeshInterop::writeLineCandidates(const DeviceMeshView& mesh, glm::vec4 viewer,
                                               unsigned candidates, std::size_t generation,
                                               std::size_t& triangles) {
+    const CudaStatus status = candidatesInto(mesh, viewer, candidates, generation, triangles);
+    if (!status.ok())
+        cudaGetLastError();
+    return status;
+}
+
+CudaStatus GlMeshInterop::copy(const DeviceMeshView& mesh, const GlMeshBuffers& buffers) {
+    const CudaStatus status = copyInto(mesh, buffers);
+    if (!status.ok())
+        cudaGetLastError();
+    return status;
+}
+
+CudaStatus GlMeshInterop::candidatesInto(const DeviceMeshView& mesh, glm::vec4 viewer,
+                                         unsigned candidates, std::size_t generation,
+                                         std::size_t& triangles) {
     triangles = 0;
     if (!m_counter)
         LW_CUDA_TRY(cudaMalloc(&m_counter, sizeof(unsigned long long)), "cudaMalloc(counter)");
@@ -110,7 +126,7 @@ void GlMeshInterop::unregister() {
     m_registered = GlMeshBuffers();
 }
 
-CudaStatus GlMeshInterop::copy(const DeviceMeshView& mesh, const GlMeshBuffers& buffers) {
+CudaStatus GlMeshInterop::copyInto(const DeviceMeshView& mesh, const GlMeshBuffers& buffers) {
     const bool stale = !m_resources[0] || buffers.positions != m_registered.positions ||
                        buffers.normals != m_registered.normals ||
                        buffers.indices != m_registered.indices ||

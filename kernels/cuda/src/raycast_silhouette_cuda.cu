@@ -32,7 +32,10 @@ struct RayCastSilhouetteCuda::Impl {
 
     template <typename T> CudaStatus prepareTyped(double storedIso, RayCastCudaFrame& frame);
     template <typename T>
-    CudaStatus renderTyped(const rc::View& view, std::uint8_t* hostMask, RayCastCudaFrame& frame);
+    CudaStatus renderTyped(const rc::View& view, std::uint8_t* hostMask, RayCastCudaFrame& frame,
+                           const SegmentEndpoints* extra, std::size_t extraCount);
+    template <typename T> CudaStatus findSegments(const rc::View& view, rc::Counters& counts);
+    template <typename T> CudaStatus testAndDraw(const rc::View& view, std::uint32_t count);
 };
 
 RayCastSilhouetteCuda::RayCastSilhouetteCuda() : m_impl(std::make_unique<Impl>()) {}
@@ -102,9 +105,95 @@ CudaStatus RayCastSilhouetteCuda::prepare(double storedIso, RayCastCudaFrame& fr
     });
 }
 
+// Phase 1: the segments of the active cells into `segments` (sorted by cell for the rays).
+template <typename T>
+CudaStatus RayCastSilhouetteCuda::Impl::findSegments(const rc::View& view, rc::Counters& counts) {
+    MarchingCubesCuda::Impl& m = mc();
+    cudaStream_t st = m.stream.get();
+    const mc::Grid<T> g = m.grid<T>(iso);
+    // Run again with a larger buffer when the segments did not fit.
+    for (int attempt = 0; attempt < 2; ++attempt) {
+        LW_CUDA_TRY(cudaMemsetAsync(counters.data(), 0, sizeof(rc::Counters), st),
+                    "cudaMemset(counters)");
+        rc::findSegments<T>
+            <<<blocksFor(m.activeCount, tuning::kRayCastBlock), tuning::kRayCastBlock, 0, st>>>(
+                g, m.activeVoxels.data(), m.activeCodes.data(), m.activeCount, view,
+                segments.data(), segmentCells.data(),
+                std::uint32_t(std::min(segments.capacity(), segmentCells.capacity())),
+                counters.data());
+        LW_CUDA_LAUNCHED("rc::findSegments");
+        LW_CUDA_TRY(
+            cudaMemcpyAsync(&counts, counters.data(), sizeof counts, cudaMemcpyDeviceToHost, st),
+            "cudaMemcpy(counters)");
+        LW_CUDA_TRY(cudaStreamSynchronize(st), "rc::findSegments");
+        if (counts.segments <= std::min(segments.capacity(), segmentCells.capacity()))
+            break;
+        LW_RETURN_IF_FAILED(segments.reserve(std::size_t(counts.segments), "cudaMalloc(segments)"));
+        LW_RETURN_IF_FAILED(
+            segmentCells.reserve(std::size_t(counts.segments), "cudaMalloc(segmentCells)"));
+    }
+    const std::uint32_t found = std::uint32_t(counts.segments);
+    // The segments were appended in whatever order the cells' threads finished: sorted by cell,
+    // neighbouring rays (similar paths through the grid toward the eye) share warps.
+    if (found > 1 && view.visibility) {
+        LW_RETURN_IF_FAILED(sortedSegments.reserve(found, "cudaMalloc(sortedSegments)"));
+        LW_RETURN_IF_FAILED(sortedCells.reserve(found, "cudaMalloc(sortedCells)"));
+        std::size_t bytes = 0;
+        const int keyBits = 32 - __builtin_clz(std::max(m.activeVoxelLimit(), 1u));
+        LW_CUDA_TRY(cub::DeviceRadixSort::SortPairs(nullptr, bytes, segmentCells.data(),
+                                                    sortedCells.data(), segments.data(),
+                                                    sortedSegments.data(), found, 0, keyBits, st),
+                    "cub::DeviceRadixSort(segments)");
+        LW_RETURN_IF_FAILED(sortTemp.reserve(bytes, "cudaMalloc(sortTemp)"));
+        LW_CUDA_TRY(cub::DeviceRadixSort::SortPairs(sortTemp.data(), bytes, segmentCells.data(),
+                                                    sortedCells.data(), segments.data(),
+                                                    sortedSegments.data(), found, 0, keyBits, st),
+                    "cub::DeviceRadixSort(segments)");
+        swap(segments, sortedSegments); // dispatch::swap (ADL): the buffers trade places
+    }
+    return CudaStatus::success();
+}
+
+// Phase 2: the first `count` segments tested (per endpoint or along the segment) and drawn.
+template <typename T>
+CudaStatus RayCastSilhouetteCuda::Impl::testAndDraw(const rc::View& view, std::uint32_t count) {
+    MarchingCubesCuda::Impl& m = mc();
+    cudaStream_t st = m.stream.get();
+    const mc::Grid<T> g = m.grid<T>(iso);
+    RayVisibility<T> rule;
+    rule.voxels = g.box;
+    rule.dims = m.spans.dims;
+    rule.grid = rayGrid.view;
+    rule.macroOccupied = macroOccupied.data();
+    rule.macroDims = macroDims;
+    rule.cellScale = rayGrid.cellScale;
+    rule.iso = iso;
+    if (view.visibility && view.alongSegment) {
+        rc::drawAlongSegments<T><<<blocksFor(count, tuning::kRayBlock), tuning::kRayBlock, 0, st>>>(
+            rule, view, segments.data(), count, mask.data());
+        LW_CUDA_LAUNCHED("rc::drawAlongSegments");
+        return CudaStatus::success();
+    }
+    const std::uint8_t* visibleFlags = nullptr;
+    if (view.visibility) {
+        LW_RETURN_IF_FAILED(visible.reserve(2 * std::size_t(count), "cudaMalloc(visible)"));
+        rc::testEndpoints<T>
+            <<<blocksFor(2 * std::size_t(count), tuning::kRayBlock), tuning::kRayBlock, 0, st>>>(
+                rule, view, segments.data(), count, visible.data());
+        LW_CUDA_LAUNCHED("rc::testEndpoints");
+        visibleFlags = visible.data();
+    }
+    rc::drawSegments<<<blocksFor(count, tuning::kVertexBlock), tuning::kVertexBlock, 0, st>>>(
+        view, segments.data(), count, visibleFlags, mask.data());
+    LW_CUDA_LAUNCHED("rc::drawSegments");
+    return CudaStatus::success();
+}
+
 template <typename T>
 CudaStatus RayCastSilhouetteCuda::Impl::renderTyped(const rc::View& view, std::uint8_t* hostMask,
-                                                    RayCastCudaFrame& frame) {
+                                                    RayCastCudaFrame& frame,
+                                                    const SegmentEndpoints* extra,
+                                                    std::size_t extraCount) {
     MarchingCubesCuda::Impl& m = mc();
     cudaStream_t st = m.stream.get();
     const std::size_t pixels = std::size_t(view.camera.width > 0 ? view.camera.width : 0) *
@@ -113,77 +202,27 @@ CudaStatus RayCastSilhouetteCuda::Impl::renderTyped(const rc::View& view, std::u
     LW_RETURN_IF_FAILED(renderTimer.start(st));
     LW_CUDA_TRY(cudaMemsetAsync(mask.data(), 0, pixels, st), "cudaMemset(mask)");
     rc::Counters counts{};
-    if (m.activeCount > 0) {
-        const mc::Grid<T> g = m.grid<T>(iso);
-        // Phase 1, run again with a larger buffer when the segments did not fit.
-        for (int attempt = 0; attempt < 2; ++attempt) {
-            LW_CUDA_TRY(cudaMemsetAsync(counters.data(), 0, sizeof(rc::Counters), st),
-                        "cudaMemset(counters)");
-            rc::findSegments<T>
-                <<<blocksFor(m.activeCount, tuning::kRayCastBlock), tuning::kRayCastBlock, 0, st>>>(
-                    g, m.activeVoxels.data(), m.activeCodes.data(), m.activeCount, view,
-                    segments.data(), segmentCells.data(),
-                    std::uint32_t(std::min(segments.capacity(), segmentCells.capacity())),
-                    counters.data());
-            LW_CUDA_LAUNCHED("rc::findSegments");
-            LW_CUDA_TRY(cudaMemcpyAsync(&counts, counters.data(), sizeof counts,
-                                        cudaMemcpyDeviceToHost, st),
-                        "cudaMemcpy(counters)");
-            LW_CUDA_TRY(cudaStreamSynchronize(st), "rc::findSegments");
-            if (counts.segments <= std::min(segments.capacity(), segmentCells.capacity()))
-                break;
-            LW_RETURN_IF_FAILED(
-                segments.reserve(std::size_t(counts.segments), "cudaMalloc(segments)"));
-            LW_RETURN_IF_FAILED(
-                segmentCells.reserve(std::size_t(counts.segments), "cudaMalloc(segmentCells)"));
+    if (m.activeCount > 0)
+        LW_RETURN_IF_FAILED(findSegments<T>(view, counts));
+    const std::size_t found = std::size_t(counts.segments);
+    if (extra && extraCount > 0) {
+        // After the sort: the extra segments keep their order behind the cells' ones.
+        if (segments.capacity() < found + extraCount) {
+            LW_RETURN_IF_FAILED(sortedSegments.reserve(found + extraCount, "cudaMalloc(segments)"));
+            LW_CUDA_TRY(cudaMemcpyAsync(sortedSegments.data(), segments.data(),
+                                        found * sizeof(SegmentEndpoints), cudaMemcpyDeviceToDevice,
+                                        st),
+                        "cudaMemcpy(segments)");
+            swap(segments, sortedSegments);
         }
-        const std::uint32_t found = std::uint32_t(counts.segments);
-        // The segments were appended in whatever order the cells' threads finished: sorted by
-        // cell, neighbouring rays (similar paths through the grid toward the eye) share warps.
-        if (found > 1 && view.visibility) {
-            LW_RETURN_IF_FAILED(sortedSegments.reserve(found, "cudaMalloc(sortedSegments)"));
-            LW_RETURN_IF_FAILED(sortedCells.reserve(found, "cudaMalloc(sortedCells)"));
-            std::size_t bytes = 0;
-            const int keyBits = 32 - __builtin_clz(std::max(m.activeVoxelLimit(), 1u));
-            LW_CUDA_TRY(cub::DeviceRadixSort::SortPairs(
-                            nullptr, bytes, segmentCells.data(), sortedCells.data(),
-                            segments.data(), sortedSegments.data(), found, 0, keyBits, st),
-                        "cub::DeviceRadixSort(segments)");
-            LW_RETURN_IF_FAILED(sortTemp.reserve(bytes, "cudaMalloc(sortTemp)"));
-            LW_CUDA_TRY(cub::DeviceRadixSort::SortPairs(
-                            sortTemp.data(), bytes, segmentCells.data(), sortedCells.data(),
-                            segments.data(), sortedSegments.data(), found, 0, keyBits, st),
-                        "cub::DeviceRadixSort(segments)");
-            swap(segments, sortedSegments); // dispatch::swap (ADL): the buffers trade places
-        }
-        RayVisibility<T> rule;
-        rule.voxels = g.box;
-        rule.dims = m.spans.dims;
-        rule.grid = rayGrid.view;
-        rule.macroOccupied = macroOccupied.data();
-        rule.macroDims = macroDims;
-        rule.cellScale = rayGrid.cellScale;
-        rule.iso = iso;
-        if (found > 0 && view.visibility && view.alongSegment) {
-            rc::drawAlongSegments<T>
-                <<<blocksFor(found, tuning::kRayBlock), tuning::kRayBlock, 0, st>>>(
-                    rule, view, segments.data(), found, mask.data());
-            LW_CUDA_LAUNCHED("rc::drawAlongSegments");
-        } else if (found > 0) {
-            const std::uint8_t* visibleFlags = nullptr;
-            if (view.visibility) {
-                LW_RETURN_IF_FAILED(visible.reserve(2 * std::size_t(found), "cudaMalloc(visible)"));
-                rc::testEndpoints<T>
-                    <<<blocksFor(2 * std::size_t(found), tuning::kRayBlock), tuning::kRayBlock, 0,
-                       st>>>(rule, view, segments.data(), found, visible.data());
-                LW_CUDA_LAUNCHED("rc::testEndpoints");
-                visibleFlags = visible.data();
-            }
-            rc::drawSegments<<<blocksFor(found, tuning::kVertexBlock), tuning::kVertexBlock, 0,
-                               st>>>(view, segments.data(), found, visibleFlags, mask.data());
-            LW_CUDA_LAUNCHED("rc::drawSegments");
-        }
+        LW_CUDA_TRY(cudaMemcpyAsync(segments.data() + found, extra,
+                                    extraCount * sizeof(SegmentEndpoints), cudaMemcpyHostToDevice,
+                                    st),
+                    "cudaMemcpy(extraSegments)");
     }
+    const std::size_t total = found + (extra ? extraCount : 0);
+    if (total > 0)
+        LW_RETURN_IF_FAILED(testAndDraw<T>(view, std::uint32_t(total)));
     LW_RETURN_IF_FAILED(renderTimer.stop(st));
     if (pixels > 0)
         LW_CUDA_TRY(cudaMemcpyAsync(hostMask, mask.data(), pixels, cudaMemcpyDeviceToHost, st),
@@ -191,13 +230,15 @@ CudaStatus RayCastSilhouetteCuda::Impl::renderTyped(const rc::View& view, std::u
     LW_CUDA_TRY(cudaStreamSynchronize(st), "rc::render");
     frame.renderMs = renderTimer.ms();
     frame.triangles = std::size_t(counts.triangles);
-    frame.segments = std::size_t(counts.segments);
+    frame.segments = total;
     return CudaStatus::success();
 }
 
 CudaStatus RayCastSilhouetteCuda::render(const PixelCamera& camera, glm::dvec3 eyeOrDirection,
                                          bool orthographic, const RayCastCudaSettings& settings,
-                                         std::uint8_t* hostMask, RayCastCudaFrame& frame) {
+                                         std::uint8_t* hostMask, RayCastCudaFrame& frame,
+                                         const SegmentEndpoints* extraSegments,
+                                         std::size_t extraCount) {
     Impl& s = *m_impl;
     if (!s.prepared)
         return CudaStatus::failure(CudaStatus::Code::Failed, "method 2 (CUDA)",
@@ -210,7 +251,7 @@ CudaStatus RayCastSilhouetteCuda::render(const PixelCamera& camera, glm::dvec3 e
     view.visibility = settings.visibility;
     view.alongSegment = settings.alongSegment;
     return dispatchVoxelKind(s.mc().volume.kind, [&](auto zero) {
-        return s.renderTyped<decltype(zero)>(view, hostMask, frame);
+        return s.renderTyped<decltype(zero)>(view, hostMask, frame, extraSegments, extraCount);
     });
 }
 

@@ -1,6 +1,7 @@
 // Host dispatch of method 3 on the GPU (kernels in zbuffer_kernels.cuh).
 
 #include "dispatch.h"
+#include "lw/kernels/cuda/gl_texture_interop.h"
 #include "lw/kernels/cuda/zbuffer_cuda.h"
 #include "tuning.h"
 #include "zbuffer_kernels.cuh"
@@ -18,6 +19,9 @@ struct ZBufferCuda::Impl {
     DeviceBuffer<std::uint32_t> surface, lines;
     DeviceBuffer<std::uint8_t> mask;
     DeviceBuffer<unsigned long long> segmentCount;
+    // drawHost's copy of a host mesh.
+    DeviceBuffer<glm::vec3> hostPositions, hostNormals;
+    DeviceBuffer<std::uint32_t> hostIndices;
     dispatch::StageTimer timers[4];
     std::size_t pixels() const {
         return std::size_t(view.width > 0 ? view.width : 0) *
@@ -34,7 +38,8 @@ void ZBufferCuda::release() {
 std::size_t ZBufferCuda::deviceBytes() const {
     const Impl& s = *m_impl;
     return s.screen.bytes() + s.surface.bytes() + s.lines.bytes() + s.mask.bytes() +
-           s.segmentCount.bytes();
+           s.segmentCount.bytes() + s.hostPositions.bytes() + s.hostNormals.bytes() +
+           s.hostIndices.bytes();
 }
 ZBufferCuda::~ZBufferCuda() = default;
 
@@ -98,23 +103,53 @@ CudaStatus ZBufferCuda::draw(const DeviceMeshView& mesh, const ZBufferCudaSettin
     return CudaStatus::success();
 }
 
-CudaStatus ZBufferCuda::resolve(const ZBufferCudaSettings& settings, std::uint8_t* hostMask,
-                                ZBufferCudaFrame& frame) {
+CudaStatus ZBufferCuda::drawHost(const TriangleMesh& mesh, const ZBufferCudaSettings& settings,
+                                 ZBufferCudaFrame& frame) {
+    Impl& s = *m_impl;
+    if (mesh.isEmpty())
+        return CudaStatus::success();
+    cudaStream_t st = s.stream.get();
+    const std::size_t vertices = mesh.vertexCount();
+    LW_RETURN_IF_FAILED(s.hostPositions.reserve(vertices, "cudaMalloc(hostPositions)"));
+    LW_RETURN_IF_FAILED(s.hostNormals.reserve(vertices, "cudaMalloc(hostNormals)"));
+    LW_RETURN_IF_FAILED(s.hostIndices.reserve(mesh.indices.size(), "cudaMalloc(hostIndices)"));
+    LW_CUDA_TRY(cudaMemcpyAsync(s.hostPositions.data(), mesh.positions.data(),
+                                vertices * sizeof(glm::vec3), cudaMemcpyHostToDevice, st),
+                "cudaMemcpy(hostPositions)");
+    LW_CUDA_TRY(cudaMemcpyAsync(s.hostNormals.data(), mesh.normals.data(),
+                                vertices * sizeof(glm::vec3), cudaMemcpyHostToDevice, st),
+                "cudaMemcpy(hostNormals)");
+    LW_CUDA_TRY(cudaMemcpyAsync(s.hostIndices.data(), mesh.indices.data(),
+                                mesh.indices.size() * sizeof(std::uint32_t), cudaMemcpyHostToDevice,
+                                st),
+                "cudaMemcpy(hostIndices)");
+    DeviceMeshView view;
+    view.positions = s.hostPositions.data();
+    view.normals = s.hostNormals.data();
+    view.indices = s.hostIndices.data();
+    view.vertexCount = vertices;
+    view.triangleCount = mesh.triangleCount();
+    return draw(view, settings, frame);
+}
+
+namespace {
+
+struct PixelLaunch {
+    dim3 grid, block;
+};
+
+PixelLaunch pixelLaunch(int width, int height) {
+    const dim3 block(tuning::kPixelBlockX, tuning::kPixelBlockY);
+    return {dim3(blocksFor(std::size_t(width), tuning::kPixelBlockX),
+                 blocksFor(std::size_t(height), tuning::kPixelBlockY)),
+            block};
+}
+
+} // namespace
+
+CudaStatus ZBufferCuda::finishResolve(ZBufferCudaFrame& frame) {
     Impl& s = *m_impl;
     cudaStream_t st = s.stream.get();
-    const int width = s.view.width, height = s.view.height;
-    const std::size_t pixels = s.pixels();
-    LW_RETURN_IF_FAILED(s.timers[3].start(st));
-    if (pixels > 0) {
-        const dim3 block(tuning::kPixelBlockX, tuning::kPixelBlockY);
-        const dim3 grid(blocksFor(std::size_t(width), tuning::kPixelBlockX),
-                        blocksFor(std::size_t(height), tuning::kPixelBlockY));
-        zb::resolve<<<grid, block, 0, st>>>(s.surface.data(), s.lines.data(), width, height,
-                                            settings.epsilon, settings.visibility, s.mask.data());
-        LW_CUDA_LAUNCHED("zb::resolve");
-        LW_CUDA_TRY(cudaMemcpyAsync(hostMask, s.mask.data(), pixels, cudaMemcpyDeviceToHost, st),
-                    "cudaMemcpy(mask)");
-    }
     LW_RETURN_IF_FAILED(s.timers[3].stop(st));
     unsigned long long segments = 0;
     LW_CUDA_TRY(cudaMemcpyAsync(&segments, s.segmentCount.data(), sizeof segments,
@@ -124,6 +159,86 @@ CudaStatus ZBufferCuda::resolve(const ZBufferCudaSettings& settings, std::uint8_
     frame.resolveMs += s.timers[3].ms();
     frame.segments = std::size_t(segments);
     return CudaStatus::success();
+}
+
+CudaStatus ZBufferCuda::resolve(const ZBufferCudaSettings& settings, std::uint8_t* hostMask,
+                                ZBufferCudaFrame& frame) {
+    Impl& s = *m_impl;
+    cudaStream_t st = s.stream.get();
+    const int width = s.view.width, height = s.view.height;
+    const std::size_t pixels = s.pixels();
+    LW_RETURN_IF_FAILED(s.timers[3].start(st));
+    if (pixels > 0) {
+        const PixelLaunch launch = pixelLaunch(width, height);
+        zb::resolve<<<launch.grid, launch.block, 0, st>>>(s.surface.data(), s.lines.data(), width,
+                                                          height, settings.epsilon,
+                                                          settings.visibility, s.mask.data());
+        LW_CUDA_LAUNCHED("zb::resolve");
+        LW_CUDA_TRY(cudaMemcpyAsync(hostMask, s.mask.data(), pixels, cudaMemcpyDeviceToHost, st),
+                    "cudaMemcpy(mask)");
+    }
+    return finishResolve(frame);
+}
+
+namespace {
+
+// The compose kernel into the mapped texture's array through a surface object, which may go only
+// once the kernel is done.
+CudaStatus composeIntoTexture(ZBufferCuda::Impl& s, const ZBufferCudaSettings& settings,
+                              cudaGraphicsResource_t resource) {
+    cudaStream_t st = s.stream.get();
+    cudaArray_t array = nullptr;
+    LW_CUDA_TRY(cudaGraphicsSubResourceGetMappedArray(&array, resource, 0, 0),
+                "cudaGraphicsSubResourceGetMappedArray(mask texture)");
+    cudaResourceDesc description{};
+    description.resType = cudaResourceTypeArray;
+    description.res.array.array = array;
+    cudaSurfaceObject_t texels = 0;
+    LW_CUDA_TRY(cudaCreateSurfaceObject(&texels, &description),
+                "cudaCreateSurfaceObject(mask texture)");
+    const PixelLaunch launch = pixelLaunch(s.view.width, s.view.height);
+    zb::resolveToSurface<<<launch.grid, launch.block, 0, st>>>(
+        s.surface.data(), s.lines.data(), s.view.width, s.view.height, settings.epsilon,
+        settings.visibility, texels);
+    CudaStatus status = dispatch::checkLaunch("zb::resolveToSurface");
+    if (status.ok())
+        status = dispatch::statusOf(cudaStreamSynchronize(st), "zb::resolveToSurface");
+    const CudaStatus destroyed = dispatch::statusOf(cudaDestroySurfaceObject(texels),
+                                                    "cudaDestroySurfaceObject(mask texture)");
+    LW_RETURN_IF_FAILED(status);
+    return destroyed;
+}
+
+} // namespace
+
+CudaStatus ZBufferCuda::resolveInto(const ZBufferCudaSettings& settings,
+                                    const GlTextureInterop& target, ZBufferCudaFrame& frame) {
+    Impl& s = *m_impl;
+    if (!target.attached() || target.width() != s.view.width || target.height() != s.view.height ||
+        s.pixels() == 0)
+        return CudaStatus::failure(CudaStatus::Code::Failed, "zb::resolveToSurface",
+                                   "the GL texture is not attached at the frame's size");
+    cudaStream_t st = s.stream.get();
+    auto resource = static_cast<cudaGraphicsResource_t>(target.resource());
+    LW_RETURN_IF_FAILED(s.timers[3].start(st));
+    // Mapped on the frame's stream: GL's earlier use of the texture completes before the kernel.
+    CudaStatus status = dispatch::statusOf(cudaGraphicsMapResources(1, &resource, st),
+                                           "cudaGraphicsMapResources(mask texture)");
+    if (status.ok()) {
+        status = composeIntoTexture(s, settings, resource);
+        // Unmapped whatever happened: GL may not use a texture CUDA still holds.
+        const CudaStatus unmapped = dispatch::statusOf(cudaGraphicsUnmapResources(1, &resource, st),
+                                                       "cudaGraphicsUnmapResources(mask texture)");
+        if (status.ok())
+            status = unmapped;
+    }
+    if (!status.ok()) {
+        // An interop failure is not sticky: drop it as the last error, so that the host path the
+        // caller takes next does not report it at its first launch check.
+        cudaGetLastError();
+        return status;
+    }
+    return finishResolve(frame);
 }
 
 } // namespace lw::kernels::cuda

@@ -94,4 +94,17 @@ __global__ void resolve(const std::uint32_t* surface, const std::uint32_t* lines
         resolvePixel(surface, lines, x, y, width, height, epsilon, visibility);
 }
 
+// The same colour pass into a GL texture's array (GL_R8: one byte a texel, row y = mask row y).
+__global__ void resolveToSurface(const std::uint32_t* surface, const std::uint32_t* lines,
+                                 int width, int height, float epsilon, bool visibility,
+                                 cudaSurfaceObject_t target) {
+    const int x = int(blockIdx.x * blockDim.x + threadIdx.x);
+    const int y = int(blockIdx.y * blockDim.y + threadIdx.y);
+    if (x >= width || y >= height)
+        return;
+    const std::uint8_t value =
+        resolvePixel(surface, lines, x, y, width, height, epsilon, visibility);
+    surf2Dwrite(value, target, x * int(sizeof(std::uint8_t)), y);
+}
+
 } // namespace lw::kernels::cuda::zb

@@ -5,6 +5,7 @@
 
 #if LINEWORK_CUDA
 #include "cuda/cuda_support.h"
+#include "lw/kernels/cpu/border_cap_cpu.h"
 #include "lw/kernels/cpu/marching_cubes_cpu.h"
 #include "lw/kernels/cuda/marching_cubes_cuda.h"
 #endif
@@ -19,6 +20,8 @@ constexpr std::string_view kWhere = "marching cubes (CUDA)";
 struct CudaIsoSurfaceExtractor::Impl {
     const volume::Volume& volume;
     kernels::cuda::MarchingCubesCuda marchingCubes;
+    BorderCapCache cap;
+    const Mesh* capInMesh = nullptr;
 };
 
 CudaIsoSurfaceExtractor::CudaIsoSurfaceExtractor(const volume::Volume& volume) {
@@ -36,18 +39,29 @@ double CudaIsoSurfaceExtractor::uploadMs() const {
     return m_impl->marchingCubes.uploadMs();
 }
 
-CudaExtraction CudaIsoSurfaceExtractor::extract(double isoReal) {
-    throwIfCudaFailed(kWhere,
-                      m_impl->marchingCubes.extract(storedIsoValue(m_impl->volume, isoReal)));
+CudaExtraction CudaIsoSurfaceExtractor::extract(double isoReal, bool closeAtBorder) {
+    const double storedIso = storedIsoValue(m_impl->volume, isoReal);
+    m_impl->capInMesh = nullptr;
+    throwIfCudaFailed(kWhere, m_impl->marchingCubes.extract(storedIso));
+    if (closeAtBorder)
+        m_impl->capInMesh = &m_impl->cap.cap(m_impl->volume, storedIso);
     const kernels::cuda::DeviceMeshView mesh = m_impl->marchingCubes.mesh();
     const kernels::cuda::McCudaTimes& t = m_impl->marchingCubes.times();
-    return {mesh.triangleCount, mesh.vertexCount, t.totalMs(), t.bricksMs,
-            t.classifyMs,       t.countMs,        t.generateMs};
+    const Mesh* cap = m_impl->capInMesh;
+    return {mesh.triangleCount + (cap ? cap->triangleCount() : 0),
+            mesh.vertexCount + (cap ? cap->vertexCount() : 0),
+            t.totalMs(),
+            t.bricksMs,
+            t.classifyMs,
+            t.countMs,
+            t.generateMs};
 }
 
 void CudaIsoSurfaceExtractor::download(Mesh& mesh) const {
     throwIfCudaFailed(kWhere,
                       m_impl->marchingCubes.download(mesh.positions, mesh.normals, mesh.indices));
+    if (m_impl->capInMesh)
+        kernels::cpu::appendMesh(mesh, *m_impl->capInMesh);
 }
 #else
 struct CudaIsoSurfaceExtractor::Impl {};
@@ -59,7 +73,7 @@ CudaIsoSurfaceExtractor::~CudaIsoSurfaceExtractor() = default;
 double CudaIsoSurfaceExtractor::uploadMs() const {
     return 0.0;
 }
-CudaExtraction CudaIsoSurfaceExtractor::extract(double) {
+CudaExtraction CudaIsoSurfaceExtractor::extract(double, bool) {
     return {};
 }
 void CudaIsoSurfaceExtractor::download(Mesh&) const {}

@@ -1,6 +1,7 @@
 #include "lw/render/iso_surface.h"
 
 #include "lw/core/error.h"
+#include "lw/kernels/cpu/border_cap_cpu.h"
 #include "lw/kernels/cpu/marching_cubes_cpu.h"
 #include "lw/volume/bricks.h"
 
@@ -72,6 +73,8 @@ void IsoSurfaceExtractor::extract(double isoReal, Mesh& mesh, IsoSurfaceStats* s
         stats->totalBricks = result.totalBricks;
         stats->activeBricks = result.activeBricks;
     }
+    if (m_options.closeAtBorder)
+        kernels::cpu::appendMesh(mesh, kernels::cpu::borderCap(m_volume, storedIso));
 }
 
 Mesh IsoSurfaceExtractor::extract(double isoReal, IsoSurfaceStats* stats) const {
@@ -117,6 +120,26 @@ bool surfaceTouchesBorder(const volume::Volume& volume, double storedIso) {
         }
         return false;
     });
+}
+
+bool surfaceIsClosed(const volume::Volume& volume, double storedIso, bool closeAtBorder) {
+    return closeAtBorder || !surfaceTouchesBorder(volume, storedIso);
+}
+
+const Mesh& BorderCapCache::cap(const volume::Volume& volume, double storedIso) {
+    if (!m_valid || m_volume != &volume || !(m_iso == storedIso)) {
+        m_cap = kernels::cpu::borderCap(volume, storedIso);
+        m_volume = &volume;
+        m_iso = storedIso;
+        m_valid = true;
+    }
+    return m_cap;
+}
+
+void BorderCapCache::clear() {
+    m_valid = false;
+    m_volume = nullptr;
+    m_cap = Mesh();
 }
 
 } // namespace lw::render

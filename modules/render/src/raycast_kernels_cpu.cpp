@@ -4,6 +4,7 @@
 #include "lw/core/parallel.h"
 #include "lw/render/line_raster.h"
 #include "lw/volume/bricks.h"
+#include "mesh_silhouette.h"
 
 #include <algorithm>
 #include <chrono>
@@ -36,6 +37,8 @@ void CpuRayCastKernels::bind(const volume::Volume* volume) {
     m_kernel = std::make_unique<kernels::cpu::RayCastSilhouetteCpu>();
     m_chunkLines.clear();
     m_chunkDots.clear();
+    m_cap.clear();
+    m_capSegments.clear();
 }
 
 void CpuRayCastKernels::prepare(double storedIso, const SilhouetteSettings& settings,
@@ -49,6 +52,9 @@ void CpuRayCastKernels::prepare(double storedIso, const SilhouetteSettings& sett
     const bool cones = settings.mode == ExtractionMode::CachedA;
     if (!m_kernel->prepare(*m_volume, grid, storedIso, cones, settings.threads, settings.cancel))
         throw core::Cancelled();
+    m_storedIso = storedIso;
+    if (settings.closeAtBorder)
+        m_cap.cap(*m_volume, storedIso);
     frame.times.extractMs += msSince(start);
 }
 
@@ -61,7 +67,7 @@ bool CpuRayCastKernels::isPointVisible(const Camera& camera, glm::dvec3 point) c
 // Per chunk of segments, in parallel: the lines or pixels that pass the visibility rule.
 void CpuRayCastKernels::testVisibility(const Camera& camera, const SilhouetteSettings& settings) {
     const kernels::cpu::SilhouetteView view = viewOf(camera);
-    const std::size_t chunks = m_kernel->segmentChunkCount();
+    const std::size_t chunks = chunkCount();
     if (m_chunkLines.size() < chunks) {
         m_chunkLines.resize(chunks);
         m_chunkDots.resize(chunks);
@@ -75,7 +81,7 @@ void CpuRayCastKernels::testVisibility(const Camera& camera, const SilhouetteSet
             auto& dots = m_chunkDots[c];
             lines.clear();
             dots.clear();
-            for (const kernels::SegmentEndpoints& segment : m_kernel->segmentChunk(c)) {
+            for (const kernels::SegmentEndpoints& segment : chunk(c)) {
                 const glm::dvec3 a(segment.a), b(segment.b);
                 if (!settings.visibility) {
                     lines.push_back(pixelOf(a));
@@ -110,8 +116,15 @@ void CpuRayCastKernels::drawView(const Camera& camera, const SilhouetteSettings&
     throwIfCancelled(settings);
     frame.lines = PixelMask(camera.width(), camera.height());
     auto start = Clock::now();
-    frame.triangles = m_kernel->extractSegments(viewOf(camera), settings.threads);
-    frame.segments = m_kernel->segmentCount();
+    const kernels::cpu::SilhouetteView view = viewOf(camera);
+    frame.triangles = m_kernel->extractSegments(view, settings.threads);
+    m_capSegments.clear();
+    if (settings.closeAtBorder) {
+        const Mesh& cap = m_cap.cap(*m_volume, m_storedIso);
+        appendMeshSilhouette(cap, glm::vec3(view.eyeOrDirection), view.orthographic, m_capSegments);
+        frame.triangles += cap.triangleCount();
+    }
+    frame.segments = m_kernel->segmentCount() + m_capSegments.size();
     frame.times.silhouetteMs += msSince(start);
 
     start = Clock::now();
@@ -120,7 +133,7 @@ void CpuRayCastKernels::drawView(const Camera& camera, const SilhouetteSettings&
 
     // Drawing is serial: a pass over the pieces is cheap and needs no atomic pixel writes.
     start = Clock::now();
-    for (std::size_t c = 0; c < m_kernel->segmentChunkCount(); ++c) {
+    for (std::size_t c = 0; c < chunkCount(); ++c) {
         const auto& lines = m_chunkLines[c];
         for (std::size_t i = 0; i + 1 < lines.size(); i += 2)
             rasterizeLine(frame.lines, glm::dvec2(lines[i]), glm::dvec2(lines[i + 1]));

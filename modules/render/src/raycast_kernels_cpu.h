@@ -5,6 +5,7 @@
 // per line step, and the lines drawn serially.
 
 #include "lw/kernels/cpu/raycast_silhouette_cpu.h"
+#include "lw/render/iso_surface.h"
 #include "raycast_kernel_set.h"
 
 #include <glm/glm.hpp>
@@ -26,9 +27,16 @@ public:
     // Of the last frame (see RayCastSilhouetteRenderer).
     const kernels::cpu::RayCastSilhouetteCpu& kernel() const { return *m_kernel; }
     bool isPointVisible(const Camera& camera, glm::dvec3 point) const;
+    // The border cap's segments of the last frame (empty when it was not closed at the border).
+    const std::vector<kernels::SegmentEndpoints>& capSegments() const { return m_capSegments; }
 
 private:
     void testVisibility(const Camera& camera, const SilhouetteSettings& settings);
+    // The segments to test: the kernel's chunks, then the border cap's as one more chunk.
+    std::size_t chunkCount() const { return m_kernel->segmentChunkCount() + 1; }
+    const std::vector<kernels::SegmentEndpoints>& chunk(std::size_t c) const {
+        return c < m_kernel->segmentChunkCount() ? m_kernel->segmentChunk(c) : m_capSegments;
+    }
 
     const volume::Volume* m_volume = nullptr;
     std::unique_ptr<kernels::cpu::RayCastSilhouetteCpu> m_kernel =
@@ -39,6 +47,11 @@ private:
     // values, so a visible piece is pixel for pixel part of the line drawn with visibility off.
     std::vector<std::vector<glm::vec2>> m_chunkLines;
     std::vector<std::vector<glm::ivec2>> m_chunkDots;
+    // The border cap at the prepared iso-value (settings.closeAtBorder) and its segments for the
+    // frame's view: the kernel finds the segments of marching cubes' cells, the cap adds its own.
+    double m_storedIso = 0.0;
+    BorderCapCache m_cap;
+    std::vector<kernels::SegmentEndpoints> m_capSegments;
 };
 
 } // namespace lw::render

@@ -148,12 +148,15 @@ std::size_t RayCastSilhouetteRenderer::activeCellCount() const {
 }
 
 std::vector<RayCastSilhouetteRenderer::Segment> RayCastSilhouetteRenderer::lastSegments() const {
-    const auto& kernel = cpuFrameOf(m_state->last, m_state->cpu.get()).kernel();
+    const CpuRayCastKernels& set = cpuFrameOf(m_state->last, m_state->cpu.get());
+    const auto& kernel = set.kernel();
     std::vector<Segment> out;
-    out.reserve(kernel.segmentCount());
+    out.reserve(kernel.segmentCount() + set.capSegments().size());
     for (std::size_t c = 0; c < kernel.segmentChunkCount(); ++c)
         for (const auto& s : kernel.segmentChunk(c))
             out.push_back({s.a, s.b});
+    for (const auto& s : set.capSegments())
+        out.push_back({s.a, s.b});
     return out;
 }
 

@@ -1,13 +1,31 @@
 #include "lw/render/silhouette_renderer.h"
 
+#include "lw/render/gl_frame_target.h"
+
 #include <chrono>
 
 namespace lw::render {
 
+FrameTargetUse frameTargetUse(glm::ivec2 targetSize, glm::ivec2 frameSize, int minStrokePixels) {
+    if (targetSize.x <= 0 || targetSize.y <= 0)
+        return FrameTargetUse::NoTarget;
+    if (targetSize != frameSize)
+        return FrameTargetUse::SizeDiffers;
+    if (minStrokePixels > 1)
+        return FrameTargetUse::HostPruning;
+    return FrameTargetUse::Texture;
+}
+
+FrameTargetUse frameTargetUse(const SilhouetteSettings& settings, const Camera& camera) {
+    const GlFrameTarget* target = settings.frameTarget;
+    return frameTargetUse(target ? glm::ivec2(target->width(), target->height()) : glm::ivec2(0),
+                          {camera.width(), camera.height()}, settings.minStrokePixels);
+}
+
 SilhouetteFrame SilhouetteRenderer::render(const Camera& camera,
                                            const SilhouetteSettings& settings) {
     SilhouetteFrame frame = renderFrame(camera, settings);
-    if (settings.minStrokePixels > 1) {
+    if (settings.minStrokePixels > 1 && !frame.drewToTarget) {
         const auto start = std::chrono::steady_clock::now();
         frame.lines.removeComponentsSmallerThan(settings.minStrokePixels);
         frame.times.drawMs +=

@@ -5,10 +5,38 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <unordered_map>
 
 namespace lw::render {
 namespace {
+
+// Each vertex's first index with the same position bits. A surface closed at the volume border
+// repeats the border-plane vertices of the open surface in its cap (border_cap_cpu.h): welding
+// them lets a contour run from the side of a cut bone onto its cut face in one chain.
+std::vector<std::uint32_t> weldedIds(const Mesh& mesh) {
+    struct Key {
+        std::uint32_t bits[3];
+        bool operator==(const Key& o) const {
+            return bits[0] == o.bits[0] && bits[1] == o.bits[1] && bits[2] == o.bits[2];
+        }
+    };
+    struct Hash {
+        std::size_t operator()(const Key& k) const {
+            return std::size_t(k.bits[0]) * 73856093u ^ std::size_t(k.bits[1]) * 19349663u ^
+                   std::size_t(k.bits[2]) * 83492791u;
+        }
+    };
+    std::unordered_map<Key, std::uint32_t, Hash> first;
+    first.reserve(mesh.vertexCount());
+    std::vector<std::uint32_t> ids(mesh.vertexCount());
+    for (std::size_t v = 0; v < mesh.vertexCount(); ++v) {
+        Key key;
+        std::memcpy(key.bits, &mesh.positions[v], sizeof key.bits);
+        ids[v] = first.try_emplace(key, std::uint32_t(v)).first->second;
+    }
+    return ids;
+}
 
 // Burns' rule per triangle (kernels/common), with the crossed edges named: the lone vertex's
 // two edges, in the order silhouetteSegment() gives the endpoints.
@@ -19,9 +47,11 @@ std::vector<EdgeSegment> edgeSegments(const Mesh& mesh, const Camera& camera) {
     for (std::size_t v = 0; v < mesh.vertexCount(); ++v)
         distance[v] =
             kernels::silhouetteDistance(mesh.positions[v], mesh.normals[v], eyeOrDirection, ortho);
+    const std::vector<std::uint32_t> welded = weldedIds(mesh);
     std::vector<EdgeSegment> segments;
     for (std::size_t t = 0; t < mesh.triangleCount(); ++t) {
         const std::uint32_t* v = &mesh.indices[3 * t];
+        const std::uint32_t w[3] = {welded[v[0]], welded[v[1]], welded[v[2]]};
         const glm::vec3 p[3] = {mesh.positions[v[0]], mesh.positions[v[1]], mesh.positions[v[2]]};
         const float d[3] = {distance[v[0]], distance[v[1]], distance[v[2]]};
         kernels::SegmentEndpoints ends;
@@ -31,7 +61,7 @@ std::vector<EdgeSegment> edgeSegments(const Mesh& mesh, const Camera& camera) {
         const int lone = (f0 == f1) ? 2 : (f0 == f2 ? 1 : 0);
         segments.push_back(
             {{ends.a, ends.b},
-             {meshEdgeKey(v[lone], v[(lone + 1) % 3]), meshEdgeKey(v[lone], v[(lone + 2) % 3])}});
+             {meshEdgeKey(w[lone], w[(lone + 1) % 3]), meshEdgeKey(w[lone], w[(lone + 2) % 3])}});
     }
     return segments;
 }

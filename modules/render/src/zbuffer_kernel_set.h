@@ -33,8 +33,9 @@ public:
     // Whether this frame can keep the whole surface (the CPU: always; CUDA: the volume and its
     // surface within settings.gpuMemoryBudget). When not, the frame draws pieces.
     virtual bool keepsWholeSurface(const Camera& camera, const SilhouetteSettings& settings) = 0;
-    // Extracts the whole surface at `storedIso` and keeps it; returns whether it touches the
-    // volume's border (then back faces stay: the surface may be open).
+    // Extracts the whole surface at `storedIso` and keeps it (closed at the border when
+    // settings.closeAtBorder); returns whether it is open where the border cuts it (then back
+    // faces stay). Never open when closed at the border.
     virtual bool extractWhole(double storedIso, const SilhouetteSettings& settings,
                               SilhouetteFrame& frame) = 0;
     // The kept surface on the host (downloaded on first use); null when none is kept.
@@ -46,7 +47,8 @@ public:
     // The kept surface's silhouette segments and triangles into the z-buffers.
     virtual void drawWhole(const Camera& camera, const SilhouetteSettings& settings, bool closed,
                            SilhouetteFrame& frame) = 0;
-    // Every piece of the surface (bricks, slabs) extracted, drawn and dropped; nothing is kept.
+    // Every piece of the surface (bricks, slabs; the border cap when settings.closeAtBorder)
+    // extracted, drawn and dropped; nothing is kept but the cap.
     virtual void drawPieces(const Camera& camera, const SilhouetteSettings& settings,
                             double storedIso, bool closed, SilhouetteFrame& frame) = 0;
     // The colour pass: frame.lines from the two z-buffers.

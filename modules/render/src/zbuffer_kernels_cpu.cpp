@@ -45,6 +45,7 @@ public:
         // Even for a volume of the same size: the brick min/max would cull it with the old one's.
         m_gridBrickCells = -1;
         m_grid = volume::BrickGrid{};
+        m_cap.clear();
     }
 
     bool keepsWholeSurface(const Camera&, const SilhouetteSettings&) override { return true; }
@@ -55,6 +56,7 @@ public:
         IsoSurfaceOptions options;
         options.threads = settings.threads;
         options.cancel = settings.cancel;
+        options.closeAtBorder = settings.closeAtBorder;
         m_meshKept = false;
         extractIsoSurface(*m_volume, settings.isoReal, options, m_mesh);
         m_clusters.clear();
@@ -62,7 +64,7 @@ public:
                                     std::uint32_t(m_mesh.triangleCount()), m_clusters);
         m_meshKept = true;
         frame.times.extractMs += msSince(start);
-        return surfaceTouchesBorder(*m_volume, storedIso);
+        return !surfaceIsClosed(*m_volume, storedIso, settings.closeAtBorder);
     }
 
     const Mesh* keptMesh() override { return m_meshKept ? &m_mesh : nullptr; }
@@ -103,6 +105,8 @@ private:
     }
     void drawBrick(const kernels::cpu::BrickSurfaceExtractor& extractor, const volume::Brick& brick,
                    bool visibility, bool closed, BrickWorker& w);
+    // One piece of the surface (a brick's, the border cap) into both buffers, on one thread.
+    void drawPiece(const Mesh& piece, bool visibility, bool closed, BrickWorker& w);
     std::vector<BrickWorker*> readyWorkers(std::size_t count);
 
     const volume::Volume* m_volume = nullptr;
@@ -121,6 +125,7 @@ private:
     volume::BrickGrid m_grid;
     int m_gridBrickCells = -1;
     std::vector<std::unique_ptr<BrickWorker>> m_workers;
+    BorderCapCache m_cap;
 };
 
 void CpuZBufferKernels::drawWhole(const Camera&, const SilhouetteSettings& settings, bool closed,
@@ -153,27 +158,30 @@ void CpuZBufferKernels::drawWhole(const Camera&, const SilhouetteSettings& setti
 void CpuZBufferKernels::drawBrick(const kernels::cpu::BrickSurfaceExtractor& extractor,
                                   const volume::Brick& brick, bool visibility, bool closed,
                                   BrickWorker& w) {
-    auto t = Clock::now();
+    const auto t = Clock::now();
     extractor.extract(brick, w.surface);
     w.extractMs += msSince(t);
-    const std::size_t triangles = w.surface.triangleCount();
+    drawPiece(w.surface, visibility, closed, w);
+}
+
+void CpuZBufferKernels::drawPiece(const Mesh& piece, bool visibility, bool closed, BrickWorker& w) {
+    const std::size_t triangles = piece.triangleCount();
     if (triangles == 0)
         return;
-    t = Clock::now();
-    kernels::cpu::projectVertices(w.surface.positions.data(), w.surface.normals.data(),
-                                  w.surface.positions.size(), m_view, w.screen, 1);
+    auto t = Clock::now();
+    kernels::cpu::projectVertices(piece.positions.data(), piece.normals.data(),
+                                  piece.positions.size(), m_view, w.screen, 1);
     w.segments.clear();
-    kernels::cpu::findSilhouetteSegments(w.surface.positions.data(), w.screen,
-                                         w.surface.indices.data(), triangles, m_view, w.scratch,
-                                         w.segments, 1);
+    kernels::cpu::findSilhouetteSegments(piece.positions.data(), w.screen, piece.indices.data(),
+                                         triangles, m_view, w.scratch, w.segments, 1);
     w.silhouetteMs += msSince(t);
     t = Clock::now();
     kernels::cpu::drawSegmentsDepth(w.segments.data(), w.segments.size(), m_lineDepth, 1);
     w.drawMs += msSince(t);
     if (visibility) {
         t = Clock::now();
-        kernels::cpu::drawTrianglesDepth(w.screen, w.surface.indices.data(), triangles,
-                                         m_surfaceDepth, 1, closed);
+        kernels::cpu::drawTrianglesDepth(w.screen, piece.indices.data(), triangles, m_surfaceDepth,
+                                         1, closed);
         w.visibilityMs += msSince(t);
     }
     w.triangles += triangles;
@@ -234,6 +242,8 @@ void CpuZBufferKernels::drawPieces(const Camera&, const SilhouetteSettings& sett
             idle.push_back(worker);
         },
         threads);
+    if (settings.closeAtBorder) // one more piece, after the bricks (the buffers keep maxima)
+        drawPiece(m_cap.cap(*m_volume, storedIso), settings.visibility, closed, *idle.back());
     const double loopMs = msSince(start);
 
     // Stage times: the workers' summed times, scaled to the loop's wall time.

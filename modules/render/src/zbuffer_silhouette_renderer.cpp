@@ -23,22 +23,25 @@ struct ZBufferSilhouetteRenderer::State {
     std::unique_ptr<ZBufferKernelSet> cpuFallback;
     bool onFallback = false;
 
-    // Mode a: the kept surface is for keptIso (NaN: none kept).
+    // Mode a: the kept surface is for keptIso (NaN: none kept), closed at the border or not.
     double keptIso = kNoIso;
-    // Whether the surface at closedIso touches the border (pieces: computed on the host once).
-    double closedIso = kNoIso;
-    bool closed = false;
+    bool keptClosing = false;
+    // Whether the open surface at touchIso touches the border (pieces: computed on the host once).
+    double touchIso = kNoIso;
+    bool touches = false;
     // For mesh() after a frame that kept no surface.
     double lastIso = kNoIso;
     bool lastKept = false;
     unsigned lastThreads = 0;
+    bool lastClosing = true;
     mutable Mesh lateMesh;
     mutable double lateMeshIso = kNoIso;
+    mutable bool lateMeshClosing = true;
 
     ZBufferKernelSet& active() { return onFallback ? *cpuFallback : *kernels; }
     void forgetSurface() {
         keptIso = kNoIso;
-        closedIso = kNoIso;
+        touchIso = kNoIso;
         lateMeshIso = kNoIso;
         lateMesh = Mesh();
     }
@@ -54,21 +57,23 @@ void ZBufferSilhouetteRenderer::State::frameOn(ZBufferKernelSet& set, const Came
     set.beginFrame(camera, settings, frame);
     const bool whole = settings.brickCells == 0 && set.keepsWholeSurface(camera, settings);
     if (whole) {
-        const bool reuse = settings.mode == ExtractionMode::CachedA && keptIso == settings.isoReal;
+        const bool reuse = settings.mode == ExtractionMode::CachedA &&
+                           keptIso == settings.isoReal && keptClosing == settings.closeAtBorder;
         if (!reuse) {
             keptIso = kNoIso;
-            closed = !set.extractWhole(storedIso, settings, frame);
-            closedIso = settings.isoReal;
+            touches = set.extractWhole(storedIso, settings, frame);
+            touchIso = settings.isoReal;
             keptIso = settings.isoReal;
+            keptClosing = settings.closeAtBorder;
         }
-        set.drawWhole(camera, settings, closed, frame);
+        set.drawWhole(camera, settings, settings.closeAtBorder || !touches, frame);
     } else {
         keptIso = kNoIso;
-        if (!(closedIso == settings.isoReal)) {
-            closed = !surfaceTouchesBorder(*volume, storedIso);
-            closedIso = settings.isoReal;
+        if (!settings.closeAtBorder && !(touchIso == settings.isoReal)) {
+            touches = surfaceTouchesBorder(*volume, storedIso);
+            touchIso = settings.isoReal;
         }
-        set.drawPieces(camera, settings, storedIso, closed, frame);
+        set.drawPieces(camera, settings, storedIso, settings.closeAtBorder || !touches, frame);
     }
     const float epsilon = settings.visibility ? depthEpsilon(camera, *volume) : 0.0f;
     set.resolve(settings, epsilon, frame);
@@ -136,13 +141,16 @@ const Mesh& ZBufferSilhouetteRenderer::mesh() const {
         if (const Mesh* kept = s.active().keptMesh())
             return *kept;
     }
-    if (s.volume && !std::isnan(s.lastIso) && !(s.lateMeshIso == s.lastIso)) {
+    if (s.volume && !std::isnan(s.lastIso) &&
+        !(s.lateMeshIso == s.lastIso && s.lateMeshClosing == s.lastClosing)) {
         // After a frame that kept no surface: the whole surface only now, for a caller that
         // asks for it.
         IsoSurfaceOptions options;
         options.threads = s.lastThreads;
+        options.closeAtBorder = s.lastClosing;
         extractIsoSurface(*s.volume, s.lastIso, options, s.lateMesh);
         s.lateMeshIso = s.lastIso;
+        s.lateMeshClosing = s.lastClosing;
     }
     return s.lateMesh;
 }
@@ -158,6 +166,7 @@ SilhouetteFrame ZBufferSilhouetteRenderer::renderFrame(const Camera& camera,
         throw core::Cancelled();
     s.lastIso = settings.isoReal;
     s.lastThreads = settings.threads;
+    s.lastClosing = settings.closeAtBorder;
     s.lastKept = false;
     for (;;) {
         SilhouetteFrame frame;

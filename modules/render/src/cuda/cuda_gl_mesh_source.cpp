@@ -4,6 +4,7 @@
 #include "cuda_support.h"
 #include "lw/core/error.h"
 #include "lw/core/log.h"
+#include "lw/kernels/cpu/border_cap_cpu.h"
 #include "lw/kernels/cpu/marching_cubes_cpu.h"
 #include "lw/kernels/cuda/cuda_device.h"
 #include "lw/kernels/cuda/gl_mesh_interop.h"
@@ -29,6 +30,8 @@ public:
         m_uploaded = false;
         m_streamed = false;
         m_rowRanges.reset();
+        m_cap.clear();
+        m_capInMesh = nullptr;
     }
 
     void releaseVolume() override {
@@ -37,6 +40,8 @@ public:
         m_uploaded = false;
         m_streamed = false;
         m_rowRanges.reset();
+        m_cap.clear();
+        m_capInMesh = nullptr;
     }
 
     bool extractPiecesInto(SilhouetteGlRenderer& gl, const SilhouetteSettings& settings,
@@ -64,7 +69,7 @@ public:
         throwIfCudaFailed(
             kWhere, m_marchingCubes.extractSlabs(storedIso, slabs,
                                                  [&](const kernels::cuda::DeviceMeshView& mesh) {
-                                                     writeIntoGl(gl, mesh);
+                                                     writeIntoGl(gl, mesh, nullptr);
                                                      drawPiece(mesh.triangleCount);
                                                      return kernels::cuda::CudaStatus::success();
                                                  }));
@@ -81,21 +86,31 @@ public:
                                                         kernels::cpu::voxelGridSetup(*m_volume)));
             m_uploaded = true;
         }
-        throwIfCudaFailed(kWhere,
-                          m_marchingCubes.extract(storedIsoValue(*m_volume, settings.isoReal)));
-        writeIntoGl(gl, m_marchingCubes.mesh());
+        const double storedIso = storedIsoValue(*m_volume, settings.isoReal);
+        m_capInMesh = nullptr; // until the new mesh is written
+        throwIfCudaFailed(kWhere, m_marchingCubes.extract(storedIso));
+        const Mesh* cap = settings.closeAtBorder ? &m_cap.cap(*m_volume, storedIso) : nullptr;
+        writeIntoGl(gl, m_marchingCubes.mesh(), cap);
+        m_capInMesh = cap;
     }
 
-    // The device mesh into gl's buffers: device to device through interop, or through host
-    // memory where interop fails (a GL context on another device).
-    void writeIntoGl(SilhouetteGlRenderer& gl, const kernels::cuda::DeviceMeshView& mesh) {
-        gl.reserveMesh(mesh.vertexCount, mesh.triangleCount);
+    // The device mesh (and the border cap after it, from the host: it is small) into gl's
+    // buffers: device to device through interop, or through host memory where interop fails
+    // (a GL context on another device).
+    void writeIntoGl(SilhouetteGlRenderer& gl, const kernels::cuda::DeviceMeshView& mesh,
+                     const Mesh* cap) {
+        const std::size_t capVertices = cap ? cap->vertexCount() : 0;
+        const std::size_t capTriangles = cap ? cap->triangleCount() : 0;
+        gl.reserveMesh(mesh.vertexCount + capVertices, mesh.triangleCount + capTriangles);
         if (m_interopWorks) {
             const kernels::cuda::CudaStatus copied =
                 m_interop.copy(mesh, {gl.positionBuffer(), gl.normalBuffer(), gl.indexBuffer(),
                                       gl.storageGeneration()});
-            if (copied.ok())
+            if (copied.ok()) {
+                if (cap)
+                    gl.writeMeshTail(mesh.vertexCount, mesh.triangleCount, *cap);
                 return;
+            }
             // E.g. the GL context runs on another device (Mesa) than CUDA: the host round trip
             // still works.
             kLog.warning("method 1: CUDA-GL interop unavailable (" + copied.describe() +
@@ -106,12 +121,16 @@ public:
         Mesh host;
         throwIfCudaFailed(kWhere,
                           m_marchingCubes.download(host.positions, host.normals, host.indices));
+        if (cap)
+            kernels::cpu::appendMesh(host, *cap);
         gl.uploadMesh(host);
     }
 
     void download(Mesh& mesh) override {
         throwIfCudaFailed(kWhere,
                           m_marchingCubes.download(mesh.positions, mesh.normals, mesh.indices));
+        if (m_capInMesh)
+            kernels::cpu::appendMesh(mesh, *m_capInMesh);
     }
 
     bool writeLineCandidates(SilhouetteGlRenderer& gl, const Camera& camera,
@@ -119,7 +138,8 @@ public:
         const kernels::cuda::DeviceMeshView mesh = m_marchingCubes.mesh();
         if (!m_interopWorks || mesh.triangleCount == 0)
             return false;
-        if (gl.reserveLineCandidates(mesh.triangleCount))
+        const std::size_t capTriangles = m_capInMesh ? m_capInMesh->triangleCount() : 0;
+        if (gl.reserveLineCandidates(mesh.triangleCount + capTriangles))
             ++m_candidateGeneration;
         const glm::vec4 viewer = camera.isOrthographic()
                                      ? glm::vec4(glm::vec3(-camera.forward()), 0.0f)
@@ -133,6 +153,14 @@ public:
             return false;
         }
         indices = triangles * 3;
+        if (capTriangles > 0) {
+            // Every cap triangle is a candidate (a few thousand at most): they follow the mesh.
+            m_capCandidates.resize(capTriangles * 3);
+            for (std::size_t i = 0; i < m_capCandidates.size(); ++i)
+                m_capCandidates[i] = std::uint32_t(mesh.vertexCount + m_capInMesh->indices[i]);
+            gl.writeLineCandidatesTail(indices, m_capCandidates);
+            indices += m_capCandidates.size();
+        }
         return true;
     }
 
@@ -147,6 +175,9 @@ private:
     std::size_t m_candidateGeneration = 0;
     kernels::cuda::MarchingCubesCuda m_marchingCubes;
     kernels::cuda::GlMeshInterop m_interop;
+    BorderCapCache m_cap;
+    const Mesh* m_capInMesh = nullptr; // the cap written after the last whole mesh, if any
+    std::vector<std::uint32_t> m_capCandidates;
 };
 
 } // namespace

@@ -3,6 +3,7 @@
 // the visibility rays skip with) found on the device, then per view the segments, one ray per
 // endpoint (or per line step) and the lines. No streamed variant: its rays cross the whole
 // volume, so L frames go to the CPU's kernel set (RayCastSilhouetteRenderer).
+#include "../mesh_silhouette.h"
 #include "../raycast_kernel_set.h"
 #include "cuda_support.h"
 #include "lw/kernels/cpu/marching_cubes_cpu.h"
@@ -53,6 +54,7 @@ public:
         m_kernels.release();
         m_volume = volume;
         m_uploaded = false;
+        m_cap.clear();
     }
 
     bool drawsPieces() const override { return false; }
@@ -67,6 +69,7 @@ public:
         kernels::cuda::RayCastCudaFrame timing;
         check(m_kernels.prepare(storedIso, timing));
         frame.times.extractMs += timing.prepareMs;
+        m_storedIso = storedIso;
     }
 
     void drawView(const Camera& camera, const SilhouetteSettings& settings,
@@ -77,9 +80,19 @@ public:
         const bool orthographic = camera.isOrthographic();
         kernels::cuda::RayCastCudaFrame timing;
         frame.lines = PixelMask(camera.width(), camera.height());
-        check(m_kernels.render(pixelCamera(camera), orthographic ? -camera.forward() : camera.eye(),
-                               orthographic, rc, frame.lines.pixels().data(), timing));
-        frame.triangles = timing.triangles;
+        const glm::dvec3 eyeOrDirection = orthographic ? -camera.forward() : camera.eye();
+        // The border cap's segments, found on the host (its mesh is small), tested on the device.
+        m_capSegments.clear();
+        std::size_t capTriangles = 0;
+        if (settings.closeAtBorder) {
+            const Mesh& cap = m_cap.cap(*m_volume, m_storedIso);
+            appendMeshSilhouette(cap, glm::vec3(eyeOrDirection), orthographic, m_capSegments);
+            capTriangles = cap.triangleCount();
+        }
+        check(m_kernels.render(pixelCamera(camera), eyeOrDirection, orthographic, rc,
+                               frame.lines.pixels().data(), timing, m_capSegments.data(),
+                               m_capSegments.size()));
+        frame.triangles = timing.triangles + capTriangles;
         frame.segments = timing.segments;
         // The kernels find the segments and test them in one go: their time is visibility.
         frame.times.visibilityMs += timing.renderMs;
@@ -89,6 +102,9 @@ private:
     const volume::Volume* m_volume = nullptr;
     kernels::cuda::RayCastSilhouetteCuda m_kernels;
     bool m_uploaded = false;
+    double m_storedIso = 0.0;
+    BorderCapCache m_cap;
+    std::vector<kernels::SegmentEndpoints> m_capSegments;
 };
 
 } // namespace

@@ -11,14 +11,26 @@
 //                 dropped; re-extracted every frame (as the CPU's L)
 // A frame over the budget or out of device memory throws OutOfDeviceMemory: the renderer asks
 // fallBack() (whole volume -> slabs) and then goes to the CPU.
+//
+// The colour pass writes the host mask, or, given a frame target (the GUI's silhouette panel),
+// the GL texture straight through CUDA-GL interop. Where interop fails (no GL context current, a
+// context on another device, a build without interop) the mask goes through host memory from
+// then on, logged once.
 #include "../view_transform.h"
 #include "../zbuffer_kernel_set.h"
 #include "cuda_support.h"
+#include "lw/core/log.h"
+#include "lw/kernels/cpu/border_cap_cpu.h"
 #include "lw/kernels/cpu/marching_cubes_cpu.h"
 #include "lw/kernels/cuda/cuda_device.h"
 #include "lw/kernels/cuda/marching_cubes_cuda.h"
 #include "lw/kernels/cuda/zbuffer_cuda.h"
+#include "lw/render/gl_frame_target.h"
 #include "lw/render/gpu_memory_plan.h"
+
+#if LINEWORK_CUDA_GL_INTEROP
+#include "lw/kernels/cuda/gl_texture_interop.h"
+#endif
 
 #include <chrono>
 #include <string>
@@ -28,6 +40,14 @@ namespace {
 
 using kernels::cuda::CudaStatus;
 constexpr std::string_view kWhere = "method 3 (CUDA)";
+constexpr core::LogCategory kLog("lw.render");
+
+#if LINEWORK_CUDA_GL_INTEROP
+// A frame target's CUDA registration, owned by the target so that it goes before the texture.
+struct CudaTextureAttachment final : GlFrameTarget::Attachment {
+    kernels::cuda::GlTextureInterop interop;
+};
+#endif
 
 double msSince(std::chrono::steady_clock::time_point start) {
     return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
@@ -54,6 +74,8 @@ public:
         m_rowRanges.reset();
         m_croppedIso = std::numeric_limits<double>::quiet_NaN();
         m_hostMeshValid = false;
+        m_cap.clear();
+        m_capKept = nullptr;
     }
 
     bool keepsWholeSurface(const Camera& camera, const SilhouetteSettings&) override {
@@ -63,7 +85,7 @@ public:
         return where == GpuResidency::WholeVolume && m_floor == GpuResidency::WholeVolume;
     }
 
-    bool extractWhole(double storedIso, const SilhouetteSettings&,
+    bool extractWhole(double storedIso, const SilhouetteSettings& settings,
                       SilhouetteFrame& frame) override {
         m_hostMeshValid = false;
         if (m_resident != GpuResidency::WholeVolume) {
@@ -72,8 +94,13 @@ public:
                                             kernels::cpu::voxelGridSetup(*m_volume)));
             m_resident = GpuResidency::WholeVolume;
         }
+        m_capKept = nullptr;
         check(m_marchingCubes.extract(storedIso));
         frame.times.extractMs += m_marchingCubes.times().totalMs();
+        if (settings.closeAtBorder) {
+            m_capKept = &m_cap.cap(*m_volume, storedIso);
+            return false;
+        }
         return m_marchingCubes.mesh().touchesBorder;
     }
 
@@ -84,6 +111,8 @@ public:
             throwIfCudaFailed(kWhere,
                               m_marchingCubes.download(m_hostMesh.positions, m_hostMesh.normals,
                                                        m_hostMesh.indices));
+            if (m_capKept)
+                kernels::cpu::appendMesh(m_hostMesh, *m_capKept);
             m_hostMeshValid = true;
         }
         return &m_hostMesh;
@@ -109,15 +138,23 @@ public:
         m_draw.cullBackFaces = closed;
         check(m_zbuffer.draw(mesh, m_draw, m_timing));
         frame.triangles = mesh.triangleCount;
+        if (m_capKept) {
+            check(m_zbuffer.drawHost(*m_capKept, m_draw, m_timing));
+            frame.triangles += m_capKept->triangleCount();
+        }
     }
 
     void drawPieces(const Camera& camera, const SilhouetteSettings& settings, double storedIso,
                     bool closed, SilhouetteFrame& frame) override;
 
-    void resolve(const SilhouetteSettings&, float epsilon, SilhouetteFrame& frame) override {
+    void resolve(const SilhouetteSettings& settings, float epsilon,
+                 SilhouetteFrame& frame) override {
         m_draw.epsilon = epsilon;
-        frame.lines = PixelMask(m_width, m_height);
-        check(m_zbuffer.resolve(m_draw, frame.lines.pixels().data(), m_timing));
+        frame.drewToTarget = resolveIntoTarget(settings);
+        if (!frame.drewToTarget) {
+            frame.lines = PixelMask(m_width, m_height);
+            check(m_zbuffer.resolve(m_draw, frame.lines.pixels().data(), m_timing));
+        }
         frame.segments = m_timing.segments;
         frame.times.silhouetteMs += m_timing.projectMs + m_timing.silhouetteMs;
         frame.times.visibilityMs += m_timing.depthMs;
@@ -142,6 +179,7 @@ public:
     }
 
 private:
+    bool resolveIntoTarget(const SilhouetteSettings& settings);
     // zbuffer1, zbuffer2 (4 bytes a pixel each) and the mask.
     static std::size_t imageBytes(const Camera& camera) {
         return std::size_t(camera.width()) * std::size_t(camera.height()) * 9;
@@ -157,10 +195,16 @@ private:
     std::size_t m_budget = 0;
     Mesh m_hostMesh;
     bool m_hostMeshValid = false;
+    // The border cap (settings.closeAtBorder): drawn after the kept mesh or the last slab.
+    BorderCapCache m_cap;
+    const Mesh* m_capKept = nullptr; // with the kept whole mesh, if closed
+
     // This frame's draw settings, timings and size.
     kernels::cuda::ZBufferCudaSettings m_draw;
     kernels::cuda::ZBufferCudaFrame m_timing;
     int m_width = 0, m_height = 0;
+    // Set when writing a frame target failed: from then on the mask goes through host memory.
+    bool m_targetUnavailable = false;
     // Slabs: the voxel rows' value ranges (once per volume) and the last cropped slabs, reused
     // while the iso-value and the layer plan stay (an orbit).
     std::unique_ptr<VoxelRowRanges> m_rowRanges;
@@ -168,6 +212,38 @@ private:
     double m_croppedIso = std::numeric_limits<double>::quiet_NaN();
     std::vector<kernels::CellSlab> m_croppedSlabs;
 };
+
+// The colour pass into settings.frameTarget where it applies; false: the caller resolves into
+// host memory (the z-buffers are untouched by a failed attempt).
+bool CudaZBufferKernels::resolveIntoTarget(const SilhouetteSettings& settings) {
+    GlFrameTarget* target = settings.frameTarget;
+    if (m_targetUnavailable || !target ||
+        frameTargetUse({target->width(), target->height()}, {m_width, m_height},
+                       settings.minStrokePixels) != FrameTargetUse::Texture)
+        return false;
+#if LINEWORK_CUDA_GL_INTEROP
+    auto* attachment = dynamic_cast<CudaTextureAttachment*>(target->attachment());
+    if (!attachment) {
+        auto made = std::make_unique<CudaTextureAttachment>();
+        attachment = made.get();
+        target->setAttachment(std::move(made));
+    }
+    CudaStatus status =
+        attachment->interop.attach(target->texture(), target->width(), target->height());
+    if (status.ok())
+        status = m_zbuffer.resolveInto(m_draw, attachment->interop, m_timing);
+    if (status.ok())
+        return true;
+    target->setAttachment(nullptr);
+    const std::string reason = status.describe();
+#else
+    const std::string reason = "this build has no CUDA-GL interop";
+#endif
+    m_targetUnavailable = true;
+    kLog.warning("method 3 (CUDA): the silhouette cannot be written into the GL texture (" +
+                 reason + "); it goes through host memory");
+    return false;
+}
 
 const std::vector<kernels::CellSlab>&
 CudaZBufferKernels::slabsOf(const std::vector<glm::ivec2>& layers, double storedIso) {
@@ -200,6 +276,11 @@ void CudaZBufferKernels::drawPieces(const Camera& camera, const SilhouetteSettin
                                            frame.triangles += slab.triangleCount;
                                            return m_zbuffer.draw(slab, m_draw, m_timing);
                                        }));
+    if (settings.closeAtBorder) {
+        const Mesh& cap = m_cap.cap(*m_volume, storedIso);
+        check(m_zbuffer.drawHost(cap, m_draw, m_timing));
+        frame.triangles += cap.triangleCount();
+    }
     // The slabs' extraction and drawing interleave: extraction is the loop's wall time less the
     // drawing kernels' time.
     const double drawn = m_timing.projectMs + m_timing.silhouetteMs + m_timing.depthMs;

@@ -45,7 +45,10 @@ struct GeometryShaderSilhouetteRenderer::State {
     // What the uploaded mesh was extracted with; empty when there is none (or the volume changed).
     std::optional<double> meshIso;
     int meshBrickCells = 0;
-    // Whether the surface at closedIso is closed (touches no border voxel): pass 1 may cull.
+    bool meshClosing = false;
+    // L frames: the border cap, drawn as the last piece (settings.closeAtBorder).
+    BorderCapCache cap;
+    // Whether the open surface at closedIso is closed (touches no border voxel): pass 1 may cull.
     std::optional<double> closedIso;
     bool closed = false;
     GeometryShaderFrameStats stats;
@@ -57,7 +60,10 @@ struct GeometryShaderSilhouetteRenderer::State {
     kernels::cpu::BrickSurface brick;
 
     // Drops the whole mesh (CPU and GPU) so that an L frame holds one brick at a time.
-    bool surfaceClosed(double isoReal) {
+    bool surfaceClosed(const SilhouetteSettings& settings) {
+        if (settings.closeAtBorder)
+            return true;
+        const double isoReal = settings.isoReal;
         if (closedIso != isoReal) {
             closed = !surfaceTouchesBorder(*volume, storedIsoValue(*volume, isoReal));
             closedIso = isoReal;
@@ -93,6 +99,19 @@ struct GeometryShaderSilhouetteRenderer::State {
         }
     }
 
+    // The border cap as the L frame's last piece (uploaded from the host: it is small).
+    void drawCap(double storedIso, SilhouetteFrame& frame,
+                 const std::function<void(std::size_t)>& drawPiece) {
+        const auto start = Clock::now();
+        const Mesh& piece = cap.cap(*volume, storedIso);
+        if (piece.isEmpty())
+            return;
+        gl.uploadMesh(piece);
+        glFinish();
+        frame.times.extractMs += msSince(start);
+        drawPiece(piece.triangleCount());
+    }
+
     void dropWholeMesh() {
         meshIso.reset();
         mesh = Mesh{};
@@ -106,13 +125,14 @@ struct GeometryShaderSilhouetteRenderer::State {
         if (!volume)
             throw core::Error("method 1", "render called before setVolume");
         if (!force && meshIso && *meshIso == settings.isoReal &&
-            meshBrickCells == settings.brickCells)
+            meshBrickCells == settings.brickCells && meshClosing == settings.closeAtBorder)
             return 0.0;
         const auto start = Clock::now();
         IsoSurfaceOptions options;
         options.brickCells = settings.brickCells;
         options.threads = settings.threads;
         options.cancel = settings.cancel;
+        options.closeAtBorder = settings.closeAtBorder;
         meshIso.reset(); // a failed extraction or upload leaves no stale cache behind
         if (source) {
             mesh = Mesh{};
@@ -126,6 +146,7 @@ struct GeometryShaderSilhouetteRenderer::State {
         glFinish(); // the upload is part of this stage, not of the next draw
         meshIso = settings.isoReal;
         meshBrickCells = settings.brickCells;
+        meshClosing = settings.closeAtBorder;
         return msSince(start);
     }
 };
@@ -177,6 +198,7 @@ void GeometryShaderSilhouetteRenderer::releaseVolume() {
     s.volume = nullptr;
     s.meshIso.reset();
     s.closedIso.reset();
+    s.cap.clear();
     s.mesh = Mesh{};
     s.gridBrickCells = 0;
     s.grid = volume::BrickGrid{};
@@ -188,6 +210,7 @@ void GeometryShaderSilhouetteRenderer::setVolume(const volume::Volume& volume) {
     m_state->volume = &volume;
     m_state->meshIso.reset();
     m_state->closedIso.reset();
+    m_state->cap.clear();
     m_state->mesh = Mesh{};
     m_state->gridBrickCells = 0;
     m_state->grid = volume::BrickGrid{};
@@ -227,7 +250,7 @@ SilhouetteFrame GeometryShaderSilhouetteRenderer::renderFrame(const Camera& came
     options.background = {1.0f, 1.0f, 1.0f, 1.0f};
     options.countSegments = true;
     options.timePasses = true;
-    options.cullBackFacesInDepthPass = settings.visibility && s.surfaceClosed(settings.isoReal);
+    options.cullBackFacesInDepthPass = settings.visibility && s.surfaceClosed(settings);
     // With the CUDA back-end pass 2 sends only the triangles whose facing can change (a few
     // percent): the rest would enter the geometry shader only to emit nothing.
     glFinish();
@@ -289,7 +312,7 @@ SilhouetteFrame GeometryShaderSilhouetteRenderer::renderBricks(const Camera& cam
     options.clear = false;
     options.surfaceInBackground = true;
     options.linesWriteDepth = true;
-    options.cullBackFacesInDepthPass = settings.visibility && s.surfaceClosed(settings.isoReal);
+    options.cullBackFacesInDepthPass = settings.visibility && s.surfaceClosed(settings);
 
     glFinish();
     auto start = Clock::now();
@@ -318,6 +341,8 @@ SilhouetteFrame GeometryShaderSilhouetteRenderer::renderBricks(const Camera& cam
         frame.times.extractMs += msSince(start) - (frame.times.drawMs - drawnBefore);
     else
         s.drawCpuBricks(settings, storedIso, frame, drawPiece);
+    if (settings.closeAtBorder)
+        s.drawCap(storedIso, frame, drawPiece);
     start = Clock::now();
     frame.lines = PixelMask(camera.width(), camera.height());
     s.gl.readRedMask(kBackground.r, frame.lines.pixels());

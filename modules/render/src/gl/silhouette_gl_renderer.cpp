@@ -294,6 +294,48 @@ bool SilhouetteGlRenderer::reserveLineCandidates(std::size_t triangleCount) {
     return true;
 }
 
+void SilhouetteGlRenderer::writeMeshTail(std::size_t firstVertex, std::size_t firstTriangle,
+                                         const Mesh& piece) {
+    if (piece.isEmpty())
+        return;
+    if (firstVertex + piece.vertexCount() > m_vertexCapacity ||
+        (firstTriangle + piece.triangleCount()) * 3 > m_indexCount)
+        throw core::Error("SilhouetteGlRenderer::writeMeshTail",
+                          "the piece does not fit the reserved mesh buffers");
+    const auto vertexBytes = GLsizeiptr(piece.vertexCount() * sizeof(glm::vec3));
+    const auto vertexOffset = GLintptr(firstVertex * sizeof(glm::vec3));
+    glBindBuffer(GL_ARRAY_BUFFER, m_positionBuffer);
+    glBufferSubData(GL_ARRAY_BUFFER, vertexOffset, vertexBytes, piece.positions.data());
+    glBindBuffer(GL_ARRAY_BUFFER, m_normalBuffer);
+    glBufferSubData(GL_ARRAY_BUFFER, vertexOffset, vertexBytes, piece.normals.data());
+    glBindBuffer(GL_ARRAY_BUFFER, 0);
+    std::vector<std::uint32_t> shifted(piece.indices.size());
+    for (std::size_t i = 0; i < shifted.size(); ++i)
+        shifted[i] = std::uint32_t(firstVertex) + piece.indices[i];
+    // Bound outside any vertex array: GL_ELEMENT_ARRAY_BUFFER is vertex-array state.
+    glBindVertexArray(0);
+    glBindBuffer(GL_COPY_WRITE_BUFFER, m_indexBuffer);
+    glBufferSubData(GL_COPY_WRITE_BUFFER, GLintptr(firstTriangle * 3 * sizeof(std::uint32_t)),
+                    GLsizeiptr(shifted.size() * sizeof(std::uint32_t)), shifted.data());
+    glBindBuffer(GL_COPY_WRITE_BUFFER, 0);
+    gl::checkGlError("SilhouetteGlRenderer::writeMeshTail");
+}
+
+void SilhouetteGlRenderer::writeLineCandidatesTail(std::size_t firstIndex,
+                                                   std::span<const std::uint32_t> indices) {
+    if (indices.empty())
+        return;
+    if (firstIndex + indices.size() > m_candidateCapacity)
+        throw core::Error("SilhouetteGlRenderer::writeLineCandidatesTail",
+                          "the indices do not fit the reserved candidate buffer");
+    glBindVertexArray(0);
+    glBindBuffer(GL_COPY_WRITE_BUFFER, m_candidateBuffer);
+    glBufferSubData(GL_COPY_WRITE_BUFFER, GLintptr(firstIndex * sizeof(std::uint32_t)),
+                    GLsizeiptr(indices.size() * sizeof(std::uint32_t)), indices.data());
+    glBindBuffer(GL_COPY_WRITE_BUFFER, 0);
+    gl::checkGlError("SilhouetteGlRenderer::writeLineCandidatesTail");
+}
+
 bool SilhouetteGlRenderer::reserveMesh(std::size_t vertexCount, std::size_t triangleCount) {
     initialize();
     bool reallocated = false;

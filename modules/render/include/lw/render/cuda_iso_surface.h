@@ -30,7 +30,9 @@ public:
     CudaIsoSurfaceExtractor& operator=(const CudaIsoSurfaceExtractor&) = delete;
 
     double uploadMs() const; // host -> device copy of the voxels (pageable memory), CUDA events
-    CudaExtraction extract(double isoReal);
+    // closeAtBorder: the border cap (iso_surface.h) follows the device mesh in download() and
+    // counts in the result's triangles and vertices (it is made on the host, not timed here).
+    CudaExtraction extract(double isoReal, bool closeAtBorder = false);
     void download(Mesh& mesh) const; // the last extraction's mesh
 
 private:

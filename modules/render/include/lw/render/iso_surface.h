@@ -23,6 +23,12 @@ struct IsoSurfaceOptions {
     unsigned threads = 0; // 0 = all cores
     // Polled by the kernels between work units; when set, extraction throws core::Cancelled.
     const core::CancelToken* cancel = nullptr;
+    // Close the surface where the volume's border cuts it, as if the volume were padded with a
+    // value far outside (kernels/cpu/border_cap_cpu.h): the cut face becomes part of the surface.
+    // Off by default: marching cubes as other libraries do it (the tests of the algorithm, the
+    // benchmark against them). What draws for a user takes SilhouetteSettings::closeAtBorder,
+    // which is on by default.
+    bool closeAtBorder = false;
 };
 
 struct IsoSurfaceStats {
@@ -62,6 +68,26 @@ double storedIsoValue(const volume::Volume& volume, double isoReal);
 // surface be cut open by the border. Otherwise marching cubes gives a closed surface, on which
 // back faces always lie behind front faces, so method 3 may cull them.
 bool surfaceTouchesBorder(const volume::Volume& volume, double storedIso);
+
+// Whether the surface at storedIso is closed: always when it is closed at the border, else when
+// the border does not cut it.
+bool surfaceIsClosed(const volume::Volume& volume, double storedIso, bool closeAtBorder);
+
+// The border cap of `volume` at one iso-value, kept until the iso-value or the volume changes:
+// renderers add it to what marching cubes gives (whole mesh, or one more piece of a brick or
+// slab schedule) without re-extracting it each frame.
+class BorderCapCache {
+public:
+    // The cap at storedIso (empty when the border does not cut the surface).
+    const Mesh& cap(const volume::Volume& volume, double storedIso);
+    void clear();
+
+private:
+    const volume::Volume* m_volume = nullptr;
+    double m_iso = 0.0;
+    bool m_valid = false;
+    Mesh m_cap;
+};
 
 // Brick edge length the "auto" chunking picks for a volume.
 int autoBrickCells(glm::ivec3 dims);

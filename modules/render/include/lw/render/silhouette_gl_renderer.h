@@ -107,6 +107,12 @@ public:
     // contents are undefined until written. Returns true when the buffers' storage was
     // reallocated (a registration with CUDA must then be renewed).
     bool reserveMesh(std::size_t vertexCount, std::size_t triangleCount);
+    // Writes `piece` into the reserved mesh buffers from vertex `firstVertex` and triangle
+    // `firstTriangle` on, its indices shifted by firstVertex (the border cap after the part
+    // another API wrote). Throws core::Error when it does not fit the reserved sizes.
+    void writeMeshTail(std::size_t firstVertex, std::size_t firstTriangle, const Mesh& piece);
+    // Writes `indices` into the line-candidate buffer from index `firstIndex` on.
+    void writeLineCandidatesTail(std::size_t firstIndex, std::span<const std::uint32_t> indices);
     // The buffer names (GL_ARRAY_BUFFER positions and normals as 3 floats a vertex,
     // GL_ELEMENT_ARRAY_BUFFER indices as uint32), for interop.
     unsigned positionBuffer() const { return m_positionBuffer; }

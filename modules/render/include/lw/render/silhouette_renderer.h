@@ -16,9 +16,12 @@
 #include "lw/volume/volume.h"
 
 #include <cstddef>
+#include <glm/glm.hpp>
 #include <string_view>
 
 namespace lw::render {
+
+class GlFrameTarget; // gl_frame_target.h
 
 using Mesh = kernels::TriangleMesh; // iso_surface.h
 
@@ -51,10 +54,32 @@ struct SilhouetteSettings {
     // method has drawn: the speckle of noise on real CT. 0 or 1: every pixel kept (the methods
     // as published; the accuracy and speed measurements use that).
     int minStrokePixels = 0;
+    // Close the iso-surface where the volume's border cuts it (iso_surface.h): the cut outline is
+    // then a contour like any other. Off only to compare with the methods as published.
+    bool closeAtBorder = true;
     // A newer request (the GUI's iso slider) sets it: the frame stops at the next brick, stage or
     // kernel work unit and render() throws core::Cancelled. Not owned; null for none.
     const core::CancelToken* cancel = nullptr;
+    // A GL texture of the camera's size to draw the lines into instead of host memory, its GL
+    // context current on the calling thread (the GUI's silhouette panel). Method 3 on CUDA with
+    // CUDA-GL interop draws there when frameTargetUse() allows; every other method and back-end,
+    // and CUDA where interop fails (logged once), fill SilhouetteFrame::lines as without one.
+    // Not owned; null for none.
+    GlFrameTarget* frameTarget = nullptr;
 };
+
+// Whether a frame may go into a frame target, and if not why.
+enum class FrameTargetUse {
+    Texture,     // yes
+    NoTarget,    // none given
+    SizeDiffers, // the texture is not the frame's size (a resize the caller has not caught up with)
+    HostPruning, // stroke pruning (minStrokePixels > 1) works on the host mask
+};
+// `targetSize` is the texture's ({0, 0}: none), `frameSize` the camera's, `minStrokePixels` the
+// settings'.
+FrameTargetUse frameTargetUse(glm::ivec2 targetSize, glm::ivec2 frameSize, int minStrokePixels);
+// The same for `settings.frameTarget` and `camera`.
+FrameTargetUse frameTargetUse(const SilhouetteSettings& settings, const Camera& camera);
 
 // Wall-clock time of each stage of one frame, in milliseconds (0 when a stage did not run,
 // e.g. extraction in mode a after the first frame).
@@ -68,6 +93,7 @@ struct StageTimes {
 
 struct SilhouetteFrame {
     PixelMask lines;             // silhouette pixels on the camera's viewport, row 0 at the top
+    bool drewToTarget = false;   // the lines went into settings.frameTarget; `lines` is empty
     std::size_t triangles = 0;   // triangles extracted (method 2: triangles visited)
     std::size_t segments = 0;    // silhouette segments found (before visibility)
     std::size_t deviceBytes = 0; // CUDA back-end: device memory held at the most (0 on the CPU)

@@ -44,6 +44,13 @@ public:
     double lastCopyMs() const { return m_copyMs; }
 
 private:
+    // The two calls' work; the public ones drop a failure as the runtime's last error (an
+    // interop failure is not sticky, but left there the caller's host fallback would report it
+    // at its first launch check).
+    CudaStatus copyInto(const DeviceMeshView& mesh, const GlMeshBuffers& buffers);
+    CudaStatus candidatesInto(const DeviceMeshView& mesh, glm::vec4 viewer, unsigned candidates,
+                              std::size_t generation, std::size_t& triangles);
+
     void* m_resources[3] = {nullptr, nullptr, nullptr}; // cudaGraphicsResource_t
     void* m_candidateResource = nullptr;
     unsigned m_candidateName = 0;

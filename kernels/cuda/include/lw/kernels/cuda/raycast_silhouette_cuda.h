@@ -15,6 +15,7 @@
 #include "lw/kernels/cuda/cuda_status.h"
 #include "lw/kernels/cuda/marching_cubes_cuda.h"
 #include "lw/kernels/pixel_camera.h"
+#include "lw/kernels/silhouette_segment.h"
 #include "lw/kernels/voxel_ray_walk.h"
 
 #include <cstddef>
@@ -54,9 +55,12 @@ public:
                          const RayGridSetup& rayGrid);
     double uploadMs() const;
     CudaStatus prepare(double storedIso, RayCastCudaFrame& frame);
+    // `extraSegments` (host memory, may be null): segments found elsewhere (the border cap's),
+    // tested and drawn after the cells' own with the same rule.
     CudaStatus render(const PixelCamera& camera, glm::dvec3 eyeOrDirection, bool orthographic,
                       const RayCastCudaSettings& settings, std::uint8_t* hostMask,
-                      RayCastCudaFrame& frame);
+                      RayCastCudaFrame& frame, const SegmentEndpoints* extraSegments = nullptr,
+                      std::size_t extraCount = 0);
 
     void release(); // frees every device buffer (after running out of memory)
 

@@ -6,12 +6,14 @@
 //               with atomicMax on the key bits (no segment list is stored)
 //   depth       per triangle: covered pixel centres into zbuffer1, atomicMax (back faces culled
 //               when the surface is closed)
-//   resolve     per pixel: the colour pass, into a byte mask copied to the host
+//   resolve     per pixel: the colour pass, into a byte mask copied to the host, or straight
+//               into a GL texture through CUDA-GL interop (the GUI's silhouette panel)
 // Every rule comes from lw/kernels/zbuffer_rules.h, shared with the CPU rasterizer, so the mask
 // equals the CPU's. Public header: no CUDA types.
 
 #include "lw/kernels/cuda/cuda_status.h"
 #include "lw/kernels/cuda/marching_cubes_cuda.h"
+#include "lw/kernels/triangle_mesh.h"
 #include "lw/kernels/zbuffer_rules.h"
 
 #include <cstddef>
@@ -19,6 +21,8 @@
 #include <memory>
 
 namespace lw::kernels::cuda {
+
+class GlTextureInterop;
 
 struct ZBufferCudaFrame {
     std::size_t segments = 0;
@@ -44,9 +48,17 @@ public:
     // zbuffer1. Called once per frame (S) or once per brick (L): both buffers keep maxima.
     CudaStatus draw(const DeviceMeshView& mesh, const ZBufferCudaSettings& settings,
                     ZBufferCudaFrame& frame);
+    // The same for a mesh in host memory (the border cap: small), copied to the device first.
+    CudaStatus drawHost(const TriangleMesh& mesh, const ZBufferCudaSettings& settings,
+                        ZBufferCudaFrame& frame);
     // The colour pass into `hostMask` (width * height bytes, 1 = silhouette).
     CudaStatus resolve(const ZBufferCudaSettings& settings, std::uint8_t* hostMask,
                        ZBufferCudaFrame& frame);
+    // The colour pass into the GL texture `target` (attached at the view's size; its GL context
+    // current): mapped on this renderer's stream, written by the compose kernel, unmapped. The
+    // texels equal resolve()'s mask bytes; nothing goes through host memory.
+    CudaStatus resolveInto(const ZBufferCudaSettings& settings, const GlTextureInterop& target,
+                           ZBufferCudaFrame& frame);
 
     std::size_t deviceBytes() const; // buffers held now
     void release();                  // frees every buffer (after running out of memory)
@@ -54,6 +66,8 @@ public:
     struct Impl;
 
 private:
+    CudaStatus finishResolve(ZBufferCudaFrame& frame); // timing, segment count, synchronise
+
     std::unique_ptr<Impl> m_impl;
 };
 

@@ -1,0 +1,293 @@
+// Closing the iso-surface where the volume's border cuts it (issue 7,
+// kernels/cpu/border_cap_cpu.h): the closed surface is watertight in every geometry, it is the
+// surface of the volume padded with a value far outside, and every method draws the cut outline, S
+// and L alike.
+#include "backends_under_test.h"
+#include "lw/kernels/cpu/border_cap_cpu.h"
+#include "lw/render/camera.h"
+#include "lw/render/iso_surface.h"
+#include "lw/render/renderer_factory.h"
+#include "lw/render/shaded_surface_cpu.h"
+#include "lw/volume/volume.h"
+
+#include <algorithm>
+#include <array>
+#include <cstring>
+#include <gtest/gtest.h>
+#include <map>
+#include <string>
+#include <vector>
+
+namespace {
+
+using namespace lw;
+using render::Mesh;
+
+// A ball centred near a corner of the volume: the border cuts it on three faces.
+volume::Volume cutBall(volume::VolumeGeometry geometry) {
+    const glm::ivec3 dims(20, 18, 16);
+    volume::Volume volume(dims, volume::VoxelType::Float32, std::move(geometry));
+    const glm::vec3 centre(4.3f, 5.1f, 12.2f);
+    for (int z = 0; z < dims.z; ++z)
+        for (int y = 0; y < dims.y; ++y)
+            for (int x = 0; x < dims.x; ++x)
+                volume.dataAs<float>()[volume.index(x, y, z)] =
+                    9.0f - glm::length(glm::vec3(x, y, z) - centre);
+    return volume;
+}
+
+struct GeometryCase {
+    const char* name;
+    volume::VolumeGeometry geometry;
+};
+
+std::vector<GeometryCase> geometries() {
+    std::vector<glm::dvec3> tiltedUneven;
+    double offset = 0.0;
+    for (int k = 0; k < 16; ++k) {
+        tiltedUneven.push_back({0.0, 0.35 * offset, offset}); // sheared: a gantry tilt
+        offset += k % 3 == 0 ? 1.5 : 0.75;                    // uneven gaps
+    }
+    return {
+        {"regular", volume::VolumeGeometry::regular({-3.0, 2.0, 1.0}, {0.8, 0.9, 1.25})},
+        {"tilted_uneven",
+         volume::VolumeGeometry::fromSlicePositions({1, 0, 0}, {0, 1, 0}, 0.7, 0.7, tiltedUneven)},
+    };
+}
+
+using EdgeUses = std::map<std::pair<std::array<float, 3>, std::array<float, 3>>, int>;
+
+std::array<float, 3> key(glm::vec3 p) {
+    return {p.x, p.y, p.z};
+}
+
+// Directed edges by vertex position (the cap repeats the open surface's border-plane vertices,
+// same bits, not their indices): +1 per use in one direction, a count per undirected edge.
+// Triangles with two vertices at one position are left out: where the cap meets itself along an
+// edge of the volume, the crossings of two faces' pad edges sit on the same border voxel (the
+// padding's limit puts them there), joined by slivers of zero area; leaving a sliver out drops
+// one pair of opposite edges.
+void countEdges(const Mesh& mesh, EdgeUses& directed, EdgeUses& undirected) {
+    for (std::size_t t = 0; t < mesh.triangleCount(); ++t) {
+        const glm::vec3 p0 = mesh.positions[mesh.indices[3 * t]],
+                        p1 = mesh.positions[mesh.indices[3 * t + 1]],
+                        p2 = mesh.positions[mesh.indices[3 * t + 2]];
+        if (p0 == p1 || p1 == p2 || p0 == p2)
+            continue;
+        for (int e = 0; e < 3; ++e) {
+            const auto a = key(mesh.positions[mesh.indices[3 * t + std::size_t(e)]]);
+            const auto b = key(mesh.positions[mesh.indices[3 * t + std::size_t((e + 1) % 3)]]);
+            ++directed[{a, b}];
+            ++undirected[{std::min(a, b), std::max(a, b)}];
+        }
+    }
+}
+
+// Edges not shared by exactly two triangles wound opposite ways: the surface's holes.
+std::size_t openEdges(const Mesh& mesh) {
+    EdgeUses directed, undirected;
+    countEdges(mesh, directed, undirected);
+    std::size_t open = 0;
+    for (const auto& [edge, uses] : undirected) {
+        const bool twice = uses == 2;
+        const bool opposite = directed.count(edge) && directed.count({edge.second, edge.first}) &&
+                              directed[edge] == 1 && directed[{edge.second, edge.first}] == 1;
+        open += twice && opposite ? 0 : 1;
+    }
+    return open;
+}
+
+class BorderCapGeometry : public testing::TestWithParam<GeometryCase> {};
+
+TEST_P(BorderCapGeometry, ClosedSurfaceIsWatertightAndOpenOneIsNot) {
+    const volume::Volume volume = cutBall(GetParam().geometry);
+    render::IsoSurfaceOptions closed;
+    closed.closeAtBorder = true;
+    const Mesh openMesh = render::extractIsoSurface(volume, 0.0);
+    const Mesh closedMesh = render::extractIsoSurface(volume, 0.0, closed);
+    ASSERT_GT(openMesh.triangleCount(), 100u);
+    EXPECT_GT(openEdges(openMesh), 20u) << "the border cuts the ball open";
+    EXPECT_EQ(openEdges(closedMesh), 0u);
+    // The closed surface is the open one plus the cap, appended.
+    const Mesh cap = kernels::cpu::borderCap(volume, 0.0);
+    ASSERT_GT(cap.triangleCount(), 20u);
+    EXPECT_EQ(closedMesh.triangleCount(), openMesh.triangleCount() + cap.triangleCount());
+    EXPECT_TRUE(std::equal(openMesh.positions.begin(), openMesh.positions.end(),
+                           closedMesh.positions.begin()));
+    for (const glm::vec3 n : cap.normals)
+        EXPECT_NEAR(glm::length(n), 1.0f, 1e-5f);
+}
+
+TEST_P(BorderCapGeometry, CapLiesInTheBorderPlanes) {
+    const volume::Volume volume = cutBall(GetParam().geometry);
+    const Mesh cap = kernels::cpu::borderCap(volume, 0.0);
+    const volume::VolumeGeometry& g = volume.geometry();
+    const glm::dvec3 last = glm::dvec3(volume.dims() - 1);
+    for (const glm::vec3 p : cap.positions) {
+        // Back to (fractional) indices through the slice stack: one index lies on a face.
+        const glm::dvec3 d = glm::dvec3(p) - g.origin();
+        const glm::dmat3 frame(g.spacingI() * g.axisI(), g.spacingJ() * g.axisJ(), g.stackAxis());
+        const glm::dvec3 u = glm::inverse(frame) * d; // (i, j, offset)
+        const double i = u.x, j = u.y;
+        const double firstOffset = g.sliceOffset(0.0), lastOffset = g.sliceOffset(last.z);
+        const bool onI = std::abs(i) < 1e-3 || std::abs(i - last.x) < 1e-3;
+        const bool onJ = std::abs(j) < 1e-3 || std::abs(j - last.y) < 1e-3;
+        const bool onK = std::abs(u.z - firstOffset) < 1e-3 || std::abs(u.z - lastOffset) < 1e-3;
+        EXPECT_TRUE(onI || onJ || onK) << p.x << " " << p.y << " " << p.z;
+    }
+}
+
+INSTANTIATE_TEST_SUITE_P(Geometries, BorderCapGeometry, testing::ValuesIn(geometries()),
+                         [](const testing::TestParamInfo<GeometryCase>& info) {
+                             return std::string(info.param.name);
+                         });
+
+// The triangles as sorted position triples (rotated to start at the smallest vertex, so the
+// winding stays part of the key), for comparing meshes numbered differently.
+std::vector<std::array<float, 9>> triangleSet(const Mesh& mesh) {
+    std::vector<std::array<float, 9>> set;
+    for (std::size_t t = 0; t < mesh.triangleCount(); ++t) {
+        std::array<std::array<float, 3>, 3> v;
+        for (int c = 0; c < 3; ++c)
+            v[std::size_t(c)] = key(mesh.positions[mesh.indices[3 * t + std::size_t(c)]]);
+        const auto first = std::min_element(v.begin(), v.end()) - v.begin();
+        std::array<float, 9> tri{};
+        for (int c = 0; c < 3; ++c)
+            for (int a = 0; a < 3; ++a)
+                tri[std::size_t(3 * c + a)] = v[std::size_t((first + c) % 3)][std::size_t(a)];
+        set.push_back(tri);
+    }
+    std::sort(set.begin(), set.end());
+    return set;
+}
+
+TEST(BorderCap, IsTheSurfaceOfTheVolumePaddedFarOutside) {
+    const volume::Volume volume =
+        cutBall(volume::VolumeGeometry::regular({-3.0, 2.0, 1.0}, {0.5, 0.5, 0.5}));
+    // The same volume padded by one voxel of -1e30 on every side, its origin one voxel out.
+    const glm::ivec3 d = volume.dims();
+    volume::Volume padded(d + 2, volume::VoxelType::Float32,
+                          volume::VolumeGeometry::regular({-3.5, 1.5, 0.5}, {0.5, 0.5, 0.5}));
+    for (int z = 0; z < d.z + 2; ++z)
+        for (int y = 0; y < d.y + 2; ++y)
+            for (int x = 0; x < d.x + 2; ++x) {
+                const bool inside = x >= 1 && x <= d.x && y >= 1 && y <= d.y && z >= 1 && z <= d.z;
+                padded.dataAs<float>()[padded.index(x, y, z)] =
+                    inside ? volume.dataAs<float>()[volume.index(x - 1, y - 1, z - 1)] : -1e30f;
+            }
+    render::IsoSurfaceOptions closing;
+    closing.closeAtBorder = true;
+    const auto expected = triangleSet(render::extractIsoSurface(padded, 0.0));
+    const auto closed = triangleSet(render::extractIsoSurface(volume, 0.0, closing));
+    ASSERT_EQ(closed.size(), expected.size());
+    for (std::size_t t = 0; t < closed.size(); ++t)
+        for (std::size_t c = 0; c < 9; ++c)
+            ASSERT_NEAR(closed[t][c], expected[t][c], 1e-4) << "triangle " << t;
+}
+
+TEST(BorderCap, EmptyWhenTheBorderHoldsNoInsideVoxel) {
+    volume::Volume volume(glm::ivec3(12, 12, 12), volume::VoxelType::Int16);
+    std::fill_n(volume.dataAs<std::int16_t>(), volume.voxelCount(), std::int16_t(0));
+    volume.dataAs<std::int16_t>()[volume.index(6, 6, 6)] = 1000;
+    EXPECT_EQ(kernels::cpu::borderCap(volume, 500.0).triangleCount(), 0u);
+    // A volume entirely inside: the cap is the whole box.
+    std::fill_n(volume.dataAs<std::int16_t>(), volume.voxelCount(), std::int16_t(1000));
+    const Mesh box = kernels::cpu::borderCap(volume, 500.0);
+    EXPECT_EQ(openEdges(box), 0u);
+    EXPECT_GE(box.triangleCount(), 6u * 2u * 11u * 11u);
+}
+
+// A box of bone cut by two faces of the volume (x = 0 and the last slice), as where a scan's
+// first or last slice cuts the skull.
+volume::Volume boxCutByTheBorder() {
+    const glm::ivec3 dims(40, 40, 40);
+    volume::Volume volume(dims, volume::VoxelType::Int16);
+    for (int z = 0; z < dims.z; ++z)
+        for (int y = 0; y < dims.y; ++y)
+            for (int x = 0; x < dims.x; ++x)
+                volume.dataAs<std::int16_t>()[volume.index(x, y, z)] =
+                    x <= 25 && y >= 8 && y <= 30 && z >= 10 ? 1000 : 0;
+    return volume;
+}
+
+// The outline of the shaded panel: surface pixels with a 4-neighbour of background (or the edge).
+render::PixelMask shadedOutline(const Mesh& mesh, const render::Camera& camera) {
+    const core::ImageRgba8 shaded = render::shadeSurfaceCpu(mesh, camera);
+    const int w = camera.width(), h = camera.height();
+    auto surface = [&](int x, int y) {
+        if (x < 0 || y < 0 || x >= w || y >= h)
+            return false;
+        const core::Rgba8 p = shaded.at(x, y);
+        return !(p.r == 255 && p.g == 255 && p.b == 255);
+    };
+    render::PixelMask outline(w, h);
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x)
+            if (surface(x, y) && (!surface(x - 1, y) || !surface(x + 1, y) || !surface(x, y - 1) ||
+                                  !surface(x, y + 1)))
+                outline.set(x, y);
+    return outline;
+}
+
+double coverage(const render::PixelMask& outline, const render::PixelMask& lines) {
+    const render::PixelMask near = lines.dilated(1);
+    std::size_t covered = 0;
+    for (int y = 0; y < outline.height(); ++y)
+        for (int x = 0; x < outline.width(); ++x)
+            covered += outline.get(x, y) && near.get(x, y) ? 1 : 0;
+    return double(covered) / double(std::max<std::size_t>(outline.count(), 1));
+}
+
+struct MethodOnBackend {
+    render::SilhouetteMethod method;
+    render::Backend backend;
+};
+
+class ClosedOutline : public testing::TestWithParam<MethodOnBackend> {};
+
+TEST_P(ClosedOutline, EveryMethodDrawsTheCutOutlineSAndLAlike) {
+    const volume::Volume volume = boxCutByTheBorder();
+    auto renderer = render::createSilhouetteRenderer(GetParam().method, GetParam().backend);
+    renderer->setVolume(volume);
+    render::CameraSetup setup;
+    setup.bounds = render::volumeBounds(volume);
+    setup.azimuthDeg = 215;
+    setup.elevationDeg = 25;
+    const render::Camera camera(setup, 200, 200);
+    render::SilhouetteSettings settings;
+    settings.isoReal = 500;
+    render::IsoSurfaceOptions closed;
+    closed.closeAtBorder = true;
+    const render::PixelMask outline =
+        shadedOutline(render::extractIsoSurface(volume, settings.isoReal, closed), camera);
+    ASSERT_GT(outline.count(), 300u) << "the box must show";
+
+    const render::SilhouetteFrame whole = renderer->render(camera, settings);
+    EXPECT_GE(coverage(outline, whole.lines), 0.98);
+    settings.brickCells = 16;
+    const render::SilhouetteFrame chunked = renderer->render(camera, settings);
+    EXPECT_EQ(chunked.lines, whole.lines);
+
+    // Open at the border, the cut faces' edges have no contour (the defect closing mends).
+    settings.closeAtBorder = false;
+    settings.brickCells = 0;
+    const render::SilhouetteFrame open = renderer->render(camera, settings);
+    EXPECT_LT(coverage(outline, open.lines), 0.9);
+}
+
+std::vector<MethodOnBackend> methodsOnBackends() {
+    std::vector<MethodOnBackend> cases;
+    for (const render::Backend backend : test::backendsUnderTest())
+        for (const render::SilhouetteMethod method :
+             {render::SilhouetteMethod::RayCastVisibility, render::SilhouetteMethod::ZBuffer})
+            cases.push_back({method, backend});
+    return cases;
+}
+
+INSTANTIATE_TEST_SUITE_P(Methods, ClosedOutline, testing::ValuesIn(methodsOnBackends()),
+                         [](const testing::TestParamInfo<MethodOnBackend>& info) {
+                             return "method" + std::to_string(int(info.param.method)) + "_" +
+                                    std::string(render::backendName(info.param.backend));
+                         });
+
+} // namespace

@@ -1,0 +1,33 @@
+// The frame target's host side (label unit): when a frame may go into a GL texture and when it
+// must take the host path.
+
+#include "lw/render/silhouette_renderer.h"
+
+#include <gtest/gtest.h>
+
+namespace lw::render {
+namespace {
+
+TEST(FrameTargetUse, OnlyAMatchingTextureWithoutHostPruning) {
+    const glm::ivec2 frame(640, 480);
+    EXPECT_EQ(frameTargetUse({640, 480}, frame, 0), FrameTargetUse::Texture);
+    EXPECT_EQ(frameTargetUse({640, 480}, frame, 1), FrameTargetUse::Texture)
+        << "1 keeps every pixel: nothing to prune";
+    EXPECT_EQ(frameTargetUse({0, 0}, frame, 0), FrameTargetUse::NoTarget);
+    EXPECT_EQ(frameTargetUse({640, 0}, frame, 0), FrameTargetUse::NoTarget);
+    EXPECT_EQ(frameTargetUse({641, 480}, frame, 0), FrameTargetUse::SizeDiffers);
+    EXPECT_EQ(frameTargetUse({640, 479}, frame, 0), FrameTargetUse::SizeDiffers);
+    EXPECT_EQ(frameTargetUse({640, 480}, frame, 2), FrameTargetUse::HostPruning);
+    EXPECT_EQ(frameTargetUse({640, 480}, frame, kDefaultMinStrokePixels),
+              FrameTargetUse::HostPruning);
+}
+
+TEST(FrameTargetUse, FromSettingsWithoutATarget) {
+    SilhouetteSettings settings;
+    CameraSetup setup;
+    setup.bounds = {{0, 0, 0}, {10, 10, 10}};
+    EXPECT_EQ(frameTargetUse(settings, Camera(setup, 64, 48)), FrameTargetUse::NoTarget);
+}
+
+} // namespace
+} // namespace lw::render
