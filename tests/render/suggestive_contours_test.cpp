@@ -194,6 +194,41 @@ TEST(SuggestiveContours, EmptySurfaceDrawsNothing) {
     EXPECT_GT(frame.lines.width(), 0);
 }
 
+// A ring cut by the volume's top face and closed there (the review's default): the caps are flat
+// discs in the border plane, so no suggestive contour may lie on them. The caps' vertices repeat
+// the border's with the cut face's normal; taken as the field there, the ring's curvature
+// (convex outside, saddle inside) would draw lines across the caps.
+TEST(SuggestiveContours, NoneOnTheCapWhereTheBorderCutsTheSurface) {
+    const evaluation::TorusShape ring({32.0, 32.0, 50.0}, {1.0, 0.0, 0.0}, 14.0, 6.0);
+    const glm::ivec3 dims{64, 64, 64};
+    volume::Volume volume(dims, volume::VoxelType::Float32,
+                          volume::VolumeGeometry::regular({0.0, 0.0, 0.0}, {1.0, 1.0, 1.0}));
+    for (int z = 0; z < dims.z; ++z)
+        for (int y = 0; y < dims.y; ++y)
+            for (int x = 0; x < dims.x; ++x)
+                volume.dataAs<float>()[volume.index(x, y, z)] = float(ring.value({x, y, z}));
+    render::IsoSurfaceOptions options;
+    options.closeAtBorder = true;
+    const render::Mesh mesh = render::extractIsoSurface(volume, 0.0, options);
+    ASSERT_GT(mesh.triangleCount(), render::extractIsoSurface(volume, 0.0).triangleCount());
+    render::SuggestiveContourRenderer renderer(volume, mesh, 0.0);
+    const double top = dims.z - 1;
+    std::size_t segments = 0, onCap = 0;
+    for (const evaluation::View view : evaluation::viewSweep(32)) {
+        render::CameraSetup setup;
+        setup.bounds = {glm::dvec3(0.0), glm::dvec3(dims - 1)};
+        setup.azimuthDeg = view.azimuthDeg;
+        setup.elevationDeg = view.elevationDeg;
+        for (const render::EdgeSegment& s :
+             renderer.segments(render::Camera(setup, 256, 256), {})) {
+            ++segments;
+            onCap += std::abs(s.point[0].z - top) < 1e-3 && std::abs(s.point[1].z - top) < 1e-3;
+        }
+    }
+    EXPECT_GT(segments, 0u) << "the ring itself has suggestive contours";
+    EXPECT_EQ(onCap, 0u) << "of " << segments;
+}
+
 // The segments chain through the mesh edges they share like the silhouette's (the torus from
 // 45 degrees up: two strokes, left and right of the hole), and their visible polylines lie on
 // the drawn pixels.

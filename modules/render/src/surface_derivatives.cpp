@@ -55,6 +55,20 @@ public:
         : m_setup(kernels::cpu::voxelGridSetup(volume)),
           m_locator(m_setup), m_sampler{volume.dataAs<T>(), m_setup.spans()} {}
 
+    // The volume's border planes the point lies in: bit 2a for index 0 along axis a, 2a + 1 for
+    // the last index (within 1e-3 voxel).
+    int borderPlanes(glm::dvec3 patient) const {
+        const kernels::GridDims& d = m_setup.spans().dims;
+        const glm::dvec3 index = m_locator.indexOf(patient);
+        const int last[3] = {d.cx, d.cy, d.cz};
+        int planes = 0;
+        for (int a = 0; a < 3; ++a) {
+            planes |= std::abs(index[a]) < 1e-3 ? 1 << (2 * a) : 0;
+            planes |= std::abs(index[a] - last[a]) < 1e-3 ? 1 << (2 * a + 1) : 0;
+        }
+        return planes;
+    }
+
     void at(glm::dvec3 patient, glm::vec3& gradient, kernels::Sym3& hessian) const {
         const kernels::GridDims& d = m_setup.spans().dims;
         const glm::dvec3 index = m_locator.indexOf(patient);
@@ -121,6 +135,32 @@ template <typename F> void withProbe(const volume::Volume& volume, F&& f) {
     return f(FieldProbe<float>(volume));
 }
 
+// A triangle lying in one border plane of the grid belongs to the cap that closes the surface
+// where the volume's border cuts it (border_cap_cpu.h; marching cubes' own triangles never lie
+// in a face of the grid). The surface there is the flat cut face: gradient along the vertex's
+// normal (the face's), Hessian 0, so kappa_r is 0 over the cap and draws nothing across it. The
+// cap's vertices repeat the border's, with the face's normal, and belong to cap triangles only.
+template <typename Probe>
+void flattenBorderCaps(const Probe& probe, const kernels::TriangleMesh& mesh,
+                       SurfaceDerivatives& out) {
+    std::vector<int> planes(mesh.vertexCount(), -1); // -1: not looked up yet
+    const auto planesOf = [&](std::uint32_t v) {
+        if (planes[v] < 0)
+            planes[v] = probe.borderPlanes(glm::dvec3(mesh.positions[v]));
+        return planes[v];
+    };
+    for (std::size_t t = 0; t < mesh.triangleCount(); ++t) {
+        const std::uint32_t* v = &mesh.indices[3 * t];
+        if ((planesOf(v[0]) & planesOf(v[1]) & planesOf(v[2])) == 0)
+            continue;
+        for (int i = 0; i < 3; ++i) {
+            const float length = glm::length(out.gradient[v[i]]);
+            out.gradient[v[i]] = -mesh.normals[v[i]] * (length > 0.0f ? length : 1.0f);
+            out.hessian[v[i]] = kernels::Sym3{};
+        }
+    }
+}
+
 } // namespace
 
 SurfaceDerivatives surfaceDerivatives(const volume::Volume& volume,
@@ -139,6 +179,7 @@ SurfaceDerivatives surfaceDerivatives(const volume::Volume& volume,
                                            out.hessian[v]);
                           },
                           threads);
+        flattenBorderCaps(probe, mesh, out);
     });
     return out;
 }

@@ -9,7 +9,9 @@
 // the gradient and Hessian of the grid points around it are interpolated trilinearly there (on
 // an edge, that is linear between its two ends, as marching cubes interpolates the gradient).
 // Grid points use the voxel gradient of voxel_grid.h and its derivative (frameHessian), so the
-// normal direction agrees with the mesh's normals.
+// normal direction agrees with the mesh's normals. The cap that closes the surface where the
+// volume's border cuts it (its triangles lie in a border plane) is the flat cut face: gradient
+// along its normal, Hessian 0.
 
 #include "lw/kernels/radial_curvature.h"
 #include "lw/kernels/triangle_mesh.h"
