@@ -125,7 +125,8 @@ if [ "${LINEWORK_FUZZ_SECONDS:-45}" != 0 ]; then
   # A new finding is a bug to fix (and then a regression input in tests/data/fuzz, replayed by
   # every build), but the mutations are random: one run may find what the last did not. It fails
   # the command only with LINEWORK_FUZZ_STRICT=1, so CI stays a function of the commit; the
-  # finding and its log are printed either way (build/fuzz/findings).
+  # finding and its log are printed either way (build/fuzz/findings). Known findings do gate:
+  # lw_fuzz_regression_tests replays tests/data/fuzz in both suites above.
   if ! LINEWORK_JOBS=$jobs scripts/fuzz.sh "${LINEWORK_FUZZ_SECONDS:-45}"; then
     if [ "${LINEWORK_FUZZ_STRICT:-0}" = 1 ]; then
       failed+=("fuzzing")

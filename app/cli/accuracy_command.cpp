@@ -10,18 +10,22 @@
 #include "commands.h"
 #include "lw/core/error.h"
 #include "lw/core/json_writer.h"
+#include "lw/core/png_io.h"
 #include "lw/evaluation/analytic_shapes.h"
 #include "lw/evaluation/contour_score.h"
 #include "lw/evaluation/true_contour.h"
 #include "lw/evaluation/view_sweep.h"
 #include "lw/render/camera.h"
 #include "lw/render/renderer_factory.h"
+#include "panel_rendering.h"
 
 #include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <memory>
+#include <optional>
 #include <ostream>
 #include <string>
 #include <vector>
@@ -91,36 +95,13 @@ struct Options {
     bool json = false;
     bool sweep = true; // false: one view from --view
     std::vector<View> views;
+    // --images DIR: each row's drawing, truth and their difference as PNGs, to look at.
+    std::optional<std::filesystem::path> imagesDir;
 };
-
-// --view AZ,EL: one view (the command's behaviour before the sweep); --views sweep|N: the first
-// N views of the sweep (faces, edges, corners, then random ones); default: the sweep.
-void parseViews(const Arguments& arguments, Options& options) {
-    const auto single = arguments.option("view");
-    const auto sweep = arguments.option("views");
-    if (single && sweep)
-        throw UsageError("--view and --views", "give one view or a sweep, not both");
-    if (single) {
-        const glm::dvec2 parsed = parseView(*single);
-        if (std::abs(parsed.y) > 90.0)
-            throw UsageError("--view " + *single, "expected AZ,EL in degrees with |EL| <= 90");
-        options.sweep = false;
-        options.views = {View{parsed.x, parsed.y}};
-        return;
-    }
-    int count = evaluation::kDefaultSweepViewCount;
-    if (sweep && *sweep != "sweep") {
-        const auto [end, error] =
-            std::from_chars(sweep->data(), sweep->data() + sweep->size(), count);
-        if (error != std::errc() || end != sweep->data() + sweep->size() || count < 1)
-            throw UsageError("--views " + *sweep, "expected 'sweep' or a number of views >= 1");
-    }
-    options.views = evaluation::viewSweep(count);
-}
 
 Options parseOptions(const std::vector<std::string>& args) {
     const Arguments arguments(args, {"json"},
-                              {"backend", "methods", "sizes", "shapes", "view", "views"});
+                              {"backend", "methods", "sizes", "shapes", "view", "views", "images"});
     if (!arguments.positionals().empty())
         throw UsageError("accuracy", "takes no positional arguments");
     Options options;
@@ -138,7 +119,11 @@ Options parseOptions(const std::vector<std::string>& args) {
         if (std::find(known.begin(), known.end(), shape) == known.end())
             throw UsageError("--shapes " + shape, "not a known shape");
     options.json = arguments.flag("json");
-    parseViews(arguments, options);
+    if (const auto images = arguments.option("images"))
+        options.imagesDir = *images;
+    const ViewChoice choice = parseViewChoice(arguments, evaluation::kDefaultSweepViewCount);
+    options.sweep = !choice.single;
+    options.views = choice.views;
     return options;
 }
 
@@ -148,25 +133,39 @@ using Renderers = std::unique_ptr<render::SilhouetteRenderer>[4];
 // (no OpenGL context), and then it is skipped with a note.
 void createRenderers(const Options& options, Renderers& renderers,
                      std::vector<std::string>& notes) {
-    for (int m = 1; m <= 3; ++m) {
-        if (std::find(options.methods.begin(), options.methods.end(), m) == options.methods.end())
-            continue;
-        try {
+    for (int m = 1; m <= 3; ++m)
+        if (std::find(options.methods.begin(), options.methods.end(), m) != options.methods.end())
             renderers[m] =
-                render::createSilhouetteRenderer(render::SilhouetteMethod(m), options.backend);
-        } catch (const core::Error& error) {
-            if (m != 1)
-                throw;
-            notes.push_back("method 1 skipped: " + error.reason());
-        }
-    }
+                createRendererOrSkip(render::SilhouetteMethod(m), options.backend, notes);
+}
+
+// "metaballs-64-m3-on-S-az180-el45": names a row's images.
+std::string rowName(const Row& row) {
+    char text[160];
+    std::snprintf(text, sizeof text, "%s-%d-m%d-%s-%s-az%g-el%g", row.shape.c_str(), row.size,
+                  row.method, row.visibility.c_str(), row.variant.c_str(), row.view.azimuthDeg,
+                  row.view.elevationDeg);
+    return text;
+}
+
+// The drawing (black on white), the truth and the diff (contourDiffImage's colours) of a row.
+void writeRowImages(const std::filesystem::path& dir, const Row& row,
+                    const render::PixelMask& drawn, const render::PixelMask& truth) {
+    std::filesystem::create_directories(dir);
+    const std::string name = rowName(row);
+    const core::Rgba8 black{0, 0, 0, 255}, white{255, 255, 255, 255};
+    core::writePng(dir / (name + "-drawn.png"), drawn.toImage(black, white), core::PngFormat::Rgb);
+    core::writePng(dir / (name + "-truth.png"), truth.toImage(black, white), core::PngFormat::Rgb);
+    core::writePng(dir / (name + "-diff.png"), evaluation::contourDiffImage(drawn, truth, 1),
+                   core::PngFormat::Rgb);
 }
 
 // Scores every available method, S and L, on one shape sampled at n^3, at every view. The truth
 // of a view is traced once and shared by all methods; the volume is bound once per method and
 // variant, as a workstation binds it once and then turns the camera.
-void measureShape(const std::string& shapeName, int n, const std::vector<View>& views,
-                  Renderers& renderers, std::vector<Row>& rows) {
+void measureShape(const std::string& shapeName, int n, const Options& options, Renderers& renderers,
+                  std::vector<Row>& rows) {
+    const std::vector<View>& views = options.views;
     const std::unique_ptr<evaluation::AnalyticShape> shape =
         evaluation::makeAnalyticShape(shapeName);
     const volume::Volume volume = evaluation::sampleShape(*shape, n);
@@ -217,6 +216,8 @@ void measureShape(const std::string& shapeName, int n, const std::vector<View>& 
                     row.viewIndex = v;
                     row.view = views[v];
                     row.score = evaluation::scoreContours(drawn, truths[v], 1);
+                    if (options.imagesDir)
+                        writeRowImages(*options.imagesDir, row, drawn, truths[v]);
                     rows.push_back(row);
                 };
                 if (m != 2) {
@@ -421,7 +422,7 @@ int runAccuracy(const std::vector<std::string>& args, std::ostream& out) {
     std::vector<Row> rows;
     for (const std::string& shapeName : options.shapes)
         for (int n : options.sizes)
-            measureShape(shapeName, n, options.views, renderers, rows);
+            measureShape(shapeName, n, options, renderers, rows);
     sortRows(rows);
     const std::vector<Summary> summaries = summarise(rows);
 

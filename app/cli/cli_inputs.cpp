@@ -5,6 +5,7 @@
 #include "lw/input/open_input.h"
 
 #include <charconv>
+#include <cmath>
 #include <sstream>
 
 namespace lw::cli {
@@ -57,6 +58,34 @@ glm::dvec2 parseView(const std::string& text) {
     if (values.size() != 2)
         throw UsageError("--view " + text, "expected AZ,EL in degrees");
     return {values[0], values[1]};
+}
+
+ViewChoice parseViewChoice(const Arguments& arguments, int defaultCount) {
+    const auto single = arguments.option("view");
+    const auto sweep = arguments.option("views");
+    if (single && sweep)
+        throw UsageError("--view and --views", "give one view or a sweep, not both");
+    ViewChoice choice;
+    if (single) {
+        const glm::dvec2 parsed = parseView(*single);
+        if (std::abs(parsed.y) > 90.0)
+            throw UsageError("--view " + *single, "expected AZ,EL in degrees with |EL| <= 90");
+        choice.single = true;
+        choice.views = {evaluation::View{parsed.x, parsed.y}};
+        return choice;
+    }
+    int count = defaultCount;
+    if (sweep) {
+        count = evaluation::kDefaultSweepViewCount;
+        const auto [end, error] =
+            *sweep == "sweep"
+                ? std::from_chars_result{sweep->data() + sweep->size(), std::errc()}
+                : std::from_chars(sweep->data(), sweep->data() + sweep->size(), count);
+        if (error != std::errc() || end != sweep->data() + sweep->size() || count < 1)
+            throw UsageError("--views " + *sweep, "expected 'sweep' or a number of views >= 1");
+    }
+    choice.views = evaluation::viewSweep(count);
+    return choice;
 }
 
 input::OpenedVolume openCliInput(const std::string& input,

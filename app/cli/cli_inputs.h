@@ -3,6 +3,8 @@
 // What several sub-commands read from their arguments the same way: lists, sizes, views and the
 // input volume. Arguments (arguments.h) splits the command line; these give the values meaning.
 
+#include "arguments.h"
+#include "lw/evaluation/view_sweep.h"
 #include "lw/input/open_input.h"
 #include "lw/volume/volume.h"
 
@@ -31,6 +33,16 @@ glm::ivec3 parseDimsOption(const std::string& option, const std::string& text, i
 glm::ivec2 parseImageSize(const std::string& option, const std::string& text, int minimum);
 // "--view AZ,EL" in degrees: {azimuth, elevation}; throws core::Error otherwise.
 glm::dvec2 parseView(const std::string& text);
+
+// The views a command measures at: `--view AZ,EL` one view (single), `--views sweep|N` the first
+// N views of evaluation::viewSweep (faces, edges, corners, then seeded random ones; `sweep` =
+// evaluation::kDefaultSweepViewCount), neither: the first `defaultCount`. Throws UsageError for
+// both, a malformed value or |EL| > 90.
+struct ViewChoice {
+    std::vector<evaluation::View> views;
+    bool single = false;
+};
+ViewChoice parseViewChoice(const Arguments& arguments, int defaultCount);
 
 // The INPUT of `render` (lw::input::openInput, shared with the GUI): phantom:N | phantom:NXxNYxNZ
 // (optionally :ct or :sphere), a volume

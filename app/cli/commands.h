@@ -15,6 +15,7 @@ int runPhantom(const std::vector<std::string>& args, std::ostream& out);
 int runBenchMc(const std::vector<std::string>& args, std::ostream& out);
 int runAccuracy(const std::vector<std::string>& args, std::ostream& out);
 int runBench(const std::vector<std::string>& args, std::ostream& out);
+int runQuality(const std::vector<std::string>& args, std::ostream& out);
 // In a build without modules/report (no Qt or no DCMTK) it says so and returns 1.
 int runExport(const std::vector<std::string>& args, std::ostream& out);
 

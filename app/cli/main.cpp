@@ -38,10 +38,20 @@ commands:
   bench-mc [--size N|NXxNYxNZ] [--kind ct|sphere] [--chunks off|auto|N] [--repeat R] [--iso HU]
                               marching cubes on the phantom: median ms, triangles
   accuracy [--methods 1,2,3] [--sizes 32,64,256] [--shapes sphere,...]
-           [--views sweep|N | --view AZ,EL] [--backend cpu|cuda|auto] [--json]
+           [--views sweep|N | --view AZ,EL] [--backend cpu|cuda|auto] [--images DIR] [--json]
                               the paper's Table 5 measured: recall/precision (1 px) of each
                               method (S and L) against analytic contours, worst and median
-                              over 32 views (cube faces, edges, corners, 6 seeded) or one view
+                              over 32 views (cube faces, edges, corners, 6 seeded) or one view;
+                              --images: each row's drawing, truth and diff (red: drawn, no true
+                              pixel within 1 px; blue: true, not drawn) as PNGs in DIR
+  quality INPUT [--series UID] --iso HU [--views sweep|N | --view AZ,EL] [--size WxH]
+          [--min-stroke PX] [--chunks ..] [--mode ..] [--camera ..] [--backend ..] [--threads N]
+          [--images DIR] [--json]
+                              line quality on a real CT (issue 7's goals): at each view (default
+                              the 32 of the accuracy sweep, 1024x1024, strokes pruned as in
+                              `render`) the shaded panel's outer outline covered by each method's
+                              lines (1 px), line pixels in groups under 10 px, methods 1~3 and
+                              2 (along-segment)~3 agreeing both ways; worst and median
   render INPUT [--series UID] --iso HU --method 1|2|3 [--chunks off|auto|N] [--mode a|b]
          [--visibility on|off] [--view AZ,EL] [--camera perspective|ortho] [--size WxH]
          [--panel iso|silhouette|both] [--backend cpu|cuda|auto] [--repeat N] [--threads N]
@@ -108,6 +118,7 @@ int main(int argc, char** argv) {
         {"render", lw::cli::runRender},    {"phantom", lw::cli::runPhantom},
         {"bench-mc", lw::cli::runBenchMc}, {"accuracy", lw::cli::runAccuracy},
         {"bench", lw::cli::runBench},      {"export", lw::cli::runExport},
+        {"quality", lw::cli::runQuality},
     };
     const auto command = commands.find(args[0]);
     if (command == commands.end()) {

@@ -230,6 +230,19 @@ void fitToVolume(const Arguments& arguments, const volume::Volume& volume, Rende
     setup.bounds = render::surfaceBounds(volume, request.settings.isoReal);
 }
 
+std::unique_ptr<render::SilhouetteRenderer> createRendererOrSkip(render::SilhouetteMethod method,
+                                                                 render::Backend backend,
+                                                                 std::vector<std::string>& notes) {
+    try {
+        return render::createSilhouetteRenderer(method, backend);
+    } catch (const core::Error& error) {
+        if (method != render::SilhouetteMethod::GeometryShader)
+            throw;
+        notes.push_back("method 1 skipped: " + error.reason());
+        return nullptr;
+    }
+}
+
 core::ImageRgba8 sideBySide(const core::ImageRgba8& left, const core::ImageRgba8& right) {
     const int height = std::max(left.height(), right.height());
     core::ImageRgba8 image(left.width() + right.width(), height, {255, 255, 255, 255});

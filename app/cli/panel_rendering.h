@@ -15,8 +15,10 @@
 
 #include <glm/glm.hpp>
 #include <iosfwd>
+#include <memory>
 #include <set>
 #include <string>
+#include <vector>
 
 namespace lw::cli {
 
@@ -69,6 +71,13 @@ std::vector<render::Polyline> silhouettePolylines(render::SilhouetteRenderer& re
                                                   const render::Camera& camera,
                                                   const RenderRequest& request,
                                                   const render::PixelMask& lines);
+
+// The renderer of `method` on `backend`, for the commands that measure every method (`accuracy`,
+// `quality`): method 1 without an OpenGL context gives null and a note saying why, so they still
+// run on a machine without EGL; any other failure throws.
+std::unique_ptr<render::SilhouetteRenderer> createRendererOrSkip(render::SilhouetteMethod method,
+                                                                 render::Backend backend,
+                                                                 std::vector<std::string>& notes);
 
 // The iso-surface left, its silhouette right, the same height.
 core::ImageRgba8 sideBySide(const core::ImageRgba8& left, const core::ImageRgba8& right);

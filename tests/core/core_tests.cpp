@@ -1,3 +1,4 @@
+#include "link_trap.h"
 #include "lw/core/error.h"
 #include "lw/core/file_util.h"
 #include "lw/core/json_writer.h"
@@ -152,4 +153,52 @@ TEST(Log, SinkReceivesCategoryAndThresholdFilters) {
     ASSERT_EQ(seen.size(), 2u);
     EXPECT_EQ(seen[0], "warning lw.test shown");
     EXPECT_EQ(seen[1], "debug lw.test now shown");
+}
+
+// Names an export must refuse, with the reason the user reads: fileInFolder takes a name the
+// export made itself and writes only into the chosen folder.
+TEST(FileUtil, ExportNamesLeadingOutOfTheFolderAreRefused) {
+    lw::test::TempDir dir;
+    const struct {
+        const char* name;
+        const char* reason;
+    } cases[] = {
+        {"../evil.png", "is a path, not a name"},   {"sub/../../evil.png", "is a path, not a name"},
+        {"/tmp/evil.png", "is a path, not a name"}, {"sub/evil.png", "is a path, not a name"},
+        {"..", "not a file name in a folder"},      {".", "not a file name in a folder"},
+        {"", "not a file name in a folder"},
+    };
+    for (const auto& c : cases) {
+        SCOPED_TRACE(c.name);
+        try {
+            fileInFolder(dir.path(), c.name);
+            ADD_FAILURE() << "accepted";
+        } catch (const Error& error) {
+            EXPECT_NE(error.reason().find(c.reason), std::string::npos) << error.what();
+            EXPECT_NE(error.subject().find(dir.path().string()), std::string::npos) << error.what();
+        }
+    }
+    EXPECT_EQ(fileInFolder(dir.path(), "LWSC0001.dcm"), dir / "LWSC0001.dcm");
+    EXPECT_TRUE(std::filesystem::is_empty(dir.path()));
+}
+
+// A symbolic link at the target's name is refused before anything is written, wherever it
+// points (out of the folder, nowhere yet, or to the user's own file), even where overwriting
+// was agreed: the check, the name-making and the atomic write all refuse it.
+TEST(FileUtil, ExportTargetsThatAreLinksAreRefused) {
+    lw::test::TempDir dir;
+    const lw::test::LinkTrap trap(dir.path(), "out.png");
+    for (const std::string& kind : lw::test::LinkTrap::kinds()) {
+        SCOPED_TRACE(kind);
+        const auto path = trap.link(kind);
+        try {
+            checkWritableTarget(path, Overwrite::Allow);
+            ADD_FAILURE() << "accepted";
+        } catch (const Error& error) {
+            EXPECT_EQ(error.subject(), path.string());
+            EXPECT_NE(error.reason().find("is a symbolic link"), std::string::npos) << error.what();
+        }
+        EXPECT_THROW(fileInFolder(trap.exports(), "out.png"), Error);
+        EXPECT_TRUE(trap.untouched());
+    }
 }

@@ -236,3 +236,92 @@ TEST(DicomFile, DeflatedPixelsBeyondTheDeclarationAreRefused) {
         EXPECT_NE(std::string(e.what()).find("more than its header declares"), std::string::npos) << e.what();
     }
 }
+
+namespace {
+
+constexpr std::uint32_t kLyingLength = 3u << 30; // 3 GB declared over far fewer bytes
+
+// Reads the header of `image` under `limits`; the reason it was refused (empty when accepted).
+std::string headerRefusal(const std::filesystem::path& path, const dt::HandMadeImage& image,
+                          const core::ImportLimits& limits) {
+    dt::writeHandMadeImage(path, image);
+    try {
+        readInstanceHeader(path, limits);
+    } catch (const core::Error& e) {
+        return e.what();
+    }
+    return {};
+}
+
+core::ImportLimits roomyLimits() {
+    core::ImportLimits roomy;
+    roomy.maxBytes = std::size_t(8) << 30; // the lie fits: only the stream's end can refute it
+    return roomy;
+}
+
+} // namespace
+
+// An element in front of the pixel data declaring 3 GB over 256 KB: DCMTK allocated the
+// declared length while parsing the first inflated prefix (64 KB). The prefix's element headers
+// are walked first: the stream ends short of the declaration and the file is refused, naming
+// the element; under a smaller import limit the declaration itself is refused, without
+// inflating past the first prefix.
+TEST(DicomFile, DeflatedHeaderElementLongerThanTheStreamIsRefused) {
+    lw::test::TempDir dir;
+    dt::HandMadeImage image;
+    image.deflate = true;
+    image.privateBytesBeforePixels = std::size_t(256) << 10;
+    image.declaredPrivateLength = kLyingLength;
+    const long rssBefore = peakRssMb();
+    const auto start = std::chrono::steady_clock::now();
+    const std::string refusal = headerRefusal(dir.path() / "lying.dcm", image, roomyLimits());
+    EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 1.0);
+    EXPECT_LT(peakRssMb() - rssBefore, 64);
+    EXPECT_NE(refusal.find("element (0029,1000) declares 3221225472 bytes"), std::string::npos)
+        << refusal;
+    EXPECT_NE(refusal.find("lying.dcm"), std::string::npos) << refusal;
+
+    core::ImportLimits tight;
+    tight.maxBytes = std::size_t(1) << 30;
+    const std::string overLimit = headerRefusal(dir.path() / "lying.dcm", image, tight);
+    EXPECT_NE(overLimit.find("import limit"), std::string::npos) << overLimit;
+}
+
+// A VR DICOM does not know ("ZZ") is read by DCMTK with a 4-byte length; the walk reads the
+// same width, so a lie hidden behind an unknown VR is found too (the fuzz finding
+// tests/data/fuzz/dicom_file/deflated_unknown_vr_declares_4gb.dcm did this after the pixels).
+TEST(DicomFile, DeflatedUnknownVrIsMeasuredAsDcmtkReadsIt) {
+    lw::test::TempDir dir;
+    dt::HandMadeImage image;
+    image.deflate = true;
+    image.privateBytesBeforePixels = 16;
+    image.privateVr = "ZZ";
+    image.declaredPrivateLength = kLyingLength;
+    const std::string refusal = headerRefusal(dir.path() / "zz.dcm", image, roomyLimits());
+    EXPECT_NE(refusal.find("element (0029,1000) declares 3221225472 bytes"), std::string::npos)
+        << refusal;
+
+    // Told the truth, the unknown VR's value is skipped and the pixels decode.
+    image.declaredPrivateLength.reset();
+    EXPECT_EQ(headerRefusal(dir.path() / "zz.dcm", image, roomyLimits()), "");
+    EXPECT_EQ(decodeInt16(readInstanceHeader(dir.path() / "zz.dcm")),
+              std::vector<std::int16_t>(16, 0));
+}
+
+// The fuzz finding itself: its header reads (the lie is behind the pixel data), and loading
+// the pixels refuses the whole data set before DCMTK parses it.
+TEST(DicomFile, DeflatedFuzzFindingIsRefusedBeforeDcmtkAllocates) {
+    const auto path =
+        lw::test::sourceDir() / "tests/data/fuzz/dicom_file/deflated_unknown_vr_declares_4gb.dcm";
+    const InstanceInfo info = readInstanceHeader(path);
+    FrameDecoder decoder(info);
+    std::vector<std::uint8_t> pixels(std::size_t(info.rows) * std::size_t(info.columns) * 2);
+    try {
+        decoder.decodeFrame(0, volume::VoxelType::Int16, pixels.data());
+        FAIL() << "a 4 GB element in a 16 KB file was parsed";
+    } catch (const core::Error& e) {
+        EXPECT_NE(std::string(e.what()).find("element (5A5A,5A5A) declares 4174763477 bytes"),
+                  std::string::npos)
+            << e.what();
+    }
+}

@@ -290,9 +290,16 @@ void writeHandMadeImage(const std::filesystem::path& path, const HandMadeImage& 
     appendUs(out, 0x0028, 0x0101, image.bitsAllocated);
     appendUs(out, 0x0028, 0x0102, image.bitsAllocated - 1);
     appendUs(out, 0x0028, 0x0103, 1);
-    if (image.privateBytesBeforePixels > 0) {
+    if (image.privateBytesBeforePixels > 0 || image.declaredPrivateLength) {
         appendElement(out, 0x0029, 0x0010, "LO", "LINEWORK TEST");
-        appendElement(out, 0x0029, 0x1000, "OB", std::string(image.privateBytesBeforePixels, '\0'));
+        appendLe(out, 0x0029, 2);
+        appendLe(out, 0x1000, 2);
+        out.append(image.privateVr, 0, 2);
+        appendLe(out, 0, 2);
+        appendLe(
+            out,
+            image.declaredPrivateLength.value_or(std::uint32_t(image.privateBytesBeforePixels)), 4);
+        out.append(image.privateBytesBeforePixels, '\0');
     }
     std::size_t zeros = 0;
     if (image.writePixelData) {

@@ -100,8 +100,13 @@ struct HandMadeImage {
     // Deflated Explicit VR Little Endian: the data set after the meta group is raw-deflated,
     // its zeros streamed through zlib, so a bomb of hundreds of MB costs the test little.
     bool deflate = false;
-    // A private OB element of this many zeros in front of the pixel data (0: none).
+    // A private element of this many zeros in front of the pixel data (0: none, unless a
+    // declared length is given).
     std::size_t privateBytesBeforePixels = 0;
+    // Its VR, written with a 4-byte length field ("ZZ", unknown to DICOM: DCMTK reads it so).
+    std::string privateVr = "OB";
+    // A length for it other than privateBytesBeforePixels (a header that lies).
+    std::optional<std::uint32_t> declaredPrivateLength;
 };
 void writeHandMadeImage(const std::filesystem::path& path, const HandMadeImage& image);
 

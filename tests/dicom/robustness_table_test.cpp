@@ -148,6 +148,15 @@ std::string generatedPage(const fs::path& data) {
          << "loaded. \"loads\" gives the volume; \"error\" the reason the user sees (paths "
             "shortened to the file's folder).\n"
          << "Nothing here may crash, abort or hang: the sanitizer build runs the same test.\n\n"
+         << "What gates CI: `lw_fuzz_regression_tests` replays every file of tests/data/fuzz in "
+            "the normal and the\n"
+         << "sanitizer suite and fails on a crash, a sanitizer finding, an exception other than "
+            "`core::Error`, more\n"
+         << "than 10 s or one allocation over 1 GB. The random fuzz runs of `scripts/linework.sh "
+            "test` only print\n"
+         << "new findings (they fail it with `LINEWORK_FUZZ_STRICT=1`); a fixed finding joins "
+            "tests/data/fuzz and is\n"
+         << "gated from then on (docs/architecture.md, Tests).\n\n"
          << "## ../shared/data/dicom-odd (SOURCES.md there says what each file is)\n\n";
     addRows(page, data / "dicom-odd", false);
     page << "\n## tests/data/fuzz (hostile inputs and fuzz findings; README.md there gives their "

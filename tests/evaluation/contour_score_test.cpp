@@ -99,3 +99,18 @@ TEST(PixelMask, DilationAndImageConversion) {
     const auto image = mask.toImage({255, 0, 0, 255}, {0, 0, 0, 255});
     EXPECT_EQ(PixelMask::fromImage(image), mask);
 }
+
+TEST(ContourScore, DiffImageColoursMatchesAndBothKindsOfMiss) {
+    PixelMask truth(20, 20), drawn(20, 20);
+    truth.set(5, 5);   // drawn beside it: matched
+    drawn.set(6, 5);   // within 1 px of the truth: black
+    drawn.set(15, 15); // nothing true near: red
+    truth.set(2, 17);  // nothing drawn near: blue
+    const lw::core::ImageRgba8 image = contourDiffImage(drawn, truth, 1);
+    EXPECT_EQ(image.at(6, 5), (lw::core::Rgba8{0, 0, 0, 255}));
+    EXPECT_EQ(image.at(5, 5), (lw::core::Rgba8{190, 190, 190, 255}));
+    EXPECT_EQ(image.at(15, 15), (lw::core::Rgba8{230, 0, 0, 255}));
+    EXPECT_EQ(image.at(2, 17), (lw::core::Rgba8{0, 70, 230, 255}));
+    EXPECT_EQ(image.at(10, 10), (lw::core::Rgba8{255, 255, 255, 255}));
+    EXPECT_THROW(contourDiffImage(PixelMask(3, 3), truth, 1), lw::core::Error);
+}

@@ -168,3 +168,35 @@ TEST(TrueContour, EveryShapeHasAnOutlineAlongItsCoverage) {
         EXPECT_EQ(scoreContours(contour, coverage, 1).precision, 1.0) << name;
     }
 }
+
+// A contour pixel of a `factor` times finer image folded into the pixel of this image it lies in.
+PixelMask foldedInto(const PixelMask& fine, int factor) {
+    PixelMask coarse(fine.width() / factor, fine.height() / factor);
+    for (int y = 0; y < coarse.height() * factor; ++y)
+        for (int x = 0; x < coarse.width() * factor; ++x)
+            if (fine.get(x, y))
+                coarse.set(x / factor, y / factor);
+    return coarse;
+}
+
+// Where a fold runs on into the surface behind it within a pixel (the torus nearly edge-on, one
+// metaball in front of the one it merges with), the two pixel-centre rays count the same
+// crossings and only the first hit jumps; the truth must find the contour there as it does at a
+// finer sampling, not leave gaps (both views lost 1-5 % of precision to such gaps before).
+TEST(TrueContour, AFoldMergingIntoTheSurfaceBehindIsFoundAtPixelSpacing) {
+    struct Case {
+        const char* shape;
+        double az, el;
+    };
+    for (const Case& c : {Case{"torus", 99.7, -10.3}, Case{"metaballs", 180.0, 45.0}}) {
+        const auto shape = makeAnalyticShape(c.shape);
+        constexpr int kSize = 96, kFactor = 4;
+        const PixelMask coarse =
+            trueContourMask(*shape, cameraFor(*shape, Projection::Perspective, c.az, c.el, kSize));
+        const PixelMask fine = trueContourMask(
+            *shape, cameraFor(*shape, Projection::Perspective, c.az, c.el, kSize * kFactor));
+        const ContourScore score = scoreContours(coarse, foldedInto(fine, kFactor), 1);
+        EXPECT_GE(score.recall, 0.995) << c.shape;
+        EXPECT_GE(score.precision, 0.995) << c.shape;
+    }
+}

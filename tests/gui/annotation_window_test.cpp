@@ -4,8 +4,10 @@
 // redo from the Edit menu's keys, and the File menu's exports through modules/report: the PNG
 // burns them in, the PDF report's text holds the measurement and the comment (pdftotext; SKIP
 // without poppler-utils), the Secondary Capture re-imports as a series of the same study, and an
-// existing file is only replaced when the caller says the user agreed.
+// existing file is only replaced when the caller says the user agreed, and a link at the
+// target's name is never written through.
 #include "annotate/annotation_document.h"
+#include "link_trap.h"
 #include "lw/annotation/annotation_json.h"
 #include "lw/report/secondary_capture.h"
 #include "lw/studydb/study_database.h"
@@ -78,6 +80,8 @@ private slots:
     void secondaryCaptureJoinsTheStudy();
     void anExistingFileIsOnlyReplacedWhenAgreed_data();
     void anExistingFileIsOnlyReplacedWhenAgreed();
+    void anExportNeverWritesThroughALink_data();
+    void anExportNeverWritesThroughALink();
 };
 
 void AnnotationWindowTest::annotationsSurviveClosingAndReopening() {
@@ -257,6 +261,20 @@ void AnnotationWindowTest::anExistingFileIsOnlyReplacedWhenAgreed_data() {
     QTest::addRow("Secondary Capture") << "sc";
 }
 
+namespace {
+
+// The File menu's export of `format` ("png", "pdf" or "sc") to `target`; its error or "".
+QString exportAs(const QString& format, ReviewWidget& review, const QString& target,
+                 const ExportPicture& picture, Overwrite overwrite) {
+    if (format == "png")
+        return exportReviewPng(review, target, picture, overwrite);
+    if (format == "pdf")
+        return exportReviewReport(review, target, {picture, "", false}, overwrite);
+    return exportReviewSecondaryCapture(review, target, picture, overwrite);
+}
+
+} // namespace
+
 void AnnotationWindowTest::anExistingFileIsOnlyReplacedWhenAgreed() {
     QFETCH(QString, format);
     QTemporaryDir dir;
@@ -271,11 +289,7 @@ void AnnotationWindowTest::anExistingFileIsOnlyReplacedWhenAgreed() {
     QVERIFY(QDir().mkpath(QFileInfo(existing).path()));
     QVERIFY(writeFile(existing, "the user's own file"));
     const auto run = [&](Overwrite overwrite) {
-        if (format == "png")
-            return exportReviewPng(review, target, picture, overwrite);
-        if (format == "pdf")
-            return exportReviewReport(review, target, {picture, "", false}, overwrite);
-        return exportReviewSecondaryCapture(review, target, picture, overwrite);
+        return exportAs(format, review, target, picture, overwrite);
     };
     const QString refused = run(Overwrite::Refuse);
     QVERIFY2(refused.contains(existing) && refused.contains("exists"), qPrintable(refused));
@@ -283,6 +297,38 @@ void AnnotationWindowTest::anExistingFileIsOnlyReplacedWhenAgreed() {
     QCOMPARE(QDir(QFileInfo(existing).path()).entryList(QDir::Files).size(), 1); // nothing else
     QCOMPARE(run(Overwrite::Allow), QString());
     QVERIFY(readFile(existing) != "the user's own file");
+}
+
+void AnnotationWindowTest::anExportNeverWritesThroughALink_data() {
+    QTest::addColumn<QString>("format");
+    QTest::addColumn<QString>("kind");
+    for (const char* format : {"png", "pdf", "sc"})
+        for (const std::string& kind : LinkTrap::kinds())
+            QTest::addRow("%s %s", format, kind.c_str())
+                << QString(format) << QString::fromStdString(kind);
+}
+
+// A link at the name the export would write (out of the chosen folder, dangling, or to the
+// user's own file there) is refused with the file and the reason, even where the user agreed
+// to replace what is there, and nothing is written anywhere.
+void AnnotationWindowTest::anExportNeverWritesThroughALink() {
+    QFETCH(QString, format);
+    QFETCH(QString, kind);
+    QTemporaryDir dir;
+    MainWindow window(isolatedOptions(dir));
+    QVERIFY(showAndOpen(window, demoStudy()));
+    const std::string name =
+        format == "sc" ? lw::report::secondaryCaptureFileName(1) : "out." + format.toStdString();
+    const LinkTrap trap(dir.filePath("trap").toStdString(), name);
+    const std::filesystem::path link = trap.link(kind.toStdString());
+    const QString target =
+        QString::fromStdString((format == "sc" ? trap.exports() : link).string());
+    const QString refused = exportAs(format, *window.currentReview(), target,
+                                     {QSize(160, 120), PanelLayout::SideBySide}, Overwrite::Allow);
+    QVERIFY2(refused.contains(QString::fromStdString(link.string())) &&
+                 refused.contains("symbolic link"),
+             qPrintable(refused));
+    QVERIFY(trap.untouched());
 }
 
 LW_GUI_TEST_MAIN(AnnotationWindowTest)

@@ -260,10 +260,15 @@ TEST_P(CudaBackend, Method3GivesTheCpuImage) {
     EXPECT_EQ(chunked.segments, expected.segments);
     EXPECT_GT(chunked.deviceBytes, 0u);
 
-    // The shaded panel's mesh comes from the device and is the CPU's.
+    // The shaded panel's mesh comes from the device and is the CPU's, closed at the border as
+    // the frame was drawn (SilhouetteSettings::closeAtBorder, on by default).
     const Mesh* mesh = cuda->surfaceMesh();
     ASSERT_NE(mesh, nullptr);
-    EXPECT_EQ(mesh->triangleCount(), extractIsoSurface(volume, GetParam().iso).triangleCount());
+    IsoSurfaceOptions closed;
+    closed.closeAtBorder = true;
+    const Mesh reference = extractIsoSurface(volume, GetParam().iso, closed);
+    EXPECT_EQ(mesh->triangleCount(), reference.triangleCount());
+    EXPECT_EQ(mesh->positions, reference.positions);
 }
 
 TEST_P(CudaBackend, Method2GivesTheCpuImage) {
@@ -299,9 +304,38 @@ TEST_P(CudaBackend, Method2GivesTheCpuImage) {
             expectSameFrame(frame, expected, where);
         }
     }
+    // The chunked variant reads the volume mapped from host memory: the same kernels, the same
+    // image, still on the device.
+    const Camera camera = cameraAt(bounds, 30, 20, Projection::Perspective, 256, 224);
+    SilhouetteSettings settings;
+    settings.isoReal = GetParam().iso;
+    const SilhouetteFrame expected = cpu->render(camera, settings);
+    settings.brickCells = 8;
+    const SilhouetteFrame mapped = cuda->render(camera, settings);
+    EXPECT_EQ(cuda->backendName(), "cuda");
+    expectSameFrame(mapped, expected, "L, the volume mapped from host memory");
 }
 
 INSTANTIATE_TEST_SUITE_P(Volumes, CudaBackend, testing::ValuesIn(cases()), caseName);
+
+// Method 2 over the budget: the rays need the whole volume, so it stays in host memory, mapped.
+TEST(CudaBackendStreaming, Method2OverTheBudgetReadsTheVolumeFromHostMemory) {
+    const Volume volume = makePhantom({512, 512, 1024}, PhantomKind::Ct);
+    auto whole = createSilhouetteRenderer(SilhouetteMethod::RayCastVisibility, Backend::Cuda);
+    auto mapped = createSilhouetteRenderer(SilhouetteMethod::RayCastVisibility, Backend::Cuda);
+    whole->setVolume(volume);
+    mapped->setVolume(volume);
+    const Camera camera =
+        cameraAt(volumeBounds(volume), 30, 20, Projection::Perspective, 1024, 1024);
+    SilhouetteSettings settings;
+    settings.isoReal = 300.5;
+    const SilhouetteFrame expected = whole->render(camera, settings);
+    settings.gpuMemoryBudget = std::size_t(256) << 20;
+    const SilhouetteFrame frame = mapped->render(camera, settings);
+    ASSERT_GT(expected.lines.count(), 1000u);
+    EXPECT_EQ(mapped->backendName(), "cuda");
+    expectSameFrame(frame, expected, "512 x 512 x 1024 under 256 MiB");
+}
 
 // The GPU-run goal's case: a 512 x 512 x 1024 CT phantom (512 MiB of voxels) under a 256 MiB
 // budget streams in slabs and gives the image of the resident whole volume.

@@ -2,6 +2,7 @@
 // --force (and kept byte for byte), bad annotation files named, usage errors, and on the shared
 // data (label data) a Secondary Capture of the tilted GE head that dciodvfy passes.
 #include "cli_runner.h"
+#include "link_trap.h"
 #include "lw/core/file_util.h"
 #include "lw/core/png_io.h"
 #include "test_support.h"
@@ -91,6 +92,31 @@ TEST(ExportCommand, UsageErrors) {
     EXPECT_EQ(runCli("export phantom:32:sphere --png x.png").exitCode, 2); // no --iso
     EXPECT_EQ(runCli("export phantom:32:sphere --iso 300 --png x.png --panel left").exitCode, 2);
     EXPECT_NE(runCli("help").out.find("export INPUT"), std::string::npos);
+}
+
+// Every output refuses a target that is a link (out of the folder, dangling, or to the user's
+// own file), even with --force, and a target that is the folder's parent; nothing is rendered
+// or written, and the error names the file and the reason.
+TEST(ExportCommand, NothingIsWrittenOutsideTheChosenFolder) {
+    test::TempDir dir;
+    writeText(dir / "notes.json", kAnnotations);
+    for (const char* format : {"png", "pdf", "svg"}) {
+        const test::LinkTrap trap(dir / format, std::string("out.") + format);
+        for (const std::string& kind : test::LinkTrap::kinds()) {
+            SCOPED_TRACE(std::string(format) + " " + kind);
+            const auto link = trap.link(kind);
+            const test::CliResult refused = runCli(exportArguments(
+                dir, "--" + std::string(format) + " " + quoted(link.string()) + " --force"));
+            EXPECT_EQ(refused.exitCode, 1);
+            EXPECT_NE(refused.err.find(link.string() + ": is a symbolic link"), std::string::npos)
+                << refused.err;
+            EXPECT_TRUE(trap.untouched());
+        }
+    }
+    const test::CliResult parent =
+        runCli(exportArguments(dir, "--png " + quoted((dir / "png" / "exports" / "..").string())));
+    EXPECT_EQ(parent.exitCode, 1);
+    EXPECT_NE(parent.err.find("not a file name in a folder"), std::string::npos) << parent.err;
 }
 
 // --suggestive: the silhouette panel of the export gains the suggestive contours (the CT

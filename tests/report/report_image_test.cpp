@@ -1,6 +1,7 @@
 // The exported picture: re-rendered panels with the annotations burned in at 2x and 4x the
 // window's size (lines and text scale with it), PNG and SVG written atomically, and refused
 // exports that leave nothing behind.
+#include "link_trap.h"
 #include "lw/core/error.h"
 #include "lw/core/file_util.h"
 #include "lw/core/png_io.h"
@@ -212,4 +213,33 @@ TEST(ReportExportRefused, ReadOnlyFolderGivesAClearMessageAndStaysEmpty) {
         core::Error);
     EXPECT_TRUE(std::filesystem::is_empty(folder));
     ::chmod(folder.c_str(), 0755);
+}
+
+// An export file is written only as a plain file of the chosen folder: never through a link
+// (wherever it points) and never as the folder itself or its parent; refused before writing,
+// with the file and the reason, and even where overwriting was agreed.
+TEST(ReportExportRefused, NothingIsWrittenOutsideTheChosenFolder) {
+    test::TempDir dir;
+    const test::LinkTrap trap(dir.path(), "review.png");
+    for (const std::string& kind : test::LinkTrap::kinds()) {
+        SCOPED_TRACE(kind);
+        const auto path = trap.link(kind);
+        for (const core::Overwrite overwrite : {core::Overwrite::Refuse, core::Overwrite::Allow}) {
+            try {
+                report::writeExportFile(path, QByteArray("new"), overwrite);
+                ADD_FAILURE() << "wrote through a link";
+            } catch (const core::Error& error) {
+                EXPECT_EQ(error.subject(), path.string());
+                EXPECT_NE(error.reason().find("symbolic link"), std::string::npos) << error.what();
+            }
+            EXPECT_TRUE(trap.untouched());
+        }
+    }
+    for (const char* name : {"..", "."}) {
+        SCOPED_TRACE(name);
+        EXPECT_THROW(
+            report::writeExportFile(trap.exports() / name, QByteArray("x"), core::Overwrite::Allow),
+            core::Error);
+        EXPECT_TRUE(trap.untouched());
+    }
 }

@@ -3,6 +3,7 @@
 // errors.
 #include "cli_runner.h"
 #include "dicom_test_writer.h"
+#include "link_trap.h"
 #include "lw/core/error.h"
 #include "lw/dicom/dicom_scanner.h"
 #include "lw/input/open_input.h"
@@ -144,6 +145,34 @@ TEST(SecondaryCapture, RefusedWritesLeaveNothingBehind) {
     phantom.dicom = input::DicomIdentity{};
     EXPECT_THROW(writeCapture(phantom, dir / "sc2"), core::Error);
     EXPECT_FALSE(std::filesystem::exists(dir / "sc2"));
+}
+
+// The series' first file name is a link in the chosen folder: refused for every kind of link
+// (and when replacing was agreed), before anything is written.
+TEST(SecondaryCapture, ALinkInTheFolderIsNeverWrittenThrough) {
+    test::ensureGuiApplication();
+    test::TempDir dir;
+    const input::OpenedVolume source = writeAndOpenSourceSeries(dir / "ct");
+    const test::LinkTrap trap(dir.path(), report::secondaryCaptureFileName(1));
+    for (const std::string& kind : test::LinkTrap::kinds()) {
+        SCOPED_TRACE(kind);
+        const auto link = trap.link(kind);
+        for (const core::Overwrite overwrite : {core::Overwrite::Refuse, core::Overwrite::Allow}) {
+            try {
+                report::checkSecondaryCaptureTarget(trap.exports(), overwrite);
+                ADD_FAILURE() << "the check accepted a link";
+            } catch (const core::Error& error) {
+                EXPECT_EQ(error.subject(), link.string());
+            }
+            try {
+                writeCapture(source, trap.exports(), overwrite);
+                ADD_FAILURE() << "wrote through a link";
+            } catch (const core::Error& error) {
+                EXPECT_NE(error.reason().find("symbolic link"), std::string::npos) << error.what();
+            }
+            EXPECT_TRUE(trap.untouched());
+        }
+    }
 }
 
 TEST(SecondaryCaptureValidation, DciodvfyReportsNoErrors) {

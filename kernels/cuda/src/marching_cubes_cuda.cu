@@ -36,7 +36,7 @@ std::size_t MarchingCubesCuda::activeVoxelCount() const {
 template <typename T> CudaStatus MarchingCubesCuda::Impl::computeBrickMinMax() {
     const std::uint32_t count = bricksX * bricksY * bricksZ;
     mc::brickMinMax<T><<<count, tuning::kBrickReduceBlock, 0, stream.get()>>>(
-        reinterpret_cast<const T*>(voxels.data()), std::uint32_t(volume.dims.x),
+        static_cast<const T*>(volume.voxels), std::uint32_t(volume.dims.x),
         std::uint32_t(volume.dims.y), std::uint32_t(volume.dims.z), bricksX, bricksY,
         brickMinMax.data());
     LW_CUDA_LAUNCHED("mc::brickMinMax");
@@ -79,23 +79,28 @@ CudaStatus MarchingCubesCuda::Impl::uploadGridTables(const VoxelGridSetup& setup
     return CudaStatus::success();
 }
 
-CudaStatus MarchingCubesCuda::setVolume(const VolumeView& host, const VoxelGridSetup& setup) {
-    Impl& s = *m_impl;
-    s.mesh = DeviceMeshView();
-    s.activeCount = 0;
-    const glm::ivec3 d = host.dims;
-    LW_RETURN_IF_FAILED(needsCells(d, "marching cubes (CUDA)"));
+// What setVolume and setMappedVolume share before the voxels are placed.
+CudaStatus MarchingCubesCuda::Impl::beginWholeVolume(const VolumeView& host) {
+    mesh = DeviceMeshView();
+    activeCount = 0;
+    LW_RETURN_IF_FAILED(needsCells(host.dims, "marching cubes (CUDA)"));
     if (host.voxelCount() >= std::size_t(std::numeric_limits<std::uint32_t>::max()) - 1024)
         return CudaStatus::failure(CudaStatus::Code::TooLarge, "marching cubes (CUDA)",
                                    "more than 2^32 voxels: the kernels index voxels with 32 bits");
     LW_RETURN_IF_FAILED(mc::uploadTables());
-    LW_RETURN_IF_FAILED(s.stream.create());
-    s.unregisterHost();
-    s.streamed = false;
-    s.slabBox[0].release();
-    s.slabBox[1].release();
-    s.peakBytes = 0;
-    s.volume = host;
+    LW_RETURN_IF_FAILED(stream.create());
+    unregisterHost();
+    streamed = false;
+    slabBox[0].release();
+    slabBox[1].release();
+    peakBytes = 0;
+    volume = host;
+    return CudaStatus::success();
+}
+
+CudaStatus MarchingCubesCuda::setVolume(const VolumeView& host, const VoxelGridSetup& setup) {
+    Impl& s = *m_impl;
+    LW_RETURN_IF_FAILED(s.beginWholeVolume(host));
     LW_RETURN_IF_FAILED(s.voxels.reserve(host.byteCount(), "cudaMalloc(volume)"));
     s.volume.voxels = s.voxels.data();
 
@@ -105,7 +110,42 @@ CudaStatus MarchingCubesCuda::setVolume(const VolumeView& host, const VoxelGridS
                                 cudaMemcpyHostToDevice, s.stream.get()),
                 "cudaMemcpy(volume)");
     LW_RETURN_IF_FAILED(upload.stop(s.stream.get()));
+    LW_RETURN_IF_FAILED(s.finishWholeVolume(setup));
+    s.uploadMs = upload.ms();
+    return CudaStatus::success();
+}
 
+CudaStatus MarchingCubesCuda::setMappedVolume(const VolumeView& host, const VoxelGridSetup& setup) {
+    Impl& s = *m_impl;
+    LW_RETURN_IF_FAILED(s.beginWholeVolume(host));
+    s.voxels.release(); // the device copy of an earlier setVolume
+    const cudaError_t registered =
+        cudaHostRegister(const_cast<void*>(host.voxels), host.byteCount(),
+                         cudaHostRegisterMapped | cudaHostRegisterReadOnly);
+    if (registered != cudaSuccess) {
+        cudaGetLastError(); // not sticky: the caller's next way (the CPU) must not see it
+        return dispatch::statusOf(registered, "cudaHostRegister(mapped volume)");
+    }
+    s.hostRegistered = true;
+    s.hostVoxels = host.voxels;
+    void* device = nullptr;
+    LW_CUDA_TRY(cudaHostGetDevicePointer(&device, const_cast<void*>(host.voxels), 0),
+                "cudaHostGetDevicePointer(volume)");
+    s.volume.voxels = device;
+    LW_RETURN_IF_FAILED(s.finishWholeVolume(setup));
+    s.uploadMs = 0.0;
+    return CudaStatus::success();
+}
+
+bool MarchingCubesCuda::volumeIsMapped() const {
+    const Impl& s = *m_impl;
+    return !s.streamed && s.hostRegistered && s.volume.voxels != nullptr;
+}
+
+// The grid tables and the brick min/max, once the voxels are where the kernels read them.
+CudaStatus MarchingCubesCuda::Impl::finishWholeVolume(const VoxelGridSetup& setup) {
+    Impl& s = *this;
+    const glm::ivec3 d = volume.dims;
     LW_RETURN_IF_FAILED(s.uploadGridTables(setup));
 
     const auto bricks = [](int voxels) {
@@ -119,9 +159,8 @@ CudaStatus MarchingCubesCuda::setVolume(const VolumeView& host, const VoxelGridS
     LW_RETURN_IF_FAILED(s.brickActive.reserve(brickCount, "cudaMalloc(brickActive)"));
     LW_RETURN_IF_FAILED(s.flag.reserve(1, "cudaMalloc(flag)"));
     LW_RETURN_IF_FAILED(dispatchVoxelKind(
-        host.kind, [&](auto zero) { return s.computeBrickMinMax<decltype(zero)>(); }));
+        volume.kind, [&](auto zero) { return s.computeBrickMinMax<decltype(zero)>(); }));
     LW_CUDA_TRY(cudaStreamSynchronize(s.stream.get()), "mc::brickMinMax");
-    s.uploadMs = upload.ms();
     s.notePeak();
     return CudaStatus::success();
 }

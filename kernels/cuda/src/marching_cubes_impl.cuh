@@ -77,6 +77,8 @@ struct MarchingCubesCuda::Impl {
     }
     void notePeak() { peakBytes = deviceBytes() > peakBytes ? deviceBytes() : peakBytes; }
     CudaStatus uploadGridTables(const VoxelGridSetup& setup);
+    CudaStatus beginWholeVolume(const VolumeView& host);
+    CudaStatus finishWholeVolume(const VoxelGridSetup& setup);
     template <typename T>
     CudaStatus extractSlabsTyped(double iso, const std::vector<CellSlab>& slabs,
                                  const MarchingCubesCuda::SlabCallback& onSlab);
@@ -131,7 +133,7 @@ struct MarchingCubesCuda::Impl {
     // S: the whole resident volume, with the brick skip.
     template <typename T> mc::Grid<T> grid(double iso) const {
         mc::Grid<T> g = baseGrid<T>(iso);
-        g.box = reinterpret_cast<const T*>(voxels.data());
+        g.box = static_cast<const T*>(volume.voxels); // device copy, or mapped host memory
         g.boxX = std::uint32_t(volume.dims.x);
         g.boxY = std::uint32_t(volume.dims.y);
         g.boxOrigin = glm::ivec3(0);

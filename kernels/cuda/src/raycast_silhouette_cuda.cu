@@ -49,14 +49,23 @@ double RayCastSilhouetteCuda::uploadMs() const {
     return m_impl->marchingCubes.uploadMs();
 }
 
+std::size_t RayCastSilhouetteCuda::deviceBytes() const {
+    const Impl& s = *m_impl;
+    return s.marchingCubes.deviceBytes() + s.rayOffsets.bytes() + s.macroOccupied.bytes() +
+           s.mask.bytes() + s.counters.bytes() + s.segments.bytes() + s.segmentCells.bytes() +
+           s.sortedSegments.bytes() + s.sortedCells.bytes() + s.sortTemp.bytes() +
+           s.visible.bytes();
+}
+
 CudaStatus RayCastSilhouetteCuda::setVolume(const VolumeView& hostVolume,
                                             const VoxelGridSetup& setup,
-                                            const RayGridSetup& rayGrid) {
+                                            const RayGridSetup& rayGrid, bool mapped) {
     Impl& s = *m_impl;
     s.prepared = false;
     // This translation unit's copy of the constant tables (see marching_cubes_kernels.cuh).
     LW_RETURN_IF_FAILED(mc::uploadTables());
-    LW_RETURN_IF_FAILED(s.marchingCubes.setVolume(hostVolume, setup));
+    LW_RETURN_IF_FAILED(mapped ? s.marchingCubes.setMappedVolume(hostVolume, setup)
+                               : s.marchingCubes.setVolume(hostVolume, setup));
     s.rayGrid = rayGrid;
     LW_RETURN_IF_FAILED(s.rayOffsets.reserve(rayGrid.offsets.size(), "cudaMalloc(rayOffsets)"));
     LW_CUDA_TRY(cudaMemcpy(s.rayOffsets.data(), rayGrid.offsets.data(),
@@ -83,8 +92,8 @@ CudaStatus RayCastSilhouetteCuda::Impl::prepareTyped(double storedIso, RayCastCu
     const std::size_t macroCount =
         std::size_t(macroDims.x) * std::size_t(macroDims.y) * std::size_t(macroDims.z);
     rc::macroOccupancy<T><<<blocksFor(macroCount, 128), 128, 0, st>>>(
-        reinterpret_cast<const T*>(m.voxels.data()), m.spans.dims, macroDims,
-        insideThreshold(storedIso), macroOccupied.data());
+        static_cast<const T*>(m.volume.voxels), m.spans.dims, macroDims, insideThreshold(storedIso),
+        macroOccupied.data());
     LW_CUDA_LAUNCHED("rc::macroOccupancy");
     LW_RETURN_IF_FAILED(prepareTimer.stop(st));
     LW_CUDA_TRY(cudaStreamSynchronize(st), "rc::prepare");

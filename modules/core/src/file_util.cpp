@@ -177,7 +177,34 @@ void commitTemporary(const std::filesystem::path& temporary, const std::filesyst
 
 } // namespace
 
+void checkStaysInFolder(const std::filesystem::path& path) {
+    const std::filesystem::path name = path.filename();
+    if (name.empty() || name == "." || name == "..")
+        throw Error(path.string(), "not a file name in a folder (an export writes only files "
+                                   "of the chosen folder)");
+    std::error_code ec;
+    if (!std::filesystem::is_symlink(std::filesystem::symlink_status(path, ec)))
+        return;
+    const std::filesystem::path target = std::filesystem::read_symlink(path, ec);
+    throw Error(path.string(), "is a symbolic link (to " + target.string() +
+                                   "): an export does not write through a link, which may lead "
+                                   "out of the chosen folder");
+}
+
+std::filesystem::path fileInFolder(const std::filesystem::path& folder, const std::string& name) {
+    const std::filesystem::path asGiven(name);
+    if (name.find('/') != std::string::npos || asGiven.has_root_path())
+        throw Error((folder / "").string() + name,
+                    "the file name \"" + name +
+                        "\" is a path, not a name: an export writes only files "
+                        "of the chosen folder");
+    const std::filesystem::path path = folder / asGiven;
+    checkStaysInFolder(path);
+    return path;
+}
+
 void checkWritableTarget(const std::filesystem::path& path, Overwrite overwrite) {
+    checkStaysInFolder(path);
     std::error_code ec;
     if (overwrite == Overwrite::Refuse && std::filesystem::exists(path, ec))
         throw Error(path.string(), "the file exists already (not overwritten)");

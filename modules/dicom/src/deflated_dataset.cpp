@@ -1,16 +1,14 @@
 #include "deflated_dataset.h"
 
 #include "dicom_dcmtk.h"
+#include "element_walk.h"
 #include "lw/core/error.h"
 
 #include <algorithm>
-#include <cstdio>
-#include <cstring>
 #include <dcmtk/dcmdata/dcdeftag.h>
 #include <dcmtk/dcmdata/dcistrmb.h>
 #include <dcmtk/dcmdata/dcistrmf.h>
 #include <dcmtk/dcmdata/dcuid.h>
-#include <iterator>
 #include <optional>
 #include <string>
 #include <zlib.h>
@@ -123,6 +121,24 @@ std::optional<std::uint64_t> pixelDataHeaderBefore(const std::vector<std::byte>&
            std::uint64_t(header[10]) << 16 | std::uint64_t(header[11]) << 24;
 }
 
+// How many inflated bytes the elements in front of the pixel data need: more than `bytes` holds
+// when one of them declares a value running past the prefix. DCMTK allocates a declared length
+// before reading the value, so a prefix is parsed only once it holds every value it declares
+// (4 GB from a 16 KB file otherwise). Throws when the stream ended short of a declaration or
+// the declaration is past the import limit.
+std::size_t bytesTheHeaderDeclares(const std::vector<std::byte>& bytes, bool streamEnded,
+                                   const std::string& subject, const core::ImportLimits& limits) {
+    const ElementWalk walk = walkElementHeaders(bytes, true);
+    if (walk.stop != ElementWalk::Stop::Overrun)
+        return bytes.size();
+    if (streamEnded)
+        throw core::Error(subject,
+                          "damaged deflated data set: " + walk.overrunComplaint(bytes.size()));
+    limits.checkBytes(std::size_t(walk.declaredEnd), subject,
+                      "an element of the deflated data set in front of the pixel data");
+    return std::size_t(walk.declaredEnd);
+}
+
 // Inflates until the data set parses up to its pixel data (or to its end), growing the
 // inflated prefix fourfold each time, at most limits.maxBytes: the header of a deflated file is
 // read without inflating its pixels. Returns how many inflated bytes the header took.
@@ -132,6 +148,12 @@ std::size_t inflateHeader(RawInflater& inflater, std::vector<std::byte>& bytes, 
     std::size_t target = std::min(kFirstHeaderPrefix, limits.maxBytes);
     for (;;) {
         inflater.inflateTo(bytes, target);
+        const std::size_t declared =
+            bytesTheHeaderDeclares(bytes, inflater.ended(), subject, limits);
+        if (declared > bytes.size()) {
+            target = declared;
+            continue;
+        }
         std::size_t consumed = 0;
         const OFCondition status = parseDataset(bytes, dataset, true, inflater.ended(), consumed);
         // A prefix ends inside an element (DCMTK: "notify client"); any other failure is damage
@@ -174,60 +196,6 @@ void inflateWhole(RawInflater& inflater, std::vector<std::byte>& bytes, std::siz
                          " MB, more than its header declares or the import limit allows");
 }
 
-// Explicit VR little endian element headers: VRs with a 32-bit length after two reserved bytes.
-bool hasLongLength(const std::byte* vr) {
-    static constexpr const char* kLong[] = {"OB", "OD", "OF", "OL", "OV", "OW", "SQ",
-                                            "SV", "UC", "UN", "UR", "UT", "UV"};
-    return std::any_of(std::begin(kLong), std::end(kLong),
-                       [&](const char* name) { return std::memcmp(vr, name, 2) == 0; });
-}
-
-std::uint32_t littleEndian(const std::byte* p, int bytes) {
-    std::uint32_t value = 0;
-    for (int i = bytes - 1; i >= 0; --i)
-        value = value << 8 | std::uint32_t(p[i]);
-    return value;
-}
-
-// The rule DCMTK does not apply to data sets in memory: no element may declare more bytes than
-// are left (DCMTK allocates the declared length first, 4 GB from an 8 KB file). Every element,
-// item and sequence header is visited in order, sequences entered rather than skipped. The walk
-// stops, accepting, where it cannot tell the encoding (an undefined-length UN value is implicit
-// VR inside); DCMTK parses the rest. Returns the complaint, or nothing.
-std::optional<std::string> elementPastTheEnd(const std::vector<std::byte>& bytes) {
-    constexpr std::uint32_t kUndefined = 0xFFFFFFFF;
-    std::size_t at = 0;
-    while (bytes.size() - at >= 8) {
-        const std::byte* p = bytes.data() + at;
-        const std::uint32_t group = littleEndian(p, 2), element = littleEndian(p + 2, 2);
-        std::size_t header = 8;
-        std::uint32_t length = 0;
-        bool container = false;
-        if (group == 0xFFFE) { // item or delimiter: no VR, 32-bit length
-            length = littleEndian(p + 4, 4);
-            container = element == 0xE000;
-        } else if (hasLongLength(p + 4)) {
-            if (bytes.size() - at < 12)
-                return std::nullopt;
-            header = 12;
-            length = littleEndian(p + 8, 4);
-            container = std::memcmp(p + 4, "SQ", 2) == 0;
-            if (length == kUndefined && !container)
-                return std::nullopt; // UN of undefined length: implicit VR inside
-        } else {
-            length = littleEndian(p + 6, 2);
-        }
-        if (length != kUndefined && length > bytes.size() - at - header) {
-            char tag[16];
-            std::snprintf(tag, sizeof tag, "(%04X,%04X)", unsigned(group), unsigned(element));
-            return "element " + std::string(tag) + " declares " + std::to_string(length) +
-                   " bytes, but only " + std::to_string(bytes.size() - at - header) + " follow";
-        }
-        at += header + (container || length == kUndefined ? 0 : length);
-    }
-    return std::nullopt;
-}
-
 } // namespace
 
 bool isDeflatedFile(const std::string& path) {
@@ -263,8 +231,11 @@ std::optional<DeflatedRead> readIfDeflated(const std::vector<std::byte>& fileByt
         return result;
 
     inflateWhole(inflater, bytes, headerBytes, expectedPixelBytes, subject, limits);
-    if (const auto complaint = elementPastTheEnd(bytes))
-        throw core::Error(subject, "damaged deflated data set: " + *complaint);
+    // The rule DCMTK does not apply to data sets in memory: no value longer than the bytes left.
+    const ElementWalk walk = walkElementHeaders(bytes, false);
+    if (walk.stop == ElementWalk::Stop::Overrun)
+        throw core::Error(subject,
+                          "damaged deflated data set: " + walk.overrunComplaint(bytes.size()));
     std::size_t consumed = 0;
     const OFCondition status = parseDataset(bytes, dataset, false, true, consumed);
     if (status.bad()) {

@@ -6,15 +6,14 @@
 #include "lw/core/parallel.h"
 #include "lw/render/pixel_mask.h"
 
-#include <optional>
 #include <utility>
 #include <vector>
 
 namespace lw::evaluation::detail {
 
-// examine(x, y, bx, by) for each pixel (x, y) and its neighbour to the right and below; the
-// pixel it returns, if any, is marked. Marks are collected per row and merged afterwards (a pair
-// may mark a pixel of the next row).
+// examine(x, y, bx, by, marks) for each pixel (x, y) and its neighbour (bx, by) to the right and
+// below; the pixels it appends to `marks` are marked. Marks are collected per row and merged
+// afterwards (a pair may mark a pixel of the next row).
 template <typename Examine>
 render::PixelMask markNeighbourPairs(int width, int height, Examine&& examine) {
     std::vector<std::vector<std::pair<int, int>>> marks(static_cast<std::size_t>(height));
@@ -25,8 +24,7 @@ render::PixelMask markNeighbourPairs(int width, int height, Examine&& examine) {
                 const int bx = x + dx, by = y + dy;
                 if (bx >= width || by >= height)
                     continue;
-                if (const std::optional<std::pair<int, int>> mark = examine(x, y, bx, by))
-                    marks[row].push_back(*mark);
+                examine(x, y, bx, by, marks[row]);
             }
     });
     render::PixelMask mask(width, height);

@@ -6,7 +6,6 @@
 #include "neighbour_pairs.h"
 
 #include <cmath>
-#include <optional>
 #include <utility>
 #include <vector>
 
@@ -98,11 +97,11 @@ PixelMask trueSuggestiveContourMask(const AnalyticShape& shape, const Camera& ca
                 firstHit(shape, camera, {x + 0.5, row + 0.5}, stepFloor);
     });
     return detail::markNeighbourPairs(
-        width, height, [&](int x, int y, int bx, int by) -> std::optional<std::pair<int, int>> {
+        width, height, [&](int x, int y, int bx, int by, std::vector<std::pair<int, int>>& marks) {
             const Hit& a = hits[std::size_t(y) * std::size_t(width) + std::size_t(x)];
             const Hit& b = hits[std::size_t(by) * std::size_t(width) + std::size_t(bx)];
             if (!sameSheet(a, b, camera) || (a.kr >= 0.0) == (b.kr >= 0.0))
-                return std::nullopt;
+                return;
             double sA = 0.0, sB = 1.0; // kappa_r has a's sign at sA, b's at sB
             Hit last = a;
             for (int i = 0; i < kBisections; ++i) {
@@ -110,13 +109,13 @@ PixelMask trueSuggestiveContourMask(const AnalyticShape& shape, const Camera& ca
                 last = firstHit(shape, camera, {x + 0.5 + s * (bx - x), y + 0.5 + s * (by - y)},
                                 stepFloor);
                 if (!sameSheet(last, a, camera))
-                    return std::nullopt; // an occluding contour crosses the pair after all
+                    return; // an occluding contour crosses the pair after all
                 ((last.kr >= 0.0) == (a.kr >= 0.0) ? sA : sB) = s;
             }
             const AnalyticRadialCurvature c = analyticRadialCurvature(shape, last.point, camera);
             if (!test.passes(c.derivative, c.nDotV))
-                return std::nullopt;
-            return 0.5 * (sA + sB) < 0.5 ? std::pair{x, y} : std::pair{bx, by};
+                return;
+            marks.push_back(0.5 * (sA + sB) < 0.5 ? std::pair{x, y} : std::pair{bx, by});
         });
 }
 

@@ -6,7 +6,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <optional>
 #include <utility>
 
 namespace lw::evaluation {
@@ -21,6 +20,11 @@ namespace {
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
 // Refinement of the contour position between two pixel centres: 2^-10 px.
 constexpr int kSegmentBisections = 10;
+// Between neighbouring rays whose first hits jump in depth, the segment is halved down to
+// 2^-6 px looking for a fold the crossing counts hide (findFolds); a jump is a depth difference
+// over 4 pixel footprints per pixel of distance (a surface inclined over 76 degrees).
+constexpr int kPairSubdivisions = 6;
+constexpr double kJumpFootprints = 4.0;
 // Safety net against pathological fields; sphere tracing normally needs a few hundred steps.
 constexpr int kMaxMarchSteps = 200000;
 
@@ -114,6 +118,72 @@ double stepFloorFor(const Camera& camera) {
     return 1e-2 * camera.pixelFootprint(glm::length(camera.target() - camera.eye()));
 }
 
+// The segment between two neighbouring pixel centres, `from` + s * `step` for s in [0, 1], and
+// what tracing a ray through a point of it needs.
+struct PixelPair {
+    const AnalyticShape& shape;
+    const Aabb& box;
+    const Camera& camera;
+    double stepFloor;
+    glm::dvec2 from;
+    glm::dvec2 step;
+
+    RaySummary rayAt(double s) const {
+        return summarise(shape, box, camera.rayThroughPoint(from + s * step), stepFloor);
+    }
+};
+
+struct PairSample {
+    double s = 0.0;
+    RaySummary ray;
+};
+
+// Where between two samples of a pair, one of which sees a visible fold the other does not
+// (visibleFoldBetween), the fold's contour is: bisection to 2^-kSegmentBisections of their
+// distance.
+double locateFold(const PixelPair& pair, const PairSample& a, const PairSample& b) {
+    const bool foldOnA = visibleFoldBetween(a.ray, b.ray);
+    const RaySummary& fewer = foldOnA ? b.ray : a.ray;
+    double sMore = foldOnA ? a.s : b.s;
+    double sFewer = foldOnA ? b.s : a.s;
+    for (int i = 0; i < kSegmentBisections; ++i) {
+        const double s = 0.5 * (sMore + sFewer);
+        (visibleFoldBetween(pair.rayAt(s), fewer) ? sMore : sFewer) = s;
+    }
+    return 0.5 * (sMore + sFewer);
+}
+
+// Whether the first hits of two rays `pixels` apart lie farther apart in depth than a surface
+// inclined up to atan(kJumpFootprints) from facing the camera would put them: a visible fold
+// may then lie between them even though their crossing counts do not show it (see findFolds).
+bool firstHitsJump(const PixelPair& pair, const RaySummary& a, const RaySummary& b, double pixels) {
+    if (a.count == 0 || b.count == 0)
+        return false; // a hit beside a miss is a fold already (visibleFoldBetween)
+    const double footprint = pair.camera.pixelFootprint(std::min(a.first, b.first));
+    return std::abs(a.first - b.first) > kJumpFootprints * footprint * pixels;
+}
+
+// Appends the position s of each visible fold between two samples of a pair. A fold shows
+// between two rays as an extra in/out pair in front (visibleFoldBetween) only while its far
+// side is open: where the fold's body runs on into the surface behind it within the rays'
+// distance (a blob in front of another it merges with, a torus seen nearly edge-on, the ends of
+// an interior contour), both rays count the same crossings and only the first hit jumps from
+// the near sheet to the far one. There the segment is halved, down to 2^-kPairSubdivisions px,
+// until the fold shows between two samples close enough to see it.
+void findFolds(const PixelPair& pair, const PairSample& a, const PairSample& b, int depth,
+               std::vector<double>& folds) {
+    if (visibleFoldBetween(a.ray, b.ray) || visibleFoldBetween(b.ray, a.ray)) {
+        folds.push_back(locateFold(pair, a, b));
+        return;
+    }
+    if (depth == kPairSubdivisions || !firstHitsJump(pair, a.ray, b.ray, b.s - a.s))
+        return;
+    const double s = 0.5 * (a.s + b.s);
+    const PairSample middle{s, pair.rayAt(s)};
+    findFolds(pair, a, middle, depth + 1, folds);
+    findFolds(pair, middle, b, depth + 1, folds);
+}
+
 } // namespace
 
 std::vector<double> rayCrossings(const AnalyticShape& shape, const Ray& ray, double stepFloor) {
@@ -157,25 +227,16 @@ PixelMask trueContourMask(const AnalyticShape& shape, const Camera& camera) {
     });
 
     return detail::markNeighbourPairs(
-        width, height, [&](int x, int y, int bx, int by) -> std::optional<std::pair<int, int>> {
-            const int dx = bx - x, dy = by - y;
+        width, height, [&](int x, int y, int bx, int by, std::vector<std::pair<int, int>>& marks) {
             const RaySummary& a = rays[std::size_t(y) * std::size_t(width) + std::size_t(x)];
             const RaySummary& b = rays[std::size_t(by) * std::size_t(width) + std::size_t(bx)];
-            const bool foldOnA = visibleFoldBetween(a, b);
-            if (!foldOnA && !visibleFoldBetween(b, a))
-                return std::nullopt;
-            // Bisect along the segment between the pixel centres: sMore keeps the fold side.
-            const RaySummary& fewer = foldOnA ? b : a;
-            double sMore = foldOnA ? 0.0 : 1.0;
-            double sFewer = foldOnA ? 1.0 : 0.0;
-            for (int i = 0; i < kSegmentBisections; ++i) {
-                const double s = 0.5 * (sMore + sFewer);
-                const glm::dvec2 p{x + 0.5 + s * dx, y + 0.5 + s * dy};
-                const RaySummary mid = summarise(shape, box, camera.rayThroughPoint(p), stepFloor);
-                (visibleFoldBetween(mid, fewer) ? sMore : sFewer) = s;
-            }
-            const double s = 0.5 * (sMore + sFewer);
-            return s < 0.5 ? std::pair{x, y} : std::pair{bx, by};
+            const PixelPair pair{shape,           box, camera, stepFloor, {x + 0.5, y + 0.5},
+                                 {bx - x, by - y}};
+            std::vector<double> found;
+            findFolds(pair, {0.0, a}, {1.0, b}, 0, found);
+            // The pixel the contour curve passes through where it crosses the segment.
+            for (const double s : found)
+                marks.push_back(s < 0.5 ? std::pair{x, y} : std::pair{bx, by});
         });
 }
 

@@ -24,9 +24,12 @@ public:
     virtual std::string_view backendName() const = 0;
     // A new volume, or none: whatever was kept of the last one goes.
     virtual void bind(const volume::Volume* volume) = 0;
-    // Whether it can draw the chunked (L) variant itself (the CPU: brick by brick; the CUDA back-
-    // end has no streamed method 2: its rays cross the whole volume).
+    // Whether it can draw the chunked (L) variant itself (the CPU: brick by brick; CUDA: with the
+    // volume left in host memory, mapped).
     virtual bool drawsPieces() const = 0;
+    // After OutOfDeviceMemory: whether this back-end has a leaner way to try (CUDA: the volume
+    // mapped from host memory); false sends the frame to the CPU.
+    virtual bool fallBack() { return false; }
     // The active cells at `storedIso` (settings.brickCells: the brick schedule; mode a: with the
     // normal cones that let later views skip cells).
     virtual void prepare(double storedIso, const SilhouetteSettings& settings,

@@ -120,9 +120,21 @@ SilhouetteFrame RayCastSilhouetteRenderer::renderFrame(const Camera& camera,
     RayCastKernelSet& set = s.setFor(settings);
     try {
         s.frameOn(set, camera, settings, frame);
+        return frame;
     } catch (const OutOfDeviceMemory& error) {
-        // Method 2 has no streamed variant: out of device memory, it goes to the CPU for this
-        // volume (until the next setVolume).
+        if (s.device->fallBack()) {
+            // Out of device memory with the volume resident: again with it mapped from host
+            // memory (until the next setVolume), then the CPU.
+            kLog.warning("method 2 (" + std::string(set.backendName()) + "): " + error.what() +
+                         "; reading the volume from host memory");
+            s.prepared = nullptr;
+            try {
+                frame = SilhouetteFrame();
+                s.frameOn(*s.device, camera, settings, frame);
+                return frame;
+            } catch (const OutOfDeviceMemory&) {
+            }
+        }
         kLog.warning("method 2 (" + std::string(set.backendName()) + "): " + error.what() +
                      "; rendering on the CPU");
         s.device->bind(nullptr);

@@ -8,6 +8,7 @@ namespace lw::report {
 
 void writeExportFile(const std::filesystem::path& path, const QByteArray& bytes,
                      core::Overwrite overwrite) {
+    core::checkStaysInFolder(path);
     core::writeFileAtomically(path, bytes.constData(), std::size_t(bytes.size()), overwrite);
 }
 

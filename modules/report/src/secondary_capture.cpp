@@ -157,9 +157,11 @@ std::string secondaryCaptureFileName(int number) {
 void checkSecondaryCaptureTarget(const std::filesystem::path& folder, core::Overwrite overwrite) {
     std::error_code ec;
     if (std::filesystem::is_directory(folder, ec))
-        core::checkWritableTarget(folder / secondaryCaptureFileName(1), overwrite);
-    else
-        core::checkWritableTarget(folder, core::Overwrite::Refuse); // created when written
+        core::checkWritableTarget(core::fileInFolder(folder, secondaryCaptureFileName(1)),
+                                  overwrite);
+    else // created when written; "out/" names the folder "out" just as "out" does
+        core::checkWritableTarget(folder.has_filename() ? folder : folder.parent_path(),
+                                  core::Overwrite::Refuse);
 }
 
 std::vector<std::filesystem::path> writeSecondaryCapture(const std::filesystem::path& folder,
@@ -182,7 +184,7 @@ std::vector<std::filesystem::path> writeSecondaryCapture(const std::filesystem::
         for (std::size_t i = 0; i < pictures.size(); ++i) {
             ids.instanceNumber = int(i) + 1;
             const std::filesystem::path path =
-                folder / secondaryCaptureFileName(ids.instanceNumber);
+                core::fileInFolder(folder, secondaryCaptureFileName(ids.instanceNumber));
             core::checkWritableTarget(path, overwrite);
             const std::vector<char> bytes =
                 secondaryCaptureFile(pictures[i], series, ids, path.string());

@@ -1,14 +1,22 @@
 // Method 2's CUDA kernel set (raycast_kernel_set.h, lw/kernels/cuda/raycast_silhouette_cuda.h):
 // the volume uploaded on the first frame after bind, the active cells (and the macro occupancy
 // the visibility rays skip with) found on the device, then per view the segments, one ray per
-// endpoint (or per line step) and the lines. No streamed variant: its rays cross the whole
-// volume, so L frames go to the CPU's kernel set (RayCastSilhouetteRenderer).
+// endpoint (or per line step) and the lines.
+//
+// Its rays cross the whole volume, so it cannot stream slabs as methods 1 and 3 do. The chunked
+// (L) variant, and a volume over the device memory budget, leave the voxels in host memory,
+// page-locked and mapped into the device's address space: the same kernels read them over the
+// bus, the device holds only the tables and the frame's buffers (MarchingCubesCuda::
+// setMappedVolume). Out of device memory with a resident volume, the frame goes mapped before it
+// goes to the CPU.
 #include "../mesh_silhouette.h"
 #include "../raycast_kernel_set.h"
 #include "cuda_support.h"
 #include "lw/kernels/cpu/marching_cubes_cpu.h"
 #include "lw/kernels/cpu/voxel_ray.h"
+#include "lw/kernels/cuda/cuda_device.h"
 #include "lw/kernels/cuda/raycast_silhouette_cuda.h"
+#include "lw/render/gpu_memory_plan.h"
 #include "lw/render/iso_surface.h"
 
 namespace lw::render {
@@ -54,17 +62,31 @@ public:
         m_kernels.release();
         m_volume = volume;
         m_uploaded = false;
+        m_mappedFloor = false;
         m_cap.clear();
     }
 
-    bool drawsPieces() const override { return false; }
+    bool fallBack() override {
+        if (m_mappedFloor)
+            return false;
+        m_mappedFloor = true;
+        m_kernels.release(); // frees what the failed attempt holds
+        m_uploaded = false;
+        return true;
+    }
 
-    void prepare(double storedIso, const SilhouetteSettings&, SilhouetteFrame& frame) override {
-        if (!m_uploaded) {
+    bool drawsPieces() const override { return true; }
+
+    void prepare(double storedIso, const SilhouetteSettings& settings,
+                 SilhouetteFrame& frame) override {
+        const bool mapped = m_mappedFloor || !fitsWhole(settings);
+        if (!m_uploaded || mapped != m_mapped) {
+            m_uploaded = false;
             check(m_kernels.setVolume(hostVolumeView(*m_volume),
                                       kernels::cpu::voxelGridSetup(*m_volume),
-                                      rayGridSetup(*m_volume)));
+                                      rayGridSetup(*m_volume), mapped));
             m_uploaded = true;
+            m_mapped = mapped;
         }
         kernels::cuda::RayCastCudaFrame timing;
         check(m_kernels.prepare(storedIso, timing));
@@ -99,9 +121,20 @@ public:
     }
 
 private:
+    // Whether the whole volume may go to the device: not for L, nor over the budget.
+    bool fitsWhole(const SilhouetteSettings& settings) const {
+        std::size_t budget = settings.gpuMemoryBudget;
+        if (budget == 0) // what is free plus what this back-end holds already
+            budget = defaultGpuBudget(kernels::cuda::freeDeviceBytes() + m_kernels.deviceBytes());
+        return chooseResidency(m_volume->dims(), volume::voxelSize(m_volume->voxelType()), budget,
+                               0, settings.brickCells > 0) == GpuResidency::WholeVolume;
+    }
+
     const volume::Volume* m_volume = nullptr;
     kernels::cuda::RayCastSilhouetteCuda m_kernels;
     bool m_uploaded = false;
+    bool m_mapped = false;      // the voxels are read from host memory
+    bool m_mappedFloor = false; // ran out of device memory resident: mapped until the next volume
     double m_storedIso = 0.0;
     BorderCapCache m_cap;
     std::vector<kernels::SegmentEndpoints> m_capSegments;

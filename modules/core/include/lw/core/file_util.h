@@ -37,6 +37,19 @@ void writeFileAtomically(const std::filesystem::path& path, const void* data, st
 // Throws Error naming `path` when it exists and `overwrite` is Refuse, or when its folder does
 // not exist or is not writable: checked before expensive work, so an export that is bound to be
 // refused fails at once (writeFileAtomically checks again when it writes).
+// Also refuses what checkStaysInFolder refuses.
 void checkWritableTarget(const std::filesystem::path& path, Overwrite overwrite);
+
+// An export writes regular files into the folder the user chose, nowhere else. Refuses (Error
+// naming `path` and the reason) a target whose last component is not a plain file name (empty,
+// "." or "..": the folder itself or its parent) or is a symbolic link: a link may point out of
+// the folder (a dangling one to where a file would be created), so none is written through or
+// replaced. The folder part of `path` is the user's choice and is taken as given.
+void checkStaysInFolder(const std::filesystem::path& path);
+
+// `name` as a file of `folder`, for names an export makes itself: refused (Error naming
+// folder/name) unless `name` is one plain component: no separator, not absolute, not "." or
+// "..", and not a symbolic link (checkStaysInFolder).
+std::filesystem::path fileInFolder(const std::filesystem::path& folder, const std::string& name);
 
 } // namespace lw::core

@@ -1,5 +1,6 @@
 #pragma once
 
+#include "lw/core/image.h"
 #include "lw/render/pixel_mask.h"
 
 #include <cstddef>
@@ -22,5 +23,12 @@ struct ContourScore {
 // differ or tolerancePx < 0.
 ContourScore scoreContours(const render::PixelMask& drawn, const render::PixelMask& truth,
                            int tolerancePx = 1);
+
+// The score as a picture, to look at where a drawing and its truth part: a drawn pixel with a
+// true pixel within tolerance black, one without red (what precision counts against), a true
+// pixel with no drawn pixel near blue (what recall counts against), a true pixel under or beside
+// a matched drawing light grey, the rest white. Throws core::Error when the sizes differ.
+core::ImageRgba8 contourDiffImage(const render::PixelMask& drawn, const render::PixelMask& truth,
+                                  int tolerancePx = 1);
 
 } // namespace lw::evaluation

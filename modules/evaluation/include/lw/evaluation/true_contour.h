@@ -22,8 +22,14 @@ namespace lw::evaluation {
 // the shape's Lipschitz bound, crossings refined by bisection). For each pair of 4-neighbours
 // whose rays differ in this way, the transition is located to 1/1024 pixel by bisection along the
 // segment joining the two pixel centres, and the pixel containing the transition point is marked
-// - the pixel the true contour curve passes through where it crosses that segment. Features
-// thinner than 1e-2 pixel along a ray are not resolved.
+// - the pixel the true contour curve passes through where it crosses that segment. Two rays a
+// pixel apart may also hide a fold: where the fold's body runs on into the surface behind it
+// within that pixel (a blob in front of one it merges with, a torus nearly edge-on), both count
+// the same crossings and only the first hit jumps from the near sheet to the far one. Where the
+// first hits of two neighbours lie farther apart in depth than a surface inclined 76 degrees
+// would put them (4 pixel footprints per pixel), the segment between them is halved, down to
+// 1/64 pixel, until the fold shows as above. Features thinner than 1e-2 pixel along a ray, and
+// folds that hide in equal counts with a depth step under that slope, are not resolved.
 render::PixelMask trueContourMask(const AnalyticShape& shape, const render::Camera& camera);
 
 // Pixels whose centre ray hits the shape (the filled silhouette).

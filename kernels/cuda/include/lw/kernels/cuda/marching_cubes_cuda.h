@@ -57,6 +57,13 @@ public:
     // Uploads the voxels (host memory) and the grid tables of `setup`, and computes the brick
     // min/max on the device. The host volume is not referenced afterwards.
     CudaStatus setVolume(const VolumeView& hostVolume, const VoxelGridSetup& setup);
+    // The same with the voxels left in host memory: the volume is page-locked and mapped into
+    // the device's address space, and the kernels read it over the bus (the device holds only
+    // the tables and the per-frame buffers). For a volume over the device memory budget where
+    // every kernel needs the whole volume at once (method 2's rays). `hostVolume` must outlive
+    // the calls; release() or another set*Volume unmaps it.
+    CudaStatus setMappedVolume(const VolumeView& hostVolume, const VoxelGridSetup& setup);
+    bool volumeIsMapped() const;
     double uploadMs() const;         // host -> device copy of the voxels, CUDA events
     std::size_t deviceBytes() const; // device memory held now
 

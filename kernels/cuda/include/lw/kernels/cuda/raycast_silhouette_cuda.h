@@ -51,8 +51,11 @@ public:
     RayCastSilhouetteCuda(const RayCastSilhouetteCuda&) = delete;
     RayCastSilhouetteCuda& operator=(const RayCastSilhouetteCuda&) = delete;
 
+    // `mapped`: the voxels stay in host memory, read over the bus (MarchingCubesCuda::
+    // setMappedVolume): the chunked (L) variant, for a volume over the device memory budget.
     CudaStatus setVolume(const VolumeView& hostVolume, const VoxelGridSetup& setup,
-                         const RayGridSetup& rayGrid);
+                         const RayGridSetup& rayGrid, bool mapped = false);
+    std::size_t deviceBytes() const; // device memory held now
     double uploadMs() const;
     CudaStatus prepare(double storedIso, RayCastCudaFrame& frame);
     // `extraSegments` (host memory, may be null): segments found elsewhere (the border cap's),

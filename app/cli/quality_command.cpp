@@ -1,0 +1,175 @@
+// `quality`: issue 7's line quality on real CT, where no analytic truth exists. At each view of
+// the accuracy sweep (or a given one) the shaded panel and the three methods' silhouettes are
+// rendered as the review and `render` render them (the render options and their defaults, stroke
+// pruning included), and measured (lw/evaluation/line_quality.h):
+//   - the shaded panel's outer outline covered by each method's lines (1 px),
+//   - the share of each method's line pixels in 8-connected groups under 10 px (and method 3's
+//     before pruning, the speckle pruning removes),
+//   - methods 1 and 3, and method 2 (along-segment test) and 3, agreeing (1 px, both ways).
+// Worst and median over the views against the goals; --json rows carry the view [az, el].
+#include "arguments.h"
+#include "cli_inputs.h"
+#include "commands.h"
+#include "lw/core/error.h"
+#include "lw/core/png_io.h"
+#include "lw/evaluation/contour_score.h"
+#include "lw/evaluation/line_quality.h"
+#include "lw/evaluation/view_sweep.h"
+#include "lw/render/renderer_factory.h"
+#include "lw/render/shaded_surface_cpu.h"
+#include "panel_rendering.h"
+#include "quality_report.h"
+
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <ostream>
+#include <set>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace lw::cli {
+namespace {
+
+using evaluation::View;
+
+struct Options {
+    std::string input;
+    std::optional<std::string> series;
+    RenderRequest request; // the settings of `render`, stroke pruning as there
+    render::CameraSetup setup;
+    glm::ivec2 size{0};
+    std::vector<View> views;
+    bool json = false;
+    std::optional<std::filesystem::path> imagesDir;
+};
+
+// `render`'s options less the ones this command sets itself (every method is drawn, with
+// visibility, at the views of --view/--views), so an option added there (closing the surface
+// at the border, say) reaches this measure too.
+std::set<std::string> qualityOptions() {
+    std::set<std::string> names = panelRenderOptions();
+    for (const char* own : {"method", "visibility", "view"})
+        names.erase(own);
+    names.insert({"series", "view", "views", "images"});
+    return names;
+}
+
+Options parseOptions(const Arguments& arguments) {
+    if (arguments.positionals().size() != 1)
+        throw UsageError("quality", "expects exactly one INPUT");
+    Options options;
+    options.input = arguments.positionals()[0];
+    options.series = arguments.option("series");
+    options.request = parseRenderRequest(arguments, "quality");
+    options.setup = parseCameraView(arguments);
+    options.size = parseImageSize("--size", arguments.option("size", "1024x1024"), 16);
+    options.views = parseViewChoice(arguments, evaluation::kDefaultSweepViewCount).views;
+    options.json = arguments.flag("json");
+    if (const auto images = arguments.option("images"))
+        options.imagesDir = *images;
+    return options;
+}
+
+using Renderers = std::unique_ptr<render::SilhouetteRenderer>[4];
+
+// Methods 2 and 3 always; method 1 where a GL context can be had, else skipped with a note (as
+// `accuracy` does), so the measure still runs on a machine without EGL.
+void createRenderers(const RenderRequest& request, Renderers& renderers,
+                     std::vector<std::string>& notes) {
+    for (int m = 1; m <= 3; ++m)
+        renderers[m] = createRendererOrSkip(render::SilhouetteMethod(m), request.backend, notes);
+}
+
+// The images of one view, to look at what the numbers say: the shaded panel beside method 3's
+// lines; the outline against method 3's lines (contourDiffImage: blue = outline with no line
+// within 1 px); method 1 against method 3 (red: 1 only, blue: 3 only).
+void writeViewImages(const std::filesystem::path& dir, const View& view,
+                     const core::ImageRgba8& shaded, const render::PixelMask& outline,
+                     const render::PixelMask (&lines)[4]) {
+    std::filesystem::create_directories(dir);
+    char name[64];
+    std::snprintf(name, sizeof name, "az%g-el%g", view.azimuthDeg, view.elevationDeg);
+    const core::Rgba8 black{0, 0, 0, 255}, white{255, 255, 255, 255};
+    core::writePng(dir / (std::string(name) + "-panels.png"),
+                   sideBySide(shaded, lines[3].toImage(black, white)), core::PngFormat::Rgb);
+    core::writePng(dir / (std::string(name) + "-outline-m3.png"),
+                   evaluation::contourDiffImage(lines[3], outline, 1), core::PngFormat::Rgb);
+    if (lines[1].width() > 0)
+        core::writePng(dir / (std::string(name) + "-m1-vs-m3.png"),
+                       evaluation::contourDiffImage(lines[1], lines[3], 1), core::PngFormat::Rgb);
+}
+
+// One view: method 3 first (its mesh is the one the shaded panel shows, as in the review), the
+// panel's foreground from its depth buffer, then methods 2 (along-segment test) and 1.
+ViewQuality measureView(Renderers& renderers, const Options& options, const View& view) {
+    render::CameraSetup setup = options.setup;
+    setup.azimuthDeg = view.azimuthDeg;
+    setup.elevationDeg = view.elevationDeg;
+    const render::Camera camera(setup, options.size.x, options.size.y);
+    const render::SilhouetteSettings& settings = options.request.settings;
+
+    render::PixelMask lines[4];
+    lines[3] = renderers[3]->render(camera, settings).lines;
+    std::vector<float> depth;
+    const core::ImageRgba8 shaded =
+        render::shadeSurfaceCpu(*renderers[3]->surfaceMesh(), camera, {}, &depth);
+    render::PixelMask foreground(camera.width(), camera.height());
+    for (std::size_t i = 0; i < depth.size(); ++i)
+        foreground.pixels()[i] = depth[i] < 1.0f ? 1 : 0;
+    render::SilhouetteSettings unpruned = settings;
+    unpruned.minStrokePixels = 0;
+    const render::PixelMask speckled = renderers[3]->render(camera, unpruned).lines;
+
+    render::SilhouetteSettings along = settings;
+    along.testAlongSegment = true;
+    lines[2] = renderers[2]->render(camera, along).lines;
+    if (renderers[1])
+        lines[1] = renderers[1]->render(camera, settings).lines;
+
+    const render::PixelMask outline = evaluation::outerOutline(foreground);
+    ViewQuality quality = measureLines(view, outline, lines, speckled);
+    if (options.imagesDir)
+        writeViewImages(*options.imagesDir, view, shaded, outline, lines);
+    return quality;
+}
+
+} // namespace
+
+int runQuality(const std::vector<std::string>& args, std::ostream& out) {
+    const Arguments arguments(args, {"json"}, qualityOptions());
+    Options options = parseOptions(arguments);
+    std::vector<std::string> notes;
+    volume::Volume volume; // declared before the renderers: they hold it and must not outlive it
+    Renderers renderers;
+    // Before the input is read, so an unavailable back-end fails at once.
+    createRenderers(options.request, renderers, notes);
+    input::OpenedVolume opened = openCliInput(options.input, options.series);
+    volume = std::move(opened.volume);
+    fitToVolume(arguments, volume, options.request, options.setup);
+    for (auto& renderer : renderers)
+        if (renderer)
+            renderer->setVolume(volume);
+
+    std::vector<ViewQuality> rows;
+    for (const View& view : options.views)
+        rows.push_back(measureView(renderers, options, view));
+
+    QualityRun run;
+    run.input = options.input;
+    run.description = opened.description;
+    run.iso = options.request.settings.isoReal;
+    run.minStrokePixels = options.request.settings.minStrokePixels;
+    run.width = options.size.x;
+    run.height = options.size.y;
+    run.notes = notes;
+    if (options.json)
+        writeQualityJson(run, rows, out);
+    else
+        writeQualityTable(run, rows, out);
+    return 0;
+}
+
+} // namespace lw::cli

@@ -1,0 +1,95 @@
+// `linework-cli quality` end to end on the bundled demo CT (GE head, tilted, 512x512x28): JSON
+// rows carry their view and every measure in range, pruning is on by default, the table reports
+// worst, median and goals (and --images writes each view's pictures), an iso-value with no surface
+// fails instead of passing, and the options `quality` sets itself are refused.
+#include "cli_runner.h"
+#include "test_support.h"
+
+#include <filesystem>
+#include <gtest/gtest.h>
+#include <regex>
+#include <string>
+
+namespace {
+
+using lw::test::CliResult;
+using lw::test::compact;
+using lw::test::quoted;
+using lw::test::runCli;
+
+std::string demo() {
+    return quoted((lw::test::sourceDir() / "resources/demo/ct_head_ge_tilt").string());
+}
+
+// The number after `"key":` in compact JSON (the first occurrence), or -1 for null or none.
+double numberOf(const std::string& json, const std::string& key) {
+    const std::regex pattern("\"" + key + "\":(-?[0-9.e+-]+)");
+    std::smatch match;
+    return std::regex_search(json, match, pattern) ? std::stod(match[1]) : -1.0;
+}
+
+} // namespace
+
+TEST(QualityCommand, JsonRowOfOneViewOfTheDemo) {
+    const CliResult r =
+        runCli("quality " + demo() + " --iso 400 --view 30,20 --size 384x384 --json");
+    ASSERT_EQ(r.exitCode, 0) << r.out << r.err;
+    const std::string json = compact(r.out);
+    EXPECT_NE(json.find(R"("rows":[{"view":[30,20],)"), std::string::npos) << json;
+    EXPECT_EQ(numberOf(json, "min_stroke_px"), 10.0) << "render's default pruning";
+    EXPECT_GT(numberOf(json, "outline_pixels"), 300.0);
+    EXPECT_GT(numberOf(json, "line_pixels_m3"), 300.0);
+    for (const char* key : {"outline_coverage_m3", "outline_coverage_m2", "agreement_23",
+                            "agreement_2_in_3", "agreement_3_in_2"}) {
+        const double value = numberOf(json, key);
+        EXPECT_GE(value, 0.0) << key;
+        EXPECT_LE(value, 1.0) << key;
+    }
+    // The skull's sides are drawn; the cut top and bottom (no closing at the border yet) are not,
+    // so coverage lies well inside (0, 1).
+    EXPECT_GT(numberOf(json, "outline_coverage_m3"), 0.5);
+    // Methods 2 and 3 draw the same contours on this CT (measured 0.98 at 1024x1024).
+    EXPECT_GT(numberOf(json, "agreement_23"), 0.9);
+    // After pruning at 10 px no group under 10 px is left; before it, there was speckle.
+    EXPECT_EQ(numberOf(json, "fragment_share_m3"), 0.0);
+    EXPECT_GT(numberOf(json, "fragment_share_m3_unpruned"), 0.0);
+    // Method 1 is measured where GL is, else null with a note.
+    const bool gl = json.find("method 1 skipped") == std::string::npos;
+    EXPECT_EQ(json.find(R"("agreement_13":null)") == std::string::npos, gl) << json;
+}
+
+TEST(QualityCommand, TableOverTwoViewsHasWorstMedianAndGoals) {
+    const lw::test::TempDir images;
+    const CliResult r =
+        runCli("quality " + demo() + " --iso 400 --views 2 --size 256x256 --images " +
+               quoted(images.path().string()));
+    ASSERT_EQ(r.exitCode, 0) << r.out << r.err;
+    // What each view looks like: the panels, the outline against method 3's lines.
+    for (const char* view : {"az0-el-90", "az0-el0"})
+        for (const char* kind : {"-panels.png", "-outline-m3.png"})
+            EXPECT_TRUE(std::filesystem::is_regular_file(images / (std::string(view) + kind)))
+                << view << kind;
+    // The sweep's first two views: the faces toward -z and -y (az 0 el -90, az 0 el 0).
+    EXPECT_NE(r.out.find("\n(0,-90)"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("\n(0,0)"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("\nworst "), std::string::npos);
+    EXPECT_NE(r.out.find("\nmedian "), std::string::npos);
+    EXPECT_NE(r.out.find("goal cov3 >= 0.98 at "), std::string::npos);
+    EXPECT_NE(r.out.find("goal 2~3 >= 0.95 at "), std::string::npos);
+}
+
+TEST(QualityCommand, NoSurfaceIsAnErrorNotAPass) {
+    // Above every voxel of the demo: a blank panel must not score.
+    const CliResult r = runCli("quality " + demo() + " --iso 100000 --view 30,20 --size 128x128");
+    EXPECT_EQ(r.exitCode, 1) << r.out;
+    EXPECT_NE(r.err.find("no outline"), std::string::npos) << r.err;
+}
+
+TEST(QualityCommand, UsageErrors) {
+    EXPECT_EQ(runCli("quality " + demo() + " --view 30,20").exitCode, 2) << "needs --iso";
+    EXPECT_EQ(runCli("quality --iso 400").exitCode, 2) << "needs an INPUT";
+    // Every method is measured, with visibility: these are not the caller's to choose.
+    EXPECT_EQ(runCli("quality " + demo() + " --iso 400 --method 2").exitCode, 2);
+    EXPECT_EQ(runCli("quality " + demo() + " --iso 400 --visibility off").exitCode, 2);
+    EXPECT_EQ(runCli("quality " + demo() + " --iso 400 --view 1,2 --views 3").exitCode, 2);
+}
