@@ -965,6 +965,14 @@
         <source>Volume border:</source>
         <translation>Volumenrand:</translation>
     </message>
+    <message>
+        <source>Suggestive contours</source>
+        <translation>Suggestive Konturen</translation>
+    </message>
+    <message>
+        <source>Also draw where the surface almost turns away from the view (concave folds, necks), beside the silhouette. On thick-slice CT they follow the slice steps.</source>
+        <translation>Zeichnet neben der Silhouette auch, wo sich die Oberfläche fast vom Blick abwendet (konkave Falten, Einschnürungen). Bei CT mit dicken Schichten folgen sie den Schichtstufen.</translation>
+    </message>
 </context>
 <context>
     <name>lw::gui::StudyBrowser</name>

@@ -965,6 +965,14 @@
         <source>Volume border:</source>
         <translation>Marginea volumului:</translation>
     </message>
+    <message>
+        <source>Suggestive contours</source>
+        <translation>Contururi sugestive</translation>
+    </message>
+    <message>
+        <source>Also draw where the surface almost turns away from the view (concave folds, necks), beside the silhouette. On thick-slice CT they follow the slice steps.</source>
+        <translation>Desenează pe lângă siluetă și locurile unde suprafața aproape se întoarce de la privitor (pliuri concave, gâtuiri). La CT cu secțiuni groase urmează treptele secțiunilor.</translation>
+    </message>
 </context>
 <context>
     <name>lw::gui::StudyBrowser</name>

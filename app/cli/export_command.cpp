@@ -146,7 +146,7 @@ void writeOutputs(const ExportJob& job, const ExportTargets& targets, std::ostre
 int runExport(const std::vector<std::string>& args, std::ostream& out) {
     std::set<std::string> options = panelRenderOptions();
     options.insert({"series", "panel", "annotations", "comment", "png", "pdf", "svg", "sc"});
-    const Arguments arguments(args, {"force", "anonymise"}, options);
+    const Arguments arguments(args, {"force", "anonymise", "suggestive"}, options);
     if (arguments.positionals().size() != 1)
         throw UsageError("export", "expects exactly one INPUT");
     const ExportTargets targets = parseTargets(arguments);
@@ -155,6 +155,7 @@ int runExport(const std::vector<std::string>& args, std::ostream& out) {
     RenderRequest request = parseRenderRequest(arguments, "export");
     request.wantIso = job.layout != report::PanelLayout::SilhouettePanel;
     request.wantSilhouette = job.layout != report::PanelLayout::IsoPanel;
+    request.suggestive = arguments.flag("suggestive") && request.wantSilhouette;
     render::CameraSetup setup = parseCameraView(arguments);
     const glm::ivec2 size = parsePanelSize(arguments);
     // Lines widen with the resolution like the annotations do (1 px at 512 px high).
@@ -187,6 +188,9 @@ int runExport(const std::vector<std::string>& args, std::ostream& out) {
         // The lines as vectors too: antialiased in the PNG, paths in the SVG and the PDF.
         job.panels.silhouetteLines =
             silhouettePolylines(*renderer, volume, job.panels.camera, request, panels.lines);
+        job.panels.silhouetteLines.insert(job.panels.silhouetteLines.end(),
+                                          panels.suggestivePolylines.begin(),
+                                          panels.suggestivePolylines.end());
         job.panels.silhouetteLineWidth = 2.0 * request.lineRadius + 1.0;
     }
 

@@ -55,13 +55,16 @@ commands:
   render INPUT [--series UID] --iso HU --method 1|2|3 [--chunks off|auto|N] [--mode a|b]
          [--visibility on|off] [--view AZ,EL] [--camera perspective|ortho] [--size WxH]
          [--panel iso|silhouette|both] [--backend cpu|cuda|auto] [--repeat N] [--threads N]
-         [--min-stroke PX] [--border closed|open] [--format png|svg] -o OUT.png
+         [--min-stroke PX] [--border closed|open] [--format png|svg]
+         [--suggestive [--suggestive-threshold TAU]] -o OUT.png
                               one view as PNG (default 512x512, silhouette, method 3, view 0,0);
                               INPUT: volume file, DICOM folder/DICOMDIR or phantom:N[xNYxNZ][:sphere];
                               both = shaded iso-surface left, silhouette right (width 2W);
                               --repeat N: N more views 1 degree apart, prints their median ms;
                               --border open: the surface left open where the volume's border
-                              cuts it (default closed: the cut face is surface, its edge a line)
+                              cuts it (default closed: the cut face is surface, its edge a line);
+                              --suggestive: suggestive contours drawn with the silhouette
+                              (PNG or SVG; TAU: their derivative test, default 1)
   bench [--sizes 32,256,512,512x512x1024] [--input FILE --iso HU] [--backend cpu|cuda|auto]
         [--methods mc,1,2,3] [--variants S,L] [--modes a,b] [--repeat N] [--image WxH]
         [--peak-memory-of METHOD,VARIANT] [--gpu-budget MIB] [--json]
@@ -72,6 +75,7 @@ commands:
          [--panel both|iso|silhouette] [--annotations FILE.json] [--comment TEXT] [--anonymise]
          [--png OUT.png] [--pdf OUT.pdf] [--svg OUT.svg] [--sc FOLDER] [--force]
          [--chunks ..] [--mode ..] [--visibility ..] [--camera ..] [--backend ..] [--threads N]
+         [--suggestive]
                               the review as a report, any combination of outputs: PNG with the
                               annotations burned in (lines and text scale with --size, the size
                               of each panel), a 2-page PDF report (header, picture, measurements,

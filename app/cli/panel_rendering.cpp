@@ -96,6 +96,50 @@ core::ImageRgba8 renderIsoPanel(render::SilhouetteRenderer& renderer, const volu
     return render::shadeSurfaceCpu(*mesh, camera, shading);
 }
 
+// The suggestive contours of the request's surface (the mesh the silhouette frame drew, or the
+// same surface extracted here), reported like the frame; with --repeat, the median of as many
+// new views as the silhouette had.
+void renderSuggestive(render::SilhouetteRenderer& renderer, const volume::Volume& volume,
+                      render::Camera camera, const RenderRequest& request, RenderedPanels& panels,
+                      std::ostream& out) {
+    render::Mesh extracted;
+    const render::Mesh* mesh = renderer.surfaceMesh();
+    if (!mesh) {
+        extracted = extractForRequest(volume, request);
+        mesh = &extracted;
+    }
+    render::SuggestiveContourSettings settings = request.suggestiveSettings;
+    settings.visibility = request.settings.visibility;
+    settings.minStrokePixels = request.settings.minStrokePixels;
+    settings.threads = request.settings.threads;
+    render::SuggestiveContourRenderer suggestive(volume, *mesh, request.settings.isoReal,
+                                                 settings.threads);
+    const render::SuggestiveFrame frame = suggestive.render(camera, settings);
+    panels.suggestive = frame.lines;
+    render::PolylineOptions lines;
+    lines.minLengthPx = double(settings.minStrokePixels);
+    panels.suggestivePolylines = render::visiblePolylines(
+        render::chainSegments(suggestive.segments(camera, settings)), camera, frame.lines, lines);
+    char line[256];
+    std::snprintf(line, sizeof line,
+                  "suggestive contours: segments %zu, pixels %zu; ms: derivatives %.1f (once per "
+                  "surface) frame %.1f\n",
+                  frame.segments, frame.lines.count(), suggestive.derivativesMs(), frame.ms);
+    out << line;
+    std::vector<double> times;
+    for (int i = 1; i <= request.repeat; ++i) {
+        camera.setView(camera.setup().azimuthDeg + 1.0, camera.setup().elevationDeg);
+        times.push_back(suggestive.render(camera, settings).ms);
+    }
+    if (!times.empty()) {
+        std::sort(times.begin(), times.end());
+        std::snprintf(line, sizeof line,
+                      "suggestive contours: median of %d new views: %.1f ms (min %.1f, max %.1f)\n",
+                      request.repeat, times[times.size() / 2], times.front(), times.back());
+        out << line;
+    }
+}
+
 } // namespace
 
 RenderedPanels renderPanels(render::SilhouetteRenderer& renderer, const volume::Volume& volume,
@@ -107,9 +151,14 @@ RenderedPanels renderPanels(render::SilhouetteRenderer& renderer, const volume::
         const render::SilhouetteFrame frame = renderer.render(camera, request.settings);
         reportFrame(frame, out);
         repeatFrames(renderer, camera, request, out);
-        panels.silhouette = maskToImage(
-            request.lineRadius > 0 ? frame.lines.dilated(request.lineRadius) : frame.lines);
         panels.lines = frame.lines;
+        render::PixelMask drawn = frame.lines;
+        if (request.suggestive) {
+            renderSuggestive(renderer, volume, camera, request, panels, out);
+            render::addLines(drawn, panels.suggestive);
+        }
+        panels.silhouette =
+            maskToImage(request.lineRadius > 0 ? drawn.dilated(request.lineRadius) : drawn);
     }
     if (request.wantIso)
         panels.iso = renderIsoPanel(renderer, volume, camera, request);

@@ -9,6 +9,7 @@
 #include "lw/render/camera.h"
 #include "lw/render/renderer_factory.h"
 #include "lw/render/silhouette_renderer.h"
+#include "lw/render/suggestive_contours.h"
 #include "lw/render/visible_polylines.h"
 #include "lw/volume/volume.h"
 
@@ -29,12 +30,18 @@ struct RenderRequest {
     bool wantSilhouette = true;
     int repeat = 0;
     int lineRadius = 0; // silhouette lines widened to 2 * lineRadius + 1 pixels (exports)
+    // Suggestive contours drawn with the silhouette (render --suggestive); visibility and stroke
+    // pruning follow `settings`.
+    bool suggestive = false;
+    render::SuggestiveContourSettings suggestiveSettings;
 };
 
 struct RenderedPanels {
     core::ImageRgba8 iso;
     core::ImageRgba8 silhouette;
-    render::PixelMask lines; // the silhouette frame's mask, before any widening
+    render::PixelMask lines;      // the silhouette frame's mask, before any widening
+    render::PixelMask suggestive; // the suggestive contours' mask (empty unless requested)
+    std::vector<render::Polyline> suggestivePolylines; // their visible parts, for SVG
 };
 
 // The option names parseRenderRequest and parseCameraView read.

@@ -16,8 +16,8 @@ namespace lw::cli {
 
 int runRender(const std::vector<std::string>& args, std::ostream& out) {
     std::set<std::string> options = panelRenderOptions();
-    options.insert({"series", "panel", "repeat", "format"});
-    const Arguments arguments(args, {}, options);
+    options.insert({"series", "panel", "repeat", "format", "suggestive-threshold"});
+    const Arguments arguments(args, {"suggestive"}, options);
     if (arguments.positionals().size() != 1)
         throw UsageError("render", "expects exactly one INPUT");
     const auto output = arguments.option("output");
@@ -35,6 +35,14 @@ int runRender(const std::vector<std::string>& args, std::ostream& out) {
     if (format == "svg" && panel != "silhouette")
         throw UsageError("--format svg", "holds the silhouette lines only (--panel silhouette)");
     RenderRequest request = parseRenderRequest(arguments, "render");
+    request.suggestive = arguments.flag("suggestive");
+    if (request.suggestive && panel == "iso")
+        throw UsageError("--suggestive", "draws into the silhouette panel (--panel iso has none)");
+    const double threshold =
+        arguments.number("suggestive-threshold", request.suggestiveSettings.derivativeThreshold);
+    if (!(threshold >= 0.0))
+        throw UsageError("--suggestive-threshold", "expected a number >= 0");
+    request.suggestiveSettings.derivativeThreshold = threshold;
     request.wantIso = panel != "silhouette";
     request.wantSilhouette = panel != "iso";
     request.repeat = std::max(0, int(arguments.number("repeat", 0)));
@@ -51,8 +59,10 @@ int runRender(const std::vector<std::string>& args, std::ostream& out) {
 
     RenderedPanels panels = renderPanels(*renderer, volume, camera, request, out);
     if (format == "svg") {
-        const std::vector<render::Polyline> lines =
+        std::vector<render::Polyline> lines =
             silhouettePolylines(*renderer, volume, camera, request, panels.lines);
+        lines.insert(lines.end(), panels.suggestivePolylines.begin(),
+                     panels.suggestivePolylines.end());
         render::SvgLineStyle style;
         style.background = "#ffffff";
         const std::string svg =

@@ -39,6 +39,7 @@ private slots:
     void newerIsoWinsOverOlder();
     void methodAndChunkingSwitchTheRightPanel();
     void camerasAreLinked();
+    void suggestiveContoursAddLines();
     void panelsReRenderAtAnySize();
     void pickingFindsTheSphereSurface_data();
     void pickingFindsTheSphereSurface();
@@ -174,6 +175,35 @@ void ReviewTest::camerasAreLinked() {
 
     review.setStandardView(StandardView::Left);
     QCOMPARE(review.camera().cameraSetup().azimuthDeg, 90.0);
+}
+
+// The settings' "Suggestive contours" adds the CT phantom's suggestive contours to the
+// silhouette panel (drawn on the worker with method 3) and keeps the silhouette's lines.
+void ReviewTest::suggestiveContoursAddLines() {
+    ReviewWidget review(phantomSource("phantom:64", 300.5), settingsFor(3, Chunking::Off));
+    review.resize(900, 600);
+    review.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&review));
+    QVERIFY(waitSettled(review));
+    const QImage plain = review.silhouettePanel().grabImage();
+    ReviewSettings settings = settingsFor(3, Chunking::Off);
+    settings.suggestiveContours = true;
+    review.applySettings(settings);
+    QVERIFY(waitSettled(review, review.status().framesShown + 1));
+    const QImage with = review.silhouettePanel().grabImage();
+    QCOMPARE(with.size(), plain.size());
+    int kept = 0, lines = 0, added = 0;
+    for (int y = 0; y < plain.height(); ++y)
+        for (int x = 0; x < plain.width(); ++x) {
+            const bool inPlain = qGray(plain.pixel(x, y)) < 128;
+            const bool inWith = qGray(with.pixel(x, y)) < 128;
+            lines += inPlain;
+            kept += inPlain && inWith;
+            added += inWith && !inPlain;
+        }
+    QVERIFY(lines > 300);
+    QCOMPARE(kept, lines);
+    QVERIFY2(added > 100, qPrintable(QString::number(added)));
 }
 
 void ReviewTest::panelsReRenderAtAnySize() {

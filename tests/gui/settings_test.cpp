@@ -7,6 +7,7 @@
 #include "settings/review_settings.h"
 #include "settings/settings_dialog.h"
 
+#include <QCheckBox>
 #include <QComboBox>
 #include <QRadioButton>
 #include <QSettings>
@@ -55,6 +56,7 @@ void SettingsTest::roundTripThroughQSettings() {
     settings.fixedBrickCells = 48;
     settings.gpuMemoryBudgetMiB = method * 256; // 0 (automatic) is the default: another value
     settings.minStrokePixels = method * 4;
+    settings.suggestiveContours = method != 2; // off is the default: both values round-trip
     settings.mode =
         modeB ? lw::render::ExtractionMode::EveryFrameB : lw::render::ExtractionMode::CachedA;
     settings.projection =
@@ -113,6 +115,11 @@ void SettingsTest::dialogReportsChangesAndStoresThem() {
     minStroke->setValue(0);
     QCOMPARE(minStroke->text(), QString("Keep every line pixel"));
     QCOMPARE(dialog.settings().minStrokePixels, 0);
+    auto* suggestive = dialog.findChild<QCheckBox*>("suggestive");
+    QVERIFY(suggestive);
+    QVERIFY(!suggestive->isChecked()); // off by default
+    suggestive->click();
+    QVERIFY(dialog.settings().suggestiveContours);
     // Applied live and kept for the next start.
     QSettings store;
     const ReviewSettings stored = ReviewSettings::load(store);
@@ -120,6 +127,7 @@ void SettingsTest::dialogReportsChangesAndStoresThem() {
     QCOMPARE(stored.chunking, Chunking::Fixed);
     QCOMPARE(stored.gpuMemoryBudgetMiB, 512);
     QCOMPARE(stored.minStrokePixels, 0);
+    QVERIFY(stored.suggestiveContours);
 }
 
 void SettingsTest::cudaIsGreyedOutWithTheReason() {

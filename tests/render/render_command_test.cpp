@@ -150,4 +150,48 @@ TEST(CliUsage, UnreadableInputExitsOne) {
     EXPECT_EQ(runCli("render /nonexistent/volume.nrrd --iso 300 -o /tmp/lw-never.png"), 1);
 }
 
+// --suggestive draws the suggestive contours with the silhouette: the silhouette's pixels stay
+// and new ones come (the CT phantom's bone has concave folds), in PNG and in SVG; the iso panel
+// alone has no lines to add them to.
+TEST(RenderCommand, SuggestiveAddsLinesToTheSilhouette) {
+    const auto plain = outputPath("suggestive_off.png");
+    const auto with = outputPath("suggestive_on.png");
+    const std::string common =
+        "render phantom:64 --iso 300.5 --size 160x120 --view 30,10 --backend cpu ";
+    ASSERT_EQ(runCli(common + "-o '" + plain.string() + "'"), 0);
+    ASSERT_EQ(runCli(common + "--suggestive -o '" + with.string() + "'"), 0);
+    const lw::core::ImageRgba8 a = lw::core::readPng(plain);
+    const lw::core::ImageRgba8 b = lw::core::readPng(with);
+    ASSERT_EQ(a.width(), b.width());
+    std::size_t kept = 0, added = 0;
+    for (int y = 0; y < a.height(); ++y)
+        for (int x = 0; x < a.width(); ++x) {
+            const bool inA = a.at(x, y).r < 128, inB = b.at(x, y).r < 128;
+            kept += inA && inB;
+            added += inB && !inA;
+        }
+    const std::size_t silhouette = darkPixels(a, 0, a.width());
+    ASSERT_GT(silhouette, 100u);
+    EXPECT_EQ(kept, silhouette);
+    EXPECT_GT(added, 50u);
+    // SVG: the suggestive contours' visible parts are paths beside the silhouette's.
+    const auto countPaths = [](const std::filesystem::path& path) {
+        std::ifstream in(path);
+        const std::string svg((std::istreambuf_iterator<char>(in)), {});
+        std::size_t paths = 0;
+        for (std::size_t at = svg.find("<path"); at != std::string::npos;
+             at = svg.find("<path", at + 1))
+            ++paths;
+        return paths;
+    };
+    const auto plainSvg = outputPath("suggestive_off.svg");
+    const auto withSvg = outputPath("suggestive_on.svg");
+    ASSERT_EQ(runCli(common + "-o '" + plainSvg.string() + "'"), 0);
+    ASSERT_EQ(runCli(common + "--suggestive -o '" + withSvg.string() + "'"), 0);
+    EXPECT_GT(countPaths(plainSvg), 0u);
+    EXPECT_GT(countPaths(withSvg), countPaths(plainSvg));
+    EXPECT_EQ(
+        runCli(common + "--suggestive --panel iso -o '" + outputPath("iso.png").string() + "'"), 2);
+}
+
 } // namespace

@@ -118,3 +118,38 @@ TEST(ExportCommand, NothingIsWrittenOutsideTheChosenFolder) {
     EXPECT_EQ(parent.exitCode, 1);
     EXPECT_NE(parent.err.find("not a file name in a folder"), std::string::npos) << parent.err;
 }
+
+// --suggestive: the silhouette panel of the export gains the suggestive contours (the CT
+// phantom's bone has concave folds) in the PNG and as paths in the SVG.
+TEST(ExportCommand, SuggestiveContoursAddLines) {
+    const test::TempDir dir;
+    const std::string common = "export phantom:64 --iso 300.5 --size 200x200 --view 30,10 "
+                               "--panel silhouette --backend cpu ";
+    const auto dark = [](const core::ImageRgba8& image) {
+        std::size_t n = 0;
+        for (int y = 0; y < image.height(); ++y)
+            for (int x = 0; x < image.width(); ++x)
+                n += image.at(x, y).r < 128;
+        return n;
+    };
+    const auto paths = [](const std::filesystem::path& file) {
+        const std::string svg = core::readFileText(file);
+        std::size_t n = 0;
+        for (std::size_t at = svg.find("<path"); at != std::string::npos;
+             at = svg.find("<path", at + 1))
+            ++n;
+        return n;
+    };
+    ASSERT_EQ(runCli(common + "--png " + quoted((dir / "a.png").string()) + " --svg " +
+                     quoted((dir / "a.svg").string()))
+                  .exitCode,
+              0);
+    ASSERT_EQ(runCli(common + "--suggestive --png " + quoted((dir / "b.png").string()) + " --svg " +
+                     quoted((dir / "b.svg").string()))
+                  .exitCode,
+              0);
+    const std::size_t plain = dark(core::readPng(dir / "a.png"));
+    ASSERT_GT(plain, 100u);
+    EXPECT_GT(dark(core::readPng(dir / "b.png")), plain + 50);
+    EXPECT_GT(paths(dir / "b.svg"), paths(dir / "a.svg"));
+}

@@ -4,6 +4,7 @@
 #include "lw/render/renderer_factory.h"
 #include "lw/render/shaded_surface_cpu.h"
 #include "lw/render/silhouette_gl_renderer.h"
+#include "lw/render/suggestive_contours.h"
 #include "review/qt_image.h"
 #include "review/review_panel.h"
 
@@ -68,7 +69,19 @@ std::pair<QImage, QImage> renderPanelJob(const PanelRenderJob& job) {
     settings.testAlongSegment = job.appearance.testAlongSegment;
     settings.minStrokePixels = job.appearance.minStrokePixels;
     settings.closeAtBorder = job.appearance.closeAtBorder;
-    const render::SilhouetteFrame frame = renderer->render(job.camera, settings);
+    render::SilhouetteFrame frame = renderer->render(job.camera, settings);
+    if (job.appearance.suggestiveContours) {
+        // The surface the frame drew (method 2 keeps none: extracted here).
+        const render::Mesh* drawn = renderer->surfaceMesh();
+        const render::Mesh extracted =
+            drawn ? render::Mesh() : render::extractIsoSurface(*job.volume, job.iso);
+        render::SuggestiveContourRenderer suggestive(*job.volume, drawn ? *drawn : extracted,
+                                                     job.iso);
+        render::SuggestiveContourSettings lines;
+        lines.visibility = settings.visibility;
+        lines.minStrokePixels = settings.minStrokePixels;
+        render::addLines(frame.lines, suggestive.render(job.camera, lines).lines);
+    }
     return {iso, linesToImage(frame.lines, job.appearance, false, job.appearance.lineWidth)};
 }
 

@@ -40,6 +40,8 @@ void RenderWorker::release() {
     m_glContext.reset();
     m_uploadedMesh = nullptr;
     m_uploadedMeshOwner.reset();
+    m_suggestive.reset();
+    m_suggestiveMesh.reset();
     m_renderer.reset();
     m_extractor.reset();
     m_mesh.reset();
@@ -119,6 +121,38 @@ void RenderWorker::renderSilhouette(const FrameRequest& request, FrameResult& re
     if (result.silhouette->drewToTarget)
         result.linesTexture = std::move(texture);
     keepRendererMesh(request, result);
+    if (request.suggestive && !result.silhouette->drewToTarget) // the texture path is off then
+        addSuggestive(request, result);
+}
+
+// The surface the silhouette frame drew (a copy of the renderer's, or extracted for method 2,
+// which keeps none) gets its per-vertex derivatives once per iso-value; each frame then draws
+// the suggestive contours into the silhouette's mask.
+void RenderWorker::addSuggestive(const FrameRequest& request, FrameResult& result) {
+    if (!m_suggestive || m_suggestiveIso != request.iso) {
+        m_suggestive.reset();
+        if (m_mesh && m_meshIso == request.iso) {
+            m_suggestiveMesh = m_mesh;
+        } else if (const render::Mesh* drawn = m_renderer->surfaceMesh()) {
+            m_suggestiveMesh = std::make_shared<const render::Mesh>(*drawn);
+        } else {
+            render::IsoSurfaceOptions options;
+            options.threads = request.settings.threads;
+            options.cancel = request.cancel.get();
+            m_suggestiveMesh = std::make_shared<const render::Mesh>(
+                render::extractIsoSurface(*m_volume, request.iso, options));
+        }
+        m_suggestive = std::make_unique<render::SuggestiveContourRenderer>(
+            *m_volume, *m_suggestiveMesh, request.iso, request.settings.threads);
+        m_suggestiveIso = request.iso;
+    }
+    render::SuggestiveContourSettings settings;
+    settings.visibility = request.settings.visibility;
+    settings.minStrokePixels = request.settings.minStrokePixels;
+    settings.threads = request.settings.threads;
+    const render::SuggestiveFrame frame = m_suggestive->render(request.camera, settings);
+    render::addLines(result.silhouette->lines, frame.lines);
+    result.silhouette->times.drawMs += frame.ms;
 }
 
 // A texture for this frame where one can be drawn: the panel asks for it, and the renderer is

@@ -12,6 +12,7 @@
 #include "lw/render/renderer_factory.h"
 #include "lw/render/silhouette_gl_renderer.h"
 #include "lw/render/silhouette_renderer.h"
+#include "lw/render/suggestive_contours.h"
 #include "lw/volume/volume.h"
 #include "review/silhouette_textures.h"
 
@@ -32,6 +33,7 @@ struct FrameRequest {
     bool wantMesh = false;       // the iso panel (and method 1 S) need the mesh at `iso`
     bool forceExtract = false;   // mode b: extract again even if the mesh is cached
     bool wantSilhouette = false; // render the silhouette here (methods 2, 3, method 1 L)
+    bool suggestive = false;     // with the silhouette: its suggestive contours too
     // Render the shaded iso panel here too, on the worker's own headless GL context (the same
     // shaders as the panel's): used where the panels' GL is a software rasterizer, whose
     // vertex work would otherwise stall the UI thread.
@@ -94,6 +96,7 @@ private:
     render::SilhouetteRenderer& rendererFor(const FrameRequest& request, FrameResult& result);
     void renderIsoImage(const FrameRequest& request, FrameResult& result);
     void keepRendererMesh(const FrameRequest& request, FrameResult& result);
+    void addSuggestive(const FrameRequest& request, FrameResult& result);
     render::GlFrameTarget* frameTargetFor(const FrameRequest& request,
                                           const render::SilhouetteRenderer& renderer,
                                           std::shared_ptr<const LinesTexture>& token);
@@ -107,6 +110,11 @@ private:
     QString m_backendNote;
     std::shared_ptr<const render::Mesh> m_mesh;
     double m_meshIso = 0.0;
+    // Suggestive contours: the per-vertex derivatives of one iso-value's surface, kept while the
+    // camera turns (the mesh they were computed on is held with them).
+    std::unique_ptr<render::SuggestiveContourRenderer> m_suggestive;
+    std::shared_ptr<const render::Mesh> m_suggestiveMesh;
+    double m_suggestiveIso = 0.0;
     // The worker's own GL for the iso panel (made on this thread at first use).
     std::unique_ptr<render::GlContext> m_glContext;
     std::unique_ptr<render::SilhouetteGlRenderer> m_isoGl;

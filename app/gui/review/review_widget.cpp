@@ -312,9 +312,12 @@ void ReviewWidget::requestFrame(bool newIso) {
     request.settings.gpuMemoryBudget = std::size_t(m_settings.gpuMemoryBudgetMiB) << 20;
     request.settings.isoReal = m_iso;
     request.wantSilhouette = !methodOneInPanel();
-    // The GL panel draws a texture the worker's CUDA writes; the iso panel's overlay still needs
-    // the mask on the host.
+    // Drawn on the worker with the silhouette (CPU); method 1 in the panel's own GL has none yet.
+    request.suggestive = m_settings.suggestiveContours && request.wantSilhouette;
+    // The GL panel draws a texture the worker's CUDA writes; the iso panel's overlay and the
+    // suggestive contours (added to the mask on the host) still need the mask on the host.
     request.silhouetteToTexture = m_drawsInPanels && !m_settings.silhouetteOnIso &&
+                                  !request.suggestive &&
                                   m_settings.method == render::SilhouetteMethod::ZBuffer;
     request.wantMesh = newIso || !m_meshCurrent || (modeB && methodOneInPanel());
     request.forceExtract = modeB && methodOneInPanel() && !newIso;

@@ -62,6 +62,7 @@ ReviewSettings ReviewSettings::load(QSettings& settings) {
     s.testAlongSegment = settings.value("alongSegment", s.testAlongSegment).toBool();
     s.minStrokePixels = clampInt(settings.value("minStrokePixels"), 0, 1000, s.minStrokePixels);
     s.closeAtBorder = settings.value("closeAtBorder", s.closeAtBorder).toBool();
+    s.suggestiveContours = settings.value("suggestiveContours", s.suggestiveContours).toBool();
     s.lineWidth = std::clamp(settings.value("lineWidth", s.lineWidth).toDouble(), 1.0, 8.0);
     s.lineColour = colourOr(settings.value("lineColour"), s.lineColour);
     s.background = colourOr(settings.value("background"), s.background);
@@ -91,6 +92,7 @@ void ReviewSettings::save(QSettings& settings) const {
     settings.setValue("alongSegment", testAlongSegment);
     settings.setValue("minStrokePixels", minStrokePixels);
     settings.setValue("closeAtBorder", closeAtBorder);
+    settings.setValue("suggestiveContours", suggestiveContours);
     settings.setValue("lineWidth", lineWidth);
     settings.setValue("lineColour", lineColour.name());
     settings.setValue("background", background.name());

@@ -112,6 +112,12 @@ QWidget* SettingsDialog::makeMethodPage() {
     m_closeAtBorder->setToolTip(tr("Where the first or last slice cuts bone, the cut face becomes "
                                    "part of the surface and its edge is drawn as a line."));
     form->addRow(tr("Volume border:"), m_closeAtBorder);
+    m_suggestive = new QCheckBox(tr("Suggestive contours"));
+    m_suggestive->setObjectName("suggestive");
+    m_suggestive->setToolTip(tr("Also draw where the surface almost turns away from the view "
+                                "(concave folds, necks), beside the silhouette. On thick-slice "
+                                "CT they follow the slice steps."));
+    form->addRow(QString(), m_suggestive);
 
     addBackendRows(form, page);
 
@@ -121,7 +127,7 @@ QWidget* SettingsDialog::makeMethodPage() {
         connect(box, &QComboBox::currentIndexChanged, this, [this] { readControls(); });
     for (QSpinBox* box : {m_brickCells, m_memoryBudget, m_gpuMemoryBudget, m_minStroke})
         connect(box, &QSpinBox::valueChanged, this, [this] { readControls(); });
-    for (QCheckBox* box : {m_visibility, m_alongSegment, m_closeAtBorder})
+    for (QCheckBox* box : {m_visibility, m_alongSegment, m_closeAtBorder, m_suggestive})
         connect(box, &QCheckBox::toggled, this, [this] { readControls(); });
     return page;
 }
@@ -280,6 +286,7 @@ void SettingsDialog::showSettings() {
     m_alongSegment->setChecked(m_settings.testAlongSegment);
     m_minStroke->setValue(m_settings.minStrokePixels);
     m_closeAtBorder->setChecked(m_settings.closeAtBorder);
+    m_suggestive->setChecked(m_settings.suggestiveContours);
     m_backend->button(int(m_settings.backend))->setChecked(true);
     m_lineWidth->setValue(m_settings.lineWidth);
     showColour(m_lineColour, m_settings.lineColour);
@@ -312,6 +319,7 @@ void SettingsDialog::readControls() {
     s.testAlongSegment = m_alongSegment->isChecked();
     s.minStrokePixels = m_minStroke->value();
     s.closeAtBorder = m_closeAtBorder->isChecked();
+    s.suggestiveContours = m_suggestive->isChecked();
     s.backend = render::Backend(m_backend->checkedId());
     s.lineWidth = m_lineWidth->value();
     s.silhouetteOnIso = m_silhouetteOnIso->isChecked();

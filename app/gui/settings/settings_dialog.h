@@ -55,6 +55,7 @@ private:
     QComboBox* m_mode = nullptr;
     QCheckBox* m_visibility = nullptr;
     QCheckBox* m_alongSegment = nullptr;
+    QCheckBox* m_suggestive = nullptr;
     QDoubleSpinBox* m_lineWidth = nullptr;
     QPushButton* m_lineColour = nullptr;
     QPushButton* m_background = nullptr;

@@ -1,6 +1,7 @@
 #include "lw/evaluation/true_contour.h"
 
 #include "lw/core/parallel.h"
+#include "neighbour_pairs.h"
 
 #include <algorithm>
 #include <cmath>
@@ -225,34 +226,18 @@ PixelMask trueContourMask(const AnalyticShape& shape, const Camera& camera) {
                 summarise(shape, box, camera.rayThroughPixel(x, int(row)), stepFloor);
     });
 
-    // Pixel pairs are examined per row (the pair to the right and the one below), so the marks
-    // are collected per row and merged afterwards: a pair may mark a pixel of the next row.
-    std::vector<std::vector<std::pair<int, int>>> marks(static_cast<std::size_t>(height));
-    core::parallelFor(std::size_t(height), [&](std::size_t row) {
-        const int y = int(row);
-        std::vector<double> folds;
-        for (int x = 0; x < width; ++x) {
+    return detail::markNeighbourPairs(
+        width, height, [&](int x, int y, int bx, int by, std::vector<std::pair<int, int>>& marks) {
             const RaySummary& a = rays[std::size_t(y) * std::size_t(width) + std::size_t(x)];
-            for (const auto& [dx, dy] : {std::pair{1, 0}, std::pair{0, 1}}) {
-                const int bx = x + dx, by = y + dy;
-                if (bx >= width || by >= height)
-                    continue;
-                const RaySummary& b = rays[std::size_t(by) * std::size_t(width) + std::size_t(bx)];
-                const PixelPair pair{shape, box, camera, stepFloor, {x + 0.5, y + 0.5}, {dx, dy}};
-                folds.clear();
-                findFolds(pair, {0.0, a}, {1.0, b}, 0, folds);
-                // The pixel the contour curve passes through where it crosses the segment.
-                for (const double s : folds)
-                    marks[row].push_back(s < 0.5 ? std::pair{x, y} : std::pair{bx, by});
-            }
-        }
-    });
-
-    PixelMask mask(width, height);
-    for (const auto& rowMarks : marks)
-        for (const auto& [x, y] : rowMarks)
-            mask.set(x, y);
-    return mask;
+            const RaySummary& b = rays[std::size_t(by) * std::size_t(width) + std::size_t(bx)];
+            const PixelPair pair{shape,           box, camera, stepFloor, {x + 0.5, y + 0.5},
+                                 {bx - x, by - y}};
+            std::vector<double> found;
+            findFolds(pair, {0.0, a}, {1.0, b}, 0, found);
+            // The pixel the contour curve passes through where it crosses the segment.
+            for (const double s : found)
+                marks.push_back(s < 0.5 ? std::pair{x, y} : std::pair{bx, by});
+        });
 }
 
 } // namespace lw::evaluation

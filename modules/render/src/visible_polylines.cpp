@@ -11,11 +11,6 @@
 namespace lw::render {
 namespace {
 
-// A mesh edge by its two vertex indices, smaller first.
-std::uint64_t edgeKey(std::uint32_t a, std::uint32_t b) {
-    return a < b ? (std::uint64_t(a) << 32 | b) : (std::uint64_t(b) << 32 | a);
-}
-
 // Each vertex's first index with the same position bits. A surface closed at the volume border
 // repeats the border-plane vertices of the open surface in its cap (border_cap_cpu.h): welding
 // them lets a contour run from the side of a cut bone onto its cut face in one chain.
@@ -43,12 +38,6 @@ std::vector<std::uint32_t> weldedIds(const Mesh& mesh) {
     return ids;
 }
 
-// One triangle's Burns segment: its endpoints and the mesh edges they lie on.
-struct EdgeSegment {
-    glm::vec3 point[2];
-    std::uint64_t edge[2];
-};
-
 // Burns' rule per triangle (kernels/common), with the crossed edges named: the lone vertex's
 // two edges, in the order silhouetteSegment() gives the endpoints.
 std::vector<EdgeSegment> edgeSegments(const Mesh& mesh, const Camera& camera) {
@@ -72,7 +61,7 @@ std::vector<EdgeSegment> edgeSegments(const Mesh& mesh, const Camera& camera) {
         const int lone = (f0 == f1) ? 2 : (f0 == f2 ? 1 : 0);
         segments.push_back(
             {{ends.a, ends.b},
-             {edgeKey(w[lone], w[(lone + 1) % 3]), edgeKey(w[lone], w[(lone + 2) % 3])}});
+             {meshEdgeKey(w[lone], w[(lone + 1) % 3]), meshEdgeKey(w[lone], w[(lone + 2) % 3])}});
     }
     return segments;
 }
@@ -202,8 +191,15 @@ void cutToVisible(const std::vector<glm::dvec2>& pixels, bool closed, const Pixe
 
 } // namespace
 
+std::uint64_t meshEdgeKey(std::uint32_t a, std::uint32_t b) {
+    return a < b ? (std::uint64_t(a) << 32 | b) : (std::uint64_t(b) << 32 | a);
+}
+
 std::vector<SilhouetteChain> chainSilhouette(const Mesh& mesh, const Camera& camera) {
-    const std::vector<EdgeSegment> segments = edgeSegments(mesh, camera);
+    return chainSegments(edgeSegments(mesh, camera));
+}
+
+std::vector<SilhouetteChain> chainSegments(const std::vector<EdgeSegment>& segments) {
     std::unordered_multimap<std::uint64_t, std::size_t> byEdge;
     byEdge.reserve(segments.size() * 2);
     for (std::size_t s = 0; s < segments.size(); ++s)
@@ -235,9 +231,15 @@ std::vector<SilhouetteChain> chainSilhouette(const Mesh& mesh, const Camera& cam
 
 std::vector<Polyline> visiblePolylines(const Mesh& mesh, const Camera& camera,
                                        const PixelMask& lines, const PolylineOptions& options) {
+    return visiblePolylines(chainSilhouette(mesh, camera), camera, lines, options);
+}
+
+std::vector<Polyline> visiblePolylines(const std::vector<SilhouetteChain>& chains,
+                                       const Camera& camera, const PixelMask& lines,
+                                       const PolylineOptions& options) {
     const PixelMask shown = lines.dilated(std::max(0, options.tolerancePx));
     std::vector<Polyline> polylines;
-    for (const SilhouetteChain& chain : chainSilhouette(mesh, camera)) {
+    for (const SilhouetteChain& chain : chains) {
         std::vector<glm::dvec2> pixels;
         pixels.reserve(chain.points.size());
         for (const glm::vec3& p : chain.points)

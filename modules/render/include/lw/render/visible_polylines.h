@@ -16,6 +16,7 @@
 #include "lw/render/iso_surface.h"
 #include "lw/render/pixel_mask.h"
 
+#include <cstdint>
 #include <glm/glm.hpp>
 #include <vector>
 
@@ -39,15 +40,29 @@ struct PolylineOptions {
     double simplifyPx = 0.05;
 };
 
-// The Burns segments of `mesh` for `camera`, chained (3D, patient mm, before visibility): one
-// entry per chain, its points the segment endpoints in order.
+// A line segment across one triangle of a mesh, with the mesh edges its ends lie on (the key of
+// vertex indices a, b: meshEdgeKey): a Burns segment, or a suggestive contour's.
+struct EdgeSegment {
+    glm::vec3 point[2];
+    std::uint64_t edge[2];
+};
+std::uint64_t meshEdgeKey(std::uint32_t a, std::uint32_t b);
+
+// Segments chained through the edges they share (3D, patient mm, before visibility): one entry
+// per chain, its points the segment endpoints in order.
 struct SilhouetteChain {
     std::vector<glm::vec3> points;
     bool closed = false;
 };
+std::vector<SilhouetteChain> chainSegments(const std::vector<EdgeSegment>& segments);
+// The Burns segments of `mesh` for `camera`, chained.
 std::vector<SilhouetteChain> chainSilhouette(const Mesh& mesh, const Camera& camera);
 
 // The parts of the chains that `lines` shows, projected to the image.
+std::vector<Polyline> visiblePolylines(const std::vector<SilhouetteChain>& chains,
+                                       const Camera& camera, const PixelMask& lines,
+                                       const PolylineOptions& options = {});
+// The same for the silhouette of `mesh` (chainSilhouette).
 std::vector<Polyline> visiblePolylines(const Mesh& mesh, const Camera& camera,
                                        const PixelMask& lines, const PolylineOptions& options = {});
 
