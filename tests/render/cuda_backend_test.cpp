@@ -508,6 +508,11 @@ TEST(CudaBackendRebinding, EachShapeInTurnGivesTheCpuImage) {
         SilhouetteSettings chunked = settings;
         chunked.brickCells = 64;
         cuda[2]->render(camera, chunked);
+        // ... and method 2's L frame maps the volume that method 3 has page-locked already.
+        const SilhouetteFrame mapped = cuda[1]->render(camera, chunked);
+        EXPECT_EQ(cuda[1]->backendName(), "cuda");
+        expectSameFrame(mapped, cpu[1]->render(camera, settings),
+                        shapeName + ", method 2 L, the volume mapped");
         // ... which must not outlive the volume: the next shape may be allocated at its address.
         for (auto& renderer : cuda)
             if (renderer)

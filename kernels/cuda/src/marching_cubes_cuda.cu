@@ -124,22 +124,25 @@ CudaStatus MarchingCubesCuda::setMappedVolume(const VolumeView& host, const Voxe
                          cudaHostRegisterMapped | cudaHostRegisterReadOnly);
     if (registered != cudaSuccess) {
         cudaGetLastError(); // not sticky: the caller's next way (the CPU) must not see it
-        return dispatch::statusOf(registered, "cudaHostRegister(mapped volume)");
+        // Another renderer of the same volume page-locked it already (a streamed frame of
+        // method 1 or 3): with unified addressing it is mapped too, and the registration stays
+        // that renderer's (it unregisters before the volume dies, releaseVolume).
+        if (registered != cudaErrorHostMemoryAlreadyRegistered)
+            return dispatch::statusOf(registered, "cudaHostRegister(mapped volume)");
+    } else {
+        s.hostRegistered = true;
+        s.hostVoxels = host.voxels;
     }
-    s.hostRegistered = true;
-    s.hostVoxels = host.voxels;
     void* device = nullptr;
-    LW_CUDA_TRY(cudaHostGetDevicePointer(&device, const_cast<void*>(host.voxels), 0),
-                "cudaHostGetDevicePointer(volume)");
+    const cudaError_t mapped = cudaHostGetDevicePointer(&device, const_cast<void*>(host.voxels), 0);
+    if (mapped != cudaSuccess) {
+        cudaGetLastError();
+        return dispatch::statusOf(mapped, "cudaHostGetDevicePointer(volume)");
+    }
     s.volume.voxels = device;
     LW_RETURN_IF_FAILED(s.finishWholeVolume(setup));
     s.uploadMs = 0.0;
     return CudaStatus::success();
-}
-
-bool MarchingCubesCuda::volumeIsMapped() const {
-    const Impl& s = *m_impl;
-    return !s.streamed && s.hostRegistered && s.volume.voxels != nullptr;
 }
 
 // The grid tables and the brick min/max, once the voxels are where the kernels read them.

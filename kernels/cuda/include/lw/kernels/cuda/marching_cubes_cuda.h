@@ -63,7 +63,6 @@ public:
     // every kernel needs the whole volume at once (method 2's rays). `hostVolume` must outlive
     // the calls; release() or another set*Volume unmaps it.
     CudaStatus setMappedVolume(const VolumeView& hostVolume, const VoxelGridSetup& setup);
-    bool volumeIsMapped() const;
     double uploadMs() const;         // host -> device copy of the voxels, CUDA events
     std::size_t deviceBytes() const; // device memory held now
 
