@@ -45,13 +45,13 @@ TEST(QualityCommand, JsonRowOfOneViewOfTheDemo) {
         EXPECT_GE(value, 0.0) << key;
         EXPECT_LE(value, 1.0) << key;
     }
-    // The skull's sides are drawn; the cut top and bottom (no closing at the border yet) are not,
-    // so coverage lies well inside (0, 1).
-    EXPECT_GT(numberOf(json, "outline_coverage_m3"), 0.5);
+    // The skull's sides and, closed at the border, its cut top and bottom are drawn.
+    EXPECT_GT(numberOf(json, "outline_coverage_m3"), 0.9);
     // Methods 2 and 3 draw the same contours on this CT (measured 0.98 at 1024x1024).
     EXPECT_GT(numberOf(json, "agreement_23"), 0.9);
-    // After pruning at 10 px no group under 10 px is left; before it, there was speckle.
-    EXPECT_EQ(numberOf(json, "fragment_share_m3"), 0.0);
+    // Pruning at 10 px (pixels a gap of one apart counting as one stroke) leaves fewer short
+    // 8-connected pieces than were there before it: only pieces of broken longer strokes stay.
+    EXPECT_LT(numberOf(json, "fragment_share_m3"), numberOf(json, "fragment_share_m3_unpruned"));
     EXPECT_GT(numberOf(json, "fragment_share_m3_unpruned"), 0.0);
     // Method 1 is measured where GL is, else null with a note.
     const bool gl = json.find("method 1 skipped") == std::string::npos;

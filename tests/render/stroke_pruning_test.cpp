@@ -20,6 +20,7 @@ struct MaskCase {
     std::vector<glm::ivec2> on;
     int minPixels;
     std::size_t removed;
+    int gapPixels = 0;
 };
 
 class ComponentFilter : public testing::TestWithParam<MaskCase> {};
@@ -29,11 +30,16 @@ TEST_P(ComponentFilter, RemovesExactlyTheSmallGroups) {
     for (const glm::ivec2 p : GetParam().on)
         mask.set(p.x, p.y);
     const std::size_t before = mask.count();
-    EXPECT_EQ(mask.removeComponentsSmallerThan(GetParam().minPixels), GetParam().removed);
+    const int gap = GetParam().gapPixels;
+    EXPECT_EQ(mask.removeComponentsSmallerThan(GetParam().minPixels, gap), GetParam().removed);
     EXPECT_EQ(mask.count(), before - GetParam().removed);
-    for (const std::size_t size : mask.componentSizes())
+    for (const std::size_t size : mask.componentSizes(gap))
         EXPECT_GE(size, std::size_t(std::max(GetParam().minPixels, 1)));
 }
+
+// Pieces of 2, 2 and 2 pixels with one-pixel gaps, then a pixel two pixels further on.
+const std::vector<glm::ivec2> kBrokenLine = {{0, 1}, {1, 1}, {3, 1}, {4, 1},
+                                             {6, 2}, {7, 2}, {10, 2}};
 
 // A 6-pixel row, a diagonal of 3 (8-connected: one group), and a lone pixel.
 const std::vector<glm::ivec2> kRowDiagonalDot = {{0, 0}, {1, 0}, {2, 0}, {3, 0},  {4, 0},
@@ -46,7 +52,12 @@ INSTANTIATE_TEST_SUITE_P(Masks, ComponentFilter,
                                          MaskCase{"diagonal is one group of three", kRowDiagonalDot,
                                                   4, 4},
                                          MaskCase{"the row goes too", kRowDiagonalDot, 7, 10},
-                                         MaskCase{"empty", {}, 10, 0}),
+                                         MaskCase{"empty", {}, 10, 0},
+                                         // A line broken by one-pixel gaps is one stroke when
+                                         // gaps are bridged; two pixels apart is too far.
+                                         MaskCase{"broken line alone", kBrokenLine, 5, 7, 0},
+                                         MaskCase{"broken line bridged", kBrokenLine, 5, 1, 1},
+                                         MaskCase{"wide gap not bridged", kBrokenLine, 7, 7, 1}),
                          [](const testing::TestParamInfo<MaskCase>& info) {
                              std::string name = info.param.name;
                              std::replace(name.begin(), name.end(), ' ', '_');
@@ -103,11 +114,11 @@ TEST_P(StrokePruning, DropsTheDustAndKeepsTheContour) {
 
     settings.minStrokePixels = 12;
     const SilhouetteFrame pruned = renderer->render(camera, settings);
-    for (const std::size_t size : pruned.lines.componentSizes())
+    for (const std::size_t size : pruned.lines.componentSizes(kStrokeGapPixels))
         EXPECT_GE(size, 12u);
     // What stays is exactly what the unpruned frame had there: the contour is untouched.
     PixelMask expected = raw.lines;
-    expected.removeComponentsSmallerThan(12);
+    expected.removeComponentsSmallerThan(12, kStrokeGapPixels);
     EXPECT_EQ(pruned.lines, expected);
     EXPECT_GE(pruned.lines.count(), largest);
 }

@@ -46,10 +46,12 @@ PixelMask PixelMask::dilated(int radius) const {
 
 namespace {
 
-// Visits the 8-connected groups of on pixels of `pixels` (width x height): fn(group) with the
-// pixel indices of each group. `seen` is scratch of the same size.
+// Visits the groups of on pixels of `pixels` (width x height) whose members lie within
+// Chebyshev distance `reach` of each other (1: 8-connected): fn(group) with the pixel indices of
+// each group. `seen` is scratch of the same size.
 template <typename Fn>
-void forEachComponent(const std::vector<std::uint8_t>& pixels, int width, int height, Fn&& fn) {
+void forEachComponent(const std::vector<std::uint8_t>& pixels, int width, int height, int reach,
+                      Fn&& fn) {
     std::vector<std::uint8_t> seen(pixels.size(), 0);
     std::vector<std::size_t> group, stack;
     for (std::size_t start = 0; start < pixels.size(); ++start) {
@@ -63,8 +65,8 @@ void forEachComponent(const std::vector<std::uint8_t>& pixels, int width, int he
             stack.pop_back();
             group.push_back(i);
             const int x = int(i % std::size_t(width)), y = int(i / std::size_t(width));
-            for (int dy = -1; dy <= 1; ++dy)
-                for (int dx = -1; dx <= 1; ++dx) {
+            for (int dy = -reach; dy <= reach; ++dy)
+                for (int dx = -reach; dx <= reach; ++dx) {
                     const int nx = x + dx, ny = y + dy;
                     if (nx < 0 || ny < 0 || nx >= width || ny >= height)
                         continue;
@@ -81,23 +83,25 @@ void forEachComponent(const std::vector<std::uint8_t>& pixels, int width, int he
 
 } // namespace
 
-std::size_t PixelMask::removeComponentsSmallerThan(int minPixels) {
+std::size_t PixelMask::removeComponentsSmallerThan(int minPixels, int gapPixels) {
     std::size_t removed = 0;
     if (minPixels <= 1)
         return removed;
-    forEachComponent(m_pixels, m_width, m_height, [&](const std::vector<std::size_t>& group) {
-        if (group.size() >= std::size_t(minPixels))
-            return;
-        for (const std::size_t i : group)
-            m_pixels[i] = 0;
-        removed += group.size();
-    });
+    const int reach = 1 + std::max(0, gapPixels);
+    forEachComponent(m_pixels, m_width, m_height, reach,
+                     [&](const std::vector<std::size_t>& group) {
+                         if (group.size() >= std::size_t(minPixels))
+                             return;
+                         for (const std::size_t i : group)
+                             m_pixels[i] = 0;
+                         removed += group.size();
+                     });
     return removed;
 }
 
-std::vector<std::size_t> PixelMask::componentSizes() const {
+std::vector<std::size_t> PixelMask::componentSizes(int gapPixels) const {
     std::vector<std::size_t> sizes;
-    forEachComponent(m_pixels, m_width, m_height,
+    forEachComponent(m_pixels, m_width, m_height, 1 + std::max(0, gapPixels),
                      [&](const std::vector<std::size_t>& group) { sizes.push_back(group.size()); });
     return sizes;
 }
