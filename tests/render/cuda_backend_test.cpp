@@ -318,47 +318,56 @@ TEST_P(CudaBackend, Method2GivesTheCpuImage) {
 
 INSTANTIATE_TEST_SUITE_P(Volumes, CudaBackend, testing::ValuesIn(cases()), caseName);
 
-// Method 2 over the budget: the rays need the whole volume, so it stays in host memory, mapped.
-TEST(CudaBackendStreaming, Method2OverTheBudgetReadsTheVolumeFromHostMemory) {
+// One method's frame of the 512 x 512 x 1024 CT phantom (512 MiB of voxels) with the whole volume
+// resident, and the same frame under a 256 MiB budget (a renderer of its own).
+constexpr std::size_t kStreamingBudget = std::size_t(256) << 20;
+
+struct FramesUnderBudget {
+    SilhouetteFrame resident, underBudget;
+    std::string backend; // of the renderer under the budget
+};
+
+FramesUnderBudget framesUnderBudget(SilhouetteMethod method) {
     const Volume volume = makePhantom({512, 512, 1024}, PhantomKind::Ct);
-    auto whole = createSilhouetteRenderer(SilhouetteMethod::RayCastVisibility, Backend::Cuda);
-    auto mapped = createSilhouetteRenderer(SilhouetteMethod::RayCastVisibility, Backend::Cuda);
+    auto whole = createSilhouetteRenderer(method, Backend::Cuda);
+    auto budgeted = createSilhouetteRenderer(method, Backend::Cuda);
     whole->setVolume(volume);
-    mapped->setVolume(volume);
+    budgeted->setVolume(volume);
     const Camera camera =
         cameraAt(volumeBounds(volume), 30, 20, Projection::Perspective, 1024, 1024);
     SilhouetteSettings settings;
     settings.isoReal = 300.5;
-    const SilhouetteFrame expected = whole->render(camera, settings);
-    settings.gpuMemoryBudget = std::size_t(256) << 20;
-    const SilhouetteFrame frame = mapped->render(camera, settings);
+    FramesUnderBudget frames;
+    frames.resident = whole->render(camera, settings);
+    settings.gpuMemoryBudget = kStreamingBudget;
+    frames.underBudget = budgeted->render(camera, settings);
+    frames.backend = std::string(budgeted->backendName());
+    return frames;
+}
+
+// Method 2 over the budget: the rays need the whole volume, so it stays in host memory, mapped.
+TEST(CudaBackendStreaming, Method2OverTheBudgetReadsTheVolumeFromHostMemory) {
+    const FramesUnderBudget frames = framesUnderBudget(SilhouetteMethod::RayCastVisibility);
+    const SilhouetteFrame& expected = frames.resident;
+    const SilhouetteFrame& frame = frames.underBudget;
     ASSERT_GT(expected.lines.count(), 1000u);
-    EXPECT_EQ(mapped->backendName(), "cuda");
+    EXPECT_EQ(frames.backend, "cuda");
     expectSameFrame(frame, expected, "512 x 512 x 1024 under 256 MiB");
 }
 
 // The GPU-run goal's case: a 512 x 512 x 1024 CT phantom (512 MiB of voxels) under a 256 MiB
 // budget streams in slabs and gives the image of the resident whole volume.
 TEST(CudaBackendStreaming, VolumeLargerThanTheBudgetGivesTheSameImage) {
-    const Volume volume = makePhantom({512, 512, 1024}, PhantomKind::Ct);
-    auto whole = createSilhouetteRenderer(SilhouetteMethod::ZBuffer, Backend::Cuda);
-    auto streamed = createSilhouetteRenderer(SilhouetteMethod::ZBuffer, Backend::Cuda);
-    whole->setVolume(volume);
-    streamed->setVolume(volume);
-    const Camera camera =
-        cameraAt(volumeBounds(volume), 30, 20, Projection::Perspective, 1024, 1024);
-    SilhouetteSettings settings;
-    settings.isoReal = 300.5;
-    const SilhouetteFrame expected = whole->render(camera, settings);
-    settings.gpuMemoryBudget = std::size_t(256) << 20;
-    const SilhouetteFrame frame = streamed->render(camera, settings);
+    const FramesUnderBudget frames = framesUnderBudget(SilhouetteMethod::ZBuffer);
+    const SilhouetteFrame& expected = frames.resident;
+    const SilhouetteFrame& frame = frames.underBudget;
     ASSERT_GT(expected.lines.count(), 1000u);
     std::size_t differing = 0;
     agreement(frame.lines, expected.lines, differing);
     EXPECT_EQ(differing, 0u);
     EXPECT_EQ(frame.segments, expected.segments);
     EXPECT_EQ(frame.triangles, expected.triangles);
-    EXPECT_LE(frame.deviceBytes, settings.gpuMemoryBudget)
+    EXPECT_LE(frame.deviceBytes, kStreamingBudget)
         << "held " << (frame.deviceBytes >> 20) << " MiB";
     std::printf("512x512x1024 under 256 MiB: %zu MiB held at the most, whole volume %zu MiB\n",
                 frame.deviceBytes >> 20, expected.deviceBytes >> 20);

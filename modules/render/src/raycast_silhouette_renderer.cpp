@@ -43,7 +43,24 @@ struct RayCastSilhouetteRenderer::State {
     }
     void frameOn(RayCastKernelSet& set, const Camera& camera, const SilhouetteSettings& settings,
                  SilhouetteFrame& frame);
+    void fallBack(const OutOfDeviceMemory& error);
 };
+
+// Out of device memory: with the volume resident, again with it mapped from host memory; after
+// that, the CPU for this volume (until the next setVolume).
+void RayCastSilhouetteRenderer::State::fallBack(const OutOfDeviceMemory& error) {
+    prepared = nullptr;
+    const std::string what =
+        "method 2 (" + std::string(device->backendName()) + "): " + error.what();
+    if (device->fallBack()) {
+        kLog.warning(what + "; reading the volume from host memory");
+        return;
+    }
+    kLog.warning(what + "; rendering on the CPU");
+    device->bind(nullptr);
+    device->bind(volume); // frees what the failed attempt holds, uploads again later
+    deviceFailed = true;
+}
 
 // Mode a keeps the active cells while the iso-value, brick size and mode stay; segments depend on
 // the eye and are found anew for every view. Mode b finds the cells every frame.
@@ -116,35 +133,15 @@ SilhouetteFrame RayCastSilhouetteRenderer::renderFrame(const Camera& camera,
         throw core::Error(s.device ? "method 2 (CUDA)" : "method 2", "no volume bound (setVolume)");
     if (settings.cancel && settings.cancel->isCancelled())
         throw core::Cancelled();
-    SilhouetteFrame frame;
-    RayCastKernelSet& set = s.setFor(settings);
-    try {
-        s.frameOn(set, camera, settings, frame);
-        return frame;
-    } catch (const OutOfDeviceMemory& error) {
-        if (s.device->fallBack()) {
-            // Out of device memory with the volume resident: again with it mapped from host
-            // memory (until the next setVolume), then the CPU.
-            kLog.warning("method 2 (" + std::string(set.backendName()) + "): " + error.what() +
-                         "; reading the volume from host memory");
-            s.prepared = nullptr;
-            try {
-                frame = SilhouetteFrame();
-                s.frameOn(*s.device, camera, settings, frame);
-                return frame;
-            } catch (const OutOfDeviceMemory&) {
-            }
+    for (;;) {
+        SilhouetteFrame frame;
+        try {
+            s.frameOn(s.setFor(settings), camera, settings, frame);
+            return frame;
+        } catch (const OutOfDeviceMemory& error) {
+            s.fallBack(error); // the device's leaner way, or the CPU (which never runs out)
         }
-        kLog.warning("method 2 (" + std::string(set.backendName()) + "): " + error.what() +
-                     "; rendering on the CPU");
-        s.device->bind(nullptr);
-        s.device->bind(s.volume); // frees what the failed attempt holds, uploads again later
-        s.deviceFailed = true;
-        s.prepared = nullptr;
-        frame = SilhouetteFrame();
-        s.frameOn(s.cpuSet(), camera, settings, frame);
     }
-    return frame;
 }
 
 static const CpuRayCastKernels& cpuFrameOf(const RayCastKernelSet* last,

@@ -32,6 +32,7 @@ public:
         m_rowRanges.reset();
         m_cap.clear();
         m_capInMesh = nullptr;
+        m_capCandidates.clear();
     }
 
     void releaseVolume() override {
@@ -42,6 +43,7 @@ public:
         m_rowRanges.reset();
         m_cap.clear();
         m_capInMesh = nullptr;
+        m_capCandidates.clear();
     }
 
     bool extractPiecesInto(SilhouetteGlRenderer& gl, const SilhouetteSettings& settings,
@@ -88,10 +90,18 @@ public:
         }
         const double storedIso = storedIsoValue(*m_volume, settings.isoReal);
         m_capInMesh = nullptr; // until the new mesh is written
+        m_capCandidates.clear();
         throwIfCudaFailed(kWhere, m_marchingCubes.extract(storedIso));
         const Mesh* cap = settings.closeAtBorder ? &m_cap.cap(*m_volume, storedIso) : nullptr;
         writeIntoGl(gl, m_marchingCubes.mesh(), cap);
         m_capInMesh = cap;
+        // The cap's triangles as pass-2 candidates (all of them: a few thousand at most), in
+        // the GL buffers' numbering, for every frame until the next extraction.
+        m_capCandidates.clear();
+        if (cap)
+            for (const std::uint32_t index : cap->indices)
+                m_capCandidates.push_back(
+                    std::uint32_t(m_marchingCubes.mesh().vertexCount + index));
     }
 
     // The device mesh (and the border cap after it, from the host: it is small) into gl's
@@ -138,8 +148,7 @@ public:
         const kernels::cuda::DeviceMeshView mesh = m_marchingCubes.mesh();
         if (!m_interopWorks || mesh.triangleCount == 0)
             return false;
-        const std::size_t capTriangles = m_capInMesh ? m_capInMesh->triangleCount() : 0;
-        if (gl.reserveLineCandidates(mesh.triangleCount + capTriangles))
+        if (gl.reserveLineCandidates(mesh.triangleCount + m_capCandidates.size() / 3))
             ++m_candidateGeneration;
         const glm::vec4 viewer = camera.isOrthographic()
                                      ? glm::vec4(glm::vec3(-camera.forward()), 0.0f)
@@ -153,11 +162,7 @@ public:
             return false;
         }
         indices = triangles * 3;
-        if (capTriangles > 0) {
-            // Every cap triangle is a candidate (a few thousand at most): they follow the mesh.
-            m_capCandidates.resize(capTriangles * 3);
-            for (std::size_t i = 0; i < m_capCandidates.size(); ++i)
-                m_capCandidates[i] = std::uint32_t(mesh.vertexCount + m_capInMesh->indices[i]);
+        if (!m_capCandidates.empty()) { // the cap's triangles follow the mesh's candidates
             gl.writeLineCandidatesTail(indices, m_capCandidates);
             indices += m_capCandidates.size();
         }
@@ -176,8 +181,8 @@ private:
     kernels::cuda::MarchingCubesCuda m_marchingCubes;
     kernels::cuda::GlMeshInterop m_interop;
     BorderCapCache m_cap;
-    const Mesh* m_capInMesh = nullptr; // the cap written after the last whole mesh, if any
-    std::vector<std::uint32_t> m_capCandidates;
+    const Mesh* m_capInMesh = nullptr;          // the cap written after the last whole mesh, if any
+    std::vector<std::uint32_t> m_capCandidates; // m_capInMesh's indices after the mesh's vertices
 };
 
 } // namespace
