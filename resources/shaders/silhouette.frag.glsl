@@ -1,10 +1,4 @@
 #version 410 core
-// Silhouette lines in one flat colour (no anti-aliasing, so a line drawing turns into a pixel
-// mask by comparing with the background).
-uniform vec4 uLineColour;
-
-out vec4 fragColour;
-
+// Pass 2 of method 1 writes only depth (the line depth buffer has no colour attachment).
 void main() {
-    fragColour = uLineColour;
 }

@@ -4,33 +4,24 @@
 // (N . toViewer for an orthographic camera); d >= 0 counts as front-facing so both triangles of an
 // edge classify it alike and neighbouring segments meet end to end; the endpoints lie on the two
 // edges of the lone vertex, at t = d_lone / (d_lone - d_other).
-//
-// The renderer prepends "#define LW_WIDE_LINES" for line widths above one pixel: core profiles
-// need not rasterize wide GL lines, so those segments become screen-aligned quads instead.
+// The segments go into the line depth buffer as one-pixel lines; the resolve pass
+// (silhouette_resolve.frag.glsl) decides which are visible and widens them.
 layout(triangles) in;
-#ifdef LW_WIDE_LINES
-layout(triangle_strip, max_vertices = 4) out;
-#else
 layout(line_strip, max_vertices = 2) out;
-#endif
 
 in vec3 vPosition[];
 in vec3 vNormal[];
 
 uniform mat4 uViewProjection;
 uniform vec4 uViewer;         // see surface.frag.glsl
-uniform float uDepthBias;     // NDC depth pulled toward the viewer, on top of pass 1's polygon offset
 uniform vec2 uViewportSize;   // pixels
-uniform float uLineWidth;     // pixels (wide lines only)
 
 float silhouetteDistance(int i) {
     return dot(vNormal[i], uViewer.xyz - vPosition[i] * uViewer.w);
 }
 
 vec4 project(vec3 p) {
-    vec4 clip = uViewProjection * vec4(p, 1.0);
-    clip.z -= uDepthBias * clip.w;
-    return clip;
+    return uViewProjection * vec4(p, 1.0);
 }
 
 void main() {
@@ -54,21 +45,6 @@ void main() {
     float len = length(along);
     along = len > 1e-6 ? along / len : vec2(1.0, 0.0);
     vec2 toNdc = 2.0 / uViewportSize;
-#ifdef LW_WIDE_LINES
-    // Half a width across and half a width past each end, so segments that meet end to end
-    // overlap instead of leaving notches at the joints.
-    vec2 across = vec2(-along.y, along.x) * (0.5 * uLineWidth);
-    vec2 past = along * (0.5 * uLineWidth);
-    gl_Position = a + vec4((-past - across) * toNdc * a.w, 0.0, 0.0);
-    EmitVertex();
-    gl_Position = a + vec4((-past + across) * toNdc * a.w, 0.0, 0.0);
-    EmitVertex();
-    gl_Position = b + vec4((past - across) * toNdc * b.w, 0.0, 0.0);
-    EmitVertex();
-    gl_Position = b + vec4((past + across) * toNdc * b.w, 0.0, 0.0);
-    EmitVertex();
-    EndPrimitive();
-#else
     // Contour segments are often shorter than a pixel, and the diamond-exit rule draws no pixel
     // for a line that ends inside the diamond it started in: the contour would come out dotted.
     // Half a pixel past each end makes neighbouring segments overlap, so every joint is drawn.
@@ -78,5 +54,4 @@ void main() {
     gl_Position = b + vec4(past * toNdc * b.w, 0.0, 0.0);
     EmitVertex();
     EndPrimitive();
-#endif
 }

@@ -1,8 +1,6 @@
 #version 410 core
 // Blinn-Phong shading of the iso-surface with the per-vertex gradient normals. The silhouette
-// panel draws the same pass with colour writes off, so only its depth is kept -- or, drawing the
-// mesh brick by brick (method 1's L variant), flat in the background colour (uFlat = 1), so a
-// nearer brick's surface paints over an earlier brick's hidden lines.
+// panel draws the same pass with colour writes off, so only its depth is kept.
 in vec3 vPosition;
 in vec3 vNormal;
 
@@ -13,16 +11,10 @@ uniform vec3 uLightDirection; // unit, toward the light, patient coordinates
 uniform vec3 uFrontColour;
 uniform vec3 uBackColour;     // inside of a surface cut open by the volume's border
 uniform vec4 uMaterial;       // ambient, diffuse, specular, shininess
-uniform int uFlat;            // 1: write uFlatColour unshaded
-uniform vec4 uFlatColour;
 
 out vec4 fragColour;
 
 void main() {
-    if (uFlat != 0) {
-        fragColour = uFlatColour;
-        return;
-    }
     vec3 v = normalize(uViewer.xyz - vPosition * uViewer.w);
     vec3 n = normalize(vNormal);
     vec3 base = uFrontColour;

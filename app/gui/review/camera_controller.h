@@ -24,6 +24,7 @@ public:
     explicit CameraController(QObject* parent = nullptr);
 
     void setBounds(const render::Aabb& bounds);
+    const render::Aabb& bounds() const { return m_bounds; }
     void setProjection(render::Projection projection);
     render::Projection projection() const { return m_projection; }
 

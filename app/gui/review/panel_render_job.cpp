@@ -15,7 +15,8 @@ namespace lw::gui {
 namespace {
 
 QImage renderIso(const PanelRenderJob& job) {
-    const render::SilhouetteGlOptions options = panelGlOptions(PanelKind::Iso, job.appearance);
+    const render::SilhouetteGlOptions options =
+        panelGlOptions(PanelKind::Iso, job.appearance, job.camera, job.bounds);
     if (job.isoOnCpu)
         return shadeIsoOnCpu(job.mesh.get(), job.camera, options);
     // A headless context of this thread's own (no Qt context may be current here).

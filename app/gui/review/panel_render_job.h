@@ -22,6 +22,7 @@ struct PanelRenderJob {
     std::shared_ptr<const volume::Volume> volume;
     std::shared_ptr<const render::Mesh> mesh; // the iso panel's surface
     render::Camera camera;                    // at the export size
+    render::Aabb bounds;                      // what the camera frames (the depth tolerance's box)
     ReviewSettings appearance;                // line width already scaled to the size
     double iso = 0.0;
     int brickCells = 0;

@@ -2,6 +2,7 @@
 
 #include "lw/core/error.h"
 #include "lw/render/surface_picking.h"
+#include "lw/render/visibility_tolerance.h"
 #include "review/camera_controller.h"
 #include "review/panel_render_job.h"
 #include "review/qt_image.h"
@@ -101,7 +102,9 @@ void requestCoreProfileFormat() {
     QSurfaceFormat::setDefaultFormat(format);
 }
 
-render::SilhouetteGlOptions panelGlOptions(PanelKind kind, const ReviewSettings& settings) {
+render::SilhouetteGlOptions panelGlOptions(PanelKind kind, const ReviewSettings& settings,
+                                           const render::Camera& camera,
+                                           const render::Aabb& bounds) {
     render::SilhouetteGlOptions options;
     options.panel = kind == PanelKind::Iso ? render::GlPanel::Iso : render::GlPanel::Silhouette;
     options.visibility = settings.visibility;
@@ -111,11 +114,7 @@ render::SilhouetteGlOptions panelGlOptions(PanelKind kind, const ReviewSettings&
     options.lineColour = toVec4(settings.lineColour);
     options.background = toVec4(settings.background);
     options.countSegments = kind == PanelKind::Silhouette;
-    if (kind == PanelKind::Iso && !options.linesOnIso) {
-        // No lines to win the depth test: keep the depth exact for picking.
-        options.polygonOffsetFactor = 0.0f;
-        options.polygonOffsetUnits = 0.0f;
-    }
+    options.depthTolerance = render::windowDepthTolerance(camera, bounds);
     return options;
 }
 
@@ -247,7 +246,8 @@ void ReviewPanel::uploadPendingMesh() {
 
 void ReviewPanel::drawGl(const render::Camera& camera) {
     uploadPendingMesh();
-    m_lastStats = m_gl.render(camera, panelGlOptions(m_kind, m_appearance));
+    m_lastStats =
+        m_gl.render(camera, panelGlOptions(m_kind, m_appearance, camera, m_camera.bounds()));
     // The engine draws into its own framebuffer object; copy it into the widget's.
     QOpenGLExtraFunctions* f = m_glView->context()->extraFunctions();
     f->glBindFramebuffer(GL_READ_FRAMEBUFFER, m_gl.framebuffer());
@@ -370,8 +370,9 @@ QImage ReviewPanel::renderImage(QSize size, const ReviewSettings* appearance) {
     try {
         uploadPendingMesh();
         const render::Camera camera = m_camera.camera(size.width(), size.height());
-        image = toQImage(m_gl.renderImage(
-            camera, panelGlOptions(m_kind, appearance ? *appearance : m_appearance)));
+        image = toQImage(
+            m_gl.renderImage(camera, panelGlOptions(m_kind, appearance ? *appearance : m_appearance,
+                                                    camera, m_camera.bounds())));
     } catch (const core::Error& error) {
         m_message = tr("OpenGL failed: %1").arg(error.what());
     }
@@ -408,7 +409,7 @@ std::optional<glm::dvec3> ReviewPanel::pickPatientPoint(QPoint position) {
     float depth = 1.0f;
     try {
         uploadPendingMesh();
-        m_gl.render(camera, panelGlOptions(m_kind, m_appearance));
+        m_gl.render(camera, panelGlOptions(m_kind, m_appearance, camera, m_camera.bounds()));
         depth = m_gl.readDepthAt(x, y);
     } catch (const core::Error&) {
         depth = 1.0f;

@@ -41,7 +41,9 @@ enum class PanelKind { Iso, Silhouette };
 
 // The engine's GL options for a panel under these settings (the panel and the render worker
 // draw with the same ones).
-render::SilhouetteGlOptions panelGlOptions(PanelKind kind, const ReviewSettings& settings);
+render::SilhouetteGlOptions panelGlOptions(PanelKind kind, const ReviewSettings& settings,
+                                           const render::Camera& camera,
+                                           const render::Aabb& bounds);
 
 // The OpenGL the windows get on this display: a throw-away context asked once per process.
 struct GlInfo {

@@ -326,7 +326,8 @@ void ReviewWidget::requestFrame(bool newIso) {
         request.wantIsoImage = true;
         const QSize isoSize = m_isoPanel->renderSize();
         request.isoCamera = m_camera.camera(isoSize.width(), isoSize.height());
-        request.isoOptions = panelGlOptions(PanelKind::Iso, m_settings);
+        request.isoOptions =
+            panelGlOptions(PanelKind::Iso, m_settings, request.isoCamera, m_camera.bounds());
         request.isoOnCpu = displayGlInfo().prefersCpu();
     }
     if (!request.wantMesh && !request.wantSilhouette && !request.wantIsoImage)
@@ -462,6 +463,7 @@ PanelRenderJob ReviewWidget::renderJob(QSize size) const {
     job.volume = m_source.volume;
     job.mesh = m_mesh;
     job.camera = m_camera.camera(size.width(), size.height());
+    job.bounds = m_camera.bounds();
     // Lines keep their width relative to the picture: scaled from the panel on screen.
     job.appearance = m_settings;
     const double scale = double(size.height()) / double(m_silhouettePanel->renderSize().height());

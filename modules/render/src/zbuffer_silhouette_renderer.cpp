@@ -180,15 +180,17 @@ SilhouetteFrame ZBufferSilhouetteRenderer::renderFrame(const Camera& camera,
 }
 
 float ZBufferSilhouetteRenderer::depthEpsilon(const Camera& camera, const volume::Volume& volume) {
-    // Depth-key range of the volume's box for this camera.
-    const Aabb box = volumeBounds(volume);
+    return depthKeyTolerance(camera, volumeBounds(volume));
+}
+
+float depthKeyTolerance(const Camera& camera, const Aabb& box) {
     double lo = std::numeric_limits<double>::infinity(), hi = -lo;
     for (int i = 0; i < 8; ++i) {
         const double key = 1.0 - camera.project(box.corner(i)).ndcDepth;
         lo = std::min(lo, key);
         hi = std::max(hi, key);
     }
-    return float(kRelativeDepthEpsilon * (hi - lo));
+    return float(kRelativeDepthTolerance * (hi - lo));
 }
 
 } // namespace lw::render

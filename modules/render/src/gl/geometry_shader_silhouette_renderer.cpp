@@ -7,6 +7,7 @@
 #include "lw/kernels/cpu/marching_cubes_cpu.h"
 #include "lw/render/gl_context.h"
 #include "lw/render/silhouette_gl_renderer.h"
+#include "lw/render/visibility_tolerance.h"
 #include "lw/volume/bricks.h"
 
 #include <algorithm>
@@ -250,6 +251,7 @@ SilhouetteFrame GeometryShaderSilhouetteRenderer::renderFrame(const Camera& came
     options.background = {1.0f, 1.0f, 1.0f, 1.0f};
     options.countSegments = true;
     options.timePasses = true;
+    options.depthTolerance = windowDepthTolerance(camera, volumeBounds(*s.volume));
     options.cullBackFacesInDepthPass = settings.visibility && s.surfaceClosed(settings);
     // With the CUDA back-end pass 2 sends only the triangles whose facing can change (a few
     // percent): the rest would enter the geometry shader only to emit nothing.
@@ -309,9 +311,9 @@ SilhouetteFrame GeometryShaderSilhouetteRenderer::renderBricks(const Camera& cam
     options.lineColour = {0.0f, 0.0f, 0.0f, 1.0f};
     options.background = {1.0f, 1.0f, 1.0f, 1.0f};
     options.countSegments = true;
+    options.depthTolerance = windowDepthTolerance(camera, volumeBounds(*s.volume));
     options.clear = false;
-    options.surfaceInBackground = true;
-    options.linesWriteDepth = true;
+    options.resolve = false;
     options.cullBackFacesInDepthPass = settings.visibility && s.surfaceClosed(settings);
 
     glFinish();
@@ -319,8 +321,8 @@ SilhouetteFrame GeometryShaderSilhouetteRenderer::renderBricks(const Camera& cam
     s.gl.clear(camera.width(), camera.height(), options.background);
     glFinish();
     frame.times.drawMs += msSince(start);
-    // Each piece of the surface, once in the GL buffers, is drawn over the frame so far: its
-    // surface (depth + background colour), then its silhouette lines.
+    // Each piece of the surface, once in the GL buffers, adds its surface depth and its lines'
+    // depth to the frame's two depth buffers; one resolve at the end colours the visible lines.
     const auto drawPiece = [&](std::size_t triangles) {
         if (settings.cancel && settings.cancel->isCancelled())
             throw core::Cancelled();
@@ -344,6 +346,7 @@ SilhouetteFrame GeometryShaderSilhouetteRenderer::renderBricks(const Camera& cam
     if (settings.closeAtBorder)
         s.drawCap(storedIso, frame, drawPiece);
     start = Clock::now();
+    s.gl.resolve(options);
     frame.lines = PixelMask(camera.width(), camera.height());
     s.gl.readRedMask(kBackground.r, frame.lines.pixels());
     frame.times.drawMs += msSince(start);

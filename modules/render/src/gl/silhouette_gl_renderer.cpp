@@ -17,16 +17,6 @@ namespace {
 
 const core::LogCategory kLog("lw.render");
 
-// Inserts `defines` after the #version line, which must stay first in a GLSL source.
-std::string withDefines(const char* source, const std::string& defines) {
-    std::string text(source);
-    if (defines.empty())
-        return text;
-    const std::size_t lineEnd = text.find('\n');
-    text.insert(lineEnd == std::string::npos ? text.size() : lineEnd + 1, defines);
-    return text;
-}
-
 GLuint compileShader(GLenum type, const std::string& source, const char* name) {
     const GLuint shader = glCreateShader(type);
     if (shader == 0)
@@ -170,15 +160,14 @@ void SilhouetteGlRenderer::initialize() {
              {GL_GEOMETRY_SHADER, gl::shaders::silhouette_geom, "silhouette.geom.glsl"},
              {GL_FRAGMENT_SHADER, gl::shaders::silhouette_frag, "silhouette.frag.glsl"}},
             "silhouette lines");
-        m_wideLineProgram = linkProgram(
-            {{GL_VERTEX_SHADER, gl::shaders::silhouette_vert, "silhouette.vert.glsl"},
-             {GL_GEOMETRY_SHADER,
-              withDefines(gl::shaders::silhouette_geom, "#define LW_WIDE_LINES 1\n"),
-              "silhouette.geom.glsl (LW_WIDE_LINES)"},
-             {GL_FRAGMENT_SHADER, gl::shaders::silhouette_frag, "silhouette.frag.glsl"}},
-            "silhouette wide lines");
+        m_resolveProgram = linkProgram({{GL_VERTEX_SHADER, gl::shaders::silhouette_resolve_vert,
+                                         "silhouette_resolve.vert.glsl"},
+                                        {GL_FRAGMENT_SHADER, gl::shaders::silhouette_resolve_frag,
+                                         "silhouette_resolve.frag.glsl"}},
+                                       "silhouette resolve");
 
         glGenVertexArrays(1, &m_vertexArray);
+        glGenVertexArrays(1, &m_emptyVertexArray);
         glGenBuffers(1, &m_positionBuffer);
         glGenBuffers(1, &m_normalBuffer);
         glGenBuffers(1, &m_indexBuffer);
@@ -205,10 +194,12 @@ void SilhouetteGlRenderer::initialize() {
 void SilhouetteGlRenderer::release() {
     deleteProgram(m_surfaceProgram);
     deleteProgram(m_lineProgram);
-    deleteProgram(m_wideLineProgram);
-    if (m_vertexArray)
-        glDeleteVertexArrays(1, &m_vertexArray);
-    m_vertexArray = 0;
+    deleteProgram(m_resolveProgram);
+    for (GLuint* array : {&m_vertexArray, &m_emptyVertexArray}) {
+        if (*array)
+            glDeleteVertexArrays(1, array);
+        *array = 0;
+    }
     deleteBuffer(m_positionBuffer);
     deleteBuffer(m_normalBuffer);
     deleteBuffer(m_indexBuffer);
@@ -220,15 +211,16 @@ void SilhouetteGlRenderer::release() {
     if (m_timerQueries[0])
         glDeleteQueries(2, m_timerQueries);
     m_timerQueries[0] = m_timerQueries[1] = 0;
-    if (m_framebuffer)
-        glDeleteFramebuffers(1, &m_framebuffer);
-    m_framebuffer = 0;
-    if (m_colourTexture)
-        glDeleteTextures(1, &m_colourTexture);
-    m_colourTexture = 0;
-    if (m_depthBuffer)
-        glDeleteRenderbuffers(1, &m_depthBuffer);
-    m_depthBuffer = 0;
+    for (GLuint* framebuffer : {&m_framebuffer, &m_lineFramebuffer, &m_resolveFramebuffer}) {
+        if (*framebuffer)
+            glDeleteFramebuffers(1, framebuffer);
+        *framebuffer = 0;
+    }
+    for (GLuint* texture : {&m_colourTexture, &m_surfaceDepthTexture, &m_lineDepthTexture}) {
+        if (*texture)
+            glDeleteTextures(1, texture);
+        *texture = 0;
+    }
     m_vertexCapacity = m_indexCapacity = m_indexCount = 0;
     m_width = m_height = 0;
 }
@@ -391,15 +383,59 @@ void SilhouetteGlRenderer::clear(int width, int height, glm::vec4 background) {
     initialize();
     const FramebufferBindingGuard bindingGuard;
     ensureFramebuffer(width, height);
-    glBindFramebuffer(GL_FRAMEBUFFER, m_framebuffer);
-    glViewport(0, 0, width, height);
+    clearBuffers(background);
+    gl::checkGlError("SilhouetteGlRenderer::clear");
+}
+
+void SilhouetteGlRenderer::clearBuffers(glm::vec4 background) {
     glDisable(GL_SCISSOR_TEST);
     glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
     glDepthMask(GL_TRUE);
+    glBindFramebuffer(GL_FRAMEBUFFER, m_framebuffer);
     glClearColor(background.r, background.g, background.b, background.a);
     glClearDepth(1.0);
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-    gl::checkGlError("SilhouetteGlRenderer::clear");
+    glBindFramebuffer(GL_FRAMEBUFFER, m_lineFramebuffer);
+    glClear(GL_DEPTH_BUFFER_BIT);
+}
+
+namespace {
+
+// A 2D texture of `width` x `height` sampled texel for texel (no filtering, no mipmaps).
+void allocateTexture(GLuint texture, GLint internalFormat, GLenum format, GLenum type, int width,
+                     int height) {
+    glBindTexture(GL_TEXTURE_2D, texture);
+    glTexImage2D(GL_TEXTURE_2D, 0, internalFormat, width, height, 0, format, type, nullptr);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, 0);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    glBindTexture(GL_TEXTURE_2D, 0);
+}
+
+void checkFramebufferComplete(const char* which) {
+    const GLenum status = glCheckFramebufferStatus(GL_FRAMEBUFFER);
+    if (status == GL_FRAMEBUFFER_COMPLETE)
+        return;
+    char hex[16];
+    std::snprintf(hex, sizeof hex, "%04X", status);
+    throw core::Error("GL render target",
+                      std::string(which) + " framebuffer incomplete (status 0x" + hex + ")");
+}
+
+} // namespace
+
+void SilhouetteGlRenderer::ensureFramebufferObjects() {
+    if (!m_framebuffer)
+        glGenFramebuffers(1, &m_framebuffer);
+    if (!m_lineFramebuffer)
+        glGenFramebuffers(1, &m_lineFramebuffer);
+    if (!m_resolveFramebuffer)
+        glGenFramebuffers(1, &m_resolveFramebuffer);
+    for (GLuint* texture : {&m_colourTexture, &m_surfaceDepthTexture, &m_lineDepthTexture})
+        if (!*texture)
+            glGenTextures(1, texture);
 }
 
 void SilhouetteGlRenderer::ensureFramebuffer(int width, int height) {
@@ -409,38 +445,33 @@ void SilhouetteGlRenderer::ensureFramebuffer(int width, int height) {
     if (m_framebuffer && width == m_width && height == m_height)
         return;
     GLint maxSize = 0;
-    glGetIntegerv(GL_MAX_RENDERBUFFER_SIZE, &maxSize);
+    glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxSize);
     if (width > maxSize || height > maxSize)
         throw core::Error("GL render target", std::to_string(width) + "x" + std::to_string(height) +
                                                   " exceeds the driver's limit of " +
                                                   std::to_string(maxSize));
-    if (!m_framebuffer)
-        glGenFramebuffers(1, &m_framebuffer);
-    if (!m_colourTexture)
-        glGenTextures(1, &m_colourTexture);
-    if (!m_depthBuffer)
-        glGenRenderbuffers(1, &m_depthBuffer);
-    glBindTexture(GL_TEXTURE_2D, m_colourTexture);
-    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, width, height, 0, GL_RGBA, GL_UNSIGNED_BYTE, nullptr);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-    glBindTexture(GL_TEXTURE_2D, 0);
-    // 32-bit float depth: CT surfaces span hundreds of mm and the lines' depth offset is small.
-    glBindRenderbuffer(GL_RENDERBUFFER, m_depthBuffer);
-    glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT32F, width, height);
-    glBindRenderbuffer(GL_RENDERBUFFER, 0);
+    ensureFramebufferObjects();
+    allocateTexture(m_colourTexture, GL_RGBA8, GL_RGBA, GL_UNSIGNED_BYTE, width, height);
+    // 32-bit float depth: CT surfaces span hundreds of mm, the tolerance is 0.1 % of that.
+    for (GLuint texture : {m_surfaceDepthTexture, m_lineDepthTexture})
+        allocateTexture(texture, GL_DEPTH_COMPONENT32F, GL_DEPTH_COMPONENT, GL_FLOAT, width,
+                        height);
     glBindFramebuffer(GL_FRAMEBUFFER, m_framebuffer);
     glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, m_colourTexture, 0);
-    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, m_depthBuffer);
-    const GLenum status = glCheckFramebufferStatus(GL_FRAMEBUFFER);
-    if (status != GL_FRAMEBUFFER_COMPLETE)
-        throw core::Error(
-            "GL render target", "framebuffer incomplete (status 0x" + [&] {
-                char hex[16];
-                std::snprintf(hex, sizeof hex, "%04X", status);
-                return std::string(hex);
-            }() + ")");
-    gl::checkGlError("SilhouetteGlRenderer: framebuffer");
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D,
+                           m_surfaceDepthTexture, 0);
+    checkFramebufferComplete("surface");
+    glBindFramebuffer(GL_FRAMEBUFFER, m_lineFramebuffer);
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, m_lineDepthTexture,
+                           0);
+    glDrawBuffer(GL_NONE);
+    glReadBuffer(GL_NONE);
+    checkFramebufferComplete("line depth");
+    // Pass 3 reads both depth textures, so none of them may be attached where it draws.
+    glBindFramebuffer(GL_FRAMEBUFFER, m_resolveFramebuffer);
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, m_colourTexture, 0);
+    checkFramebufferComplete("resolve");
+    gl::checkGlError("SilhouetteGlRenderer: framebuffers");
     m_width = width;
     m_height = height;
 }
@@ -464,129 +495,144 @@ SilhouetteGlStats SilhouetteGlRenderer::render(const glm::mat4& viewProjection, 
     initialize();
     const FramebufferBindingGuard bindingGuard;
     ensureFramebuffer(width, height);
-
-    glBindFramebuffer(GL_FRAMEBUFFER, m_framebuffer);
     glViewport(0, 0, width, height);
     glDisable(GL_BLEND);
     glDisable(GL_CULL_FACE);
-    glDisable(GL_SCISSOR_TEST);
-    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-    glDepthMask(GL_TRUE);
-    if (options.clear) {
-        glClearColor(options.background.r, options.background.g, options.background.b,
-                     options.background.a);
-        glClearDepth(1.0);
-        glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-    }
+    if (options.clear)
+        clearBuffers(options.background);
 
     SilhouetteGlStats stats;
     stats.triangles = triangleCount();
     const bool iso = options.panel == GlPanel::Iso;
     const bool drawLines = !iso || options.linesOnIso;
-    const GLsizei count = GLsizei(m_indexCount);
-    glBindVertexArray(m_vertexArray);
-
-    bool timedSurface = false, timedLines = false, countedSegments = false;
-    unsigned segmentsPerPrimitive = 1;
-    // Pass 1: the surface. The silhouette panel needs it only as the depth to test against.
-    if (count > 0 && (iso || options.visibility)) {
-        glUseProgram(m_surfaceProgram);
-        glUniformMatrix4fv(uniform(m_surfaceProgram, "uViewProjection"), 1, GL_FALSE,
-                           glm::value_ptr(viewProjection));
-        glUniform4fv(uniform(m_surfaceProgram, "uViewer"), 1, glm::value_ptr(viewer));
-        glUniform3fv(uniform(m_surfaceProgram, "uLightDirection"), 1,
-                     glm::value_ptr(lightDirection));
-        glUniform3fv(uniform(m_surfaceProgram, "uFrontColour"), 1,
-                     glm::value_ptr(options.frontColour));
-        glUniform3fv(uniform(m_surfaceProgram, "uBackColour"), 1,
-                     glm::value_ptr(options.backColour));
-        glUniform4fv(uniform(m_surfaceProgram, "uMaterial"), 1, glm::value_ptr(options.material));
-        const bool flat = !iso && options.surfaceInBackground;
-        glUniform1i(uniform(m_surfaceProgram, "uFlat"), flat ? 1 : 0);
-        glUniform4fv(uniform(m_surfaceProgram, "uFlatColour"), 1,
-                     glm::value_ptr(options.background));
-        glEnable(GL_DEPTH_TEST);
-        glDepthFunc(GL_LESS);
-        glEnable(GL_POLYGON_OFFSET_FILL);
-        glPolygonOffset(options.polygonOffsetFactor, options.polygonOffsetUnits);
-        if (!iso && !flat)
-            glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
-        if (!iso && options.cullBackFacesInDepthPass) {
-            glEnable(GL_CULL_FACE);
-            glFrontFace(GL_CCW);
-            glCullFace(GL_BACK);
-        }
+    const bool drawSurface = m_indexCount > 0 && (iso || options.visibility);
+    if (drawSurface) {
         if (options.timePasses)
             glBeginQuery(GL_TIME_ELAPSED, m_timerQueries[0]);
-        glDrawElements(GL_TRIANGLES, count, GL_UNSIGNED_INT, nullptr);
+        drawSurfacePass(viewProjection, viewer, lightDirection, options);
         if (options.timePasses)
             glEndQuery(GL_TIME_ELAPSED);
-        timedSurface = options.timePasses;
-        glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-        glDisable(GL_CULL_FACE);
-        glDisable(GL_POLYGON_OFFSET_FILL);
     }
-
-    // Pass 2: the silhouette segments from the geometry shader.
-    if (count > 0 && drawLines) {
-        const bool wide = options.lineWidth > 1.0f;
-        const GLuint program = wide ? m_wideLineProgram : m_lineProgram;
-        glUseProgram(program);
-        glUniformMatrix4fv(uniform(program, "uViewProjection"), 1, GL_FALSE,
-                           glm::value_ptr(viewProjection));
-        glUniform4fv(uniform(program, "uViewer"), 1, glm::value_ptr(viewer));
-        glUniform1f(uniform(program, "uDepthBias"), options.depthBias);
-        glUniform2f(uniform(program, "uViewportSize"), float(width), float(height));
-        glUniform1f(uniform(program, "uLineWidth"), options.lineWidth);
-        glUniform4fv(uniform(program, "uLineColour"), 1, glm::value_ptr(options.lineColour));
-        if (options.visibility) {
-            glEnable(GL_DEPTH_TEST);
-            glDepthFunc(GL_LEQUAL);
-        } else {
-            glDisable(GL_DEPTH_TEST);
-        }
-        // Lines do not change the depth buffer: a contour must not hide another one behind it
-        // that the surface itself leaves visible.
-        // (Drawing piece by piece, the line depth is kept: see SilhouetteGlOptions.)
-        glDepthMask(!iso && options.visibility && options.linesWriteDepth ? GL_TRUE : GL_FALSE);
-        if (options.countSegments)
-            glBeginQuery(GL_PRIMITIVES_GENERATED, m_segmentQuery);
+    if (drawLines) {
         if (options.timePasses)
             glBeginQuery(GL_TIME_ELAPSED, m_timerQueries[1]);
-        if (options.useLineCandidates) {
-            glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, m_candidateBuffer);
-            glDrawElements(GL_TRIANGLES,
-                           GLsizei(std::min(options.lineCandidateIndices, m_candidateCapacity)),
-                           GL_UNSIGNED_INT, nullptr);
-            glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, m_indexBuffer);
-        } else {
-            glDrawElements(GL_TRIANGLES, count, GL_UNSIGNED_INT, nullptr);
-        }
-        if (options.timePasses)
-            glEndQuery(GL_TIME_ELAPSED);
+        if (options.countSegments)
+            glBeginQuery(GL_PRIMITIVES_GENERATED, m_segmentQuery);
+        if (m_indexCount > 0)
+            drawLinePass(viewProjection, viewer, options);
         if (options.countSegments)
             glEndQuery(GL_PRIMITIVES_GENERATED);
-        timedLines = options.timePasses;
-        countedSegments = options.countSegments;
-        segmentsPerPrimitive = wide ? 2u : 1u; // a wide segment is a strip of two triangles
-        glDepthMask(GL_TRUE);
+        if (options.resolve)
+            drawResolvePass(options);
+        if (options.timePasses)
+            glEndQuery(GL_TIME_ELAPSED);
     }
-    // The queries are read once both passes are queued: reading one right after its pass would
+    // The queries are read once every pass is queued: reading one right after its pass would
     // stall the CPU until the GPU had drained, with the next pass not yet sent.
-    if (timedSurface)
+    if (drawSurface && options.timePasses)
         stats.surfacePassMs = queryResultMs(m_timerQueries[0]);
-    if (timedLines)
+    if (drawLines && options.timePasses)
         stats.linePassMs = queryResultMs(m_timerQueries[1]);
-    if (countedSegments) {
+    if (drawLines && options.countSegments) {
         GLuint primitives = 0;
         glGetQueryObjectuiv(m_segmentQuery, GL_QUERY_RESULT, &primitives);
-        stats.segments = primitives / segmentsPerPrimitive;
+        stats.segments = primitives;
     }
-    glDisable(GL_DEPTH_TEST);
     glBindVertexArray(0);
     glUseProgram(0);
     gl::checkGlError("SilhouetteGlRenderer::render");
     return stats;
+}
+
+// Pass 1: the surface. The silhouette panel needs it only as the depth to test against.
+void SilhouetteGlRenderer::drawSurfacePass(const glm::mat4& viewProjection, glm::vec4 viewer,
+                                           glm::vec3 lightDirection,
+                                           const SilhouetteGlOptions& options) {
+    const bool iso = options.panel == GlPanel::Iso;
+    glBindFramebuffer(GL_FRAMEBUFFER, m_framebuffer);
+    glUseProgram(m_surfaceProgram);
+    glUniformMatrix4fv(uniform(m_surfaceProgram, "uViewProjection"), 1, GL_FALSE,
+                       glm::value_ptr(viewProjection));
+    glUniform4fv(uniform(m_surfaceProgram, "uViewer"), 1, glm::value_ptr(viewer));
+    glUniform3fv(uniform(m_surfaceProgram, "uLightDirection"), 1, glm::value_ptr(lightDirection));
+    glUniform3fv(uniform(m_surfaceProgram, "uFrontColour"), 1, glm::value_ptr(options.frontColour));
+    glUniform3fv(uniform(m_surfaceProgram, "uBackColour"), 1, glm::value_ptr(options.backColour));
+    glUniform4fv(uniform(m_surfaceProgram, "uMaterial"), 1, glm::value_ptr(options.material));
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    glDepthMask(GL_TRUE);
+    glColorMask(iso, iso, iso, iso);
+    if (!iso && options.cullBackFacesInDepthPass) {
+        glEnable(GL_CULL_FACE);
+        glFrontFace(GL_CCW);
+        glCullFace(GL_BACK);
+    }
+    glBindVertexArray(m_vertexArray);
+    glDrawElements(GL_TRIANGLES, GLsizei(m_indexCount), GL_UNSIGNED_INT, nullptr);
+    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    glDisable(GL_CULL_FACE);
+    glDisable(GL_DEPTH_TEST);
+}
+
+// Pass 2: the silhouette segments from the geometry shader, the nearest kept per pixel. Its
+// depth test is against the other lines only: visibility is pass 3's.
+void SilhouetteGlRenderer::drawLinePass(const glm::mat4& viewProjection, glm::vec4 viewer,
+                                        const SilhouetteGlOptions& options) {
+    glBindFramebuffer(GL_FRAMEBUFFER, m_lineFramebuffer);
+    glUseProgram(m_lineProgram);
+    glUniformMatrix4fv(uniform(m_lineProgram, "uViewProjection"), 1, GL_FALSE,
+                       glm::value_ptr(viewProjection));
+    glUniform4fv(uniform(m_lineProgram, "uViewer"), 1, glm::value_ptr(viewer));
+    glUniform2f(uniform(m_lineProgram, "uViewportSize"), float(m_width), float(m_height));
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    glDepthMask(GL_TRUE);
+    glBindVertexArray(m_vertexArray);
+    if (options.useLineCandidates) {
+        glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, m_candidateBuffer);
+        glDrawElements(GL_TRIANGLES,
+                       GLsizei(std::min(options.lineCandidateIndices, m_candidateCapacity)),
+                       GL_UNSIGNED_INT, nullptr);
+        glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, m_indexBuffer);
+    } else {
+        glDrawElements(GL_TRIANGLES, GLsizei(m_indexCount), GL_UNSIGNED_INT, nullptr);
+    }
+    glDisable(GL_DEPTH_TEST);
+}
+
+void SilhouetteGlRenderer::resolve(const SilhouetteGlOptions& options) {
+    if (!m_framebuffer)
+        throw core::Error("silhouette resolve", "nothing has been drawn yet");
+    const FramebufferBindingGuard bindingGuard;
+    glViewport(0, 0, m_width, m_height);
+    drawResolvePass(options);
+    glBindVertexArray(0);
+    glUseProgram(0);
+    gl::checkGlError("SilhouetteGlRenderer::resolve");
+}
+
+// Pass 3: the visible line pixels, widened, in the line colour over what pass 1 left.
+void SilhouetteGlRenderer::drawResolvePass(const SilhouetteGlOptions& options) {
+    glBindFramebuffer(GL_FRAMEBUFFER, m_resolveFramebuffer);
+    glDisable(GL_DEPTH_TEST);
+    glDisable(GL_BLEND);
+    glUseProgram(m_resolveProgram);
+    glActiveTexture(GL_TEXTURE0);
+    glBindTexture(GL_TEXTURE_2D, m_surfaceDepthTexture);
+    glActiveTexture(GL_TEXTURE1);
+    glBindTexture(GL_TEXTURE_2D, m_lineDepthTexture);
+    glUniform1i(uniform(m_resolveProgram, "uSurfaceDepth"), 0);
+    glUniform1i(uniform(m_resolveProgram, "uLineDepth"), 1);
+    glUniform1f(uniform(m_resolveProgram, "uTolerance"), options.depthTolerance);
+    glUniform1i(uniform(m_resolveProgram, "uVisibility"), options.visibility ? 1 : 0);
+    glUniform1i(uniform(m_resolveProgram, "uRadius"),
+                int((double(options.lineWidth) - 1.0) / 2.0 + 0.5));
+    glUniform4fv(uniform(m_resolveProgram, "uLineColour"), 1, glm::value_ptr(options.lineColour));
+    glBindVertexArray(m_emptyVertexArray);
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    glBindTexture(GL_TEXTURE_2D, 0);
+    glActiveTexture(GL_TEXTURE0);
+    glBindTexture(GL_TEXTURE_2D, 0);
 }
 
 namespace {

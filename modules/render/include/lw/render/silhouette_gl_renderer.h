@@ -1,10 +1,25 @@
 #pragma once
 
-// Method 1's OpenGL pipeline (Morar et al. 2013): pass 1 draws the iso-surface (shaded for the
-// iso panel, depth only for the silhouette panel), pass 2 sends the same triangles through a
-// geometry shader that emits each triangle's silhouette segment (Burns et al. 2005), depth-tested
-// against pass 1. It needs only a current OpenGL 4.1+ core context (GlContext, or the GUI's
-// QOpenGLWidget) and draws into its own framebuffer object.
+// Method 1's OpenGL pipeline (Morar et al. 2013). Three passes into its own framebuffer objects:
+//   pass 1  the iso-surface: shaded into the colour texture for the iso panel, depth only for
+//           the silhouette panel, into the surface depth texture
+//   pass 2  the same triangles through a geometry shader that emits each triangle's silhouette
+//           segment (Burns et al. 2005) as a one-pixel GL line into the line depth texture, the
+//           nearest line kept per pixel (GL_LESS)
+//   pass 3  (resolve) a full-screen pass colours the line pixels that are visible: a line pixel
+//           is visible when its depth is not behind the farthest surface depth of its 3x3
+//           neighbourhood by more than `depthTolerance` -- method 3's rule
+//           (lw/kernels/zbuffer_rules.h resolvePixel, lw/render/visibility_tolerance.h), and
+//           lines wider than a pixel are that visible mask dilated, as the panels widen the
+//           other methods' masks.
+// The paper tests the lines with the GL depth test against a polygon-offset surface. That rule
+// breaks the one-pixel lines wherever the contour grazes the surface (the offset surface wins
+// there), and stroke pruning then drops the pieces: on real CT it lost 3-7 % of the outline and
+// left method 1 agreeing with method 3 on 0.97 of the line pixels. The neighbourhood rule keeps
+// what the depth test kept and gives methods 1 and 3 one definition of "visible".
+// Both depth buffers keep per-pixel minima, so drawing a mesh in pieces (L) and resolving once
+// gives exactly the image of the whole mesh, in any order.
+// It needs only a current OpenGL 4.1+ core context (GlContext, or the GUI's QOpenGLWidget).
 //
 // Mode a (mesh uploaded once, only the view changes) and mode b (re-upload every frame) are the
 // caller's choice: uploadMesh() and render() are separate, and buffers are reused when they fit.
@@ -32,46 +47,37 @@ enum class GlPanel {
 
 struct SilhouetteGlOptions {
     GlPanel panel = GlPanel::Silhouette;
-    // Depth-test the lines against pass 1 (hidden contours disappear); off draws every segment
-    // and skips pass 1 on the silhouette panel (the paper's "visibility off" rows).
+    // Test the lines' visibility against pass 1 (hidden contours disappear); off draws every
+    // segment and skips pass 1 on the silhouette panel (the paper's "visibility off" rows).
     bool visibility = true;
     bool linesOnIso = false; // also draw the silhouette on the iso panel
-    float lineWidth = 1.0f;  // pixels; above 1 the segments are drawn as screen-space quads
+    // Pixels; the visible one-pixel lines are widened by a square dilation of radius
+    // round((lineWidth - 1) / 2), as the panels widen methods 2 and 3.
+    float lineWidth = 1.0f;
     glm::vec4 lineColour{0.0f, 0.0f, 0.0f, 1.0f};
     glm::vec4 background{1.0f, 1.0f, 1.0f, 1.0f};
     glm::vec3 frontColour{0.93f, 0.89f, 0.80f};     // bone
     glm::vec3 backColour{0.55f, 0.35f, 0.35f};      // inside of a surface cut by the volume border
     glm::vec4 material{0.15f, 0.80f, 0.25f, 32.0f}; // ambient, diffuse, specular, shininess
-    // Pass 1 is pushed back by glPolygonOffset(factor, units) so the lines, which lie exactly on
-    // the surface, win the depth test where they are visible; depthBias (NDC) pulls the lines
-    // forward as well (glPolygonOffset does not apply to lines).
-    float polygonOffsetFactor = 2.0f;
-    float polygonOffsetUnits = 4.0f;
-    float depthBias = 0.0f;
+    // The resolve pass's tolerance in window depth ([0, 1]): windowDepthTolerance() of the
+    // camera and the volume's box (lw/render/visibility_tolerance.h); 0 = exact comparison.
+    float depthTolerance = 0.0f;
     // The surface is closed and the camera outside it: on the silhouette panel pass 1 draws only
     // front faces (counter-clockwise, as marching cubes winds them seen from outside), which
     // always hold the nearest depth there; back faces would only cost fixed-function time.
     bool cullBackFacesInDepthPass = false;
     bool countSegments = false; // query how many segments the geometry shader emitted
-    bool timePasses = false;    // GPU time of pass 1 and pass 2 (GL_TIME_ELAPSED queries)
+    bool timePasses = false;    // GPU time of pass 1 and of passes 2 + 3 (GL_TIME_ELAPSED queries)
     // Pass 2 over a subset of the triangles: the candidate buffer (reserveLineCandidates) holding
     // `lineCandidateIndices` indices, three a triangle, filled by whoever knows which triangles
     // can hold a silhouette (the CUDA back-end's facing test). Off: pass 2 sends every triangle.
     bool useLineCandidates = false;
     std::size_t lineCandidateIndices = 0;
-    // Drawing a mesh in pieces (method 1's L variant: one brick uploaded at a time). With
-    // clear = false render() draws over the last frame instead of clearing it (the caller starts
-    // the frame with clear(); the size must stay the same). On the silhouette panel,
-    // surfaceInBackground makes pass 1 write the background colour as well as depth, and
-    // linesWriteDepth makes pass 2 write its depth: a later piece's nearer surface then paints
-    // over an earlier piece's hidden line, an earlier nearer surface or line rejects a later
-    // piece's fragments, and the pieces give exactly the image of the whole mesh in one draw
-    // (a pixel ends black iff its nearest line fragment is <= its nearest offset surface
-    // fragment, whatever the order). Only for a uniform line colour (a nearer line hides a
-    // farther one at the same pixel).
+    // Drawing a mesh in pieces (method 1's L variant: one brick uploaded at a time): the caller
+    // starts the frame with clear(), draws each piece with clear = false and resolve = false
+    // (passes 1 and 2 only), and ends it with resolve() (pass 3). The size must stay the same.
     bool clear = true;
-    bool surfaceInBackground = false;
-    bool linesWriteDepth = false;
+    bool resolve = true;
 };
 
 struct SilhouetteGlStats {
@@ -133,9 +139,12 @@ public:
     // Frees the mesh buffers' storage (the buffers stay; the next upload allocates what it needs),
     // e.g. before drawing piece by piece after a whole mesh was uploaded.
     void clearMesh();
-    // Starts a frame of `width` x `height` (the framebuffer object recreated only when the size
-    // changes): colour = background, depth = 1. For render() with options.clear = false.
+    // Starts a frame of `width` x `height` (the framebuffer objects recreated only when the size
+    // changes): colour = background, both depths = 1. For render() with options.clear = false.
     void clear(int width, int height, glm::vec4 background);
+    // Pass 3 alone, over what the passes 1 and 2 of the frame so far left (see
+    // SilhouetteGlOptions::resolve). Uses visibility, lineWidth, lineColour and depthTolerance.
+    void resolve(const SilhouetteGlOptions& options);
 
     // Renders the uploaded mesh with the camera's matrices into the framebuffer object, sized to
     // the camera's viewport (recreated only when the size changes).
@@ -148,7 +157,7 @@ public:
 
     // The last frame as RGBA8, top row first.
     core::ImageRgba8 readImage() const;
-    // The last frame's depth buffer in [0, 1] (1 = nothing drawn), top row first: picking a
+    // The last frame's surface depth buffer in [0, 1] (1 = nothing drawn), top row first: picking a
     // pixel's surface point with Camera::unproject (depth * 2 - 1 is its NDC depth).
     std::vector<float> readDepth() const;
     // One pixel of it (x right, y down from the top row); 1 outside the frame. Picking under the
@@ -166,11 +175,19 @@ public:
 
 private:
     void ensureFramebuffer(int width, int height);
+    void ensureFramebufferObjects();
+    void clearBuffers(glm::vec4 background);
+    void drawSurfacePass(const glm::mat4& viewProjection, glm::vec4 viewer,
+                         glm::vec3 lightDirection, const SilhouetteGlOptions& options);
+    void drawLinePass(const glm::mat4& viewProjection, glm::vec4 viewer,
+                      const SilhouetteGlOptions& options);
+    void drawResolvePass(const SilhouetteGlOptions& options);
 
     unsigned m_surfaceProgram = 0;
-    unsigned m_lineProgram = 0;     // geometry shader emitting GL lines
-    unsigned m_wideLineProgram = 0; // geometry shader emitting quads
+    unsigned m_lineProgram = 0;    // geometry shader emitting GL lines
+    unsigned m_resolveProgram = 0; // full-screen visibility test
     unsigned m_vertexArray = 0;
+    unsigned m_emptyVertexArray = 0; // the resolve's full-screen triangle has no attributes
     unsigned m_positionBuffer = 0;
     unsigned m_normalBuffer = 0;
     unsigned m_indexBuffer = 0;
@@ -183,9 +200,12 @@ private:
     unsigned m_candidateBuffer = 0;
     std::size_t m_candidateCapacity = 0; // indices
 
-    unsigned m_framebuffer = 0;
+    unsigned m_framebuffer = 0;        // colour + surface depth (passes 1 and the read-backs)
+    unsigned m_lineFramebuffer = 0;    // line depth (pass 2)
+    unsigned m_resolveFramebuffer = 0; // colour only (pass 3 samples both depth textures)
     unsigned m_colourTexture = 0;
-    unsigned m_depthBuffer = 0;
+    unsigned m_surfaceDepthTexture = 0;
+    unsigned m_lineDepthTexture = 0;
     int m_width = 0;
     int m_height = 0;
 };

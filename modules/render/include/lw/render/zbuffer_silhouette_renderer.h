@@ -21,6 +21,7 @@
 #include "lw/render/iso_surface.h"
 #include "lw/render/renderer_factory.h"
 #include "lw/render/silhouette_renderer.h"
+#include "lw/render/visibility_tolerance.h"
 
 #include <memory>
 
@@ -48,12 +49,9 @@ public:
     const Mesh& mesh() const;
     const Mesh* surfaceMesh() const override { return &mesh(); }
 
-    // Depth tolerance of the colour pass as a share of the depth-key range of the volume's box
-    // for the current camera: 0.2 %, i.e. about one voxel of a 512-voxel-deep volume. It only
-    // has to absorb float rounding between the two buffers and the sampling of the surface
-    // near a contour; the steep depth at the contour itself is handled by the 3x3 neighbourhood.
-    static constexpr double kRelativeDepthEpsilon = 0.002;
-    // That tolerance in depth keys for `camera` (the CPU and CUDA back-ends both use it).
+    // Depth tolerance of the colour pass: lw/render/visibility_tolerance.h (method 1's resolve
+    // uses the same), in depth keys for `camera` and the volume's box (the CPU and CUDA
+    // back-ends both use it).
     static float depthEpsilon(const Camera& camera, const volume::Volume& volume);
 
 private:

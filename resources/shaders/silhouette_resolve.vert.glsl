@@ -1,0 +1,6 @@
+#version 410 core
+// Pass 3 of method 1: one triangle covering the viewport, from the vertex index alone.
+void main() {
+    vec2 corner = vec2(float((gl_VertexID & 1) << 2), float((gl_VertexID & 2) << 1)) - 1.0;
+    gl_Position = vec4(corner, 0.0, 1.0);
+}
