@@ -6,13 +6,12 @@
 #include "lw/core/progress.h"
 #include "test_support.h"
 
-#include <gtest/gtest.h>
-#include <zlib.h>
-
+#include <cstring>
 #include <filesystem>
 #include <fstream>
-#include <cstring>
+#include <gtest/gtest.h>
 #include <thread>
+#include <zlib.h>
 
 using namespace lw::core;
 
@@ -46,12 +45,14 @@ TEST(Progress, ReportsFractionsAndCancels) {
     auto token = std::make_shared<CancelToken>();
     double last = -1.0;
     int calls = 0;
-    Progress progress([&](double f, const std::string& message) {
-        EXPECT_GE(f, last);
-        EXPECT_EQ(message, "decoding");
-        last = f;
-        ++calls;
-    }, token);
+    Progress progress(
+        [&](double f, const std::string& message) {
+            EXPECT_GE(f, last);
+            EXPECT_EQ(message, "decoding");
+            last = f;
+            ++calls;
+        },
+        token);
     progress.setTotal(4, "decoding");
     for (int i = 0; i < 4; ++i)
         progress.step();
@@ -67,8 +68,14 @@ TEST(Progress, StepIsThreadSafe) {
     std::atomic<int> calls{0};
     Progress progress([&](double, const std::string&) { ++calls; });
     progress.setTotal(20000);
-    std::thread a([&] { for (int i = 0; i < 10000; ++i) progress.step(); });
-    std::thread b([&] { for (int i = 0; i < 10000; ++i) progress.step(); });
+    std::thread a([&] {
+        for (int i = 0; i < 10000; ++i)
+            progress.step();
+    });
+    std::thread b([&] {
+        for (int i = 0; i < 10000; ++i)
+            progress.step();
+    });
     a.join();
     b.join();
     // Throttled to per-mille changes: at most 1001 callbacks, and the last one reached 100%.
@@ -115,6 +122,33 @@ TEST(FileUtil, AtomicWriteReplacesAndLeavesNoTemporary) {
     EXPECT_THROW(readFileBytes(dir / "missing.bin"), Error);
 }
 
+// A write killed after creating its temporary leaves it behind; the next write of the same file
+// removes it once it is older than kStaleTemporaryAge, and nothing else: not a fresh one (it may
+// still be written), not another file's, not a name that only looks similar.
+TEST(FileUtil, AtomicWriteRemovesStaleTemporariesOfItsFileOnly) {
+    lw::test::TempDir dir;
+    const auto path = dir / "review.png";
+    const auto make = [&](const std::string& name, bool stale) {
+        const auto file = dir / name;
+        std::ofstream(file) << "partial";
+        if (stale)
+            std::filesystem::last_write_time(file, std::filesystem::file_time_type::clock::now() -
+                                                       kStaleTemporaryAge -
+                                                       std::chrono::minutes(1));
+        return file;
+    };
+    const auto killed = make(".review.png.tmp123456", true);
+    const auto fresh = make(".review.png.tmp777", false);
+    const auto otherFile = make(".report.pdf.tmp42", true);
+    const auto lookalike = make(".review.png.tmp12x", true);
+    const auto userFile = make("review.png.tmp99", true);
+    writeFileAtomically(path, "image", 5);
+    EXPECT_EQ(readFileText(path), "image");
+    EXPECT_FALSE(std::filesystem::exists(killed));
+    for (const auto& kept : {fresh, otherFile, lookalike, userFile})
+        EXPECT_TRUE(std::filesystem::exists(kept)) << kept;
+}
+
 // Exports never replace a file unless asked: the existing file keeps its bytes and no temporary
 // file stays behind; a missing folder is named before anything is written.
 TEST(FileUtil, AtomicWriteRefusingOverwriteKeepsTheExistingFile) {
@@ -140,7 +174,8 @@ TEST(FileUtil, AtomicWriteRefusingOverwriteKeepsTheExistingFile) {
 
 TEST(Log, SinkReceivesCategoryAndThresholdFilters) {
     std::vector<std::string> seen;
-    auto previous = setLogSink([&](LogLevel level, std::string_view category, const std::string& m) {
+    auto previous = setLogSink([&](LogLevel level, std::string_view category,
+                                   const std::string& m) {
         seen.push_back(std::string(logLevelName(level)) + " " + std::string(category) + " " + m);
     });
     const LogCategory category("lw.test");

@@ -10,7 +10,8 @@
 //  - the application's own StudyDatabase opens it;
 //  - every file under a final export name is complete (the PNG byte for byte as in an
 //    uninterrupted run, the PDF from %PDF- to %%EOF). What else may be there are the atomic
-//    writes' hidden temporaries (.review.png.tmpNNN): they are left behind, not cleaned up later.
+//    writes' hidden temporaries (.review.png.tmpNNN): they are left behind; the next write of the
+//    same file removes them once they are stale (core_tests, AtomicWriteRemovesStale...).
 // Input: the bundled demo CT (resources/demo), so it runs everywhere.
 #include "lw/studydb/study_database.h"
 

@@ -175,6 +175,28 @@ void commitTemporary(const std::filesystem::path& temporary, const std::filesyst
     }
 }
 
+// The hidden temporaries of `path` (".<name>.tmp<digits>", as writeFileAtomically names them)
+// that were last written more than kStaleTemporaryAge ago: left by a killed write. Removed
+// quietly: a failure here must not stop the write that follows.
+void removeStaleTemporaries(const std::filesystem::path& path) {
+    const std::string prefix = "." + path.filename().string() + ".tmp";
+    std::error_code ec;
+    const auto now = std::filesystem::file_time_type::clock::now();
+    for (std::filesystem::directory_iterator it(folderOf(path), ec), end; !ec && it != end;
+         it.increment(ec)) {
+        const std::string name = it->path().filename().string();
+        if (name.size() <= prefix.size() || name.compare(0, prefix.size(), prefix) != 0 ||
+            name.find_first_not_of("0123456789", prefix.size()) != std::string::npos)
+            continue;
+        std::error_code statError;
+        if (!it->is_regular_file(statError) || it->is_symlink(statError))
+            continue;
+        const auto written = it->last_write_time(statError);
+        if (!statError && now - written > kStaleTemporaryAge)
+            removeQuietly(it->path());
+    }
+}
+
 } // namespace
 
 void checkStaysInFolder(const std::filesystem::path& path) {
@@ -220,6 +242,7 @@ void writeFileAtomically(const std::filesystem::path& path, const void* data, st
                          Overwrite overwrite) {
     if (overwrite == Overwrite::Refuse && std::filesystem::exists(path))
         throw Error(path.string(), "the file exists already (not overwritten)");
+    removeStaleTemporaries(path);
     std::random_device random;
     std::string temporaryName = ".";
     temporaryName += path.filename().string();

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <chrono>
 #include <cstddef>
 #include <filesystem>
 #include <limits>
@@ -23,6 +24,9 @@ std::vector<std::byte> gunzipPrefix(const std::byte* data, std::size_t size,
                                     const std::string& subject, std::size_t count);
 bool looksGzipped(const std::byte* data, std::size_t size);
 
+// How old a temporary of writeFileAtomically must be before a later write removes it.
+inline constexpr std::chrono::minutes kStaleTemporaryAge{10};
+
 // Whether an atomic write may replace a file that is already there.
 enum class Overwrite { Allow, Refuse };
 
@@ -30,7 +34,10 @@ enum class Overwrite { Allow, Refuse };
 // an interrupted write never leaves a half-written file behind. With Overwrite::Refuse an
 // existing target is an Error and stays untouched: the temporary file is linked to the target,
 // which fails when it exists, so a file appearing during the write is not replaced either.
-// On every failure the temporary file is removed: nothing is left behind.
+// On every failure the temporary file is removed: nothing is left behind. A process killed
+// mid-write cannot remove its temporary; the next write of the same file removes those that
+// are older than kStaleTemporaryAge (a write takes seconds, so none of them is still being
+// written).
 void writeFileAtomically(const std::filesystem::path& path, const void* data, std::size_t size,
                          Overwrite overwrite = Overwrite::Allow);
 
