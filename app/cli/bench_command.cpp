@@ -13,6 +13,7 @@
 #include "lw/render/phantom.h"
 #include "lw/render/renderer_factory.h"
 #include "lw/volume/volume_reader.h"
+#include "panel_rendering.h"
 
 #include <algorithm>
 #include <chrono>
@@ -106,6 +107,11 @@ struct Plan {
     glm::ivec2 image{1024, 1024};
     unsigned threads = 0;
     std::size_t gpuMemoryBudget = 0; // --gpu-budget (MiB), 0 = free memory less a margin
+    // --border, --min-stroke: by default the surface closed at the border (the renderers' own
+    // default) and no stroke pruning, as the tables have been measured; `--border closed
+    // --min-stroke 10` times what the review draws.
+    bool closeAtBorder = true;
+    int minStrokePixels = 0;
 };
 
 int brickCellsFor(const std::string& variant, const volume::Volume& volume) {
@@ -205,6 +211,8 @@ Row benchConfiguration(render::SilhouetteRenderer& renderer, const BenchVolume& 
     settings.visibility = visibility;
     settings.threads = plan.threads;
     settings.gpuMemoryBudget = plan.gpuMemoryBudget;
+    settings.closeAtBorder = plan.closeAtBorder;
+    settings.minStrokePixels = plan.minStrokePixels;
 
     render::CameraSetup setup;
     setup.bounds = render::volumeBounds(input.volume);
@@ -371,8 +379,8 @@ std::vector<std::string> parseChoiceList(const std::string& text, const std::str
 namespace {
 
 const std::set<std::string> kBenchOptions = {
-    "sizes", "input",  "iso",   "backend", "methods",        "variants",
-    "modes", "repeat", "image", "threads", "peak-memory-of", "gpu-budget"};
+    "sizes",  "input", "iso",     "backend",        "methods",    "variants", "modes",
+    "repeat", "image", "threads", "peak-memory-of", "gpu-budget", "border",   "min-stroke"};
 
 // What to run: methods, variants, modes, repeat, image, threads, budget; --peak-memory-of
 // narrows it to one configuration (returned in `peakMethod`).
@@ -396,6 +404,10 @@ Plan parsePlan(const Arguments& arguments, std::optional<std::string>& peakMetho
     plan.gpuMemoryBudget = std::size_t(budgetMiB * 1024.0 * 1024.0);
     if (const auto image = arguments.option("image"))
         plan.image = parseImageSize("--image", *image, 2);
+    render::SilhouetteSettings lines; // closed at the border unless --border open
+    parseStrokeAndBorder(arguments, 0, lines);
+    plan.closeAtBorder = lines.closeAtBorder;
+    plan.minStrokePixels = lines.minStrokePixels;
     if (const auto peak = arguments.option("peak-memory-of")) {
         const std::vector<std::string> parts = splitList(*peak);
         if (parts.size() != 2)
@@ -452,6 +464,8 @@ void writeJsonReport(const Plan& plan, const BenchResult& result, std::ostream& 
                              std::to_string(int(kViewStepDeg)) + " deg az per run");
     writer.field("image", std::to_string(plan.image.x) + "x" + std::to_string(plan.image.y));
     writer.field("repeat", plan.repeat);
+    writer.field("border", plan.closeAtBorder ? "closed" : "open");
+    writer.field("min_stroke", plan.minStrokePixels);
     writer.key("notes").beginArray();
     for (const std::string& note : result.notes)
         writer.value(note);
@@ -476,9 +490,9 @@ void writeTextReport(const Plan& plan, const BenchResult& result, std::ostream& 
     char line[512];
     std::snprintf(line, sizeof line,
                   "bench: view az %g el %g perspective (+%g deg per run), image %dx%d, median of "
-                  "%d runs after a warm-up\n",
-                  kAzimuthDeg, kElevationDeg, kViewStepDeg, plan.image.x, plan.image.y,
-                  plan.repeat);
+                  "%d runs after a warm-up; border %s, min stroke %d px\n",
+                  kAzimuthDeg, kElevationDeg, kViewStepDeg, plan.image.x, plan.image.y, plan.repeat,
+                  plan.closeAtBorder ? "closed" : "open", plan.minStrokePixels);
     out << line;
     std::snprintf(line, sizeof line,
                   "%-6s %-7s %-4s %-4s %-5s %-14s %9s %9s %10s %9s %8s %8s %8s %8s\n", "method",

@@ -67,10 +67,20 @@ commands:
                               (PNG or SVG; TAU: their derivative test, default 1)
   bench [--sizes 32,256,512,512x512x1024] [--input FILE --iso HU] [--backend cpu|cuda|auto]
         [--methods mc,1,2,3] [--variants S,L] [--modes a,b] [--repeat N] [--image WxH]
+        [--border closed|open] [--min-stroke PX]
         [--peak-memory-of METHOD,VARIANT] [--gpu-budget MIB] [--json]
                               the paper's Tables 1-4: median ms of marching cubes and of each
                               method x S/L x mode a/b x visibility on/off (default phantom
-                              32,256, 1024x1024, 5 runs), stage times, peak memory (VmHWM)
+                              32,256, 1024x1024, 5 runs), stage times, peak memory (VmHWM);
+                              FILE: a volume file (`convert` makes one of a DICOM series);
+                              the methods' surface is closed at the border (--border open:
+                              marching cubes' open surface; mc rows are always open) and no
+                              strokes are pruned (--min-stroke 0); --min-stroke 10 with
+                              --border closed times a frame as `render` and the review draw it
+  convert INPUT [--series UID] -o OUT.nrrd
+                              any INPUT `render` reads (DICOM folder/DICOMDIR/file, volume
+                              file, phantom:N) as an NRRD file (uneven slice gaps become their
+                              mean step; a gantry tilt is kept)
   export INPUT [--series UID] --iso HU [--method 1|2|3] [--view AZ,EL] [--size WxH]
          [--panel both|iso|silhouette] [--annotations FILE.json] [--comment TEXT] [--anonymise]
          [--png OUT.png] [--pdf OUT.pdf] [--svg OUT.svg] [--sc FOLDER] [--force]
@@ -118,7 +128,7 @@ int main(int argc, char** argv) {
         {"render", lw::cli::runRender},    {"phantom", lw::cli::runPhantom},
         {"bench-mc", lw::cli::runBenchMc}, {"accuracy", lw::cli::runAccuracy},
         {"bench", lw::cli::runBench},      {"export", lw::cli::runExport},
-        {"quality", lw::cli::runQuality},
+        {"quality", lw::cli::runQuality},  {"convert", lw::cli::runConvert},
     };
     const auto command = commands.find(args[0]);
     if (command == commands.end()) {

@@ -172,6 +172,21 @@ const std::set<std::string>& panelRenderOptions() {
     return names;
 }
 
+void parseStrokeAndBorder(const Arguments& arguments, int defaultMinStroke,
+                          render::SilhouetteSettings& settings) {
+    // Strokes under this many pixels are speckle of noise, not contours (0: keep every pixel).
+    const double minStroke = arguments.number("min-stroke", defaultMinStroke);
+    if (!(minStroke >= 0.0 && minStroke <= 1e6))
+        throw UsageError("--min-stroke", "expected a number of pixels >= 0");
+    settings.minStrokePixels = int(minStroke);
+    // Where the first or last slice cuts bone, the surface is closed there (its outline drawn)
+    // unless --border open asks for marching cubes' open surface.
+    const std::string border = arguments.option("border", "closed");
+    if (border != "closed" && border != "open")
+        throw UsageError("--border " + border, "expected closed or open");
+    settings.closeAtBorder = border == "closed";
+}
+
 RenderRequest parseRenderRequest(const Arguments& arguments, const std::string& command) {
     RenderRequest request;
     request.method =
@@ -188,17 +203,7 @@ RenderRequest parseRenderRequest(const Arguments& arguments, const std::string& 
         throw UsageError("--visibility " + visibility, "expected on or off");
     request.settings.visibility = visibility == "on";
     request.settings.threads = unsigned(std::max(0.0, arguments.number("threads", 0)));
-    // Strokes under this many pixels are speckle of noise, not contours (0: keep every pixel).
-    const double minStroke = arguments.number("min-stroke", render::kDefaultMinStrokePixels);
-    if (!(minStroke >= 0.0 && minStroke <= 1e6))
-        throw UsageError("--min-stroke", "expected a number of pixels >= 0");
-    request.settings.minStrokePixels = int(minStroke);
-    // Where the first or last slice cuts bone, the surface is closed there (its outline drawn)
-    // unless --border open asks for marching cubes' open surface.
-    const std::string border = arguments.option("border", "closed");
-    if (border != "closed" && border != "open")
-        throw UsageError("--border " + border, "expected closed or open");
-    request.settings.closeAtBorder = border == "closed";
+    parseStrokeAndBorder(arguments, render::kDefaultMinStrokePixels, request.settings);
     if (!arguments.option("iso"))
         throw UsageError(command, "needs --iso HU");
     request.settings.isoReal = arguments.number("iso", 0.0);

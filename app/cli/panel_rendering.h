@@ -50,6 +50,10 @@ const std::set<std::string>& panelRenderOptions();
 // --method, --backend, --mode, --visibility, --threads, --iso (required; `command` names the
 // command in the usage error). Panels and repeat are left to the caller.
 RenderRequest parseRenderRequest(const Arguments& arguments, const std::string& command);
+// --min-stroke PX (default `defaultMinStroke`) and --border closed|open (default closed) into
+// `settings`, as `render`, `export` and `bench` read them; throws UsageError for a bad value.
+void parseStrokeAndBorder(const Arguments& arguments, int defaultMinStroke,
+                          render::SilhouetteSettings& settings);
 // --view, --camera; the bounds are set once the volume is known (frameSurface).
 render::CameraSetup parseCameraView(const Arguments& arguments);
 // --size, default 512x512.

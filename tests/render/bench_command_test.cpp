@@ -4,17 +4,20 @@
 
 #include <cctype>
 #include <cstdlib>
+#include <filesystem>
 #include <gtest/gtest.h>
 #include <map>
 #include <memory>
 #include <set>
 #include <stdexcept>
 #include <string>
+#include <unistd.h>
 #include <vector>
 
 namespace {
 
 using lw::test::CliResult;
+using lw::test::quoted;
 using lw::test::runCli;
 
 // Just enough JSON (RFC 8259 without \u escapes) to check the output really parses: a malformed
@@ -241,6 +244,69 @@ TEST(BenchCommand, MethodWithoutGlIsReportedAsSkipped) {
             EXPECT_EQ(row.object.count("skipped"), 0u);
         }
     }
+}
+
+// --border and --min-stroke time a frame as the review draws it; the report says what ran. The
+// defaults stay as the tables were measured: closed at the border, no stroke pruning.
+TEST(BenchCommand, BorderAndStrokePruningAreOptions) {
+    const std::string base = "bench --sizes 32 --repeat 1 --methods 3 --variants S --modes a ";
+    const CliResult defaults = runCli(base + "--json");
+    ASSERT_EQ(defaults.exitCode, 0) << defaults.err;
+    const Json plain = parseJson(defaults.out);
+    EXPECT_EQ(plain.at("border").string, "closed");
+    EXPECT_EQ(plain.at("min_stroke").number, 0.0);
+
+    const CliResult open = runCli(base + "--border open --min-stroke 10 --json");
+    ASSERT_EQ(open.exitCode, 0) << open.err;
+    const Json document = parseJson(open.out);
+    EXPECT_EQ(document.at("border").string, "open");
+    EXPECT_EQ(document.at("min_stroke").number, 10.0);
+    ASSERT_EQ(document.at("rows").array.size(), 2u);
+    for (const Json& row : document.at("rows").array)
+        EXPECT_GT(row.at("ms_median").number, 0.0);
+    // The phantom lies inside the volume: closing adds nothing, so the same segments.
+    EXPECT_EQ(document.at("rows").array[0].at("segments").number,
+              plain.at("rows").array[0].at("segments").number);
+
+    const CliResult text = runCli(base + "--border closed --min-stroke 10");
+    ASSERT_EQ(text.exitCode, 0) << text.err;
+    EXPECT_NE(text.out.find("border closed, min stroke 10 px"), std::string::npos) << text.out;
+}
+
+TEST(BenchCommand, BadBorderOrMinStrokeIsAUsageError) {
+    const CliResult border = runCli("bench --sizes 32 --border shut");
+    EXPECT_EQ(border.exitCode, 2);
+    EXPECT_NE(border.err.find("--border shut: expected closed or open"), std::string::npos)
+        << border.err;
+    EXPECT_NE(border.err.find("[--border closed|open] [--min-stroke PX]"), std::string::npos)
+        << "the usage names the options";
+    for (const char* value : {"-1", "ten"}) {
+        const CliResult stroke = runCli(std::string("bench --sizes 32 --min-stroke ") + value);
+        EXPECT_EQ(stroke.exitCode, 2) << value;
+        EXPECT_NE(stroke.err.find("--min-stroke"), std::string::npos) << stroke.err;
+    }
+}
+
+// A DICOM series reaches `bench --input` through `convert` (bench reads volume files only).
+TEST(BenchCommand, ConvertWritesAnInputForBench) {
+    const std::filesystem::path dir =
+        std::filesystem::temp_directory_path() / ("lw_bench_convert_" + std::to_string(::getpid()));
+    std::filesystem::create_directories(dir);
+    const std::string nrrd = (dir / "phantom.nrrd").string();
+    const CliResult convert = runCli("convert phantom:32 -o " + quoted(nrrd));
+    ASSERT_EQ(convert.exitCode, 0) << convert.err;
+    EXPECT_NE(convert.out.find("32x32x32"), std::string::npos) << convert.out;
+    const CliResult bench = runCli("bench --input " + quoted(nrrd) +
+                                   " --iso 300.5 --repeat 1 --methods 3 --variants S --modes a "
+                                   "--json");
+    ASSERT_EQ(bench.exitCode, 0) << bench.err;
+    const Json rows = parseJson(bench.out).at("rows");
+    ASSERT_EQ(rows.array.size(), 2u);
+    EXPECT_GT(rows.array[0].at("segments").number, 100.0);
+    EXPECT_EQ(runCli("convert phantom:8 -o " + quoted((dir / "x.png").string())).exitCode, 2)
+        << "NRRD only";
+    EXPECT_EQ(runCli("convert -o " + quoted(nrrd)).exitCode, 2) << "no INPUT";
+    std::filesystem::remove_all(dir);
 }
 
 TEST(BenchCommand, BadOptionsFailWithAUsageError) {
