@@ -45,24 +45,32 @@ const std::vector<glm::ivec2> kBrokenLine = {{0, 1}, {1, 1}, {3, 1}, {4, 1},
 const std::vector<glm::ivec2> kRowDiagonalDot = {{0, 0}, {1, 0}, {2, 0}, {3, 0},  {4, 0},
                                                  {5, 0}, {8, 2}, {9, 3}, {10, 4}, {1, 6}};
 
-INSTANTIATE_TEST_SUITE_P(Masks, ComponentFilter,
-                         testing::Values(MaskCase{"off", kRowDiagonalDot, 0, 0},
-                                         MaskCase{"one keeps everything", kRowDiagonalDot, 1, 0},
-                                         MaskCase{"lone pixel", kRowDiagonalDot, 2, 1},
-                                         MaskCase{"diagonal is one group of three", kRowDiagonalDot,
-                                                  4, 4},
-                                         MaskCase{"the row goes too", kRowDiagonalDot, 7, 10},
-                                         MaskCase{"empty", {}, 10, 0},
-                                         // A line broken by one-pixel gaps is one stroke when
-                                         // gaps are bridged; two pixels apart is too far.
-                                         MaskCase{"broken line alone", kBrokenLine, 5, 7, 0},
-                                         MaskCase{"broken line bridged", kBrokenLine, 5, 1, 1},
-                                         MaskCase{"wide gap not bridged", kBrokenLine, 7, 7, 1}),
-                         [](const testing::TestParamInfo<MaskCase>& info) {
-                             std::string name = info.param.name;
-                             std::replace(name.begin(), name.end(), ' ', '_');
-                             return name;
-                         });
+// Groups touching the image's edges and corners (the search frames the image: indices must map
+// back): four lone corners, a 3-pixel run along the bottom edge, a 2-pixel run down the right
+// edge one pixel short of the bottom-right corner.
+const std::vector<glm::ivec2> kAtTheEdges = {{0, 0}, {11, 0}, {0, 7},  {11, 7}, {5, 7},
+                                             {6, 7}, {7, 7},  {11, 4}, {11, 5}};
+
+INSTANTIATE_TEST_SUITE_P(
+    Masks, ComponentFilter,
+    testing::Values(MaskCase{"off", kRowDiagonalDot, 0, 0},
+                    MaskCase{"one keeps everything", kRowDiagonalDot, 1, 0},
+                    MaskCase{"lone pixel", kRowDiagonalDot, 2, 1},
+                    MaskCase{"diagonal is one group of three", kRowDiagonalDot, 4, 4},
+                    MaskCase{"the row goes too", kRowDiagonalDot, 7, 10},
+                    MaskCase{"empty", {}, 10, 0}, MaskCase{"corners go", kAtTheEdges, 2, 4},
+                    MaskCase{"edge runs go too", kAtTheEdges, 4, 9},
+                    MaskCase{"corner bridged to the right run", kAtTheEdges, 3, 3, 1},
+                    // A line broken by one-pixel gaps is one stroke when
+                    // gaps are bridged; two pixels apart is too far.
+                    MaskCase{"broken line alone", kBrokenLine, 5, 7, 0},
+                    MaskCase{"broken line bridged", kBrokenLine, 5, 1, 1},
+                    MaskCase{"wide gap not bridged", kBrokenLine, 7, 7, 1}),
+    [](const testing::TestParamInfo<MaskCase>& info) {
+        std::string name = info.param.name;
+        std::replace(name.begin(), name.end(), ' ', '_');
+        return name;
+    });
 
 // A sphere of radius 18 voxels with dust: single voxels above the iso-value far from it, each a
 // tiny closed surface whose contour is a speck of a few pixels.
