@@ -1,4 +1,18 @@
 #version 410 core
-// Pass 2 of method 1 writes only depth (the line depth buffer has no colour attachment).
+// Pass 2 of method 1: the line's depth, and its colour where the renderer lets it write colour
+// (one-pixel lines of a frame drawn in one call; otherwise pass 3 colours the lines). With
+// LW_TEST_VISIBILITY (a frame drawn in one call, so the surface depth is complete) hidden line
+// fragments are dropped here, where only line fragments pay for the test; a frame drawn in
+// pieces leaves the test to pass 3. The renderer prepends the #defines and
+// silhouette_visibility.glsl.
+uniform vec4 uLineColour;
+
+out vec4 fragColour;
+
 void main() {
+#if LW_TEST_VISIBILITY
+    if (!lineVisible(gl_FragCoord.z, ivec2(gl_FragCoord.xy)))
+        discard;
+#endif
+    fragColour = uLineColour;
 }

@@ -17,6 +17,16 @@ namespace {
 
 const core::LogCategory kLog("lw.render");
 
+// A fragment shader of passes 2 and 3: `defines` and the shared visibility rule
+// (silhouette_visibility.glsl) inserted after the #version line, which must stay first.
+std::string withVisibilityRule(const char* source, const std::string& defines) {
+    std::string text(source);
+    const std::size_t lineEnd = text.find('\n');
+    text.insert(lineEnd == std::string::npos ? text.size() : lineEnd + 1,
+                defines + gl::shaders::silhouette_visibility);
+    return text;
+}
+
 GLuint compileShader(GLenum type, const std::string& source, const char* name) {
     const GLuint shader = glCreateShader(type);
     if (shader == 0)
@@ -131,6 +141,12 @@ private:
     GLint m_viewport[4] = {0, 0, 0, 0};
 };
 
+// The square dilation radius that widens a one-pixel line to `lineWidth` (as the panels widen
+// methods 2 and 3), bounded: a 33-pixel line is far wider than any drawing needs.
+int dilationRadius(float lineWidth) {
+    return std::clamp(int((double(lineWidth) - 1.0) / 2.0 + 0.5), 0, 16);
+}
+
 // A GL_TIME_ELAPSED query's result in ms (waits for it).
 double queryResultMs(GLuint query) {
     GLuint64 ns = 0;
@@ -155,16 +171,17 @@ void SilhouetteGlRenderer::initialize() {
             linkProgram({{GL_VERTEX_SHADER, gl::shaders::surface_vert, "surface.vert.glsl"},
                          {GL_FRAGMENT_SHADER, gl::shaders::surface_frag, "surface.frag.glsl"}},
                         "surface");
-        m_lineProgram = linkProgram(
-            {{GL_VERTEX_SHADER, gl::shaders::silhouette_vert, "silhouette.vert.glsl"},
-             {GL_GEOMETRY_SHADER, gl::shaders::silhouette_geom, "silhouette.geom.glsl"},
-             {GL_FRAGMENT_SHADER, gl::shaders::silhouette_frag, "silhouette.frag.glsl"}},
-            "silhouette lines");
-        m_resolveProgram = linkProgram({{GL_VERTEX_SHADER, gl::shaders::silhouette_resolve_vert,
-                                         "silhouette_resolve.vert.glsl"},
-                                        {GL_FRAGMENT_SHADER, gl::shaders::silhouette_resolve_frag,
-                                         "silhouette_resolve.frag.glsl"}},
-                                       "silhouette resolve");
+        for (const bool testVisibility : {false, true})
+            m_linePrograms[testVisibility] = linkProgram(
+                {{GL_VERTEX_SHADER, gl::shaders::silhouette_vert, "silhouette.vert.glsl"},
+                 {GL_GEOMETRY_SHADER, gl::shaders::silhouette_geom, "silhouette.geom.glsl"},
+                 {GL_FRAGMENT_SHADER,
+                  withVisibilityRule(gl::shaders::silhouette_frag,
+                                     std::string("#define LW_TEST_VISIBILITY ") +
+                                         (testVisibility ? "1\n" : "0\n")),
+                  "silhouette.frag.glsl"}},
+                "silhouette lines");
+        resolveProgram(0, true); // a resolve variant, so that a compile error shows here
 
         glGenVertexArrays(1, &m_vertexArray);
         glGenVertexArrays(1, &m_emptyVertexArray);
@@ -193,8 +210,11 @@ void SilhouetteGlRenderer::initialize() {
 
 void SilhouetteGlRenderer::release() {
     deleteProgram(m_surfaceProgram);
-    deleteProgram(m_lineProgram);
-    deleteProgram(m_resolveProgram);
+    for (GLuint& program : m_linePrograms)
+        deleteProgram(program);
+    for (auto& [key, program] : m_resolvePrograms)
+        deleteProgram(program);
+    m_resolvePrograms.clear();
     for (GLuint* array : {&m_vertexArray, &m_emptyVertexArray}) {
         if (*array)
             glDeleteVertexArrays(1, array);
@@ -461,11 +481,11 @@ void SilhouetteGlRenderer::ensureFramebuffer(int width, int height) {
     glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D,
                            m_surfaceDepthTexture, 0);
     checkFramebufferComplete("surface");
+    // Pass 2 writes line depth and, when it draws the final lines itself, the colour.
     glBindFramebuffer(GL_FRAMEBUFFER, m_lineFramebuffer);
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, m_colourTexture, 0);
     glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, m_lineDepthTexture,
                            0);
-    glDrawBuffer(GL_NONE);
-    glReadBuffer(GL_NONE);
     checkFramebufferComplete("line depth");
     // Pass 3 reads both depth textures, so none of them may be attached where it draws.
     glBindFramebuffer(GL_FRAMEBUFFER, m_resolveFramebuffer);
@@ -518,12 +538,14 @@ SilhouetteGlStats SilhouetteGlRenderer::render(const glm::mat4& viewProjection, 
             glBeginQuery(GL_TIME_ELAPSED, m_timerQueries[1]);
         if (options.countSegments)
             glBeginQuery(GL_PRIMITIVES_GENERATED, m_segmentQuery);
+        // One-pixel lines of a complete frame need no pass 3: pass 2 colours them itself.
+        const bool direct = options.resolve && dilationRadius(options.lineWidth) == 0;
         if (m_indexCount > 0)
-            drawLinePass(viewProjection, viewer, options);
+            drawLinePass(viewProjection, viewer, options, direct);
         if (options.countSegments)
             glEndQuery(GL_PRIMITIVES_GENERATED);
-        if (options.resolve)
-            drawResolvePass(options);
+        if (options.resolve && !direct)
+            drawResolvePass(options, false); // pass 2 has tested visibility
         if (options.timePasses)
             glEndQuery(GL_TIME_ELAPSED);
     }
@@ -574,16 +596,25 @@ void SilhouetteGlRenderer::drawSurfacePass(const glm::mat4& viewProjection, glm:
     glDisable(GL_DEPTH_TEST);
 }
 
-// Pass 2: the silhouette segments from the geometry shader, the nearest kept per pixel. Its
-// depth test is against the other lines only: visibility is pass 3's.
+// Pass 2: the silhouette segments from the geometry shader, the nearest kept per pixel (its depth
+// test is against the other lines only). A frame drawn in one call has its whole surface depth
+// by now, so the fragments test visibility here; pieces leave it to the resolve.
 void SilhouetteGlRenderer::drawLinePass(const glm::mat4& viewProjection, glm::vec4 viewer,
-                                        const SilhouetteGlOptions& options) {
+                                        const SilhouetteGlOptions& options, bool writeColour) {
     glBindFramebuffer(GL_FRAMEBUFFER, m_lineFramebuffer);
-    glUseProgram(m_lineProgram);
-    glUniformMatrix4fv(uniform(m_lineProgram, "uViewProjection"), 1, GL_FALSE,
+    const bool testVisibility = options.visibility && options.resolve;
+    const GLuint program = m_linePrograms[testVisibility];
+    glUseProgram(program);
+    glUniformMatrix4fv(uniform(program, "uViewProjection"), 1, GL_FALSE,
                        glm::value_ptr(viewProjection));
-    glUniform4fv(uniform(m_lineProgram, "uViewer"), 1, glm::value_ptr(viewer));
-    glUniform2f(uniform(m_lineProgram, "uViewportSize"), float(m_width), float(m_height));
+    glUniform4fv(uniform(program, "uViewer"), 1, glm::value_ptr(viewer));
+    glUniform2f(uniform(program, "uViewportSize"), float(m_width), float(m_height));
+    glActiveTexture(GL_TEXTURE0);
+    glBindTexture(GL_TEXTURE_2D, testVisibility ? m_surfaceDepthTexture : 0);
+    glUniform1i(uniform(program, "uSurfaceDepth"), 0);
+    glUniform1f(uniform(program, "uTolerance"), options.depthTolerance);
+    glUniform4fv(uniform(program, "uLineColour"), 1, glm::value_ptr(options.lineColour));
+    glColorMask(writeColour, writeColour, writeColour, writeColour);
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);
     glDepthMask(GL_TRUE);
@@ -598,6 +629,24 @@ void SilhouetteGlRenderer::drawLinePass(const glm::mat4& viewProjection, glm::ve
         glDrawElements(GL_TRIANGLES, GLsizei(m_indexCount), GL_UNSIGNED_INT, nullptr);
     }
     glDisable(GL_DEPTH_TEST);
+    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    glBindTexture(GL_TEXTURE_2D, 0);
+}
+
+unsigned SilhouetteGlRenderer::resolveProgram(int radius, bool visibility) {
+    const int key = radius * 2 + (visibility ? 1 : 0);
+    for (const auto& [programKey, program] : m_resolvePrograms)
+        if (programKey == key)
+            return program;
+    const std::string defines = "#define LW_RADIUS " + std::to_string(radius) +
+                                "\n#define LW_VISIBILITY " + (visibility ? "1" : "0") + "\n";
+    const GLuint program = linkProgram(
+        {{GL_VERTEX_SHADER, gl::shaders::silhouette_resolve_vert, "silhouette_resolve.vert.glsl"},
+         {GL_FRAGMENT_SHADER, withVisibilityRule(gl::shaders::silhouette_resolve_frag, defines),
+          "silhouette_resolve.frag.glsl"}},
+        "silhouette resolve");
+    m_resolvePrograms.emplace_back(key, program);
+    return program;
 }
 
 void SilhouetteGlRenderer::resolve(const SilhouetteGlOptions& options) {
@@ -605,29 +654,29 @@ void SilhouetteGlRenderer::resolve(const SilhouetteGlOptions& options) {
         throw core::Error("silhouette resolve", "nothing has been drawn yet");
     const FramebufferBindingGuard bindingGuard;
     glViewport(0, 0, m_width, m_height);
-    drawResolvePass(options);
+    drawResolvePass(options, options.visibility);
     glBindVertexArray(0);
     glUseProgram(0);
     gl::checkGlError("SilhouetteGlRenderer::resolve");
 }
 
-// Pass 3: the visible line pixels, widened, in the line colour over what pass 1 left.
-void SilhouetteGlRenderer::drawResolvePass(const SilhouetteGlOptions& options) {
+// Pass 3: the visible line pixels, widened, in the line colour over what pass 1 left; with
+// `testVisibility` the nearest line of each pixel is tested here (a frame drawn in pieces).
+void SilhouetteGlRenderer::drawResolvePass(const SilhouetteGlOptions& options,
+                                           bool testVisibility) {
     glBindFramebuffer(GL_FRAMEBUFFER, m_resolveFramebuffer);
     glDisable(GL_DEPTH_TEST);
     glDisable(GL_BLEND);
-    glUseProgram(m_resolveProgram);
+    const GLuint program = resolveProgram(dilationRadius(options.lineWidth), testVisibility);
+    glUseProgram(program);
     glActiveTexture(GL_TEXTURE0);
     glBindTexture(GL_TEXTURE_2D, m_surfaceDepthTexture);
     glActiveTexture(GL_TEXTURE1);
     glBindTexture(GL_TEXTURE_2D, m_lineDepthTexture);
-    glUniform1i(uniform(m_resolveProgram, "uSurfaceDepth"), 0);
-    glUniform1i(uniform(m_resolveProgram, "uLineDepth"), 1);
-    glUniform1f(uniform(m_resolveProgram, "uTolerance"), options.depthTolerance);
-    glUniform1i(uniform(m_resolveProgram, "uVisibility"), options.visibility ? 1 : 0);
-    glUniform1i(uniform(m_resolveProgram, "uRadius"),
-                int((double(options.lineWidth) - 1.0) / 2.0 + 0.5));
-    glUniform4fv(uniform(m_resolveProgram, "uLineColour"), 1, glm::value_ptr(options.lineColour));
+    glUniform1i(uniform(program, "uSurfaceDepth"), 0);
+    glUniform1i(uniform(program, "uLineDepth"), 1);
+    glUniform1f(uniform(program, "uTolerance"), options.depthTolerance);
+    glUniform4fv(uniform(program, "uLineColour"), 1, glm::value_ptr(options.lineColour));
     glBindVertexArray(m_emptyVertexArray);
     glDrawArrays(GL_TRIANGLES, 0, 3);
     glBindTexture(GL_TEXTURE_2D, 0);

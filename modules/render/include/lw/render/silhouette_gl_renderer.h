@@ -6,12 +6,16 @@
 //   pass 2  the same triangles through a geometry shader that emits each triangle's silhouette
 //           segment (Burns et al. 2005) as a one-pixel GL line into the line depth texture, the
 //           nearest line kept per pixel (GL_LESS)
-//   pass 3  (resolve) a full-screen pass colours the line pixels that are visible: a line pixel
-//           is visible when its depth is not behind the farthest surface depth of its 3x3
-//           neighbourhood by more than `depthTolerance` -- method 3's rule
-//           (lw/kernels/zbuffer_rules.h resolvePixel, lw/render/visibility_tolerance.h), and
-//           lines wider than a pixel are that visible mask dilated, as the panels widen the
-//           other methods' masks.
+//   pass 3  (resolve) a full-screen pass colours the line pixels, widened by a square dilation
+//           of radius round((lineWidth - 1) / 2), as the panels widen the other methods' masks;
+//           one-pixel lines of a frame drawn in one call need no pass 3: pass 2 colours them
+// A line pixel is visible when its depth is not behind the farthest surface depth of its 3x3
+// neighbourhood by more than `depthTolerance` -- method 3's rule (lw/kernels/zbuffer_rules.h
+// resolvePixel, lw/render/visibility_tolerance.h; in GLSL silhouette_visibility.glsl). A frame
+// drawn in one call tests it in pass 2, per line fragment, so that only line fragments pay for
+// it (a full-screen test costs a software rasterizer tens of ms); a frame drawn in pieces tests
+// the nearest line of each pixel in pass 3, once the whole surface is there. For one pixel the
+// two agree: some fragment passes iff the nearest does.
 // The paper tests the lines with the GL depth test against a polygon-offset surface. That rule
 // breaks the one-pixel lines wherever the contour grazes the surface (the offset surface wins
 // there), and stroke pruning then drops the pieces: on real CT it lost 3-7 % of the outline and
@@ -36,6 +40,7 @@
 #include <cstdint>
 #include <glm/glm.hpp>
 #include <span>
+#include <utility>
 #include <vector>
 
 namespace lw::render {
@@ -76,6 +81,8 @@ struct SilhouetteGlOptions {
     // Drawing a mesh in pieces (method 1's L variant: one brick uploaded at a time): the caller
     // starts the frame with clear(), draws each piece with clear = false and resolve = false
     // (passes 1 and 2 only), and ends it with resolve() (pass 3). The size must stay the same.
+    // With resolve = true the frame is complete after this call: pass 2 tests visibility against
+    // the surface depth drawn so far.
     bool clear = true;
     bool resolve = true;
 };
@@ -180,13 +187,16 @@ private:
     void drawSurfacePass(const glm::mat4& viewProjection, glm::vec4 viewer,
                          glm::vec3 lightDirection, const SilhouetteGlOptions& options);
     void drawLinePass(const glm::mat4& viewProjection, glm::vec4 viewer,
-                      const SilhouetteGlOptions& options);
-    void drawResolvePass(const SilhouetteGlOptions& options);
+                      const SilhouetteGlOptions& options, bool writeColour);
+    void drawResolvePass(const SilhouetteGlOptions& options, bool testVisibility);
+    // The resolve program for a dilation radius and visibility on or off, compiled on first use
+    // (constant loop bounds: see silhouette_resolve.frag.glsl).
+    unsigned resolveProgram(int radius, bool visibility);
 
     unsigned m_surfaceProgram = 0;
-    unsigned m_lineProgram = 0;    // geometry shader emitting GL lines
-    unsigned m_resolveProgram = 0; // full-screen visibility test
+    unsigned m_linePrograms[2] = {0, 0}; // geometry shader emitting GL lines; [test visibility]
     unsigned m_vertexArray = 0;
+    std::vector<std::pair<int, unsigned>> m_resolvePrograms; // (radius * 2 + visibility, name)
     unsigned m_emptyVertexArray = 0; // the resolve's full-screen triangle has no attributes
     unsigned m_positionBuffer = 0;
     unsigned m_normalBuffer = 0;
