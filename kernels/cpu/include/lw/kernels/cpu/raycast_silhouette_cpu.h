@@ -23,6 +23,7 @@ namespace lw::kernels::cpu {
 struct SilhouetteView {
     glm::dvec3 eyeOrDirection{0.0, -1.0, 0.0};
     bool orthographic = false;
+    double pixelSpan = 0.0; // rayPixelSpan() of the camera; 0: no neighbour ray
 };
 
 class RayCastSilhouetteCpu {
