@@ -425,9 +425,9 @@ TEST_P(RayCastBackend, AgreesWithMethod3) {
 }
 
 // A ball sampled as thick-slice CT is (0.5 x 0.5 x 5 mm, a 1 mm edge, the iso-value low on it):
-// between two slices the trilinear field bulges out of the marching-cubes surface by a good
-// part of the slab, so the outline's own rays run inside the field for mm. Method 2 must still
-// draw the outline that method 3 draws (its neighbour ray, RayVisibilityRule), and no more.
+// its surface is terraced, and the rays from the outline's silhouette points run inside it for
+// mm. Method 2 must still draw the outline that method 3 draws (its neighbour ray,
+// RayVisibilityRule), and no more.
 volume::Volume thickSliceBall() {
     const glm::ivec3 dims(120, 120, 12);
     const glm::dvec3 spacing(0.5, 0.5, 5.0);

@@ -161,11 +161,11 @@ struct RayGridView {
 // across the view, reaches the eye; that ray starts off the surface and is tested from its
 // start, with no self-occlusion zone. It is method 3's rule (a line pixel is visible when a pixel
 // of its 3 x 3 neighbourhood sees the surface at or behind it) and the contour score's 1 px
-// tolerance, applied where the occluder is the point's own surface. Thick slices need it: across
-// a slab of several mm the trilinear field the walk reads parts from the marching-cubes surface
-// the silhouette lies on by a good part of the slab (terraces), so at the outline the mesh
-// point's own ray runs inside the field for mm (demo CT, 0.49 x 0.49 x 5.6 mm: 2-8 mm, shallow
-// or deep), past any self-occlusion zone, while the ray a pixel outside passes. An occluder
+// tolerance, applied where the occluder is the point's own surface. Thick slices need it: slabs
+// of several mm leave the surface terraced, and there the silhouette (where the interpolated
+// gradient is normal to the view) does not lie where the surface is edge-on, so at the outline
+// the point's own ray runs inside the surface for mm (demo CT, 0.49 x 0.49 x 5.6 mm: 2-8 mm,
+// shallow or deep), past any self-occlusion zone, while the ray a pixel outside passes. An occluder
 // further away is another surface; a shifted ray there only finds gaps between the walls in
 // structures thinner than a cell (the phantom's plates: dashed hidden lines behind them).
 //
