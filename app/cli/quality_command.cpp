@@ -85,7 +85,8 @@ void createRenderers(const RenderRequest& request, Renderers& renderers,
 
 // The images of one view, to look at what the numbers say: the shaded panel beside method 3's
 // lines; the outline against method 3's lines (contourDiffImage: blue = outline with no line
-// within 1 px); method 1 against method 3 (red: 1 only, blue: 3 only).
+// within 1 px); method 1 against method 3 (red: 1 only, blue: 3 only); the same two for
+// method 2.
 void writeViewImages(const std::filesystem::path& dir, const View& view,
                      const core::ImageRgba8& shaded, const render::PixelMask& outline,
                      const render::PixelMask (&lines)[4]) {
@@ -100,6 +101,10 @@ void writeViewImages(const std::filesystem::path& dir, const View& view,
     if (lines[1].width() > 0)
         core::writePng(dir / (std::string(name) + "-m1-vs-m3.png"),
                        evaluation::contourDiffImage(lines[1], lines[3], 1), core::PngFormat::Rgb);
+    core::writePng(dir / (std::string(name) + "-outline-m2.png"),
+                   evaluation::contourDiffImage(lines[2], outline, 1), core::PngFormat::Rgb);
+    core::writePng(dir / (std::string(name) + "-m2-vs-m3.png"),
+                   evaluation::contourDiffImage(lines[2], lines[3], 1), core::PngFormat::Rgb);
 }
 
 // One view: method 3 first (its mesh is the one the shaded panel shows, as in the review), the

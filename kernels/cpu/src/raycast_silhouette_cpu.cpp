@@ -303,7 +303,9 @@ public:
     }
 
     bool visible(glm::dvec3 point, const SilhouetteView& view) const override {
-        return rayVisibility().visible(point, view.eyeOrDirection, view.orthographic);
+        RayVisibility<T> rule = rayVisibility();
+        rule.pixelSpan = view.pixelSpan;
+        return rule.visible(point, view.eyeOrDirection, view.orthographic);
     }
 
     RayVisibility<T> rayVisibility() const {

@@ -54,6 +54,7 @@ struct View {
     bool orthographic;
     bool visibility;
     bool alongSegment;
+    double pixelSpan; // rayPixelSpan(): the neighbour ray's pixel
 };
 
 __device__ __forceinline__ glm::dvec2 pixelOf(const PixelCamera& camera, glm::vec3 p) {

@@ -177,6 +177,7 @@ CudaStatus RayCastSilhouetteCuda::Impl::testAndDraw(const rc::View& view, std::u
     rule.macroDims = macroDims;
     rule.cellScale = rayGrid.cellScale;
     rule.iso = iso;
+    rule.pixelSpan = view.pixelSpan;
     if (view.visibility && view.alongSegment) {
         rc::drawAlongSegments<T><<<blocksFor(count, tuning::kRayBlock), tuning::kRayBlock, 0, st>>>(
             rule, view, segments.data(), count, mask.data());
@@ -259,6 +260,7 @@ CudaStatus RayCastSilhouetteCuda::render(const PixelCamera& camera, glm::dvec3 e
     view.orthographic = orthographic;
     view.visibility = settings.visibility;
     view.alongSegment = settings.alongSegment;
+    view.pixelSpan = rayPixelSpan(camera.halfHeight, camera.height);
     return dispatchVoxelKind(s.mc().volume.kind, [&](auto zero) {
         return s.renderTyped<decltype(zero)>(view, hostMask, frame, extraSegments, extraCount);
     });

@@ -2,6 +2,7 @@
 
 #include "lw/core/error.h"
 #include "lw/core/parallel.h"
+#include "lw/kernels/voxel_ray_walk.h"
 #include "lw/render/line_raster.h"
 #include "lw/volume/bricks.h"
 #include "mesh_silhouette.h"
@@ -22,6 +23,7 @@ kernels::cpu::SilhouetteView viewOf(const Camera& camera) {
     kernels::cpu::SilhouetteView view;
     view.orthographic = camera.isOrthographic();
     view.eyeOrDirection = view.orthographic ? -camera.forward() : camera.eye();
+    view.pixelSpan = kernels::rayPixelSpan(camera.halfHeight(), camera.height());
     return view;
 }
 

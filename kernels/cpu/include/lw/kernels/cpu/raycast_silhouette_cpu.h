@@ -23,6 +23,7 @@ namespace lw::kernels::cpu {
 struct SilhouetteView {
     glm::dvec3 eyeOrDirection{0.0, -1.0, 0.0};
     bool orthographic = false;
+    double pixelSpan = 0.0; // rayPixelSpan() of the camera; 0: no neighbour ray
 };
 
 class RayCastSilhouetteCpu {
@@ -69,15 +70,16 @@ public:
     //
     // Self-occlusion rule: the ray starts 1e-4 cell off the point toward the viewer, and walls
     // are not tested until the ray has left the cell it starts in and travelled at least
-    // selfSkipCells() cell widths (measured in grid units). Up to 4 cell widths (the grazing
-    // zone) a wall occludes only when its value is inside by more than 10% of the spread of its
-    // four corner values (about a tenth of a cell deep); beyond, any inside wall occludes. A
-    // silhouette point lies on a chord of the interpolated surface and its ray runs tangent to
-    // it; near the start, and for several cells on flat stretches, the ray stays within a hair of
-    // the trilinear surface, where round-off and the difference between the linear mesh and the
-    // trilinear field would hide it. Occluders shallower than that near the start are not seen
-    // (they are below the grid's resolution anyway). Rays leaving the grid, or reaching the eye,
-    // are visible.
+    // selfSkipCells() cell widths (measured in grid units). Up to the grazing zone's end
+    // (RayVisibilityRule::kGrazeCells) a wall occludes only when its value is inside by more
+    // than 10% of the spread of its four corner values (about a tenth of a cell deep); beyond,
+    // any inside wall occludes. A silhouette point lies on a chord of the interpolated surface
+    // and its ray runs tangent to it; near the start the ray stays within a hair of the
+    // trilinear surface, where round-off and the difference between the linear mesh and the
+    // trilinear field would hide it. A point whose ray is blocked near it is still visible when
+    // the ray from one pixel beside it, outward across the view, passes (the neighbour ray,
+    // voxel_ray_walk.h; only with view.pixelSpan set). Rays leaving the grid, or reaching the
+    // eye, are visible.
     bool isVisible(glm::dvec3 patientPoint, const SilhouetteView& view) const;
     static double selfSkipCells();
 
