@@ -184,9 +184,4 @@ SurfaceDerivatives surfaceDerivatives(const volume::Volume& volume,
     return out;
 }
 
-void fieldDerivativesAt(const volume::Volume& volume, glm::dvec3 patient, glm::vec3& gradient,
-                        kernels::Sym3& hessian) {
-    withProbe(volume, [&](const auto& probe) { probe.at(patient, gradient, hessian); });
-}
-
 } // namespace lw::render

@@ -55,13 +55,12 @@ std::vector<EdgeSegment> edgeSegments(const Mesh& mesh, const Camera& camera) {
         const glm::vec3 p[3] = {mesh.positions[v[0]], mesh.positions[v[1]], mesh.positions[v[2]]};
         const float d[3] = {distance[v[0]], distance[v[1]], distance[v[2]]};
         kernels::SegmentEndpoints ends;
-        if (!kernels::silhouetteSegment(p, d, ends))
+        kernels::IsolineCrossing crossing;
+        if (!kernels::silhouetteSegment(p, d, ends, &crossing))
             continue;
-        const bool f0 = d[0] >= 0.0f, f1 = d[1] >= 0.0f, f2 = d[2] >= 0.0f;
-        const int lone = (f0 == f1) ? 2 : (f0 == f2 ? 1 : 0);
-        segments.push_back(
-            {{ends.a, ends.b},
-             {meshEdgeKey(w[lone], w[(lone + 1) % 3]), meshEdgeKey(w[lone], w[(lone + 2) % 3])}});
+        segments.push_back({{ends.a, ends.b},
+                            {meshEdgeKey(w[crossing.lone], w[crossing.other1]),
+                             meshEdgeKey(w[crossing.lone], w[crossing.other2])}});
     }
     return segments;
 }

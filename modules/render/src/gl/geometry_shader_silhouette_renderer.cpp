@@ -262,13 +262,18 @@ SilhouetteFrame GeometryShaderSilhouetteRenderer::renderFrame(const Camera& came
             s.source->writeLineCandidates(s.gl, camera, options.lineCandidateIndices);
     const SilhouetteGlStats stats = s.gl.render(camera, options);
     glFinish();
+    const double passesMs = msSince(start);
+    const auto readStart = Clock::now();
     frame.lines = PixelMask(camera.width(), camera.height());
     s.gl.readRedMask(kBackground.r, frame.lines.pixels());
     // The passes' GPU times (timer queries) as visibility (pass 1: the depth to test against) and
-    // silhouette (pass 2); draw is the rest: setup, the read-back of the image and its mask.
+    // silhouette (passes 2 and 3); draw is the rest: setup, and the read-back of the mask, timed
+    // on its own (a software rasterizer's timer queries may bill a deferred pass to the wrong
+    // query, so the rest of the passes' wall time can come out negative).
     frame.times.visibilityMs = stats.surfacePassMs;
     frame.times.silhouetteMs = stats.linePassMs;
-    frame.times.drawMs = std::max(0.0, msSince(start) - stats.surfacePassMs - stats.linePassMs);
+    frame.times.drawMs =
+        std::max(0.0, passesMs - stats.surfacePassMs - stats.linePassMs) + msSince(readStart);
     frame.triangles = stats.triangles;
     frame.segments = stats.segments;
     s.stats = {};

@@ -20,6 +20,7 @@
 // H_patient = A H_frame A^T (a gantry tilt shears the frame; this undoes it).
 
 #include "lw/kernels/host_device.h"
+#include "lw/kernels/silhouette_segment.h" // isolineCrossing
 #include "lw/kernels/voxel_grid.h"
 
 #include <cmath>
@@ -142,27 +143,6 @@ LW_HOST_DEVICE inline Sym3 frameHessian(const VoxelGradientSampler<T>& sampler, 
                                             s.spanK[std::size_t(z)]);
     }
     return symmetrised<float>(row);
-}
-
-// Where the per-vertex scalar `value` crosses zero inside triangle (p, value): the same rule as
-// Burns' silhouette segment (a vertex at 0 counts as positive, so neighbours agree on every
-// edge), with the two crossed edges named so attributes can be interpolated at the endpoints:
-// endpoint a lies on edge (lone, other1) at parameter ta, b on (lone, other2) at tb.
-struct IsolineCrossing {
-    int lone = 0, other1 = 1, other2 = 2;
-    float ta = 0.0f, tb = 0.0f;
-};
-
-LW_HOST_DEVICE inline bool isolineCrossing(const float value[3], IsolineCrossing& out) {
-    const bool s0 = value[0] >= 0.0f, s1 = value[1] >= 0.0f, s2 = value[2] >= 0.0f;
-    if (s0 == s1 && s1 == s2)
-        return false;
-    out.lone = (s0 == s1) ? 2 : (s0 == s2 ? 1 : 0);
-    out.other1 = (out.lone + 1) % 3;
-    out.other2 = (out.lone + 2) % 3;
-    out.ta = value[out.lone] / (value[out.lone] - value[out.other1]);
-    out.tb = value[out.lone] / (value[out.lone] - value[out.other2]);
-    return true;
 }
 
 } // namespace lw::kernels

@@ -28,20 +28,41 @@ LW_HOST_DEVICE inline float silhouetteDistance(glm::vec3 position, glm::vec3 nor
     return glm::dot(normal, toEye);
 }
 
-// Returns true and the segment when the triangle (p[i], d[i]) holds a piece of the contour.
-LW_HOST_DEVICE inline bool silhouetteSegment(const glm::vec3 p[3], const float d[3],
-                                             SegmentEndpoints& out) {
-    const bool front0 = d[0] >= 0.0f, front1 = d[1] >= 0.0f, front2 = d[2] >= 0.0f;
-    if (front0 == front1 && front1 == front2)
+// Where the per-vertex scalar `value` crosses zero inside a triangle: a vertex at 0 counts as
+// positive, so neighbouring triangles agree on every edge. The lone vertex is the one whose
+// side differs from the other two; the crossing runs over the two edges that touch it, named so
+// that attributes can be interpolated at the endpoints: endpoint a lies on edge (lone, other1)
+// at parameter ta, b on (lone, other2) at tb. Burns' silhouette (value = d) and the suggestive
+// contours (value = kappa_r) both take it.
+struct IsolineCrossing {
+    int lone = 0, other1 = 1, other2 = 2;
+    float ta = 0.0f, tb = 0.0f;
+};
+
+LW_HOST_DEVICE inline bool isolineCrossing(const float value[3], IsolineCrossing& out) {
+    const bool s0 = value[0] >= 0.0f, s1 = value[1] >= 0.0f, s2 = value[2] >= 0.0f;
+    if (s0 == s1 && s1 == s2)
         return false;
-    // The lone vertex is the one whose side differs from the other two; the contour crosses
-    // the two edges that touch it.
-    const int lone = (front0 == front1) ? 2 : (front0 == front2 ? 1 : 0);
-    const int other1 = (lone + 1) % 3, other2 = (lone + 2) % 3;
-    const float t1 = d[lone] / (d[lone] - d[other1]);
-    const float t2 = d[lone] / (d[lone] - d[other2]);
-    out.a = p[lone] + t1 * (p[other1] - p[lone]);
-    out.b = p[lone] + t2 * (p[other2] - p[lone]);
+    out.lone = (s0 == s1) ? 2 : (s0 == s2 ? 1 : 0);
+    out.other1 = (out.lone + 1) % 3;
+    out.other2 = (out.lone + 2) % 3;
+    out.ta = value[out.lone] / (value[out.lone] - value[out.other1]);
+    out.tb = value[out.lone] / (value[out.lone] - value[out.other2]);
+    return true;
+}
+
+// Returns true and the segment when the triangle (p[i], d[i]) holds a piece of the contour;
+// `crossing` (optional) receives which edges its ends lie on.
+LW_HOST_DEVICE inline bool silhouetteSegment(const glm::vec3 p[3], const float d[3],
+                                             SegmentEndpoints& out,
+                                             IsolineCrossing* crossing = nullptr) {
+    IsolineCrossing c;
+    if (!isolineCrossing(d, c))
+        return false;
+    out.a = p[c.lone] + c.ta * (p[c.other1] - p[c.lone]);
+    out.b = p[c.lone] + c.tb * (p[c.other2] - p[c.lone]);
+    if (crossing)
+        *crossing = c;
     return true;
 }
 

@@ -32,8 +32,4 @@ struct SurfaceDerivatives {
 SurfaceDerivatives surfaceDerivatives(const volume::Volume& volume,
                                       const kernels::TriangleMesh& mesh, unsigned threads = 0);
 
-// The same at any patient point inside the volume's grid (points outside are clamped to it).
-void fieldDerivativesAt(const volume::Volume& volume, glm::dvec3 patient, glm::vec3& gradient,
-                        kernels::Sym3& hessian);
-
 } // namespace lw::render
