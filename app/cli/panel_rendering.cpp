@@ -102,29 +102,24 @@ core::ImageRgba8 renderIsoPanel(render::SilhouetteRenderer& renderer, const volu
 void renderSuggestive(render::SilhouetteRenderer& renderer, const volume::Volume& volume,
                       render::Camera camera, const RenderRequest& request, RenderedPanels& panels,
                       std::ostream& out) {
-    render::Mesh extracted;
-    const render::Mesh* mesh = renderer.surfaceMesh();
-    if (!mesh) {
-        extracted = extractForRequest(volume, request);
-        mesh = &extracted;
-    }
+    const render::Mesh mesh = render::surfaceOfFrame(renderer, volume, request.settings);
     render::SuggestiveContourSettings settings = request.suggestiveSettings;
     settings.visibility = request.settings.visibility;
     settings.minStrokePixels = request.settings.minStrokePixels;
     settings.threads = request.settings.threads;
-    render::SuggestiveContourRenderer suggestive(volume, *mesh, request.settings.isoReal,
+    render::SuggestiveContourRenderer suggestive(volume, mesh, request.settings.isoReal,
                                                  settings.threads);
     const render::SuggestiveFrame frame = suggestive.render(camera, settings);
     panels.suggestive = frame.lines;
     render::PolylineOptions lines;
     lines.minLengthPx = double(settings.minStrokePixels);
-    panels.suggestivePolylines = render::visiblePolylines(
-        render::chainSegments(suggestive.segments(camera, settings)), camera, frame.lines, lines);
+    panels.suggestivePolylines =
+        render::visiblePolylines(render::chainSegments(frame.kept), camera, frame.lines, lines);
     char line[256];
     std::snprintf(line, sizeof line,
                   "suggestive contours: segments %zu, pixels %zu; ms: derivatives %.1f (once per "
                   "surface) frame %.1f\n",
-                  frame.segments, frame.lines.count(), suggestive.derivativesMs(), frame.ms);
+                  frame.kept.size(), frame.lines.count(), suggestive.derivativesMs(), frame.ms);
     out << line;
     std::vector<double> times;
     for (int i = 1; i <= request.repeat; ++i) {

@@ -189,7 +189,7 @@ TEST(SuggestiveContours, EmptySurfaceDrawsNothing) {
     render::SuggestiveContourRenderer renderer(volume, mesh, 1000.0);
     const render::SuggestiveFrame frame =
         renderer.render(shapeCamera(sphere, volume, {30.0, 20.0}), {});
-    EXPECT_EQ(frame.segments, 0u);
+    EXPECT_EQ(frame.kept.size(), 0u);
     EXPECT_EQ(frame.lines.count(), 0u);
     EXPECT_GT(frame.lines.width(), 0);
 }

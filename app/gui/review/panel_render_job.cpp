@@ -72,12 +72,8 @@ std::pair<QImage, QImage> renderPanelJob(const PanelRenderJob& job) {
     settings.closeAtBorder = job.appearance.closeAtBorder;
     render::SilhouetteFrame frame = renderer->render(job.camera, settings);
     if (job.appearance.suggestiveContours) {
-        // The surface the frame drew (method 2 keeps none: extracted here).
-        const render::Mesh* drawn = renderer->surfaceMesh();
-        const render::Mesh extracted =
-            drawn ? render::Mesh() : render::extractIsoSurface(*job.volume, job.iso);
-        render::SuggestiveContourRenderer suggestive(*job.volume, drawn ? *drawn : extracted,
-                                                     job.iso);
+        const render::Mesh surface = render::surfaceOfFrame(*renderer, *job.volume, settings);
+        render::SuggestiveContourRenderer suggestive(*job.volume, surface, job.iso);
         render::SuggestiveContourSettings lines;
         lines.visibility = settings.visibility;
         lines.minStrokePixels = settings.minStrokePixels;

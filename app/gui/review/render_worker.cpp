@@ -129,22 +129,22 @@ void RenderWorker::renderSilhouette(const FrameRequest& request, FrameResult& re
 // which keeps none) gets its per-vertex derivatives once per iso-value; each frame then draws
 // the suggestive contours into the silhouette's mask.
 void RenderWorker::addSuggestive(const FrameRequest& request, FrameResult& result) {
-    if (!m_suggestive || m_suggestiveIso != request.iso) {
+    const bool closes = request.settings.closeAtBorder;
+    if (!m_suggestive || m_suggestiveIso != request.iso || m_suggestiveCloses != closes) {
         m_suggestive.reset();
-        if (m_mesh && m_meshIso == request.iso) {
+        if (m_mesh && m_meshIso == request.iso && m_meshCloses == closes) {
             m_suggestiveMesh = m_mesh;
-        } else if (const render::Mesh* drawn = m_renderer->surfaceMesh()) {
-            m_suggestiveMesh = std::make_shared<const render::Mesh>(*drawn);
         } else {
-            render::IsoSurfaceOptions options;
-            options.threads = request.settings.threads;
-            options.cancel = request.cancel.get();
+            render::SilhouetteSettings drawn = request.settings;
+            drawn.isoReal = request.iso;
+            drawn.cancel = request.cancel.get();
             m_suggestiveMesh = std::make_shared<const render::Mesh>(
-                render::extractIsoSurface(*m_volume, request.iso, options));
+                render::surfaceOfFrame(*m_renderer, *m_volume, drawn));
         }
         m_suggestive = std::make_unique<render::SuggestiveContourRenderer>(
             *m_volume, *m_suggestiveMesh, request.iso, request.settings.threads);
         m_suggestiveIso = request.iso;
+        m_suggestiveCloses = closes;
     }
     render::SuggestiveContourSettings settings;
     settings.visibility = request.settings.visibility;
@@ -181,12 +181,13 @@ void RenderWorker::keepRendererMesh(const FrameRequest& request, FrameResult& re
     const render::Mesh* mesh = m_renderer->surfaceMesh();
     if (!mesh)
         return;
-    if (m_mesh && m_meshIso == request.iso &&
+    if (m_mesh && m_meshIso == request.iso && m_meshCloses == request.settings.closeAtBorder &&
         request.settings.mode == render::ExtractionMode::CachedA)
         return; // mode a: the renderer drew the mesh it has already handed out
     const auto start = std::chrono::steady_clock::now();
     m_mesh = std::make_shared<const render::Mesh>(*mesh);
     m_meshIso = request.iso;
+    m_meshCloses = request.settings.closeAtBorder;
     result.mesh = m_mesh;
     // The marching cubes that made it ran inside the renderer's frame (plus this copy).
     result.meshMs = result.silhouette->times.extractMs + millisecondsSince(start);
@@ -231,7 +232,7 @@ void RenderWorker::extractMesh(const FrameRequest& request, FrameResult& result)
     if (result.mesh)
         return;
     const bool closes = request.settings.closeAtBorder;
-    if (m_extractorCloses != closes)
+    if (m_meshCloses != closes)
         m_mesh.reset(); // the kept mesh is the other surface (open / closed at the border)
     if (m_mesh && m_meshIso == request.iso && !request.forceExtract && !request.wantMesh)
         return; // the iso image re-draws the mesh it has
@@ -256,6 +257,7 @@ void RenderWorker::extractMesh(const FrameRequest& request, FrameResult& result)
     m_extractor->extract(request.iso, *mesh, nullptr, request.cancel.get());
     m_mesh = std::move(mesh);
     m_meshIso = request.iso;
+    m_meshCloses = closes;
     result.mesh = m_mesh;
     result.meshMs = millisecondsSince(start);
 }

@@ -110,11 +110,13 @@ private:
     QString m_backendNote;
     std::shared_ptr<const render::Mesh> m_mesh;
     double m_meshIso = 0.0;
+    bool m_meshCloses = false; // whether m_mesh is closed at the border (whoever extracted it)
     // Suggestive contours: the per-vertex derivatives of one iso-value's surface, kept while the
     // camera turns (the mesh they were computed on is held with them).
     std::unique_ptr<render::SuggestiveContourRenderer> m_suggestive;
     std::shared_ptr<const render::Mesh> m_suggestiveMesh;
     double m_suggestiveIso = 0.0;
+    bool m_suggestiveCloses = false;
     // The worker's own GL for the iso panel (made on this thread at first use).
     std::unique_ptr<render::GlContext> m_glContext;
     std::unique_ptr<render::SilhouetteGlRenderer> m_isoGl;

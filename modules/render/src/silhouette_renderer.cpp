@@ -1,6 +1,7 @@
 #include "lw/render/silhouette_renderer.h"
 
 #include "lw/render/gl_frame_target.h"
+#include "lw/render/iso_surface.h"
 
 #include <chrono>
 
@@ -33,6 +34,17 @@ SilhouetteFrame SilhouetteRenderer::render(const Camera& camera,
                 .count();
     }
     return frame;
+}
+
+Mesh surfaceOfFrame(const SilhouetteRenderer& renderer, const volume::Volume& volume,
+                    const SilhouetteSettings& settings) {
+    if (const Mesh* drawn = renderer.surfaceMesh())
+        return *drawn;
+    IsoSurfaceOptions options;
+    options.threads = settings.threads;
+    options.cancel = settings.cancel;
+    options.closeAtBorder = settings.closeAtBorder;
+    return extractIsoSurface(volume, settings.isoReal, options);
 }
 
 } // namespace lw::render

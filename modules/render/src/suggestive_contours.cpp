@@ -264,7 +264,9 @@ SuggestiveFrame SuggestiveContourRenderer::render(const Camera& camera,
     const auto start = Clock::now();
     State& s = *m_state;
     const unsigned threads = settings.threads;
-    const std::vector<EdgeSegment> kept = segments(camera, settings);
+    SuggestiveFrame frame;
+    frame.kept = segments(camera, settings);
+    const std::vector<EdgeSegment>& kept = frame.kept;
     const kernels::cpu::ViewTransform view = toViewTransform(camera);
     std::vector<kernels::cpu::ScreenSegment> screen;
     screen.reserve(kept.size());
@@ -286,8 +288,6 @@ SuggestiveFrame SuggestiveContourRenderer::render(const Camera& camera,
                                         s.clusters.size(), view, s.needed, s.surfaceDepth, threads,
                                         s.closed);
     }
-    SuggestiveFrame frame;
-    frame.segments = kept.size();
     frame.lines = PixelMask(camera.width(), camera.height());
     kernels::cpu::resolveSilhouette(s.surfaceDepth, s.lineDepth,
                                     ZBufferSilhouetteRenderer::depthEpsilon(camera, s.volume),

@@ -72,8 +72,10 @@ void addLines(PixelMask& into, const PixelMask& lines);
 
 struct SuggestiveFrame {
     PixelMask lines;
-    std::size_t segments = 0; // kept segments (before visibility)
-    double ms = 0.0;          // this frame (the per-vertex derivatives are not in it)
+    // The kept segments (before visibility), as segments() gives them: chained into visible
+    // polylines for vector output without computing them again.
+    std::vector<EdgeSegment> kept;
+    double ms = 0.0; // this frame (the per-vertex derivatives are not in it)
 };
 
 // One mesh of one volume: the view-independent per-vertex derivatives and the mesh's adjacency
