@@ -1,6 +1,7 @@
 // `linework-cli bench --json` as the benchmark page uses it: the output parses as JSON and every
 // row carries the keys docs/BENCHMARKS.md is written from, with plausible values.
 #include "cli_runner.h"
+#include "test_support.h"
 
 #include <cctype>
 #include <cstdlib>
@@ -11,7 +12,6 @@
 #include <set>
 #include <stdexcept>
 #include <string>
-#include <unistd.h>
 #include <vector>
 
 namespace {
@@ -289,9 +289,7 @@ TEST(BenchCommand, BadBorderOrMinStrokeIsAUsageError) {
 
 // A DICOM series reaches `bench --input` through `convert` (bench reads volume files only).
 TEST(BenchCommand, ConvertWritesAnInputForBench) {
-    const std::filesystem::path dir =
-        std::filesystem::temp_directory_path() / ("lw_bench_convert_" + std::to_string(::getpid()));
-    std::filesystem::create_directories(dir);
+    const lw::test::TempDir dir;
     const std::string nrrd = (dir / "phantom.nrrd").string();
     const CliResult convert = runCli("convert phantom:32 -o " + quoted(nrrd));
     ASSERT_EQ(convert.exitCode, 0) << convert.err;
@@ -306,7 +304,6 @@ TEST(BenchCommand, ConvertWritesAnInputForBench) {
     EXPECT_EQ(runCli("convert phantom:8 -o " + quoted((dir / "x.png").string())).exitCode, 2)
         << "NRRD only";
     EXPECT_EQ(runCli("convert -o " + quoted(nrrd)).exitCode, 2) << "no INPUT";
-    std::filesystem::remove_all(dir);
 }
 
 TEST(BenchCommand, BadOptionsFailWithAUsageError) {

@@ -246,7 +246,7 @@ TEST_F(SilhouetteGl, WideLinesAreTheVisibleThinLinesDilated) {
     };
     const PixelMask thin = mask(1.0f);
     ASSERT_GT(thin.count(), 200u);
-    for (const auto [width, radius] : {std::pair{2.0f, 1}, {3.0f, 1}, {4.0f, 2}, {5.0f, 2}}) {
+    for (const auto& [width, radius] : {std::pair{2.0f, 1}, {3.0f, 1}, {4.0f, 2}, {5.0f, 2}}) {
         const PixelMask expected = thin.dilated(radius);
         const PixelMask wide = mask(width);
         std::size_t differing = 0;
