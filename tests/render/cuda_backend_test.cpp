@@ -8,9 +8,11 @@
 #include "lw/evaluation/analytic_shapes.h"
 #include "lw/kernels/cpu/marching_cubes_cpu.h"
 #include "lw/kernels/cuda/marching_cubes_cuda.h"
+#include "lw/kernels/cuda/stroke_pruning_cuda.h"
 #include "lw/render/gpu_memory_plan.h"
 #include "lw/render/iso_surface.h"
 #include "lw/render/phantom.h"
+#include "lw/render/pixel_mask.h"
 #include "lw/render/renderer_factory.h"
 #include "lw/render/zbuffer_silhouette_renderer.h"
 
@@ -540,6 +542,30 @@ TEST(CudaBackendMethod2, RenderWithoutAVolumeNamesTheError) {
         EXPECT_NE(std::string(error.what()).find("method 2 (CUDA)"), std::string::npos)
             << error.what();
     }
+}
+
+// Stroke pruning's kernels against the host's flood fill, bit for bit: sizes at and beside the
+// pixel blocks (32 x 8) and the 256-thread label blocks, groups across block edges, gaps.
+TEST(CudaBackendStrokePruning, EqualsTheHostFloodFill) {
+    std::mt19937 random(5);
+    for (const glm::ivec2 size :
+         {glm::ivec2(1, 1), glm::ivec2(31, 7), glm::ivec2(32, 8), glm::ivec2(33, 9),
+          glm::ivec2(256, 1), glm::ivec2(257, 65), glm::ivec2(509, 383), glm::ivec2(1024, 1024)})
+        for (const int gap : {0, 1})
+            for (const int minPixels : {2, 10, 60}) {
+                PixelMask mask(size.x, size.y);
+                const double density = 0.02 + 0.1 * double(random() % 4);
+                for (std::uint8_t& p : mask.pixels())
+                    p = (double(random()) / double(std::mt19937::max())) < density ? 1 : 0;
+                PixelMask expected = mask;
+                expected.removeComponentsSmallerThan(minPixels, gap);
+                const kernels::cuda::CudaStatus status = kernels::cuda::pruneStrokesOnDevice(
+                    mask.pixels().data(), size.x, size.y, minPixels, gap);
+                ASSERT_TRUE(status.ok()) << status.describe();
+                EXPECT_TRUE(mask == expected)
+                    << size.x << "x" << size.y << " gap " << gap << " min " << minPixels << ": "
+                    << mask.count() << " pixels kept, the host keeps " << expected.count();
+            }
 }
 
 TEST(CudaBackendStatus, ErrorsNameTheCall) {

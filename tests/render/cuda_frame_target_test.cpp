@@ -1,7 +1,7 @@
 // Method 3 on CUDA drawing into a GL texture (label gpu: SKIP without a CUDA device). The compose
 // kernel writes the texture through CUDA-GL interop; read back from GL it must equal, bit for bit,
 // the host mask the same renderer gives for the same frame without the texture. Where the texture
-// cannot be used (wrong size, stroke pruning on the host, no GL context current) the frame takes
+// cannot be used (wrong size, no GL context current) the frame takes
 // the host path and says so.
 
 #include "lw/core/error.h"
@@ -118,8 +118,27 @@ TEST_F(CudaFrameTarget, TextureEqualsTheHostMaskBitForBit) {
                                 "streamed slabs");
 }
 
-// A resize the caller has not caught up with, and stroke pruning (a host pass), keep the host
-// path; the texture is left as it was.
+// Stroke pruning runs on the device before the compose: the texture is the pruned mask, which is
+// the CPU's pruned mask.
+TEST_F(CudaFrameTarget, PrunedStrokesGoToTheTextureToo) {
+    const int width = 509, height = 383;
+    GlFrameTarget target(width, height);
+    SilhouetteSettings settings;
+    settings.isoReal = 300.5;
+    settings.minStrokePixels = 40;
+    const Camera camera = cameraAt(m_volume, 30, 20, width, height);
+    expectTextureEqualsHostMask(target, camera, settings, "pruned");
+    auto cpu = createSilhouetteRenderer(SilhouetteMethod::ZBuffer, Backend::Cpu);
+    cpu->setVolume(m_volume);
+    SilhouetteSettings unpruned = settings;
+    unpruned.minStrokePixels = 0;
+    const PixelMask all = cpu->render(camera, unpruned).lines;
+    const PixelMask pruned = cpu->render(camera, settings).lines;
+    EXPECT_LT(pruned.count(), all.count()) << "the view has strokes under 40 pixels to drop";
+    EXPECT_TRUE(target.read() == pruned);
+}
+
+// A resize the caller has not caught up with keeps the host path; the texture is left as it was.
 TEST_F(CudaFrameTarget, HostPathWhereTheTextureDoesNotApply) {
     GlFrameTarget target(256, 200);
     SilhouetteSettings settings;
@@ -130,12 +149,6 @@ TEST_F(CudaFrameTarget, HostPathWhereTheTextureDoesNotApply) {
     EXPECT_FALSE(resized.drewToTarget);
     EXPECT_EQ(resized.lines.width(), 300);
     EXPECT_GT(resized.lines.count(), 200u);
-    settings.minStrokePixels = 10;
-    const Camera camera = cameraAt(m_volume, 30, 20, 256, 200);
-    const SilhouetteFrame pruned = m_renderer->render(camera, settings);
-    EXPECT_FALSE(pruned.drewToTarget);
-    settings.frameTarget = nullptr;
-    EXPECT_TRUE(pruned.lines == m_renderer->render(camera, settings).lines);
     EXPECT_EQ(target.read().count(), 0u);
 }
 

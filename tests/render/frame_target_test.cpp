@@ -8,18 +8,14 @@
 namespace lw::render {
 namespace {
 
-TEST(FrameTargetUse, OnlyAMatchingTextureWithoutHostPruning) {
+// Stroke pruning no longer keeps a frame on the host: the CUDA back-end prunes on the device.
+TEST(FrameTargetUse, OnlyATextureOfTheFramesSize) {
     const glm::ivec2 frame(640, 480);
-    EXPECT_EQ(frameTargetUse({640, 480}, frame, 0), FrameTargetUse::Texture);
-    EXPECT_EQ(frameTargetUse({640, 480}, frame, 1), FrameTargetUse::Texture)
-        << "1 keeps every pixel: nothing to prune";
-    EXPECT_EQ(frameTargetUse({0, 0}, frame, 0), FrameTargetUse::NoTarget);
-    EXPECT_EQ(frameTargetUse({640, 0}, frame, 0), FrameTargetUse::NoTarget);
-    EXPECT_EQ(frameTargetUse({641, 480}, frame, 0), FrameTargetUse::SizeDiffers);
-    EXPECT_EQ(frameTargetUse({640, 479}, frame, 0), FrameTargetUse::SizeDiffers);
-    EXPECT_EQ(frameTargetUse({640, 480}, frame, 2), FrameTargetUse::HostPruning);
-    EXPECT_EQ(frameTargetUse({640, 480}, frame, kDefaultMinStrokePixels),
-              FrameTargetUse::HostPruning);
+    EXPECT_EQ(frameTargetUse({640, 480}, frame), FrameTargetUse::Texture);
+    EXPECT_EQ(frameTargetUse({0, 0}, frame), FrameTargetUse::NoTarget);
+    EXPECT_EQ(frameTargetUse({640, 0}, frame), FrameTargetUse::NoTarget);
+    EXPECT_EQ(frameTargetUse({641, 480}, frame), FrameTargetUse::SizeDiffers);
+    EXPECT_EQ(frameTargetUse({640, 479}, frame), FrameTargetUse::SizeDiffers);
 }
 
 TEST(FrameTargetUse, FromSettingsWithoutATarget) {

@@ -2,6 +2,7 @@
 // under a size go, on every method and back-end present, after the method has drawn; the
 // contours stay pixel for pixel.
 #include "backends_under_test.h"
+#include "lw/kernels/stroke_components.h"
 #include "lw/render/camera.h"
 #include "lw/render/pixel_mask.h"
 #include "lw/render/renderer_factory.h"
@@ -9,6 +10,7 @@
 
 #include <algorithm>
 #include <gtest/gtest.h>
+#include <numeric>
 #include <random>
 
 namespace {
@@ -71,6 +73,68 @@ INSTANTIATE_TEST_SUITE_P(
         std::replace(name.begin(), name.end(), ' ', '_');
         return name;
     });
+
+// A random mask: runs and lone pixels, dense enough that groups merge across gaps.
+PixelMask randomStrokes(int width, int height, unsigned seed) {
+    PixelMask mask(width, height);
+    std::mt19937 random(seed);
+    const int strokes = std::max(1, width * height / 40);
+    for (int i = 0; i < strokes; ++i) {
+        int x = int(random() % unsigned(width)), y = int(random() % unsigned(height));
+        const int length = 1 + int(random() % 12);
+        const int dx = int(random() % 3) - 1, dy = int(random() % 3) - 1;
+        for (int step = 0; step < length && x >= 0 && y >= 0 && x < width && y < height; ++step) {
+            mask.set(x, y);
+            x += dx;
+            y += dy;
+        }
+    }
+    return mask;
+}
+
+// The device's rules (lw/kernels/stroke_components.h), run on the host: each pixel's unions in a
+// random order, as parallel threads may run them, then the groups' sizes and the short groups
+// cleared, as the kernels do. The result must be the flood fill's.
+PixelMask pruneByUnionFind(const PixelMask& mask, int minPixels, int gapPixels, unsigned seed) {
+    const int width = mask.width(), height = mask.height();
+    const std::size_t pixels = std::size_t(width) * std::size_t(height);
+    const std::uint8_t* on = mask.pixels().data();
+    std::vector<std::uint32_t> labels(pixels);
+    for (std::size_t i = 0; i < pixels; ++i)
+        labels[i] = on[i] ? std::uint32_t(i) : lw::kernels::kNotAStrokePixel;
+    std::vector<std::uint32_t> order(pixels);
+    std::iota(order.begin(), order.end(), 0u);
+    std::shuffle(order.begin(), order.end(), std::mt19937(seed));
+    for (const std::uint32_t i : order)
+        lw::kernels::uniteWithEarlierNeighbours(
+            on, labels.data(), width, height, 1 + gapPixels, int(i % std::uint32_t(width)),
+            int(i / std::uint32_t(width)), lw::kernels::LabelMinExchange{});
+    std::vector<std::uint32_t> sizes(pixels, 0);
+    for (std::size_t i = 0; i < pixels; ++i)
+        if (on[i])
+            ++sizes[lw::kernels::strokeRoot(labels.data(), std::uint32_t(i))];
+    PixelMask out = mask;
+    for (std::size_t i = 0; i < pixels; ++i)
+        if (on[i] && sizes[lw::kernels::strokeRoot(labels.data(), std::uint32_t(i))] <
+                         std::uint32_t(minPixels))
+            out.pixels()[i] = 0;
+    return out;
+}
+
+TEST(StrokeUnionFind, FindsTheFloodFillsGroupsInAnyOrder) {
+    for (const glm::ivec2 size : {glm::ivec2(1, 1), glm::ivec2(1, 37), glm::ivec2(33, 9),
+                                  glm::ivec2(64, 64), glm::ivec2(257, 31)})
+        for (const int gap : {0, 1})
+            for (const int minPixels : {2, 5, 12})
+                for (const unsigned seed : {1u, 2u}) {
+                    const PixelMask mask = randomStrokes(size.x, size.y, seed);
+                    PixelMask expected = mask;
+                    expected.removeComponentsSmallerThan(minPixels, gap);
+                    EXPECT_TRUE(pruneByUnionFind(mask, minPixels, gap, seed * 7) == expected)
+                        << size.x << "x" << size.y << " gap " << gap << " min " << minPixels
+                        << " seed " << seed;
+                }
+}
 
 // A sphere of radius 18 voxels with dust: single voxels above the iso-value far from it, each a
 // tiny closed surface whose contour is a speck of a few pixels.

@@ -165,8 +165,7 @@ render::GlFrameTarget* RenderWorker::frameTargetFor(const FrameRequest& request,
     if (!request.silhouetteToTexture || !request.textureSurface ||
         renderer.method() != render::SilhouetteMethod::ZBuffer ||
         renderer.backendName() != "cuda" ||
-        render::frameTargetUse(size, size, request.settings.minStrokePixels) !=
-            render::FrameTargetUse::Texture)
+        render::frameTargetUse(size, size) != render::FrameTargetUse::Texture)
         return nullptr;
     if (!m_textures)
         m_textures = std::make_unique<SilhouetteTextures>(request.textureSurface);

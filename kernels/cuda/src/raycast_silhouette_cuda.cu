@@ -3,6 +3,7 @@
 #include "lw/kernels/cuda/raycast_silhouette_cuda.h"
 #include "marching_cubes_impl.cuh"
 #include "raycast_kernels.cuh"
+#include "stroke_pruning.h"
 
 #include <algorithm>
 #include <cub/device/device_radix_sort.cuh>
@@ -24,6 +25,8 @@ struct RayCastSilhouetteCuda::Impl {
     DeviceBuffer<std::uint32_t> sortedCells;
     DeviceBuffer<unsigned char> sortTemp;
     DeviceBuffer<std::uint8_t> visible; // phase 2's, two flags per segment
+    StrokePruning pruning;
+    int minStrokePixels = 0, strokeGapPixels = 0; // this frame's (RayCastCudaSettings)
     double iso = 0.0;
     bool prepared = false;
     dispatch::StageTimer prepareTimer, renderTimer;
@@ -54,7 +57,7 @@ std::size_t RayCastSilhouetteCuda::deviceBytes() const {
     return s.marchingCubes.deviceBytes() + s.rayOffsets.bytes() + s.macroOccupied.bytes() +
            s.mask.bytes() + s.counters.bytes() + s.segments.bytes() + s.segmentCells.bytes() +
            s.sortedSegments.bytes() + s.sortedCells.bytes() + s.sortTemp.bytes() +
-           s.visible.bytes();
+           s.visible.bytes() + s.pruning.deviceBytes();
 }
 
 CudaStatus RayCastSilhouetteCuda::setVolume(const VolumeView& hostVolume,
@@ -233,6 +236,8 @@ CudaStatus RayCastSilhouetteCuda::Impl::renderTyped(const rc::View& view, std::u
     const std::size_t total = found + (extra ? extraCount : 0);
     if (total > 0)
         LW_RETURN_IF_FAILED(testAndDraw<T>(view, std::uint32_t(total)));
+    LW_RETURN_IF_FAILED(pruning.run(mask.data(), view.camera.width, view.camera.height,
+                                    minStrokePixels, strokeGapPixels, st));
     LW_RETURN_IF_FAILED(renderTimer.stop(st));
     if (pixels > 0)
         LW_CUDA_TRY(cudaMemcpyAsync(hostMask, mask.data(), pixels, cudaMemcpyDeviceToHost, st),
@@ -261,6 +266,8 @@ CudaStatus RayCastSilhouetteCuda::render(const PixelCamera& camera, glm::dvec3 e
     view.visibility = settings.visibility;
     view.alongSegment = settings.alongSegment;
     view.pixelSpan = rayPixelSpan(camera.halfHeight, camera.height);
+    s.minStrokePixels = settings.minStrokePixels;
+    s.strokeGapPixels = settings.strokeGapPixels;
     return dispatchVoxelKind(s.mc().volume.kind, [&](auto zero) {
         return s.renderTyped<decltype(zero)>(view, hostMask, frame, extraSegments, extraCount);
     });

@@ -28,4 +28,8 @@ inline constexpr int kTriangleBlock = 128;
 inline constexpr int kPixelBlockX = 32;
 inline constexpr int kPixelBlockY = 8;
 
+// Stroke pruning: one thread per pixel (labels, sizes, clearing); the unions use the 2D pixel
+// blocks above.
+inline constexpr int kStrokePixelBlock = 256;
+
 } // namespace lw::kernels::cuda::tuning

@@ -3,6 +3,7 @@
 #include "dispatch.h"
 #include "lw/kernels/cuda/gl_texture_interop.h"
 #include "lw/kernels/cuda/zbuffer_cuda.h"
+#include "stroke_pruning.h"
 #include "tuning.h"
 #include "zbuffer_kernels.cuh"
 
@@ -19,6 +20,7 @@ struct ZBufferCuda::Impl {
     DeviceBuffer<std::uint32_t> surface, lines;
     DeviceBuffer<std::uint8_t> mask;
     DeviceBuffer<unsigned long long> segmentCount;
+    StrokePruning pruning;
     // drawHost's copy of a host mesh.
     DeviceBuffer<glm::vec3> hostPositions, hostNormals;
     DeviceBuffer<std::uint32_t> hostIndices;
@@ -39,7 +41,7 @@ std::size_t ZBufferCuda::deviceBytes() const {
     const Impl& s = *m_impl;
     return s.screen.bytes() + s.surface.bytes() + s.lines.bytes() + s.mask.bytes() +
            s.segmentCount.bytes() + s.hostPositions.bytes() + s.hostNormals.bytes() +
-           s.hostIndices.bytes();
+           s.hostIndices.bytes() + s.pruning.deviceBytes();
 }
 ZBufferCuda::~ZBufferCuda() = default;
 
@@ -174,6 +176,8 @@ CudaStatus ZBufferCuda::resolve(const ZBufferCudaSettings& settings, std::uint8_
                                                           height, settings.epsilon,
                                                           settings.visibility, s.mask.data());
         LW_CUDA_LAUNCHED("zb::resolve");
+        LW_RETURN_IF_FAILED(s.pruning.run(s.mask.data(), width, height, settings.minStrokePixels,
+                                          settings.strokeGapPixels, st));
         LW_CUDA_TRY(cudaMemcpyAsync(hostMask, s.mask.data(), pixels, cudaMemcpyDeviceToHost, st),
                     "cudaMemcpy(mask)");
     }
@@ -181,6 +185,28 @@ CudaStatus ZBufferCuda::resolve(const ZBufferCudaSettings& settings, std::uint8_
 }
 
 namespace {
+
+// The colour pass into the texture's surface object: straight, or, when strokes are pruned, into
+// the device mask first and copied once pruned.
+CudaStatus composeKernels(ZBufferCuda::Impl& s, const ZBufferCudaSettings& settings,
+                          cudaSurfaceObject_t texels) {
+    cudaStream_t st = s.stream.get();
+    const int width = s.view.width, height = s.view.height;
+    const PixelLaunch launch = pixelLaunch(width, height);
+    if (settings.minStrokePixels <= 1) {
+        zb::resolveToSurface<<<launch.grid, launch.block, 0, st>>>(s.surface.data(), s.lines.data(),
+                                                                   width, height, settings.epsilon,
+                                                                   settings.visibility, texels);
+        return dispatch::checkLaunch("zb::resolveToSurface");
+    }
+    zb::resolve<<<launch.grid, launch.block, 0, st>>>(s.surface.data(), s.lines.data(), width,
+                                                      height, settings.epsilon, settings.visibility,
+                                                      s.mask.data());
+    LW_CUDA_LAUNCHED("zb::resolve");
+    LW_RETURN_IF_FAILED(s.pruning.run(s.mask.data(), width, height, settings.minStrokePixels,
+                                      settings.strokeGapPixels, st));
+    return copyMaskToSurface(s.mask.data(), width, height, texels, st);
+}
 
 // The compose kernel into the mapped texture's array through a surface object, which may go only
 // once the kernel is done.
@@ -196,11 +222,7 @@ CudaStatus composeIntoTexture(ZBufferCuda::Impl& s, const ZBufferCudaSettings& s
     cudaSurfaceObject_t texels = 0;
     LW_CUDA_TRY(cudaCreateSurfaceObject(&texels, &description),
                 "cudaCreateSurfaceObject(mask texture)");
-    const PixelLaunch launch = pixelLaunch(s.view.width, s.view.height);
-    zb::resolveToSurface<<<launch.grid, launch.block, 0, st>>>(
-        s.surface.data(), s.lines.data(), s.view.width, s.view.height, settings.epsilon,
-        settings.visibility, texels);
-    CudaStatus status = dispatch::checkLaunch("zb::resolveToSurface");
+    CudaStatus status = composeKernels(s, settings, texels);
     if (status.ok())
         status = dispatch::statusOf(cudaStreamSynchronize(st), "zb::resolveToSurface");
     const CudaStatus destroyed = dispatch::statusOf(cudaDestroySurfaceObject(texels),

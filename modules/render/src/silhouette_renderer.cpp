@@ -7,26 +7,24 @@
 
 namespace lw::render {
 
-FrameTargetUse frameTargetUse(glm::ivec2 targetSize, glm::ivec2 frameSize, int minStrokePixels) {
+FrameTargetUse frameTargetUse(glm::ivec2 targetSize, glm::ivec2 frameSize) {
     if (targetSize.x <= 0 || targetSize.y <= 0)
         return FrameTargetUse::NoTarget;
     if (targetSize != frameSize)
         return FrameTargetUse::SizeDiffers;
-    if (minStrokePixels > 1)
-        return FrameTargetUse::HostPruning;
     return FrameTargetUse::Texture;
 }
 
 FrameTargetUse frameTargetUse(const SilhouetteSettings& settings, const Camera& camera) {
     const GlFrameTarget* target = settings.frameTarget;
     return frameTargetUse(target ? glm::ivec2(target->width(), target->height()) : glm::ivec2(0),
-                          {camera.width(), camera.height()}, settings.minStrokePixels);
+                          {camera.width(), camera.height()});
 }
 
 SilhouetteFrame SilhouetteRenderer::render(const Camera& camera,
                                            const SilhouetteSettings& settings) {
     SilhouetteFrame frame = renderFrame(camera, settings);
-    if (settings.minStrokePixels > 1 && !frame.drewToTarget) {
+    if (settings.minStrokePixels > 1 && !frame.drewToTarget && !frame.strokesPruned) {
         const auto start = std::chrono::steady_clock::now();
         frame.lines.removeComponentsSmallerThan(settings.minStrokePixels, kStrokeGapPixels);
         frame.times.drawMs +=

@@ -99,6 +99,8 @@ public:
         kernels::cuda::RayCastCudaSettings rc;
         rc.visibility = settings.visibility;
         rc.alongSegment = settings.testAlongSegment;
+        rc.minStrokePixels = settings.minStrokePixels;
+        rc.strokeGapPixels = kStrokeGapPixels;
         const bool orthographic = camera.isOrthographic();
         kernels::cuda::RayCastCudaFrame timing;
         frame.lines = PixelMask(camera.width(), camera.height());
@@ -114,6 +116,7 @@ public:
         check(m_kernels.render(pixelCamera(camera), eyeOrDirection, orthographic, rc,
                                frame.lines.pixels().data(), timing, m_capSegments.data(),
                                m_capSegments.size()));
+        frame.strokesPruned = true; // on the device, before the mask left it
         frame.triangles = timing.triangles + capTriangles;
         frame.segments = timing.segments;
         // The kernels find the segments and test them in one go: their time is visibility.

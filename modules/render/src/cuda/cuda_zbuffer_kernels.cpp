@@ -78,10 +78,10 @@ public:
         m_capKept = nullptr;
     }
 
-    bool keepsWholeSurface(const Camera& camera, const SilhouetteSettings&) override {
+    bool keepsWholeSurface(const Camera& camera, const SilhouetteSettings& settings) override {
         const GpuResidency where =
             chooseResidency(m_volume->dims(), volume::voxelSize(m_volume->voxelType()), m_budget,
-                            imageBytes(camera), false);
+                            imageBytes(camera, settings), false);
         return where == GpuResidency::WholeVolume && m_floor == GpuResidency::WholeVolume;
     }
 
@@ -127,6 +127,8 @@ public:
         m_timing = kernels::cuda::ZBufferCudaFrame();
         m_draw = kernels::cuda::ZBufferCudaSettings();
         m_draw.visibility = settings.visibility;
+        m_draw.minStrokePixels = settings.minStrokePixels;
+        m_draw.strokeGapPixels = kStrokeGapPixels;
         m_width = camera.width();
         m_height = camera.height();
         check(m_zbuffer.begin(toViewTransform(camera)));
@@ -155,6 +157,7 @@ public:
             frame.lines = PixelMask(m_width, m_height);
             check(m_zbuffer.resolve(m_draw, frame.lines.pixels().data(), m_timing));
         }
+        frame.strokesPruned = true; // on the device, before the mask left it
         frame.segments = m_timing.segments;
         frame.times.silhouetteMs += m_timing.projectMs + m_timing.silhouetteMs;
         frame.times.visibilityMs += m_timing.depthMs;
@@ -180,9 +183,11 @@ public:
 
 private:
     bool resolveIntoTarget(const SilhouetteSettings& settings);
-    // zbuffer1, zbuffer2 (4 bytes a pixel each) and the mask.
-    static std::size_t imageBytes(const Camera& camera) {
-        return std::size_t(camera.width()) * std::size_t(camera.height()) * 9;
+    // zbuffer1, zbuffer2 (4 bytes a pixel each) and the mask; stroke pruning's labels and group
+    // sizes (4 bytes a pixel each) when it runs.
+    static std::size_t imageBytes(const Camera& camera, const SilhouetteSettings& settings) {
+        const std::size_t perPixel = settings.minStrokePixels > 1 ? 17 : 9;
+        return std::size_t(camera.width()) * std::size_t(camera.height()) * perPixel;
     }
     const std::vector<kernels::CellSlab>& slabsOf(const std::vector<glm::ivec2>& layers,
                                                   double storedIso);
@@ -218,8 +223,8 @@ private:
 bool CudaZBufferKernels::resolveIntoTarget(const SilhouetteSettings& settings) {
     GlFrameTarget* target = settings.frameTarget;
     if (m_targetUnavailable || !target ||
-        frameTargetUse({target->width(), target->height()}, {m_width, m_height},
-                       settings.minStrokePixels) != FrameTargetUse::Texture)
+        frameTargetUse({target->width(), target->height()}, {m_width, m_height}) !=
+            FrameTargetUse::Texture)
         return false;
 #if LINEWORK_CUDA_GL_INTEROP
     auto* attachment = dynamic_cast<CudaTextureAttachment*>(target->attachment());
@@ -268,7 +273,7 @@ void CudaZBufferKernels::drawPieces(const Camera& camera, const SilhouetteSettin
     }
     const std::vector<glm::ivec2> layers =
         planSlabs(m_volume->dims(), volume::voxelSize(m_volume->voxelType()), m_budget,
-                  imageBytes(camera), settings.gpuSlabLayers);
+                  imageBytes(camera, settings), settings.gpuSlabLayers);
     m_draw.cullBackFaces = closed;
     const auto start = std::chrono::steady_clock::now();
     check(m_marchingCubes.extractSlabs(storedIso, slabsOf(layers, storedIso),

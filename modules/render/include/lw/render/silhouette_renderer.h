@@ -78,11 +78,10 @@ enum class FrameTargetUse {
     Texture,     // yes
     NoTarget,    // none given
     SizeDiffers, // the texture is not the frame's size (a resize the caller has not caught up with)
-    HostPruning, // stroke pruning (minStrokePixels > 1) works on the host mask
 };
-// `targetSize` is the texture's ({0, 0}: none), `frameSize` the camera's, `minStrokePixels` the
-// settings'.
-FrameTargetUse frameTargetUse(glm::ivec2 targetSize, glm::ivec2 frameSize, int minStrokePixels);
+// `targetSize` is the texture's ({0, 0}: none), `frameSize` the camera's. Stroke pruning does not
+// stand in the way: the back-end that draws into a target prunes on the device.
+FrameTargetUse frameTargetUse(glm::ivec2 targetSize, glm::ivec2 frameSize);
 // The same for `settings.frameTarget` and `camera`.
 FrameTargetUse frameTargetUse(const SilhouetteSettings& settings, const Camera& camera);
 
@@ -99,6 +98,7 @@ struct StageTimes {
 struct SilhouetteFrame {
     PixelMask lines;             // silhouette pixels on the camera's viewport, row 0 at the top
     bool drewToTarget = false;   // the lines went into settings.frameTarget; `lines` is empty
+    bool strokesPruned = false;  // the back-end dropped the short strokes itself (the CUDA ones)
     std::size_t triangles = 0;   // triangles extracted (method 2: triangles visited)
     std::size_t segments = 0;    // silhouette segments found (before visibility)
     std::size_t deviceBytes = 0; // CUDA back-end: device memory held at the most (0 on the CPU)

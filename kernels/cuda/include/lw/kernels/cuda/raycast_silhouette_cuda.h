@@ -9,6 +9,7 @@
 //             (kernels/common, bit for bit the CPU's), Burns' segment of each triangle, and for
 //             each segment the visibility rays of kernels/common's RayVisibility (both endpoints,
 //             or every pixel step along it), then the DDA of rasterizeLine into a byte mask
+//   prune     short strokes cleared from the mask on the device (stroke_pruning.h)
 // The CPU back-end (kernels/cpu/raycast_silhouette_cpu.h) calls the same rules, so the images
 // agree. Public header: no CUDA types.
 
@@ -28,6 +29,10 @@ namespace lw::kernels::cuda {
 struct RayCastCudaSettings {
     bool visibility = true;
     bool alongSegment = false; // test every pixel step of a segment, not only its endpoints
+    // Strokes of fewer pixels (joined across gaps of strokeGapPixels) cleared on the device before
+    // the mask is copied to the host (stroke_pruning.h); 0 or 1: none.
+    int minStrokePixels = 0;
+    int strokeGapPixels = 0;
 };
 
 struct RayCastCudaFrame {

@@ -8,6 +8,8 @@
 //               when the surface is closed)
 //   resolve     per pixel: the colour pass, into a byte mask copied to the host, or straight
 //               into a GL texture through CUDA-GL interop (the GUI's silhouette panel)
+//   prune       short strokes cleared from the mask on the device (stroke_pruning.h), before
+//               either
 // Every rule comes from lw/kernels/zbuffer_rules.h, shared with the CPU rasterizer, so the mask
 // equals the CPU's. Public header: no CUDA types.
 
@@ -33,6 +35,10 @@ struct ZBufferCudaSettings {
     float epsilon = 0.0f;       // depth tolerance of the colour pass (keys)
     bool visibility = true;     // false: every segment pixel is drawn
     bool cullBackFaces = false; // only exact for a closed surface
+    // Strokes of fewer pixels (joined across gaps of strokeGapPixels) cleared on the device after
+    // the colour pass (stroke_pruning.h); 0 or 1: none.
+    int minStrokePixels = 0;
+    int strokeGapPixels = 0;
 };
 
 class ZBufferCuda {

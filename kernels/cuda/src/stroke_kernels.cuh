@@ -1,0 +1,63 @@
+#pragma once
+
+// Stroke pruning's kernels (dispatch in stroke_pruning.cu): the union-find rules are
+// kernels/common's stroke_components.h. Four launches over the pixels: labels, unions, the
+// groups' sizes, the short groups cleared.
+
+#include "lw/kernels/stroke_components.h"
+
+#include <cstddef>
+#include <cstdint>
+
+namespace lw::kernels::cuda::sk {
+
+__global__ void initLabels(const std::uint8_t* mask, std::uint32_t pixels, std::uint32_t* labels,
+                           std::uint32_t* sizes) {
+    const std::uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
+    if (i >= pixels)
+        return;
+    labels[i] = mask[i] ? i : kNotAStrokePixel;
+    sizes[i] = 0;
+}
+
+__global__ void uniteNeighbours(const std::uint8_t* mask, int width, int height, int reach,
+                                std::uint32_t* labels) {
+    const int x = int(blockIdx.x * blockDim.x + threadIdx.x);
+    const int y = int(blockIdx.y * blockDim.y + threadIdx.y);
+    uniteWithEarlierNeighbours(mask, labels, width, height, reach, x, y, LabelMinExchange{});
+}
+
+// Each line pixel's label becomes its root (all unions are done: the launch before finished),
+// and the root counts it.
+__global__ void countGroups(const std::uint8_t* mask, std::uint32_t pixels, std::uint32_t* labels,
+                            std::uint32_t* sizes) {
+    const std::uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
+    if (i >= pixels || !mask[i])
+        return;
+    const std::uint32_t root = strokeRoot(labels, i);
+    atomicAdd(sizes + root, 1u);
+    labels[i] = root;
+}
+
+__global__ void clearShortGroups(std::uint8_t* mask, std::uint32_t pixels,
+                                 const std::uint32_t* labels, const std::uint32_t* sizes,
+                                 std::uint32_t minPixels) {
+    const std::uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
+    if (i >= pixels || !mask[i])
+        return;
+    if (sizes[labels[i]] < minPixels)
+        mask[i] = 0;
+}
+
+// A mask already pruned into a GL texture's array (GL_R8: one byte a texel, row y = mask row y).
+__global__ void copyToSurface(const std::uint8_t* mask, int width, int height,
+                              cudaSurfaceObject_t target) {
+    const int x = int(blockIdx.x * blockDim.x + threadIdx.x);
+    const int y = int(blockIdx.y * blockDim.y + threadIdx.y);
+    if (x >= width || y >= height)
+        return;
+    surf2Dwrite(mask[std::size_t(y) * std::size_t(width) + std::size_t(x)], target,
+                x * int(sizeof(std::uint8_t)), y);
+}
+
+} // namespace lw::kernels::cuda::sk

@@ -1,0 +1,74 @@
+// Host dispatch of stroke pruning on the device (kernels in stroke_kernels.cuh).
+
+#include "lw/kernels/cuda/stroke_pruning_cuda.h"
+#include "stroke_kernels.cuh"
+#include "stroke_pruning.h"
+#include "tuning.h"
+
+#include <algorithm>
+
+namespace lw::kernels::cuda {
+
+using dispatch::blocksFor;
+
+CudaStatus StrokePruning::run(std::uint8_t* mask, int width, int height, int minPixels,
+                              int gapPixels, cudaStream_t stream) {
+    if (minPixels <= 1 || width <= 0 || height <= 0)
+        return CudaStatus::success();
+    const std::size_t pixels = std::size_t(width) * std::size_t(height);
+    if (pixels >= std::size_t(kNotAStrokePixel))
+        return CudaStatus::failure(CudaStatus::Code::Failed, "sk::initLabels",
+                                   "the mask has more pixels than a 32-bit label can name");
+    LW_RETURN_IF_FAILED(m_labels.reserve(pixels, "cudaMalloc(strokeLabels)"));
+    LW_RETURN_IF_FAILED(m_sizes.reserve(pixels, "cudaMalloc(strokeSizes)"));
+    const unsigned blocks = blocksFor(pixels, tuning::kStrokePixelBlock);
+    const auto count = std::uint32_t(pixels);
+    sk::initLabels<<<blocks, tuning::kStrokePixelBlock, 0, stream>>>(mask, count, m_labels.data(),
+                                                                     m_sizes.data());
+    LW_CUDA_LAUNCHED("sk::initLabels");
+    const dim3 block(tuning::kPixelBlockX, tuning::kPixelBlockY);
+    const dim3 grid(blocksFor(std::size_t(width), tuning::kPixelBlockX),
+                    blocksFor(std::size_t(height), tuning::kPixelBlockY));
+    sk::uniteNeighbours<<<grid, block, 0, stream>>>(mask, width, height, 1 + std::max(0, gapPixels),
+                                                    m_labels.data());
+    LW_CUDA_LAUNCHED("sk::uniteNeighbours");
+    sk::countGroups<<<blocks, tuning::kStrokePixelBlock, 0, stream>>>(mask, count, m_labels.data(),
+                                                                      m_sizes.data());
+    LW_CUDA_LAUNCHED("sk::countGroups");
+    sk::clearShortGroups<<<blocks, tuning::kStrokePixelBlock, 0, stream>>>(
+        mask, count, m_labels.data(), m_sizes.data(), std::uint32_t(minPixels));
+    LW_CUDA_LAUNCHED("sk::clearShortGroups");
+    return CudaStatus::success();
+}
+
+CudaStatus copyMaskToSurface(const std::uint8_t* mask, int width, int height,
+                             cudaSurfaceObject_t target, cudaStream_t stream) {
+    const dim3 block(tuning::kPixelBlockX, tuning::kPixelBlockY);
+    const dim3 grid(blocksFor(std::size_t(width), tuning::kPixelBlockX),
+                    blocksFor(std::size_t(height), tuning::kPixelBlockY));
+    sk::copyToSurface<<<grid, block, 0, stream>>>(mask, width, height, target);
+    LW_CUDA_LAUNCHED("sk::copyToSurface");
+    return CudaStatus::success();
+}
+
+CudaStatus pruneStrokesOnDevice(std::uint8_t* mask, int width, int height, int minPixels,
+                                int gapPixels) {
+    if (width <= 0 || height <= 0)
+        return CudaStatus::success();
+    const std::size_t pixels = std::size_t(width) * std::size_t(height);
+    dispatch::Stream stream;
+    LW_RETURN_IF_FAILED(stream.create());
+    dispatch::DeviceBuffer<std::uint8_t> deviceMask;
+    LW_RETURN_IF_FAILED(deviceMask.reserve(pixels, "cudaMalloc(mask)"));
+    cudaStream_t st = stream.get();
+    LW_CUDA_TRY(cudaMemcpyAsync(deviceMask.data(), mask, pixels, cudaMemcpyHostToDevice, st),
+                "cudaMemcpy(mask)");
+    StrokePruning pruning;
+    LW_RETURN_IF_FAILED(pruning.run(deviceMask.data(), width, height, minPixels, gapPixels, st));
+    LW_CUDA_TRY(cudaMemcpyAsync(mask, deviceMask.data(), pixels, cudaMemcpyDeviceToHost, st),
+                "cudaMemcpy(mask)");
+    LW_CUDA_TRY(cudaStreamSynchronize(st), "pruneStrokesOnDevice");
+    return CudaStatus::success();
+}
+
+} // namespace lw::kernels::cuda
