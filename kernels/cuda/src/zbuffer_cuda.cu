@@ -24,6 +24,7 @@ struct ZBufferCuda::Impl {
     // drawHost's copy of a host mesh.
     DeviceBuffer<glm::vec3> hostPositions, hostNormals;
     DeviceBuffer<std::uint32_t> hostIndices;
+    DeviceMeshView hostMesh; // in the three buffers above (empty: none kept)
     dispatch::StageTimer timers[4];
     std::size_t pixels() const {
         return std::size_t(view.width > 0 ? view.width : 0) *
@@ -107,9 +108,16 @@ CudaStatus ZBufferCuda::draw(const DeviceMeshView& mesh, const ZBufferCudaSettin
 
 CudaStatus ZBufferCuda::drawHost(const TriangleMesh& mesh, const ZBufferCudaSettings& settings,
                                  ZBufferCudaFrame& frame) {
+    LW_RETURN_IF_FAILED(keepHostMesh(mesh));
+    return drawKeptHostMesh(settings, frame);
+}
+
+CudaStatus ZBufferCuda::keepHostMesh(const TriangleMesh& mesh) {
     Impl& s = *m_impl;
+    s.hostMesh = DeviceMeshView();
     if (mesh.isEmpty())
         return CudaStatus::success();
+    LW_RETURN_IF_FAILED(s.stream.create());
     cudaStream_t st = s.stream.get();
     const std::size_t vertices = mesh.vertexCount();
     LW_RETURN_IF_FAILED(s.hostPositions.reserve(vertices, "cudaMalloc(hostPositions)"));
@@ -125,13 +133,17 @@ CudaStatus ZBufferCuda::drawHost(const TriangleMesh& mesh, const ZBufferCudaSett
                                 mesh.indices.size() * sizeof(std::uint32_t), cudaMemcpyHostToDevice,
                                 st),
                 "cudaMemcpy(hostIndices)");
-    DeviceMeshView view;
-    view.positions = s.hostPositions.data();
-    view.normals = s.hostNormals.data();
-    view.indices = s.hostIndices.data();
-    view.vertexCount = vertices;
-    view.triangleCount = mesh.triangleCount();
-    return draw(view, settings, frame);
+    s.hostMesh.positions = s.hostPositions.data();
+    s.hostMesh.normals = s.hostNormals.data();
+    s.hostMesh.indices = s.hostIndices.data();
+    s.hostMesh.vertexCount = vertices;
+    s.hostMesh.triangleCount = mesh.triangleCount();
+    return CudaStatus::success();
+}
+
+CudaStatus ZBufferCuda::drawKeptHostMesh(const ZBufferCudaSettings& settings,
+                                         ZBufferCudaFrame& frame) {
+    return draw(m_impl->hostMesh, settings, frame);
 }
 
 namespace {

@@ -68,6 +68,7 @@ public:
     void bind(const volume::Volume* volume) override {
         m_marchingCubes.release(); // device buffers and a streamed volume's host registration
         m_zbuffer.release();
+        m_capKeptOnDevice = false;
         m_volume = volume;
         m_resident = GpuResidency::Cpu;
         m_floor = GpuResidency::WholeVolume;
@@ -76,6 +77,7 @@ public:
         m_hostMeshValid = false;
         m_cap.clear();
         m_capKept = nullptr;
+        m_capKeptOnDevice = false;
     }
 
     bool keepsWholeSurface(const Camera& camera, const SilhouetteSettings& settings) override {
@@ -95,6 +97,7 @@ public:
             m_resident = GpuResidency::WholeVolume;
         }
         m_capKept = nullptr;
+        m_capKeptOnDevice = false;
         check(m_marchingCubes.extract(storedIso));
         frame.times.extractMs += m_marchingCubes.times().totalMs();
         if (settings.closeAtBorder) {
@@ -141,7 +144,10 @@ public:
         check(m_zbuffer.draw(mesh, m_draw, m_timing));
         frame.triangles = mesh.triangleCount;
         if (m_capKept) {
-            check(m_zbuffer.drawHost(*m_capKept, m_draw, m_timing));
+            if (!m_capKeptOnDevice) // once per kept surface: mode a only turns the camera
+                check(m_zbuffer.keepHostMesh(*m_capKept));
+            m_capKeptOnDevice = true;
+            check(m_zbuffer.drawKeptHostMesh(m_draw, m_timing));
             frame.triangles += m_capKept->triangleCount();
         }
     }
@@ -177,6 +183,7 @@ public:
         m_floor = afterOutOfMemory(m_floor);
         m_marchingCubes.release(); // free what the failed attempt holds before slabs allocate
         m_zbuffer.release();
+        m_capKeptOnDevice = false;
         m_resident = GpuResidency::Cpu;
         return true;
     }
@@ -203,6 +210,7 @@ private:
     // The border cap (settings.closeAtBorder): drawn after the kept mesh or the last slab.
     BorderCapCache m_cap;
     const Mesh* m_capKept = nullptr; // with the kept whole mesh, if closed
+    bool m_capKeptOnDevice = false;  // m_zbuffer holds m_capKept's copy
 
     // This frame's draw settings, timings and size.
     kernels::cuda::ZBufferCudaSettings m_draw;
@@ -284,6 +292,7 @@ void CudaZBufferKernels::drawPieces(const Camera& camera, const SilhouetteSettin
     if (settings.closeAtBorder) {
         const Mesh& cap = m_cap.cap(*m_volume, storedIso);
         check(m_zbuffer.drawHost(cap, m_draw, m_timing));
+        m_capKeptOnDevice = false;
         frame.triangles += cap.triangleCount();
     }
     // The slabs' extraction and drawing interleave: extraction is the loop's wall time less the

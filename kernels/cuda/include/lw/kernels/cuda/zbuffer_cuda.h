@@ -57,6 +57,11 @@ public:
     // The same for a mesh in host memory (the border cap: small), copied to the device first.
     CudaStatus drawHost(const TriangleMesh& mesh, const ZBufferCudaSettings& settings,
                         ZBufferCudaFrame& frame);
+    // drawHost in two steps, for a host mesh drawn in many frames (the cap of a kept surface: mode
+    // a turns the camera only): keepHostMesh copies it to the device, drawKeptHostMesh draws the
+    // copy, until the next keepHostMesh or drawHost replaces it.
+    CudaStatus keepHostMesh(const TriangleMesh& mesh);
+    CudaStatus drawKeptHostMesh(const ZBufferCudaSettings& settings, ZBufferCudaFrame& frame);
     // The colour pass into `hostMask` (width * height bytes, 1 = silhouette).
     CudaStatus resolve(const ZBufferCudaSettings& settings, std::uint8_t* hostMask,
                        ZBufferCudaFrame& frame);
