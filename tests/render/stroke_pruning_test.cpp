@@ -108,7 +108,7 @@ PixelMask pruneByUnionFind(const PixelMask& mask, int minPixels, int gapPixels, 
     for (const std::uint32_t i : order)
         lw::kernels::uniteWithEarlierNeighbours(
             on, labels.data(), width, height, 1 + gapPixels, int(i % std::uint32_t(width)),
-            int(i / std::uint32_t(width)), lw::kernels::LabelMinExchange{});
+            int(i / std::uint32_t(width)), lw::kernels::LabelCompareAndSwap{});
     std::vector<std::uint32_t> sizes(pixels, 0);
     for (std::size_t i = 0; i < pixels; ++i)
         if (on[i])

@@ -24,7 +24,7 @@ __global__ void uniteNeighbours(const std::uint8_t* mask, int width, int height,
                                 std::uint32_t* labels) {
     const int x = int(blockIdx.x * blockDim.x + threadIdx.x);
     const int y = int(blockIdx.y * blockDim.y + threadIdx.y);
-    uniteWithEarlierNeighbours(mask, labels, width, height, reach, x, y, LabelMinExchange{});
+    uniteWithEarlierNeighbours(mask, labels, width, height, reach, x, y, LabelCompareAndSwap{});
 }
 
 // Each line pixel's label becomes its root (all unions are done: the launch before finished),

@@ -10,8 +10,9 @@
 // group with an index no larger than its own, so following labels ends at the group's smallest
 // index, its root:
 //
-//     pixel:  0  1  2  3  4  5          labels only ever decrease (atomicMin), so a label read
-//     label:  0  0  .  1  3  .          before another thread lowered it still names an ancestor.
+//     pixel:  0  1  2  3  4  5          labels only ever decrease (a hook or a halving step),
+//     label:  0  0  .  1  3  .          so a label read before another thread lowered it still
+//                                       names an ancestor.
 //
 // Each pixel unites itself with the line pixels among its earlier neighbours (the rows above
 // within reach, and the pixels to its left in its own row): every pair of neighbours is united
@@ -25,58 +26,69 @@ namespace lw::kernels {
 
 inline constexpr std::uint32_t kNotAStrokePixel = 0xffffffffu;
 
-// min-exchange on a label: atomic on the device, plain on the host (the host runs in sequence).
-struct LabelMinExchange {
-    LW_HOST_DEVICE std::uint32_t operator()(std::uint32_t* label, std::uint32_t value) const {
+// Compare-and-swap on a label: atomic on the device, plain on the host (the host runs in
+// sequence). Returns the label as it was.
+struct LabelCompareAndSwap {
+    LW_HOST_DEVICE std::uint32_t operator()(std::uint32_t* label, std::uint32_t expected,
+                                            std::uint32_t value) const {
 #if defined(__CUDA_ARCH__)
-        return atomicMin(label, value);
+        return atomicCAS(label, expected, value);
 #else
         const std::uint32_t old = *label;
-        if (value < old)
+        if (old == expected)
             *label = value;
         return old;
 #endif
     }
 };
 
-LW_HOST_DEVICE inline std::uint32_t strokeRoot(const std::uint32_t* labels, std::uint32_t pixel) {
+// The root of `pixel`'s group, halving the path on the way (each visited label skips to its
+// grandparent): a long stroke hooked pixel by pixel is a chain as long as the stroke, and
+// without this every find would walk it. A halving store only ever lowers a non-root's label to
+// another ancestor, so it cannot undo a concurrent hook (hooks change roots only, by CAS).
+LW_HOST_DEVICE inline std::uint32_t strokeRoot(std::uint32_t* labels, std::uint32_t pixel) {
     std::uint32_t parent = labels[pixel];
-    while (parent != pixel) {
-        pixel = parent;
-        parent = labels[pixel];
+    if (parent == pixel)
+        return pixel;
+    std::uint32_t previous = pixel;
+    for (;;) {
+        const std::uint32_t grandparent = labels[parent];
+        if (grandparent >= parent) // parent is a root (labels never point up)
+            return parent;
+        labels[previous] = grandparent;
+        previous = parent;
+        parent = grandparent;
     }
-    return pixel;
 }
 
-// Joins the groups of line pixels `a` and `b`: the larger root is linked to the smaller. When
-// another thread linked that root first, the exchange returns its new parent and the join goes
-// on from there.
-template <typename MinExchange>
+// Joins the groups of line pixels `a` and `b`: the larger root is hooked onto the smaller, by
+// compare-and-swap, so only a label that is still a root changes. When another thread hooked
+// that root first, the swap fails and returns its new parent, and the join goes on from there.
+template <typename CompareAndSwap>
 LW_HOST_DEVICE void uniteStrokes(std::uint32_t* labels, std::uint32_t a, std::uint32_t b,
-                                 MinExchange exchange) {
-    for (;;) {
-        a = strokeRoot(labels, a);
-        b = strokeRoot(labels, b);
-        if (a == b)
-            return;
+                                 CompareAndSwap compareAndSwap) {
+    a = strokeRoot(labels, a);
+    b = strokeRoot(labels, b);
+    while (a != b) {
         if (a < b) {
             const std::uint32_t t = a;
             a = b;
             b = t;
         }
-        const std::uint32_t old = exchange(labels + a, b);
+        const std::uint32_t old = compareAndSwap(labels + a, a, b);
         if (old == a)
             return;
-        a = old;
+        a = strokeRoot(labels, old);
+        b = strokeRoot(labels, b);
     }
 }
 
 // Pixel (x, y) of a width x height mask (1 byte a pixel, non-zero: line): united with the line
 // pixels among its earlier neighbours within `reach`.
-template <typename MinExchange>
+template <typename CompareAndSwap>
 LW_HOST_DEVICE void uniteWithEarlierNeighbours(const std::uint8_t* mask, std::uint32_t* labels,
                                                int width, int height, int reach, int x, int y,
-                                               MinExchange exchange) {
+                                               CompareAndSwap compareAndSwap) {
     const std::uint32_t self = std::uint32_t(y) * std::uint32_t(width) + std::uint32_t(x);
     if (x < 0 || y < 0 || x >= width || y >= height || !mask[self])
         return;
@@ -92,7 +104,7 @@ LW_HOST_DEVICE void uniteWithEarlierNeighbours(const std::uint8_t* mask, std::ui
             const std::uint32_t other =
                 std::uint32_t(ny) * std::uint32_t(width) + std::uint32_t(nx);
             if (mask[other])
-                uniteStrokes(labels, self, other, exchange);
+                uniteStrokes(labels, self, other, compareAndSwap);
         }
     }
 }
