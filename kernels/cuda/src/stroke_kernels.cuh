@@ -27,25 +27,24 @@ __global__ void uniteNeighbours(const std::uint8_t* mask, int width, int height,
     uniteWithEarlierNeighbours(mask, labels, width, height, reach, x, y, LabelCompareAndSwap{});
 }
 
-// Each line pixel's label becomes its root (all unions are done: the launch before finished),
-// and the root counts it.
+// Each line pixel counts itself at its group's root (all unions are done: the launch before
+// finished). The finds halve paths as they go, so a pixel's label is not its root afterwards
+// unless the pixel walked there itself: the clearing finds the root again, over the paths this
+// launch shortened.
 __global__ void countGroups(const std::uint8_t* mask, std::uint32_t pixels, std::uint32_t* labels,
                             std::uint32_t* sizes) {
     const std::uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
     if (i >= pixels || !mask[i])
         return;
-    const std::uint32_t root = strokeRoot(labels, i);
-    atomicAdd(sizes + root, 1u);
-    labels[i] = root;
+    atomicAdd(sizes + strokeRoot(labels, i), 1u);
 }
 
-__global__ void clearShortGroups(std::uint8_t* mask, std::uint32_t pixels,
-                                 const std::uint32_t* labels, const std::uint32_t* sizes,
-                                 std::uint32_t minPixels) {
+__global__ void clearShortGroups(std::uint8_t* mask, std::uint32_t pixels, std::uint32_t* labels,
+                                 const std::uint32_t* sizes, std::uint32_t minPixels) {
     const std::uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
     if (i >= pixels || !mask[i])
         return;
-    if (sizes[labels[i]] < minPixels)
+    if (sizes[strokeRoot(labels, i)] < minPixels)
         mask[i] = 0;
 }
 
