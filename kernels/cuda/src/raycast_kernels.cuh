@@ -62,25 +62,88 @@ __device__ __forceinline__ glm::dvec2 pixelOf(const PixelCamera& camera, glm::ve
     return glm::dvec2(glm::vec2(projectPixel(camera, glm::dvec3(p))));
 }
 
-// Phase 2: one thread per segment endpoint (rays packed densely in warps, whatever cell they
-// came from): 1 when the endpoint is visible.
-template <typename T>
-__global__ void testEndpoints(RayVisibility<T> rule, View view, const SegmentEndpoints* segments,
-                              std::uint32_t count, std::uint8_t* visible) {
-    const std::uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
-    if (i >= 2 * count)
+// Endpoints are numbered 2 * segment (a) and 2 * segment + 1 (b).
+__device__ __forceinline__ glm::vec3 endpointOf(const SegmentEndpoints* segments, std::uint32_t e) {
+    const SegmentEndpoints& segment = segments[e >> 1];
+    return (e & 1u) ? segment.b : segment.a;
+}
+
+// Phase 2a: each endpoint's representative, the first of the endpoints at the same point (bit
+// for bit) to claim a slot of an open-addressing table: neighbouring segments meet at shared
+// endpoints (silhouetteSegment computes a shared edge's crossing alike from both triangles),
+// so about every point is an endpoint twice, and its visibility ray is cast once. A slot holds
+// the upper half of the point's hash and the representative; equal halves at different points
+// are told apart by comparing the points, so the table never merges two of them.
+inline constexpr unsigned long long kEmptySlot = ~0ull;
+
+__device__ __forceinline__ unsigned long long endpointHash(glm::vec3 p) {
+    unsigned long long h = 0x9E3779B97F4A7C15ull * (1ull + __float_as_uint(p.x));
+    h = (h ^ (h >> 31)) + 0xBF58476D1CE4E5B9ull * (1ull + __float_as_uint(p.y));
+    h = (h ^ (h >> 29)) + 0x94D049BB133111EBull * (1ull + __float_as_uint(p.z));
+    return h ^ (h >> 32);
+}
+
+__device__ __forceinline__ bool samePoint(glm::vec3 a, glm::vec3 b) {
+    return __float_as_uint(a.x) == __float_as_uint(b.x) &&
+           __float_as_uint(a.y) == __float_as_uint(b.y) &&
+           __float_as_uint(a.z) == __float_as_uint(b.z);
+}
+
+__global__ void findRepresentatives(const SegmentEndpoints* segments, std::uint32_t endpoints,
+                                    unsigned long long* table, std::uint32_t tableMask,
+                                    std::uint32_t* representative, std::uint32_t* index,
+                                    std::uint8_t* isRepresentative) {
+    const std::uint32_t e = blockIdx.x * blockDim.x + threadIdx.x;
+    if (e >= endpoints)
         return;
-    const SegmentEndpoints& segment = segments[i / 2];
-    const glm::dvec3 p(i % 2 == 0 ? segment.a : segment.b);
-    visible[i] = rule.visible(p, view.eyeOrDirection, view.orthographic) ? 1 : 0;
+    const glm::vec3 p = endpointOf(segments, e);
+    const unsigned long long hash = endpointHash(p);
+    const unsigned long long mine = (hash & 0xffffffff00000000ull) | e;
+    std::uint32_t slot = std::uint32_t(hash) & tableMask;
+    std::uint32_t found = e;
+    for (;;) {
+        unsigned long long entry = table[slot];
+        if (entry == kEmptySlot)
+            entry = atomicCAS(table + slot, kEmptySlot, mine);
+        if (entry == kEmptySlot)
+            break; // claimed: this endpoint represents the point
+        const std::uint32_t other = std::uint32_t(entry);
+        if ((entry >> 32) == (mine >> 32) && samePoint(endpointOf(segments, other), p)) {
+            found = other;
+            break;
+        }
+        slot = (slot + 1) & tableMask;
+    }
+    representative[e] = found;
+    index[e] = e;
+    isRepresentative[e] = found == e ? 1 : 0;
+}
+
+// Phase 2b: one thread per representative (their list in endpoint order, so rays from
+// neighbouring cells share warps; `count` on the device): 1 when the point is visible.
+template <typename T>
+__global__ void testRepresentatives(RayVisibility<T> rule, View view,
+                                    const SegmentEndpoints* segments,
+                                    const std::uint32_t* representatives,
+                                    const std::uint32_t* count, std::uint8_t* visible) {
+    const std::uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
+    if (i >= *count)
+        return;
+    const std::uint32_t e = representatives[i];
+    visible[e] =
+        rule.visible(glm::dvec3(endpointOf(segments, e)), view.eyeOrDirection, view.orthographic)
+            ? 1
+            : 0;
 }
 
 // Phase 3: rasterizeLine's pixels of every segment drawn (all, or those with both endpoints
-// visible).
+// visible: each endpoint's flag is its representative's).
 __global__ void drawSegments(View view, const SegmentEndpoints* segments, std::uint32_t count,
-                             const std::uint8_t* visible, std::uint8_t* mask) {
+                             const std::uint8_t* visible, const std::uint32_t* representative,
+                             std::uint8_t* mask) {
     const std::uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
-    if (i >= count || (visible && !(visible[2 * i] && visible[2 * i + 1])))
+    if (i >= count ||
+        (visible && !(visible[representative[2 * i]] && visible[representative[2 * i + 1]])))
         return;
     const int width = view.camera.width;
     forEachLinePixel(pixelOf(view.camera, segments[i].a), pixelOf(view.camera, segments[i].b),

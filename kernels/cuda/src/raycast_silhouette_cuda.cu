@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cub/device/device_radix_sort.cuh>
+#include <cub/device/device_select.cuh>
 #include <utility>
 
 namespace lw::kernels::cuda {
@@ -24,7 +25,12 @@ struct RayCastSilhouetteCuda::Impl {
     DeviceBuffer<SegmentEndpoints> sortedSegments;
     DeviceBuffer<std::uint32_t> sortedCells;
     DeviceBuffer<unsigned char> sortTemp;
-    DeviceBuffer<std::uint8_t> visible; // phase 2's, two flags per segment
+    DeviceBuffer<std::uint8_t> visible; // phase 2's, a flag per representative endpoint
+    // Phase 2's endpoint dedupe: the table, each endpoint's representative, the representatives'
+    // list and count (and the index and flag arrays the list is selected from).
+    DeviceBuffer<unsigned long long> endpointTable;
+    DeviceBuffer<std::uint32_t> representative, endpointIndex, representatives, representativeCount;
+    DeviceBuffer<std::uint8_t> isRepresentative;
     StrokePruning pruning;
     int minStrokePixels = 0, strokeGapPixels = 0; // this frame's (RayCastCudaSettings)
     double iso = 0.0;
@@ -39,6 +45,9 @@ struct RayCastSilhouetteCuda::Impl {
                            const SegmentEndpoints* extra, std::size_t extraCount);
     template <typename T> CudaStatus findSegments(const rc::View& view, rc::Counters& counts);
     template <typename T> CudaStatus testAndDraw(const rc::View& view, std::uint32_t count);
+    template <typename T>
+    CudaStatus testRepresentativeEndpoints(const RayVisibility<T>& rule, const rc::View& view,
+                                           std::uint32_t count);
 };
 
 RayCastSilhouetteCuda::RayCastSilhouetteCuda() : m_impl(std::make_unique<Impl>()) {}
@@ -57,7 +66,9 @@ std::size_t RayCastSilhouetteCuda::deviceBytes() const {
     return s.marchingCubes.deviceBytes() + s.rayOffsets.bytes() + s.macroOccupied.bytes() +
            s.mask.bytes() + s.counters.bytes() + s.segments.bytes() + s.segmentCells.bytes() +
            s.sortedSegments.bytes() + s.sortedCells.bytes() + s.sortTemp.bytes() +
-           s.visible.bytes() + s.pruning.deviceBytes();
+           s.visible.bytes() + s.pruning.deviceBytes() + s.endpointTable.bytes() +
+           s.representative.bytes() + s.endpointIndex.bytes() + s.representatives.bytes() +
+           s.representativeCount.bytes() + s.isRepresentative.bytes();
 }
 
 CudaStatus RayCastSilhouetteCuda::setVolume(const VolumeView& hostVolume,
@@ -189,16 +200,59 @@ CudaStatus RayCastSilhouetteCuda::Impl::testAndDraw(const rc::View& view, std::u
     }
     const std::uint8_t* visibleFlags = nullptr;
     if (view.visibility) {
-        LW_RETURN_IF_FAILED(visible.reserve(2 * std::size_t(count), "cudaMalloc(visible)"));
-        rc::testEndpoints<T>
-            <<<blocksFor(2 * std::size_t(count), tuning::kRayBlock), tuning::kRayBlock, 0, st>>>(
-                rule, view, segments.data(), count, visible.data());
-        LW_CUDA_LAUNCHED("rc::testEndpoints");
+        LW_RETURN_IF_FAILED(testRepresentativeEndpoints<T>(rule, view, count));
         visibleFlags = visible.data();
     }
     rc::drawSegments<<<blocksFor(count, tuning::kVertexBlock), tuning::kVertexBlock, 0, st>>>(
-        view, segments.data(), count, visibleFlags, mask.data());
+        view, segments.data(), count, visibleFlags, representative.data(), mask.data());
     LW_CUDA_LAUNCHED("rc::drawSegments");
+    return CudaStatus::success();
+}
+
+// Phase 2: the visibility of the first `count` segments' endpoints, one ray per point (phases
+// 2a and 2b in raycast_kernels.cuh) into `visible`, each endpoint's representative into
+// `representative`.
+template <typename T>
+CudaStatus RayCastSilhouetteCuda::Impl::testRepresentativeEndpoints(const RayVisibility<T>& rule,
+                                                                    const rc::View& view,
+                                                                    std::uint32_t count) {
+    cudaStream_t st = mc().stream.get();
+    const std::size_t endpoints = 2 * std::size_t(count);
+    if (endpoints >= std::size_t(0xffffffffu))
+        return CudaStatus::failure(CudaStatus::Code::Failed, "rc::findRepresentatives",
+                                   "more segment endpoints than a 32-bit index can name");
+    std::size_t slots = 1024;
+    while (slots < 2 * endpoints)
+        slots *= 2;
+    LW_RETURN_IF_FAILED(endpointTable.reserve(slots, "cudaMalloc(endpointTable)"));
+    LW_RETURN_IF_FAILED(representative.reserve(endpoints, "cudaMalloc(representative)"));
+    LW_RETURN_IF_FAILED(endpointIndex.reserve(endpoints, "cudaMalloc(endpointIndex)"));
+    LW_RETURN_IF_FAILED(representatives.reserve(endpoints, "cudaMalloc(representatives)"));
+    LW_RETURN_IF_FAILED(isRepresentative.reserve(endpoints, "cudaMalloc(isRepresentative)"));
+    LW_RETURN_IF_FAILED(visible.reserve(endpoints, "cudaMalloc(visible)"));
+    LW_RETURN_IF_FAILED(representativeCount.reserve(1, "cudaMalloc(representativeCount)"));
+    LW_CUDA_TRY(cudaMemsetAsync(endpointTable.data(), 0xff, slots * sizeof(unsigned long long), st),
+                "cudaMemset(endpointTable)");
+    const unsigned blocks = blocksFor(endpoints, tuning::kRayBlock);
+    rc::findRepresentatives<<<blocks, tuning::kRayBlock, 0, st>>>(
+        segments.data(), std::uint32_t(endpoints), endpointTable.data(), std::uint32_t(slots - 1),
+        representative.data(), endpointIndex.data(), isRepresentative.data());
+    LW_CUDA_LAUNCHED("rc::findRepresentatives");
+    // The representatives' list, in endpoint order.
+    std::size_t bytes = 0;
+    LW_CUDA_TRY(cub::DeviceSelect::Flagged(nullptr, bytes, endpointIndex.data(),
+                                           isRepresentative.data(), representatives.data(),
+                                           representativeCount.data(), endpoints, st),
+                "cub::DeviceSelect(representatives)");
+    LW_RETURN_IF_FAILED(sortTemp.reserve(bytes, "cudaMalloc(selectTemp)"));
+    LW_CUDA_TRY(cub::DeviceSelect::Flagged(sortTemp.data(), bytes, endpointIndex.data(),
+                                           isRepresentative.data(), representatives.data(),
+                                           representativeCount.data(), endpoints, st),
+                "cub::DeviceSelect(representatives)");
+    rc::testRepresentatives<T>
+        <<<blocks, tuning::kRayBlock, 0, st>>>(rule, view, segments.data(), representatives.data(),
+                                               representativeCount.data(), visible.data());
+    LW_CUDA_LAUNCHED("rc::testRepresentatives");
     return CudaStatus::success();
 }
 

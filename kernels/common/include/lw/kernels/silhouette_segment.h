@@ -51,6 +51,22 @@ LW_HOST_DEVICE inline bool isolineCrossing(const float value[3], IsolineCrossing
     return true;
 }
 
+// The zero of d on the edge (p0, p1) whose ends differ in sign, always interpolated from the
+// end with d >= 0 toward the other: the two triangles that share the edge see it from
+// different lone vertices, and this way both compute the same point bit for bit (neighbouring
+// segments meet exactly, and method 2 on CUDA tests a shared endpoint's ray once).
+LW_HOST_DEVICE inline glm::vec3 edgeZeroCrossing(glm::vec3 p0, float d0, glm::vec3 p1, float d1) {
+    if (!(d0 >= 0.0f)) {
+        const glm::vec3 p = p0;
+        p0 = p1;
+        p1 = p;
+        const float d = d0;
+        d0 = d1;
+        d1 = d;
+    }
+    return p0 + (d0 / (d0 - d1)) * (p1 - p0);
+}
+
 // Returns true and the segment when the triangle (p[i], d[i]) holds a piece of the contour;
 // `crossing` (optional) receives which edges its ends lie on.
 LW_HOST_DEVICE inline bool silhouetteSegment(const glm::vec3 p[3], const float d[3],
@@ -59,8 +75,8 @@ LW_HOST_DEVICE inline bool silhouetteSegment(const glm::vec3 p[3], const float d
     IsolineCrossing c;
     if (!isolineCrossing(d, c))
         return false;
-    out.a = p[c.lone] + c.ta * (p[c.other1] - p[c.lone]);
-    out.b = p[c.lone] + c.tb * (p[c.other2] - p[c.lone]);
+    out.a = edgeZeroCrossing(p[c.lone], d[c.lone], p[c.other1], d[c.other1]);
+    out.b = edgeZeroCrossing(p[c.lone], d[c.lone], p[c.other2], d[c.other2]);
     if (crossing)
         *crossing = c;
     return true;

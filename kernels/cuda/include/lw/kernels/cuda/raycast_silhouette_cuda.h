@@ -8,7 +8,8 @@
 //   render    per active cell: the marching-cubes vertices and normals of its crossing edges
 //             (kernels/common, bit for bit the CPU's), Burns' segment of each triangle, and for
 //             each segment the visibility rays of kernels/common's RayVisibility (both endpoints,
-//             or every pixel step along it), then the DDA of rasterizeLine into a byte mask
+//             one ray per point where segments share one, or every pixel step along it), then
+//             the DDA of rasterizeLine into a byte mask
 //   prune     short strokes cleared from the mask on the device (stroke_pruning.h)
 // The CPU back-end (kernels/cpu/raycast_silhouette_cpu.h) calls the same rules, so the images
 // agree. Public header: no CUDA types.
