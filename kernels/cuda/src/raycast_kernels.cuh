@@ -120,20 +120,55 @@ __global__ void findRepresentatives(const SegmentEndpoints* segments, std::uint3
 }
 
 // Phase 2b: one thread per representative (their list in endpoint order, so rays from
-// neighbouring cells share warps; `count` on the device): 1 when the point is visible.
+// neighbouring cells share warps; `count` on the device): the point's own ray. 1 when the point
+// is visible, 0 when hidden; a point whose ray was blocked close by goes on the list of
+// neighbour rays (2c), each warp's in one atomic, in lane order.
 template <typename T>
 __global__ void testRepresentatives(RayVisibility<T> rule, View view,
                                     const SegmentEndpoints* segments,
                                     const std::uint32_t* representatives,
-                                    const std::uint32_t* count, std::uint8_t* visible) {
+                                    const std::uint32_t* count, std::uint8_t* visible,
+                                    std::uint32_t* neighbourList, std::uint32_t* neighbourCount) {
     const std::uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
-    if (i >= *count)
+    const bool active = i < *count;
+    bool ask = false;
+    std::uint32_t e = 0;
+    if (active) {
+        e = representatives[i];
+        using Own = typename RayVisibility<T>::OwnRay;
+        const Own own = rule.ownRay(glm::dvec3(endpointOf(segments, e)), view.eyeOrDirection,
+                                    view.orthographic);
+        visible[e] = own == Own::Visible ? 1 : 0;
+        ask = own == Own::AskNeighbour;
+    }
+    const unsigned askers = __ballot_sync(0xffffffffu, ask);
+    if (askers == 0)
         return;
-    const std::uint32_t e = representatives[i];
-    visible[e] =
-        rule.visible(glm::dvec3(endpointOf(segments, e)), view.eyeOrDirection, view.orthographic)
-            ? 1
-            : 0;
+    const unsigned lane = threadIdx.x & 31u;
+    const int leader = __ffs(askers) - 1;
+    std::uint32_t base = 0;
+    if (int(lane) == leader)
+        base = atomicAdd(neighbourCount, std::uint32_t(__popc(askers)));
+    base = __shfl_sync(0xffffffffu, base, leader);
+    if (ask)
+        neighbourList[base + __popc(askers & ((1u << lane) - 1u))] = e;
+}
+
+// Phase 2c: one thread per point whose own ray was blocked close by: the ray from one pixel
+// beside it.
+template <typename T>
+__global__ void testNeighbourRays(RayVisibility<T> rule, View view,
+                                  const SegmentEndpoints* segments,
+                                  const std::uint32_t* neighbourList,
+                                  const std::uint32_t* neighbourCount, std::uint8_t* visible) {
+    const std::uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
+    if (i >= *neighbourCount)
+        return;
+    const std::uint32_t e = neighbourList[i];
+    visible[e] = rule.neighbourRay(glm::dvec3(endpointOf(segments, e)), view.eyeOrDirection,
+                                   view.orthographic)
+                     ? 1
+                     : 0;
 }
 
 // Phase 3: rasterizeLine's pixels of every segment drawn (all, or those with both endpoints

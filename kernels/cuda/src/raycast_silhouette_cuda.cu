@@ -30,6 +30,8 @@ struct RayCastSilhouetteCuda::Impl {
     // list and count (and the index and flag arrays the list is selected from).
     DeviceBuffer<unsigned long long> endpointTable;
     DeviceBuffer<std::uint32_t> representative, endpointIndex, representatives, representativeCount;
+    // Phase 2c's: the points whose own ray was blocked close by.
+    DeviceBuffer<std::uint32_t> neighbourList, neighbourCount;
     DeviceBuffer<std::uint8_t> isRepresentative;
     StrokePruning pruning;
     int minStrokePixels = 0, strokeGapPixels = 0; // this frame's (RayCastCudaSettings)
@@ -68,7 +70,8 @@ std::size_t RayCastSilhouetteCuda::deviceBytes() const {
            s.sortedSegments.bytes() + s.sortedCells.bytes() + s.sortTemp.bytes() +
            s.visible.bytes() + s.pruning.deviceBytes() + s.endpointTable.bytes() +
            s.representative.bytes() + s.endpointIndex.bytes() + s.representatives.bytes() +
-           s.representativeCount.bytes() + s.isRepresentative.bytes();
+           s.representativeCount.bytes() + s.isRepresentative.bytes() + s.neighbourList.bytes() +
+           s.neighbourCount.bytes();
 }
 
 CudaStatus RayCastSilhouetteCuda::setVolume(const VolumeView& hostVolume,
@@ -209,9 +212,9 @@ CudaStatus RayCastSilhouetteCuda::Impl::testAndDraw(const rc::View& view, std::u
     return CudaStatus::success();
 }
 
-// Phase 2: the visibility of the first `count` segments' endpoints, one ray per point (phases
-// 2a and 2b in raycast_kernels.cuh) into `visible`, each endpoint's representative into
-// `representative`.
+// Phase 2: the visibility of the first `count` segments' endpoints, one ray per point and the
+// neighbour rays apart (phases 2a-2c in raycast_kernels.cuh) into `visible`, each endpoint's
+// representative into `representative`.
 template <typename T>
 CudaStatus RayCastSilhouetteCuda::Impl::testRepresentativeEndpoints(const RayVisibility<T>& rule,
                                                                     const rc::View& view,
@@ -231,6 +234,8 @@ CudaStatus RayCastSilhouetteCuda::Impl::testRepresentativeEndpoints(const RayVis
     LW_RETURN_IF_FAILED(isRepresentative.reserve(endpoints, "cudaMalloc(isRepresentative)"));
     LW_RETURN_IF_FAILED(visible.reserve(endpoints, "cudaMalloc(visible)"));
     LW_RETURN_IF_FAILED(representativeCount.reserve(1, "cudaMalloc(representativeCount)"));
+    LW_RETURN_IF_FAILED(neighbourList.reserve(endpoints, "cudaMalloc(neighbourList)"));
+    LW_RETURN_IF_FAILED(neighbourCount.reserve(1, "cudaMalloc(neighbourCount)"));
     LW_CUDA_TRY(cudaMemsetAsync(endpointTable.data(), 0xff, slots * sizeof(unsigned long long), st),
                 "cudaMemset(endpointTable)");
     const unsigned blocks = blocksFor(endpoints, tuning::kRayBlock);
@@ -249,10 +254,17 @@ CudaStatus RayCastSilhouetteCuda::Impl::testRepresentativeEndpoints(const RayVis
                                            isRepresentative.data(), representatives.data(),
                                            representativeCount.data(), endpoints, st),
                 "cub::DeviceSelect(representatives)");
-    rc::testRepresentatives<T>
-        <<<blocks, tuning::kRayBlock, 0, st>>>(rule, view, segments.data(), representatives.data(),
-                                               representativeCount.data(), visible.data());
+    LW_CUDA_TRY(cudaMemsetAsync(neighbourCount.data(), 0, sizeof(std::uint32_t), st),
+                "cudaMemset(neighbourCount)");
+    // The block size is a multiple of the warp: every lane of a warp reaches the ballot.
+    static_assert(tuning::kRayBlock % 32 == 0);
+    rc::testRepresentatives<T><<<blocks, tuning::kRayBlock, 0, st>>>(
+        rule, view, segments.data(), representatives.data(), representativeCount.data(),
+        visible.data(), neighbourList.data(), neighbourCount.data());
     LW_CUDA_LAUNCHED("rc::testRepresentatives");
+    rc::testNeighbourRays<T><<<blocks, tuning::kRayBlock, 0, st>>>(
+        rule, view, segments.data(), neighbourList.data(), neighbourCount.data(), visible.data());
+    LW_CUDA_LAUNCHED("rc::testNeighbourRays");
     return CudaStatus::success();
 }
 

@@ -310,11 +310,25 @@ template <typename T> struct RayVisibility {
     // RayVisibilityRule).
     LW_HOST_DEVICE bool visible(glm::dvec3 point, glm::dvec3 eyeOrDirection,
                                 bool orthographic) const {
+        const OwnRay own = ownRay(point, eyeOrDirection, orthographic);
+        return own == OwnRay::Visible ||
+               (own == OwnRay::AskNeighbour && neighbourRay(point, eyeOrDirection, orthographic));
+    }
+
+    // visible() in two steps, for a back-end that runs the neighbour rays apart (CUDA: in warps of
+    // their own, not as a second walk that idles the rest of the point rays' warp).
+    enum class OwnRay : unsigned char { Hidden = 0, Visible = 1, AskNeighbour = 2 };
+    LW_HOST_DEVICE OwnRay ownRay(glm::dvec3 point, glm::dvec3 eyeOrDirection,
+                                 bool orthographic) const {
         double blockedCells = 0.0;
         if (rayReachesEye(point, eyeOrDirection, orthographic, true, &blockedCells))
-            return true;
+            return OwnRay::Visible;
         if (!(pixelSpan > 0.0) || blockedCells > Rule::kNeighbourReachCells)
-            return false;
+            return OwnRay::Hidden;
+        return OwnRay::AskNeighbour;
+    }
+    LW_HOST_DEVICE bool neighbourRay(glm::dvec3 point, glm::dvec3 eyeOrDirection,
+                                     bool orthographic) const {
         const glm::dvec3 toward = orthographic ? eyeOrDirection : eyeOrDirection - point;
         const glm::dvec3 out = outwardAcrossView(point, toward);
         if (out == glm::dvec3(0.0))
