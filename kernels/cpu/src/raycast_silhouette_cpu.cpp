@@ -88,7 +88,8 @@ struct RayCastSilhouetteCpu::Impl {
     };
     static_assert(sizeof(NormalCone) == 8);
     std::vector<NormalCone> cones;
-    std::vector<std::uint8_t> macroOccupied; // per macro cell: holds a voxel >= iso
+    std::vector<std::uint8_t> macroOccupied;  // per macro cell: holds a voxel >= iso
+    std::vector<std::uint8_t> coarseOccupied; // per coarse block: holds an occupied macro cell
     // Per-chunk outputs, kept between frames so a new view allocates nothing once warm.
     std::vector<std::vector<SegmentEndpoints>> chunkSegments;
     std::size_t usedChunks = 0; // chunks of the last extract (chunkSegments may hold more)
@@ -261,6 +262,15 @@ public:
                     }
             },
             threads);
+        m_coarseDims = coarseDimsOf(m_macroDims);
+        coarseOccupied.resize(std::size_t(m_coarseDims.x) * std::size_t(m_coarseDims.y) *
+                              std::size_t(m_coarseDims.z));
+        std::size_t i = 0;
+        for (int z = 0; z < m_coarseDims.z; ++z)
+            for (int y = 0; y < m_coarseDims.y; ++y)
+                for (int x = 0; x < m_coarseDims.x; ++x)
+                    coarseOccupied[i++] =
+                        coarseOccupancy(macroOccupied.data(), m_macroDims, {x, y, z});
     }
 
     std::size_t macroIndex(glm::ivec3 cell) const {
@@ -315,6 +325,8 @@ public:
         rule.grid = rayGrid.view();
         rule.macroOccupied = macroOccupied.data();
         rule.macroDims = m_macroDims;
+        rule.coarseOccupied = coarseOccupied.data();
+        rule.coarseDims = m_coarseDims;
         rule.cellScale = m_cellScale;
         rule.iso = m_iso;
         return rule;
@@ -490,6 +502,7 @@ private:
     glm::dvec3 m_cellScale{1.0};
     double m_cellRadius = 0.0; // largest centre-to-corner distance of any cell, mm
     glm::ivec3 m_macroDims{0};
+    glm::ivec3 m_coarseDims{0};
 };
 
 } // namespace

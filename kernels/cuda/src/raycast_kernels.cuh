@@ -42,6 +42,18 @@ __global__ void macroOccupancy(const T* voxels, GridDims dims, glm::ivec3 macroD
     occupied[m] = any;
 }
 
+// Per coarse block: does any of its macro cells hold an inside voxel (kernels/common's rule)?
+__global__ void coarseOccupancyOf(const std::uint8_t* macroOccupied, glm::ivec3 macroDims,
+                                  glm::ivec3 coarseDims, std::uint8_t* coarseOccupied) {
+    const std::uint32_t c = blockIdx.x * blockDim.x + threadIdx.x;
+    const std::uint32_t total = std::uint32_t(coarseDims.x) * coarseDims.y * coarseDims.z;
+    if (c >= total)
+        return;
+    const glm::ivec3 coarse(int(c % coarseDims.x), int((c / coarseDims.x) % coarseDims.y),
+                            int(c / (std::uint32_t(coarseDims.x) * coarseDims.y)));
+    coarseOccupied[c] = coarseOccupancy(macroOccupied, macroDims, coarse);
+}
+
 struct Counters {
     unsigned long long triangles;
     unsigned long long segments;

@@ -16,8 +16,8 @@ struct RayCastSilhouetteCuda::Impl {
     MarchingCubesCuda marchingCubes;
     RayGridSetup rayGrid;
     DeviceBuffer<double> rayOffsets;
-    DeviceBuffer<std::uint8_t> macroOccupied;
-    glm::ivec3 macroDims{0};
+    DeviceBuffer<std::uint8_t> macroOccupied, coarseOccupied;
+    glm::ivec3 macroDims{0}, coarseDims{0};
     DeviceBuffer<std::uint8_t> mask;
     DeviceBuffer<rc::Counters> counters;
     DeviceBuffer<SegmentEndpoints> segments;  // phase 1's output, grown on demand
@@ -66,12 +66,12 @@ double RayCastSilhouetteCuda::uploadMs() const {
 std::size_t RayCastSilhouetteCuda::deviceBytes() const {
     const Impl& s = *m_impl;
     return s.marchingCubes.deviceBytes() + s.rayOffsets.bytes() + s.macroOccupied.bytes() +
-           s.mask.bytes() + s.counters.bytes() + s.segments.bytes() + s.segmentCells.bytes() +
-           s.sortedSegments.bytes() + s.sortedCells.bytes() + s.sortTemp.bytes() +
-           s.visible.bytes() + s.pruning.deviceBytes() + s.endpointTable.bytes() +
-           s.representative.bytes() + s.endpointIndex.bytes() + s.representatives.bytes() +
-           s.representativeCount.bytes() + s.isRepresentative.bytes() + s.neighbourList.bytes() +
-           s.neighbourCount.bytes();
+           s.coarseOccupied.bytes() + s.mask.bytes() + s.counters.bytes() + s.segments.bytes() +
+           s.segmentCells.bytes() + s.sortedSegments.bytes() + s.sortedCells.bytes() +
+           s.sortTemp.bytes() + s.visible.bytes() + s.pruning.deviceBytes() +
+           s.endpointTable.bytes() + s.representative.bytes() + s.endpointIndex.bytes() +
+           s.representatives.bytes() + s.representativeCount.bytes() + s.isRepresentative.bytes() +
+           s.neighbourList.bytes() + s.neighbourCount.bytes();
 }
 
 CudaStatus RayCastSilhouetteCuda::setVolume(const VolumeView& hostVolume,
@@ -96,6 +96,10 @@ CudaStatus RayCastSilhouetteCuda::setVolume(const VolumeView& hostVolume,
     const std::size_t macroCount =
         std::size_t(s.macroDims.x) * std::size_t(s.macroDims.y) * std::size_t(s.macroDims.z);
     LW_RETURN_IF_FAILED(s.macroOccupied.reserve(macroCount, "cudaMalloc(macroOccupied)"));
+    s.coarseDims = coarseDimsOf(s.macroDims);
+    const std::size_t coarseCount =
+        std::size_t(s.coarseDims.x) * std::size_t(s.coarseDims.y) * std::size_t(s.coarseDims.z);
+    LW_RETURN_IF_FAILED(s.coarseOccupied.reserve(coarseCount, "cudaMalloc(coarseOccupied)"));
     LW_RETURN_IF_FAILED(s.counters.reserve(1, "cudaMalloc(counters)"));
     return CudaStatus::success();
 }
@@ -112,6 +116,11 @@ CudaStatus RayCastSilhouetteCuda::Impl::prepareTyped(double storedIso, RayCastCu
         static_cast<const T*>(m.volume.voxels), m.spans.dims, macroDims, insideThreshold(storedIso),
         macroOccupied.data());
     LW_CUDA_LAUNCHED("rc::macroOccupancy");
+    const std::size_t coarseCount =
+        std::size_t(coarseDims.x) * std::size_t(coarseDims.y) * std::size_t(coarseDims.z);
+    rc::coarseOccupancyOf<<<blocksFor(coarseCount, 128), 128, 0, st>>>(
+        macroOccupied.data(), macroDims, coarseDims, coarseOccupied.data());
+    LW_CUDA_LAUNCHED("rc::coarseOccupancyOf");
     LW_RETURN_IF_FAILED(prepareTimer.stop(st));
     LW_CUDA_TRY(cudaStreamSynchronize(st), "rc::prepare");
     frame.prepareMs = prepareTimer.ms();
@@ -192,6 +201,8 @@ CudaStatus RayCastSilhouetteCuda::Impl::testAndDraw(const rc::View& view, std::u
     rule.grid = rayGrid.view;
     rule.macroOccupied = macroOccupied.data();
     rule.macroDims = macroDims;
+    rule.coarseOccupied = coarseOccupied.data();
+    rule.coarseDims = coarseDims;
     rule.cellScale = rayGrid.cellScale;
     rule.iso = iso;
     rule.pixelSpan = view.pixelSpan;

@@ -181,6 +181,10 @@ struct RayVisibilityRule {
     static constexpr double kGrazeCells = 2.0;
     static constexpr double kGrazeFraction = 0.1;
     static constexpr int kMacroCells = 8;
+    // Coarse blocks of kCoarseMacros^3 macro cells (32^3 cells): a ray through empty space
+    // (air around the head, the brain at a bone iso-value) jumps a block at a time.
+    static constexpr int kCoarseMacros = 4;
+    static constexpr int kCoarseCells = kMacroCells * kCoarseMacros;
     static constexpr double kNeighbourPixels = 1.0;
     static constexpr double kNeighbourReachCells = 8.0;
 };
@@ -192,12 +196,35 @@ LW_HOST_DEVICE inline double rayPixelSpan(double halfHeight, int height) {
     return height > 0 ? 2.0 * halfHeight / double(height) : 0.0;
 }
 
+// The coarse occupancy grid's size, and whether coarse block `coarse` holds an occupied macro
+// cell: built from the macro grid by every back-end alike.
+LW_HOST_DEVICE inline glm::ivec3 coarseDimsOf(glm::ivec3 macroDims) {
+    const int n = RayVisibilityRule::kCoarseMacros;
+    return (macroDims + n - 1) / n;
+}
+LW_HOST_DEVICE inline std::uint8_t coarseOccupancy(const std::uint8_t* macroOccupied,
+                                                   glm::ivec3 macroDims, glm::ivec3 coarse) {
+    const int n = RayVisibilityRule::kCoarseMacros;
+    const glm::ivec3 first = coarse * n;
+    const glm::ivec3 last = glm::min(first + n, macroDims);
+    for (int z = first.z; z < last.z; ++z)
+        for (int y = first.y; y < last.y; ++y)
+            for (int x = first.x; x < last.x; ++x)
+                if (macroOccupied[std::size_t(x) +
+                                  std::size_t(macroDims.x) *
+                                      (std::size_t(y) + std::size_t(macroDims.y) * std::size_t(z))])
+                    return 1;
+    return 0;
+}
+
 template <typename T> struct RayVisibility {
     const T* voxels = nullptr;
     GridDims dims;
     RayGridView grid;
     const std::uint8_t* macroOccupied = nullptr; // per macro cell: holds a voxel >= iso
     glm::ivec3 macroDims{0};
+    const std::uint8_t* coarseOccupied = nullptr; // per coarse block (null: no coarse jumps)
+    glm::ivec3 coarseDims{0};
     glm::dvec3 cellScale{1.0}; // cell widths in grid units (i, j, s)
     double iso = 0.0;
     double pixelSpan = 0.0; // rayPixelSpan(); 0: no neighbour ray
@@ -213,23 +240,24 @@ template <typename T> struct RayVisibility {
                std::size_t(macroDims.x) *
                    (std::size_t(m.y) + std::size_t(macroDims.y) * std::size_t(m.z));
     }
-    // Grid coordinate of the wall of `macro` that a ray going along du leaves through on `axis`.
-    LW_HOST_DEVICE double macroWall(glm::ivec3 macro, glm::dvec3 du, int axis) const {
+    // Grid coordinate of the wall of `block` (blocks of `cells`^3 cells: macro cells or coarse
+    // blocks) that a ray going along du leaves through on `axis`.
+    LW_HOST_DEVICE double blockWall(glm::ivec3 block, glm::dvec3 du, int axis, int cells) const {
         const int cellsOnAxis = axis == 0 ? dims.cx : (axis == 1 ? dims.cy : dims.cz);
-        const int end = (macro[axis] + 1) * Rule::kMacroCells;
-        const int c = du[axis] > 0.0 ? (end < cellsOnAxis ? end : cellsOnAxis)
-                                     : macro[axis] * Rule::kMacroCells;
+        const int end = (block[axis] + 1) * cells;
+        const int c =
+            du[axis] > 0.0 ? (end < cellsOnAxis ? end : cellsOnAxis) : block[axis] * cells;
         return grid.wall(axis, c);
     }
-    // Ray parameter (from `from`) where the ray leaves macro cell `macro`, and through which axis.
-    LW_HOST_DEVICE double macroExit(glm::ivec3 macro, glm::dvec3 from, glm::dvec3 du,
+    // Ray parameter (from `from`) where the ray leaves `block`, and through which axis.
+    LW_HOST_DEVICE double blockExit(glm::ivec3 block, glm::dvec3 from, glm::dvec3 du, int cells,
                                     int& axis) const {
         double best = 1e308;
         bool any = false;
         for (int a = 0; a < 3; ++a) {
             if (du[a] == 0.0)
                 continue;
-            const double t = (macroWall(macro, du, a) - from[a]) / du[a];
+            const double t = (blockWall(block, du, a, cells) - from[a]) / du[a];
             if (!any || t < best) {
                 best = t;
                 axis = a;
@@ -239,6 +267,34 @@ template <typename T> struct RayVisibility {
         if (!any)
             return HUGE_VAL;
         return best > 0.0 ? best : 0.0;
+    }
+    // The empty block the walk may jump from `cell`: the coarse block when it is empty, else the
+    // macro cell when that is; `cells` 0 when the macro cell is occupied (walk cell by cell).
+    // A jump of length 0 would not progress: then the next smaller block is tried.
+    LW_HOST_DEVICE double emptyBlockExit(glm::ivec3 cell, glm::dvec3 from, glm::dvec3 du,
+                                         glm::ivec3& block, int& cells, int& axis) const {
+        cells = 0;
+        if (macroOccupied[macroIndex(cell)])
+            return 0.0;
+        if (coarseOccupied) {
+            const glm::ivec3 coarse = cell / Rule::kCoarseCells;
+            const std::size_t index =
+                std::size_t(coarse.x) +
+                std::size_t(coarseDims.x) *
+                    (std::size_t(coarse.y) + std::size_t(coarseDims.y) * std::size_t(coarse.z));
+            if (!coarseOccupied[index]) {
+                const double t = blockExit(coarse, from, du, Rule::kCoarseCells, axis);
+                if (t > 0.0) {
+                    block = coarse;
+                    cells = Rule::kCoarseCells;
+                    return t;
+                }
+            }
+        }
+        block = cell / Rule::kMacroCells;
+        const double t = blockExit(block, from, du, Rule::kMacroCells, axis);
+        cells = t > 0.0 ? Rule::kMacroCells : 0;
+        return t;
     }
 
     // Bilinear value on the wall the ray leaves through (stored units), and the spread of its
@@ -367,15 +423,14 @@ template <typename T> struct RayVisibility {
             if (!grid.cellOf(from, du, cell))
                 return true;
             const glm::ivec3 macro = cell / Rule::kMacroCells;
-            int axis = 0;
-            const double tExit =
-                macroOccupied[macroIndex(cell)] ? 0.0 : macroExit(macro, from, du, axis);
-            // (A jump of length 0 would not progress: such a macro cell is walked cell by cell.)
-            if (tExit > 0.0) {
+            int axis = 0, blockCells = 0;
+            glm::ivec3 block;
+            const double tExit = emptyBlockExit(cell, from, du, block, blockCells, axis);
+            if (blockCells > 0) {
                 if (tFrom + tExit >= tMax)
                     return true;
                 glm::dvec3 next = from + tExit * du;
-                next[axis] = macroWall(macro, du, axis);
+                next[axis] = blockWall(block, du, axis, blockCells);
                 from = next;
                 tFrom += tExit;
                 continue;
