@@ -5,6 +5,7 @@
 #include "lw/evaluation/true_contour.h"
 #include "lw/kernels/cpu/voxel_ray.h"
 #include "lw/kernels/silhouette_segment.h"
+#include "lw/kernels/voxel_ray_walk.h"
 #include "lw/render/camera.h"
 #include "lw/render/iso_surface.h"
 #include "lw/render/raycast_silhouette_renderer.h"
@@ -162,6 +163,98 @@ TEST(VoxelRayGrid, UnevenTiltedStackWallsAtSliceOffsets) {
         EXPECT_EQ(exits[std::size_t(n)].cell, glm::ivec3(1, 1, n));
         EXPECT_DOUBLE_EQ(exits[std::size_t(n)].point.z, grid.offset(n + 1));
     }
+}
+
+// The coarse blocks (32^3 cells) only let a ray jump empty space faster: on a volume that is
+// mostly air (a ball and a slab in a corner each), every ray's answer is the one of the walk
+// with macro cells alone. Points on and off the objects, eyes all around, perspective and
+// orthographic.
+TEST(RayCastVisibility, CoarseJumpsChangeNoAnswer) {
+    const glm::ivec3 dims(150, 120, 100);
+    volume::Volume v(dims, volume::VoxelType::Float32);
+    float* voxels = v.dataAs<float>();
+    for (int z = 0; z < dims.z; ++z)
+        for (int y = 0; y < dims.y; ++y)
+            for (int x = 0; x < dims.x; ++x) {
+                const float ball = 14.0f - glm::length(glm::vec3(x, y, z) - glm::vec3(40, 40, 30));
+                const bool slab = x > 100 && x < 140 && y > 70 && y < 76 && z > 20 && z < 90;
+                voxels[v.index(x, y, z)] = slab ? 1.0f : ball;
+            }
+    const VoxelRayGrid grid(v);
+    kernels::RayVisibility<float> rule;
+    rule.voxels = voxels;
+    rule.dims = kernels::makeGridDims(dims);
+    rule.grid = grid.view();
+    rule.cellScale = grid.cellScale();
+    rule.iso = 0.0;
+    // The macro grid as the back-ends build it: a macro cell is occupied when a corner voxel of
+    // one of its cells is inside.
+    const int n = kernels::RayVisibilityRule::kMacroCells;
+    rule.macroDims = (dims - 1 + n - 1) / n;
+    std::vector<std::uint8_t> macro(std::size_t(rule.macroDims.x) * rule.macroDims.y *
+                                    rule.macroDims.z);
+    for (int z = 0; z < dims.z; ++z)
+        for (int y = 0; y < dims.y; ++y)
+            for (int x = 0; x < dims.x; ++x)
+                if (voxels[v.index(x, y, z)] >= 0.0f)
+                    for (int dz = -1; dz <= 0; ++dz)
+                        for (int dy = -1; dy <= 0; ++dy)
+                            for (int dx = -1; dx <= 0; ++dx) {
+                                const glm::ivec3 cell(x + dx, y + dy, z + dz);
+                                if (glm::any(glm::lessThan(cell, glm::ivec3(0))) ||
+                                    glm::any(glm::greaterThanEqual(cell, dims - 1)))
+                                    continue;
+                                const glm::ivec3 m = cell / n;
+                                macro[std::size_t(m.x) +
+                                      std::size_t(rule.macroDims.x) *
+                                          (std::size_t(m.y) +
+                                           std::size_t(rule.macroDims.y) * std::size_t(m.z))] = 1;
+                            }
+    rule.macroOccupied = macro.data();
+    kernels::RayVisibility<float> coarse = rule;
+    coarse.coarseDims = kernels::coarseDimsOf(rule.macroDims);
+    std::vector<std::uint8_t> blocks(std::size_t(coarse.coarseDims.x) * coarse.coarseDims.y *
+                                     coarse.coarseDims.z);
+    std::size_t i = 0, emptyBlocks = 0;
+    for (int z = 0; z < coarse.coarseDims.z; ++z)
+        for (int y = 0; y < coarse.coarseDims.y; ++y)
+            for (int x = 0; x < coarse.coarseDims.x; ++x) {
+                blocks[i] = kernels::coarseOccupancy(macro.data(), rule.macroDims, {x, y, z});
+                emptyBlocks += blocks[i++] == 0;
+            }
+    ASSERT_GT(emptyBlocks, blocks.size() / 2) << "the volume should be mostly empty blocks";
+    coarse.coarseOccupied = blocks.data();
+
+    std::mt19937 random(3);
+    std::uniform_real_distribution<double> unit(-1.0, 1.0);
+    const glm::dvec3 centre = grid.toPatient(glm::dvec3(dims) * 0.5);
+    int visible = 0, hidden = 0;
+    for (int k = 0; k < 3000; ++k) {
+        // Points near the ball's surface, near the slab, or anywhere.
+        glm::dvec3 point;
+        if (k % 3 == 0) {
+            const glm::dvec3 d =
+                glm::normalize(glm::dvec3(unit(random), unit(random), unit(random)));
+            point = grid.toPatient(glm::dvec3(40, 40, 30) + 14.0 * d);
+        } else if (k % 3 == 1) {
+            point = grid.toPatient(
+                glm::dvec3(120 + 20 * unit(random), 73 + 3 * unit(random), 55 + 35 * unit(random)));
+        } else {
+            point = grid.toPatient(glm::dvec3(dims) * 0.5 +
+                                   glm::dvec3(unit(random), unit(random), unit(random)) *
+                                       glm::dvec3(dims) * 0.5);
+        }
+        const glm::dvec3 away =
+            glm::normalize(glm::dvec3(unit(random), unit(random), unit(random)));
+        const bool orthographic = k % 4 == 0;
+        const glm::dvec3 eye = orthographic ? away : centre + 400.0 * away;
+        const bool expected = rule.rayReachesEye(point, eye, orthographic, k % 2 == 0);
+        EXPECT_EQ(coarse.rayReachesEye(point, eye, orthographic, k % 2 == 0), expected)
+            << "ray " << k;
+        (expected ? visible : hidden) += 1;
+    }
+    EXPECT_GT(visible, 300);
+    EXPECT_GT(hidden, 300);
 }
 
 Camera shapeCamera(const AnalyticShape& shape, const volume::Volume& v, double az, double el,
