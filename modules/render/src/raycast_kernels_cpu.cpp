@@ -73,6 +73,7 @@ void CpuRayCastKernels::testVisibility(const Camera& camera, const SilhouetteSet
     if (m_chunkLines.size() < chunks) {
         m_chunkLines.resize(chunks);
         m_chunkDots.resize(chunks);
+        m_chunkMemos.resize(chunks);
     }
     auto pixelOf = [&](glm::dvec3 p) { return glm::vec2(camera.project(p).pixel); };
     core::parallelFor(
@@ -81,15 +82,20 @@ void CpuRayCastKernels::testVisibility(const Camera& camera, const SilhouetteSet
             throwIfCancelled(settings);
             auto& lines = m_chunkLines[c];
             auto& dots = m_chunkDots[c];
+            auto& memo = m_chunkMemos[c];
             lines.clear();
             dots.clear();
+            const bool endpointsOnly = settings.visibility && !settings.testAlongSegment;
+            if (endpointsOnly)
+                memo.reset(2 * chunk(c).size());
+            auto visibleOf = [&](glm::dvec3 p) { return m_kernel->isVisible(p, view); };
             for (const kernels::SegmentEndpoints& segment : chunk(c)) {
                 const glm::dvec3 a(segment.a), b(segment.b);
                 if (!settings.visibility) {
                     lines.push_back(pixelOf(a));
                     lines.push_back(pixelOf(b));
                 } else if (!settings.testAlongSegment) {
-                    if (m_kernel->isVisible(a, view) && m_kernel->isVisible(b, view)) {
+                    if (memo.visible(segment.a, visibleOf) && memo.visible(segment.b, visibleOf)) {
                         lines.push_back(pixelOf(a));
                         lines.push_back(pixelOf(b));
                     }

@@ -6,6 +6,7 @@
 
 #include "lw/kernels/cpu/raycast_silhouette_cpu.h"
 #include "lw/render/iso_surface.h"
+#include "point_visibility_memo.h"
 #include "raycast_kernel_set.h"
 
 #include <glm/glm.hpp>
@@ -47,6 +48,8 @@ private:
     // values, so a visible piece is pixel for pixel part of the line drawn with visibility off.
     std::vector<std::vector<glm::vec2>> m_chunkLines;
     std::vector<std::vector<glm::ivec2>> m_chunkDots;
+    // Per chunk: each endpoint's visibility, one ray per point (endpoint tests only).
+    std::vector<PointVisibilityMemo> m_chunkMemos;
     // The border cap at the prepared iso-value (settings.closeAtBorder) and its segments for the
     // frame's view: the kernel finds the segments of marching cubes' cells, the cap adds its own.
     double m_storedIso = 0.0;
