@@ -5,6 +5,7 @@
 // pixel_camera.h), the same functions the CPU back-end calls.
 
 #include "lw/kernels/pixel_camera.h"
+#include "lw/kernels/point_hash.h"
 #include "lw/kernels/silhouette_segment.h"
 #include "lw/kernels/voxel_ray_walk.h"
 #include "marching_cubes_kernels.cuh"
@@ -89,10 +90,7 @@ __device__ __forceinline__ glm::vec3 endpointOf(const SegmentEndpoints* segments
 inline constexpr unsigned long long kEmptySlot = ~0ull;
 
 __device__ __forceinline__ unsigned long long endpointHash(glm::vec3 p) {
-    unsigned long long h = 0x9E3779B97F4A7C15ull * (1ull + __float_as_uint(p.x));
-    h = (h ^ (h >> 31)) + 0xBF58476D1CE4E5B9ull * (1ull + __float_as_uint(p.y));
-    h = (h ^ (h >> 29)) + 0x94D049BB133111EBull * (1ull + __float_as_uint(p.z));
-    return h ^ (h >> 32);
+    return pointBitsHash(__float_as_uint(p.x), __float_as_uint(p.y), __float_as_uint(p.z));
 }
 
 __device__ __forceinline__ bool samePoint(glm::vec3 a, glm::vec3 b) {

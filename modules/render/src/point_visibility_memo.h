@@ -6,6 +6,8 @@
 // on the point's bits; the answer of a point is the rule's, so the memo changes no image. The
 // CUDA back-end does the same with a table on the device.
 
+#include "lw/kernels/point_hash.h"
+
 #include <bit>
 #include <cstdint>
 #include <glm/glm.hpp>
@@ -51,10 +53,7 @@ private:
         std::uint8_t state = kEmpty;
     };
     static std::size_t hash(const Key& k) {
-        std::uint64_t h = 0x9E3779B97F4A7C15ull * (1ull + k.x);
-        h = (h ^ (h >> 31)) + 0xBF58476D1CE4E5B9ull * (1ull + k.y);
-        h = (h ^ (h >> 29)) + 0x94D049BB133111EBull * (1ull + k.z);
-        return std::size_t(h ^ (h >> 32));
+        return std::size_t(kernels::pointBitsHash(k.x, k.y, k.z));
     }
 
     std::vector<Entry> m_entries;
