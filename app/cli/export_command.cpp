@@ -145,7 +145,8 @@ void writeOutputs(const ExportJob& job, const ExportTargets& targets, std::ostre
 
 int runExport(const std::vector<std::string>& args, std::ostream& out) {
     std::set<std::string> options = panelRenderOptions();
-    options.insert({"series", "panel", "annotations", "comment", "png", "pdf", "svg", "sc"});
+    options.insert({"series", "panel", "annotations", "comment", "png", "pdf", "svg", "sc",
+                    "suggestive-threshold"});
     const Arguments arguments(args, {"force", "anonymise", "suggestive"}, options);
     if (arguments.positionals().size() != 1)
         throw UsageError("export", "expects exactly one INPUT");
@@ -156,6 +157,7 @@ int runExport(const std::vector<std::string>& args, std::ostream& out) {
     request.wantIso = job.layout != report::PanelLayout::SilhouettePanel;
     request.wantSilhouette = job.layout != report::PanelLayout::IsoPanel;
     request.suggestive = arguments.flag("suggestive") && request.wantSilhouette;
+    parseSuggestiveThreshold(arguments, request);
     render::CameraSetup setup = parseCameraView(arguments);
     const glm::ivec2 size = parsePanelSize(arguments);
     // Lines widen with the resolution like the annotations do (1 px at 512 px high).

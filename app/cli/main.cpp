@@ -85,7 +85,7 @@ commands:
          [--panel both|iso|silhouette] [--annotations FILE.json] [--comment TEXT] [--anonymise]
          [--png OUT.png] [--pdf OUT.pdf] [--svg OUT.svg] [--sc FOLDER] [--force]
          [--chunks ..] [--mode ..] [--visibility ..] [--camera ..] [--backend ..] [--threads N]
-         [--suggestive]
+         [--suggestive [--suggestive-threshold TAU]]
                               the review as a report, any combination of outputs: PNG with the
                               annotations burned in (lines and text scale with --size, the size
                               of each panel), a 2-page PDF report (header, picture, measurements,

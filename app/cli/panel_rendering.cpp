@@ -182,6 +182,14 @@ void parseStrokeAndBorder(const Arguments& arguments, int defaultMinStroke,
     settings.closeAtBorder = border == "closed";
 }
 
+void parseSuggestiveThreshold(const Arguments& arguments, RenderRequest& request) {
+    const double threshold =
+        arguments.number("suggestive-threshold", request.suggestiveSettings.derivativeThreshold);
+    if (!(threshold >= 0.0))
+        throw UsageError("--suggestive-threshold", "expected a number >= 0");
+    request.suggestiveSettings.derivativeThreshold = threshold;
+}
+
 RenderRequest parseRenderRequest(const Arguments& arguments, const std::string& command) {
     RenderRequest request;
     request.method =

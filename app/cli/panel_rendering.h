@@ -50,6 +50,8 @@ const std::set<std::string>& panelRenderOptions();
 // --method, --backend, --mode, --visibility, --threads, --iso (required; `command` names the
 // command in the usage error). Panels and repeat are left to the caller.
 RenderRequest parseRenderRequest(const Arguments& arguments, const std::string& command);
+// --suggestive-threshold TAU (render and export) into the request's suggestive settings.
+void parseSuggestiveThreshold(const Arguments& arguments, RenderRequest& request);
 // --min-stroke PX (default `defaultMinStroke`) and --border closed|open (default closed) into
 // `settings`, as `render`, `export` and `bench` read them; throws UsageError for a bad value.
 void parseStrokeAndBorder(const Arguments& arguments, int defaultMinStroke,

@@ -38,11 +38,7 @@ int runRender(const std::vector<std::string>& args, std::ostream& out) {
     request.suggestive = arguments.flag("suggestive");
     if (request.suggestive && panel == "iso")
         throw UsageError("--suggestive", "draws into the silhouette panel (--panel iso has none)");
-    const double threshold =
-        arguments.number("suggestive-threshold", request.suggestiveSettings.derivativeThreshold);
-    if (!(threshold >= 0.0))
-        throw UsageError("--suggestive-threshold", "expected a number >= 0");
-    request.suggestiveSettings.derivativeThreshold = threshold;
+    parseSuggestiveThreshold(arguments, request);
     request.wantIso = panel != "silhouette";
     request.wantSilhouette = panel != "iso";
     request.repeat = std::max(0, int(arguments.number("repeat", 0)));

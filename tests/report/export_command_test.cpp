@@ -152,4 +152,14 @@ TEST(ExportCommand, SuggestiveContoursAddLines) {
     ASSERT_GT(plain, 100u);
     EXPECT_GT(dark(core::readPng(dir / "b.png")), plain + 50);
     EXPECT_GT(paths(dir / "b.svg"), paths(dir / "a.svg"));
+    // A stricter derivative test keeps fewer of them (as `render --suggestive-threshold`).
+    ASSERT_EQ(runCli(common + "--suggestive --suggestive-threshold 40 --png " +
+                     quoted((dir / "c.png").string()))
+                  .exitCode,
+              0);
+    EXPECT_LT(dark(core::readPng(dir / "c.png")), dark(core::readPng(dir / "b.png")));
+    const auto negative = runCli(common + "--suggestive --suggestive-threshold -1 --png " +
+                                 quoted((dir / "d.png").string()));
+    EXPECT_EQ(negative.exitCode, 2);
+    EXPECT_NE(negative.err.find("--suggestive-threshold"), std::string::npos) << negative.err;
 }
