@@ -167,8 +167,9 @@ TEST(VoxelRayGrid, UnevenTiltedStackWallsAtSliceOffsets) {
 
 // The coarse blocks (32^3 cells) only let a ray jump empty space faster: on a volume that is
 // mostly air (a ball and a slab in a corner each), every ray's answer is the one of the walk
-// with macro cells alone. Points on and off the objects, eyes all around, perspective and
-// orthographic.
+// with macro cells alone (a jump restarts the walk from another point, so a wall value on the
+// iso-value's edge could round the other way; none of these rays meets one). Points on and off the
+// objects, eyes all around, perspective and orthographic.
 TEST(RayCastVisibility, CoarseJumpsChangeNoAnswer) {
     const glm::ivec3 dims(150, 120, 100);
     volume::Volume v(dims, volume::VoxelType::Float32);

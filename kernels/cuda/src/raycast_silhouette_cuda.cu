@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cub/device/device_radix_sort.cuh>
 #include <cub/device/device_select.cuh>
+#include <limits>
 #include <utility>
 
 namespace lw::kernels::cuda {
@@ -232,9 +233,10 @@ CudaStatus RayCastSilhouetteCuda::Impl::testRepresentativeEndpoints(const RayVis
                                                                     std::uint32_t count) {
     cudaStream_t st = mc().stream.get();
     const std::size_t endpoints = 2 * std::size_t(count);
-    if (endpoints >= std::size_t(0xffffffffu))
+    // CUB's item counts are int: at most INT_MAX endpoints (the table's mask then fits 32 bits).
+    if (endpoints > std::size_t(std::numeric_limits<int>::max()))
         return CudaStatus::failure(CudaStatus::Code::Failed, "rc::findRepresentatives",
-                                   "more segment endpoints than a 32-bit index can name");
+                                   "more segment endpoints than CUB's int item count can hold");
     std::size_t slots = 1024;
     while (slots < 2 * endpoints)
         slots *= 2;

@@ -247,6 +247,10 @@ bool CudaZBufferKernels::resolveIntoTarget(const SilhouetteSettings& settings) {
         status = m_zbuffer.resolveInto(m_draw, attachment->interop, m_timing);
     if (status.ok())
         return true;
+    // Out of memory (pruning's buffers are allocated in the compose) is no interop failure: the
+    // frame goes the next way down like any other, and the texture stays usable.
+    if (status.code == CudaStatus::Code::OutOfMemory)
+        check(status);
     target->setAttachment(nullptr);
     const std::string reason = status.describe();
 #else
@@ -291,8 +295,8 @@ void CudaZBufferKernels::drawPieces(const Camera& camera, const SilhouetteSettin
                                        }));
     if (settings.closeAtBorder) {
         const Mesh& cap = m_cap.cap(*m_volume, storedIso);
+        m_capKeptOnDevice = false; // drawHost replaces the kept copy
         check(m_zbuffer.drawHost(cap, m_draw, m_timing));
-        m_capKeptOnDevice = false;
         frame.triangles += cap.triangleCount();
     }
     // The slabs' extraction and drawing interleave: extraction is the loop's wall time less the

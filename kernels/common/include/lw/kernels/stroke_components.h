@@ -10,9 +10,10 @@
 // group with an index no larger than its own, so following labels ends at the group's smallest
 // index, its root:
 //
-//     pixel:  0  1  2  3  4  5          labels only ever decrease (a hook or a halving step),
-//     label:  0  0  .  1  3  .          so a label read before another thread lowered it still
-//                                       names an ancestor.
+//     pixel:  0  1  2  3  4  5          a label is the pixel itself (a root) or an ancestor
+//     label:  0  0  .  1  3  .          with a smaller index (a hook or a halving step puts one
+//                                       there), so a label read while another thread changes
+//                                       it still leads to the root, and no cycle can form.
 //
 // Each pixel unites itself with the line pixels among its earlier neighbours (the rows above
 // within reach, and the pixels to its left in its own row): every pair of neighbours is united
@@ -45,7 +46,9 @@ struct LabelCompareAndSwap {
 // The root of `pixel`'s group, halving the path on the way (each visited label skips to its
 // grandparent): a long stroke hooked pixel by pixel is a chain as long as the stroke, and
 // without this every find would walk it. A halving store only ever lowers a non-root's label to
-// another ancestor, so it cannot undo a concurrent hook (hooks change roots only, by CAS).
+// another ancestor, so it cannot undo a concurrent hook (hooks change roots only, by CAS). The
+// device runs these as plain loads and stores racing with other threads' (the ECL-CC pattern):
+// any value read is an ancestor, which is all the walk needs.
 LW_HOST_DEVICE inline std::uint32_t strokeRoot(std::uint32_t* labels, std::uint32_t pixel) {
     std::uint32_t parent = labels[pixel];
     if (parent == pixel)
