@@ -136,36 +136,6 @@ TEST(StrokeUnionFind, FindsTheFloodFillsGroupsInAnyOrder) {
                 }
 }
 
-// The banded parallel pruning against the one-thread flood fill: heights of two and more bands
-// (64 rows each at the least), bands of uneven height, strokes across band edges, gaps 0 and 1,
-// dense and sparse masks, 2 to 7 threads (more threads than cores only interleave).
-TEST(StrokePruningThreads, EqualsTheOneThreadFloodFill) {
-    for (const glm::ivec2 size :
-         {glm::ivec2(1, 128), glm::ivec2(37, 129), glm::ivec2(300, 200), glm::ivec2(512, 449)})
-        for (const int gap : {0, 1})
-            for (const int minPixels : {2, 10, 40})
-                for (const unsigned threads : {2u, 3u, 7u}) {
-                    const PixelMask mask =
-                        randomStrokes(size.x, size.y, unsigned(size.x + minPixels + threads));
-                    PixelMask expected = mask;
-                    const std::size_t expectedRemoved =
-                        expected.removeComponentsSmallerThan(minPixels, gap);
-                    PixelMask banded = mask;
-                    EXPECT_EQ(banded.removeComponentsSmallerThan(minPixels, gap, threads),
-                              expectedRemoved);
-                    EXPECT_TRUE(banded == expected)
-                        << size.x << "x" << size.y << " gap " << gap << " min " << minPixels
-                        << " threads " << threads;
-                }
-    // A stroke down the whole height crosses every band edge: one group, kept whole.
-    PixelMask line(40, 400);
-    for (int y = 0; y < 400; ++y)
-        line.set(20 + (y / 70) % 2, y);
-    PixelMask kept = line;
-    EXPECT_EQ(kept.removeComponentsSmallerThan(300, 0, 6), 0u);
-    EXPECT_TRUE(kept == line);
-}
-
 // A sphere of radius 18 voxels with dust: single voxels above the iso-value far from it, each a
 // tiny closed surface whose contour is a speck of a few pixels.
 lw::volume::Volume sphereWithDust() {

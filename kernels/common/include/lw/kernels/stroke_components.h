@@ -64,17 +64,6 @@ LW_HOST_DEVICE inline std::uint32_t strokeRoot(std::uint32_t* labels, std::uint3
     }
 }
 
-// The root without writing (for threads that may not write labels others read).
-LW_HOST_DEVICE inline std::uint32_t strokeRootReadOnly(const std::uint32_t* labels,
-                                                       std::uint32_t pixel) {
-    std::uint32_t parent = labels[pixel];
-    while (parent != pixel) {
-        pixel = parent;
-        parent = labels[pixel];
-    }
-    return pixel;
-}
-
 // Joins the groups of line pixels `a` and `b`: the larger root is hooked onto the smaller, by
 // compare-and-swap, so only a label that is still a root changes. When another thread hooked
 // that root first, the swap fails and returns its new parent, and the join goes on from there.
@@ -98,18 +87,17 @@ LW_HOST_DEVICE void uniteStrokes(std::uint32_t* labels, std::uint32_t a, std::ui
 }
 
 // Pixel (x, y) of a width x height mask (1 byte a pixel, non-zero: line): united with the line
-// pixels among its earlier neighbours within `reach`, in rows from `firstRow` on (the host
-// labels bands of rows in parallel, each from its own first row, then joins the bands).
+// pixels among its earlier neighbours within `reach`.
 template <typename CompareAndSwap>
 LW_HOST_DEVICE void uniteWithEarlierNeighbours(const std::uint8_t* mask, std::uint32_t* labels,
                                                int width, int height, int reach, int x, int y,
-                                               CompareAndSwap compareAndSwap, int firstRow = 0) {
+                                               CompareAndSwap compareAndSwap) {
     const std::uint32_t self = std::uint32_t(y) * std::uint32_t(width) + std::uint32_t(x);
     if (x < 0 || y < 0 || x >= width || y >= height || !mask[self])
         return;
     for (int dy = -reach; dy <= 0; ++dy) {
         const int ny = y + dy;
-        if (ny < firstRow || ny < 0)
+        if (ny < 0)
             continue;
         const int lastDx = dy < 0 ? reach : -1;
         for (int dx = -reach; dx <= lastDx; ++dx) {

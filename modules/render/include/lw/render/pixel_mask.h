@@ -32,10 +32,6 @@ public:
     // voxel-scale noise bumps leave on a CT's line drawing and keeps the contours, also a contour
     // that a method draws with one-pixel breaks.
     std::size_t removeComponentsSmallerThan(int minPixels, int gapPixels = 0);
-    // The same on up to `threads` threads (0: all cores): bands of rows labelled in parallel by
-    // union-find (kernels/common's stroke rules, as the CUDA back-end prunes), then joined; the
-    // result is the one-thread flood fill's, bit for bit. Frames prune with it.
-    std::size_t removeComponentsSmallerThan(int minPixels, int gapPixels, unsigned threads);
     // Sizes of the groups of on pixels (in no particular order), as above.
     std::vector<std::size_t> componentSizes(int gapPixels = 0) const;
 
