@@ -274,10 +274,7 @@ public:
     }
 
     std::size_t macroIndex(glm::ivec3 cell) const {
-        const glm::ivec3 m = cell / kMacroCells;
-        return std::size_t(m.x) +
-               std::size_t(m_macroDims.x) *
-                   (std::size_t(m.y) + std::size_t(m_macroDims.y) * std::size_t(m.z));
+        return occupancyIndex(cell / kMacroCells, m_macroDims);
     }
 
     std::size_t extract(const SilhouetteView& view, unsigned threads) override {

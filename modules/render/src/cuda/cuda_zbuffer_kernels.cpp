@@ -68,7 +68,6 @@ public:
     void bind(const volume::Volume* volume) override {
         m_marchingCubes.release(); // device buffers and a streamed volume's host registration
         m_zbuffer.release();
-        m_capKeptOnDevice = false;
         m_volume = volume;
         m_resident = GpuResidency::Cpu;
         m_floor = GpuResidency::WholeVolume;

@@ -196,6 +196,12 @@ LW_HOST_DEVICE inline double rayPixelSpan(double halfHeight, int height) {
     return height > 0 ? 2.0 * halfHeight / double(height) : 0.0;
 }
 
+// Index of `p` in a grid of `dims`, x fastest (the macro and coarse occupancy grids).
+LW_HOST_DEVICE inline std::size_t occupancyIndex(glm::ivec3 p, glm::ivec3 dims) {
+    return std::size_t(p.x) +
+           std::size_t(dims.x) * (std::size_t(p.y) + std::size_t(dims.y) * std::size_t(p.z));
+}
+
 // The coarse occupancy grid's size, and whether coarse block `coarse` holds an occupied macro
 // cell: built from the macro grid by every back-end alike.
 LW_HOST_DEVICE inline glm::ivec3 coarseDimsOf(glm::ivec3 macroDims) {
@@ -210,9 +216,7 @@ LW_HOST_DEVICE inline std::uint8_t coarseOccupancy(const std::uint8_t* macroOccu
     for (int z = first.z; z < last.z; ++z)
         for (int y = first.y; y < last.y; ++y)
             for (int x = first.x; x < last.x; ++x)
-                if (macroOccupied[std::size_t(x) +
-                                  std::size_t(macroDims.x) *
-                                      (std::size_t(y) + std::size_t(macroDims.y) * std::size_t(z))])
+                if (macroOccupied[occupancyIndex({x, y, z}, macroDims)])
                     return 1;
     return 0;
 }
@@ -235,10 +239,7 @@ template <typename T> struct RayVisibility {
         return std::size_t(x) + dims.sy * std::size_t(y) + dims.sz * std::size_t(z);
     }
     LW_HOST_DEVICE std::size_t macroIndex(glm::ivec3 cell) const {
-        const glm::ivec3 m = cell / Rule::kMacroCells;
-        return std::size_t(m.x) +
-               std::size_t(macroDims.x) *
-                   (std::size_t(m.y) + std::size_t(macroDims.y) * std::size_t(m.z));
+        return occupancyIndex(cell / Rule::kMacroCells, macroDims);
     }
     // Grid coordinate of the wall of `block` (blocks of `cells`^3 cells: macro cells or coarse
     // blocks) that a ray going along du leaves through on `axis`.
@@ -278,11 +279,7 @@ template <typename T> struct RayVisibility {
             return 0.0;
         if (coarseOccupied) {
             const glm::ivec3 coarse = cell / Rule::kCoarseCells;
-            const std::size_t index =
-                std::size_t(coarse.x) +
-                std::size_t(coarseDims.x) *
-                    (std::size_t(coarse.y) + std::size_t(coarseDims.y) * std::size_t(coarse.z));
-            if (!coarseOccupied[index]) {
+            if (!coarseOccupied[occupancyIndex(coarse, coarseDims)]) {
                 const double t = blockExit(coarse, from, du, Rule::kCoarseCells, axis);
                 if (t > 0.0) {
                     block = coarse;
