@@ -35,7 +35,6 @@ struct RayCastSilhouetteCuda::Impl {
     DeviceBuffer<std::uint32_t> neighbourList, neighbourCount;
     DeviceBuffer<std::uint8_t> isRepresentative;
     StrokePruning pruning;
-    int minStrokePixels = 0, strokeGapPixels = 0; // this frame's (RayCastCudaSettings)
     double iso = 0.0;
     bool prepared = false;
     dispatch::StageTimer prepareTimer, renderTimer;
@@ -44,7 +43,8 @@ struct RayCastSilhouetteCuda::Impl {
 
     template <typename T> CudaStatus prepareTyped(double storedIso, RayCastCudaFrame& frame);
     template <typename T>
-    CudaStatus renderTyped(const rc::View& view, std::uint8_t* hostMask, RayCastCudaFrame& frame,
+    CudaStatus renderTyped(const rc::View& view, const RayCastCudaSettings& settings,
+                           std::uint8_t* hostMask, RayCastCudaFrame& frame,
                            const SegmentEndpoints* extra, std::size_t extraCount);
     template <typename T> CudaStatus findSegments(const rc::View& view, rc::Counters& counts);
     template <typename T> CudaStatus testAndDraw(const rc::View& view, std::uint32_t count);
@@ -282,10 +282,10 @@ CudaStatus RayCastSilhouetteCuda::Impl::testRepresentativeEndpoints(const RayVis
 }
 
 template <typename T>
-CudaStatus RayCastSilhouetteCuda::Impl::renderTyped(const rc::View& view, std::uint8_t* hostMask,
-                                                    RayCastCudaFrame& frame,
-                                                    const SegmentEndpoints* extra,
-                                                    std::size_t extraCount) {
+CudaStatus
+RayCastSilhouetteCuda::Impl::renderTyped(const rc::View& view, const RayCastCudaSettings& settings,
+                                         std::uint8_t* hostMask, RayCastCudaFrame& frame,
+                                         const SegmentEndpoints* extra, std::size_t extraCount) {
     MarchingCubesCuda::Impl& m = mc();
     cudaStream_t st = m.stream.get();
     const std::size_t pixels = std::size_t(view.camera.width > 0 ? view.camera.width : 0) *
@@ -316,7 +316,7 @@ CudaStatus RayCastSilhouetteCuda::Impl::renderTyped(const rc::View& view, std::u
     if (total > 0)
         LW_RETURN_IF_FAILED(testAndDraw<T>(view, std::uint32_t(total)));
     LW_RETURN_IF_FAILED(pruning.run(mask.data(), view.camera.width, view.camera.height,
-                                    minStrokePixels, strokeGapPixels, st));
+                                    settings.minStrokePixels, settings.strokeGapPixels, st));
     LW_RETURN_IF_FAILED(renderTimer.stop(st));
     if (pixels > 0)
         LW_CUDA_TRY(cudaMemcpyAsync(hostMask, mask.data(), pixels, cudaMemcpyDeviceToHost, st),
@@ -345,10 +345,9 @@ CudaStatus RayCastSilhouetteCuda::render(const PixelCamera& camera, glm::dvec3 e
     view.visibility = settings.visibility;
     view.alongSegment = settings.alongSegment;
     view.pixelSpan = rayPixelSpan(camera.halfHeight, camera.height);
-    s.minStrokePixels = settings.minStrokePixels;
-    s.strokeGapPixels = settings.strokeGapPixels;
     return dispatchVoxelKind(s.mc().volume.kind, [&](auto zero) {
-        return s.renderTyped<decltype(zero)>(view, hostMask, frame, extraSegments, extraCount);
+        return s.renderTyped<decltype(zero)>(view, settings, hostMask, frame, extraSegments,
+                                             extraCount);
     });
 }
 
