@@ -244,6 +244,63 @@ TEST(MarchingCubes, SphereNormalsPointOutward) {
     }
 }
 
+// A plate one voxel thick (101 at iso 100) with a bright partial-volume layer on one side (60)
+// and air on the other, across each axis in turn, and across uneven slices whose offsets run
+// backwards. The central differences at the plate voxels point across the plate toward the
+// bright layer, and the vertices on the bright side sit at t = 1/41 of their edge: the
+// interpolated gradient alone gives them normals pointing into the plate, so every normal of the
+// plate faces the same way and no contour can go round it. The edge's own difference must win:
+// vertices on either side of the plate face away from it.
+class SubVoxelPlate : public ::testing::TestWithParam<int> {};
+
+TEST_P(SubVoxelPlate, NormalsFaceAwayFromThePlateOnBothSides) {
+    const int across = GetParam() % 3; // the axis the plate is thin along
+    const bool backwardSlices = GetParam() == 3;
+    const glm::ivec3 dims(12, 12, 12);
+    const int plate = 5;
+    auto field = [&](int x, int y, int z) {
+        const glm::ivec3 p(x, y, z);
+        for (int a = 0; a < 3; ++a)
+            if (a != across && (p[a] < 2 || p[a] > 9))
+                return 0.0;
+        return p[across] == plate ? 101.0 : (p[across] == plate + 1 ? 60.0 : 0.0);
+    };
+    volume::VolumeGeometry geometry;
+    if (backwardSlices) {
+        std::vector<glm::dvec3> slices;
+        double position = 0.0;
+        for (int k = 0; k < dims.z; ++k) {
+            slices.push_back({0.0, 0.0, position});
+            position -= (k % 2 == 0) ? 1.5 : 0.75;
+        }
+        geometry =
+            volume::VolumeGeometry::fromSlicePositions({1, 0, 0}, {0, 1, 0}, 1.0, 1.0, slices);
+    }
+    const Volume v = makeFloatVolume(dims, field, geometry);
+    const Mesh mesh = extractIsoSurface(v, 100.0);
+    ASSERT_GT(mesh.triangleCount(), 100u);
+    EXPECT_EQ(closedSurfaceProblem(mesh), "");
+    glm::dvec3 plateIndex(0.0);
+    plateIndex[across] = plate;
+    const glm::dvec3 platePoint = v.geometry().indexToPatient(plateIndex);
+    glm::dvec3 brightIndex(plateIndex);
+    brightIndex[across] += 1.0;
+    const glm::dvec3 toBright =
+        glm::normalize(v.geometry().indexToPatient(brightIndex) - platePoint);
+    int checked = 0;
+    for (std::size_t i = 0; i < mesh.vertexCount(); ++i) {
+        const double side = glm::dot(glm::dvec3(mesh.positions[i]) - platePoint, toBright);
+        if (std::abs(side) < 1e-4) // the rim: on an edge within the plate's layer
+            continue;
+        const double facing = glm::dot(glm::dvec3(mesh.normals[i]), toBright);
+        ASSERT_GT(side * facing, 0.0) << "vertex " << i << " on side " << side;
+        ++checked;
+    }
+    EXPECT_GT(checked, 100);
+}
+
+INSTANTIATE_TEST_SUITE_P(AcrossEachAxis, SubVoxelPlate, ::testing::Values(0, 1, 2, 3));
+
 // A gantry-tilted stack with uneven slice gaps and anisotropic pixels, sampled from an analytic
 // sphere in patient space: vertices must be the index-space vertices mapped through
 // indexToPatient, lie on the sphere, and have radial normals (inverse-transpose transform).

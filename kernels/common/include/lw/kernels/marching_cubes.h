@@ -121,6 +121,30 @@ struct McGridFrame {
     McVec3 edgeDirection[3];
 };
 
+// The surface crosses an edge from its inside end to its outside end, so the field falls along
+// that direction somewhere on the edge, and the outward normal there has a positive component
+// along it. The gradient interpolated from central differences can say the opposite where the
+// structure is thinner than a voxel (a plastic plate seen edge-on, the rim of a hole in it): the
+// neighbours two voxels apart outweigh the edge. Then every normal of a small closed bit of
+// surface may face the same way, n.v turns nowhere on it, and no method finds its contour (the
+// outline of the bit goes undrawn). Where the interpolated gradient's component along the edge
+// (the oblique frame's component `axis`: the derivative along the edge, per mm for i and j, per
+// unit of slice offset for k) disagrees in sign with the edge's own difference, that difference
+// replaces it. Elsewhere nothing changes, so smooth surfaces keep their normals bit for bit.
+LW_HOST_DEVICE inline void mcAgreeWithEdge(const McGridFrame& frame, int z, int axis, float a,
+                                           float b, McVec3& gradient) {
+    const double* step = axis == 0 ? frame.stepI : frame.stepJ;
+    const double run = axis == 2
+                           ? frame.sliceOffset[z + 1] - frame.sliceOffset[z]
+                           : std::sqrt(step[0] * step[0] + step[1] * step[1] + step[2] * step[2]);
+    if (run == 0.0)
+        return;
+    const float edgeSlope = float(double(b - a) / run);
+    float& along = axis == 0 ? gradient.x : (axis == 1 ? gradient.y : gradient.z);
+    if (!(along * edgeSlope > 0.0f))
+        along = edgeSlope;
+}
+
 struct McVertex {
     McVec3 position; // patient mm
     McVec3 normal;   // unit, outward
@@ -133,7 +157,9 @@ LW_HOST_DEVICE inline McVertex mcEdgeVertex(const McGridFrame& frame, int x, int
                                             float a, float b, const McVec3& ga, const McVec3& gb,
                                             double iso, float isoF) {
     const float t = mcEdgeParameter(a, b, iso);
-    const McVec3 g = mcTransform(frame.normalMatrix, mcLerp(ga, gb, t));
+    McVec3 gradient = mcLerp(ga, gb, t);
+    mcAgreeWithEdge(frame, z, axis, a, b, gradient);
+    const McVec3 g = mcTransform(frame.normalMatrix, gradient);
     McVec3 fallback = frame.edgeDirection[axis];
     if (!mcInside(a, isoF))
         fallback = {-fallback.x, -fallback.y, -fallback.z};
