@@ -133,16 +133,17 @@ struct McGridFrame {
 // replaces it. Elsewhere nothing changes, so smooth surfaces keep their normals bit for bit.
 LW_HOST_DEVICE inline void mcAgreeWithEdge(const McGridFrame& frame, int z, int axis, float a,
                                            float b, McVec3& gradient) {
-    const double* step = axis == 0 ? frame.stepI : frame.stepJ;
-    const double run = axis == 2
-                           ? frame.sliceOffset[z + 1] - frame.sliceOffset[z]
-                           : std::sqrt(step[0] * step[0] + step[1] * step[1] + step[2] * step[2]);
-    if (run == 0.0)
+    const double sliceRun = axis == 2 ? frame.sliceOffset[z + 1] - frame.sliceOffset[z] : 1.0;
+    if (sliceRun == 0.0)
         return;
-    const float edgeSlope = float(double(b - a) / run);
     float& along = axis == 0 ? gradient.x : (axis == 1 ? gradient.y : gradient.z);
-    if (!(along * edgeSlope > 0.0f))
-        along = edgeSlope;
+    const bool rises = (b > a) == (sliceRun > 0.0); // the field rises along the axis
+    if (along > 0.0f ? rises : (along < 0.0f && !rises))
+        return; // the common case: consistent, and no square root paid (0 or NaN is replaced)
+    const double* step = axis == 0 ? frame.stepI : frame.stepJ;
+    const double run =
+        axis == 2 ? sliceRun : std::sqrt(step[0] * step[0] + step[1] * step[1] + step[2] * step[2]);
+    along = float(double(b - a) / run);
 }
 
 struct McVertex {
