@@ -11,23 +11,14 @@
 #include <gtest/gtest.h>
 #include <string>
 
-namespace {
-
-using lw::test::compact;
-using lw::test::numberOf;
-using lw::test::quoted;
-using lw::test::runCli;
-
-} // namespace
-
 TEST(QualityCommandData, ThinPlatesOfThePhilipsPhantomHaveTheirOutline) {
     const std::filesystem::path series =
         *lw::test::sharedDataDir() / "dicom" / "ct_headphantom_philips_dicomdir_export";
-    const lw::test::CliResult r = runCli("quality " + quoted(series.string()) +
-                                         " --iso 300 --view 45,0 --size 512x512 --json");
+    const lw::test::CliResult r = lw::test::runCli("quality " + lw::test::quoted(series.string()) +
+                                                   " --iso 300 --view 45,0 --size 512x512 --json");
     ASSERT_EQ(r.exitCode, 0) << r.out << r.err;
-    const std::string json = compact(r.out);
-    EXPECT_GT(numberOf(json, "outline_pixels"), 800.0) << json;
-    EXPECT_GE(numberOf(json, "outline_coverage_m3"), 0.98) << json;
-    EXPECT_GE(numberOf(json, "outline_coverage_m2"), 0.98) << json;
+    const std::string json = lw::test::compact(r.out);
+    EXPECT_GT(lw::test::numberOf(json, "outline_pixels"), 800.0) << json;
+    EXPECT_GE(lw::test::numberOf(json, "outline_coverage_m3"), 0.98) << json;
+    EXPECT_GE(lw::test::numberOf(json, "outline_coverage_m2"), 0.98) << json;
 }
