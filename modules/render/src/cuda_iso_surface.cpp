@@ -58,10 +58,7 @@ CudaExtraction CudaIsoSurfaceExtractor::extract(double isoReal, bool closeAtBord
 }
 
 void CudaIsoSurfaceExtractor::download(Mesh& mesh) const {
-    throwIfCudaFailed(kWhere,
-                      m_impl->marchingCubes.download(mesh.positions, mesh.normals, mesh.indices));
-    if (m_impl->capInMesh)
-        kernels::cpu::appendMesh(mesh, *m_impl->capInMesh);
+    downloadSurface(kWhere, m_impl->marchingCubes, m_impl->capInMesh, mesh);
 }
 #else
 struct CudaIsoSurfaceExtractor::Impl {};

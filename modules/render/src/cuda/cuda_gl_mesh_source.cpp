@@ -129,18 +129,12 @@ public:
             m_interopWorks = false;
         }
         Mesh host;
-        throwIfCudaFailed(kWhere,
-                          m_marchingCubes.download(host.positions, host.normals, host.indices));
-        if (cap)
-            kernels::cpu::appendMesh(host, *cap);
+        downloadSurface(kWhere, m_marchingCubes, cap, host);
         gl.uploadMesh(host);
     }
 
     void download(Mesh& mesh) override {
-        throwIfCudaFailed(kWhere,
-                          m_marchingCubes.download(mesh.positions, mesh.normals, mesh.indices));
-        if (m_capInMesh)
-            kernels::cpu::appendMesh(mesh, *m_capInMesh);
+        downloadSurface(kWhere, m_marchingCubes, m_capInMesh, mesh);
     }
 
     bool writeLineCandidates(SilhouetteGlRenderer& gl, const Camera& camera,

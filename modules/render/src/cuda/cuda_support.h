@@ -1,10 +1,12 @@
 #pragma once
 
-// What the CUDA kernel sets share: failed statuses as errors and the host volume as the kernels
-// see it.
+// What the CUDA kernel sets share: failed statuses as errors, the closed surface downloaded and
+// the host volume as the kernels see it.
 
 #include "lw/core/error.h"
+#include "lw/kernels/cpu/border_cap_cpu.h"
 #include "lw/kernels/cuda/cuda_status.h"
+#include "lw/kernels/cuda/marching_cubes_cuda.h"
 #include "lw/kernels/volume_view.h"
 #include "lw/render/silhouette_renderer.h"
 #include "lw/volume/volume.h"
@@ -19,6 +21,15 @@ namespace lw::render {
 inline void throwIfCudaFailed(std::string_view where, const kernels::cuda::CudaStatus& status) {
     if (!status.ok())
         throw core::Error(std::string(where), status.describe());
+}
+
+// The device mesh of the last extraction in host memory, with the border cap (host memory, or
+// null when the surface is left open) appended after it: the closed surface every back-end draws.
+inline void downloadSurface(std::string_view where, const kernels::cuda::MarchingCubesCuda& mc,
+                            const Mesh* cap, Mesh& mesh) {
+    throwIfCudaFailed(where, mc.download(mesh.positions, mesh.normals, mesh.indices));
+    if (cap)
+        kernels::cpu::appendMesh(mesh, *cap);
 }
 
 inline kernels::VolumeView hostVolumeView(const volume::Volume& volume) {

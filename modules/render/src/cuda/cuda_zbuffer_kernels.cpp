@@ -110,11 +110,7 @@ public:
         if (m_resident != GpuResidency::WholeVolume)
             return nullptr;
         if (!m_hostMeshValid) {
-            throwIfCudaFailed(kWhere,
-                              m_marchingCubes.download(m_hostMesh.positions, m_hostMesh.normals,
-                                                       m_hostMesh.indices));
-            if (m_capKept)
-                kernels::cpu::appendMesh(m_hostMesh, *m_capKept);
+            downloadSurface(kWhere, m_marchingCubes, m_capKept, m_hostMesh);
             m_hostMeshValid = true;
         }
         return &m_hostMesh;
