@@ -2,6 +2,7 @@
 
 #include "lw/core/parallel.h"
 #include "lw/kernels/cpu/marching_cubes_cpu.h"
+#include "lw/kernels/cpu/voxel_ray.h"
 
 #include <algorithm>
 #include <cmath>
@@ -10,56 +11,18 @@
 namespace lw::render {
 namespace {
 
-// Patient point -> continuous index coordinates of the volume's grid: the inverse of
-// origin + x stepI + y stepJ + offset(z) stack, with offset(z) piecewise linear between slices.
-class GridLocator {
-public:
-    explicit GridLocator(const kernels::VoxelGridSetup& setup)
-        : m_origin(setup.origin()), m_offsets(setup.sliceOffsets()) {
-        m_toFrame = glm::inverse(glm::dmat3(setup.stepI(), setup.stepJ(), setup.stack()));
-        m_descending = m_offsets.size() > 1 && m_offsets.back() < m_offsets.front();
-    }
-
-    glm::dvec3 indexOf(glm::dvec3 patient) const {
-        const glm::dvec3 q = m_toFrame * (patient - m_origin);
-        return {q.x, q.y, sliceOf(q.z)};
-    }
-
-private:
-    // Fractional slice index of an offset along the stack (offsets are monotonic either way).
-    double sliceOf(double offset) const {
-        const std::size_t n = m_offsets.size();
-        if (n < 2)
-            return 0.0;
-        const double s = m_descending ? -offset : offset;
-        const auto key = [&](std::size_t k) { return m_descending ? -m_offsets[k] : m_offsets[k]; };
-        std::size_t lo = 0, hi = n - 1; // key(lo) <= s < key(hi) after the search, when inside
-        while (hi - lo > 1) {
-            const std::size_t mid = (lo + hi) / 2;
-            (key(mid) <= s ? lo : hi) = mid;
-        }
-        const double gap = key(hi) - key(lo);
-        return double(lo) + (gap > 0.0 ? (s - key(lo)) / gap : 0.0);
-    }
-
-    glm::dvec3 m_origin;
-    std::vector<double> m_offsets;
-    glm::dmat3 m_toFrame{1.0};
-    bool m_descending = false;
-};
-
 // Gradient and Hessian of one volume's field at patient points, trilinear between grid points.
 template <typename T> class FieldProbe {
 public:
     FieldProbe(const volume::Volume& volume)
         : m_setup(kernels::cpu::voxelGridSetup(volume)),
-          m_locator(m_setup), m_sampler{volume.dataAs<T>(), m_setup.spans()} {}
+          m_grid(volume), m_sampler{volume.dataAs<T>(), m_setup.spans()} {}
 
     // The volume's border planes the point lies in: bit 2a for index 0 along axis a, 2a + 1 for
     // the last index (within 1e-3 voxel).
     int borderPlanes(glm::dvec3 patient) const {
         const kernels::GridDims& d = m_setup.spans().dims;
-        const glm::dvec3 index = m_locator.indexOf(patient);
+        const glm::dvec3 index = m_grid.fractionalIndex(patient);
         const int last[3] = {d.cx, d.cy, d.cz};
         int planes = 0;
         for (int a = 0; a < 3; ++a) {
@@ -71,7 +34,7 @@ public:
 
     void at(glm::dvec3 patient, glm::vec3& gradient, kernels::Sym3& hessian) const {
         const kernels::GridDims& d = m_setup.spans().dims;
-        const glm::dvec3 index = m_locator.indexOf(patient);
+        const glm::dvec3 index = m_grid.fractionalIndex(patient);
         int base[3];
         double frac[3];
         const int cells[3] = {d.cx, d.cy, d.cz};
@@ -117,7 +80,7 @@ private:
     }
 
     kernels::VoxelGridSetup m_setup;
-    GridLocator m_locator;
+    kernels::cpu::VoxelRayGrid m_grid; // patient point -> continuous voxel index
     kernels::VoxelGradientSampler<T> m_sampler;
 };
 

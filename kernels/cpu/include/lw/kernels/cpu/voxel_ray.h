@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <glm/glm.hpp>
 #include <limits>
 #include <vector>
@@ -46,6 +47,19 @@ public:
         return m_toGrid * patientDirection;
     }
     glm::dvec3 toPatient(glm::dvec3 grid) const { return m_origin + m_toPatient * grid; }
+    // Continuous voxel index (i, j, k) of a patient point: the inverse of indexToPatient, the
+    // slice index piecewise linear between the slices (uneven gaps); outside the stack it goes
+    // on linearly from the first or last slab.
+    glm::dvec3 fractionalIndex(glm::dvec3 patient) const {
+        const glm::dvec3 u = toGrid(patient);
+        if (m_offsets.size() < 2)
+            return {u.x, u.y, 0.0};
+        const std::ptrdiff_t above =
+            std::upper_bound(m_offsets.begin(), m_offsets.end(), u.z) - m_offsets.begin();
+        const int k =
+            int(std::clamp<std::ptrdiff_t>(above - 1, 0, std::ptrdiff_t(m_offsets.size()) - 2));
+        return {u.x, u.y, double(k) + sliceFraction(u.z, k)};
+    }
     double offset(int k) const { return m_offsets[std::size_t(k)]; }
     // Fractional slice index of grid coordinate s inside slab k (k .. k+1).
     double sliceFraction(double s, int k) const {
