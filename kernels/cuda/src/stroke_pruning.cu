@@ -6,6 +6,7 @@
 #include "tuning.h"
 
 #include <algorithm>
+#include <memory>
 
 namespace lw::kernels::cuda {
 
@@ -51,24 +52,41 @@ CudaStatus copyMaskToSurface(const std::uint8_t* mask, int width, int height,
     return CudaStatus::success();
 }
 
-CudaStatus pruneStrokesOnDevice(std::uint8_t* mask, int width, int height, int minPixels,
-                                int gapPixels) {
-    if (width <= 0 || height <= 0)
+struct HostMaskPruner::Impl {
+    dispatch::Stream stream;
+    dispatch::DeviceBuffer<std::uint8_t> mask;
+    StrokePruning pruning;
+};
+
+HostMaskPruner::HostMaskPruner() : m_impl(std::make_unique<Impl>()) {}
+HostMaskPruner::~HostMaskPruner() = default;
+
+std::size_t HostMaskPruner::deviceBytes() const {
+    return m_impl->mask.bytes() + m_impl->pruning.deviceBytes();
+}
+
+CudaStatus HostMaskPruner::prune(std::uint8_t* mask, int width, int height, int minPixels,
+                                 int gapPixels) {
+    if (width <= 0 || height <= 0 || minPixels <= 1)
         return CudaStatus::success();
     const std::size_t pixels = std::size_t(width) * std::size_t(height);
-    dispatch::Stream stream;
-    LW_RETURN_IF_FAILED(stream.create());
-    dispatch::DeviceBuffer<std::uint8_t> deviceMask;
-    LW_RETURN_IF_FAILED(deviceMask.reserve(pixels, "cudaMalloc(mask)"));
-    cudaStream_t st = stream.get();
-    LW_CUDA_TRY(cudaMemcpyAsync(deviceMask.data(), mask, pixels, cudaMemcpyHostToDevice, st),
+    LW_RETURN_IF_FAILED(m_impl->stream.create());
+    LW_RETURN_IF_FAILED(m_impl->mask.reserve(pixels, "cudaMalloc(mask)"));
+    cudaStream_t st = m_impl->stream.get();
+    std::uint8_t* deviceMask = m_impl->mask.data();
+    LW_CUDA_TRY(cudaMemcpyAsync(deviceMask, mask, pixels, cudaMemcpyHostToDevice, st),
                 "cudaMemcpy(mask)");
-    StrokePruning pruning;
-    LW_RETURN_IF_FAILED(pruning.run(deviceMask.data(), width, height, minPixels, gapPixels, st));
-    LW_CUDA_TRY(cudaMemcpyAsync(mask, deviceMask.data(), pixels, cudaMemcpyDeviceToHost, st),
+    LW_RETURN_IF_FAILED(m_impl->pruning.run(deviceMask, width, height, minPixels, gapPixels, st));
+    LW_CUDA_TRY(cudaMemcpyAsync(mask, deviceMask, pixels, cudaMemcpyDeviceToHost, st),
                 "cudaMemcpy(mask)");
-    LW_CUDA_TRY(cudaStreamSynchronize(st), "pruneStrokesOnDevice");
+    LW_CUDA_TRY(cudaStreamSynchronize(st), "HostMaskPruner::prune");
     return CudaStatus::success();
+}
+
+CudaStatus pruneStrokesOnDevice(std::uint8_t* mask, int width, int height, int minPixels,
+                                int gapPixels) {
+    HostMaskPruner pruner;
+    return pruner.prune(mask, width, height, minPixels, gapPixels);
 }
 
 } // namespace lw::kernels::cuda

@@ -9,6 +9,7 @@
 #include "lw/kernels/cuda/cuda_device.h"
 #include "lw/kernels/cuda/gl_mesh_interop.h"
 #include "lw/kernels/cuda/marching_cubes_cuda.h"
+#include "lw/kernels/cuda/stroke_pruning_cuda.h"
 #include "lw/render/gpu_memory_plan.h"
 #endif
 
@@ -163,6 +164,21 @@ public:
         return true;
     }
 
+    bool pruneStrokes(PixelMask& lines, int minPixels, int gapPixels) override {
+        if (!m_pruneWorks)
+            return false;
+        const kernels::cuda::CudaStatus status = m_pruner.prune(
+            lines.pixels().data(), lines.width(), lines.height(), minPixels, gapPixels);
+        if (status.ok())
+            return true;
+        // The mask is the one read back if the upload failed, and the pruning queued on the
+        // device only writes the device copy: the host can still prune it.
+        kLog.warning("method 1: strokes not pruned on the device (" + status.describe() +
+                     "); the host prunes them");
+        m_pruneWorks = false;
+        return false;
+    }
+
     void releaseGl() override { m_interop.unregister(); }
 
 private:
@@ -174,6 +190,8 @@ private:
     std::size_t m_candidateGeneration = 0;
     kernels::cuda::MarchingCubesCuda m_marchingCubes;
     kernels::cuda::GlMeshInterop m_interop;
+    kernels::cuda::HostMaskPruner m_pruner;
+    bool m_pruneWorks = true;
     BorderCapCache m_cap;
     const Mesh* m_capInMesh = nullptr;          // the cap written after the last whole mesh, if any
     std::vector<std::uint32_t> m_capCandidates; // m_capInMesh's indices after the mesh's vertices

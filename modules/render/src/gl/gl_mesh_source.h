@@ -5,6 +5,7 @@
 // runs on the GPU and writes the GL buffers directly through CUDA-GL interop, no host round trip.
 
 #include "lw/render/iso_surface.h"
+#include "lw/render/pixel_mask.h"
 #include "lw/render/silhouette_gl_renderer.h"
 #include "lw/render/silhouette_renderer.h"
 #include "lw/volume/volume.h"
@@ -31,6 +32,12 @@ public:
     // false when the source cannot (then pass 2 sends every triangle). `indices`: 3 a triangle.
     virtual bool writeLineCandidates(SilhouetteGlRenderer& gl, const Camera& camera,
                                      std::size_t& indices) = 0;
+    // Drops the strokes under `minPixels` from a mask read back from GL on the source's device,
+    // as PixelMask::removeComponentsSmallerThan(minPixels, gapPixels) would; false when the
+    // source has no device or it failed (the host prunes then).
+    virtual bool pruneStrokes(PixelMask& /*lines*/, int /*minPixels*/, int /*gapPixels*/) {
+        return false;
+    }
     // GL objects the source registered: released while the context is still current.
     virtual void releaseGl() = 0;
     // The chunked (L) variant on the source's device: the surface in pieces that fit its memory
