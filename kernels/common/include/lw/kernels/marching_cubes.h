@@ -119,6 +119,8 @@ struct McGridFrame {
     // Patient direction of the +x/+y/+z edges (+z along increasing offsets): the normal of a
     // flat plateau exactly at the iso-value, see mcOutwardNormal.
     McVec3 edgeDirection[3];
+    // Length (mm) of the +x and +y edges, |stepI| and |stepJ|: see mcAgreeWithEdge.
+    float edgeLength[2];
 };
 
 // The surface crosses an edge from its inside end to its outside end, so the field falls along
@@ -131,19 +133,17 @@ struct McGridFrame {
 // (the oblique frame's component `axis`: the derivative along the edge, per mm for i and j, per
 // unit of slice offset for k) disagrees in sign with the edge's own difference, that difference
 // replaces it. Elsewhere nothing changes, so smooth surfaces keep their normals bit for bit.
-LW_HOST_DEVICE inline void mcAgreeWithEdge(const McGridFrame& frame, int z, int axis, float a,
-                                           float b, McVec3& gradient) {
-    const double sliceRun = axis == 2 ? frame.sliceOffset[z + 1] - frame.sliceOffset[z] : 1.0;
-    if (sliceRun == 0.0)
+LW_HOST_DEVICE inline void mcAgreeWithEdge(int axis, float a, float b, float run,
+                                           McVec3& gradient) {
+    // run: the edge's length in the derivative's units, negative for slices stored against the
+    // stack axis.
+    if (run == 0.0f)
         return;
     float& along = axis == 0 ? gradient.x : (axis == 1 ? gradient.y : gradient.z);
-    const bool rises = (b > a) == (sliceRun > 0.0); // the field rises along the axis
+    const bool rises = (b > a) == (run > 0.0f); // the field rises along the axis
     if (along > 0.0f ? rises : (along < 0.0f && !rises))
-        return; // the common case: consistent, and no square root paid (0 or NaN is replaced)
-    const double* step = axis == 0 ? frame.stepI : frame.stepJ;
-    const double run =
-        axis == 2 ? sliceRun : std::sqrt(step[0] * step[0] + step[1] * step[1] + step[2] * step[2]);
-    along = float(double(b - a) / run);
+        return; // the common case: consistent (0 or NaN is replaced)
+    along = (b - a) / run;
 }
 
 struct McVertex {
@@ -158,8 +158,11 @@ LW_HOST_DEVICE inline McVertex mcEdgeVertex(const McGridFrame& frame, int x, int
                                             float a, float b, const McVec3& ga, const McVec3& gb,
                                             double iso, float isoF) {
     const float t = mcEdgeParameter(a, b, iso);
+    const double offset0 = frame.sliceOffset[z];
+    const double offset1 = axis == 2 ? frame.sliceOffset[z + 1] : offset0;
     McVec3 gradient = mcLerp(ga, gb, t);
-    mcAgreeWithEdge(frame, z, axis, a, b, gradient);
+    mcAgreeWithEdge(axis, a, b, axis == 2 ? float(offset1 - offset0) : frame.edgeLength[axis],
+                    gradient);
     const McVec3 g = mcTransform(frame.normalMatrix, gradient);
     McVec3 fallback = frame.edgeDirection[axis];
     if (!mcInside(a, isoF))
@@ -168,13 +171,13 @@ LW_HOST_DEVICE inline McVertex mcEdgeVertex(const McGridFrame& frame, int x, int
     vertex.normal = mcOutwardNormal(g, fallback);
 
     double px = x, py = y;
-    double offset = frame.sliceOffset[z];
+    double offset = offset0;
     if (axis == 0)
         px += t;
     else if (axis == 1)
         py += t;
     else
-        offset += double(t) * (frame.sliceOffset[z + 1] - offset);
+        offset += double(t) * (offset1 - offset);
     double p[3];
     for (int c = 0; c < 3; ++c)
         p[c] =

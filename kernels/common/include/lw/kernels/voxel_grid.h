@@ -88,6 +88,8 @@ public:
             m_frame.stack[c] = m_stack[c];
         }
         m_frame.sliceOffset = m_offset.data();
+        m_frame.edgeLength[0] = float(glm::length(m_stepI));
+        m_frame.edgeLength[1] = float(glm::length(m_stepJ));
         // Derivatives are taken in the oblique frame (axisI, axisJ, stackAxis) with real
         // distances; the patient gradient is M^-T (du, dw, ds) with M the frame's columns --
         // the same as J(k)^-T applied to the index-space gradient.
