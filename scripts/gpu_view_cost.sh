@@ -10,7 +10,7 @@
 set -uo pipefail
 out=${OUT:?run on the GPU machine: OUT is its output folder}
 bash scripts/gpu_run.sh none > $OUT/run.log 2>&1 || { tail -20 $OUT/run.log; exit 1; }
-mkdir -p /tmp/base && tar xzf base_src.tar.gz -C /tmp/base
+rm -rf /tmp/base && mkdir -p /tmp/base && tar xzf base_src.tar.gz -C /tmp/base
 (cd /tmp/base && cmake --preset engine -DLINEWORK_CUDA=ON > $OUT/base_configure.log 2>&1 && cmake --build build-gpu --target linework-cli -j16 > $OUT/base_build.log 2>&1) || { tail -20 $OUT/base_build.log; exit 1; }
 base=/tmp/base/build-gpu/app/cli/linework-cli
 new=$PWD/build-gpu/app/cli/linework-cli

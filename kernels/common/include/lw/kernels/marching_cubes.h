@@ -137,13 +137,22 @@ LW_HOST_DEVICE inline void mcAgreeWithEdge(int axis, float a, float b, float run
                                            McVec3& gradient) {
     // run: the edge's length in the derivative's units, negative for slices stored against the
     // stack axis.
+    // Components picked by value and written back by branch, not through a reference to a
+    // member chosen at run time: that would give the vector an address and push it out of a
+    // GPU thread's registers (method 2 runs this for every surface cell in every view).
     if (run == 0.0f)
         return;
-    float& along = axis == 0 ? gradient.x : (axis == 1 ? gradient.y : gradient.z);
+    const float along = axis == 0 ? gradient.x : (axis == 1 ? gradient.y : gradient.z);
     const bool rises = (b > a) == (run > 0.0f); // the field rises along the axis
     if (along > 0.0f ? rises : (along < 0.0f && !rises))
         return; // the common case: consistent (0 or NaN is replaced)
-    along = (b - a) / run;
+    const float slope = (b - a) / run;
+    if (axis == 0)
+        gradient.x = slope;
+    else if (axis == 1)
+        gradient.y = slope;
+    else
+        gradient.z = slope;
 }
 
 struct McVertex {
@@ -161,8 +170,9 @@ LW_HOST_DEVICE inline McVertex mcEdgeVertex(const McGridFrame& frame, int x, int
     const double offset0 = frame.sliceOffset[z];
     const double offset1 = axis == 2 ? frame.sliceOffset[z + 1] : offset0;
     McVec3 gradient = mcLerp(ga, gb, t);
-    mcAgreeWithEdge(axis, a, b, axis == 2 ? float(offset1 - offset0) : frame.edgeLength[axis],
-                    gradient);
+    const float run = axis == 2 ? float(offset1 - offset0)
+                                : (axis == 0 ? frame.edgeLength[0] : frame.edgeLength[1]);
+    mcAgreeWithEdge(axis, a, b, run, gradient);
     const McVec3 g = mcTransform(frame.normalMatrix, gradient);
     McVec3 fallback = frame.edgeDirection[axis];
     if (!mcInside(a, isoF))
