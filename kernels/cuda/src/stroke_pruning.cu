@@ -6,6 +6,7 @@
 #include "tuning.h"
 
 #include <algorithm>
+#include <cstring>
 #include <memory>
 
 namespace lw::kernels::cuda {
@@ -54,6 +55,10 @@ CudaStatus copyMaskToSurface(const std::uint8_t* mask, int width, int height,
 
 struct HostMaskPruner::Impl {
     dispatch::Stream stream;
+    // The mask goes through page-locked memory: a copy from pageable memory is staged by the
+    // driver in chunks and synchronised (some 0.5 ms for 1 MB each way on the H100 machine,
+    // against 0.05 ms for a host memcpy plus a direct transfer).
+    dispatch::PinnedBuffer<std::uint8_t> staging;
     dispatch::DeviceBuffer<std::uint8_t> mask;
     StrokePruning pruning;
 };
@@ -72,14 +77,18 @@ CudaStatus HostMaskPruner::prune(std::uint8_t* mask, int width, int height, int 
     const std::size_t pixels = std::size_t(width) * std::size_t(height);
     LW_RETURN_IF_FAILED(m_impl->stream.create());
     LW_RETURN_IF_FAILED(m_impl->mask.reserve(pixels, "cudaMalloc(mask)"));
+    LW_RETURN_IF_FAILED(m_impl->staging.reserve(pixels, "cudaMallocHost(mask)"));
     cudaStream_t st = m_impl->stream.get();
     std::uint8_t* deviceMask = m_impl->mask.data();
-    LW_CUDA_TRY(cudaMemcpyAsync(deviceMask, mask, pixels, cudaMemcpyHostToDevice, st),
+    std::uint8_t* staging = m_impl->staging.data();
+    std::memcpy(staging, mask, pixels);
+    LW_CUDA_TRY(cudaMemcpyAsync(deviceMask, staging, pixels, cudaMemcpyHostToDevice, st),
                 "cudaMemcpy(mask)");
     LW_RETURN_IF_FAILED(m_impl->pruning.run(deviceMask, width, height, minPixels, gapPixels, st));
-    LW_CUDA_TRY(cudaMemcpyAsync(mask, deviceMask, pixels, cudaMemcpyDeviceToHost, st),
+    LW_CUDA_TRY(cudaMemcpyAsync(staging, deviceMask, pixels, cudaMemcpyDeviceToHost, st),
                 "cudaMemcpy(mask)");
     LW_CUDA_TRY(cudaStreamSynchronize(st), "HostMaskPruner::prune");
+    std::memcpy(mask, staging, pixels);
     return CudaStatus::success();
 }
 

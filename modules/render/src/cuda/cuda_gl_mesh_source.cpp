@@ -171,8 +171,8 @@ public:
             lines.pixels().data(), lines.width(), lines.height(), minPixels, gapPixels);
         if (status.ok())
             return true;
-        // The mask is the one read back if the upload failed, and the pruning queued on the
-        // device only writes the device copy: the host can still prune it.
+        // The pruned mask replaces the read-back one only when everything succeeded: on failure
+        // `lines` is as read back, and the host prunes it.
         kLog.warning("method 1: strokes not pruned on the device (" + status.describe() +
                      "); the host prunes them");
         m_pruneWorks = false;
