@@ -165,6 +165,22 @@ TEST(VoxelRayGrid, UnevenTiltedStackWallsAtSliceOffsets) {
     }
 }
 
+// The neighbour ray's reach follows how thick a slab is against the pixels: the stack's mean
+// slab (uneven gaps 1, 2, 3 mm: 2 mm) over the finer in-plane spacing, clamped to 1..8 cells.
+TEST(VoxelRayGrid, NeighbourReachFollowsTheSlabAgainstThePixels) {
+    EXPECT_EQ(kernels::neighbourReachCells(0.25), 1.0) << "slabs thinner than pixels";
+    EXPECT_EQ(kernels::neighbourReachCells(1.0), 1.0) << "isotropic";
+    EXPECT_EQ(kernels::neighbourReachCells(3.2), 3.2) << "1.25 x 1.25 x 4 mm";
+    EXPECT_EQ(kernels::neighbourReachCells(11.5), kernels::RayVisibilityRule::kNeighbourReachCells)
+        << "the demo's 0.49 x 0.49 x 5.6 mm";
+    const std::vector<glm::dvec3> positions = {{0, 0, 0}, {0, 0, 1}, {0, 0, 3}, {0, 0, 6}};
+    const volume::Volume uneven =
+        makeGrid({4, 4, 4}, volume::VolumeGeometry::fromSlicePositions({1, 0, 0}, {0, 1, 0}, 0.5,
+                                                                       0.8, positions));
+    EXPECT_NEAR(VoxelRayGrid(uneven).slabOverPixel(), 2.0 / 0.5, 1e-12);
+    EXPECT_NEAR(VoxelRayGrid(makeGrid({8, 8, 8})).slabOverPixel(), 1.0, 1e-12);
+}
+
 // The coarse blocks (32^3 cells) only let a ray jump empty space faster: on a volume that is
 // mostly air (a ball and a slab in a corner each), every ray's answer is the one of the walk
 // with macro cells alone (a jump restarts the walk from another point, so a wall value on the

@@ -121,6 +121,7 @@ public:
             }
         }
         m_cellScale = rayGrid.cellScale();
+        m_neighbourReach = neighbourReachCells(rayGrid.slabOverPixel());
     }
 
     bool findCells(const volume::BrickGrid& grid, bool withCones, unsigned threads,
@@ -325,6 +326,7 @@ public:
         rule.coarseOccupied = coarseOccupied.data();
         rule.coarseDims = m_coarseDims;
         rule.cellScale = m_cellScale;
+        rule.neighbourReach = m_neighbourReach;
         rule.iso = m_iso;
         return rule;
     }
@@ -497,6 +499,7 @@ private:
     VoxelGradientSampler<T> m_gradient;
     const std::vector<double>& m_offset; // per slice, along the stack axis
     glm::dvec3 m_cellScale{1.0};
+    double m_neighbourReach = RayVisibilityRule::kNeighbourReachCells;
     double m_cellRadius = 0.0; // largest centre-to-corner distance of any cell, mm
     glm::ivec3 m_macroDims{0};
     glm::ivec3 m_coarseDims{0};

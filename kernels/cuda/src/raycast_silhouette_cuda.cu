@@ -205,6 +205,7 @@ CudaStatus RayCastSilhouetteCuda::Impl::testAndDraw(const rc::View& view, std::u
     rule.coarseOccupied = coarseOccupied.data();
     rule.coarseDims = coarseDims;
     rule.cellScale = rayGrid.cellScale;
+    rule.neighbourReach = rayGrid.neighbourReach;
     rule.iso = iso;
     rule.pixelSpan = view.pixelSpan;
     if (view.visibility && view.alongSegment) {

@@ -87,6 +87,13 @@ public:
         return glm::dvec3(1.0, 1.0, s > 0.0 ? s : 1.0);
     }
 
+    // How many times its pixels' width a slab is thick (the mean slab against the finer
+    // in-plane spacing): what the neighbour ray's reach follows (neighbourReachCells).
+    double slabOverPixel() const {
+        const double pixel = std::min(glm::length(m_toPatient[0]), glm::length(m_toPatient[1]));
+        return pixel > 0.0 ? cellScale().z / pixel : 1.0;
+    }
+
     // RayGridView::cellOf and ::walk (voxel_ray_walk.h).
     bool cellOf(glm::dvec3 u, glm::dvec3 direction, glm::ivec3& cell) const {
         return view().cellOf(u, direction, cell);

@@ -48,6 +48,7 @@ struct RayGridSetup {
     RayGridView view;            // offsets point to host memory here
     std::vector<double> offsets; // increasing slice offsets (the view's table)
     glm::dvec3 cellScale{1.0};
+    double neighbourReach = RayVisibilityRule::kNeighbourReachCells; // neighbourReachCells()
 };
 
 class RayCastSilhouetteCuda {
