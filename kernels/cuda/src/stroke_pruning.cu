@@ -66,10 +66,6 @@ struct HostMaskPruner::Impl {
 HostMaskPruner::HostMaskPruner() : m_impl(std::make_unique<Impl>()) {}
 HostMaskPruner::~HostMaskPruner() = default;
 
-std::size_t HostMaskPruner::deviceBytes() const {
-    return m_impl->mask.bytes() + m_impl->pruning.deviceBytes();
-}
-
 CudaStatus HostMaskPruner::prune(std::uint8_t* mask, int width, int height, int minPixels,
                                  int gapPixels) {
     if (width <= 0 || height <= 0 || minPixels <= 1)

@@ -278,10 +278,10 @@ SilhouetteFrame GeometryShaderSilhouetteRenderer::renderFrame(const Camera& came
     const auto readStart = Clock::now();
     s.readLines(camera, settings, frame);
     // The passes' GPU times (timer queries) as visibility (pass 1: the depth to test against) and
-    // silhouette (passes 2 and 3); draw is the rest: setup, and the read-back (and with CUDA the
-    // pruning) of the mask, timed
-    // on its own (a software rasterizer's timer queries may bill a deferred pass to the wrong
-    // query, so the rest of the passes' wall time can come out negative).
+    // silhouette (passes 2 and 3); draw is the rest: setup, and the read-back (with CUDA also the
+    // pruning) of the mask, timed on its own (a software rasterizer's timer queries may bill a
+    // deferred pass to the wrong query, so the rest of the passes' wall time can come out
+    // negative).
     frame.times.visibilityMs = stats.surfacePassMs;
     frame.times.silhouetteMs = stats.linePassMs;
     frame.times.drawMs =

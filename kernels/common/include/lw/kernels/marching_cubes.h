@@ -135,11 +135,10 @@ struct McGridFrame {
 // replaces it. Elsewhere nothing changes, so smooth surfaces keep their normals bit for bit.
 LW_HOST_DEVICE inline void mcAgreeWithEdge(int axis, float a, float b, float run,
                                            McVec3& gradient) {
-    // run: the edge's length in the derivative's units, negative for slices stored against the
-    // stack axis.
-    // Components picked by value and written back by branch, not through a reference to a
-    // member chosen at run time: that would give the vector an address and push it out of a
-    // GPU thread's registers (method 2 runs this for every surface cell in every view).
+    // `run`: the edge's length in the derivative's units, negative for slices stored against the
+    // stack axis. The component is picked by value and written back by branch, not through a
+    // reference to a member chosen at run time: that would give the vector an address and push
+    // it out of a GPU thread's registers (method 2 runs this for every surface cell and view).
     if (run == 0.0f)
         return;
     const float along = axis == 0 ? gradient.x : (axis == 1 ? gradient.y : gradient.z);

@@ -25,7 +25,6 @@ public:
     // `mask`: width * height bytes, non-zero = line; pruned in place (see StrokePruning::run).
     // Returns when the pruned mask is back in `mask`; on failure `mask` is left as it was.
     CudaStatus prune(std::uint8_t* mask, int width, int height, int minPixels, int gapPixels);
-    std::size_t deviceBytes() const;
 
 private:
     struct Impl;
