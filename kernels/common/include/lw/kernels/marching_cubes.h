@@ -121,7 +121,14 @@ struct McGridFrame {
     McVec3 edgeDirection[3];
     // Length (mm) of the +x and +y edges, |stepI| and |stepJ|: see mcAgreeWithEdge.
     float edgeLength[2];
+    // Slab edges at least this long (units of slice offset, mm) always take their own difference
+    // as the normal's component along them: see mcThickSlabEdge. Infinity on isotropic grids.
+    float thickSlabEdge;
 };
+
+// How many times the finer in-plane spacing a slab edge must be long before its own difference
+// replaces the central difference along it (see mcThickSlabEdge).
+inline constexpr float kThickSlabOverPixel = 2.0f;
 
 // The surface crosses an edge from its inside end to its outside end, so the field falls along
 // that direction somewhere on the edge, and the outward normal there has a positive component
@@ -133,7 +140,9 @@ struct McGridFrame {
 // (the oblique frame's component `axis`: the derivative along the edge, per mm for i and j, per
 // unit of slice offset for k) disagrees in sign with the edge's own difference, that difference
 // replaces it. Elsewhere nothing changes, so smooth surfaces keep their normals bit for bit.
-LW_HOST_DEVICE inline void mcAgreeWithEdge(int axis, float a, float b, float run,
+//
+// `always` takes the edge's difference whatever the signs (mcThickSlabEdge).
+LW_HOST_DEVICE inline void mcAgreeWithEdge(int axis, float a, float b, float run, bool always,
                                            McVec3& gradient) {
     // `run`: the edge's length in the derivative's units, negative for slices stored against the
     // stack axis. The component is picked by value and written back by branch, not through a
@@ -143,7 +152,7 @@ LW_HOST_DEVICE inline void mcAgreeWithEdge(int axis, float a, float b, float run
         return;
     const float along = axis == 0 ? gradient.x : (axis == 1 ? gradient.y : gradient.z);
     const bool rises = (b > a) == (run > 0.0f); // the field rises along the axis
-    if (along > 0.0f ? rises : (along < 0.0f && !rises))
+    if (!always && (along > 0.0f ? rises : (along < 0.0f && !rises)))
         return; // the common case: consistent (0 or NaN is replaced)
     const float slope = (b - a) / run;
     if (axis == 0)
@@ -152,6 +161,20 @@ LW_HOST_DEVICE inline void mcAgreeWithEdge(int axis, float a, float b, float run
         gradient.y = slope;
     else
         gradient.z = slope;
+}
+
+// On thick slices the central difference across slabs spans two slabs (10 mm on a 5 mm series),
+// wider than a skull's bone: the normal's slab component lags behind the surface that marching
+// cubes places on the edge, n.v turns away from where the mesh turns, and the contour of a
+// surface that meets the slabs at a slant (the skull cap seen from below or the side) falls on
+// the far side of the mesh's own outline, where the visibility test hides it. The edge's own
+// difference is the exact derivative of the trilinear field along the edge, and with the
+// in-plane central differences (the mean of the four cells' trilinear derivatives across the
+// edge) the normal is that field's gradient averaged over the cells that share the vertex.
+// In-plane edges keep the central differences: they span a millimetre and are smoother on
+// noisy data. Isotropic grids do not use the rule at all, so their normals are unchanged.
+LW_HOST_DEVICE inline bool mcThickSlabEdge(const McGridFrame& frame, int axis, float run) {
+    return axis == 2 && (run < 0.0f ? -run : run) >= frame.thickSlabEdge;
 }
 
 struct McVertex {
@@ -171,7 +194,7 @@ LW_HOST_DEVICE inline McVertex mcEdgeVertex(const McGridFrame& frame, int x, int
     McVec3 gradient = mcLerp(ga, gb, t);
     const float run = axis == 2 ? float(offset1 - offset0)
                                 : (axis == 0 ? frame.edgeLength[0] : frame.edgeLength[1]);
-    mcAgreeWithEdge(axis, a, b, run, gradient);
+    mcAgreeWithEdge(axis, a, b, run, mcThickSlabEdge(frame, axis, run), gradient);
     const McVec3 g = mcTransform(frame.normalMatrix, gradient);
     McVec3 fallback = frame.edgeDirection[axis];
     if (!mcInside(a, isoF))

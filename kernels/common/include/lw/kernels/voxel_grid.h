@@ -10,6 +10,7 @@
 
 #include <cstddef>
 #include <glm/glm.hpp>
+#include <limits>
 #include <utility>
 #include <vector>
 
@@ -90,6 +91,7 @@ public:
         m_frame.sliceOffset = m_offset.data();
         m_frame.edgeLength[0] = float(glm::length(m_stepI));
         m_frame.edgeLength[1] = float(glm::length(m_stepJ));
+        m_frame.thickSlabEdge = thickSlabEdgeLength(m_frame.edgeLength[0], m_frame.edgeLength[1]);
         // Derivatives are taken in the oblique frame (axisI, axisJ, stackAxis) with real
         // distances; the patient gradient is M^-T (du, dw, ds) with M the frame's columns --
         // the same as J(k)^-T applied to the index-space gradient.
@@ -122,6 +124,11 @@ public:
     glm::dvec3 stack() const { return m_stack; } // stackAxis
 
 private:
+    static float thickSlabEdgeLength(float edgeI, float edgeJ) {
+        const float pixel = edgeI < edgeJ ? edgeI : edgeJ;
+        return pixel > 0.0f ? kThickSlabOverPixel * pixel : std::numeric_limits<float>::infinity();
+    }
+
     glm::dvec3 m_origin, m_stepI, m_stepJ, m_stack;
     std::vector<double> m_offset;
     std::vector<float> m_spanK, m_invSpanK;
