@@ -544,8 +544,9 @@ TEST(CudaBackendMethod2, RenderWithoutAVolumeNamesTheError) {
     }
 }
 
-// Stroke pruning's kernels against the host's flood fill, bit for bit: sizes at and beside the
-// pixel blocks (32 x 8) and the 256-thread label blocks, groups across block edges, gaps.
+// Stroke pruning's kernels against the host's flood fill and bridges, bit for bit: sizes at and
+// beside the pixel blocks (32 x 8) and the 256-thread label blocks, groups across block edges,
+// gaps (with gap 1 the stroke ends' bridges too; the sparse masks have many).
 TEST(CudaBackendStrokePruning, EqualsTheHostFloodFill) {
     std::mt19937 random(5);
     for (const glm::ivec2 size :
@@ -558,7 +559,7 @@ TEST(CudaBackendStrokePruning, EqualsTheHostFloodFill) {
                 for (std::uint8_t& p : mask.pixels())
                     p = (double(random()) / double(std::mt19937::max())) < density ? 1 : 0;
                 PixelMask expected = mask;
-                expected.removeComponentsSmallerThan(minPixels, gap);
+                expected.pruneStrokes(minPixels, gap);
                 const kernels::cuda::CudaStatus status = kernels::cuda::pruneStrokesOnDevice(
                     mask.pixels().data(), size.x, size.y, minPixels, gap);
                 ASSERT_TRUE(status.ok()) << status.describe();

@@ -1,6 +1,6 @@
 // Stroke pruning (SilhouetteSettings::minStrokePixels): the 8-connected groups of a line drawing
-// under a size go, on every method and back-end present, after the method has drawn; the
-// contours stay pixel for pixel.
+// under a size go, on every method and back-end present, after the method has drawn, and the
+// one-pixel gaps between stroke ends are closed; the contours stay pixel for pixel.
 #include "backends_under_test.h"
 #include "lw/kernels/stroke_components.h"
 #include "lw/render/camera.h"
@@ -73,6 +73,94 @@ INSTANTIATE_TEST_SUITE_P(
         std::replace(name.begin(), name.end(), ' ', '_');
         return name;
     });
+
+struct BridgeCase {
+    const char* name;
+    std::vector<glm::ivec2> on;
+    std::vector<glm::ivec2> bridges; // the pixels bridgesStrokeEnds names, row by row
+};
+
+std::vector<glm::ivec2> row(int y, int x0, int x1) {
+    std::vector<glm::ivec2> pixels;
+    for (int x = x0; x <= x1; ++x)
+        pixels.push_back({x, y});
+    return pixels;
+}
+
+std::vector<glm::ivec2> joined(std::vector<glm::ivec2> a, const std::vector<glm::ivec2>& b) {
+    a.insert(a.end(), b.begin(), b.end());
+    return a;
+}
+
+std::vector<glm::ivec2> antiDiagonal(int sum) { // x + y = sum, inside 12 x 8
+    std::vector<glm::ivec2> pixels;
+    for (int y = 0; y < 8; ++y)
+        if (sum - y >= 0 && sum - y < 12)
+            pixels.push_back({sum - y, y});
+    return pixels;
+}
+
+class StrokeEndBridge : public testing::TestWithParam<BridgeCase> {};
+
+TEST_P(StrokeEndBridge, DrawsExactlyThePixelBetweenTwoEnds) {
+    PixelMask mask(12, 8);
+    for (const glm::ivec2 p : GetParam().on)
+        mask.set(p.x, p.y);
+    std::vector<glm::ivec2> found;
+    for (int y = 0; y < mask.height(); ++y)
+        for (int x = 0; x < mask.width(); ++x)
+            if (lw::kernels::bridgesStrokeEnds(mask.pixels().data(), 12, 8, x, y))
+                found.push_back({x, y});
+    EXPECT_EQ(found, GetParam().bridges);
+    PixelMask expected = mask;
+    for (const glm::ivec2 p : GetParam().bridges)
+        expected.set(p.x, p.y);
+    EXPECT_EQ(mask.bridgeStrokeEnds(), GetParam().bridges.size());
+    EXPECT_EQ(mask, expected);
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Masks, StrokeEndBridge,
+    testing::Values(BridgeCase{"gap in a row", joined(row(3, 1, 2), row(3, 4, 5)), {{3, 3}}},
+                    BridgeCase{"gap in a diagonal", {{1, 1}, {2, 2}, {4, 4}, {5, 5}}, {{3, 3}}},
+                    // Ends a knight's move apart: of the two pixels between them, the upper one.
+                    BridgeCase{"knights move", joined(row(3, 0, 2), row(4, 4, 6)), {{3, 3}}},
+                    BridgeCase{"lone pixels", {{3, 3}, {5, 3}}, {{4, 3}}},
+                    BridgeCase{"at the image edge", {{0, 0}, {2, 0}}, {{1, 0}}},
+                    BridgeCase{"gap of two pixels", joined(row(3, 1, 2), row(3, 5, 6)), {}},
+                    BridgeCase{"parallel rows", joined(row(2, 0, 11), row(4, 0, 11)), {}},
+                    BridgeCase{"parallel diagonals", joined(antiDiagonal(4), antiDiagonal(8)), {}},
+                    BridgeCase{
+                        "end beside a column",
+                        joined(row(3, 0, 2), {{4, 0}, {4, 1}, {4, 2}, {4, 3}, {4, 4}, {4, 5}}),
+                        {}},
+                    // One end has a fork behind it: two neighbours, not an end.
+                    BridgeCase{"forked end", joined(row(3, 4, 6), {{2, 3}, {1, 2}, {1, 4}}), {}}),
+    [](const testing::TestParamInfo<BridgeCase>& info) {
+        std::string name = info.param.name;
+        std::replace(name.begin(), name.end(), ' ', '_');
+        std::replace(name.begin(), name.end(), '\'', '_');
+        return name;
+    });
+
+// Pruning as the frames get it: a line broken by one-pixel gaps is kept as one stroke (gap 1) and
+// drawn whole; a wider gap stays open.
+TEST(StrokePruneAndBridge, KeepsTheBrokenLineAndClosesItsGaps) {
+    PixelMask mask(12, 8);
+    for (const glm::ivec2 p : kBrokenLine)
+        mask.set(p.x, p.y);
+    EXPECT_EQ(mask.pruneStrokes(5, 1), 1u); // the pixel two further on
+    PixelMask expected(12, 8);
+    for (const glm::ivec2 p : joined(row(1, 0, 4), row(2, 6, 7)))
+        expected.set(p.x, p.y);
+    expected.set(5, 1); // (4, 1) to (6, 2): a knight's move, the upper pixel between
+    EXPECT_EQ(mask, expected);
+    PixelMask unbridged(12, 8);
+    for (const glm::ivec2 p : kBrokenLine)
+        unbridged.set(p.x, p.y);
+    EXPECT_EQ(unbridged.pruneStrokes(5, 0), 7u); // no gap: every piece is short
+    EXPECT_EQ(unbridged.count(), 0u);
+}
 
 // A random mask: runs and lone pixels, dense enough that groups merge across gaps.
 PixelMask randomStrokes(int width, int height, unsigned seed) {
@@ -188,9 +276,10 @@ TEST_P(StrokePruning, DropsTheDustAndKeepsTheContour) {
     const SilhouetteFrame pruned = renderer->render(camera, settings);
     for (const std::size_t size : pruned.lines.componentSizes(kStrokeGapPixels))
         EXPECT_GE(size, 12u);
-    // What stays is exactly what the unpruned frame had there: the contour is untouched.
+    // What stays is exactly what the unpruned frame had there, with its one-pixel gaps between
+    // stroke ends closed: the contour is untouched.
     PixelMask expected = raw.lines;
-    expected.removeComponentsSmallerThan(12, kStrokeGapPixels);
+    expected.pruneStrokes(12, kStrokeGapPixels);
     EXPECT_EQ(pruned.lines, expected);
     // The CUDA back-ends prune on the device (method 1 its mask read back from GL), the CPU ones
     // on the host; the result is the same.

@@ -2,7 +2,8 @@
 
 // Stroke pruning's kernels (dispatch in stroke_pruning.cu): the union-find rules are
 // kernels/common's stroke_components.h. Four launches over the pixels: labels, unions, the
-// groups' sizes, the short groups cleared.
+// groups' sizes, the short groups cleared; with a gap, two more: the stroke ends' bridges found,
+// then drawn.
 
 #include "lw/kernels/stroke_components.h"
 
@@ -46,6 +47,26 @@ __global__ void clearShortGroups(std::uint8_t* mask, std::uint32_t pixels, std::
         return;
     if (sizes[strokeRoot(labels, i)] < minPixels)
         mask[i] = 0;
+}
+
+// The stroke ends' bridges (bridgesStrokeEnds), found on the pruned mask into `bridges` (one word
+// a pixel: the group sizes' buffer, free once the short groups are cleared) and then drawn, so no
+// thread reads a pixel another has drawn in the same pass (the host finds all before it draws).
+__global__ void findBridges(const std::uint8_t* mask, int width, int height,
+                            std::uint32_t* bridges) {
+    const int x = int(blockIdx.x * blockDim.x + threadIdx.x);
+    const int y = int(blockIdx.y * blockDim.y + threadIdx.y);
+    if (x >= width || y >= height)
+        return;
+    bridges[std::size_t(y) * std::size_t(width) + std::size_t(x)] =
+        bridgesStrokeEnds(mask, width, height, x, y) ? 1u : 0u;
+}
+
+__global__ void drawBridges(std::uint8_t* mask, std::uint32_t pixels,
+                            const std::uint32_t* bridges) {
+    const std::uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
+    if (i < pixels && bridges[i])
+        mask[i] = 1;
 }
 
 // A mask already pruned into a GL texture's array (GL_R8: one byte a texel, row y = mask row y).

@@ -40,6 +40,12 @@ CudaStatus StrokePruning::run(std::uint8_t* mask, int width, int height, int min
     sk::clearShortGroups<<<blocks, tuning::kStrokePixelBlock, 0, stream>>>(
         mask, count, m_labels.data(), m_sizes.data(), std::uint32_t(minPixels));
     LW_CUDA_LAUNCHED("sk::clearShortGroups");
+    if (gapPixels < 1)
+        return CudaStatus::success();
+    sk::findBridges<<<grid, block, 0, stream>>>(mask, width, height, m_sizes.data());
+    LW_CUDA_LAUNCHED("sk::findBridges");
+    sk::drawBridges<<<blocks, tuning::kStrokePixelBlock, 0, stream>>>(mask, count, m_sizes.data());
+    LW_CUDA_LAUNCHED("sk::drawBridges");
     return CudaStatus::success();
 }
 

@@ -3,7 +3,8 @@
 // Stroke pruning on the device (kernels in stroke_kernels.cuh): the short groups of line pixels
 // of a device mask cleared in place, before the mask goes to the host or into a GL texture, so
 // that the host's flood fill (PixelMask::removeComponentsSmallerThan, single-threaded) is not on
-// the frame's path. The result equals the flood fill's bit for bit: both find the same groups.
+// the frame's path. The result equals PixelMask::pruneStrokes bit for bit: both find the same
+// groups and the same bridges.
 // Internal: CUDA types allowed.
 
 #include "dispatch.h"
@@ -16,7 +17,9 @@ namespace lw::kernels::cuda {
 class StrokePruning {
 public:
     // `mask`: width * height bytes on the device, non-zero = line. Groups of fewer than
-    // `minPixels` pixels (joined across gaps of `gapPixels`) are cleared; minPixels <= 1: none.
+    // `minPixels` pixels (joined across gaps of `gapPixels`) are cleared, and with gapPixels >= 1
+    // the one-pixel gaps between stroke ends drawn (PixelMask::pruneStrokes); minPixels <= 1:
+    // nothing.
     // Queued on `stream`; nothing is synchronised.
     CudaStatus run(std::uint8_t* mask, int width, int height, int minPixels, int gapPixels,
                    cudaStream_t stream);

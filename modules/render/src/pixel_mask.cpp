@@ -1,9 +1,11 @@
 #include "lw/render/pixel_mask.h"
 
 #include "lw/core/error.h"
+#include "lw/kernels/stroke_components.h"
 
 #include <algorithm>
 #include <cstddef>
+#include <cstdint>
 #include <cstring>
 #include <string>
 #include <vector>
@@ -133,6 +135,65 @@ std::size_t PixelMask::removeComponentsSmallerThan(int minPixels, int gapPixels)
             m_pixels[finder.originalIndex(i)] = 0;
         removed += group.size();
     });
+    return removed;
+}
+
+namespace {
+
+// The line pixels of a mask row by row, skipping eight off pixels at a time: a line drawing is
+// mostly empty, and the bridges are looked for on every frame.
+template <typename Visit>
+void forEachLinePixel(const std::vector<std::uint8_t>& pixels, int width, int height,
+                      Visit&& visit) {
+    for (int y = 0; y < height; ++y) {
+        const std::uint8_t* rowStart = pixels.data() + std::size_t(y) * std::size_t(width);
+        int x = 0;
+        while (x < width) {
+            if (x + 8 <= width) {
+                std::uint64_t word;
+                std::memcpy(&word, rowStart + x, sizeof word);
+                if (word == 0) {
+                    x += 8;
+                    continue;
+                }
+            }
+            if (rowStart[x])
+                visit(x, y);
+            ++x;
+        }
+    }
+}
+
+} // namespace
+
+std::size_t PixelMask::bridgeStrokeEnds() {
+    // A bridge lies beside a stroke end, so only the ends' neighbours are tried; all are found
+    // before any is drawn, as on the device.
+    std::vector<std::size_t> bridges;
+    const std::uint8_t* mask = m_pixels.data();
+    forEachLinePixel(m_pixels, m_width, m_height, [&](int x, int y) {
+        if (kernels::lineNeighbourCount(mask, m_width, m_height, x, y) > 1)
+            return;
+        for (int dy = -1; dy <= 1; ++dy)
+            for (int dx = -1; dx <= 1; ++dx)
+                if (kernels::bridgesStrokeEnds(mask, m_width, m_height, x + dx, y + dy))
+                    bridges.push_back(index(x + dx, y + dy));
+    });
+    std::size_t drawn = 0;
+    for (const std::size_t i : bridges)
+        if (!m_pixels[i]) {
+            m_pixels[i] = 1;
+            ++drawn;
+        }
+    return drawn;
+}
+
+std::size_t PixelMask::pruneStrokes(int minPixels, int gapPixels) {
+    if (minPixels <= 1)
+        return 0;
+    const std::size_t removed = removeComponentsSmallerThan(minPixels, gapPixels);
+    if (gapPixels >= 1)
+        bridgeStrokeEnds();
     return removed;
 }
 

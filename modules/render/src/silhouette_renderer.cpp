@@ -26,7 +26,7 @@ SilhouetteFrame SilhouetteRenderer::render(const Camera& camera,
     SilhouetteFrame frame = renderFrame(camera, settings);
     if (settings.minStrokePixels > 1 && !frame.drewToTarget && !frame.strokesPruned) {
         const auto start = std::chrono::steady_clock::now();
-        frame.lines.removeComponentsSmallerThan(settings.minStrokePixels, kStrokeGapPixels);
+        frame.lines.pruneStrokes(settings.minStrokePixels, kStrokeGapPixels);
         frame.times.drawMs +=
             std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
                 .count();

@@ -293,7 +293,7 @@ SuggestiveFrame SuggestiveContourRenderer::render(const Camera& camera,
                                     ZBufferSilhouetteRenderer::depthEpsilon(camera, s.volume),
                                     settings.visibility, frame.lines.pixels().data(), threads);
     if (settings.minStrokePixels > 1)
-        frame.lines.removeComponentsSmallerThan(settings.minStrokePixels, kStrokeGapPixels);
+        frame.lines.pruneStrokes(settings.minStrokePixels, kStrokeGapPixels);
     frame.ms = msSince(start);
     return frame;
 }

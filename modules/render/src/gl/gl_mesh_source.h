@@ -33,7 +33,7 @@ public:
     virtual bool writeLineCandidates(SilhouetteGlRenderer& gl, const Camera& camera,
                                      std::size_t& indices) = 0;
     // Drops the strokes under `minPixels` from a mask read back from GL on the source's device,
-    // as PixelMask::removeComponentsSmallerThan(minPixels, gapPixels) would; false when the
+    // as PixelMask::pruneStrokes(minPixels, gapPixels) would; false when the
     // source has no device or it failed (the host prunes then).
     virtual bool pruneStrokes(PixelMask& /*lines*/, int /*minPixels*/, int /*gapPixels*/) {
         return false;

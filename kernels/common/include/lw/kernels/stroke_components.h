@@ -21,6 +21,7 @@
 
 #include "lw/kernels/host_device.h"
 
+#include <cstddef>
 #include <cstdint>
 
 namespace lw::kernels {
@@ -110,6 +111,66 @@ LW_HOST_DEVICE void uniteWithEarlierNeighbours(const std::uint8_t* mask, std::ui
                 uniteStrokes(labels, self, other, compareAndSwap);
         }
     }
+}
+
+// Closing a one-pixel gap between two stroke ends. Pruning joins a stroke across a one-pixel gap
+// (reach 2); where the gap lies between two stroke ends, the pixel between them is drawn too, so
+// a contour that a method draws with one-pixel breaks (method 2's rays near grazing, a line
+// crossing a pixel corner) reads as one stroke and not as dashes. Pixel P (off) bridges when:
+//
+//     . . . . .        - its eight neighbours hold exactly two line pixels A and B, two apart
+//     . . . . .          (not neighbours of each other), so P is the only link between them;
+//     A P B . .        - P is their midpoint, rounded down where they lie a knight's move apart
+//     . . . . .          (A + B - 2P has components 0 or 1), so one pixel bridges a gap, not two;
+//     . . . . .        - A and B are stroke ends: each has at most one line neighbour.
+//
+// Two lines passing each other two pixels apart have no ends there, and a line's side or corner
+// brings more than two neighbours into P's ring, so neither is joined.
+LW_HOST_DEVICE inline bool isLinePixel(const std::uint8_t* mask, int width, int height, int x,
+                                       int y) {
+    return x >= 0 && y >= 0 && x < width && y < height &&
+           mask[std::size_t(y) * std::size_t(width) + std::size_t(x)] != 0;
+}
+
+LW_HOST_DEVICE inline int lineNeighbourCount(const std::uint8_t* mask, int width, int height, int x,
+                                             int y) {
+    int count = 0;
+    for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx)
+            count += (dx != 0 || dy != 0) && isLinePixel(mask, width, height, x + dx, y + dy);
+    return count;
+}
+
+LW_HOST_DEVICE inline bool bridgesStrokeEnds(const std::uint8_t* mask, int width, int height, int x,
+                                             int y) {
+    if (x < 0 || y < 0 || x >= width || y >= height || isLinePixel(mask, width, height, x, y))
+        return false;
+    int found = 0, ax = 0, ay = 0, bx = 0, by = 0;
+    for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) {
+            if ((dx == 0 && dy == 0) || !isLinePixel(mask, width, height, x + dx, y + dy))
+                continue;
+            if (++found > 2)
+                return false;
+            if (found == 1) {
+                ax = dx;
+                ay = dy;
+            } else {
+                bx = dx;
+                by = dy;
+            }
+        }
+    if (found != 2)
+        return false;
+    const int apartX = ax > bx ? ax - bx : bx - ax;
+    const int apartY = ay > by ? ay - by : by - ay;
+    if ((apartX > apartY ? apartX : apartY) != 2)
+        return false;
+    const int sumX = ax + bx, sumY = ay + by;
+    if (sumX < 0 || sumX > 1 || sumY < 0 || sumY > 1)
+        return false;
+    return lineNeighbourCount(mask, width, height, x + ax, y + ay) <= 1 &&
+           lineNeighbourCount(mask, width, height, x + bx, y + by) <= 1;
 }
 
 } // namespace lw::kernels

@@ -32,6 +32,13 @@ public:
     // voxel-scale noise bumps leave on a CT's line drawing and keeps the contours, also a contour
     // that a method draws with one-pixel breaks.
     std::size_t removeComponentsSmallerThan(int minPixels, int gapPixels = 0);
+    // Draws the pixel between two stroke ends a one-pixel gap apart (kernels::bridgesStrokeEnds);
+    // returns how many pixels it drew.
+    std::size_t bridgeStrokeEnds();
+    // Stroke pruning as every method's frame gets it: removeComponentsSmallerThan(minPixels,
+    // gapPixels), then, when strokes join across a gap (gapPixels >= 1), bridgeStrokeEnds. Nothing
+    // for minPixels <= 1. Returns the pixels removed.
+    std::size_t pruneStrokes(int minPixels, int gapPixels);
     // Sizes of the groups of on pixels (in no particular order), as above.
     std::vector<std::size_t> componentSizes(int gapPixels = 0) const;
 
