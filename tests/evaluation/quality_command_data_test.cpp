@@ -11,14 +11,25 @@
 #include <gtest/gtest.h>
 #include <string>
 
-TEST(QualityCommandData, ThinPlatesOfThePhilipsPhantomHaveTheirOutline) {
+namespace {
+
+// `quality` on the Philips DICOMDIR export at one view; `extra`: the series, view and size. The
+// JSON, compacted, after the run succeeded and measured an outline of at least `outlinePixels`.
+std::string philipsQuality(const std::string& extra, double outlinePixels) {
     const std::filesystem::path series =
         *lw::test::sharedDataDir() / "dicom" / "ct_headphantom_philips_dicomdir_export";
     const lw::test::CliResult r = lw::test::runCli("quality " + lw::test::quoted(series.string()) +
-                                                   " --iso 300 --view 45,0 --size 512x512 --json");
-    ASSERT_EQ(r.exitCode, 0) << r.out << r.err;
+                                                   " --iso 300 " + extra + " --json");
+    EXPECT_EQ(r.exitCode, 0) << r.out << r.err;
     const std::string json = lw::test::compact(r.out);
-    EXPECT_GT(lw::test::numberOf(json, "outline_pixels"), 800.0) << json;
+    EXPECT_GT(lw::test::numberOf(json, "outline_pixels"), outlinePixels) << json;
+    return json;
+}
+
+} // namespace
+
+TEST(QualityCommandData, ThinPlatesOfThePhilipsPhantomHaveTheirOutline) {
+    const std::string json = philipsQuality("--view 45,0 --size 512x512", 800.0);
     EXPECT_GE(lw::test::numberOf(json, "outline_coverage_m3"), 0.98) << json;
     EXPECT_GE(lw::test::numberOf(json, "outline_coverage_m2"), 0.98) << json;
 }
@@ -29,15 +40,10 @@ TEST(QualityCommandData, ThinPlatesOfThePhilipsPhantomHaveTheirOutline) {
 // 0.918 / 0.903 for methods 3 / 2 with central differences across the slabs, 0.992 with the
 // edge's own difference).
 TEST(QualityCommandData, SkullCapOfAFiveMillimetreSeriesHasItsOutline) {
-    const std::filesystem::path series =
-        *lw::test::sharedDataDir() / "dicom" / "ct_headphantom_philips_dicomdir_export";
-    const lw::test::CliResult r =
-        lw::test::runCli("quality " + lw::test::quoted(series.string()) +
-                         " --series 1.3.46.670589.33.1.6002432791750815306.26862469513794233732"
-                         " --iso 300 --view 45,-35.3 --size 1024x1024 --json");
-    ASSERT_EQ(r.exitCode, 0) << r.out << r.err;
-    const std::string json = lw::test::compact(r.out);
-    EXPECT_GT(lw::test::numberOf(json, "outline_pixels"), 2000.0) << json;
+    const std::string json =
+        philipsQuality("--series 1.3.46.670589.33.1.6002432791750815306.26862469513794233732"
+                       " --view 45,-35.3 --size 1024x1024",
+                       2000.0);
     EXPECT_GE(lw::test::numberOf(json, "outline_coverage_m3"), 0.98) << json;
     EXPECT_GE(lw::test::numberOf(json, "outline_coverage_m2"), 0.98) << json;
 }

@@ -292,8 +292,7 @@ SuggestiveFrame SuggestiveContourRenderer::render(const Camera& camera,
     kernels::cpu::resolveSilhouette(s.surfaceDepth, s.lineDepth,
                                     ZBufferSilhouetteRenderer::depthEpsilon(camera, s.volume),
                                     settings.visibility, frame.lines.pixels().data(), threads);
-    if (settings.minStrokePixels > 1)
-        frame.lines.pruneStrokes(settings.minStrokePixels, kStrokeGapPixels);
+    frame.lines.pruneStrokes(settings.minStrokePixels, kStrokeGapPixels); // none under 2 px
     frame.ms = msSince(start);
     return frame;
 }
