@@ -181,6 +181,50 @@ TEST(VoxelRayGrid, NeighbourReachFollowsTheSlabAgainstThePixels) {
     EXPECT_NEAR(VoxelRayGrid(makeGrid({8, 8, 8})).slabOverPixel(), 1.0, 1e-12);
 }
 
+// The macro grid as the back-ends build it: a macro cell is occupied when a corner voxel of
+// one of its cells is inside (>= iso).
+std::vector<std::uint8_t> macroOccupancy(const volume::Volume& v, float iso,
+                                         glm::ivec3& macroDims) {
+    const glm::ivec3 dims = v.dims();
+    const float* voxels = v.dataAs<float>();
+    const int n = kernels::RayVisibilityRule::kMacroCells;
+    macroDims = (dims - 1 + n - 1) / n;
+    std::vector<std::uint8_t> macro(std::size_t(macroDims.x) * macroDims.y * macroDims.z);
+    for (int z = 0; z < dims.z; ++z)
+        for (int y = 0; y < dims.y; ++y)
+            for (int x = 0; x < dims.x; ++x)
+                if (voxels[v.index(x, y, z)] >= iso)
+                    for (int dz = -1; dz <= 0; ++dz)
+                        for (int dy = -1; dy <= 0; ++dy)
+                            for (int dx = -1; dx <= 0; ++dx) {
+                                const glm::ivec3 cell(x + dx, y + dy, z + dz);
+                                if (glm::any(glm::lessThan(cell, glm::ivec3(0))) ||
+                                    glm::any(glm::greaterThanEqual(cell, dims - 1)))
+                                    continue;
+                                macro[kernels::occupancyIndex(cell / n, macroDims)] = 1;
+                            }
+    return macro;
+}
+
+// The visibility rule over a float volume at `iso`, with the grid and macro cells it points into
+// (no coarse blocks, no neighbour ray).
+struct WalkedGrid {
+    WalkedGrid(const volume::Volume& v, float iso) : grid(v) {
+        rule.voxels = v.dataAs<float>();
+        rule.dims = kernels::makeGridDims(v.dims());
+        rule.grid = grid.view();
+        rule.cellScale = grid.cellScale();
+        rule.iso = iso;
+        macro = macroOccupancy(v, iso, rule.macroDims);
+        rule.macroOccupied = macro.data();
+    }
+    WalkedGrid(const WalkedGrid&) = delete;
+    WalkedGrid& operator=(const WalkedGrid&) = delete;
+    VoxelRayGrid grid;
+    std::vector<std::uint8_t> macro;
+    kernels::RayVisibility<float> rule;
+};
+
 // The coarse blocks (32^3 cells) only let a ray jump empty space faster: on a volume that is
 // mostly air (a ball and a slab in a corner each), every ray's answer is the one of the walk
 // with macro cells alone (a jump restarts the walk from another point, so a wall value on the
@@ -197,37 +241,9 @@ TEST(RayCastVisibility, CoarseJumpsChangeNoAnswer) {
                 const bool slab = x > 100 && x < 140 && y > 70 && y < 76 && z > 20 && z < 90;
                 voxels[v.index(x, y, z)] = slab ? 1.0f : ball;
             }
-    const VoxelRayGrid grid(v);
-    kernels::RayVisibility<float> rule;
-    rule.voxels = voxels;
-    rule.dims = kernels::makeGridDims(dims);
-    rule.grid = grid.view();
-    rule.cellScale = grid.cellScale();
-    rule.iso = 0.0;
-    // The macro grid as the back-ends build it: a macro cell is occupied when a corner voxel of
-    // one of its cells is inside.
-    const int n = kernels::RayVisibilityRule::kMacroCells;
-    rule.macroDims = (dims - 1 + n - 1) / n;
-    std::vector<std::uint8_t> macro(std::size_t(rule.macroDims.x) * rule.macroDims.y *
-                                    rule.macroDims.z);
-    for (int z = 0; z < dims.z; ++z)
-        for (int y = 0; y < dims.y; ++y)
-            for (int x = 0; x < dims.x; ++x)
-                if (voxels[v.index(x, y, z)] >= 0.0f)
-                    for (int dz = -1; dz <= 0; ++dz)
-                        for (int dy = -1; dy <= 0; ++dy)
-                            for (int dx = -1; dx <= 0; ++dx) {
-                                const glm::ivec3 cell(x + dx, y + dy, z + dz);
-                                if (glm::any(glm::lessThan(cell, glm::ivec3(0))) ||
-                                    glm::any(glm::greaterThanEqual(cell, dims - 1)))
-                                    continue;
-                                const glm::ivec3 m = cell / n;
-                                macro[std::size_t(m.x) +
-                                      std::size_t(rule.macroDims.x) *
-                                          (std::size_t(m.y) +
-                                           std::size_t(rule.macroDims.y) * std::size_t(m.z))] = 1;
-                            }
-    rule.macroOccupied = macro.data();
+    const WalkedGrid walked(v, 0.0f);
+    const VoxelRayGrid& grid = walked.grid;
+    const kernels::RayVisibility<float>& rule = walked.rule;
     kernels::RayVisibility<float> coarse = rule;
     coarse.coarseDims = kernels::coarseDimsOf(rule.macroDims);
     std::vector<std::uint8_t> blocks(std::size_t(coarse.coarseDims.x) * coarse.coarseDims.y *
@@ -236,7 +252,8 @@ TEST(RayCastVisibility, CoarseJumpsChangeNoAnswer) {
     for (int z = 0; z < coarse.coarseDims.z; ++z)
         for (int y = 0; y < coarse.coarseDims.y; ++y)
             for (int x = 0; x < coarse.coarseDims.x; ++x) {
-                blocks[i] = kernels::coarseOccupancy(macro.data(), rule.macroDims, {x, y, z});
+                blocks[i] =
+                    kernels::coarseOccupancy(walked.macro.data(), rule.macroDims, {x, y, z});
                 emptyBlocks += blocks[i++] == 0;
             }
     ASSERT_GT(emptyBlocks, blocks.size() / 2) << "the volume should be mostly empty blocks";
@@ -274,6 +291,47 @@ TEST(RayCastVisibility, CoarseJumpsChangeNoAnswer) {
     EXPECT_GT(hidden, 300);
 }
 
+// A ray that starts outside the grid (a neighbour ray shifted past the border, beside the cap
+// that closes the surface in the border plane) is walked from where it enters: through an inside
+// border wall it crosses the cap, through an outside one it goes on to the walls behind. It once
+// counted as visible at once, and method 2 drew the far side's cut edge through the whole head.
+// The grid: inside (1) for x <= 9, outside (0) beyond; iso 0.5.
+TEST(RayCastVisibility, RayStartingOutsideTheGridIsWalkedFromWhereItEnters) {
+    const glm::ivec3 dims(20, 20, 20);
+    volume::Volume v = makeGrid(dims);
+    float* voxels = v.dataAs<float>();
+    for (int z = 0; z < dims.z; ++z)
+        for (int y = 0; y < dims.y; ++y)
+            for (int x = 0; x < dims.x; ++x)
+                voxels[v.index(x, y, z)] = x <= 9 ? 1.0f : 0.0f;
+    const WalkedGrid walked(v, 0.5f);
+    const VoxelRayGrid& grid = walked.grid;
+    const kernels::RayVisibility<float>& rule = walked.rule;
+    const auto at = [&](double x, double y, double z) { return grid.toPatient({x, y, z}); };
+    const glm::dvec3 plusX = at(1, 0, 0) - at(0, 0, 0);
+    struct Case {
+        glm::dvec3 point, eyeOrDirection;
+        bool orthographic, visible;
+        const char* what;
+    };
+    const Case cases[] = {
+        {at(-2, 10, 10), plusX, true, false, "enters through the inside face x = 0: the cap"},
+        {at(-2, 10, 10), -plusX, true, true, "leaves away from the grid"},
+        {at(-2, -3, 10), plusX, true, true, "passes beside the grid"},
+        {at(25, 10, 10), -plusX, true, false,
+         "enters through the outside face x = 19, hidden at x = 9"},
+        {at(25, 10, 10), plusX, true, true, "leaves away from the grid"},
+        {at(-2, 10.3, 9.6), at(40, 11, 9), false, false, "perspective, through the cap"},
+        {at(25, 10.3, 9.6), at(-20, 9, 11), false, false, "perspective, through the block"},
+        {at(25, 10.3, 9.6), at(60, 9, 11), false, true, "perspective, away from the grid"},
+    };
+    for (const Case& c : cases)
+        for (const bool onSurface : {false, true})
+            EXPECT_EQ(rule.rayReachesEye(c.point, c.eyeOrDirection, c.orthographic, onSurface),
+                      c.visible)
+                << c.what << (onSurface ? " (on the surface)" : "");
+}
+
 Camera shapeCamera(const AnalyticShape& shape, const volume::Volume& v, double az, double el,
                    Projection projection = Projection::Perspective) {
     CameraSetup setup;
@@ -306,8 +364,19 @@ TEST(RayCastVisibility, FarSideOfSphereOccludedNearSideVisible) {
         // On the surface itself, at the poles.
         EXPECT_TRUE(renderer.isPointVisible(camera, 40.0 * towardViewer));
         EXPECT_FALSE(renderer.isPointVisible(camera, -40.0 * towardViewer));
-        // Beside the sphere on the far side but outside its shadow: visible.
-        EXPECT_TRUE(renderer.isPointVisible(camera, -40.0 * towardViewer + 45.0 * camera.right()));
+        // Beside the sphere on the far side but outside its shadow: visible. Outside the grid
+        // too, so the ray is walked from where it enters (in perspective it converges toward the
+        // eye: 45 mm to the side it would cross the sphere).
+        const glm::dvec3 beside = -40.0 * towardViewer + 60.0 * camera.right();
+        if (projection == Projection::Perspective) {
+            const glm::dvec3 toEye = camera.eye() - beside;
+            const double t =
+                std::clamp(-glm::dot(beside, toEye) / glm::dot(toEye, toEye), 0.0, 1.0);
+            ASSERT_GT(glm::length(beside + t * toEye), 42.0) << "the ray must miss the sphere";
+        }
+        EXPECT_TRUE(renderer.isPointVisible(camera, beside));
+        // In its shadow, outside the grid: hidden (the ray enters the grid and meets the sphere).
+        EXPECT_FALSE(renderer.isPointVisible(camera, -60.0 * towardViewer));
     }
 }
 
@@ -416,6 +485,18 @@ protected:
         method3->setVolume(v);
         return evaluation::scoreContours(method2->render(camera, settings).lines,
                                          method3->render(camera, settings).lines, 1);
+    }
+    // The same for a thick-slice ball (below): 384 x 384, iso 150, along-segment test.
+    evaluation::ContourScore thickSliceScore(const volume::Volume& v, double az, double el) const {
+        CameraSetup setup;
+        setup.bounds = {glm::dvec3(-30.0), glm::dvec3(30.0)};
+        setup.azimuthDeg = az;
+        setup.elevationDeg = el;
+        const Camera camera(setup, 384, 384);
+        SilhouetteSettings settings;
+        settings.isoReal = 150.0;
+        settings.testAlongSegment = true;
+        return method2AgainstMethod3(v, camera, settings);
     }
 #endif
 };
@@ -537,9 +618,9 @@ TEST_P(RayCastBackend, AgreesWithMethod3) {
 // A ball sampled as thick-slice CT is (0.5 x 0.5 x 5 mm, a 1 mm edge, the iso-value low on it):
 // its surface is terraced, and the rays from the outline's silhouette points run inside it for
 // mm. Method 2 must still draw the outline that method 3 draws (its neighbour ray,
-// RayVisibilityRule), and no more.
-volume::Volume thickSliceBall() {
-    const glm::ivec3 dims(120, 120, 12);
+// RayVisibilityRule), and no more. `slices` centred on the ball: fewer than 10 cut it.
+volume::Volume thickSliceBall(int slices = 12) {
+    const glm::ivec3 dims(120, 120, slices);
     const glm::dvec3 spacing(0.5, 0.5, 5.0);
     const glm::dvec3 origin = -0.5 * spacing * glm::dvec3(dims - 1);
     volume::Volume v(dims, volume::VoxelType::Float32,
@@ -559,19 +640,27 @@ volume::Volume thickSliceBall() {
 TEST_P(RayCastBackend, ThickSliceOutlineAgreesWithMethod3) {
     const volume::Volume v = thickSliceBall();
     for (const auto& [az, el] : {std::pair{135.0, -35.3}, {0.0, -70.0}, {30.0, 20.0}}) {
-        CameraSetup setup;
-        setup.bounds = {glm::dvec3(-30.0), glm::dvec3(30.0)};
-        setup.azimuthDeg = az;
-        setup.elevationDeg = el;
-        const Camera camera(setup, 384, 384);
-        SilhouetteSettings settings;
-        settings.isoReal = 150.0;
-        settings.testAlongSegment = true;
-        const ContourScore score = method2AgainstMethod3(v, camera, settings);
+        const ContourScore score = thickSliceScore(v, az, el);
         EXPECT_GT(score.truePixels, 300u) << az << "," << el;
         // Without the neighbour ray: 0.981 at 135,-35.3 and 0.963 at 30,20; with it 1.000.
         EXPECT_GE(score.recall, 0.995) << az << "," << el;   // method 3's lines that 2 draws
         EXPECT_GE(score.precision, 0.98) << az << "," << el; // method 2's lines that 3 draws
+    }
+}
+
+// The same ball cut by the first and last slice (six slabs of 5 mm: +-12.5 mm of a 22 mm ball),
+// closed at the border. Seen from above or below, the far rim of a cap lies behind the ball: the
+// terrace contours next to it must stay hidden, although their neighbour ray, one pixel outward,
+// starts outside the grid (it enters through the cap).
+TEST_P(RayCastBackend, CutThickSliceBallHidesTheFarRimOfItsCap) {
+    const volume::Volume v = thickSliceBall(6);
+    for (const auto& [az, el] :
+         {std::pair{30.0, 15.0}, {200.0, -20.0}, {120.0, 30.0}, {10.0, 40.0}}) {
+        const ContourScore score = thickSliceScore(v, az, el);
+        EXPECT_GT(score.truePixels, 300u) << az << "," << el;
+        // When such a ray counted as visible at once: precision 0.985, 0.969, 0.926, 0.878.
+        EXPECT_GE(score.recall, 0.99) << az << "," << el;
+        EXPECT_GE(score.precision, 0.995) << az << "," << el;
     }
 }
 #endif

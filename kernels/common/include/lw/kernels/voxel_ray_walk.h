@@ -91,6 +91,38 @@ struct RayGridView {
         return true;
     }
 
+    // Where the ray u(t) = start + t * direction, t in [tMin, tMax], enters the box of the cell
+    // grid when it starts outside it: `t` and the axis of the border wall it enters through.
+    // False when it does not enter (or starts inside: no wall to enter through).
+    LW_HOST_DEVICE bool entry(glm::dvec3 start, glm::dvec3 direction, double tMin, double tMax,
+                              double& t, int& axis) const {
+        const glm::ivec3 cells = cellCount();
+        const glm::dvec3 lo(0.0, 0.0, offsets[0]);
+        const glm::dvec3 hi(double(cells.x), double(cells.y), offsets[offsetCount - 1]);
+        double enter = tMin, leave = tMax;
+        axis = -1;
+        for (int a = 0; a < 3; ++a) {
+            if (direction[a] == 0.0) {
+                if (start[a] < lo[a] || start[a] > hi[a])
+                    return false;
+                continue;
+            }
+            double t0 = (lo[a] - start[a]) / direction[a], t1 = (hi[a] - start[a]) / direction[a];
+            if (t0 > t1) {
+                const double swap = t0;
+                t0 = t1;
+                t1 = swap;
+            }
+            if (t0 > enter) {
+                enter = t0;
+                axis = a;
+            }
+            leave = t1 < leave ? t1 : leave;
+        }
+        t = enter;
+        return axis >= 0 && enter <= leave;
+    }
+
     // Walks the cells along u(t) = start + t * direction for t in [0, tMax], calling
     // onExit(const CellExit&) at every wall the ray leaves a cell through, in order; onExit
     // returns false to stop the walk. Returns false when stopped that way, true when the ray
@@ -154,7 +186,9 @@ struct RayGridView {
 // silhouette point lies on a chord of the interpolated surface and its ray runs tangent to it;
 // near the start, and for several cells on flat stretches, the ray stays within a hair of the
 // trilinear surface, where round-off and the difference between the linear mesh and the
-// trilinear field would hide it. Rays leaving the grid, or reaching the eye, are visible.
+// trilinear field would hide it. Rays leaving the grid, or reaching the eye, are visible; a ray
+// that starts outside it (a neighbour ray shifted past the border) is walked from where it enters
+// it, and entering through an inside border wall crosses the cap that closes the surface there.
 //
 // The neighbour ray: a point whose own ray is occluded within the reach (neighbourReachCells) is
 // still visible when the ray from kNeighbourPixels pixel beside it, on the outward side of the
@@ -406,6 +440,31 @@ template <typename T> struct RayVisibility {
                              orthographic, false);
     }
 
+    // A ray that starts outside the grid: a neighbour ray shifted past the border, beside the cap
+    // that closes the surface in the border plane. It is walked from where it enters the grid;
+    // entering through a border wall whose value is inside crosses the cap. `from`, `tFrom` and
+    // `cell` receive the entry (`tFrom` is where the ray may start counting on input).
+    static constexpr int kEnteredGrid = 0, kMissesGrid = 1, kBlockedOnEntry = 2;
+    LW_HOST_DEVICE int enterGrid(glm::dvec3 u0, glm::dvec3 du, double tMax, double tGraze,
+                                 glm::dvec3& from, double& tFrom, glm::ivec3& cell) const {
+        double tEnter = 0.0;
+        int axis = 0;
+        if (!grid.entry(u0, du, tFrom, tMax, tEnter, axis))
+            return kMissesGrid;
+        const glm::ivec3 cells = grid.cellCount();
+        CellExit wall;
+        wall.axis = axis;
+        wall.wall = du[axis] > 0.0 ? 0 : cells[axis];
+        wall.point = u0 + tEnter * du;
+        wall.point[axis] = grid.wall(axis, wall.wall);
+        if (!grid.cellOf(wall.point, du, cell))
+            return kMissesGrid;
+        wall.cell = cell;
+        from = wall.point;
+        tFrom = tEnter;
+        return occludes(wall, tEnter < tGraze) ? kBlockedOnEntry : kEnteredGrid;
+    }
+
     // The walk of one ray. `onSurface`: the ray starts on the surface, so the self-occlusion rule
     // applies; otherwise every wall counts from the start.
     LW_HOST_DEVICE bool rayReachesEye(glm::dvec3 point, glm::dvec3 eyeOrDirection,
@@ -421,15 +480,23 @@ template <typename T> struct RayVisibility {
         const double tStart = Rule::kStartOffsetCells / cellsPerT;
         if (tStart >= tMax)
             return true;
-        glm::ivec3 startCell;
-        if (!grid.cellOf(u0 + tStart * du, du, startCell))
-            return true;
         const double tSkip = onSurface ? Rule::kSelfSkipCells / cellsPerT : 0.0;
         const double tGraze = onSurface ? Rule::kGrazeCells / cellsPerT : 0.0;
         // The walk restarts at every macro cell boundary: an empty macro cell is crossed in one
         // jump, an occupied one cell by cell. `from` always lies exactly on the wall entered.
         glm::dvec3 from = u0 + tStart * du;
         double tFrom = tStart;
+        glm::ivec3 startCell;
+        if (!grid.cellOf(from, du, startCell)) {
+            const int entered = enterGrid(u0, du, tMax, tGraze, from, tFrom, startCell);
+            if (entered == kMissesGrid)
+                return true;
+            if (entered == kBlockedOnEntry && tFrom >= tSkip) {
+                if (blockedCells)
+                    *blockedCells = tFrom * cellsPerT;
+                return false;
+            }
+        }
         for (;;) {
             glm::ivec3 cell;
             if (!grid.cellOf(from, du, cell))

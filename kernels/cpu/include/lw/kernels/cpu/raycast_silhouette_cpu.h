@@ -79,7 +79,7 @@ public:
     // trilinear field would hide it. A point whose ray is blocked near it is still visible when
     // the ray from one pixel beside it, outward across the view, passes (the neighbour ray,
     // voxel_ray_walk.h; only with view.pixelSpan set). Rays leaving the grid, or reaching the
-    // eye, are visible.
+    // eye, are visible; one starting outside the grid is walked from where it enters it.
     bool isVisible(glm::dvec3 patientPoint, const SilhouetteView& view) const;
     static double selfSkipCells();
 
