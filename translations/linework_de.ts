@@ -973,6 +973,18 @@
         <source>Also draw where the surface almost turns away from the view (concave folds, necks), beside the silhouette. On thick-slice CT they follow the slice steps.</source>
         <translation>Zeichnet neben der Silhouette auch, wo sich die Oberfläche fast vom Blick abwendet (konkave Falten, Einschnürungen). Bei CT mit dicken Schichten folgen sie den Schichtstufen.</translation>
     </message>
+    <message>
+        <source>Smooth the normals (noisy scans)</source>
+        <translation>Normalen glätten (verrauschte Scans)</translation>
+    </message>
+    <message>
+        <source>Normals from differences averaged over the neighbouring voxels (Sobel): fewer specks on noisy, thin-slice scans. Thick slices are smoothed within the slice only.</source>
+        <translation>Normalen aus über die Nachbarvoxel gemittelten Differenzen (Sobel): weniger Sprenkel bei verrauschten Dünnschicht-Scans. Dicke Schichten werden nur innerhalb der Schicht geglättet.</translation>
+    </message>
+    <message>
+        <source>Normals:</source>
+        <translation>Normalen:</translation>
+    </message>
 </context>
 <context>
     <name>lw::gui::StudyBrowser</name>

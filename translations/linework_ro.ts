@@ -973,6 +973,18 @@
         <source>Also draw where the surface almost turns away from the view (concave folds, necks), beside the silhouette. On thick-slice CT they follow the slice steps.</source>
         <translation>Desenează pe lângă siluetă și locurile unde suprafața aproape se întoarce de la privitor (pliuri concave, gâtuiri). La CT cu secțiuni groase urmează treptele secțiunilor.</translation>
     </message>
+    <message>
+        <source>Smooth the normals (noisy scans)</source>
+        <translation>Netezește normalele (scanări cu zgomot)</translation>
+    </message>
+    <message>
+        <source>Normals from differences averaged over the neighbouring voxels (Sobel): fewer specks on noisy, thin-slice scans. Thick slices are smoothed within the slice only.</source>
+        <translation>Normale din diferențe mediate peste voxelii vecini (Sobel): mai puține puncte izolate la scanările cu zgomot și secțiuni subțiri. Secțiunile groase sunt netezite doar în interiorul secțiunii.</translation>
+    </message>
+    <message>
+        <source>Normals:</source>
+        <translation>Normale:</translation>
+    </message>
 </context>
 <context>
     <name>lw::gui::StudyBrowser</name>

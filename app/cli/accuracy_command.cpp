@@ -97,11 +97,13 @@ struct Options {
     std::vector<View> views;
     // --images DIR: each row's drawing, truth and their difference as PNGs, to look at.
     std::optional<std::filesystem::path> imagesDir;
+    render::GradientStencil gradientStencil = render::GradientStencil::Central; // --gradient
 };
 
 Options parseOptions(const std::vector<std::string>& args) {
-    const Arguments arguments(args, {"json"},
-                              {"backend", "methods", "sizes", "shapes", "view", "views", "images"});
+    const Arguments arguments(
+        args, {"json"},
+        {"backend", "methods", "sizes", "shapes", "view", "views", "images", "gradient"});
     if (!arguments.positionals().empty())
         throw UsageError("accuracy", "takes no positional arguments");
     Options options;
@@ -119,6 +121,7 @@ Options parseOptions(const std::vector<std::string>& args) {
         if (std::find(known.begin(), known.end(), shape) == known.end())
             throw UsageError("--shapes " + shape, "not a known shape");
     options.json = arguments.flag("json");
+    options.gradientStencil = parseGradientStencil(arguments);
     if (const auto images = arguments.option("images"))
         options.imagesDir = *images;
     const ViewChoice choice = parseViewChoice(arguments, evaluation::kDefaultSweepViewCount);
@@ -198,6 +201,7 @@ void measureShape(const std::string& shapeName, int n, const Options& options, R
         render::SilhouetteSettings settings;
         settings.isoReal = evaluation::kShapeIso;
         settings.brickCells = chunked ? brickCells : 0;
+        settings.gradientStencil = options.gradientStencil;
         for (int m = 1; m <= 3; ++m) {
             if (!renderers[m])
                 continue;
@@ -307,6 +311,7 @@ void writeJson(const Options& options, const std::string& backendUsed,
         writer.field("azimuth", options.views[0].azimuthDeg)
             .field("elevation", options.views[0].elevationDeg);
     writer.field("pixels_per_voxel", kPixelsPerVoxel).field("tolerance_px", 1);
+    writer.field("gradient", gradientStencilName(options.gradientStencil));
     writer.key("views").beginArray();
     for (const View& view : options.views)
         writeView(writer, view);

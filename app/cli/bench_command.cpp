@@ -112,6 +112,7 @@ struct Plan {
     // --min-stroke 10` times what the review draws.
     bool closeAtBorder = true;
     int minStrokePixels = 0;
+    render::GradientStencil gradientStencil = render::GradientStencil::Central; // --gradient
 };
 
 int brickCellsFor(const std::string& variant, const volume::Volume& volume) {
@@ -213,6 +214,7 @@ Row benchConfiguration(render::SilhouetteRenderer& renderer, const BenchVolume& 
     settings.gpuMemoryBudget = plan.gpuMemoryBudget;
     settings.closeAtBorder = plan.closeAtBorder;
     settings.minStrokePixels = plan.minStrokePixels;
+    settings.gradientStencil = plan.gradientStencil;
 
     render::CameraSetup setup;
     setup.bounds = render::volumeBounds(input.volume);
@@ -379,8 +381,9 @@ std::vector<std::string> parseChoiceList(const std::string& text, const std::str
 namespace {
 
 const std::set<std::string> kBenchOptions = {
-    "sizes",  "input", "iso",     "backend",        "methods",    "variants", "modes",
-    "repeat", "image", "threads", "peak-memory-of", "gpu-budget", "border",   "min-stroke"};
+    "sizes",          "input",      "iso",    "backend",    "methods",
+    "variants",       "modes",      "repeat", "image",      "threads",
+    "peak-memory-of", "gpu-budget", "border", "min-stroke", "gradient"};
 
 // What to run: methods, variants, modes, repeat, image, threads, budget; --peak-memory-of
 // narrows it to one configuration (returned in `peakMethod`).
@@ -408,6 +411,7 @@ Plan parsePlan(const Arguments& arguments, std::optional<std::string>& peakMetho
     parseStrokeAndBorder(arguments, 0, lines);
     plan.closeAtBorder = lines.closeAtBorder;
     plan.minStrokePixels = lines.minStrokePixels;
+    plan.gradientStencil = lines.gradientStencil;
     if (const auto peak = arguments.option("peak-memory-of")) {
         const std::vector<std::string> parts = splitList(*peak);
         if (parts.size() != 2)
@@ -466,6 +470,7 @@ void writeJsonReport(const Plan& plan, const BenchResult& result, std::ostream& 
     writer.field("repeat", plan.repeat);
     writer.field("border", plan.closeAtBorder ? "closed" : "open");
     writer.field("min_stroke", plan.minStrokePixels);
+    writer.field("gradient", gradientStencilName(plan.gradientStencil));
     writer.key("notes").beginArray();
     for (const std::string& note : result.notes)
         writer.value(note);
@@ -490,9 +495,10 @@ void writeTextReport(const Plan& plan, const BenchResult& result, std::ostream& 
     char line[512];
     std::snprintf(line, sizeof line,
                   "bench: view az %g el %g perspective (+%g deg per run), image %dx%d, median of "
-                  "%d runs after a warm-up; border %s, min stroke %d px\n",
+                  "%d runs after a warm-up; border %s, min stroke %d px, gradient %s\n",
                   kAzimuthDeg, kElevationDeg, kViewStepDeg, plan.image.x, plan.image.y, plan.repeat,
-                  plan.closeAtBorder ? "closed" : "open", plan.minStrokePixels);
+                  plan.closeAtBorder ? "closed" : "open", plan.minStrokePixels,
+                  gradientStencilName(plan.gradientStencil));
     out << line;
     std::snprintf(line, sizeof line,
                   "%-6s %-7s %-4s %-4s %-5s %-14s %9s %9s %10s %9s %8s %8s %8s %8s\n", "method",

@@ -39,6 +39,7 @@ commands:
                               marching cubes on the phantom: median ms, triangles
   accuracy [--methods 1,2,3] [--sizes 32,64,256] [--shapes sphere,...]
            [--views sweep|N | --view AZ,EL] [--backend cpu|cuda|auto] [--images DIR] [--json]
+           [--gradient central|smoothed]
                               the paper's Table 5 measured: recall/precision (1 px) of each
                               method (S and L) against analytic contours, worst and median
                               over 32 views (cube faces, edges, corners, 6 seeded) or one view;
@@ -46,7 +47,7 @@ commands:
                               pixel within 1 px; blue: true, not drawn) as PNGs in DIR
   quality INPUT [--series UID] --iso HU [--views sweep|N | --view AZ,EL] [--size WxH]
           [--min-stroke PX] [--chunks ..] [--mode ..] [--camera ..] [--backend ..] [--threads N]
-          [--images DIR] [--json]
+          [--border ..] [--gradient ..] [--images DIR] [--json]
                               line quality on a real CT (issue 7's goals): at each view (default
                               the 32 of the accuracy sweep, 1024x1024, strokes pruned as in
                               `render`) the shaded panel's outer outline covered by each method's
@@ -55,19 +56,22 @@ commands:
   render INPUT [--series UID] --iso HU --method 1|2|3 [--chunks off|auto|N] [--mode a|b]
          [--visibility on|off] [--view AZ,EL] [--camera perspective|ortho] [--size WxH]
          [--panel iso|silhouette|both] [--backend cpu|cuda|auto] [--repeat N] [--threads N]
-         [--min-stroke PX] [--border closed|open] [--format png|svg]
-         [--suggestive [--suggestive-threshold TAU]] -o OUT.png
+         [--min-stroke PX] [--border closed|open] [--gradient central|smoothed]
+         [--format png|svg] [--suggestive [--suggestive-threshold TAU]] -o OUT.png
                               one view as PNG (default 512x512, silhouette, method 3, view 0,0);
                               INPUT: volume file, DICOM folder/DICOMDIR or phantom:N[xNYxNZ][:sphere];
                               both = shaded iso-surface left, silhouette right (width 2W);
                               --repeat N: N more views 1 degree apart, prints their median ms;
                               --border open: the surface left open where the volume's border
                               cuts it (default closed: the cut face is surface, its edge a line);
+                              --gradient smoothed: normals from differences averaged over the
+                              neighbouring voxels (Sobel; in-plane only across thick slices),
+                              for noisy scans (default central differences);
                               --suggestive: suggestive contours drawn with the silhouette
                               (PNG or SVG; TAU: their derivative test, default 1)
   bench [--sizes 32,256,512,512x512x1024] [--input FILE --iso HU] [--backend cpu|cuda|auto]
         [--methods mc,1,2,3] [--variants S,L] [--modes a,b] [--repeat N] [--image WxH]
-        [--border closed|open] [--min-stroke PX]
+        [--border closed|open] [--min-stroke PX] [--gradient central|smoothed]
         [--peak-memory-of METHOD,VARIANT] [--gpu-budget MIB] [--json]
                               the paper's Tables 1-4: median ms of marching cubes and of each
                               method x S/L x mode a/b x visibility on/off (default phantom
@@ -85,7 +89,7 @@ commands:
          [--panel both|iso|silhouette] [--annotations FILE.json] [--comment TEXT] [--anonymise]
          [--png OUT.png] [--pdf OUT.pdf] [--svg OUT.svg] [--sc FOLDER] [--force]
          [--chunks ..] [--mode ..] [--visibility ..] [--camera ..] [--backend ..] [--threads N]
-         [--suggestive [--suggestive-threshold TAU]]
+         [--min-stroke PX] [--border ..] [--gradient ..] [--suggestive [--suggestive-threshold TAU]]
                               the review as a report, any combination of outputs: PNG with the
                               annotations burned in (lines and text scale with --size, the size
                               of each panel), a 2-page PDF report (header, picture, measurements,

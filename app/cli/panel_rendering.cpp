@@ -72,6 +72,7 @@ render::Mesh extractForRequest(const volume::Volume& volume, const RenderRequest
     options.brickCells = request.settings.brickCells;
     options.threads = request.settings.threads;
     options.closeAtBorder = request.settings.closeAtBorder;
+    options.gradientStencil = request.settings.gradientStencil;
     return render::extractIsoSurface(volume, request.settings.isoReal, options);
 }
 
@@ -107,8 +108,8 @@ void renderSuggestive(render::SilhouetteRenderer& renderer, const volume::Volume
     settings.visibility = request.settings.visibility;
     settings.minStrokePixels = request.settings.minStrokePixels;
     settings.threads = request.settings.threads;
-    render::SuggestiveContourRenderer suggestive(volume, mesh, request.settings.isoReal,
-                                                 settings.threads);
+    render::SuggestiveContourRenderer suggestive(
+        volume, mesh, request.settings.isoReal, settings.threads, request.settings.gradientStencil);
     const render::SuggestiveFrame frame = suggestive.render(camera, settings);
     panels.suggestive = frame.lines;
     render::PolylineOptions lines;
@@ -161,9 +162,9 @@ RenderedPanels renderPanels(render::SilhouetteRenderer& renderer, const volume::
 }
 
 const std::set<std::string>& panelRenderOptions() {
-    static const std::set<std::string> names = {"iso",        "method",  "chunks",     "mode",
-                                                "visibility", "view",    "camera",     "size",
-                                                "backend",    "threads", "min-stroke", "border"};
+    static const std::set<std::string> names = {
+        "iso",  "method",  "chunks",  "mode",       "visibility", "view",    "camera",
+        "size", "backend", "threads", "min-stroke", "border",     "gradient"};
     return names;
 }
 
@@ -180,6 +181,20 @@ void parseStrokeAndBorder(const Arguments& arguments, int defaultMinStroke,
     if (border != "closed" && border != "open")
         throw UsageError("--border " + border, "expected closed or open");
     settings.closeAtBorder = border == "closed";
+    settings.gradientStencil = parseGradientStencil(arguments);
+}
+
+render::GradientStencil parseGradientStencil(const Arguments& arguments) {
+    // Central differences unless --gradient smoothed asks for the normals of a noisy scan.
+    const std::string gradient = arguments.option("gradient", "central");
+    if (gradient != "central" && gradient != "smoothed")
+        throw UsageError("--gradient " + gradient, "expected central or smoothed");
+    return gradient == "smoothed" ? render::GradientStencil::Smoothed
+                                  : render::GradientStencil::Central;
+}
+
+const char* gradientStencilName(render::GradientStencil stencil) {
+    return stencil == render::GradientStencil::Smoothed ? "smoothed" : "central";
 }
 
 void parseSuggestiveThreshold(const Arguments& arguments, RenderRequest& request) {

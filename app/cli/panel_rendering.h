@@ -52,10 +52,15 @@ const std::set<std::string>& panelRenderOptions();
 RenderRequest parseRenderRequest(const Arguments& arguments, const std::string& command);
 // --suggestive-threshold TAU (render and export) into the request's suggestive settings.
 void parseSuggestiveThreshold(const Arguments& arguments, RenderRequest& request);
-// --min-stroke PX (default `defaultMinStroke`) and --border closed|open (default closed) into
-// `settings`, as `render`, `export` and `bench` read them; throws UsageError for a bad value.
+// --min-stroke PX (default `defaultMinStroke`), --border closed|open (default closed) and
+// --gradient into `settings`, as `render`, `export` and `bench` read them; throws UsageError for
+// a bad value.
 void parseStrokeAndBorder(const Arguments& arguments, int defaultMinStroke,
                           render::SilhouetteSettings& settings);
+// --gradient central|smoothed (default central): the normals' finite differences.
+render::GradientStencil parseGradientStencil(const Arguments& arguments);
+// "central" or "smoothed", as --gradient takes it (reports, JSON).
+const char* gradientStencilName(render::GradientStencil stencil);
 // --view, --camera; the bounds are set once the volume is known (frameSurface).
 render::CameraSetup parseCameraView(const Arguments& arguments);
 // --size, default 512x512.

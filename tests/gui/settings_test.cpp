@@ -57,6 +57,8 @@ void SettingsTest::roundTripThroughQSettings() {
     settings.gpuMemoryBudgetMiB = method * 256; // 0 (automatic) is the default: another value
     settings.minStrokePixels = method * 4;
     settings.suggestiveContours = method != 2; // off is the default: both values round-trip
+    settings.gradientStencil =
+        method == 1 ? lw::render::GradientStencil::Smoothed : lw::render::GradientStencil::Central;
     settings.mode =
         modeB ? lw::render::ExtractionMode::EveryFrameB : lw::render::ExtractionMode::CachedA;
     settings.projection =
@@ -120,6 +122,11 @@ void SettingsTest::dialogReportsChangesAndStoresThem() {
     QVERIFY(!suggestive->isChecked()); // off by default
     suggestive->click();
     QVERIFY(dialog.settings().suggestiveContours);
+    auto* smoothNormals = dialog.findChild<QCheckBox*>("smoothNormals");
+    QVERIFY(smoothNormals);
+    QVERIFY(!smoothNormals->isChecked()); // central differences by default
+    smoothNormals->click();
+    QCOMPARE(dialog.settings().gradientStencil, lw::render::GradientStencil::Smoothed);
     // Applied live and kept for the next start.
     QSettings store;
     const ReviewSettings stored = ReviewSettings::load(store);
@@ -128,6 +135,7 @@ void SettingsTest::dialogReportsChangesAndStoresThem() {
     QCOMPARE(stored.gpuMemoryBudgetMiB, 512);
     QCOMPARE(stored.minStrokePixels, 0);
     QVERIFY(stored.suggestiveContours);
+    QCOMPARE(stored.gradientStencil, lw::render::GradientStencil::Smoothed);
 }
 
 void SettingsTest::cudaIsGreyedOutWithTheReason() {

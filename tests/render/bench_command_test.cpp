@@ -270,7 +270,29 @@ TEST(BenchCommand, BorderAndStrokePruningAreOptions) {
 
     const CliResult text = runCli(base + "--border closed --min-stroke 10");
     ASSERT_EQ(text.exitCode, 0) << text.err;
-    EXPECT_NE(text.out.find("border closed, min stroke 10 px"), std::string::npos) << text.out;
+    EXPECT_NE(text.out.find("border closed, min stroke 10 px, gradient central"), std::string::npos)
+        << text.out;
+    EXPECT_EQ(plain.at("gradient").string, "central");
+}
+
+// --gradient smoothed: the normals of a noisy scan (voxel_grid.h); the surface's triangles are
+// the same, the silhouette segments (from the normals) are not.
+TEST(BenchCommand, GradientStencilIsAnOption) {
+    const std::string base = "bench --sizes 32 --repeat 1 --methods 3 --variants S --modes a ";
+    const CliResult central = runCli(base + "--json");
+    const CliResult smoothed = runCli(base + "--gradient smoothed --json");
+    ASSERT_EQ(central.exitCode, 0) << central.err;
+    ASSERT_EQ(smoothed.exitCode, 0) << smoothed.err;
+    const Json a = parseJson(central.out), b = parseJson(smoothed.out);
+    EXPECT_EQ(b.at("gradient").string, "smoothed");
+    EXPECT_EQ(a.at("rows").array[0].at("triangles").number,
+              b.at("rows").array[0].at("triangles").number);
+    EXPECT_NE(a.at("rows").array[0].at("segments").number,
+              b.at("rows").array[0].at("segments").number);
+    const CliResult bad = runCli("bench --sizes 32 --gradient sobel");
+    EXPECT_EQ(bad.exitCode, 2);
+    EXPECT_NE(bad.err.find("--gradient sobel: expected central or smoothed"), std::string::npos)
+        << bad.err;
 }
 
 TEST(BenchCommand, BadBorderOrMinStrokeIsAUsageError) {

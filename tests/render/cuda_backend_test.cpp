@@ -318,6 +318,58 @@ TEST_P(CudaBackend, Method2GivesTheCpuImage) {
     expectSameFrame(mapped, expected, "L, the volume mapped from host memory");
 }
 
+// The smoothed gradient stencil (voxel_grid.h) on the device: the CPU's normals bit for bit, for
+// the whole volume and for streamed slabs (whose boxes must hold the stencil's diagonal
+// neighbours), and the CPU's images of methods 3 and 2 drawn from them.
+TEST_P(CudaBackend, SmoothedStencilGivesTheCpuNormalsAndImages) {
+    const Volume volume = GetParam().make();
+    IsoSurfaceOptions smoothed;
+    smoothed.gradientStencil = GradientStencil::Smoothed;
+    const Mesh reference = extractIsoSurface(volume, GetParam().iso, smoothed);
+    ASSERT_NE(reference.normals, extractIsoSurface(volume, GetParam().iso).normals)
+        << "the stencil should change the normals";
+
+    kernels::VolumeView view;
+    view.voxels = volume.data();
+    view.kind = kernels::VoxelKind(volume.voxelType());
+    view.dims = volume.dims();
+    kernels::cuda::MarchingCubesCuda cuda;
+    ASSERT_TRUE(cuda.setVolume(view, kernels::cpu::voxelGridSetup(volume)).ok());
+    cuda.setGradientStencil(GradientStencil::Smoothed);
+    ASSERT_TRUE(cuda.extract(storedIsoValue(volume, GetParam().iso)).ok());
+    Mesh mesh;
+    ASSERT_TRUE(cuda.download(mesh.positions, mesh.normals, mesh.indices).ok());
+    EXPECT_EQ(mesh.indices, reference.indices);
+    EXPECT_EQ(mesh.positions, reference.positions);
+    EXPECT_EQ(mesh.normals, reference.normals) << "smoothed normals differ from the CPU's";
+
+    const Aabb bounds = volumeBounds(volume);
+    const Camera camera = cameraAt(bounds, 40, 25, Projection::Perspective, 256, 224);
+    SilhouetteSettings settings;
+    settings.isoReal = GetParam().iso;
+    settings.gradientStencil = GradientStencil::Smoothed;
+    for (const SilhouetteMethod method :
+         {SilhouetteMethod::ZBuffer, SilhouetteMethod::RayCastVisibility}) {
+        auto onDevice = createSilhouetteRenderer(method, Backend::Cuda);
+        auto onHost = createSilhouetteRenderer(method, Backend::Cpu);
+        onDevice->setVolume(volume);
+        onHost->setVolume(volume);
+        const std::string where = "method " + std::to_string(int(method)) + ", smoothed";
+        settings.brickCells = 0;
+        const SilhouetteFrame expected = onHost->render(camera, settings);
+        expectSameFrame(onDevice->render(camera, settings), expected, where);
+        // L: method 3 streams slabs of 5 cell layers, method 2 reads the volume mapped.
+        settings.brickCells = 8;
+        settings.gpuSlabLayers = 5;
+        const SilhouetteFrame chunked = onDevice->render(camera, settings);
+        std::size_t differing = 0;
+        agreement(chunked.lines, expected.lines, differing);
+        EXPECT_EQ(differing, 0u) << where << ", chunked";
+        EXPECT_EQ(chunked.segments, expected.segments) << where << ", chunked";
+        settings.gpuSlabLayers = 0;
+    }
+}
+
 INSTANTIATE_TEST_SUITE_P(Volumes, CudaBackend, testing::ValuesIn(cases()), caseName);
 
 // One method's frame of the 512 x 512 x 1024 CT phantom (512 MiB of voxels) with the whole volume

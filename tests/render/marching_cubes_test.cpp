@@ -1,3 +1,4 @@
+#include "float_volume.h"
 #include "lw/kernels/marching_cubes_tables.h"
 #include "lw/render/iso_surface.h"
 #include "lw/render/phantom.h"
@@ -17,16 +18,7 @@ namespace {
 using volume::Volume;
 using volume::VoxelType;
 
-template <typename F>
-Volume makeFloatVolume(glm::ivec3 dims, F&& value, volume::VolumeGeometry geometry = {}) {
-    Volume v(dims, VoxelType::Float32, std::move(geometry));
-    float* data = v.dataAs<float>();
-    for (int z = 0; z < dims.z; ++z)
-        for (int y = 0; y < dims.y; ++y)
-            for (int x = 0; x < dims.x; ++x)
-                data[v.index(x, y, z)] = float(value(x, y, z));
-    return v;
-}
+using test::makeFloatVolume;
 
 // Every undirected edge of a closed surface is shared by exactly two triangles, once in each
 // direction (consistent winding). Returns a description of the first violation, or "".

@@ -70,10 +70,12 @@ std::pair<QImage, QImage> renderPanelJob(const PanelRenderJob& job) {
     settings.testAlongSegment = job.appearance.testAlongSegment;
     settings.minStrokePixels = job.appearance.minStrokePixels;
     settings.closeAtBorder = job.appearance.closeAtBorder;
+    settings.gradientStencil = job.appearance.gradientStencil;
     render::SilhouetteFrame frame = renderer->render(job.camera, settings);
     if (job.appearance.suggestiveContours) {
         const render::Mesh surface = render::surfaceOfFrame(*renderer, *job.volume, settings);
-        render::SuggestiveContourRenderer suggestive(*job.volume, surface, job.iso);
+        render::SuggestiveContourRenderer suggestive(*job.volume, surface, job.iso, 0,
+                                                     settings.gradientStencil);
         render::SuggestiveContourSettings lines;
         lines.visibility = settings.visibility;
         lines.minStrokePixels = settings.minStrokePixels;

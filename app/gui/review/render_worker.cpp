@@ -129,10 +129,10 @@ void RenderWorker::renderSilhouette(const FrameRequest& request, FrameResult& re
 // which keeps none) gets its per-vertex derivatives once per iso-value; each frame then draws
 // the suggestive contours into the silhouette's mask.
 void RenderWorker::addSuggestive(const FrameRequest& request, FrameResult& result) {
-    const bool closes = request.settings.closeAtBorder;
-    if (!m_suggestive || m_suggestiveIso != request.iso || m_suggestiveCloses != closes) {
+    const SurfaceForm form = SurfaceForm::of(request.settings);
+    if (!m_suggestive || m_suggestiveIso != request.iso || !(m_suggestiveForm == form)) {
         m_suggestive.reset();
-        if (m_mesh && m_meshIso == request.iso && m_meshCloses == closes) {
+        if (m_mesh && m_meshIso == request.iso && m_meshForm == form) {
             m_suggestiveMesh = m_mesh;
         } else {
             render::SilhouetteSettings drawn = request.settings;
@@ -142,9 +142,9 @@ void RenderWorker::addSuggestive(const FrameRequest& request, FrameResult& resul
                 render::surfaceOfFrame(*m_renderer, *m_volume, drawn));
         }
         m_suggestive = std::make_unique<render::SuggestiveContourRenderer>(
-            *m_volume, *m_suggestiveMesh, request.iso, request.settings.threads);
+            *m_volume, *m_suggestiveMesh, request.iso, request.settings.threads, form.stencil);
         m_suggestiveIso = request.iso;
-        m_suggestiveCloses = closes;
+        m_suggestiveForm = form;
     }
     render::SuggestiveContourSettings settings;
     settings.visibility = request.settings.visibility;
@@ -180,13 +180,13 @@ void RenderWorker::keepRendererMesh(const FrameRequest& request, FrameResult& re
     const render::Mesh* mesh = m_renderer->surfaceMesh();
     if (!mesh)
         return;
-    if (m_mesh && m_meshIso == request.iso && m_meshCloses == request.settings.closeAtBorder &&
+    if (m_mesh && m_meshIso == request.iso && m_meshForm == SurfaceForm::of(request.settings) &&
         request.settings.mode == render::ExtractionMode::CachedA)
         return; // mode a: the renderer drew the mesh it has already handed out
     const auto start = std::chrono::steady_clock::now();
     m_mesh = std::make_shared<const render::Mesh>(*mesh);
     m_meshIso = request.iso;
-    m_meshCloses = request.settings.closeAtBorder;
+    m_meshForm = SurfaceForm::of(request.settings);
     result.mesh = m_mesh;
     // The marching cubes that made it ran inside the renderer's frame (plus this copy).
     result.meshMs = result.silhouette->times.extractMs + millisecondsSince(start);
@@ -230,9 +230,9 @@ void RenderWorker::renderIsoImage(const FrameRequest& request, FrameResult& resu
 void RenderWorker::extractMesh(const FrameRequest& request, FrameResult& result) {
     if (result.mesh)
         return;
-    const bool closes = request.settings.closeAtBorder;
-    if (m_meshCloses != closes)
-        m_mesh.reset(); // the kept mesh is the other surface (open / closed at the border)
+    const SurfaceForm form = SurfaceForm::of(request.settings);
+    if (!(m_meshForm == form))
+        m_mesh.reset(); // the kept mesh is another surface (open / closed, other normals)
     if (m_mesh && m_meshIso == request.iso && !request.forceExtract && !request.wantMesh)
         return; // the iso image re-draws the mesh it has
     if (m_mesh && m_meshIso == request.iso && !request.forceExtract) {
@@ -243,20 +243,21 @@ void RenderWorker::extractMesh(const FrameRequest& request, FrameResult& result)
     // The iso panel's mesh is the same whatever the brick schedule (canonical order), so the
     // extractor keeps one brick grid and reuses it across iso-values.
     const int bricks = request.settings.brickCells;
-    if (!m_extractor || m_extractorBricks != bricks || m_extractorCloses != closes) {
+    if (!m_extractor || m_extractorBricks != bricks || !(m_extractorForm == form)) {
         render::IsoSurfaceOptions options;
         options.brickCells = bricks;
         options.threads = request.settings.threads;
-        options.closeAtBorder = request.settings.closeAtBorder;
+        options.closeAtBorder = form.closed;
+        options.gradientStencil = form.stencil;
         m_extractor = std::make_unique<render::IsoSurfaceExtractor>(*m_volume, options);
         m_extractorBricks = bricks;
-        m_extractorCloses = closes;
+        m_extractorForm = form;
     }
     auto mesh = std::make_shared<render::Mesh>();
     m_extractor->extract(request.iso, *mesh, nullptr, request.cancel.get());
     m_mesh = std::move(mesh);
     m_meshIso = request.iso;
-    m_meshCloses = closes;
+    m_meshForm = form;
     result.mesh = m_mesh;
     result.meshMs = millisecondsSince(start);
 }

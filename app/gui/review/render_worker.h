@@ -101,22 +101,33 @@ private:
                                           const render::SilhouetteRenderer& renderer,
                                           std::shared_ptr<const LinesTexture>& token);
 
+    // What, besides the iso-value, makes one surface differ from another: closed at the border
+    // or not, and the gradient behind its normals.
+    struct SurfaceForm {
+        bool closed = false;
+        render::GradientStencil stencil = render::GradientStencil::Central;
+        static SurfaceForm of(const render::SilhouetteSettings& settings) {
+            return {settings.closeAtBorder, settings.gradientStencil};
+        }
+        bool operator==(const SurfaceForm&) const = default;
+    };
+
     std::shared_ptr<const volume::Volume> m_volume;
     std::unique_ptr<render::IsoSurfaceExtractor> m_extractor;
     int m_extractorBricks = -1;
-    bool m_extractorCloses = false; // the extractor's IsoSurfaceOptions::closeAtBorder
+    SurfaceForm m_extractorForm; // the extractor's IsoSurfaceOptions
     std::unique_ptr<render::SilhouetteRenderer> m_renderer;
     render::Backend m_rendererBackend = render::Backend::Auto;
     QString m_backendNote;
     std::shared_ptr<const render::Mesh> m_mesh;
     double m_meshIso = 0.0;
-    bool m_meshCloses = false; // whether m_mesh is closed at the border (whoever extracted it)
+    SurfaceForm m_meshForm; // m_mesh's (whoever extracted it)
     // Suggestive contours: the per-vertex derivatives of one iso-value's surface, kept while the
     // camera turns (the mesh they were computed on is held with them).
     std::unique_ptr<render::SuggestiveContourRenderer> m_suggestive;
     std::shared_ptr<const render::Mesh> m_suggestiveMesh;
     double m_suggestiveIso = 0.0;
-    bool m_suggestiveCloses = false;
+    SurfaceForm m_suggestiveForm;
     // The worker's own GL for the iso panel (made on this thread at first use).
     std::unique_ptr<render::GlContext> m_glContext;
     std::unique_ptr<render::SilhouetteGlRenderer> m_isoGl;

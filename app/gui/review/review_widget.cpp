@@ -309,6 +309,7 @@ void ReviewWidget::requestFrame(bool newIso) {
     request.settings.testAlongSegment = m_settings.testAlongSegment;
     request.settings.minStrokePixels = m_settings.minStrokePixels;
     request.settings.closeAtBorder = m_settings.closeAtBorder;
+    request.settings.gradientStencil = m_settings.gradientStencil;
     request.settings.gpuMemoryBudget = std::size_t(m_settings.gpuMemoryBudgetMiB) << 20;
     request.settings.isoReal = m_iso;
     request.wantSilhouette = !methodOneInPanel();

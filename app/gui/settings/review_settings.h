@@ -44,6 +44,8 @@ struct ReviewSettings {
     bool testAlongSegment = false; // method 2: along the segment, not only its endpoints
     int minStrokePixels = render::kDefaultMinStrokePixels; // 0: keep every line pixel
     bool closeAtBorder = true; // the surface closed where the volume's border cuts it
+    // The normals' gradient: smoothed for noisy scans (render/iso_surface.h GradientStencil).
+    render::GradientStencil gradientStencil = render::GradientStencil::Central;
     bool suggestiveContours = false; // drawn with the silhouette (render/suggestive_contours.h)
     double lineWidth = 1.0;          // pixels
     QColor lineColour = QColor(0, 0, 0);

@@ -118,6 +118,12 @@ QWidget* SettingsDialog::makeMethodPage() {
                                 "(concave folds, necks), beside the silhouette. On thick-slice "
                                 "CT they follow the slice steps."));
     form->addRow(QString(), m_suggestive);
+    m_smoothNormals = new QCheckBox(tr("Smooth the normals (noisy scans)"));
+    m_smoothNormals->setObjectName("smoothNormals");
+    m_smoothNormals->setToolTip(
+        tr("Normals from differences averaged over the neighbouring voxels (Sobel): fewer "
+           "specks on noisy, thin-slice scans. Thick slices are smoothed within the slice only."));
+    form->addRow(tr("Normals:"), m_smoothNormals);
 
     addBackendRows(form, page);
 
@@ -127,7 +133,8 @@ QWidget* SettingsDialog::makeMethodPage() {
         connect(box, &QComboBox::currentIndexChanged, this, [this] { readControls(); });
     for (QSpinBox* box : {m_brickCells, m_memoryBudget, m_gpuMemoryBudget, m_minStroke})
         connect(box, &QSpinBox::valueChanged, this, [this] { readControls(); });
-    for (QCheckBox* box : {m_visibility, m_alongSegment, m_closeAtBorder, m_suggestive})
+    for (QCheckBox* box :
+         {m_visibility, m_alongSegment, m_closeAtBorder, m_smoothNormals, m_suggestive})
         connect(box, &QCheckBox::toggled, this, [this] { readControls(); });
     return page;
 }
@@ -286,6 +293,7 @@ void SettingsDialog::showSettings() {
     m_alongSegment->setChecked(m_settings.testAlongSegment);
     m_minStroke->setValue(m_settings.minStrokePixels);
     m_closeAtBorder->setChecked(m_settings.closeAtBorder);
+    m_smoothNormals->setChecked(m_settings.gradientStencil == render::GradientStencil::Smoothed);
     m_suggestive->setChecked(m_settings.suggestiveContours);
     m_backend->button(int(m_settings.backend))->setChecked(true);
     m_lineWidth->setValue(m_settings.lineWidth);
@@ -319,6 +327,8 @@ void SettingsDialog::readControls() {
     s.testAlongSegment = m_alongSegment->isChecked();
     s.minStrokePixels = m_minStroke->value();
     s.closeAtBorder = m_closeAtBorder->isChecked();
+    s.gradientStencil = m_smoothNormals->isChecked() ? render::GradientStencil::Smoothed
+                                                     : render::GradientStencil::Central;
     s.suggestiveContours = m_suggestive->isChecked();
     s.backend = render::Backend(m_backend->checkedId());
     s.lineWidth = m_lineWidth->value();

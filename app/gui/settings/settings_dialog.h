@@ -52,6 +52,7 @@ private:
     QSpinBox* m_gpuMemoryBudget = nullptr;
     QSpinBox* m_minStroke = nullptr;
     QCheckBox* m_closeAtBorder = nullptr;
+    QCheckBox* m_smoothNormals = nullptr;
     QComboBox* m_mode = nullptr;
     QCheckBox* m_visibility = nullptr;
     QCheckBox* m_alongSegment = nullptr;

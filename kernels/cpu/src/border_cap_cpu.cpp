@@ -15,10 +15,10 @@ using FaceFlags = std::array<bool, 6>;
 
 template <typename T> class CapBuilder {
 public:
-    CapBuilder(const volume::Volume& volume, double iso)
+    CapBuilder(const volume::Volume& volume, double iso, GradientStencil stencil)
         : m_voxels(volume.dataAs<T>()), m_dims(makeGridDims(volume.dims())), m_iso(iso),
           m_isoF(insideThreshold(iso)), m_threshold(voxelInsideThreshold<T>(iso)),
-          m_grid(voxelGridSetup(volume)), m_gradient{m_voxels, m_grid.spans()} {
+          m_grid(voxelGridSetup(volume, stencil)), m_gradient{m_voxels, m_grid.spans()} {
         setFaceNormals();
     }
 
@@ -163,13 +163,13 @@ private:
 
 } // namespace
 
-TriangleMesh borderCap(const volume::Volume& volume, double storedIso) {
+TriangleMesh borderCap(const volume::Volume& volume, double storedIso, GradientStencil stencil) {
     const glm::ivec3 d = volume.dims();
     if (d.x < 1 || d.y < 1 || d.z < 1)
         return {};
     return volume::dispatchVoxelType(volume.voxelType(), [&](auto tag) {
         using T = decltype(tag);
-        return CapBuilder<T>(volume, storedIso).build();
+        return CapBuilder<T>(volume, storedIso, stencil).build();
     });
 }
 

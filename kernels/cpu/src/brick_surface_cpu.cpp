@@ -33,9 +33,10 @@ inline bool uniformBlock(const std::uint8_t* const rows[4], std::size_t x) {
 
 } // namespace
 
-BrickSurfaceExtractor::BrickSurfaceExtractor(const volume::Volume& volume, double storedIso)
+BrickSurfaceExtractor::BrickSurfaceExtractor(const volume::Volume& volume, double storedIso,
+                                             GradientStencil stencil)
     : m_volume(volume), m_iso(storedIso), m_isoF(insideThreshold(storedIso)),
-      m_voxelGrid(voxelGridSetup(volume)) {}
+      m_voxelGrid(voxelGridSetup(volume, stencil)) {}
 
 void BrickSurfaceExtractor::extract(const volume::Brick& brick, BrickSurface& out) const {
     volume::dispatchVoxelType(m_volume.voxelType(), [&](auto tag) {

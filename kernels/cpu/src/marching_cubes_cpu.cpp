@@ -54,11 +54,11 @@ struct Unit {
 template <typename T> class Extractor {
 public:
     Extractor(const volume::Volume& volume, const volume::BrickGrid& grid, double iso,
-              McOutput& out)
+              McOutput& out, GradientStencil stencil)
         : m_volume(volume), m_grid(grid), m_voxels(volume.dataAs<T>()), m_iso(iso),
           m_isoF(insideThreshold(iso)), m_out(out), m_dims(makeGridDims(volume.dims())),
           m_threshold(voxelInsideThreshold<T>(iso)),
-          m_voxelGrid(voxelGridSetup(volume)), m_gradient{m_voxels, m_voxelGrid.spans()} {
+          m_voxelGrid(voxelGridSetup(volume, stencil)), m_gradient{m_voxels, m_voxelGrid.spans()} {
         m_gx = grid.gridSize().x;
         m_brickCells = grid.brickCells();
     }
@@ -479,10 +479,10 @@ private:
 
 McResult marchingCubes(const volume::Volume& volume, const volume::BrickGrid& grid,
                        double storedIso, McOutput& out, unsigned threads,
-                       const core::CancelToken* cancel) {
+                       const core::CancelToken* cancel, GradientStencil stencil) {
     return volume::dispatchVoxelType(volume.voxelType(), [&](auto tag) {
         using T = decltype(tag);
-        Extractor<T> extractor(volume, grid, storedIso, out);
+        Extractor<T> extractor(volume, grid, storedIso, out, stencil);
         return extractor.run(threads, cancel);
     });
 }

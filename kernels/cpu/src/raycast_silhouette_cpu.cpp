@@ -102,12 +102,12 @@ namespace {
 
 template <typename T> class Engine final : public RayCastSilhouetteCpu::Impl {
 public:
-    Engine(const volume::Volume& volume, double iso)
+    Engine(const volume::Volume& volume, double iso, GradientStencil stencil)
         : m_voxels(volume.dataAs<T>()), m_iso(iso), m_isoF(insideThreshold(iso)),
           m_dims(makeGridDims(volume.dims())),
           // The same set-up as marchingCubes(): bit-identical vertices and normals need
           // identical inputs to the shared expressions.
-          m_voxelGrid(voxelGridSetup(volume)), m_gradient{m_voxels, m_voxelGrid.spans()},
+          m_voxelGrid(voxelGridSetup(volume, stencil)), m_gradient{m_voxels, m_voxelGrid.spans()},
           m_offset(m_voxelGrid.sliceOffsets()) {
         rayGrid = VoxelRayGrid(volume);
 
@@ -512,10 +512,10 @@ RayCastSilhouetteCpu::~RayCastSilhouetteCpu() = default;
 
 bool RayCastSilhouetteCpu::prepare(const volume::Volume& volume, const volume::BrickGrid& grid,
                                    double storedIso, bool withNormalCones, unsigned threads,
-                                   const core::CancelToken* cancel) {
+                                   const core::CancelToken* cancel, GradientStencil stencil) {
     m_impl = volume::dispatchVoxelType(volume.voxelType(), [&](auto tag) -> std::unique_ptr<Impl> {
         using T = decltype(tag);
-        return std::make_unique<Engine<T>>(volume, storedIso);
+        return std::make_unique<Engine<T>>(volume, storedIso, stencil);
     });
     if (m_impl->findCells(grid, withNormalCones, threads, cancel))
         return true;

@@ -168,6 +168,10 @@ CudaStatus MarchingCubesCuda::Impl::finishWholeVolume(const VoxelGridSetup& setu
     return CudaStatus::success();
 }
 
+void MarchingCubesCuda::setGradientStencil(GradientStencil stencil) {
+    m_impl->spans.stencil = stencil;
+}
+
 CudaStatus MarchingCubesCuda::extract(double storedIso) {
     Impl& s = *m_impl;
     if (!s.volume.voxels || s.streamed)

@@ -60,6 +60,10 @@ void RayCastSilhouetteCuda::release() {
     m_impl = std::make_unique<Impl>();
 }
 
+void RayCastSilhouetteCuda::setGradientStencil(GradientStencil stencil) {
+    m_impl->marchingCubes.setGradientStencil(stencil);
+}
+
 double RayCastSilhouetteCuda::uploadMs() const {
     return m_impl->marchingCubes.uploadMs();
 }

@@ -39,12 +39,14 @@ double CudaIsoSurfaceExtractor::uploadMs() const {
     return m_impl->marchingCubes.uploadMs();
 }
 
-CudaExtraction CudaIsoSurfaceExtractor::extract(double isoReal, bool closeAtBorder) {
+CudaExtraction CudaIsoSurfaceExtractor::extract(double isoReal, bool closeAtBorder,
+                                                GradientStencil stencil) {
     const double storedIso = storedIsoValue(m_impl->volume, isoReal);
     m_impl->capInMesh = nullptr;
+    m_impl->marchingCubes.setGradientStencil(stencil);
     throwIfCudaFailed(kWhere, m_impl->marchingCubes.extract(storedIso));
     if (closeAtBorder)
-        m_impl->capInMesh = &m_impl->cap.cap(m_impl->volume, storedIso);
+        m_impl->capInMesh = &m_impl->cap.cap(m_impl->volume, storedIso, stencil);
     const kernels::cuda::DeviceMeshView mesh = m_impl->marchingCubes.mesh();
     const kernels::cuda::McCudaTimes& t = m_impl->marchingCubes.times();
     const Mesh* cap = m_impl->capInMesh;

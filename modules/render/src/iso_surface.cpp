@@ -63,7 +63,7 @@ void IsoSurfaceExtractor::extract(double isoReal, Mesh& mesh, IsoSurfaceStats* s
 
     const kernels::cpu::McResult result =
         kernels::cpu::marchingCubes(m_volume, m_impl->grid, storedIso, mesh, m_options.threads,
-                                    cancel ? cancel : m_options.cancel);
+                                    cancel ? cancel : m_options.cancel, m_options.gradientStencil);
     if (result.status == kernels::cpu::McStatus::Cancelled)
         throw core::Cancelled();
     if (result.status == kernels::cpu::McStatus::TooManyVertices)
@@ -74,7 +74,8 @@ void IsoSurfaceExtractor::extract(double isoReal, Mesh& mesh, IsoSurfaceStats* s
         stats->activeBricks = result.activeBricks;
     }
     if (m_options.closeAtBorder)
-        kernels::cpu::appendMesh(mesh, kernels::cpu::borderCap(m_volume, storedIso));
+        kernels::cpu::appendMesh(
+            mesh, kernels::cpu::borderCap(m_volume, storedIso, m_options.gradientStencil));
 }
 
 Mesh IsoSurfaceExtractor::extract(double isoReal, IsoSurfaceStats* stats) const {
@@ -126,11 +127,13 @@ bool surfaceIsClosed(const volume::Volume& volume, double storedIso, bool closeA
     return closeAtBorder || !surfaceTouchesBorder(volume, storedIso);
 }
 
-const Mesh& BorderCapCache::cap(const volume::Volume& volume, double storedIso) {
-    if (!m_valid || m_volume != &volume || !(m_iso == storedIso)) {
-        m_cap = kernels::cpu::borderCap(volume, storedIso);
+const Mesh& BorderCapCache::cap(const volume::Volume& volume, double storedIso,
+                                GradientStencil stencil) {
+    if (!m_valid || m_volume != &volume || !(m_iso == storedIso) || m_stencil != stencil) {
+        m_cap = kernels::cpu::borderCap(volume, storedIso, stencil);
         m_volume = &volume;
         m_iso = storedIso;
+        m_stencil = stencil;
         m_valid = true;
     }
     return m_cap;

@@ -52,11 +52,12 @@ void CpuRayCastKernels::prepare(double storedIso, const SilhouetteSettings& sett
     const volume::BrickGrid grid = volume::BrickGrid::build(*m_volume, glm::ivec3(edge));
     // Normal cones pay off only when the cells serve several views (mode a).
     const bool cones = settings.mode == ExtractionMode::CachedA;
-    if (!m_kernel->prepare(*m_volume, grid, storedIso, cones, settings.threads, settings.cancel))
+    if (!m_kernel->prepare(*m_volume, grid, storedIso, cones, settings.threads, settings.cancel,
+                           settings.gradientStencil))
         throw core::Cancelled();
     m_storedIso = storedIso;
     if (settings.closeAtBorder)
-        m_cap.cap(*m_volume, storedIso);
+        m_cap.cap(*m_volume, storedIso, settings.gradientStencil);
     frame.times.extractMs += msSince(start);
 }
 
@@ -128,7 +129,7 @@ void CpuRayCastKernels::drawView(const Camera& camera, const SilhouetteSettings&
     frame.triangles = m_kernel->extractSegments(view, settings.threads);
     m_capSegments.clear();
     if (settings.closeAtBorder) {
-        const Mesh& cap = m_cap.cap(*m_volume, m_storedIso);
+        const Mesh& cap = m_cap.cap(*m_volume, m_storedIso, settings.gradientStencil);
         appendMeshSilhouette(cap, glm::vec3(view.eyeOrDirection), view.orthographic, m_capSegments);
         frame.triangles += cap.triangleCount();
     }

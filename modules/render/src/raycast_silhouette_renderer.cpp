@@ -22,11 +22,13 @@ struct RayCastSilhouetteRenderer::State {
     bool deviceFailed = false; // ran out of device memory with this volume: the CPU from now on
     RayCastKernelSet* last = nullptr;
 
-    // The prepared cells are for this iso-value, brick size and mode, on `prepared` (null: none).
+    // The prepared cells are for this iso-value, brick size, mode and gradient stencil, on
+    // `prepared` (null: none).
     RayCastKernelSet* prepared = nullptr;
     double preparedIso = std::numeric_limits<double>::quiet_NaN();
     int preparedBrickCells = -1;
     ExtractionMode preparedMode = ExtractionMode::CachedA;
+    GradientStencil preparedStencil = GradientStencil::Central;
 
     CpuRayCastKernels& cpuSet() {
         if (!cpu) {
@@ -70,6 +72,7 @@ void RayCastSilhouetteRenderer::State::frameOn(RayCastKernelSet& set, const Came
     const double storedIso = storedIsoValue(*volume, settings.isoReal);
     const bool stale = prepared != &set || !(preparedIso == storedIso) ||
                        preparedBrickCells != settings.brickCells || preparedMode != settings.mode ||
+                       preparedStencil != settings.gradientStencil ||
                        settings.mode == ExtractionMode::EveryFrameB;
     if (stale) {
         prepared = nullptr; // until a prepare completes
@@ -78,6 +81,7 @@ void RayCastSilhouetteRenderer::State::frameOn(RayCastKernelSet& set, const Came
         preparedIso = storedIso;
         preparedBrickCells = settings.brickCells;
         preparedMode = settings.mode;
+        preparedStencil = settings.gradientStencil;
     }
     if (settings.cancel && settings.cancel->isCancelled())
         throw core::Cancelled();

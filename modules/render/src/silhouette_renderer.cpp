@@ -42,6 +42,7 @@ Mesh surfaceOfFrame(const SilhouetteRenderer& renderer, const volume::Volume& vo
     options.threads = settings.threads;
     options.cancel = settings.cancel;
     options.closeAtBorder = settings.closeAtBorder;
+    options.gradientStencil = settings.gradientStencil;
     return extractIsoSurface(volume, settings.isoReal, options);
 }
 

@@ -97,8 +97,9 @@ struct SuggestiveContourRenderer::State {
     kernels::cpu::DepthBuffer surfaceDepth, lineDepth;
     kernels::cpu::TileMask needed;
 
-    State(const volume::Volume& v, const Mesh& m, unsigned threads)
-        : volume(v), mesh(m), derivatives(surfaceDerivatives(v, m, threads)), adjacency(m) {}
+    State(const volume::Volume& v, const Mesh& m, unsigned threads, GradientStencil stencil)
+        : volume(v), mesh(m), derivatives(surfaceDerivatives(v, m, threads, stencil)),
+          adjacency(m) {}
 
     // D_w kappa_r at the vertices of triangles that kappa_r crosses zero in and that face the
     // viewer within the test's angle (others: 0).
@@ -108,9 +109,10 @@ struct SuggestiveContourRenderer::State {
 };
 
 SuggestiveContourRenderer::SuggestiveContourRenderer(const volume::Volume& volume, const Mesh& mesh,
-                                                     double isoReal, unsigned threads) {
+                                                     double isoReal, unsigned threads,
+                                                     GradientStencil stencil) {
     const auto start = Clock::now();
-    m_state = std::make_unique<State>(volume, mesh, threads);
+    m_state = std::make_unique<State>(volume, mesh, threads, stencil);
     State& s = *m_state;
     kernels::cpu::buildClusters(mesh.positions.data(), mesh.indices.data(), 0,
                                 std::uint32_t(mesh.triangleCount()), s.clusters);

@@ -14,8 +14,8 @@ namespace {
 // Gradient and Hessian of one volume's field at patient points, trilinear between grid points.
 template <typename T> class FieldProbe {
 public:
-    FieldProbe(const volume::Volume& volume)
-        : m_setup(kernels::cpu::voxelGridSetup(volume)),
+    FieldProbe(const volume::Volume& volume, kernels::GradientStencil stencil)
+        : m_setup(kernels::cpu::voxelGridSetup(volume, stencil)),
           m_grid(volume), m_sampler{volume.dataAs<T>(), m_setup.spans()} {}
 
     // The volume's border planes the point lies in: bit 2a for index 0 along axis a, 2a + 1 for
@@ -84,18 +84,19 @@ private:
     kernels::VoxelGradientSampler<T> m_sampler;
 };
 
-template <typename F> void withProbe(const volume::Volume& volume, F&& f) {
+template <typename F>
+void withProbe(const volume::Volume& volume, kernels::GradientStencil stencil, F&& f) {
     switch (volume.voxelType()) {
     case volume::VoxelType::UInt8:
-        return f(FieldProbe<std::uint8_t>(volume));
+        return f(FieldProbe<std::uint8_t>(volume, stencil));
     case volume::VoxelType::Int16:
-        return f(FieldProbe<std::int16_t>(volume));
+        return f(FieldProbe<std::int16_t>(volume, stencil));
     case volume::VoxelType::UInt16:
-        return f(FieldProbe<std::uint16_t>(volume));
+        return f(FieldProbe<std::uint16_t>(volume, stencil));
     case volume::VoxelType::Float32:
         break;
     }
-    return f(FieldProbe<float>(volume));
+    return f(FieldProbe<float>(volume, stencil));
 }
 
 // A triangle lying in one border plane of the grid belongs to the cap that closes the surface
@@ -127,13 +128,14 @@ void flattenBorderCaps(const Probe& probe, const kernels::TriangleMesh& mesh,
 } // namespace
 
 SurfaceDerivatives surfaceDerivatives(const volume::Volume& volume,
-                                      const kernels::TriangleMesh& mesh, unsigned threads) {
+                                      const kernels::TriangleMesh& mesh, unsigned threads,
+                                      kernels::GradientStencil stencil) {
     SurfaceDerivatives out;
     const std::size_t count = mesh.vertexCount();
     out.gradient.resize(count);
     out.hessian.resize(count);
     constexpr std::size_t kChunk = 4096;
-    withProbe(volume, [&](const auto& probe) {
+    withProbe(volume, stencil, [&](const auto& probe) {
         core::parallelFor((count + kChunk - 1) / kChunk,
                           [&](std::size_t chunk) {
                               const std::size_t end = std::min(count, (chunk + 1) * kChunk);

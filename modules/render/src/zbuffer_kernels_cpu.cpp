@@ -57,6 +57,7 @@ public:
         options.threads = settings.threads;
         options.cancel = settings.cancel;
         options.closeAtBorder = settings.closeAtBorder;
+        options.gradientStencil = settings.gradientStencil;
         m_meshKept = false;
         extractIsoSurface(*m_volume, settings.isoReal, options, m_mesh);
         m_clusters.clear();
@@ -216,7 +217,8 @@ void CpuZBufferKernels::drawPieces(const Camera&, const SilhouetteSettings& sett
         m_gridBrickCells = settings.brickCells;
     }
     const std::vector<int> active = m_grid.activeBricks(storedIso);
-    const kernels::cpu::BrickSurfaceExtractor extractor(*m_volume, storedIso);
+    const kernels::cpu::BrickSurfaceExtractor extractor(*m_volume, storedIso,
+                                                        settings.gradientStencil);
     frame.times.extractMs += msSince(start);
 
     // Bricks are handed out dynamically; a worker's scratch is checked out for one brick at a time.
@@ -243,7 +245,8 @@ void CpuZBufferKernels::drawPieces(const Camera&, const SilhouetteSettings& sett
         },
         threads);
     if (settings.closeAtBorder) // one more piece, after the bricks (the buffers keep maxima)
-        drawPiece(m_cap.cap(*m_volume, storedIso), settings.visibility, closed, *idle.back());
+        drawPiece(m_cap.cap(*m_volume, storedIso, settings.gradientStencil), settings.visibility,
+                  closed, *idle.back());
     const double loopMs = msSince(start);
 
     // Stage times: the workers' summed times, scaled to the loop's wall time.

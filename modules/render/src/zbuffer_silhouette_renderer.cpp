@@ -23,9 +23,11 @@ struct ZBufferSilhouetteRenderer::State {
     std::unique_ptr<ZBufferKernelSet> cpuFallback;
     bool onFallback = false;
 
-    // Mode a: the kept surface is for keptIso (NaN: none kept), closed at the border or not.
+    // Mode a: the kept surface is for keptIso (NaN: none kept), closed at the border or not,
+    // with normals from keptStencil.
     double keptIso = kNoIso;
     bool keptClosing = false;
+    GradientStencil keptStencil = GradientStencil::Central;
     // Whether the open surface at touchIso touches the border (pieces: computed on the host once).
     double touchIso = kNoIso;
     bool touches = false;
@@ -34,9 +36,11 @@ struct ZBufferSilhouetteRenderer::State {
     bool lastKept = false;
     unsigned lastThreads = 0;
     bool lastClosing = true;
+    GradientStencil lastStencil = GradientStencil::Central;
     mutable Mesh lateMesh;
     mutable double lateMeshIso = kNoIso;
     mutable bool lateMeshClosing = true;
+    mutable GradientStencil lateMeshStencil = GradientStencil::Central;
 
     ZBufferKernelSet& active() { return onFallback ? *cpuFallback : *kernels; }
     void forgetSurface() {
@@ -58,13 +62,15 @@ void ZBufferSilhouetteRenderer::State::frameOn(ZBufferKernelSet& set, const Came
     const bool whole = settings.brickCells == 0 && set.keepsWholeSurface(camera, settings);
     if (whole) {
         const bool reuse = settings.mode == ExtractionMode::CachedA &&
-                           keptIso == settings.isoReal && keptClosing == settings.closeAtBorder;
+                           keptIso == settings.isoReal && keptClosing == settings.closeAtBorder &&
+                           keptStencil == settings.gradientStencil;
         if (!reuse) {
             keptIso = kNoIso;
             touches = set.extractWhole(storedIso, settings, frame);
             touchIso = settings.isoReal;
             keptIso = settings.isoReal;
             keptClosing = settings.closeAtBorder;
+            keptStencil = settings.gradientStencil;
         }
         set.drawWhole(camera, settings, settings.closeAtBorder || !touches, frame);
     } else {
@@ -142,15 +148,18 @@ const Mesh& ZBufferSilhouetteRenderer::mesh() const {
             return *kept;
     }
     if (s.volume && !std::isnan(s.lastIso) &&
-        !(s.lateMeshIso == s.lastIso && s.lateMeshClosing == s.lastClosing)) {
+        !(s.lateMeshIso == s.lastIso && s.lateMeshClosing == s.lastClosing &&
+          s.lateMeshStencil == s.lastStencil)) {
         // After a frame that kept no surface: the whole surface only now, for a caller that
         // asks for it.
         IsoSurfaceOptions options;
         options.threads = s.lastThreads;
         options.closeAtBorder = s.lastClosing;
+        options.gradientStencil = s.lastStencil;
         extractIsoSurface(*s.volume, s.lastIso, options, s.lateMesh);
         s.lateMeshIso = s.lastIso;
         s.lateMeshClosing = s.lastClosing;
+        s.lateMeshStencil = s.lastStencil;
     }
     return s.lateMesh;
 }
@@ -167,6 +176,7 @@ SilhouetteFrame ZBufferSilhouetteRenderer::renderFrame(const Camera& camera,
     s.lastIso = settings.isoReal;
     s.lastThreads = settings.threads;
     s.lastClosing = settings.closeAtBorder;
+    s.lastStencil = settings.gradientStencil;
     s.lastKept = false;
     for (;;) {
         SilhouetteFrame frame;

@@ -59,6 +59,7 @@ public:
             m_streamed = true;
             m_rowRanges = std::make_unique<VoxelRowRanges>(*m_volume);
         }
+        m_marchingCubes.setGradientStencil(settings.gradientStencil);
         const double storedIso = storedIsoValue(*m_volume, settings.isoReal);
         std::size_t budget = settings.gpuMemoryBudget;
         if (budget == 0)
@@ -92,8 +93,11 @@ public:
         const double storedIso = storedIsoValue(*m_volume, settings.isoReal);
         m_capInMesh = nullptr; // until the new mesh is written
         m_capCandidates.clear();
+        m_marchingCubes.setGradientStencil(settings.gradientStencil);
         throwIfCudaFailed(kWhere, m_marchingCubes.extract(storedIso));
-        const Mesh* cap = settings.closeAtBorder ? &m_cap.cap(*m_volume, storedIso) : nullptr;
+        const Mesh* cap = settings.closeAtBorder
+                              ? &m_cap.cap(*m_volume, storedIso, settings.gradientStencil)
+                              : nullptr;
         writeIntoGl(gl, m_marchingCubes.mesh(), cap);
         m_capInMesh = cap;
         // The cap's triangles as pass-2 candidates (all of them: a few thousand at most), in

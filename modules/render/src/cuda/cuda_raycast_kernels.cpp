@@ -90,6 +90,7 @@ public:
             m_mapped = mapped;
         }
         kernels::cuda::RayCastCudaFrame timing;
+        m_kernels.setGradientStencil(settings.gradientStencil);
         check(m_kernels.prepare(storedIso, timing));
         frame.times.extractMs += timing.prepareMs;
         m_storedIso = storedIso;
@@ -110,7 +111,7 @@ public:
         m_capSegments.clear();
         std::size_t capTriangles = 0;
         if (settings.closeAtBorder) {
-            const Mesh& cap = m_cap.cap(*m_volume, m_storedIso);
+            const Mesh& cap = m_cap.cap(*m_volume, m_storedIso, settings.gradientStencil);
             appendMeshSilhouette(cap, glm::vec3(eyeOrDirection), orthographic, m_capSegments);
             capTriangles = cap.triangleCount();
         }

@@ -97,10 +97,11 @@ public:
         }
         m_capKept = nullptr;
         m_capKeptOnDevice = false;
+        m_marchingCubes.setGradientStencil(settings.gradientStencil);
         check(m_marchingCubes.extract(storedIso));
         frame.times.extractMs += m_marchingCubes.times().totalMs();
         if (settings.closeAtBorder) {
-            m_capKept = &m_cap.cap(*m_volume, storedIso);
+            m_capKept = &m_cap.cap(*m_volume, storedIso, settings.gradientStencil);
             return false;
         }
         return m_marchingCubes.mesh().touchesBorder;
@@ -282,6 +283,7 @@ void CudaZBufferKernels::drawPieces(const Camera& camera, const SilhouetteSettin
         planSlabs(m_volume->dims(), volume::voxelSize(m_volume->voxelType()), m_budget,
                   imageBytes(camera, settings), settings.gpuSlabLayers);
     m_draw.cullBackFaces = closed;
+    m_marchingCubes.setGradientStencil(settings.gradientStencil);
     const auto start = std::chrono::steady_clock::now();
     check(m_marchingCubes.extractSlabs(storedIso, slabsOf(layers, storedIso),
                                        [&](const kernels::cuda::DeviceMeshView& slab) {
@@ -289,7 +291,7 @@ void CudaZBufferKernels::drawPieces(const Camera& camera, const SilhouetteSettin
                                            return m_zbuffer.draw(slab, m_draw, m_timing);
                                        }));
     if (settings.closeAtBorder) {
-        const Mesh& cap = m_cap.cap(*m_volume, storedIso);
+        const Mesh& cap = m_cap.cap(*m_volume, storedIso, settings.gradientStencil);
         m_capKeptOnDevice = false; // drawHost replaces the kept copy
         check(m_zbuffer.drawHost(cap, m_draw, m_timing));
         frame.triangles += cap.triangleCount();

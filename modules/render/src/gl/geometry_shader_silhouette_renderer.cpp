@@ -47,6 +47,7 @@ struct GeometryShaderSilhouetteRenderer::State {
     std::optional<double> meshIso;
     int meshBrickCells = 0;
     bool meshClosing = false;
+    GradientStencil meshStencil = GradientStencil::Central;
     // L frames: the border cap, drawn as the last piece (settings.closeAtBorder).
     BorderCapCache cap;
     // Whether the open surface at closedIso is closed (touches no border voxel): pass 1 may cull.
@@ -84,7 +85,8 @@ struct GeometryShaderSilhouetteRenderer::State {
             gridBrickCells = settings.brickCells;
         }
         const std::vector<int> active = grid.activeBricks(storedIso);
-        const kernels::cpu::BrickSurfaceExtractor extractor(*volume, storedIso);
+        const kernels::cpu::BrickSurfaceExtractor extractor(*volume, storedIso,
+                                                            settings.gradientStencil);
         frame.times.extractMs += msSince(start);
         for (const int index : active) {
             start = Clock::now();
@@ -101,10 +103,10 @@ struct GeometryShaderSilhouetteRenderer::State {
     }
 
     // The border cap as the L frame's last piece (uploaded from the host: it is small).
-    void drawCap(double storedIso, SilhouetteFrame& frame,
+    void drawCap(double storedIso, const SilhouetteSettings& settings, SilhouetteFrame& frame,
                  const std::function<void(std::size_t)>& drawPiece) {
         const auto start = Clock::now();
-        const Mesh& piece = cap.cap(*volume, storedIso);
+        const Mesh& piece = cap.cap(*volume, storedIso, settings.gradientStencil);
         if (piece.isEmpty())
             return;
         gl.uploadMesh(piece);
@@ -138,7 +140,8 @@ struct GeometryShaderSilhouetteRenderer::State {
         if (!volume)
             throw core::Error("method 1", "render called before setVolume");
         if (!force && meshIso && *meshIso == settings.isoReal &&
-            meshBrickCells == settings.brickCells && meshClosing == settings.closeAtBorder)
+            meshBrickCells == settings.brickCells && meshClosing == settings.closeAtBorder &&
+            meshStencil == settings.gradientStencil)
             return 0.0;
         const auto start = Clock::now();
         IsoSurfaceOptions options;
@@ -146,6 +149,7 @@ struct GeometryShaderSilhouetteRenderer::State {
         options.threads = settings.threads;
         options.cancel = settings.cancel;
         options.closeAtBorder = settings.closeAtBorder;
+        options.gradientStencil = settings.gradientStencil;
         meshIso.reset(); // a failed extraction or upload leaves no stale cache behind
         if (source) {
             mesh = Mesh{};
@@ -160,6 +164,7 @@ struct GeometryShaderSilhouetteRenderer::State {
         meshIso = settings.isoReal;
         meshBrickCells = settings.brickCells;
         meshClosing = settings.closeAtBorder;
+        meshStencil = settings.gradientStencil;
         return msSince(start);
     }
 };
@@ -361,7 +366,7 @@ SilhouetteFrame GeometryShaderSilhouetteRenderer::renderBricks(const Camera& cam
     else
         s.drawCpuBricks(settings, storedIso, frame, drawPiece);
     if (settings.closeAtBorder)
-        s.drawCap(storedIso, frame, drawPiece);
+        s.drawCap(storedIso, settings, frame, drawPiece);
     start = Clock::now();
     s.gl.resolve(options);
     s.readLines(camera, settings, frame);

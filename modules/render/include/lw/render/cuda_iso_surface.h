@@ -32,7 +32,9 @@ public:
     double uploadMs() const; // host -> device copy of the voxels (pageable memory), CUDA events
     // closeAtBorder: the border cap (iso_surface.h) follows the device mesh in download() and
     // counts in the result's triangles and vertices (it is made on the host, not timed here).
-    CudaExtraction extract(double isoReal, bool closeAtBorder = false);
+    // `stencil`: the normals' gradient (iso_surface.h), for the cap as for the device mesh.
+    CudaExtraction extract(double isoReal, bool closeAtBorder = false,
+                           GradientStencil stencil = GradientStencil::Central);
     void download(Mesh& mesh) const; // the last extraction's mesh
 
 private:

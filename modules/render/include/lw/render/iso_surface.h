@@ -2,6 +2,7 @@
 
 #include "lw/core/progress.h"
 #include "lw/kernels/triangle_mesh.h"
+#include "lw/kernels/voxel_grid.h"
 #include "lw/volume/volume.h"
 
 #include <cstddef>
@@ -16,6 +17,11 @@ namespace lw::render {
 // mesh type (kernels/common/triangle_mesh.h), the same the marching-cubes kernels write.
 using Mesh = kernels::TriangleMesh;
 
+// The finite differences behind the vertex normals: central (6 voxels, the default), or
+// smoothed across each axis (the 3D Sobel operator where the voxels are cubes; in-plane only
+// across slices thicker than the pixel) for noisy scans. Diagram: kernels/common voxel_grid.h.
+using GradientStencil = kernels::GradientStencil;
+
 struct IsoSurfaceOptions {
     // Cells per brick along each axis; 0 extracts the whole volume as one brick (the paper's
     // "S" variant), anything else is the chunked ("L") schedule. The mesh is the same either way.
@@ -29,6 +35,7 @@ struct IsoSurfaceOptions {
     // benchmark against them). What draws for a user takes SilhouetteSettings::closeAtBorder,
     // which is on by default.
     bool closeAtBorder = false;
+    GradientStencil gradientStencil = GradientStencil::Central;
 };
 
 struct IsoSurfaceStats {
@@ -78,13 +85,16 @@ bool surfaceIsClosed(const volume::Volume& volume, double storedIso, bool closeA
 // slab schedule) without re-extracting it each frame.
 class BorderCapCache {
 public:
-    // The cap at storedIso (empty when the border does not cut the surface).
-    const Mesh& cap(const volume::Volume& volume, double storedIso);
+    // The cap at storedIso (empty when the border does not cut the surface), its normals from
+    // `stencil` as the surface's own.
+    const Mesh& cap(const volume::Volume& volume, double storedIso,
+                    GradientStencil stencil = GradientStencil::Central);
     void clear();
 
 private:
     const volume::Volume* m_volume = nullptr;
     double m_iso = 0.0;
+    GradientStencil m_stencil = GradientStencil::Central;
     bool m_valid = false;
     Mesh m_cap;
 };

@@ -12,6 +12,7 @@
 #include "lw/core/progress.h"
 #include "lw/kernels/triangle_mesh.h"
 #include "lw/render/camera.h"
+#include "lw/render/iso_surface.h"
 #include "lw/render/pixel_mask.h"
 #include "lw/volume/volume.h"
 
@@ -62,6 +63,9 @@ struct SilhouetteSettings {
     // Close the iso-surface where the volume's border cuts it (iso_surface.h): the cut outline is
     // then a contour like any other. Off only to compare with the methods as published.
     bool closeAtBorder = true;
+    // The normals' gradient (iso_surface.h): the marching-cubes normals of methods 1 and 3,
+    // method 2's vertices and the suggestive contours' derivatives all take it.
+    GradientStencil gradientStencil = GradientStencil::Central;
     // A newer request (the GUI's iso slider) sets it: the frame stops at the next brick, stage or
     // kernel work unit and render() throws core::Cancelled. Not owned; null for none.
     const core::CancelToken* cancel = nullptr;

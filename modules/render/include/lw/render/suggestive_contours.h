@@ -83,8 +83,10 @@ struct SuggestiveFrame {
 // outlive it.
 class SuggestiveContourRenderer {
 public:
+    // `stencil`: the gradient the mesh's normals were made with (surfaceDerivatives).
     SuggestiveContourRenderer(const volume::Volume& volume, const Mesh& mesh, double isoReal,
-                              unsigned threads = 0);
+                              unsigned threads = 0,
+                              GradientStencil stencil = GradientStencil::Central);
     ~SuggestiveContourRenderer();
     SuggestiveContourRenderer(const SuggestiveContourRenderer&) = delete;
     SuggestiveContourRenderer& operator=(const SuggestiveContourRenderer&) = delete;

@@ -15,6 +15,7 @@
 
 #include "lw/kernels/radial_curvature.h"
 #include "lw/kernels/triangle_mesh.h"
+#include "lw/kernels/voxel_grid.h"
 #include "lw/volume/volume.h"
 
 #include <glm/glm.hpp>
@@ -28,8 +29,11 @@ struct SurfaceDerivatives {
 };
 
 // Per vertex of `mesh` (extracted from `volume`), in the volume's stored units per mm (a
-// positive value slope scales both alike, so the curvature does not see it).
-SurfaceDerivatives surfaceDerivatives(const volume::Volume& volume,
-                                      const kernels::TriangleMesh& mesh, unsigned threads = 0);
+// positive value slope scales both alike, so the curvature does not see it). `stencil`: the
+// gradient the mesh's normals were made with; the Hessian is its derivative.
+SurfaceDerivatives
+surfaceDerivatives(const volume::Volume& volume, const kernels::TriangleMesh& mesh,
+                   unsigned threads = 0,
+                   kernels::GradientStencil stencil = kernels::GradientStencil::Central);
 
 } // namespace lw::render

@@ -26,6 +26,7 @@
 // their indices.
 
 #include "lw/kernels/triangle_mesh.h"
+#include "lw/kernels/voxel_grid.h"
 #include "lw/volume/volume.h"
 
 namespace lw::kernels::cpu {
@@ -33,7 +34,8 @@ namespace lw::kernels::cpu {
 // The cap at `storedIso` (stored units; inside = value >= iso, as marchingCubes). Empty when no
 // voxel on the volume's border is inside. Vertices and triangles in a canonical order (padded
 // cell order, then table order): the same volume and iso give the same bytes.
-TriangleMesh borderCap(const volume::Volume& volume, double storedIso);
+TriangleMesh borderCap(const volume::Volume& volume, double storedIso,
+                       GradientStencil stencil = GradientStencil::Central);
 
 // Appends `piece` to `mesh`, its indices shifted past mesh's vertices.
 void appendMesh(TriangleMesh& mesh, const TriangleMesh& piece);

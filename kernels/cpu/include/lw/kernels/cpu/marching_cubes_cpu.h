@@ -43,21 +43,24 @@ using McOutput = TriangleMesh;
 // and then by table order. The one-brick grid (whole volume) and any chunked grid therefore
 // give bit-identical meshes.
 // `cancel` (optional) is polled between work units: a newer request in the GUI stops an
-// extraction that is no longer wanted within one unit's time.
+// extraction that is no longer wanted within one unit's time. `stencil`: the normals' gradient
+// (voxel_grid.h).
 McResult marchingCubes(const volume::Volume& volume, const volume::BrickGrid& grid,
                        double storedIso, McOutput& out, unsigned threads = 0,
-                       const core::CancelToken* cancel = nullptr);
+                       const core::CancelToken* cancel = nullptr,
+                       GradientStencil stencil = GradientStencil::Central);
 
 // The grid set-up (derivative spans, patient frame) that marchingCubes() uses for `volume`.
 // Method 2 builds its vertices from the same one, which is what makes them bit-identical.
-inline VoxelGridSetup voxelGridSetup(const volume::Volume& volume) {
+inline VoxelGridSetup voxelGridSetup(const volume::Volume& volume,
+                                     GradientStencil stencil = GradientStencil::Central) {
     const volume::VolumeGeometry& g = volume.geometry();
     const int nz = volume.dims().z;
     std::vector<double> sliceOffsets(std::size_t(nz > 0 ? nz : 0));
     for (int k = 0; k < nz; ++k)
         sliceOffsets[std::size_t(k)] = g.sliceOffset(double(k));
     return VoxelGridSetup(volume.dims(), g.origin(), g.axisI(), g.axisJ(), g.stackAxis(),
-                          g.spacingI(), g.spacingJ(), std::move(sliceOffsets));
+                          g.spacingI(), g.spacingJ(), std::move(sliceOffsets), stencil);
 }
 
 using kernels::voxelInsideThreshold;
@@ -80,7 +83,8 @@ class BrickSurfaceExtractor {
 public:
     // `storedIso` in stored units; inside = value >= iso (as marchingCubes). The volume must
     // outlive the extractor. Cheap to construct (per-slice tables only).
-    BrickSurfaceExtractor(const volume::Volume& volume, double storedIso);
+    BrickSurfaceExtractor(const volume::Volume& volume, double storedIso,
+                          GradientStencil stencil = GradientStencil::Central);
     // Replaces `out`'s geometry with the surface of `brick`'s cells (single-threaded: callers
     // run several bricks side by side).
     void extract(const volume::Brick& brick, BrickSurface& out) const;

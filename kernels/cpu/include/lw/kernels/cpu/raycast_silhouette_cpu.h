@@ -7,6 +7,7 @@
 
 #include "lw/kernels/cpu/voxel_ray.h"
 #include "lw/kernels/silhouette_segment.h"
+#include "lw/kernels/voxel_grid.h"
 #include "lw/volume/bricks.h"
 #include "lw/volume/volume.h"
 
@@ -42,9 +43,11 @@ public:
     // Also builds an occupancy grid of 8^3-cell macro cells that lets the visibility rays jump
     // over empty space.
     // `cancel` (optional) is polled between cell layers; false = cancelled, nothing prepared.
+    // `stencil`: the normals' gradient, as marchingCubes() was given it.
     bool prepare(const volume::Volume& volume, const volume::BrickGrid& grid, double storedIso,
                  bool withNormalCones = true, unsigned threads = 0,
-                 const core::CancelToken* cancel = nullptr);
+                 const core::CancelToken* cancel = nullptr,
+                 GradientStencil stencil = GradientStencil::Central);
     bool isPrepared() const;
     std::size_t activeCellCount() const;
     std::size_t activeBrickCount() const;

@@ -66,6 +66,9 @@ public:
     double uploadMs() const;         // host -> device copy of the voxels, CUDA events
     std::size_t deviceBytes() const; // device memory held now
 
+    // The normals' gradient of the next extractions (voxel_grid.h); set*Volume takes the
+    // setup's. No upload: the stencil is a field of the spans every kernel gets.
+    void setGradientStencil(GradientStencil stencil);
     // Extracts the surface at `storedIso` (stored units; inside = value >= iso).
     CudaStatus extract(double storedIso);
     DeviceMeshView mesh() const;

@@ -64,6 +64,8 @@ public:
                          const RayGridSetup& rayGrid, bool mapped = false);
     std::size_t deviceBytes() const; // device memory held now
     double uploadMs() const;
+    // The normals' gradient from the next prepare() on (MarchingCubesCuda::setGradientStencil).
+    void setGradientStencil(GradientStencil stencil);
     CudaStatus prepare(double storedIso, RayCastCudaFrame& frame);
     // `extraSegments` (host memory, may be null): segments found elsewhere (the border cap's),
     // tested and drawn after the cells' own with the same rule.
