@@ -473,6 +473,26 @@ TEST(CudaBackendMethod1, CudaExtractionDrawsTheCpuImage) {
     agreement(streamed.lines, expected.lines, differing);
     EXPECT_EQ(differing, 0u) << "method 1 L streamed on the GPU";
     EXPECT_EQ(streamed.triangles, expected.triangles);
+
+    // The mask read on the device from GL's colour texture and pruned there (GlMaskReader)
+    // against GL's read-back pruned on the host, at a new size that is no multiple of the
+    // kernels' blocks (GL re-specifies the texture CUDA holds: it lets go first). Noise at a low
+    // iso-value gives many small blobs, so strokes of every length.
+    const Volume blobs = noise({48, 40, 36}, VoxelType::UInt8, 5);
+    cpu->setVolume(blobs);
+    cuda->setVolume(blobs);
+    const Camera odd = cameraAt(volumeBounds(blobs), 60, -25, Projection::Perspective, 509, 383);
+    SilhouetteSettings pruned;
+    pruned.isoReal = 150.0;
+    const std::size_t unpruned = cpu->render(odd, pruned).lines.count();
+    pruned.minStrokePixels = 40;
+    const SilhouetteFrame hostPruned = cpu->render(odd, pruned);
+    const SilhouetteFrame devicePruned = cuda->render(odd, pruned);
+    ASSERT_LT(hostPruned.lines.count(), unpruned) << "nothing to prune tests nothing";
+    ASSERT_GT(hostPruned.lines.count(), 0u) << "nothing left tests nothing";
+    EXPECT_TRUE(devicePruned.strokesPruned);
+    agreement(devicePruned.lines, hostPruned.lines, differing);
+    EXPECT_EQ(differing, 0u) << "pruned on the device from the GL texture";
 }
 
 // The device memory budget is a limit: a frame that would hold more falls back (whole volume ->

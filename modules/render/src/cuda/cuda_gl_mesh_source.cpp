@@ -7,6 +7,7 @@
 #include "lw/kernels/cpu/border_cap_cpu.h"
 #include "lw/kernels/cpu/marching_cubes_cpu.h"
 #include "lw/kernels/cuda/cuda_device.h"
+#include "lw/kernels/cuda/gl_mask_reader.h"
 #include "lw/kernels/cuda/gl_mesh_interop.h"
 #include "lw/kernels/cuda/marching_cubes_cuda.h"
 #include "lw/kernels/cuda/stroke_pruning_cuda.h"
@@ -183,7 +184,36 @@ public:
         return false;
     }
 
-    void releaseGl() override { m_interop.unregister(); }
+    bool readLines(SilhouetteGlRenderer& gl, std::uint8_t backgroundRed, int minPixels,
+                   int gapPixels, PixelMask& lines) override {
+        if (!m_maskReaderWorks || lines.width() != gl.width() || lines.height() != gl.height())
+            return false;
+        if (!m_maskReader.attached()) {
+            // Registered until gl re-specifies or deletes the texture (then it asks us first).
+            gl.setColourTextureObserver([this] { m_maskReader.detach(); });
+            m_observedGl = &gl;
+        }
+        kernels::cuda::CudaStatus status =
+            m_maskReader.attach(gl.colourTexture(), gl.width(), gl.height());
+        if (status.ok())
+            status = m_maskReader.read(backgroundRed, minPixels, gapPixels, lines.pixels().data());
+        if (status.ok())
+            return true;
+        // Once failed, the host read-back for good (the registration would fail again).
+        kLog.warning("method 1: line mask not read on the device (" + status.describe() +
+                     "); it is read back through the host");
+        m_maskReaderWorks = false;
+        m_maskReader.detach();
+        return false;
+    }
+
+    void releaseGl() override {
+        m_interop.unregister();
+        m_maskReader.detach();
+        if (m_observedGl)
+            m_observedGl->setColourTextureObserver({});
+        m_observedGl = nullptr;
+    }
 
 private:
     const volume::Volume* m_volume = nullptr;
@@ -196,6 +226,9 @@ private:
     kernels::cuda::GlMeshInterop m_interop;
     kernels::cuda::HostMaskPruner m_pruner;
     bool m_pruneWorks = true;
+    kernels::cuda::GlMaskReader m_maskReader; // the colour texture, registered with CUDA
+    bool m_maskReaderWorks = true;
+    SilhouetteGlRenderer* m_observedGl = nullptr; // whose colour texture m_maskReader holds
     BorderCapCache m_cap;
     const Mesh* m_capInMesh = nullptr;          // the cap written after the last whole mesh, if any
     std::vector<std::uint32_t> m_capCandidates; // m_capInMesh's indices after the mesh's vertices

@@ -115,12 +115,21 @@ struct GeometryShaderSilhouetteRenderer::State {
         drawPiece(piece.triangleCount());
     }
 
-    // The frame's line mask read back from GL; with the CUDA source its short strokes are
-    // pruned on the device on the way (the host's flood fill is single-threaded: 0.7 ms a
-    // 1024^2 frame on the H100 machine, 2 ms with visibility off).
+    // The frame's line mask. With the CUDA source it goes from GL's colour texture to the
+    // device, is pruned there and only the result is downloaded (GlMaskReader; glReadPixels
+    // with the host's flip and threshold cost 0.5 ms a 1024^2 frame on the H100 machine, the
+    // pruner's upload and a second transfer 0.45 ms more); else it is read back, and the CUDA
+    // source, where there is one, prunes it on the device (the host's flood fill is
+    // single-threaded: 0.7 ms a 1024^2 frame there, 2 ms with visibility off).
     void readLines(const Camera& camera, const SilhouetteSettings& settings,
                    SilhouetteFrame& frame) {
         frame.lines = PixelMask(camera.width(), camera.height());
+        const int minPixels = settings.minStrokePixels;
+        if (source &&
+            source->readLines(gl, kBackground.r, minPixels, kStrokeGapPixels, frame.lines)) {
+            frame.strokesPruned = minPixels > 1;
+            return;
+        }
         gl.readRedMask(kBackground.r, frame.lines.pixels());
         frame.strokesPruned =
             settings.minStrokePixels > 1 && source &&

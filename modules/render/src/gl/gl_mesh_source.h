@@ -11,6 +11,7 @@
 #include "lw/volume/volume.h"
 
 #include <cstddef>
+#include <cstdint>
 #include <functional>
 #include <memory>
 #include <string_view>
@@ -36,6 +37,14 @@ public:
     // as PixelMask::pruneStrokes(minPixels, gapPixels) would; false when the
     // source has no device or it failed (the host prunes then).
     virtual bool pruneStrokes(PixelMask& /*lines*/, int /*minPixels*/, int /*gapPixels*/) {
+        return false;
+    }
+    // The frame's line mask straight from gl's colour texture on the source's device (pixels
+    // whose red differs from `backgroundRed`, as SilhouetteGlRenderer::readRedMask), strokes
+    // under `minPixels` pruned there (minPixels <= 1: none); false when the source cannot (then
+    // the mask is read back through the host and pruneStrokes() is asked).
+    virtual bool readLines(SilhouetteGlRenderer& /*gl*/, std::uint8_t /*backgroundRed*/,
+                           int /*minPixels*/, int /*gapPixels*/, PixelMask& /*lines*/) {
         return false;
     }
     // GL objects the source registered: released while the context is still current.

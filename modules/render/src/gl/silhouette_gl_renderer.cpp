@@ -236,6 +236,8 @@ void SilhouetteGlRenderer::release() {
             glDeleteFramebuffers(1, framebuffer);
         *framebuffer = 0;
     }
+    if (m_colourTexture && m_beforeColourChange)
+        m_beforeColourChange();
     for (GLuint* texture : {&m_colourTexture, &m_surfaceDepthTexture, &m_lineDepthTexture}) {
         if (*texture)
             glDeleteTextures(1, texture);
@@ -470,6 +472,8 @@ void SilhouetteGlRenderer::ensureFramebuffer(int width, int height) {
         throw core::Error("GL render target", std::to_string(width) + "x" + std::to_string(height) +
                                                   " exceeds the driver's limit of " +
                                                   std::to_string(maxSize));
+    if (m_colourTexture && m_beforeColourChange)
+        m_beforeColourChange();
     ensureFramebufferObjects();
     allocateTexture(m_colourTexture, GL_RGBA8, GL_RGBA, GL_UNSIGNED_BYTE, width, height);
     // 32-bit float depth: CT surfaces span hundreds of mm, the tolerance is 0.1 % of that.

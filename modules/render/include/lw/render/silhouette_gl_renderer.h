@@ -38,6 +38,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <glm/glm.hpp>
 #include <span>
 #include <utility>
@@ -177,6 +178,12 @@ public:
     // them into its own framebuffer.
     unsigned framebuffer() const { return m_framebuffer; }
     unsigned colourTexture() const { return m_colourTexture; }
+    // Called before the colour texture's storage is re-specified (a frame of another size) or
+    // the texture deleted: a CUDA registration of it (GlMaskReader) must go first, GL refuses
+    // to re-specify a registered texture. One observer; an empty function clears it.
+    void setColourTextureObserver(std::function<void()> beforeChange) {
+        m_beforeColourChange = std::move(beforeChange);
+    }
     int width() const { return m_width; }
     int height() const { return m_height; }
 
@@ -214,6 +221,7 @@ private:
     unsigned m_lineFramebuffer = 0;    // line depth (pass 2)
     unsigned m_resolveFramebuffer = 0; // colour only (pass 3 samples both depth textures)
     unsigned m_colourTexture = 0;
+    std::function<void()> m_beforeColourChange; // setColourTextureObserver
     unsigned m_surfaceDepthTexture = 0;
     unsigned m_lineDepthTexture = 0;
     int m_width = 0;
