@@ -72,7 +72,7 @@ CudaIsoSurfaceExtractor::~CudaIsoSurfaceExtractor() = default;
 double CudaIsoSurfaceExtractor::uploadMs() const {
     return 0.0;
 }
-CudaExtraction CudaIsoSurfaceExtractor::extract(double, bool) {
+CudaExtraction CudaIsoSurfaceExtractor::extract(double, bool, GradientStencil) {
     return {};
 }
 void CudaIsoSurfaceExtractor::download(Mesh&) const {}
