@@ -379,6 +379,61 @@ TEST_F(SilhouetteGl, SegmentCountMatchesTheCpuRule) {
     }
 }
 
+// Pass 2 over the line candidates only (mayHoldContour, what method 1 computes on the host for a
+// software rasterizer and the CUDA source on the device) draws every line it draws over all
+// triangles: the same segments and the same pixels, for both projections, visibility on and off.
+TEST_F(SilhouetteGl, LineCandidatesDrawEveryLine) {
+    Mesh scene = icosphere({0, 0, 0}, 1.0f, 4);
+    append(scene, icosphere({0.6f, 3.0f, 0.3f}, 0.7f, 4));
+    m_renderer.uploadMesh(scene);
+    CameraSetup setup;
+    setup.bounds = {{-1, -1, -1}, {1.5, 3.7, 1.2}};
+    setup.azimuthDeg = 35.0;
+    setup.elevationDeg = 20.0;
+    for (auto projection : {Projection::Orthographic, Projection::Perspective}) {
+        setup.projection = projection;
+        const Camera camera(setup, 211, 173);
+        const glm::vec4 viewer = camera.isOrthographic()
+                                     ? glm::vec4(glm::vec3(-camera.forward()), 0.0f)
+                                     : glm::vec4(glm::vec3(camera.eye()), 1.0f);
+        std::vector<std::uint32_t> candidates;
+        for (std::size_t i = 0; i < scene.indices.size(); i += 3) {
+            const std::uint32_t* v = &scene.indices[i];
+            const glm::vec3 p[3] = {scene.positions[v[0]], scene.positions[v[1]],
+                                    scene.positions[v[2]]};
+            const glm::vec3 n[3] = {scene.normals[v[0]], scene.normals[v[1]], scene.normals[v[2]]};
+            if (lw::kernels::mayHoldContour(p, n, viewer))
+                candidates.insert(candidates.end(), v, v + 3);
+        }
+        ASSERT_GT(candidates.size(), 0u);
+        EXPECT_LT(candidates.size(), scene.indices.size() / 4) << "candidates should be few";
+        m_renderer.reserveLineCandidates(scene.triangleCount());
+        m_renderer.writeLineCandidatesTail(0, candidates);
+        for (const bool visibility : {true, false}) {
+            SilhouetteGlOptions options;
+            options.visibility = visibility;
+            options.countSegments = true;
+            const SilhouetteGlStats all = m_renderer.render(camera, options);
+            const ImageRgba8 allImage = m_renderer.readImage();
+            options.useLineCandidates = true;
+            options.lineCandidateIndices = candidates.size();
+            const SilhouetteGlStats some = m_renderer.render(camera, options);
+            const ImageRgba8 someImage = m_renderer.readImage();
+            const std::string where =
+                std::string(camera.isOrthographic() ? "ortho" : "perspective") +
+                (visibility ? "" : ", no visibility");
+            ASSERT_GT(all.segments, 20u) << where;
+            EXPECT_EQ(some.segments, all.segments) << where;
+            std::size_t differing = 0;
+            for (int y = 0; y < allImage.height(); ++y)
+                for (int x = 0; x < allImage.width(); ++x)
+                    differing +=
+                        isBackground(allImage.at(x, y)) != isBackground(someImage.at(x, y));
+            EXPECT_EQ(differing, 0u) << where;
+        }
+    }
+}
+
 TEST_F(SilhouetteGl, ReuploadReusesBuffersAndGivesTheSameImage) {
     const Mesh small = icosphere({0, 0, 0}, 1.0f, 2);
     Mesh big = icosphere({0, 0, 0}, 1.0f, 4);

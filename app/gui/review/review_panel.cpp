@@ -1,6 +1,7 @@
 #include "review/review_panel.h"
 
 #include "lw/core/error.h"
+#include "lw/render/gl_context.h"
 #include "lw/render/surface_picking.h"
 #include "lw/render/visibility_tolerance.h"
 #include "review/camera_controller.h"
@@ -77,8 +78,7 @@ GlInfo probeGl() {
     info.available = true;
     info.renderer = QString::fromLatin1(renderer ? renderer : "unknown");
     // Software rasterizers do the vertex work on the CPU, inside the draw call.
-    for (const char* name : {"llvmpipe", "softpipe", "swrast", "software"})
-        info.software = info.software || info.renderer.contains(name, Qt::CaseInsensitive);
+    info.software = render::isSoftwareRenderer(info.renderer.toStdString());
     context.doneCurrent();
     return info;
 }

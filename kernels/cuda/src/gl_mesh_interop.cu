@@ -2,6 +2,7 @@
 
 #include "dispatch.h"
 #include "lw/kernels/cuda/gl_mesh_interop.h"
+#include "lw/kernels/silhouette_segment.h"
 
 #include <GL/gl.h>
 #include <cuda_gl_interop.h>
@@ -10,7 +11,8 @@ namespace lw::kernels::cuda {
 
 namespace {
 
-// One thread per triangle: kept unless all three d lie beyond the margin on one side.
+// One thread per triangle: kept unless all three d lie beyond the margin on one side
+// (mayHoldContour).
 __global__ void lineCandidates(const glm::vec3* positions, const glm::vec3* normals,
                                const std::uint32_t* indices, std::uint32_t triangleCount,
                                glm::vec4 viewer, std::uint32_t* out, unsigned long long* counter) {
@@ -19,18 +21,9 @@ __global__ void lineCandidates(const glm::vec3* positions, const glm::vec3* norm
         return;
     const std::uint32_t v[3] = {indices[3 * std::size_t(t)], indices[3 * std::size_t(t) + 1],
                                 indices[3 * std::size_t(t) + 2]};
-    int front = 0, back = 0;
-    for (int k = 0; k < 3; ++k) {
-        const glm::vec3 p = positions[v[k]], n = normals[v[k]];
-        const glm::vec3 toEye = glm::vec3(viewer) - p * viewer.w;
-        const float d = glm::dot(n, toEye);
-        // GLSL evaluates d in float too, perhaps with fused multiply-adds: a relative margin of
-        // 1e-4 of |N| |eye - B| covers any such rounding.
-        const float margin = 1e-4f * glm::length(n) * glm::length(toEye) + 1e-30f;
-        front += d > margin;
-        back += d < -margin;
-    }
-    if (front == 3 || back == 3)
+    const glm::vec3 p[3] = {positions[v[0]], positions[v[1]], positions[v[2]]};
+    const glm::vec3 n[3] = {normals[v[0]], normals[v[1]], normals[v[2]]};
+    if (!mayHoldContour(p, n, viewer))
         return;
     const unsigned long long slot = atomicAdd(counter, 1ull);
     out[3 * slot] = v[0];

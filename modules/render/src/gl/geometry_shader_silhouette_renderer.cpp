@@ -4,7 +4,9 @@
 #include "gl_mesh_source.h"
 #include "lw/core/error.h"
 #include "lw/core/log.h"
+#include "lw/core/parallel.h"
 #include "lw/kernels/cpu/marching_cubes_cpu.h"
+#include "lw/kernels/silhouette_segment.h"
 #include "lw/render/gl_context.h"
 #include "lw/render/silhouette_gl_renderer.h"
 #include "lw/render/visibility_tolerance.h"
@@ -60,6 +62,10 @@ struct GeometryShaderSilhouetteRenderer::State {
     volume::BrickGrid grid;
     int gridBrickCells = 0; // 0: no grid for the current volume
     kernels::cpu::BrickSurface brick;
+    // Host line candidates (hostLineCandidates): per chunk of triangles, then all of them.
+    std::vector<std::vector<std::uint32_t>> chunkCandidates;
+    std::vector<std::uint32_t> candidates;
+    bool softwareGl = false; // the context is a software rasterizer: candidates on the host
 
     // Drops the whole mesh (CPU and GPU) so that an L frame holds one brick at a time.
     bool surfaceClosed(const SilhouetteSettings& settings) {
@@ -136,6 +142,46 @@ struct GeometryShaderSilhouetteRenderer::State {
             source->pruneStrokes(frame.lines, settings.minStrokePixels, kStrokeGapPixels);
     }
 
+    // Pass 2's candidates from the host mesh (the CPU extraction): the triangles whose facing can
+    // change for `camera` (mayHoldContour, the rule the CUDA source applies on the device) into
+    // gl's candidate buffer; `indices` gets their count times 3. On a software rasterizer the
+    // geometry shader runs on these same cores, and the test per triangle costs a fraction of
+    // sending it through the shader.
+    bool hostLineCandidates(const Camera& camera, unsigned threads, std::size_t& indices) {
+        if (!meshOnHost || mesh.triangleCount() == 0)
+            return false;
+        const glm::vec4 viewer = camera.isOrthographic()
+                                     ? glm::vec4(glm::vec3(-camera.forward()), 0.0f)
+                                     : glm::vec4(glm::vec3(camera.eye()), 1.0f);
+        constexpr std::size_t kChunk = 1 << 16;
+        const std::size_t triangles = mesh.triangleCount();
+        const std::size_t chunks = (triangles + kChunk - 1) / kChunk;
+        chunkCandidates.resize(chunks);
+        core::parallelFor(
+            chunks,
+            [&](std::size_t c) {
+                std::vector<std::uint32_t>& out = chunkCandidates[c];
+                out.clear();
+                for (std::size_t t = c * kChunk; t < std::min(triangles, (c + 1) * kChunk); ++t) {
+                    const std::uint32_t* v = &mesh.indices[3 * t];
+                    const glm::vec3 p[3] = {mesh.positions[v[0]], mesh.positions[v[1]],
+                                            mesh.positions[v[2]]};
+                    const glm::vec3 n[3] = {mesh.normals[v[0]], mesh.normals[v[1]],
+                                            mesh.normals[v[2]]};
+                    if (kernels::mayHoldContour(p, n, viewer))
+                        out.insert(out.end(), v, v + 3);
+                }
+            },
+            threads);
+        candidates.clear();
+        for (const std::vector<std::uint32_t>& chunk : chunkCandidates)
+            candidates.insert(candidates.end(), chunk.begin(), chunk.end());
+        gl.reserveLineCandidates(triangles);
+        gl.writeLineCandidatesTail(0, candidates);
+        indices = candidates.size();
+        return true;
+    }
+
     void dropWholeMesh() {
         meshIso.reset();
         mesh = Mesh{};
@@ -182,12 +228,14 @@ GeometryShaderSilhouetteRenderer::GeometryShaderSilhouetteRenderer()
     : m_state(std::make_unique<State>()) {
     m_state->ownedContext = std::make_unique<EglHeadlessContext>();
     m_state->context = m_state->ownedContext.get();
+    m_state->softwareGl = isSoftwareRenderer(m_state->context->description());
     kLog.info("method 1 on " + m_state->context->description());
 }
 
 GeometryShaderSilhouetteRenderer::GeometryShaderSilhouetteRenderer(GlContext& context)
     : m_state(std::make_unique<State>()) {
     m_state->context = &context;
+    m_state->softwareGl = isSoftwareRenderer(context.description());
 }
 
 GeometryShaderSilhouetteRenderer::~GeometryShaderSilhouetteRenderer() {
@@ -286,6 +334,9 @@ SilhouetteFrame GeometryShaderSilhouetteRenderer::renderFrame(const Camera& came
     if (s.source)
         options.useLineCandidates =
             s.source->writeLineCandidates(s.gl, camera, options.lineCandidateIndices);
+    else if (s.softwareGl)
+        options.useLineCandidates =
+            s.hostLineCandidates(camera, settings.threads, options.lineCandidateIndices);
     const SilhouetteGlStats stats = s.gl.render(camera, options);
     glFinish();
     const double passesMs = msSince(start);

@@ -28,6 +28,24 @@ LW_HOST_DEVICE inline float silhouetteDistance(glm::vec3 position, glm::vec3 nor
     return glm::dot(normal, toEye);
 }
 
+// Method 1's pass-2 candidates: whether the geometry shader may emit a segment for a triangle
+// (vertex positions p, normals n) seen from `viewer` -- the eye (w = 1) or the unit vector toward
+// the viewer (w = 0). False only when all three d lie beyond a margin on one side: GLSL evaluates
+// d in float too, perhaps with fused multiply-adds, and a relative margin of 1e-4 of
+// |N| |eye - B| covers any such rounding, so the candidates are a superset of what it emits.
+LW_HOST_DEVICE inline bool mayHoldContour(const glm::vec3 p[3], const glm::vec3 n[3],
+                                          glm::vec4 viewer) {
+    int front = 0, back = 0;
+    for (int k = 0; k < 3; ++k) {
+        const glm::vec3 toEye = glm::vec3(viewer) - p[k] * viewer.w;
+        const float d = glm::dot(n[k], toEye);
+        const float margin = 1e-4f * glm::length(n[k]) * glm::length(toEye) + 1e-30f;
+        front += d > margin;
+        back += d < -margin;
+    }
+    return front != 3 && back != 3;
+}
+
 // Where the per-vertex scalar `value` crosses zero inside a triangle: a vertex at 0 counts as
 // positive, so neighbouring triangles agree on every edge. The lone vertex is the one whose
 // side differs from the other two; the crossing runs over the two edges that touch it, named so

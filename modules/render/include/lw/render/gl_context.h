@@ -4,8 +4,11 @@
 // a thin context): headless EGL here and in the CLI, QOpenGLWidget's context in the GUI. Only this
 // interface crosses module boundaries; EGL types stay in the .cpp.
 
+#include <algorithm>
+#include <cctype>
 #include <memory>
 #include <string>
+#include <string_view>
 
 namespace lw::render {
 
@@ -18,6 +21,19 @@ public:
     // "vendor | renderer | version" of the context, for logs and reports.
     virtual std::string description() const = 0;
 };
+
+// Whether a GL_RENDERER string (or a description() holding it) names a software rasterizer
+// (Mesa's llvmpipe, softpipe, swrast): one that runs the vertex and geometry work on the CPU,
+// inside the draw call.
+inline bool isSoftwareRenderer(std::string_view renderer) {
+    std::string lower(renderer);
+    std::transform(lower.begin(), lower.end(), lower.begin(),
+                   [](unsigned char c) { return char(std::tolower(c)); });
+    for (const char* name : {"llvmpipe", "softpipe", "swrast", "software rasterizer"})
+        if (lower.find(name) != std::string::npos)
+            return true;
+    return false;
+}
 
 // Which EGL display a headless context came from.
 enum class EglPlatform {
