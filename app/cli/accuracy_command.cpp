@@ -121,7 +121,7 @@ Options parseOptions(const std::vector<std::string>& args) {
         if (std::find(known.begin(), known.end(), shape) == known.end())
             throw UsageError("--shapes " + shape, "not a known shape");
     options.json = arguments.flag("json");
-    options.gradientStencil = parseGradientStencil(arguments);
+    options.gradientStencil = parseGradientOption(arguments);
     if (const auto images = arguments.option("images"))
         options.imagesDir = *images;
     const ViewChoice choice = parseViewChoice(arguments, evaluation::kDefaultSweepViewCount);
@@ -311,7 +311,7 @@ void writeJson(const Options& options, const std::string& backendUsed,
         writer.field("azimuth", options.views[0].azimuthDeg)
             .field("elevation", options.views[0].elevationDeg);
     writer.field("pixels_per_voxel", kPixelsPerVoxel).field("tolerance_px", 1);
-    writer.field("gradient", gradientStencilName(options.gradientStencil));
+    writer.field("gradient", render::gradientStencilName(options.gradientStencil));
     writer.key("views").beginArray();
     for (const View& view : options.views)
         writeView(writer, view);

@@ -408,7 +408,7 @@ Plan parsePlan(const Arguments& arguments, std::optional<std::string>& peakMetho
     if (const auto image = arguments.option("image"))
         plan.image = parseImageSize("--image", *image, 2);
     render::SilhouetteSettings lines; // closed at the border unless --border open
-    parseStrokeAndBorder(arguments, 0, lines);
+    parseLineOptions(arguments, 0, lines);
     plan.closeAtBorder = lines.closeAtBorder;
     plan.minStrokePixels = lines.minStrokePixels;
     plan.gradientStencil = lines.gradientStencil;
@@ -470,7 +470,7 @@ void writeJsonReport(const Plan& plan, const BenchResult& result, std::ostream& 
     writer.field("repeat", plan.repeat);
     writer.field("border", plan.closeAtBorder ? "closed" : "open");
     writer.field("min_stroke", plan.minStrokePixels);
-    writer.field("gradient", gradientStencilName(plan.gradientStencil));
+    writer.field("gradient", render::gradientStencilName(plan.gradientStencil));
     writer.key("notes").beginArray();
     for (const std::string& note : result.notes)
         writer.value(note);
@@ -498,7 +498,7 @@ void writeTextReport(const Plan& plan, const BenchResult& result, std::ostream& 
                   "%d runs after a warm-up; border %s, min stroke %d px, gradient %s\n",
                   kAzimuthDeg, kElevationDeg, kViewStepDeg, plan.image.x, plan.image.y, plan.repeat,
                   plan.closeAtBorder ? "closed" : "open", plan.minStrokePixels,
-                  gradientStencilName(plan.gradientStencil));
+                  render::gradientStencilName(plan.gradientStencil).data());
     out << line;
     std::snprintf(line, sizeof line,
                   "%-6s %-7s %-4s %-4s %-5s %-14s %9s %9s %10s %9s %8s %8s %8s %8s\n", "method",

@@ -168,8 +168,8 @@ const std::set<std::string>& panelRenderOptions() {
     return names;
 }
 
-void parseStrokeAndBorder(const Arguments& arguments, int defaultMinStroke,
-                          render::SilhouetteSettings& settings) {
+void parseLineOptions(const Arguments& arguments, int defaultMinStroke,
+                      render::SilhouetteSettings& settings) {
     // Strokes under this many pixels are speckle of noise, not contours (0: keep every pixel).
     const double minStroke = arguments.number("min-stroke", defaultMinStroke);
     if (!(minStroke >= 0.0 && minStroke <= 1e6))
@@ -181,20 +181,16 @@ void parseStrokeAndBorder(const Arguments& arguments, int defaultMinStroke,
     if (border != "closed" && border != "open")
         throw UsageError("--border " + border, "expected closed or open");
     settings.closeAtBorder = border == "closed";
-    settings.gradientStencil = parseGradientStencil(arguments);
+    settings.gradientStencil = parseGradientOption(arguments);
 }
 
-render::GradientStencil parseGradientStencil(const Arguments& arguments) {
+render::GradientStencil parseGradientOption(const Arguments& arguments) {
     // Central differences unless --gradient smoothed asks for the normals of a noisy scan.
     const std::string gradient = arguments.option("gradient", "central");
-    if (gradient != "central" && gradient != "smoothed")
+    const std::optional<render::GradientStencil> stencil = render::parseGradientStencil(gradient);
+    if (!stencil)
         throw UsageError("--gradient " + gradient, "expected central or smoothed");
-    return gradient == "smoothed" ? render::GradientStencil::Smoothed
-                                  : render::GradientStencil::Central;
-}
-
-const char* gradientStencilName(render::GradientStencil stencil) {
-    return stencil == render::GradientStencil::Smoothed ? "smoothed" : "central";
+    return *stencil;
 }
 
 void parseSuggestiveThreshold(const Arguments& arguments, RenderRequest& request) {
@@ -221,7 +217,7 @@ RenderRequest parseRenderRequest(const Arguments& arguments, const std::string& 
         throw UsageError("--visibility " + visibility, "expected on or off");
     request.settings.visibility = visibility == "on";
     request.settings.threads = unsigned(std::max(0.0, arguments.number("threads", 0)));
-    parseStrokeAndBorder(arguments, render::kDefaultMinStrokePixels, request.settings);
+    parseLineOptions(arguments, render::kDefaultMinStrokePixels, request.settings);
     if (!arguments.option("iso"))
         throw UsageError(command, "needs --iso HU");
     request.settings.isoReal = arguments.number("iso", 0.0);

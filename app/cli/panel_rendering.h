@@ -55,12 +55,10 @@ void parseSuggestiveThreshold(const Arguments& arguments, RenderRequest& request
 // --min-stroke PX (default `defaultMinStroke`), --border closed|open (default closed) and
 // --gradient into `settings`, as `render`, `export` and `bench` read them; throws UsageError for
 // a bad value.
-void parseStrokeAndBorder(const Arguments& arguments, int defaultMinStroke,
-                          render::SilhouetteSettings& settings);
+void parseLineOptions(const Arguments& arguments, int defaultMinStroke,
+                      render::SilhouetteSettings& settings);
 // --gradient central|smoothed (default central): the normals' finite differences.
-render::GradientStencil parseGradientStencil(const Arguments& arguments);
-// "central" or "smoothed", as --gradient takes it (reports, JSON).
-const char* gradientStencilName(render::GradientStencil stencil);
+render::GradientStencil parseGradientOption(const Arguments& arguments);
 // --view, --camera; the bounds are set once the volume is known (frameSurface).
 render::CameraSetup parseCameraView(const Arguments& arguments);
 // --size, default 512x512.

@@ -130,7 +130,7 @@ void RenderWorker::renderSilhouette(const FrameRequest& request, FrameResult& re
 // the suggestive contours into the silhouette's mask.
 void RenderWorker::addSuggestive(const FrameRequest& request, FrameResult& result) {
     const SurfaceForm form = SurfaceForm::of(request.settings);
-    if (!m_suggestive || m_suggestiveIso != request.iso || !(m_suggestiveForm == form)) {
+    if (!m_suggestive || m_suggestiveIso != request.iso || m_suggestiveForm != form) {
         m_suggestive.reset();
         if (m_mesh && m_meshIso == request.iso && m_meshForm == form) {
             m_suggestiveMesh = m_mesh;
@@ -231,7 +231,7 @@ void RenderWorker::extractMesh(const FrameRequest& request, FrameResult& result)
     if (result.mesh)
         return;
     const SurfaceForm form = SurfaceForm::of(request.settings);
-    if (!(m_meshForm == form))
+    if (m_meshForm != form)
         m_mesh.reset(); // the kept mesh is another surface (open / closed, other normals)
     if (m_mesh && m_meshIso == request.iso && !request.forceExtract && !request.wantMesh)
         return; // the iso image re-draws the mesh it has
@@ -243,7 +243,7 @@ void RenderWorker::extractMesh(const FrameRequest& request, FrameResult& result)
     // The iso panel's mesh is the same whatever the brick schedule (canonical order), so the
     // extractor keeps one brick grid and reuses it across iso-values.
     const int bricks = request.settings.brickCells;
-    if (!m_extractor || m_extractorBricks != bricks || !(m_extractorForm == form)) {
+    if (!m_extractor || m_extractorBricks != bricks || m_extractorForm != form) {
         render::IsoSurfaceOptions options;
         options.brickCells = bricks;
         options.threads = request.settings.threads;

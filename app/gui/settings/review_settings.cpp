@@ -62,9 +62,9 @@ ReviewSettings ReviewSettings::load(QSettings& settings) {
     s.testAlongSegment = settings.value("alongSegment", s.testAlongSegment).toBool();
     s.minStrokePixels = clampInt(settings.value("minStrokePixels"), 0, 1000, s.minStrokePixels);
     s.closeAtBorder = settings.value("closeAtBorder", s.closeAtBorder).toBool();
-    s.gradientStencil = settings.value("gradient").toString() == "smoothed"
-                            ? render::GradientStencil::Smoothed
-                            : render::GradientStencil::Central;
+    s.gradientStencil =
+        render::parseGradientStencil(settings.value("gradient").toString().toStdString())
+            .value_or(s.gradientStencil);
     s.suggestiveContours = settings.value("suggestiveContours", s.suggestiveContours).toBool();
     s.lineWidth = std::clamp(settings.value("lineWidth", s.lineWidth).toDouble(), 1.0, 8.0);
     s.lineColour = colourOr(settings.value("lineColour"), s.lineColour);
@@ -95,8 +95,8 @@ void ReviewSettings::save(QSettings& settings) const {
     settings.setValue("alongSegment", testAlongSegment);
     settings.setValue("minStrokePixels", minStrokePixels);
     settings.setValue("closeAtBorder", closeAtBorder);
-    settings.setValue("gradient", gradientStencil == render::GradientStencil::Smoothed ? "smoothed"
-                                                                                       : "central");
+    settings.setValue("gradient",
+                      QString::fromUtf8(render::gradientStencilName(gradientStencil).data()));
     settings.setValue("suggestiveContours", suggestiveContours);
     settings.setValue("lineWidth", lineWidth);
     settings.setValue("lineColour", lineColour.name());

@@ -8,7 +8,6 @@
 #include "tuning.h"
 
 #include <GL/gl.h>
-#include <cstring>
 #include <cuda_gl_interop.h>
 
 namespace lw::kernels::cuda {
@@ -20,8 +19,8 @@ struct GlMaskReader::Impl {
     dispatch::Stream stream;
     dispatch::DeviceBuffer<uchar4> colour;
     dispatch::DeviceBuffer<std::uint8_t> mask;
-    dispatch::PinnedBuffer<std::uint8_t> staging;
     StrokePruning pruning;
+    MaskDownload download;
 
     // The texture's texels into `colour` (mapped on the stream: GL's drawing into it completes
     // first; unmapped whatever happened, as GL may not draw into a texture CUDA still holds).
@@ -75,7 +74,6 @@ CudaStatus GlMaskReader::read(std::uint8_t backgroundRed, int minPixels, int gap
     LW_RETURN_IF_FAILED(s.stream.create());
     LW_RETURN_IF_FAILED(s.colour.reserve(pixels, "cudaMalloc(colour)"));
     LW_RETURN_IF_FAILED(s.mask.reserve(pixels, "cudaMalloc(mask)"));
-    LW_RETURN_IF_FAILED(s.staging.reserve(pixels, "cudaMallocHost(mask)"));
     cudaStream_t st = s.stream.get();
     const CudaStatus copied = s.copyColour(st);
     if (!copied.ok()) {
@@ -89,11 +87,9 @@ CudaStatus GlMaskReader::read(std::uint8_t backgroundRed, int minPixels, int gap
                                                    s.mask.data());
     LW_CUDA_LAUNCHED("glmask::maskFromColour");
     LW_RETURN_IF_FAILED(s.pruning.run(s.mask.data(), width, height, minPixels, gapPixels, st));
-    LW_CUDA_TRY(
-        cudaMemcpyAsync(s.staging.data(), s.mask.data(), pixels, cudaMemcpyDeviceToHost, st),
-        "cudaMemcpy(mask)");
+    LW_RETURN_IF_FAILED(s.download.queue(s.mask.data(), pixels, st));
     LW_CUDA_TRY(cudaStreamSynchronize(st), "GlMaskReader::read");
-    std::memcpy(mask, s.staging.data(), pixels);
+    s.download.deliver(mask);
     return CudaStatus::success();
 }
 

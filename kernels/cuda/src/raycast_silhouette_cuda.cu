@@ -6,7 +6,6 @@
 #include "stroke_pruning.h"
 
 #include <algorithm>
-#include <cstring>
 #include <cub/device/device_radix_sort.cuh>
 #include <cub/device/device_select.cuh>
 #include <limits>
@@ -21,7 +20,7 @@ struct RayCastSilhouetteCuda::Impl {
     DeviceBuffer<std::uint8_t> macroOccupied, coarseOccupied;
     glm::ivec3 macroDims{0}, coarseDims{0};
     DeviceBuffer<std::uint8_t> mask;
-    dispatch::PinnedBuffer<std::uint8_t> maskStaging; // the mask's way to the host (ZBufferCuda)
+    MaskDownload download;
     DeviceBuffer<rc::Counters> counters;
     DeviceBuffer<SegmentEndpoints> segments;  // phase 1's output, grown on demand
     DeviceBuffer<std::uint32_t> segmentCells; // each segment's cell (voxel index): the sort key
@@ -325,15 +324,9 @@ RayCastSilhouetteCuda::Impl::renderTyped(const rc::View& view, const RayCastCuda
     LW_RETURN_IF_FAILED(pruning.run(mask.data(), view.camera.width, view.camera.height,
                                     settings.minStrokePixels, settings.strokeGapPixels, st));
     LW_RETURN_IF_FAILED(renderTimer.stop(st));
-    if (pixels > 0) {
-        LW_RETURN_IF_FAILED(maskStaging.reserve(pixels, "cudaMallocHost(mask)"));
-        LW_CUDA_TRY(
-            cudaMemcpyAsync(maskStaging.data(), mask.data(), pixels, cudaMemcpyDeviceToHost, st),
-            "cudaMemcpy(mask)");
-    }
+    LW_RETURN_IF_FAILED(download.queue(mask.data(), pixels, st));
     LW_CUDA_TRY(cudaStreamSynchronize(st), "rc::render");
-    if (pixels > 0)
-        std::memcpy(hostMask, maskStaging.data(), pixels);
+    download.deliver(hostMask);
     frame.renderMs = renderTimer.ms();
     frame.triangles = std::size_t(counts.triangles);
     frame.segments = total;

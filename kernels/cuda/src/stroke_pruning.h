@@ -11,6 +11,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
 
 namespace lw::kernels::cuda {
 
@@ -27,6 +28,34 @@ public:
 
 private:
     dispatch::DeviceBuffer<std::uint32_t> m_labels, m_sizes;
+};
+
+// A device mask's way to the host memory a frame hands out (PixelMask, pageable): through
+// page-locked memory kept between frames. A copy into pageable memory is staged by the driver in
+// chunks and synchronised (some 0.5 ms a megabyte on the H100 machine, against 0.05 ms for a
+// direct transfer plus a host memcpy; method 3's 0.6 ms view was a third that copy).
+class MaskDownload {
+public:
+    // Queues the copy of `pixels` bytes of `deviceMask` on `stream`.
+    CudaStatus queue(const std::uint8_t* deviceMask, std::size_t pixels, cudaStream_t stream) {
+        m_pixels = pixels;
+        if (pixels == 0)
+            return CudaStatus::success();
+        LW_RETURN_IF_FAILED(m_staging.reserve(pixels, "cudaMallocHost(mask)"));
+        LW_CUDA_TRY(
+            cudaMemcpyAsync(m_staging.data(), deviceMask, pixels, cudaMemcpyDeviceToHost, stream),
+            "cudaMemcpy(mask)");
+        return CudaStatus::success();
+    }
+    // Once the stream has been synchronised: the queued mask into `hostMask`.
+    void deliver(std::uint8_t* hostMask) const {
+        if (m_pixels > 0)
+            std::memcpy(hostMask, m_staging.data(), m_pixels);
+    }
+
+private:
+    dispatch::PinnedBuffer<std::uint8_t> m_staging;
+    std::size_t m_pixels = 0;
 };
 
 // A pruned device mask into a GL texture's array (GL_R8, mapped by the caller), queued on

@@ -7,8 +7,6 @@
 #include "tuning.h"
 #include "zbuffer_kernels.cuh"
 
-#include <cstring>
-
 namespace lw::kernels::cuda {
 
 using dispatch::blocksFor;
@@ -21,9 +19,7 @@ struct ZBufferCuda::Impl {
     DeviceBuffer<zb::ScreenVertex> screen;
     DeviceBuffer<std::uint32_t> surface, lines;
     DeviceBuffer<std::uint8_t> mask;
-    // The mask's way to the host: a copy into pageable memory is staged by the driver in chunks
-    // (HostMaskPruner's note), one into page-locked memory plus a host memcpy is not.
-    dispatch::PinnedBuffer<std::uint8_t> maskStaging;
+    MaskDownload download;
     DeviceBuffer<unsigned long long> segmentCount;
     StrokePruning pruning;
     // drawHost's copy of a host mesh.
@@ -195,14 +191,10 @@ CudaStatus ZBufferCuda::resolve(const ZBufferCudaSettings& settings, std::uint8_
         LW_CUDA_LAUNCHED("zb::resolve");
         LW_RETURN_IF_FAILED(s.pruning.run(s.mask.data(), width, height, settings.minStrokePixels,
                                           settings.strokeGapPixels, st));
-        LW_RETURN_IF_FAILED(s.maskStaging.reserve(pixels, "cudaMallocHost(mask)"));
-        LW_CUDA_TRY(cudaMemcpyAsync(s.maskStaging.data(), s.mask.data(), pixels,
-                                    cudaMemcpyDeviceToHost, st),
-                    "cudaMemcpy(mask)");
     }
+    LW_RETURN_IF_FAILED(s.download.queue(s.mask.data(), pixels, st));
     LW_RETURN_IF_FAILED(finishResolve(frame)); // synchronises the stream
-    if (pixels > 0)
-        std::memcpy(hostMask, s.maskStaging.data(), pixels);
+    s.download.deliver(hostMask);
     return CudaStatus::success();
 }
 

@@ -10,6 +10,17 @@
 
 namespace lw::render {
 
+std::string_view gradientStencilName(GradientStencil stencil) {
+    return stencil == GradientStencil::Smoothed ? "smoothed" : "central";
+}
+
+std::optional<GradientStencil> parseGradientStencil(std::string_view name) {
+    for (const GradientStencil stencil : {GradientStencil::Central, GradientStencil::Smoothed})
+        if (name == gradientStencilName(stencil))
+            return stencil;
+    return std::nullopt;
+}
+
 int autoBrickCells(glm::ivec3 dims) {
     // 64 cells: small enough that skipping empty bricks pays on CT (air, soft tissue), large
     // enough that the per-brick apron and bookkeeping stay a few percent.

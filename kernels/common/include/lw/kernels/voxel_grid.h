@@ -216,26 +216,8 @@ template <typename T> struct VoxelGradientSampler {
                     (value(i + sy) - value(i - sy)) * spans.invSpanJ,
                     (value(i + sz) - value(i - sz)) * spans.invSpanK[std::size_t(z)]};
         }
-        const float c = value(i);
-        McVec3 g;
-        if (x > 0 && x < cx)
-            g.x = mcDerivative(value(i - 1), value(i + 1), spans.spanI);
-        else if (spans.dims.nx > 1)
-            g.x = x == 0 ? mcDerivative(c, value(i + 1), spans.edgeSpanI)
-                         : mcDerivative(value(i - 1), c, spans.edgeSpanI);
-        else
-            g.x = 0.0f;
-        if (y > 0 && y < cy)
-            g.y = mcDerivative(value(i - sy), value(i + sy), spans.spanJ);
-        else if (spans.dims.ny > 1)
-            g.y = y == 0 ? mcDerivative(c, value(i + sy), spans.edgeSpanJ)
-                         : mcDerivative(value(i - sy), c, spans.edgeSpanJ);
-        else
-            g.y = 0.0f;
-        const float lo = z > 0 ? value(i - sz) : c;
-        const float hi = z < cz ? value(i + sz) : c;
-        g.z = mcDerivative(lo, hi, spans.spanK[std::size_t(z)]);
-        return g;
+        // At a face: per axis, central or one-sided (the expressions smoothedGradient takes too).
+        return {axisDifference(0, x, y, z), axisDifference(1, x, y, z), axisDifference(2, x, y, z)};
     }
 
     // GradientStencil::Smoothed (diagram at the enum): each component is the difference along
@@ -277,7 +259,8 @@ private:
 
     LW_HOST_DEVICE static int clampTo(int v, int last) { return v < 0 ? 0 : (v > last ? last : v); }
 
-    // The derivative along one axis at grid point (x, y, z), as centralGradient takes it there.
+    // The derivative along one axis at grid point (x, y, z): central inside, one-sided at a face
+    // (one gap across the first and last slice), 0 along an axis of one voxel.
     LW_HOST_DEVICE float axisDifference(int axis, int x, int y, int z) const {
         const GridDims& d = spans.dims;
         const std::size_t i =

@@ -8,7 +8,9 @@
 #include <cstddef>
 #include <cstdint>
 #include <glm/glm.hpp>
+#include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace lw::render {
@@ -21,6 +23,10 @@ using Mesh = kernels::TriangleMesh;
 // smoothed across each axis (the 3D Sobel operator where the voxels are cubes; in-plane only
 // across slices thicker than the pixel) for noisy scans. Diagram: kernels/common voxel_grid.h.
 using GradientStencil = kernels::GradientStencil;
+// "central" or "smoothed", as the CLI's --gradient and the stored settings spell it.
+std::string_view gradientStencilName(GradientStencil stencil);
+// The stencil a name spells; nullopt for any other text.
+std::optional<GradientStencil> parseGradientStencil(std::string_view name);
 
 struct IsoSurfaceOptions {
     // Cells per brick along each axis; 0 extracts the whole volume as one brick (the paper's
