@@ -616,10 +616,10 @@ TEST(CudaBackendMethod2, RenderWithoutAVolumeNamesTheError) {
     }
 }
 
-// Stroke pruning's kernels against the host's flood fill and bridges, bit for bit: sizes at and
+// Stroke pruning's kernels against the host's search and bridges, bit for bit: sizes at and
 // beside the pixel blocks (32 x 8) and the 256-thread label blocks, groups across block edges,
 // gaps (with gap 1 the stroke ends' bridges too; the sparse masks have many).
-TEST(CudaBackendStrokePruning, EqualsTheHostFloodFill) {
+TEST(CudaBackendStrokePruning, EqualsTheHostSearch) {
     std::mt19937 random(5);
     for (const glm::ivec2 size :
          {glm::ivec2(1, 1), glm::ivec2(31, 7), glm::ivec2(32, 8), glm::ivec2(33, 9),

@@ -12,6 +12,8 @@
 #include <gtest/gtest.h>
 #include <numeric>
 #include <random>
+#include <utility>
+#include <vector>
 
 namespace {
 
@@ -47,8 +49,8 @@ const std::vector<glm::ivec2> kBrokenLine = {{0, 1}, {1, 1}, {3, 1}, {4, 1},
 const std::vector<glm::ivec2> kRowDiagonalDot = {{0, 0}, {1, 0}, {2, 0}, {3, 0},  {4, 0},
                                                  {5, 0}, {8, 2}, {9, 3}, {10, 4}, {1, 6}};
 
-// Groups touching the image's edges and corners (the search frames the image: indices must map
-// back): four lone corners, a 3-pixel run along the bottom edge, a 2-pixel run down the right
+// Groups touching the image's edges and corners (the search must not wrap around into the next
+// row): four lone corners, a 3-pixel run along the bottom edge, a 2-pixel run down the right
 // edge one pixel short of the bottom-right corner.
 const std::vector<glm::ivec2> kAtTheEdges = {{0, 0}, {11, 0}, {0, 7},  {11, 7}, {5, 7},
                                              {6, 7}, {7, 7},  {11, 4}, {11, 5}};
@@ -182,7 +184,7 @@ PixelMask randomStrokes(int width, int height, unsigned seed) {
 
 // The device's rules (lw/kernels/stroke_components.h), run on the host: each pixel's unions in a
 // random order, as parallel threads may run them, then the groups' sizes and the short groups
-// cleared, as the kernels do. The result must be the flood fill's.
+// cleared, as the kernels do. The result must be PixelMask's.
 PixelMask pruneByUnionFind(const PixelMask& mask, int minPixels, int gapPixels, unsigned seed) {
     const int width = mask.width(), height = mask.height();
     const std::size_t pixels = std::size_t(width) * std::size_t(height);
@@ -222,6 +224,64 @@ TEST(StrokeUnionFind, FindsTheFloodFillsGroupsInAnyOrder) {
                         << size.x << "x" << size.y << " gap " << gap << " min " << minPixels
                         << " seed " << seed;
                 }
+}
+
+// The groups by the plainest search there is: a breadth-first walk from every unlabelled line
+// pixel over every pixel within `reach`, bounds checked. Returns each pixel's group number (-1:
+// off) and the groups' sizes in the order of their first pixels.
+std::pair<std::vector<int>, std::vector<std::size_t>>
+groupsByBreadthFirstSearch(const PixelMask& mask, int reach) {
+    std::vector<int> group(mask.pixels().size(), -1);
+    std::vector<std::size_t> sizes;
+    for (int y = 0; y < mask.height(); ++y)
+        for (int x = 0; x < mask.width(); ++x) {
+            if (!mask.get(x, y) || group[std::size_t(y * mask.width() + x)] >= 0)
+                continue;
+            std::vector<glm::ivec2> queue{{x, y}};
+            group[std::size_t(y * mask.width() + x)] = int(sizes.size());
+            for (std::size_t next = 0; next < queue.size(); ++next)
+                for (int dy = -reach; dy <= reach; ++dy)
+                    for (int dx = -reach; dx <= reach; ++dx) {
+                        const glm::ivec2 n = queue[next] + glm::ivec2(dx, dy);
+                        if (mask.contains(n.x, n.y) && mask.get(n.x, n.y) &&
+                            group[std::size_t(n.y * mask.width() + n.x)] < 0) {
+                            group[std::size_t(n.y * mask.width() + n.x)] = int(sizes.size());
+                            queue.push_back(n);
+                        }
+                    }
+            sizes.push_back(queue.size());
+        }
+    return {group, sizes};
+}
+
+// PixelMask's search (a union-find over the line pixels, row cursors for the neighbours) against
+// the plain one, on sizes around its eight-pixel row skipping, at gaps 0 to 2; and pruning with
+// its stroke ends found during the search against removal followed by the separate bridge pass.
+TEST(StrokeGroups, MatchTheBreadthFirstSearch) {
+    for (const glm::ivec2 size :
+         {glm::ivec2(1, 1), glm::ivec2(1, 37), glm::ivec2(7, 5), glm::ivec2(9, 3),
+          glm::ivec2(33, 9), glm::ivec2(64, 64), glm::ivec2(257, 31)})
+        for (const int gap : {0, 1, 2})
+            for (const unsigned seed : {3u, 4u, 5u}) {
+                const PixelMask mask = randomStrokes(size.x, size.y, seed);
+                const auto [group, sizes] = groupsByBreadthFirstSearch(mask, 1 + gap);
+                EXPECT_EQ(mask.componentSizes(gap), sizes)
+                    << size.x << "x" << size.y << " gap " << gap << " seed " << seed;
+                for (const int minPixels : {2, 5, 12}) {
+                    PixelMask expected = mask;
+                    for (std::size_t i = 0; i < group.size(); ++i)
+                        if (group[i] >= 0 && sizes[std::size_t(group[i])] < std::size_t(minPixels))
+                            expected.pixels()[i] = 0;
+                    PixelMask removed = mask;
+                    removed.removeComponentsSmallerThan(minPixels, gap);
+                    EXPECT_TRUE(removed == expected) << size.x << "x" << size.y << " gap " << gap;
+                    if (gap >= 1)
+                        expected.bridgeStrokeEnds();
+                    PixelMask pruned = mask;
+                    pruned.pruneStrokes(minPixels, gap);
+                    EXPECT_TRUE(pruned == expected) << size.x << "x" << size.y << " gap " << gap;
+                }
+            }
 }
 
 // A sphere of radius 18 voxels with dust: single voxels above the iso-value far from it, each a

@@ -2,7 +2,7 @@
 
 // Stroke pruning on the device (kernels in stroke_kernels.cuh): the short groups of line pixels
 // of a device mask cleared in place, before the mask goes to the host or into a GL texture, so
-// that the host's flood fill (PixelMask::removeComponentsSmallerThan, single-threaded) is not on
+// that the host's search (PixelMask::removeComponentsSmallerThan, single-threaded) is not on
 // the frame's path. The result equals PixelMask::pruneStrokes bit for bit: both find the same
 // groups and the same bridges.
 // Internal: CUDA types allowed.

@@ -51,149 +51,221 @@ PixelMask PixelMask::dilated(int radius) const {
 
 namespace {
 
-// The groups of on pixels whose members lie within Chebyshev distance `reach` of each other (1:
-// 8-connected), found by flood fill over a copy framed by `reach` empty pixels, so that no
-// neighbour needs a bounds check and a pixel's neighbours are fixed index offsets. Stroke
-// pruning runs on every frame after the methods have drawn, over every line pixel: with
-// visibility off that is some 10^5 pixels a frame, and this is what keeps it a few ms.
-class ComponentFinder {
-public:
-    ComponentFinder(const std::vector<std::uint8_t>& pixels, int width, int height, int reach)
-        : m_reach(reach), m_width(width), m_framedWidth(std::size_t(width) + 2 * reach),
-          m_framed(m_framedWidth * (std::size_t(height) + 2 * reach), 0) {
-        for (int y = 0; y < height; ++y) {
-            const std::uint8_t* row = pixels.data() + std::size_t(y) * std::size_t(width);
-            std::uint8_t* out = m_framed.data() + framedIndex(0, y);
-            for (int x = 0; x < width; ++x)
-                out[x] = row[x] != 0 ? kUnvisited : 0;
-        }
-        for (int dy = -reach; dy <= reach; ++dy)
-            for (int dx = -reach; dx <= reach; ++dx)
-                if (dx != 0 || dy != 0)
-                    m_offsets.push_back(std::ptrdiff_t(dy) * std::ptrdiff_t(m_framedWidth) + dx);
-    }
-
-    // fn(group): the framed indices of each group's pixels (originalIndex() maps them back).
-    template <typename Fn> void forEach(Fn&& fn) {
-        std::vector<std::size_t> group;
-        const std::uint8_t* begin = m_framed.data();
-        const std::size_t size = m_framed.size();
-        for (std::size_t start = 0; start < size; ++start) {
-            // Line pixels are a few percent of the image: memchr skips the rest fast.
-            const void* found = std::memchr(begin + start, kUnvisited, size - start);
-            if (!found)
-                break;
-            start = std::size_t(static_cast<const std::uint8_t*>(found) - begin);
-            group.assign(1, start);
-            m_framed[start] = kVisited;
-            // The group itself is the work list: members are appended as they are found.
-            for (std::size_t next = 0; next < group.size(); ++next) {
-                const std::size_t i = group[next];
-                for (const std::ptrdiff_t offset : m_offsets) {
-                    const std::size_t n = std::size_t(std::ptrdiff_t(i) + offset);
-                    if (m_framed[n] == kUnvisited) {
-                        m_framed[n] = kVisited;
-                        group.push_back(n);
-                    }
-                }
+// fn(first, last) for each run of consecutive line pixels of a row, skipping eight off pixels
+// at a time: a line drawing is mostly empty, and strokes are pruned on every frame.
+template <typename Fn> void forEachRunOfRow(const std::uint8_t* row, int width, Fn&& fn) {
+    int x = 0;
+    while (x < width) {
+        if (x + 8 <= width) {
+            std::uint64_t word;
+            std::memcpy(&word, row + x, sizeof word);
+            if (word == 0) {
+                x += 8;
+                continue;
             }
-            fn(group);
         }
+        if (!row[x]) {
+            ++x;
+            continue;
+        }
+        int last = x;
+        while (last + 1 < width && row[last + 1])
+            ++last;
+        fn(x, last);
+        x = last + 2; // the pixel after a run is off
     }
-
-    std::size_t originalIndex(std::size_t framed) const {
-        const std::size_t x = framed % m_framedWidth - std::size_t(m_reach);
-        const std::size_t y = framed / m_framedWidth - std::size_t(m_reach);
-        return y * std::size_t(m_width) + x;
-    }
-
-private:
-    static constexpr std::uint8_t kUnvisited = 1, kVisited = 2;
-    std::size_t framedIndex(int x, int y) const {
-        return (std::size_t(y) + std::size_t(m_reach)) * m_framedWidth + std::size_t(x) +
-               std::size_t(m_reach);
-    }
-
-    int m_reach;
-    int m_width;
-    std::size_t m_framedWidth;
-    std::vector<std::uint8_t> m_framed;
-    std::vector<std::ptrdiff_t> m_offsets;
-};
-
-} // namespace
-
-std::size_t PixelMask::removeComponentsSmallerThan(int minPixels, int gapPixels) {
-    std::size_t removed = 0;
-    if (minPixels <= 1 || m_pixels.empty())
-        return removed;
-    ComponentFinder finder(m_pixels, m_width, m_height, 1 + std::max(0, gapPixels));
-    finder.forEach([&](const std::vector<std::size_t>& group) {
-        if (group.size() >= std::size_t(minPixels))
-            return;
-        for (const std::size_t i : group)
-            m_pixels[finder.originalIndex(i)] = 0;
-        removed += group.size();
-    });
-    return removed;
 }
 
-namespace {
-
-// The line pixels of a mask row by row, skipping eight off pixels at a time: a line drawing is
-// mostly empty, and the bridges are looked for on every frame.
+// visit(x, y) for each line pixel of a mask, row by row.
 template <typename Visit>
 void forEachLinePixel(const std::vector<std::uint8_t>& pixels, int width, int height,
                       Visit&& visit) {
-    for (int y = 0; y < height; ++y) {
-        const std::uint8_t* rowStart = pixels.data() + std::size_t(y) * std::size_t(width);
-        int x = 0;
-        while (x < width) {
-            if (x + 8 <= width) {
-                std::uint64_t word;
-                std::memcpy(&word, rowStart + x, sizeof word);
-                if (word == 0) {
-                    x += 8;
-                    continue;
-                }
-            }
-            if (rowStart[x])
-                visit(x, y);
-            ++x;
-        }
-    }
+    for (int y = 0; y < height; ++y)
+        forEachRunOfRow(pixels.data() + std::size_t(y) * std::size_t(width), width,
+                        [&](int first, int last) {
+                            for (int x = first; x <= last; ++x)
+                                visit(x, y);
+                        });
 }
 
-} // namespace
+// The groups of line pixels whose members lie within Chebyshev distance `reach` of each other
+// (1: 8-connected), as a union-find over the mask's runs (a row's consecutive line pixels),
+// numbered in raster order:
+//
+//     row y-2:  . a a a . . . . b b       run r = [first, last] of row y unites with the runs
+//     row y-1:  . . . . . . . . . .       of the `reach` rows above that overlap
+//     row y  :  c . r r r . . . . .       [first - reach, last + reach], and with the runs to
+//                                         its left in its own row ending at first - reach or
+//     reach 2: r joins a and c, not b     later: every pair of neighbours is united once, by
+//                                         the later of the two.
+//
+// The labels follow the device's rules (lw/kernels/stroke_components.h), with run numbers for
+// labels: a label points to a number no larger than its own, so a group's root is the run of
+// its first pixel in raster order. Each earlier row is walked with a cursor that only moves
+// right. With visibility off a frame has some 10^5 line pixels in 10^6, pruned on every frame:
+// runs are a third to a quarter of the pixels, and nothing the size of the image is allocated.
+class StrokeGroups {
+public:
+    struct Run {
+        std::uint32_t y, first, last; // line pixels (first..last, y)
+        std::uint32_t length() const { return last - first + 1; }
+    };
 
-std::size_t PixelMask::bridgeStrokeEnds() {
-    // A bridge lies beside a stroke end, so only the ends' neighbours are tried; all are found
-    // before any is drawn, as on the device.
+    StrokeGroups(const std::vector<std::uint8_t>& pixels, int width, int height, int reach)
+        : m_reach(std::uint32_t(reach)), m_rowBegin(std::size_t(height) + 1, 0) {
+        for (int y = 0; y < height; ++y) {
+            const std::uint8_t* row = pixels.data() + std::size_t(y) * std::size_t(width);
+            forEachRunOfRow(row, width, [&](int first, int last) {
+                m_runs.push_back({std::uint32_t(y), std::uint32_t(first), std::uint32_t(last)});
+            });
+            m_rowBegin[std::size_t(y) + 1] = std::uint32_t(m_runs.size());
+        }
+        m_label.resize(m_runs.size());
+        for (std::uint32_t i = 0; i < m_label.size(); ++i)
+            m_label[i] = i;
+        m_cursor.resize(std::size_t(reach));
+        for (int y = 0; y < height; ++y)
+            uniteRow(y);
+    }
+
+    const std::vector<Run>& runs() const { return m_runs; }
+    std::uint32_t root(std::uint32_t run) { return kernels::strokeRoot(m_label.data(), run); }
+
+    // The pixels of each group, at its root run's number (0 elsewhere).
+    std::vector<std::uint32_t> sizesAtRoots() {
+        std::vector<std::uint32_t> sizes(m_runs.size(), 0);
+        for (std::uint32_t i = 0; i < sizes.size(); ++i)
+            sizes[root(i)] += m_runs[i].length();
+        return sizes;
+    }
+
+private:
+    void uniteRow(int y) {
+        const std::uint32_t begin = m_rowBegin[std::size_t(y)];
+        const std::uint32_t end = m_rowBegin[std::size_t(y) + 1];
+        const int firstRow = std::max(0, y - int(m_reach));
+        for (int above = firstRow; above < y; ++above)
+            m_cursor[std::size_t(y - above - 1)] = m_rowBegin[std::size_t(above)];
+        for (std::uint32_t run = begin; run < end; ++run) {
+            const Run& r = m_runs[run];
+            std::uint32_t root = run; // the run's root so far: joins hook onto it
+            for (int above = firstRow; above < y; ++above) {
+                std::uint32_t& other = m_cursor[std::size_t(y - above - 1)];
+                const std::uint32_t rowEnd = m_rowBegin[std::size_t(above) + 1];
+                while (other < rowEnd && m_runs[other].last + m_reach < r.first)
+                    ++other;
+                for (std::uint32_t n = other; n < rowEnd && m_runs[n].first <= r.last + m_reach;
+                     ++n)
+                    root = join(root, n);
+            }
+            for (std::uint32_t n = run; n > begin && m_runs[n - 1].last + m_reach >= r.first; --n)
+                root = join(root, n - 1);
+        }
+    }
+
+    // Joins root `root` with the group of run `other`; returns the joined group's root. The
+    // larger root is hooked onto the smaller, so labels keep pointing down. In sequence (one
+    // thread) a root stays a root until this changes it, so no compare-and-swap is needed.
+    std::uint32_t join(std::uint32_t root, std::uint32_t other) {
+        const std::uint32_t otherRoot = this->root(other);
+        if (otherRoot == root)
+            return root;
+        if (otherRoot < root) {
+            m_label[root] = otherRoot;
+            return otherRoot;
+        }
+        m_label[otherRoot] = root;
+        return root;
+    }
+
+    std::uint32_t m_reach;
+    std::vector<Run> m_runs;               // raster order
+    std::vector<std::uint32_t> m_rowBegin; // row y's runs are [m_rowBegin[y], m_rowBegin[y+1])
+    std::vector<std::uint32_t> m_label;
+    std::vector<std::uint32_t> m_cursor; // per earlier row: its first run that may still join
+};
+
+int reachOfGap(int gapPixels) {
+    return 1 + std::max(0, gapPixels);
+}
+
+// Draws the bridges (kernels::bridgesStrokeEnds) beside the given stroke ends: a bridge lies
+// beside a stroke end, so only the ends' neighbours are tried; all are found before any is
+// drawn, as on the device.
+std::size_t drawBridgesBeside(std::vector<std::uint8_t>& pixels, int width, int height,
+                              const std::vector<std::size_t>& ends) {
     std::vector<std::size_t> bridges;
-    const std::uint8_t* mask = m_pixels.data();
-    forEachLinePixel(m_pixels, m_width, m_height, [&](int x, int y) {
-        if (kernels::lineNeighbourCount(mask, m_width, m_height, x, y) > 1)
-            return;
+    for (const std::size_t end : ends) {
+        const int x = int(end % std::size_t(width)), y = int(end / std::size_t(width));
         for (int dy = -1; dy <= 1; ++dy)
             for (int dx = -1; dx <= 1; ++dx)
-                if (kernels::bridgesStrokeEnds(mask, m_width, m_height, x + dx, y + dy))
-                    bridges.push_back(index(x + dx, y + dy));
-    });
+                if (kernels::bridgesStrokeEnds(pixels.data(), width, height, x + dx, y + dy))
+                    bridges.push_back(std::size_t(y + dy) * std::size_t(width) +
+                                      std::size_t(x + dx));
+    }
     std::size_t drawn = 0;
     for (const std::size_t i : bridges)
-        if (!m_pixels[i]) {
-            m_pixels[i] = 1;
+        if (!pixels[i]) {
+            pixels[i] = 1;
             ++drawn;
         }
     return drawn;
 }
 
+} // namespace
+
+std::size_t PixelMask::removeComponentsSmallerThan(int minPixels, int gapPixels) {
+    return removeStrokesSmallerThan(minPixels, gapPixels, nullptr);
+}
+
+std::size_t PixelMask::removeStrokesSmallerThan(int minPixels, int gapPixels,
+                                                std::vector<std::size_t>* strokeEnds) {
+    if (minPixels <= 1 || m_pixels.empty())
+        return 0;
+    StrokeGroups groups(m_pixels, m_width, m_height, reachOfGap(gapPixels));
+    const std::vector<std::uint32_t> sizes = groups.sizesAtRoots();
+    std::size_t removed = 0;
+    for (std::uint32_t i = 0; i < groups.runs().size(); ++i) {
+        const StrokeGroups::Run run = groups.runs()[i];
+        if (sizes[groups.root(i)] >= std::uint32_t(minPixels))
+            continue;
+        std::memset(m_pixels.data() + index(int(run.first), int(run.y)), 0, run.length());
+        removed += run.length();
+    }
+    if (strokeEnds) {
+        // A run's inner pixels have two line neighbours: only its first and last pixels can
+        // be stroke ends. Counted on the pruned mask (a removed pixel's neighbours were in its
+        // group and went with it, so a kept pixel's count is the same).
+        for (const StrokeGroups::Run run : groups.runs())
+            for (const std::uint32_t x : {run.first, run.last}) {
+                if (m_pixels[index(int(x), int(run.y))] &&
+                    kernels::lineNeighbourCount(m_pixels.data(), m_width, m_height, int(x),
+                                                int(run.y)) <= 1)
+                    strokeEnds->push_back(index(int(x), int(run.y)));
+                if (run.first == run.last)
+                    break;
+            }
+    }
+    return removed;
+}
+
+std::size_t PixelMask::bridgeStrokeEnds() {
+    std::vector<std::size_t> ends;
+    forEachLinePixel(m_pixels, m_width, m_height, [&](int x, int y) {
+        if (kernels::lineNeighbourCount(m_pixels.data(), m_width, m_height, x, y) <= 1)
+            ends.push_back(index(x, y));
+    });
+    return drawBridgesBeside(m_pixels, m_width, m_height, ends);
+}
+
 std::size_t PixelMask::pruneStrokes(int minPixels, int gapPixels) {
     if (minPixels <= 1)
         return 0;
-    const std::size_t removed = removeComponentsSmallerThan(minPixels, gapPixels);
+    std::vector<std::size_t> ends;
+    const std::size_t removed =
+        removeStrokesSmallerThan(minPixels, gapPixels, gapPixels >= 1 ? &ends : nullptr);
     if (gapPixels >= 1)
-        bridgeStrokeEnds();
+        drawBridgesBeside(m_pixels, m_width, m_height, ends);
     return removed;
 }
 
@@ -201,8 +273,11 @@ std::vector<std::size_t> PixelMask::componentSizes(int gapPixels) const {
     std::vector<std::size_t> sizes;
     if (m_pixels.empty())
         return sizes;
-    ComponentFinder finder(m_pixels, m_width, m_height, 1 + std::max(0, gapPixels));
-    finder.forEach([&](const std::vector<std::size_t>& group) { sizes.push_back(group.size()); });
+    StrokeGroups groups(m_pixels, m_width, m_height, reachOfGap(gapPixels));
+    const std::vector<std::uint32_t> atRoots = groups.sizesAtRoots();
+    for (const std::uint32_t size : atRoots)
+        if (size > 0)
+            sizes.push_back(size);
     return sizes;
 }
 

@@ -125,8 +125,8 @@ struct GeometryShaderSilhouetteRenderer::State {
     // device, is pruned there and only the result is downloaded (GlMaskReader; glReadPixels
     // with the host's flip and threshold cost 0.5 ms a 1024^2 frame on the H100 machine, the
     // pruner's upload and a second transfer 0.45 ms more); else it is read back, and the CUDA
-    // source, where there is one, prunes it on the device (the host's flood fill is
-    // single-threaded: 0.7 ms a 1024^2 frame there, 2 ms with visibility off).
+    // source, where there is one, prunes it on the device (the host's search is
+    // single-threaded).
     void readLines(const Camera& camera, const SilhouetteSettings& settings,
                    SilhouetteFrame& frame) {
         frame.lines = PixelMask(camera.width(), camera.height());

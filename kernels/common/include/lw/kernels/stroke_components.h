@@ -2,7 +2,9 @@
 
 // Stroke pruning's groups of line pixels as a union-find over pixel labels: the rules the CUDA
 // kernels run once per pixel in parallel (kernels/cuda/src/stroke_kernels.cuh), and that a test
-// runs pixel by pixel on the host against PixelMask's flood fill (which the CPU back-ends use).
+// runs pixel by pixel on the host against PixelMask's search. The CPU back-ends' search
+// (PixelMask, modules/render/src/pixel_mask.cpp) applies the same rules in raster order to labels
+// that number the line pixels alone.
 //
 // A group is what PixelMask::removeComponentsSmallerThan calls one: line pixels joined through
 // steps of Chebyshev distance <= reach (reach 1: 8-connected; reach 2: a one-pixel gap bridged).

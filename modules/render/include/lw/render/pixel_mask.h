@@ -39,7 +39,7 @@ public:
     // gapPixels), then, when strokes join across a gap (gapPixels >= 1), bridgeStrokeEnds. Nothing
     // for minPixels <= 1. Returns the pixels removed.
     std::size_t pruneStrokes(int minPixels, int gapPixels);
-    // Sizes of the groups of on pixels (in no particular order), as above.
+    // Sizes of the groups of on pixels, in the raster order of their first pixels, as above.
     std::vector<std::size_t> componentSizes(int gapPixels = 0) const;
 
     core::ImageRgba8 toImage(core::Rgba8 on = {255, 255, 255, 255},
@@ -52,6 +52,10 @@ public:
     friend bool operator==(const PixelMask&, const PixelMask&) = default;
 
 private:
+    // removeComponentsSmallerThan, and the stroke ends (line pixels with at most one line pixel
+    // among their eight neighbours) that stay, as pixel indices, when `strokeEnds` is given.
+    std::size_t removeStrokesSmallerThan(int minPixels, int gapPixels,
+                                         std::vector<std::size_t>* strokeEnds);
     std::size_t index(int x, int y) const {
         return std::size_t(y) * std::size_t(m_width) + std::size_t(x);
     }

@@ -2,7 +2,7 @@
 
 // Stroke pruning on the GPU for a mask in host memory: uploaded, pruned by the kernels methods
 // 2 and 3 run on their device masks, downloaded. Method 1 on the CUDA back-end reads its mask
-// back from GL and prunes it here instead of in the host's single-threaded flood fill. The tests
+// back from GL and prunes it here instead of in the host's single-threaded search. The tests
 // hold it against the host's PixelMask::pruneStrokes. Public header: no CUDA
 // types.
 
