@@ -182,6 +182,26 @@ PixelMask randomStrokes(int width, int height, unsigned seed) {
     return mask;
 }
 
+// A sparser random mask of dashed strokes: pieces of 1 to 6 pixels with one-pixel gaps, in the
+// eight directions, so that many gaps lie between stroke ends and get bridged.
+PixelMask dashedStrokes(int width, int height, unsigned seed) {
+    PixelMask mask(width, height);
+    std::mt19937 random(seed);
+    const int strokes = std::max(1, width * height / 150);
+    for (int i = 0; i < strokes; ++i) {
+        glm::ivec2 p(int(random() % unsigned(width)), int(random() % unsigned(height)));
+        glm::ivec2 step(int(random() % 3) - 1, int(random() % 3) - 1);
+        if (step == glm::ivec2(0))
+            step.x = 1;
+        for (int dash = 0, dashes = 1 + int(random() % 4); dash < dashes; ++dash) {
+            for (int n = 1 + int(random() % 6); n > 0 && mask.contains(p.x, p.y); --n, p += step)
+                mask.set(p.x, p.y);
+            p += step; // the gap
+        }
+    }
+    return mask;
+}
+
 // The device's rules (lw/kernels/stroke_components.h), run on the host: each pixel's unions in a
 // random order, as parallel threads may run them, then the groups' sizes and the short groups
 // cleared, as the kernels do. The result must be PixelMask's.
@@ -254,16 +274,19 @@ groupsByBreadthFirstSearch(const PixelMask& mask, int reach) {
     return {group, sizes};
 }
 
-// PixelMask's search (a union-find over the line pixels, row cursors for the neighbours) against
-// the plain one, on sizes around its eight-pixel row skipping, at gaps 0 to 2; and pruning with
-// its stroke ends found during the search against removal followed by the separate bridge pass.
+// PixelMask's search (a union-find over the mask's runs, row cursors for the neighbours) against
+// the plain one, on sizes around its eight-pixel row skipping, at gaps 0 to 2; and pruning, which
+// does its three steps in one walk, against them one after the other: the groups within the gap
+// removed when short, the separate bridge pass, the 8-connected pieces removed when short.
 TEST(StrokeGroups, MatchTheBreadthFirstSearch) {
+    std::size_t bridged = 0, piecesRemoved = 0; // over all cases: the later steps are exercised
     for (const glm::ivec2 size :
          {glm::ivec2(1, 1), glm::ivec2(1, 37), glm::ivec2(7, 5), glm::ivec2(9, 3),
           glm::ivec2(33, 9), glm::ivec2(64, 64), glm::ivec2(257, 31)})
         for (const int gap : {0, 1, 2})
-            for (const unsigned seed : {3u, 4u, 5u}) {
-                const PixelMask mask = randomStrokes(size.x, size.y, seed);
+            for (const unsigned seed : {3u, 4u, 5u, 6u}) {
+                const PixelMask mask = seed % 2 ? randomStrokes(size.x, size.y, seed)
+                                                : dashedStrokes(size.x, size.y, seed);
                 const auto [group, sizes] = groupsByBreadthFirstSearch(mask, 1 + gap);
                 EXPECT_EQ(mask.componentSizes(gap), sizes)
                     << size.x << "x" << size.y << " gap " << gap << " seed " << seed;
@@ -275,13 +298,24 @@ TEST(StrokeGroups, MatchTheBreadthFirstSearch) {
                     PixelMask removed = mask;
                     removed.removeComponentsSmallerThan(minPixels, gap);
                     EXPECT_TRUE(removed == expected) << size.x << "x" << size.y << " gap " << gap;
-                    if (gap >= 1)
-                        expected.bridgeStrokeEnds();
+                    if (gap >= 1) {
+                        bridged += expected.bridgeStrokeEnds();
+                        const std::size_t before = expected.count();
+                        const auto [piece, pieceSizes] = groupsByBreadthFirstSearch(expected, 1);
+                        for (std::size_t i = 0; i < piece.size(); ++i)
+                            if (piece[i] >= 0 &&
+                                pieceSizes[std::size_t(piece[i])] < std::size_t(minPixels))
+                                expected.pixels()[i] = 0;
+                        piecesRemoved += before - expected.count();
+                    }
                     PixelMask pruned = mask;
                     pruned.pruneStrokes(minPixels, gap);
-                    EXPECT_TRUE(pruned == expected) << size.x << "x" << size.y << " gap " << gap;
+                    EXPECT_TRUE(pruned == expected) << size.x << "x" << size.y << " gap " << gap
+                                                    << " seed " << seed << " min " << minPixels;
                 }
             }
+    EXPECT_GT(bridged, 100u);
+    EXPECT_GT(piecesRemoved, 100u);
 }
 
 // A sphere of radius 18 voxels with dust: single voxels above the iso-value far from it, each a
@@ -334,7 +368,7 @@ TEST_P(StrokePruning, DropsTheDustAndKeepsTheContour) {
 
     settings.minStrokePixels = 12;
     const SilhouetteFrame pruned = renderer->render(camera, settings);
-    for (const std::size_t size : pruned.lines.componentSizes(kStrokeGapPixels))
+    for (const std::size_t size : pruned.lines.componentSizes())
         EXPECT_GE(size, 12u);
     // What stays is exactly what the unpruned frame had there, with its one-pixel gaps between
     // stroke ends closed: the contour is untouched.

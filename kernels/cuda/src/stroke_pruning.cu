@@ -23,6 +23,25 @@ CudaStatus StrokePruning::run(std::uint8_t* mask, int width, int height, int min
                                    "the mask has more pixels than a 32-bit label can name");
     LW_RETURN_IF_FAILED(m_labels.reserve(pixels, "cudaMalloc(strokeLabels)"));
     LW_RETURN_IF_FAILED(m_sizes.reserve(pixels, "cudaMalloc(strokeSizes)"));
+    LW_RETURN_IF_FAILED(
+        clearShortGroups(mask, width, height, 1 + std::max(0, gapPixels), minPixels, stream));
+    if (gapPixels < 1)
+        return CudaStatus::success();
+    const dim3 block(tuning::kPixelBlockX, tuning::kPixelBlockY);
+    const dim3 grid(blocksFor(std::size_t(width), tuning::kPixelBlockX),
+                    blocksFor(std::size_t(height), tuning::kPixelBlockY));
+    sk::findBridges<<<grid, block, 0, stream>>>(mask, width, height, m_sizes.data());
+    LW_CUDA_LAUNCHED("sk::findBridges");
+    sk::drawBridges<<<blocksFor(pixels, tuning::kStrokePixelBlock), tuning::kStrokePixelBlock, 0,
+                      stream>>>(mask, std::uint32_t(pixels), m_sizes.data());
+    LW_CUDA_LAUNCHED("sk::drawBridges");
+    // The pieces the bridges did not join into a stroke long enough (PixelMask::pruneStrokes).
+    return clearShortGroups(mask, width, height, 1, minPixels, stream);
+}
+
+CudaStatus StrokePruning::clearShortGroups(std::uint8_t* mask, int width, int height, int reach,
+                                           int minPixels, cudaStream_t stream) {
+    const std::size_t pixels = std::size_t(width) * std::size_t(height);
     const unsigned blocks = blocksFor(pixels, tuning::kStrokePixelBlock);
     const auto count = std::uint32_t(pixels);
     sk::initLabels<<<blocks, tuning::kStrokePixelBlock, 0, stream>>>(mask, count, m_labels.data(),
@@ -31,8 +50,7 @@ CudaStatus StrokePruning::run(std::uint8_t* mask, int width, int height, int min
     const dim3 block(tuning::kPixelBlockX, tuning::kPixelBlockY);
     const dim3 grid(blocksFor(std::size_t(width), tuning::kPixelBlockX),
                     blocksFor(std::size_t(height), tuning::kPixelBlockY));
-    sk::uniteNeighbours<<<grid, block, 0, stream>>>(mask, width, height, 1 + std::max(0, gapPixels),
-                                                    m_labels.data());
+    sk::uniteNeighbours<<<grid, block, 0, stream>>>(mask, width, height, reach, m_labels.data());
     LW_CUDA_LAUNCHED("sk::uniteNeighbours");
     sk::countGroups<<<blocks, tuning::kStrokePixelBlock, 0, stream>>>(mask, count, m_labels.data(),
                                                                       m_sizes.data());
@@ -40,12 +58,6 @@ CudaStatus StrokePruning::run(std::uint8_t* mask, int width, int height, int min
     sk::clearShortGroups<<<blocks, tuning::kStrokePixelBlock, 0, stream>>>(
         mask, count, m_labels.data(), m_sizes.data(), std::uint32_t(minPixels));
     LW_CUDA_LAUNCHED("sk::clearShortGroups");
-    if (gapPixels < 1)
-        return CudaStatus::success();
-    sk::findBridges<<<grid, block, 0, stream>>>(mask, width, height, m_sizes.data());
-    LW_CUDA_LAUNCHED("sk::findBridges");
-    sk::drawBridges<<<blocks, tuning::kStrokePixelBlock, 0, stream>>>(mask, count, m_sizes.data());
-    LW_CUDA_LAUNCHED("sk::drawBridges");
     return CudaStatus::success();
 }
 

@@ -4,7 +4,7 @@
 // of a device mask cleared in place, before the mask goes to the host or into a GL texture, so
 // that the host's search (PixelMask::removeComponentsSmallerThan, single-threaded) is not on
 // the frame's path. The result equals PixelMask::pruneStrokes bit for bit: both find the same
-// groups and the same bridges.
+// groups, the same bridges and the same pieces.
 // Internal: CUDA types allowed.
 
 #include "dispatch.h"
@@ -19,14 +19,18 @@ class StrokePruning {
 public:
     // `mask`: width * height bytes on the device, non-zero = line. Groups of fewer than
     // `minPixels` pixels (joined across gaps of `gapPixels`) are cleared, and with gapPixels >= 1
-    // the one-pixel gaps between stroke ends drawn (PixelMask::pruneStrokes); minPixels <= 1:
-    // nothing.
+    // the one-pixel gaps between stroke ends drawn and then the 8-connected pieces under
+    // `minPixels` cleared (PixelMask::pruneStrokes); minPixels <= 1: nothing.
     // Queued on `stream`; nothing is synchronised.
     CudaStatus run(std::uint8_t* mask, int width, int height, int minPixels, int gapPixels,
                    cudaStream_t stream);
     std::size_t deviceBytes() const { return m_labels.bytes() + m_sizes.bytes(); }
 
 private:
+    // The groups within `reach` of fewer than `minPixels` pixels cleared: labels, unions, sizes,
+    // clearing (four launches; m_sizes must hold the mask's pixels).
+    CudaStatus clearShortGroups(std::uint8_t* mask, int width, int height, int reach, int minPixels,
+                                cudaStream_t stream);
     dispatch::DeviceBuffer<std::uint32_t> m_labels, m_sizes;
 };
 

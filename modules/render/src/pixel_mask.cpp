@@ -7,6 +7,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
+#include <glm/vec2.hpp>
 #include <string>
 #include <vector>
 
@@ -88,6 +89,35 @@ void forEachLinePixel(const std::vector<std::uint8_t>& pixels, int width, int he
                         });
 }
 
+// Union-find over numbered items whose labels point to a number no larger than their own (the
+// device's rules, lw/kernels/stroke_components.h), so a group's root is its smallest number.
+// Run in sequence (one thread), a root stays a root until join() changes it: no
+// compare-and-swap is needed.
+class LowestRootUnion {
+public:
+    explicit LowestRootUnion(std::size_t items) : m_label(items) {
+        for (std::uint32_t i = 0; i < m_label.size(); ++i)
+            m_label[i] = i;
+    }
+    std::uint32_t root(std::uint32_t item) { return kernels::strokeRoot(m_label.data(), item); }
+    // Joins the group whose root is `root` with the group of `other`; returns the joined root.
+    std::uint32_t joinRoot(std::uint32_t root, std::uint32_t other) {
+        const std::uint32_t otherRoot = this->root(other);
+        if (otherRoot == root)
+            return root;
+        if (otherRoot < root) {
+            m_label[root] = otherRoot;
+            return otherRoot;
+        }
+        m_label[otherRoot] = root;
+        return root;
+    }
+    void join(std::uint32_t a, std::uint32_t b) { joinRoot(root(a), b); }
+
+private:
+    std::vector<std::uint32_t> m_label;
+};
+
 // The groups of line pixels whose members lie within Chebyshev distance `reach` of each other
 // (1: 8-connected), as a union-find over the mask's runs (a row's consecutive line pixels),
 // numbered in raster order:
@@ -99,11 +129,11 @@ void forEachLinePixel(const std::vector<std::uint8_t>& pixels, int width, int he
 //     reach 2: r joins a and c, not b     later: every pair of neighbours is united once, by
 //                                         the later of the two.
 //
-// The labels follow the device's rules (lw/kernels/stroke_components.h), with run numbers for
-// labels: a label points to a number no larger than its own, so a group's root is the run of
-// its first pixel in raster order. Each earlier row is walked with a cursor that only moves
-// right. With visibility off a frame has some 10^5 line pixels in 10^6, pruned on every frame:
-// runs are a third to a quarter of the pixels, and nothing the size of the image is allocated.
+// A group's root is the run of its first pixel in raster order. Each earlier row is walked with
+// a cursor that only moves right. With visibility off a frame has some 10^5 line pixels in 10^6,
+// pruned on every frame: runs are a third to a quarter of the pixels, and nothing the size of
+// the image is allocated. With `trackPieces` the same walk also unites the 8-connected pieces
+// (pieces()), which stroke pruning needs after it has bridged the gaps.
 class StrokeGroups {
 public:
     struct Run {
@@ -111,7 +141,8 @@ public:
         std::uint32_t length() const { return last - first + 1; }
     };
 
-    StrokeGroups(const std::vector<std::uint8_t>& pixels, int width, int height, int reach)
+    StrokeGroups(const std::vector<std::uint8_t>& pixels, int width, int height, int reach,
+                 bool trackPieces = false)
         : m_reach(std::uint32_t(reach)), m_rowBegin(std::size_t(height) + 1, 0) {
         for (int y = 0; y < height; ++y) {
             const std::uint8_t* row = pixels.data() + std::size_t(y) * std::size_t(width);
@@ -120,16 +151,18 @@ public:
             });
             m_rowBegin[std::size_t(y) + 1] = std::uint32_t(m_runs.size());
         }
-        m_label.resize(m_runs.size());
-        for (std::uint32_t i = 0; i < m_label.size(); ++i)
-            m_label[i] = i;
+        m_groups = LowestRootUnion(m_runs.size());
+        if (trackPieces)
+            m_pieces = LowestRootUnion(m_runs.size());
+        m_trackPieces = trackPieces;
         m_cursor.resize(std::size_t(reach));
         for (int y = 0; y < height; ++y)
             uniteRow(y);
     }
 
     const std::vector<Run>& runs() const { return m_runs; }
-    std::uint32_t root(std::uint32_t run) { return kernels::strokeRoot(m_label.data(), run); }
+    std::uint32_t root(std::uint32_t run) { return m_groups.root(run); }
+    LowestRootUnion& pieces() { return m_pieces; }
 
     // The pixels of each group, at its root run's number (0 elsewhere).
     std::vector<std::uint32_t> sizesAtRoots() {
@@ -137,6 +170,16 @@ public:
         for (std::uint32_t i = 0; i < sizes.size(); ++i)
             sizes[root(i)] += m_runs[i].length();
         return sizes;
+    }
+
+    // The run holding line pixel (x, y).
+    std::uint32_t runAt(int x, int y) const {
+        const auto begin = m_runs.begin() + m_rowBegin[std::size_t(y)];
+        const auto end = m_runs.begin() + m_rowBegin[std::size_t(y) + 1];
+        const auto after =
+            std::upper_bound(begin, end, std::uint32_t(x),
+                             [](std::uint32_t v, const Run& r) { return v < r.first; });
+        return std::uint32_t(after - m_runs.begin()) - 1;
     }
 
 private:
@@ -148,40 +191,32 @@ private:
             m_cursor[std::size_t(y - above - 1)] = m_rowBegin[std::size_t(above)];
         for (std::uint32_t run = begin; run < end; ++run) {
             const Run& r = m_runs[run];
-            std::uint32_t root = run; // the run's root so far: joins hook onto it
+            std::uint32_t root = run, pieceRoot = run; // the run's roots so far
             for (int above = firstRow; above < y; ++above) {
                 std::uint32_t& other = m_cursor[std::size_t(y - above - 1)];
                 const std::uint32_t rowEnd = m_rowBegin[std::size_t(above) + 1];
                 while (other < rowEnd && m_runs[other].last + m_reach < r.first)
                     ++other;
                 for (std::uint32_t n = other; n < rowEnd && m_runs[n].first <= r.last + m_reach;
-                     ++n)
-                    root = join(root, n);
+                     ++n) {
+                    root = m_groups.joinRoot(root, n);
+                    if (m_trackPieces && above == y - 1 && m_runs[n].first <= r.last + 1 &&
+                        m_runs[n].last + 1 >= r.first)
+                        pieceRoot = m_pieces.joinRoot(pieceRoot, n);
+                }
             }
+            // Runs of one row are never 8-connected (a gap parts them): groups only.
             for (std::uint32_t n = run; n > begin && m_runs[n - 1].last + m_reach >= r.first; --n)
-                root = join(root, n - 1);
+                root = m_groups.joinRoot(root, n - 1);
         }
-    }
-
-    // Joins root `root` with the group of run `other`; returns the joined group's root. The
-    // larger root is hooked onto the smaller, so labels keep pointing down. In sequence (one
-    // thread) a root stays a root until this changes it, so no compare-and-swap is needed.
-    std::uint32_t join(std::uint32_t root, std::uint32_t other) {
-        const std::uint32_t otherRoot = this->root(other);
-        if (otherRoot == root)
-            return root;
-        if (otherRoot < root) {
-            m_label[root] = otherRoot;
-            return otherRoot;
-        }
-        m_label[otherRoot] = root;
-        return root;
     }
 
     std::uint32_t m_reach;
+    bool m_trackPieces = false;
     std::vector<Run> m_runs;               // raster order
     std::vector<std::uint32_t> m_rowBegin; // row y's runs are [m_rowBegin[y], m_rowBegin[y+1])
-    std::vector<std::uint32_t> m_label;
+    LowestRootUnion m_groups{0};
+    LowestRootUnion m_pieces{0};
     std::vector<std::uint32_t> m_cursor; // per earlier row: its first run that may still join
 };
 
@@ -189,83 +224,161 @@ int reachOfGap(int gapPixels) {
     return 1 + std::max(0, gapPixels);
 }
 
-// Draws the bridges (kernels::bridgesStrokeEnds) beside the given stroke ends: a bridge lies
-// beside a stroke end, so only the ends' neighbours are tried; all are found before any is
-// drawn, as on the device.
-std::size_t drawBridgesBeside(std::vector<std::uint8_t>& pixels, int width, int height,
-                              const std::vector<std::size_t>& ends) {
-    std::vector<std::size_t> bridges;
-    for (const std::size_t end : ends) {
-        const int x = int(end % std::size_t(width)), y = int(end / std::size_t(width));
+// A pixel to draw between two stroke ends (kernels::bridgesStrokeEnds) and the two line pixels
+// of its ring, the ends it joins.
+struct Bridge {
+    std::size_t pixel;
+    glm::ivec2 at, endA, endB;
+};
+
+// The bridges beside the given stroke ends: a bridge lies beside a stroke end, so only the ends'
+// neighbours are tried; all are found before any is drawn, as on the device. Sorted by pixel,
+// each once.
+std::vector<Bridge> bridgesBeside(const std::vector<std::uint8_t>& pixels, int width, int height,
+                                  const std::vector<glm::ivec2>& ends) {
+    std::vector<Bridge> bridges;
+    for (const glm::ivec2 end : ends)
         for (int dy = -1; dy <= 1; ++dy)
-            for (int dx = -1; dx <= 1; ++dx)
-                if (kernels::bridgesStrokeEnds(pixels.data(), width, height, x + dx, y + dy))
-                    bridges.push_back(std::size_t(y + dy) * std::size_t(width) +
-                                      std::size_t(x + dx));
-    }
-    std::size_t drawn = 0;
-    for (const std::size_t i : bridges)
-        if (!pixels[i]) {
-            pixels[i] = 1;
-            ++drawn;
+            for (int dx = -1; dx <= 1; ++dx) {
+                const glm::ivec2 p = end + glm::ivec2(dx, dy);
+                if (!kernels::bridgesStrokeEnds(pixels.data(), width, height, p.x, p.y))
+                    continue;
+                Bridge bridge{std::size_t(p.y) * std::size_t(width) + std::size_t(p.x), p, {}, {}};
+                int found = 0;
+                for (int ry = -1; ry <= 1; ++ry)
+                    for (int rx = -1; rx <= 1; ++rx)
+                        if ((rx || ry) &&
+                            kernels::isLinePixel(pixels.data(), width, height, p.x + rx, p.y + ry))
+                            (found++ == 0 ? bridge.endA : bridge.endB) = p + glm::ivec2(rx, ry);
+                bridges.push_back(bridge);
+            }
+    std::sort(bridges.begin(), bridges.end(),
+              [](const Bridge& a, const Bridge& b) { return a.pixel < b.pixel; });
+    bridges.erase(std::unique(bridges.begin(), bridges.end(),
+                              [](const Bridge& a, const Bridge& b) { return a.pixel == b.pixel; }),
+                  bridges.end());
+    return bridges;
+}
+
+std::size_t clearRun(std::vector<std::uint8_t>& pixels, int width, const StrokeGroups::Run& run) {
+    std::memset(pixels.data() + std::size_t(run.y) * std::size_t(width) + run.first, 0,
+                run.length());
+    return run.length();
+}
+
+// The stroke ends among the kept runs: a run's inner pixels have two line neighbours, so only
+// its first and last pixels can be one. Counted on the pruned mask (a removed pixel's neighbours
+// were in its group and went with it, so a kept pixel's count is the same).
+std::vector<glm::ivec2> keptStrokeEnds(const std::vector<std::uint8_t>& pixels, int width,
+                                       int height, const std::vector<StrokeGroups::Run>& runs,
+                                       const std::vector<std::uint8_t>& kept) {
+    std::vector<glm::ivec2> ends;
+    for (std::size_t i = 0; i < runs.size(); ++i) {
+        if (!kept[i])
+            continue;
+        for (const std::uint32_t x : {runs[i].first, runs[i].last}) {
+            if (kernels::lineNeighbourCount(pixels.data(), width, height, int(x), int(runs[i].y)) <=
+                1)
+                ends.push_back({int(x), int(runs[i].y)});
+            if (runs[i].first == runs[i].last)
+                break;
         }
-    return drawn;
+    }
+    return ends;
+}
+
+// The sizes of the kept runs' 8-connected pieces once the bridges are drawn, at the pieces' root
+// runs; pieceOf[b]: a run of bridge b's piece. A bridge joins the pieces of its two ends, and
+// bridges side by side join theirs (the later four of the eight around a bridge; the bridges
+// are sorted by pixel).
+std::vector<std::uint32_t> piecesWithBridges(StrokeGroups& groups,
+                                             const std::vector<std::uint8_t>& kept,
+                                             const std::vector<Bridge>& bridges, int width,
+                                             int height, std::vector<std::uint32_t>& pieceOf) {
+    LowestRootUnion& pieces = groups.pieces();
+    pieceOf.resize(bridges.size());
+    for (std::size_t b = 0; b < bridges.size(); ++b) {
+        pieceOf[b] = groups.runAt(bridges[b].endA.x, bridges[b].endA.y);
+        pieces.join(pieceOf[b], groups.runAt(bridges[b].endB.x, bridges[b].endB.y));
+    }
+    for (std::size_t b = 0; b < bridges.size(); ++b)
+        for (const glm::ivec2 step :
+             {glm::ivec2(1, 0), glm::ivec2(-1, 1), glm::ivec2(0, 1), glm::ivec2(1, 1)}) {
+            const glm::ivec2 n = bridges[b].at + step;
+            if (n.x < 0 || n.x >= width || n.y >= height)
+                continue;
+            const std::size_t pixel = std::size_t(n.y) * std::size_t(width) + std::size_t(n.x);
+            const auto other = std::lower_bound(
+                bridges.begin() + std::ptrdiff_t(b), bridges.end(), pixel,
+                [](const Bridge& bridge, std::size_t p) { return bridge.pixel < p; });
+            if (other != bridges.end() && other->pixel == pixel)
+                pieces.join(pieceOf[b], pieceOf[std::size_t(other - bridges.begin())]);
+        }
+    std::vector<std::uint32_t> sizes(groups.runs().size(), 0);
+    for (std::uint32_t i = 0; i < groups.runs().size(); ++i)
+        if (kept[i])
+            sizes[pieces.root(i)] += groups.runs()[i].length();
+    for (std::size_t b = 0; b < bridges.size(); ++b)
+        ++sizes[pieces.root(pieceOf[b])];
+    return sizes;
 }
 
 } // namespace
 
 std::size_t PixelMask::removeComponentsSmallerThan(int minPixels, int gapPixels) {
-    return removeStrokesSmallerThan(minPixels, gapPixels, nullptr);
-}
-
-std::size_t PixelMask::removeStrokesSmallerThan(int minPixels, int gapPixels,
-                                                std::vector<std::size_t>* strokeEnds) {
     if (minPixels <= 1 || m_pixels.empty())
         return 0;
     StrokeGroups groups(m_pixels, m_width, m_height, reachOfGap(gapPixels));
     const std::vector<std::uint32_t> sizes = groups.sizesAtRoots();
     std::size_t removed = 0;
-    for (std::uint32_t i = 0; i < groups.runs().size(); ++i) {
-        const StrokeGroups::Run run = groups.runs()[i];
-        if (sizes[groups.root(i)] >= std::uint32_t(minPixels))
-            continue;
-        std::memset(m_pixels.data() + index(int(run.first), int(run.y)), 0, run.length());
-        removed += run.length();
-    }
-    if (strokeEnds) {
-        // A run's inner pixels have two line neighbours: only its first and last pixels can
-        // be stroke ends. Counted on the pruned mask (a removed pixel's neighbours were in its
-        // group and went with it, so a kept pixel's count is the same).
-        for (const StrokeGroups::Run run : groups.runs())
-            for (const std::uint32_t x : {run.first, run.last}) {
-                if (m_pixels[index(int(x), int(run.y))] &&
-                    kernels::lineNeighbourCount(m_pixels.data(), m_width, m_height, int(x),
-                                                int(run.y)) <= 1)
-                    strokeEnds->push_back(index(int(x), int(run.y)));
-                if (run.first == run.last)
-                    break;
-            }
-    }
+    for (std::uint32_t i = 0; i < groups.runs().size(); ++i)
+        if (sizes[groups.root(i)] < std::uint32_t(minPixels))
+            removed += clearRun(m_pixels, m_width, groups.runs()[i]);
     return removed;
 }
 
 std::size_t PixelMask::bridgeStrokeEnds() {
-    std::vector<std::size_t> ends;
+    std::vector<glm::ivec2> ends;
     forEachLinePixel(m_pixels, m_width, m_height, [&](int x, int y) {
         if (kernels::lineNeighbourCount(m_pixels.data(), m_width, m_height, x, y) <= 1)
-            ends.push_back(index(x, y));
+            ends.push_back({x, y});
     });
-    return drawBridgesBeside(m_pixels, m_width, m_height, ends);
+    const std::vector<Bridge> bridges = bridgesBeside(m_pixels, m_width, m_height, ends);
+    for (const Bridge& bridge : bridges)
+        m_pixels[bridge.pixel] = 1;
+    return bridges.size();
 }
 
 std::size_t PixelMask::pruneStrokes(int minPixels, int gapPixels) {
-    if (minPixels <= 1)
+    if (minPixels <= 1 || m_pixels.empty())
         return 0;
-    std::vector<std::size_t> ends;
-    const std::size_t removed =
-        removeStrokesSmallerThan(minPixels, gapPixels, gapPixels >= 1 ? &ends : nullptr);
-    if (gapPixels >= 1)
-        drawBridgesBeside(m_pixels, m_width, m_height, ends);
+    if (gapPixels < 1) // strokes are the 8-connected groups
+        return removeComponentsSmallerThan(minPixels, 0);
+    // The three steps in one walk over the runs (groups and pieces together), each as its own
+    // pass over the mask would do it: the groups within the gap go when short; the bridges are
+    // found on what stays; the 8-connected pieces, joined by the bridges, go when short.
+    StrokeGroups groups(m_pixels, m_width, m_height, reachOfGap(gapPixels), true);
+    const std::vector<StrokeGroups::Run>& runs = groups.runs();
+    std::vector<std::uint8_t> kept(runs.size(), 1);
+    std::size_t removed = 0;
+    const std::vector<std::uint32_t> sizes = groups.sizesAtRoots();
+    for (std::uint32_t i = 0; i < runs.size(); ++i)
+        if (sizes[groups.root(i)] < std::uint32_t(minPixels)) {
+            removed += clearRun(m_pixels, m_width, runs[i]);
+            kept[i] = 0;
+        }
+    const std::vector<Bridge> bridges = bridgesBeside(
+        m_pixels, m_width, m_height, keptStrokeEnds(m_pixels, m_width, m_height, runs, kept));
+    std::vector<std::uint32_t> pieceOf;
+    const std::vector<std::uint32_t> pieceSizes =
+        piecesWithBridges(groups, kept, bridges, m_width, m_height, pieceOf);
+    LowestRootUnion& pieces = groups.pieces();
+    for (std::uint32_t i = 0; i < runs.size(); ++i)
+        if (kept[i] && pieceSizes[pieces.root(i)] < std::uint32_t(minPixels))
+            removed += clearRun(m_pixels, m_width, runs[i]);
+    for (std::size_t b = 0; b < bridges.size(); ++b)
+        if (pieceSizes[pieces.root(pieceOf[b])] >= std::uint32_t(minPixels))
+            m_pixels[bridges[b].pixel] = 1;
     return removed;
 }
 

@@ -36,8 +36,11 @@ public:
     // returns how many pixels it drew.
     std::size_t bridgeStrokeEnds();
     // Stroke pruning as every method's frame gets it: removeComponentsSmallerThan(minPixels,
-    // gapPixels), then, when strokes join across a gap (gapPixels >= 1), bridgeStrokeEnds. Nothing
-    // for minPixels <= 1. Returns the pixels removed.
+    // gapPixels); then, when strokes join across a gap (gapPixels >= 1), bridgeStrokeEnds and
+    // removeComponentsSmallerThan(minPixels, 0) on the result, so that no stroke drawn (an
+    // 8-connected group) is shorter than minPixels: the gap keeps a contour broken into dashes
+    // long enough for its one-pixel breaks to be bridged, and short pieces that only lay beside
+    // a longer stroke go too. Nothing for minPixels <= 1. Returns the line pixels removed.
     std::size_t pruneStrokes(int minPixels, int gapPixels);
     // Sizes of the groups of on pixels, in the raster order of their first pixels, as above.
     std::vector<std::size_t> componentSizes(int gapPixels = 0) const;
@@ -52,10 +55,6 @@ public:
     friend bool operator==(const PixelMask&, const PixelMask&) = default;
 
 private:
-    // removeComponentsSmallerThan, and the stroke ends (line pixels with at most one line pixel
-    // among their eight neighbours) that stay, as pixel indices, when `strokeEnds` is given.
-    std::size_t removeStrokesSmallerThan(int minPixels, int gapPixels,
-                                         std::vector<std::size_t>* strokeEnds);
     std::size_t index(int x, int y) const {
         return std::size_t(y) * std::size_t(m_width) + std::size_t(x);
     }

@@ -35,10 +35,11 @@ enum class ExtractionMode { CachedA, EveryFrameB };
 // the shared CT series 10-14 % of the line pixels lie in groups under 10 pixels, the specks of
 // voxel-scale noise (issue 7).
 inline constexpr int kDefaultMinStrokePixels = 10;
-// Stroke pruning counts pixels up to this far apart as one stroke: methods 1 and 2 break a
-// contour where it grazes the surface (1-px GL lines against the offset depth; segments whose
-// endpoint rays fail), and 8-connected pieces of a real outline would go as speckle (on the demo
-// CT, method 1 kept 0.85 of the outline with 8-connected pruning, 0.97 without pruning).
+// Stroke pruning keeps groups of pixels up to this far apart whole until the gaps between stroke
+// ends are bridged (PixelMask::pruneStrokes): methods 1 and 2 break a contour where it grazes
+// the surface (1-px GL lines against the offset depth; segments whose endpoint rays fail), and
+// 8-connected pruning of the unbridged pieces dropped real outline (on the demo CT, method 1 kept
+// 0.85 of the outline with it, 0.97 without pruning).
 inline constexpr int kStrokeGapPixels = 1;
 
 struct SilhouetteSettings {
@@ -56,8 +57,9 @@ struct SilhouetteSettings {
     // CUDA back-end, streamed slabs: at most this many cell layers a slab (0: as many as the
     // budget allows). Thin slabs exercise the slab seams; the budget alone decides in normal use.
     int gpuSlabLayers = 0;
-    // Strokes (8-connected groups of line pixels) smaller than this are dropped after the
-    // method has drawn: the speckle of noise on real CT. 0 or 1: every pixel kept (the methods
+    // Strokes (8-connected groups of line pixels, once one-pixel gaps between stroke ends are
+    // bridged: PixelMask::pruneStrokes) smaller than this are dropped after the method has
+    // drawn: the speckle of noise on real CT. 0 or 1: every pixel kept (the methods
     // as published; the accuracy and speed measurements use that).
     int minStrokePixels = 0;
     // Close the iso-surface where the volume's border cuts it (iso_surface.h): the cut outline is
