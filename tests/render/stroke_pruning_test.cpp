@@ -277,7 +277,8 @@ groupsByBreadthFirstSearch(const PixelMask& mask, int reach) {
 // PixelMask's search (a union-find over the mask's runs, row cursors for the neighbours) against
 // the plain one, on sizes around its eight-pixel row skipping, at gaps 0 to 2; and pruning, which
 // does its three steps in one walk, against them one after the other: the groups within the gap
-// removed when short, the separate bridge pass, the 8-connected pieces removed when short.
+// removed when short, the separate bridge pass, the 8-connected pieces under half the length
+// removed.
 TEST(StrokeGroups, MatchTheBreadthFirstSearch) {
     std::size_t bridged = 0, piecesRemoved = 0; // over all cases: the later steps are exercised
     for (const glm::ivec2 size :
@@ -304,7 +305,7 @@ TEST(StrokeGroups, MatchTheBreadthFirstSearch) {
                         const auto [piece, pieceSizes] = groupsByBreadthFirstSearch(expected, 1);
                         for (std::size_t i = 0; i < piece.size(); ++i)
                             if (piece[i] >= 0 &&
-                                pieceSizes[std::size_t(piece[i])] < std::size_t(minPixels))
+                                pieceSizes[std::size_t(piece[i])] < std::size_t(minPixels / 2))
                                 expected.pixels()[i] = 0;
                         piecesRemoved += before - expected.count();
                     }
@@ -368,8 +369,10 @@ TEST_P(StrokePruning, DropsTheDustAndKeepsTheContour) {
 
     settings.minStrokePixels = 12;
     const SilhouetteFrame pruned = renderer->render(camera, settings);
-    for (const std::size_t size : pruned.lines.componentSizes())
+    for (const std::size_t size : pruned.lines.componentSizes(kStrokeGapPixels))
         EXPECT_GE(size, 12u);
+    for (const std::size_t size : pruned.lines.componentSizes())
+        EXPECT_GE(size, 6u);
     // What stays is exactly what the unpruned frame had there, with its one-pixel gaps between
     // stroke ends closed: the contour is untouched.
     PixelMask expected = raw.lines;

@@ -36,7 +36,7 @@ CudaStatus StrokePruning::run(std::uint8_t* mask, int width, int height, int min
                       stream>>>(mask, std::uint32_t(pixels), m_sizes.data());
     LW_CUDA_LAUNCHED("sk::drawBridges");
     // The pieces the bridges did not join into a stroke long enough (PixelMask::pruneStrokes).
-    return clearShortGroups(mask, width, height, 1, minPixels, stream);
+    return clearShortGroups(mask, width, height, 1, minPiecePixels(minPixels), stream);
 }
 
 CudaStatus StrokePruning::clearShortGroups(std::uint8_t* mask, int width, int height, int reach,

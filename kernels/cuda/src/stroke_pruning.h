@@ -20,7 +20,7 @@ public:
     // `mask`: width * height bytes on the device, non-zero = line. Groups of fewer than
     // `minPixels` pixels (joined across gaps of `gapPixels`) are cleared, and with gapPixels >= 1
     // the one-pixel gaps between stroke ends drawn and then the 8-connected pieces under
-    // `minPixels` cleared (PixelMask::pruneStrokes); minPixels <= 1: nothing.
+    // minPiecePixels(minPixels) cleared (PixelMask::pruneStrokes); minPixels <= 1: nothing.
     // Queued on `stream`; nothing is synchronised.
     CudaStatus run(std::uint8_t* mask, int width, int height, int minPixels, int gapPixels,
                    cudaStream_t stream);

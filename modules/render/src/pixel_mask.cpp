@@ -356,7 +356,8 @@ std::size_t PixelMask::pruneStrokes(int minPixels, int gapPixels) {
         return removeComponentsSmallerThan(minPixels, 0);
     // The three steps in one walk over the runs (groups and pieces together), each as its own
     // pass over the mask would do it: the groups within the gap go when short; the bridges are
-    // found on what stays; the 8-connected pieces, joined by the bridges, go when short.
+    // found on what stays; the 8-connected pieces, joined by the bridges, go when under half
+    // the length (kernels::minPiecePixels).
     StrokeGroups groups(m_pixels, m_width, m_height, reachOfGap(gapPixels), true);
     const std::vector<StrokeGroups::Run>& runs = groups.runs();
     std::vector<std::uint8_t> kept(runs.size(), 1);
@@ -373,11 +374,12 @@ std::size_t PixelMask::pruneStrokes(int minPixels, int gapPixels) {
     const std::vector<std::uint32_t> pieceSizes =
         piecesWithBridges(groups, kept, bridges, m_width, m_height, pieceOf);
     LowestRootUnion& pieces = groups.pieces();
+    const int pieceMin = kernels::minPiecePixels(minPixels);
     for (std::uint32_t i = 0; i < runs.size(); ++i)
-        if (kept[i] && pieceSizes[pieces.root(i)] < std::uint32_t(minPixels))
+        if (kept[i] && pieceSizes[pieces.root(i)] < std::uint32_t(pieceMin))
             removed += clearRun(m_pixels, m_width, runs[i]);
     for (std::size_t b = 0; b < bridges.size(); ++b)
-        if (pieceSizes[pieces.root(pieceOf[b])] >= std::uint32_t(minPixels))
+        if (pieceSizes[pieces.root(pieceOf[b])] >= std::uint32_t(pieceMin))
             m_pixels[bridges[b].pixel] = 1;
     return removed;
 }

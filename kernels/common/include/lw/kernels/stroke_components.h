@@ -128,6 +128,15 @@ LW_HOST_DEVICE void uniteWithEarlierNeighbours(const std::uint8_t* mask, std::ui
 //
 // Two lines passing each other two pixels apart have no ends there, and a line's side or corner
 // brings more than two neighbours into P's ring, so neither is joined.
+// After the bridges, the 8-connected pieces under half the stroke length go too: the gap keeps a
+// contour drawn in dashes alive until its end-to-end breaks are bridged, but it also keeps the
+// dots that noise leaves a pixel or two beside a longer stroke (a doubled terrace rim). Half the
+// length, measured on the five CT series of docs/BENCHMARKS.md: the whole length (10 px) also
+// drops real outline pieces, and the agreement of the methods falls furthest.
+LW_HOST_DEVICE inline int minPiecePixels(int minStrokePixels) {
+    return minStrokePixels / 2;
+}
+
 LW_HOST_DEVICE inline bool isLinePixel(const std::uint8_t* mask, int width, int height, int x,
                                        int y) {
     return x >= 0 && y >= 0 && x < width && y < height &&

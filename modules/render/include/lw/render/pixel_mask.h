@@ -37,10 +37,10 @@ public:
     std::size_t bridgeStrokeEnds();
     // Stroke pruning as every method's frame gets it: removeComponentsSmallerThan(minPixels,
     // gapPixels); then, when strokes join across a gap (gapPixels >= 1), bridgeStrokeEnds and
-    // removeComponentsSmallerThan(minPixels, 0) on the result, so that no stroke drawn (an
-    // 8-connected group) is shorter than minPixels: the gap keeps a contour broken into dashes
-    // long enough for its one-pixel breaks to be bridged, and short pieces that only lay beside
-    // a longer stroke go too. Nothing for minPixels <= 1. Returns the line pixels removed.
+    // removeComponentsSmallerThan(kernels::minPiecePixels(minPixels), 0) on the result: the gap
+    // keeps a contour broken into dashes long enough for its one-pixel breaks to be bridged,
+    // and the dots that only lay beside a longer stroke go then. Nothing for minPixels <= 1.
+    // Returns the line pixels removed.
     std::size_t pruneStrokes(int minPixels, int gapPixels);
     // Sizes of the groups of on pixels, in the raster order of their first pixels, as above.
     std::vector<std::size_t> componentSizes(int gapPixels = 0) const;

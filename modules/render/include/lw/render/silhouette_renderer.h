@@ -57,9 +57,10 @@ struct SilhouetteSettings {
     // CUDA back-end, streamed slabs: at most this many cell layers a slab (0: as many as the
     // budget allows). Thin slabs exercise the slab seams; the budget alone decides in normal use.
     int gpuSlabLayers = 0;
-    // Strokes (8-connected groups of line pixels, once one-pixel gaps between stroke ends are
-    // bridged: PixelMask::pruneStrokes) smaller than this are dropped after the method has
-    // drawn: the speckle of noise on real CT. 0 or 1: every pixel kept (the methods
+    // Strokes (groups of line pixels up to kStrokeGapPixels apart) smaller than this are
+    // dropped after the method has drawn: the speckle of noise on real CT; then, once one-pixel
+    // gaps between stroke ends are bridged, 8-connected pieces under half of it
+    // (PixelMask::pruneStrokes). 0 or 1: every pixel kept (the methods
     // as published; the accuracy and speed measurements use that).
     int minStrokePixels = 0;
     // Close the iso-surface where the volume's border cuts it (iso_surface.h): the cut outline is
