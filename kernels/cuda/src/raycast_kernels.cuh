@@ -101,8 +101,7 @@ __device__ __forceinline__ bool samePoint(glm::vec3 a, glm::vec3 b) {
 
 __global__ void findRepresentatives(const SegmentEndpoints* segments, std::uint32_t endpoints,
                                     unsigned long long* table, std::uint32_t tableMask,
-                                    std::uint32_t* representative, std::uint32_t* index,
-                                    std::uint8_t* isRepresentative) {
+                                    std::uint32_t* representative, std::uint8_t* isRepresentative) {
     const std::uint32_t e = blockIdx.x * blockDim.x + threadIdx.x;
     if (e >= endpoints)
         return;
@@ -125,7 +124,6 @@ __global__ void findRepresentatives(const SegmentEndpoints* segments, std::uint3
         slot = (slot + 1) & tableMask;
     }
     representative[e] = found;
-    index[e] = e;
     isRepresentative[e] = found == e ? 1 : 0;
 }
 

@@ -9,6 +9,7 @@
 #include <cub/device/device_radix_sort.cuh>
 #include <cub/device/device_select.cuh>
 #include <limits>
+#include <thrust/iterator/counting_iterator.h>
 #include <utility>
 
 namespace lw::kernels::cuda {
@@ -29,9 +30,9 @@ struct RayCastSilhouetteCuda::Impl {
     DeviceBuffer<unsigned char> sortTemp;
     DeviceBuffer<std::uint8_t> visible; // phase 2's, a flag per representative endpoint
     // Phase 2's endpoint dedupe: the table, each endpoint's representative, the representatives'
-    // list and count (and the index and flag arrays the list is selected from).
+    // list and count (and the flags the list is selected by, from the endpoints' numbers).
     DeviceBuffer<unsigned long long> endpointTable;
-    DeviceBuffer<std::uint32_t> representative, endpointIndex, representatives, representativeCount;
+    DeviceBuffer<std::uint32_t> representative, representatives, representativeCount;
     // Phase 2c's: the points whose own ray was blocked close by.
     DeviceBuffer<std::uint32_t> neighbourList, neighbourCount;
     DeviceBuffer<std::uint8_t> isRepresentative;
@@ -75,9 +76,9 @@ std::size_t RayCastSilhouetteCuda::deviceBytes() const {
            s.coarseOccupied.bytes() + s.mask.bytes() + s.counters.bytes() + s.segments.bytes() +
            s.segmentCells.bytes() + s.sortedSegments.bytes() + s.sortedCells.bytes() +
            s.sortTemp.bytes() + s.visible.bytes() + s.pruning.deviceBytes() +
-           s.endpointTable.bytes() + s.representative.bytes() + s.endpointIndex.bytes() +
-           s.representatives.bytes() + s.representativeCount.bytes() + s.isRepresentative.bytes() +
-           s.neighbourList.bytes() + s.neighbourCount.bytes();
+           s.endpointTable.bytes() + s.representative.bytes() + s.representatives.bytes() +
+           s.representativeCount.bytes() + s.isRepresentative.bytes() + s.neighbourList.bytes() +
+           s.neighbourCount.bytes();
 }
 
 CudaStatus RayCastSilhouetteCuda::setVolume(const VolumeView& hostVolume,
@@ -248,7 +249,6 @@ CudaStatus RayCastSilhouetteCuda::Impl::testRepresentativeEndpoints(const RayVis
         slots *= 2;
     LW_RETURN_IF_FAILED(endpointTable.reserve(slots, "cudaMalloc(endpointTable)"));
     LW_RETURN_IF_FAILED(representative.reserve(endpoints, "cudaMalloc(representative)"));
-    LW_RETURN_IF_FAILED(endpointIndex.reserve(endpoints, "cudaMalloc(endpointIndex)"));
     LW_RETURN_IF_FAILED(representatives.reserve(endpoints, "cudaMalloc(representatives)"));
     LW_RETURN_IF_FAILED(isRepresentative.reserve(endpoints, "cudaMalloc(isRepresentative)"));
     LW_RETURN_IF_FAILED(visible.reserve(endpoints, "cudaMalloc(visible)"));
@@ -260,16 +260,18 @@ CudaStatus RayCastSilhouetteCuda::Impl::testRepresentativeEndpoints(const RayVis
     const unsigned blocks = blocksFor(endpoints, tuning::kRayBlock);
     rc::findRepresentatives<<<blocks, tuning::kRayBlock, 0, st>>>(
         segments.data(), std::uint32_t(endpoints), endpointTable.data(), std::uint32_t(slots - 1),
-        representative.data(), endpointIndex.data(), isRepresentative.data());
+        representative.data(), isRepresentative.data());
     LW_CUDA_LAUNCHED("rc::findRepresentatives");
-    // The representatives' list, in endpoint order.
+    // The representatives' list, in endpoint order: the endpoints' numbers (counted, not
+    // stored) selected by their flags.
+    const thrust::counting_iterator<std::uint32_t> endpointNumbers(0);
     std::size_t bytes = 0;
-    LW_CUDA_TRY(cub::DeviceSelect::Flagged(nullptr, bytes, endpointIndex.data(),
-                                           isRepresentative.data(), representatives.data(),
-                                           representativeCount.data(), endpoints, st),
+    LW_CUDA_TRY(cub::DeviceSelect::Flagged(nullptr, bytes, endpointNumbers, isRepresentative.data(),
+                                           representatives.data(), representativeCount.data(),
+                                           endpoints, st),
                 "cub::DeviceSelect(representatives)");
     LW_RETURN_IF_FAILED(sortTemp.reserve(bytes, "cudaMalloc(selectTemp)"));
-    LW_CUDA_TRY(cub::DeviceSelect::Flagged(sortTemp.data(), bytes, endpointIndex.data(),
+    LW_CUDA_TRY(cub::DeviceSelect::Flagged(sortTemp.data(), bytes, endpointNumbers,
                                            isRepresentative.data(), representatives.data(),
                                            representativeCount.data(), endpoints, st),
                 "cub::DeviceSelect(representatives)");

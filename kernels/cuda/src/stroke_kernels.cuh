@@ -3,7 +3,7 @@
 // Stroke pruning's kernels (dispatch in stroke_pruning.cu): the union-find rules are
 // kernels/common's stroke_components.h. Four launches over the pixels: labels, unions, the
 // groups' sizes, the short groups cleared; with a gap, two more: the stroke ends' bridges found,
-// then drawn.
+// then drawn; then the first four again at reach 1 for the short pieces (stroke_pruning.cu).
 
 #include "lw/kernels/stroke_components.h"
 
@@ -29,23 +29,23 @@ __global__ void uniteNeighbours(const std::uint8_t* mask, int width, int height,
 }
 
 // Each line pixel counts itself at its group's root (all unions are done: the launch before
-// finished). The finds halve paths as they go, so a pixel's label is not its root afterwards
-// unless the pixel walked there itself: the clearing finds the root again, over the paths this
-// launch shortened.
-__global__ void countGroups(const std::uint8_t* mask, std::uint32_t pixels, std::uint32_t* labels,
-                            std::uint32_t* sizes) {
+// finished). From here on the labels are only read (settledStrokeRoot): the unions' halving left
+// the paths short, and plain loads that no store races with may be cached.
+__global__ void countGroups(const std::uint8_t* mask, std::uint32_t pixels,
+                            const std::uint32_t* labels, std::uint32_t* sizes) {
     const std::uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
     if (i >= pixels || !mask[i])
         return;
-    atomicAdd(sizes + strokeRoot(labels, i), 1u);
+    atomicAdd(sizes + settledStrokeRoot(labels, i), 1u);
 }
 
-__global__ void clearShortGroups(std::uint8_t* mask, std::uint32_t pixels, std::uint32_t* labels,
-                                 const std::uint32_t* sizes, std::uint32_t minPixels) {
+__global__ void clearShortGroups(std::uint8_t* mask, std::uint32_t pixels,
+                                 const std::uint32_t* labels, const std::uint32_t* sizes,
+                                 std::uint32_t minPixels) {
     const std::uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
     if (i >= pixels || !mask[i])
         return;
-    if (sizes[strokeRoot(labels, i)] < minPixels)
+    if (sizes[settledStrokeRoot(labels, i)] < minPixels)
         mask[i] = 0;
 }
 
