@@ -231,7 +231,7 @@ PixelMask pruneByUnionFind(const PixelMask& mask, int minPixels, int gapPixels, 
     return out;
 }
 
-TEST(StrokeUnionFind, FindsTheFloodFillsGroupsInAnyOrder) {
+TEST(StrokeUnionFind, FindsPixelMasksGroupsInAnyOrder) {
     for (const glm::ivec2 size : {glm::ivec2(1, 1), glm::ivec2(1, 37), glm::ivec2(33, 9),
                                   glm::ivec2(64, 64), glm::ivec2(257, 31)})
         for (const int gap : {0, 1})
