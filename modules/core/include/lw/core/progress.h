@@ -18,9 +18,11 @@ private:
     std::atomic<bool> m_cancelled{false};
 };
 
-// Progress reporting for long work. Thread-safe: workers on several threads may call step().
-// The callback receives a fraction in [0, 1] and a short message; it is throttled to whole
-// per-mille changes so a 10 000-file scan does not flood the UI thread.
+// Progress reporting for long work. Thread-safe: workers on several threads may call step() and
+// report(). The callback receives a fraction in [0, 1] and a short message; it is throttled to
+// whole per-mille changes so a 10 000-file scan does not flood the UI thread. Calls of the
+// callback never overlap, and step()'s come in increasing order, so it needs no lock of its own
+// (it may report into another Progress; a callback that steps its own Progress would deadlock).
 class Progress {
 public:
     using Callback = std::function<void(double fraction, const std::string& message)>;
@@ -42,6 +44,7 @@ private:
     Callback m_callback;
     std::shared_ptr<const CancelToken> m_cancel;
     std::mutex m_mutex;
+    std::recursive_mutex m_callbackMutex; // serialises the callback (report() inside it is fine)
     std::size_t m_total = 0;
     std::size_t m_done = 0;
     int m_lastPermille = -1;
