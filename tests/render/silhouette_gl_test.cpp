@@ -393,9 +393,7 @@ TEST_F(SilhouetteGl, LineCandidatesDrawEveryLine) {
     for (auto projection : {Projection::Orthographic, Projection::Perspective}) {
         setup.projection = projection;
         const Camera camera(setup, 211, 173);
-        const glm::vec4 viewer = camera.isOrthographic()
-                                     ? glm::vec4(glm::vec3(-camera.forward()), 0.0f)
-                                     : glm::vec4(glm::vec3(camera.eye()), 1.0f);
+        const glm::vec4 viewer = camera.viewerHomogeneous();
         std::vector<std::uint32_t> candidates;
         for (std::size_t i = 0; i < scene.indices.size(); i += 3) {
             const std::uint32_t* v = &scene.indices[i];

@@ -274,6 +274,16 @@ groupsByBreadthFirstSearch(const PixelMask& mask, int reach) {
     return {group, sizes};
 }
 
+// Turns off the pixels of `mask` whose group (groupsByBreadthFirstSearch) is under `minPixels`.
+void clearGroupsUnder(PixelMask& mask,
+                      const std::pair<std::vector<int>, std::vector<std::size_t>>& groups,
+                      std::size_t minPixels) {
+    const auto& [group, sizes] = groups;
+    for (std::size_t i = 0; i < group.size(); ++i)
+        if (group[i] >= 0 && sizes[std::size_t(group[i])] < minPixels)
+            mask.pixels()[i] = 0;
+}
+
 // PixelMask's search (a union-find over the mask's runs, row cursors for the neighbours) against
 // the plain one, on sizes around its eight-pixel row skipping, at gaps 0 to 2; and pruning, which
 // does its three steps in one walk, against them one after the other: the groups within the gap
@@ -288,25 +298,20 @@ TEST(StrokeGroups, MatchTheBreadthFirstSearch) {
             for (const unsigned seed : {3u, 4u, 5u, 6u}) {
                 const PixelMask mask = seed % 2 ? randomStrokes(size.x, size.y, seed)
                                                 : dashedStrokes(size.x, size.y, seed);
-                const auto [group, sizes] = groupsByBreadthFirstSearch(mask, 1 + gap);
-                EXPECT_EQ(mask.componentSizes(gap), sizes)
+                const auto groups = groupsByBreadthFirstSearch(mask, 1 + gap);
+                EXPECT_EQ(mask.componentSizes(gap), groups.second)
                     << size.x << "x" << size.y << " gap " << gap << " seed " << seed;
                 for (const int minPixels : {2, 5, 12}) {
                     PixelMask expected = mask;
-                    for (std::size_t i = 0; i < group.size(); ++i)
-                        if (group[i] >= 0 && sizes[std::size_t(group[i])] < std::size_t(minPixels))
-                            expected.pixels()[i] = 0;
+                    clearGroupsUnder(expected, groups, std::size_t(minPixels));
                     PixelMask removed = mask;
                     removed.removeComponentsSmallerThan(minPixels, gap);
                     EXPECT_TRUE(removed == expected) << size.x << "x" << size.y << " gap " << gap;
                     if (gap >= 1) {
                         bridged += expected.bridgeStrokeEnds();
                         const std::size_t before = expected.count();
-                        const auto [piece, pieceSizes] = groupsByBreadthFirstSearch(expected, 1);
-                        for (std::size_t i = 0; i < piece.size(); ++i)
-                            if (piece[i] >= 0 &&
-                                pieceSizes[std::size_t(piece[i])] < std::size_t(minPixels / 2))
-                                expected.pixels()[i] = 0;
+                        clearGroupsUnder(expected, groupsByBreadthFirstSearch(expected, 1),
+                                         std::size_t(minPixels / 2));
                         piecesRemoved += before - expected.count();
                     }
                     PixelMask pruned = mask;

@@ -4,15 +4,13 @@
 #include "gl_mask_kernels.cuh"
 #include "lw/kernels/cuda/gl_mask_reader.h"
 #include "lw/kernels/cuda/gl_texture_interop.h"
+#include "pixel_launch.h"
 #include "stroke_pruning.h"
-#include "tuning.h"
 
 #include <GL/gl.h>
 #include <cuda_gl_interop.h>
 
 namespace lw::kernels::cuda {
-
-using dispatch::blocksFor;
 
 struct GlMaskReader::Impl {
     GlTextureInterop texture; // the colour texture, registered read-only
@@ -80,11 +78,9 @@ CudaStatus GlMaskReader::read(std::uint8_t backgroundRed, int minPixels, int gap
         cudaGetLastError();
         return copied;
     }
-    const dim3 block(tuning::kPixelBlockX, tuning::kPixelBlockY);
-    const dim3 grid(blocksFor(std::size_t(width), tuning::kPixelBlockX),
-                    blocksFor(std::size_t(height), tuning::kPixelBlockY));
-    glmask::maskFromColour<<<grid, block, 0, st>>>(s.colour.data(), width, height, backgroundRed,
-                                                   s.mask.data());
+    const PixelLaunch launch = pixelLaunch(width, height);
+    glmask::maskFromColour<<<launch.grid, launch.block, 0, st>>>(s.colour.data(), width, height,
+                                                                 backgroundRed, s.mask.data());
     LW_CUDA_LAUNCHED("glmask::maskFromColour");
     LW_RETURN_IF_FAILED(s.pruning.run(s.mask.data(), width, height, minPixels, gapPixels, st));
     LW_RETURN_IF_FAILED(s.download.queue(s.mask.data(), pixels, st));

@@ -1,6 +1,7 @@
 // Host dispatch of stroke pruning on the device (kernels in stroke_kernels.cuh).
 
 #include "lw/kernels/cuda/stroke_pruning_cuda.h"
+#include "pixel_launch.h"
 #include "stroke_kernels.cuh"
 #include "stroke_pruning.h"
 #include "tuning.h"
@@ -27,10 +28,8 @@ CudaStatus StrokePruning::run(std::uint8_t* mask, int width, int height, int min
         clearShortGroups(mask, width, height, 1 + std::max(0, gapPixels), minPixels, stream));
     if (gapPixels < 1)
         return CudaStatus::success();
-    const dim3 block(tuning::kPixelBlockX, tuning::kPixelBlockY);
-    const dim3 grid(blocksFor(std::size_t(width), tuning::kPixelBlockX),
-                    blocksFor(std::size_t(height), tuning::kPixelBlockY));
-    sk::findBridges<<<grid, block, 0, stream>>>(mask, width, height, m_sizes.data());
+    const PixelLaunch launch = pixelLaunch(width, height);
+    sk::findBridges<<<launch.grid, launch.block, 0, stream>>>(mask, width, height, m_sizes.data());
     LW_CUDA_LAUNCHED("sk::findBridges");
     sk::drawBridges<<<blocksFor(pixels, tuning::kStrokePixelBlock), tuning::kStrokePixelBlock, 0,
                       stream>>>(mask, std::uint32_t(pixels), m_sizes.data());
@@ -47,10 +46,9 @@ CudaStatus StrokePruning::clearShortGroups(std::uint8_t* mask, int width, int he
     sk::initLabels<<<blocks, tuning::kStrokePixelBlock, 0, stream>>>(mask, count, m_labels.data(),
                                                                      m_sizes.data());
     LW_CUDA_LAUNCHED("sk::initLabels");
-    const dim3 block(tuning::kPixelBlockX, tuning::kPixelBlockY);
-    const dim3 grid(blocksFor(std::size_t(width), tuning::kPixelBlockX),
-                    blocksFor(std::size_t(height), tuning::kPixelBlockY));
-    sk::uniteNeighbours<<<grid, block, 0, stream>>>(mask, width, height, reach, m_labels.data());
+    const PixelLaunch launch = pixelLaunch(width, height);
+    sk::uniteNeighbours<<<launch.grid, launch.block, 0, stream>>>(mask, width, height, reach,
+                                                                  m_labels.data());
     LW_CUDA_LAUNCHED("sk::uniteNeighbours");
     sk::countGroups<<<blocks, tuning::kStrokePixelBlock, 0, stream>>>(mask, count, m_labels.data(),
                                                                       m_sizes.data());
@@ -63,10 +61,8 @@ CudaStatus StrokePruning::clearShortGroups(std::uint8_t* mask, int width, int he
 
 CudaStatus copyMaskToSurface(const std::uint8_t* mask, int width, int height,
                              cudaSurfaceObject_t target, cudaStream_t stream) {
-    const dim3 block(tuning::kPixelBlockX, tuning::kPixelBlockY);
-    const dim3 grid(blocksFor(std::size_t(width), tuning::kPixelBlockX),
-                    blocksFor(std::size_t(height), tuning::kPixelBlockY));
-    sk::copyToSurface<<<grid, block, 0, stream>>>(mask, width, height, target);
+    const PixelLaunch launch = pixelLaunch(width, height);
+    sk::copyToSurface<<<launch.grid, launch.block, 0, stream>>>(mask, width, height, target);
     LW_CUDA_LAUNCHED("sk::copyToSurface");
     return CudaStatus::success();
 }

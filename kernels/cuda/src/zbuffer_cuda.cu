@@ -3,6 +3,7 @@
 #include "dispatch.h"
 #include "lw/kernels/cuda/gl_texture_interop.h"
 #include "lw/kernels/cuda/zbuffer_cuda.h"
+#include "pixel_launch.h"
 #include "stroke_pruning.h"
 #include "tuning.h"
 #include "zbuffer_kernels.cuh"
@@ -147,20 +148,7 @@ CudaStatus ZBufferCuda::drawKeptHostMesh(const ZBufferCudaSettings& settings,
     return draw(m_impl->hostMesh, settings, frame);
 }
 
-namespace {
-
-struct PixelLaunch {
-    dim3 grid, block;
-};
-
-PixelLaunch pixelLaunch(int width, int height) {
-    const dim3 block(tuning::kPixelBlockX, tuning::kPixelBlockY);
-    return {dim3(blocksFor(std::size_t(width), tuning::kPixelBlockX),
-                 blocksFor(std::size_t(height), tuning::kPixelBlockY)),
-            block};
-}
-
-} // namespace
+namespace {} // namespace
 
 CudaStatus ZBufferCuda::finishResolve(ZBufferCudaFrame& frame) {
     Impl& s = *m_impl;

@@ -227,9 +227,13 @@ int reachOfGap(int gapPixels) {
 // A pixel to draw between two stroke ends (kernels::bridgesStrokeEnds) and the two line pixels
 // of its ring, the ends it joins.
 struct Bridge {
-    std::size_t pixel;
     glm::ivec2 at, endA, endB;
 };
+
+// Raster order (row, then column), the order the bridges are kept in.
+bool rasterBefore(glm::ivec2 a, glm::ivec2 b) {
+    return a.y < b.y || (a.y == b.y && a.x < b.x);
+}
 
 // The bridges beside the given stroke ends: a bridge lies beside a stroke end, so only the ends'
 // neighbours are tried; all are found before any is drawn, as on the device. Sorted by pixel,
@@ -243,7 +247,7 @@ std::vector<Bridge> bridgesBeside(const std::vector<std::uint8_t>& pixels, int w
                 const glm::ivec2 p = end + glm::ivec2(dx, dy);
                 if (!kernels::bridgesStrokeEnds(pixels.data(), width, height, p.x, p.y))
                     continue;
-                Bridge bridge{std::size_t(p.y) * std::size_t(width) + std::size_t(p.x), p, {}, {}};
+                Bridge bridge{p, {}, {}};
                 int found = 0;
                 for (int ry = -1; ry <= 1; ++ry)
                     for (int rx = -1; rx <= 1; ++rx)
@@ -253,9 +257,9 @@ std::vector<Bridge> bridgesBeside(const std::vector<std::uint8_t>& pixels, int w
                 bridges.push_back(bridge);
             }
     std::sort(bridges.begin(), bridges.end(),
-              [](const Bridge& a, const Bridge& b) { return a.pixel < b.pixel; });
+              [](const Bridge& a, const Bridge& b) { return rasterBefore(a.at, b.at); });
     bridges.erase(std::unique(bridges.begin(), bridges.end(),
-                              [](const Bridge& a, const Bridge& b) { return a.pixel == b.pixel; }),
+                              [](const Bridge& a, const Bridge& b) { return a.at == b.at; }),
                   bridges.end());
     return bridges;
 }
@@ -264,6 +268,21 @@ std::size_t clearRun(std::vector<std::uint8_t>& pixels, int width, const StrokeG
     std::memset(pixels.data() + std::size_t(run.y) * std::size_t(width) + run.first, 0,
                 run.length());
     return run.length();
+}
+
+// Clears the runs of the groups under `minPixels`; kept[i]: run i stays. Returns the pixels
+// cleared.
+std::size_t clearShortGroups(StrokeGroups& groups, int minPixels, std::vector<std::uint8_t>& pixels,
+                             int width, std::vector<std::uint8_t>& kept) {
+    const std::vector<std::uint32_t> sizes = groups.sizesAtRoots();
+    kept.assign(groups.runs().size(), 1);
+    std::size_t removed = 0;
+    for (std::uint32_t i = 0; i < groups.runs().size(); ++i)
+        if (sizes[groups.root(i)] < std::uint32_t(minPixels)) {
+            removed += clearRun(pixels, width, groups.runs()[i]);
+            kept[i] = 0;
+        }
+    return removed;
 }
 
 // The stroke ends among the kept runs: a run's inner pixels have two line neighbours, so only
@@ -293,8 +312,8 @@ std::vector<glm::ivec2> keptStrokeEnds(const std::vector<std::uint8_t>& pixels, 
 // are sorted by pixel).
 std::vector<std::uint32_t> piecesWithBridges(StrokeGroups& groups,
                                              const std::vector<std::uint8_t>& kept,
-                                             const std::vector<Bridge>& bridges, int width,
-                                             int height, std::vector<std::uint32_t>& pieceOf) {
+                                             const std::vector<Bridge>& bridges,
+                                             std::vector<std::uint32_t>& pieceOf) {
     LowestRootUnion& pieces = groups.pieces();
     pieceOf.resize(bridges.size());
     for (std::size_t b = 0; b < bridges.size(); ++b) {
@@ -305,13 +324,10 @@ std::vector<std::uint32_t> piecesWithBridges(StrokeGroups& groups,
         for (const glm::ivec2 step :
              {glm::ivec2(1, 0), glm::ivec2(-1, 1), glm::ivec2(0, 1), glm::ivec2(1, 1)}) {
             const glm::ivec2 n = bridges[b].at + step;
-            if (n.x < 0 || n.x >= width || n.y >= height)
-                continue;
-            const std::size_t pixel = std::size_t(n.y) * std::size_t(width) + std::size_t(n.x);
             const auto other = std::lower_bound(
-                bridges.begin() + std::ptrdiff_t(b), bridges.end(), pixel,
-                [](const Bridge& bridge, std::size_t p) { return bridge.pixel < p; });
-            if (other != bridges.end() && other->pixel == pixel)
+                bridges.begin() + std::ptrdiff_t(b), bridges.end(), n,
+                [](const Bridge& bridge, glm::ivec2 p) { return rasterBefore(bridge.at, p); });
+            if (other != bridges.end() && other->at == n)
                 pieces.join(pieceOf[b], pieceOf[std::size_t(other - bridges.begin())]);
         }
     std::vector<std::uint32_t> sizes(groups.runs().size(), 0);
@@ -329,12 +345,8 @@ std::size_t PixelMask::removeComponentsSmallerThan(int minPixels, int gapPixels)
     if (minPixels <= 1 || m_pixels.empty())
         return 0;
     StrokeGroups groups(m_pixels, m_width, m_height, reachOfGap(gapPixels));
-    const std::vector<std::uint32_t> sizes = groups.sizesAtRoots();
-    std::size_t removed = 0;
-    for (std::uint32_t i = 0; i < groups.runs().size(); ++i)
-        if (sizes[groups.root(i)] < std::uint32_t(minPixels))
-            removed += clearRun(m_pixels, m_width, groups.runs()[i]);
-    return removed;
+    std::vector<std::uint8_t> kept;
+    return clearShortGroups(groups, minPixels, m_pixels, m_width, kept);
 }
 
 std::size_t PixelMask::bridgeStrokeEnds() {
@@ -345,7 +357,7 @@ std::size_t PixelMask::bridgeStrokeEnds() {
     });
     const std::vector<Bridge> bridges = bridgesBeside(m_pixels, m_width, m_height, ends);
     for (const Bridge& bridge : bridges)
-        m_pixels[bridge.pixel] = 1;
+        set(bridge.at.x, bridge.at.y);
     return bridges.size();
 }
 
@@ -360,19 +372,12 @@ std::size_t PixelMask::pruneStrokes(int minPixels, int gapPixels) {
     // the length (kernels::minPiecePixels).
     StrokeGroups groups(m_pixels, m_width, m_height, reachOfGap(gapPixels), true);
     const std::vector<StrokeGroups::Run>& runs = groups.runs();
-    std::vector<std::uint8_t> kept(runs.size(), 1);
-    std::size_t removed = 0;
-    const std::vector<std::uint32_t> sizes = groups.sizesAtRoots();
-    for (std::uint32_t i = 0; i < runs.size(); ++i)
-        if (sizes[groups.root(i)] < std::uint32_t(minPixels)) {
-            removed += clearRun(m_pixels, m_width, runs[i]);
-            kept[i] = 0;
-        }
+    std::vector<std::uint8_t> kept;
+    std::size_t removed = clearShortGroups(groups, minPixels, m_pixels, m_width, kept);
     const std::vector<Bridge> bridges = bridgesBeside(
         m_pixels, m_width, m_height, keptStrokeEnds(m_pixels, m_width, m_height, runs, kept));
     std::vector<std::uint32_t> pieceOf;
-    const std::vector<std::uint32_t> pieceSizes =
-        piecesWithBridges(groups, kept, bridges, m_width, m_height, pieceOf);
+    const std::vector<std::uint32_t> pieceSizes = piecesWithBridges(groups, kept, bridges, pieceOf);
     LowestRootUnion& pieces = groups.pieces();
     const int pieceMin = kernels::minPiecePixels(minPixels);
     for (std::uint32_t i = 0; i < runs.size(); ++i)
@@ -380,7 +385,7 @@ std::size_t PixelMask::pruneStrokes(int minPixels, int gapPixels) {
             removed += clearRun(m_pixels, m_width, runs[i]);
     for (std::size_t b = 0; b < bridges.size(); ++b)
         if (pieceSizes[pieces.root(pieceOf[b])] >= std::uint32_t(pieceMin))
-            m_pixels[bridges[b].pixel] = 1;
+            set(bridges[b].at.x, bridges[b].at.y);
     return removed;
 }
 

@@ -150,9 +150,7 @@ public:
             return false;
         if (gl.reserveLineCandidates(mesh.triangleCount + m_capCandidates.size() / 3))
             ++m_candidateGeneration;
-        const glm::vec4 viewer = camera.isOrthographic()
-                                     ? glm::vec4(glm::vec3(-camera.forward()), 0.0f)
-                                     : glm::vec4(glm::vec3(camera.eye()), 1.0f);
+        const glm::vec4 viewer = camera.viewerHomogeneous();
         std::size_t triangles = 0;
         const kernels::cuda::CudaStatus status = m_interop.writeLineCandidates(
             mesh, viewer, gl.lineCandidateBuffer(), m_candidateGeneration, triangles);

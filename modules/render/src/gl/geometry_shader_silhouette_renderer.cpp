@@ -137,9 +137,8 @@ struct GeometryShaderSilhouetteRenderer::State {
             return;
         }
         gl.readRedMask(kBackground.r, frame.lines.pixels());
-        frame.strokesPruned =
-            settings.minStrokePixels > 1 && source &&
-            source->pruneStrokes(frame.lines, settings.minStrokePixels, kStrokeGapPixels);
+        frame.strokesPruned = minPixels > 1 && source &&
+                              source->pruneStrokes(frame.lines, minPixels, kStrokeGapPixels);
     }
 
     // Pass 2's candidates from the host mesh (the CPU extraction): the triangles whose facing can
@@ -150,9 +149,7 @@ struct GeometryShaderSilhouetteRenderer::State {
     bool hostLineCandidates(const Camera& camera, unsigned threads, std::size_t& indices) {
         if (!meshOnHost || mesh.triangleCount() == 0)
             return false;
-        const glm::vec4 viewer = camera.isOrthographic()
-                                     ? glm::vec4(glm::vec3(-camera.forward()), 0.0f)
-                                     : glm::vec4(glm::vec3(camera.eye()), 1.0f);
+        const glm::vec4 viewer = camera.viewerHomogeneous();
         constexpr std::size_t kChunk = 1 << 16;
         const std::size_t triangles = mesh.triangleCount();
         const std::size_t chunks = (triangles + kChunk - 1) / kChunk;

@@ -502,12 +502,9 @@ void SilhouetteGlRenderer::ensureFramebuffer(int width, int height) {
 
 SilhouetteGlStats SilhouetteGlRenderer::render(const Camera& camera,
                                                const SilhouetteGlOptions& options) {
-    const glm::dvec3 toViewer = -camera.forward();
-    const glm::vec4 viewer = camera.isOrthographic() ? glm::vec4(glm::vec3(toViewer), 0.0f)
-                                                     : glm::vec4(glm::vec3(camera.eye()), 1.0f);
     const glm::vec3 light(camera.panelLightDirection());
-    return render(camera.viewProjectionMatrixF(), viewer, light, camera.width(), camera.height(),
-                  options);
+    return render(camera.viewProjectionMatrixF(), camera.viewerHomogeneous(), light, camera.width(),
+                  camera.height(), options);
 }
 
 SilhouetteGlStats SilhouetteGlRenderer::render(const glm::mat4& viewProjection, glm::vec4 viewer,

@@ -4,7 +4,7 @@
 // kernels run once per pixel in parallel (kernels/cuda/src/stroke_kernels.cuh), and that a test
 // runs pixel by pixel on the host against PixelMask's search. The CPU back-ends' search
 // (PixelMask, modules/render/src/pixel_mask.cpp) applies the same rules in raster order to labels
-// that number the line pixels alone.
+// that number the mask's runs (a row's consecutive line pixels).
 //
 // A group is what PixelMask::removeComponentsSmallerThan calls one: line pixels joined through
 // steps of Chebyshev distance <= reach (reach 1: 8-connected; reach 2: a one-pixel gap bridged).
@@ -139,15 +139,6 @@ LW_HOST_DEVICE void uniteWithEarlierNeighbours(const std::uint8_t* mask, std::ui
 //
 // Two lines passing each other two pixels apart have no ends there, and a line's side or corner
 // brings more than two neighbours into P's ring, so neither is joined.
-// After the bridges, the 8-connected pieces under half the stroke length go too: the gap keeps a
-// contour drawn in dashes alive until its end-to-end breaks are bridged, but it also keeps the
-// dots that noise leaves a pixel or two beside a longer stroke (a doubled terrace rim). Half the
-// length, measured on the five CT series of docs/BENCHMARKS.md: the whole length (10 px) also
-// drops real outline pieces, and the agreement of the methods falls furthest.
-LW_HOST_DEVICE inline int minPiecePixels(int minStrokePixels) {
-    return minStrokePixels / 2;
-}
-
 LW_HOST_DEVICE inline bool isLinePixel(const std::uint8_t* mask, int width, int height, int x,
                                        int y) {
     return x >= 0 && y >= 0 && x < width && y < height &&
@@ -193,6 +184,15 @@ LW_HOST_DEVICE inline bool bridgesStrokeEnds(const std::uint8_t* mask, int width
         return false;
     return lineNeighbourCount(mask, width, height, x + ax, y + ay) <= 1 &&
            lineNeighbourCount(mask, width, height, x + bx, y + by) <= 1;
+}
+
+// After the bridges, the 8-connected pieces under half the stroke length go too: the gap keeps a
+// contour drawn in dashes alive until its end-to-end breaks are bridged, but it also keeps the
+// dots that noise leaves a pixel or two beside a longer stroke (a doubled terrace rim). Half the
+// length, measured on the five CT series of docs/BENCHMARKS.md: the whole length (10 px) also
+// drops real outline pieces, and the agreement of the methods falls furthest.
+LW_HOST_DEVICE inline int minPiecePixels(int minStrokePixels) {
+    return minStrokePixels / 2;
 }
 
 } // namespace lw::kernels

@@ -96,6 +96,12 @@ public:
     // Unit vector from `point` toward the viewer: normalize(eye - point) for perspective,
     // -forward() for ortho. This is the V of Burns et al.'s d = N . V silhouette test.
     glm::dvec3 toViewer(glm::dvec3 point) const;
+    // The viewer as the float shaders and kernels take it: the eye (w = 1) for perspective, the
+    // unit vector toward the viewer (w = 0) for ortho; toViewer(p) = normalize(xyz - p * w).
+    glm::vec4 viewerHomogeneous() const {
+        return isOrthographic() ? glm::vec4(glm::vec3(-m_forward), 0.0f)
+                                : glm::vec4(glm::vec3(m_eye), 1.0f);
+    }
 
     glm::dmat4 viewMatrix() const;
     glm::dmat4 projectionMatrix() const;
