@@ -19,7 +19,7 @@ namespace lw::kernels::cpu {
 namespace {
 
 constexpr std::size_t kChunkCells = 2048;
-// The visibility rule and its constants (start offset, self skip, grazing zone, macro cells) are
+// The visibility rule and its constants (start offset, self skip, neighbour ray, macro cells) are
 // kernels/common's RayVisibility, shared with the CUDA back-end.
 constexpr int kMacroCells = RayVisibilityRule::kMacroCells;
 // Slack of the normal-cone cull, relative to |eye - cell centre|: float round-off of d = N . V

@@ -180,13 +180,14 @@ struct RayGridView {
 //
 // Self-occlusion rule: the ray starts kStartOffsetCells off the point toward the viewer, and
 // walls are not tested until the ray has left the cell it starts in and travelled at least
-// kSelfSkipCells cell widths (measured in grid units). Up to kGrazeCells cell widths (the grazing
-// zone) a wall occludes only when its value is inside by more than kGrazeFraction of the spread of
-// its four corner values (about a tenth of a cell deep); beyond, any inside wall occludes. A
+// kSelfSkipCells cell widths (measured in grid units); from there any inside wall occludes. A
 // silhouette point lies on a chord of the interpolated surface and its ray runs tangent to it;
-// near the start, and for several cells on flat stretches, the ray stays within a hair of the
-// trilinear surface, where round-off and the difference between the linear mesh and the
-// trilinear field would hide it. Rays leaving the grid, or reaching the eye, are visible; a ray
+// near the start the ray stays within a hair of the trilinear surface, where round-off and the
+// difference between the linear mesh and the trilinear field would hide it. (A grazing zone of
+// two cells, where a wall had to be inside by a tenth of its corners' spread to occlude, was
+// there before the neighbour ray; with the neighbour ray it only drew terrace rims that method 3
+// hides, and the analytic sweep is the same without it: docs/BENCHMARKS.md, "Without the
+// grazing zone".) Rays leaving the grid, or reaching the eye, are visible; a ray
 // that starts outside it (a neighbour ray shifted past the border) is walked from where it enters
 // it, and entering through an inside border wall crosses the cap that closes the surface there.
 //
@@ -221,8 +222,6 @@ struct RayVisibilityRule {
     // the demo's worst agreement with method 3 improves; the analytic sweep is unchanged
     // (docs/BENCHMARKS.md, "Method 2 on real CT").
     static constexpr double kSelfSkipCells = 0.5;
-    static constexpr double kGrazeCells = 2.0;
-    static constexpr double kGrazeFraction = 0.1;
     static constexpr int kMacroCells = 8;
     // Coarse blocks of kCoarseMacros^3 macro cells (32^3 cells): a ray through empty space
     // (air around the head, the brain at a bone iso-value) jumps a block at a time.
@@ -345,9 +344,8 @@ template <typename T> struct RayVisibility {
         return t;
     }
 
-    // Bilinear value on the wall the ray leaves through (stored units), and the spread of its
-    // four corner values.
-    LW_HOST_DEVICE double wallValue(const CellExit& exit, double& spread) const {
+    // Bilinear value on the wall the ray leaves through (stored units).
+    LW_HOST_DEVICE double wallValue(const CellExit& exit) const {
         const int a = exit.axis, b = (a + 1) % 3, c = (a + 2) % 3;
         auto fraction = [&](int axis) {
             const double f = axis == 2 ? grid.sliceFraction(exit.point.z, exit.cell.z)
@@ -363,17 +361,10 @@ template <typename T> struct RayVisibility {
         const double v00 = double(float(voxels[i00])), v10 = double(float(voxels[i00 + sb])),
                      v01 = double(float(voxels[i00 + sc])),
                      v11 = double(float(voxels[i00 + sb + sc]));
-        const double hi0 = v00 > v10 ? v00 : v10, hi1 = v01 > v11 ? v01 : v11;
-        const double lo0 = v00 < v10 ? v00 : v10, lo1 = v01 < v11 ? v01 : v11;
-        spread = (hi0 > hi1 ? hi0 : hi1) - (lo0 < lo1 ? lo0 : lo1);
         return (1.0 - fc) * ((1.0 - fb) * v00 + fb * v10) + fc * ((1.0 - fb) * v01 + fb * v11);
     }
 
-    LW_HOST_DEVICE bool occludes(const CellExit& exit, bool grazing) const {
-        double spread = 0.0;
-        const double v = wallValue(exit, spread);
-        return grazing ? v - iso > Rule::kGrazeFraction * spread : v >= iso;
-    }
+    LW_HOST_DEVICE bool occludes(const CellExit& exit) const { return wallValue(exit) >= iso; }
 
     // Unit vector across the view (normal to `toward`) pointing out of the surface at `point`:
     // the gradient of the trilinear field in the cell holding it, negated and projected. Zero
@@ -447,8 +438,8 @@ template <typename T> struct RayVisibility {
     // entering through a border wall whose value is inside crosses the cap. `from`, `tFrom` and
     // `cell` receive the entry (`tFrom` is where the ray may start counting on input).
     static constexpr int kEnteredGrid = 0, kMissesGrid = 1, kBlockedOnEntry = 2;
-    LW_HOST_DEVICE int enterGrid(glm::dvec3 u0, glm::dvec3 du, double tMax, double tGraze,
-                                 glm::dvec3& from, double& tFrom, glm::ivec3& cell) const {
+    LW_HOST_DEVICE int enterGrid(glm::dvec3 u0, glm::dvec3 du, double tMax, glm::dvec3& from,
+                                 double& tFrom, glm::ivec3& cell) const {
         double tEnter = 0.0;
         int axis = 0;
         if (!grid.entry(u0, du, tFrom, tMax, tEnter, axis))
@@ -464,7 +455,7 @@ template <typename T> struct RayVisibility {
         wall.cell = cell;
         from = wall.point;
         tFrom = tEnter;
-        return occludes(wall, tEnter < tGraze) ? kBlockedOnEntry : kEnteredGrid;
+        return occludes(wall) ? kBlockedOnEntry : kEnteredGrid;
     }
 
     // The walk of one ray. `onSurface`: the ray starts on the surface, so the self-occlusion rule
@@ -483,14 +474,13 @@ template <typename T> struct RayVisibility {
         if (tStart >= tMax)
             return true;
         const double tSkip = onSurface ? Rule::kSelfSkipCells / cellsPerT : 0.0;
-        const double tGraze = onSurface ? Rule::kGrazeCells / cellsPerT : 0.0;
         // The walk restarts at every macro cell boundary: an empty macro cell is crossed in one
         // jump, an occupied one cell by cell. `from` always lies exactly on the wall entered.
         glm::dvec3 from = u0 + tStart * du;
         double tFrom = tStart;
         glm::ivec3 startCell;
         if (!grid.cellOf(from, du, startCell)) {
-            const int entered = enterGrid(u0, du, tMax, tGraze, from, tFrom, startCell);
+            const int entered = enterGrid(u0, du, tMax, from, tFrom, startCell);
             if (entered == kMissesGrid)
                 return true;
             if (entered == kBlockedOnEntry && tFrom >= tSkip) {
@@ -520,8 +510,7 @@ template <typename T> struct RayVisibility {
             CellExit last;
             grid.walk(from, du, tMax - tFrom, [&](const CellExit& exit) {
                 const double t = tFrom + exit.t;
-                if ((!onSurface || exit.cell != startCell) && t >= tSkip &&
-                    occludes(exit, t < tGraze)) {
+                if ((!onSurface || exit.cell != startCell) && t >= tSkip && occludes(exit)) {
                     occluded = true;
                     if (blockedCells)
                         *blockedCells = t * cellsPerT;

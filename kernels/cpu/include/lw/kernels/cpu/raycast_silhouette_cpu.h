@@ -73,10 +73,8 @@ public:
     //
     // Self-occlusion rule: the ray starts 1e-4 cell off the point toward the viewer, and walls
     // are not tested until the ray has left the cell it starts in and travelled at least
-    // selfSkipCells() cell widths (measured in grid units). Up to the grazing zone's end
-    // (RayVisibilityRule::kGrazeCells) a wall occludes only when its value is inside by more
-    // than 10% of the spread of its four corner values (about a tenth of a cell deep); beyond,
-    // any inside wall occludes. A silhouette point lies on a chord of the interpolated surface
+    // selfSkipCells() cell widths (measured in grid units); from there any inside wall
+    // occludes. A silhouette point lies on a chord of the interpolated surface
     // and its ray runs tangent to it; near the start the ray stays within a hair of the
     // trilinear surface, where round-off and the difference between the linear mesh and the
     // trilinear field would hide it. A point whose ray is blocked near it is still visible when
