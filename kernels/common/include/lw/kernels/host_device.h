@@ -7,3 +7,11 @@
 #else
 #define LW_HOST_DEVICE
 #endif
+
+// For the few functions on a hot path that the host compiler stops inlining once they grow (a
+// call per marching-cubes vertex costs measurably); nvcc's __forceinline__ on the device.
+#if defined(__CUDACC__)
+#define LW_FORCE_INLINE __forceinline__
+#else
+#define LW_FORCE_INLINE [[gnu::always_inline]] inline
+#endif

@@ -185,9 +185,9 @@ struct McVertex {
 // The marching-cubes vertex on the edge that leaves voxel (x, y, z) along `axis`: `a`/`b` are the
 // values and `ga`/`gb` the gradients (oblique frame, see VoxelGradientSampler) at its lower and
 // upper voxel. Marching cubes and method 2 both place their vertices here, bit-identically.
-LW_HOST_DEVICE inline McVertex mcEdgeVertex(const McGridFrame& frame, int x, int y, int z, int axis,
-                                            float a, float b, const McVec3& ga, const McVec3& gb,
-                                            double iso, float isoF) {
+LW_HOST_DEVICE LW_FORCE_INLINE McVertex mcEdgeVertex(const McGridFrame& frame, int x, int y, int z,
+                                                     int axis, float a, float b, const McVec3& ga,
+                                                     const McVec3& gb, double iso, float isoF) {
     const float t = mcEdgeParameter(a, b, iso);
     const double offset0 = frame.sliceOffset[z];
     const double offset1 = axis == 2 ? frame.sliceOffset[z + 1] : offset0;

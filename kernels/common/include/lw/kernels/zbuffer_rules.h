@@ -25,12 +25,6 @@
 #include <cstring>
 #include <glm/glm.hpp>
 
-#if defined(__CUDACC__)
-#define LW_FORCE_INLINE __forceinline__
-#else
-#define LW_FORCE_INLINE [[gnu::always_inline]] inline
-#endif
-
 namespace lw::kernels {
 
 inline constexpr int kSubpixelBits = 8;
@@ -121,8 +115,7 @@ LW_HOST_DEVICE inline std::int32_t roundToInt(double v) {
 }
 
 // A vertex's fixed-point screen position, or {kInvalidVertex, kInvalidVertex}.
-LW_HOST_DEVICE LW_FORCE_INLINE glm::ivec2 snapVertex(bool projected, double pixelX,
-                                                     double pixelY) {
+LW_HOST_DEVICE LW_FORCE_INLINE glm::ivec2 snapVertex(bool projected, double pixelX, double pixelY) {
     const bool ok = projected && (pixelX < 0.0 ? -pixelX : pixelX) < kMaxPixelCoordinate &&
                     (pixelY < 0.0 ? -pixelY : pixelY) < kMaxPixelCoordinate;
     return ok ? glm::ivec2(roundToInt(pixelX * double(kSubpixelScale)),
@@ -212,12 +205,9 @@ forEachCoveredPixel(glm::ivec2 pa, glm::ivec2 pb, glm::ivec2 pc, float k0, float
     using detail::topLeftBias;
     const std::int64_t px = i0 * kSubpixelScale + half, py = j0 * kSubpixelScale + half;
     // w0 belongs to edge 1->2 (weight of vertex 0), w1 to 2->0, w2 to 0->1.
-    std::int64_t row0 =
-        (y2 - y1) * (px - x1) - (x2 - x1) * (py - y1) + topLeftBias(x1, y1, x2, y2);
-    std::int64_t row1 =
-        (y0 - y2) * (px - x2) - (x0 - x2) * (py - y2) + topLeftBias(x2, y2, x0, y0);
-    std::int64_t row2 =
-        (y1 - y0) * (px - x0) - (x1 - x0) * (py - y0) + topLeftBias(x0, y0, x1, y1);
+    std::int64_t row0 = (y2 - y1) * (px - x1) - (x2 - x1) * (py - y1) + topLeftBias(x1, y1, x2, y2);
+    std::int64_t row1 = (y0 - y2) * (px - x2) - (x0 - x2) * (py - y2) + topLeftBias(x2, y2, x0, y0);
+    std::int64_t row2 = (y1 - y0) * (px - x0) - (x1 - x0) * (py - y0) + topLeftBias(x0, y0, x1, y1);
     const std::int64_t stepX0 = (y2 - y1) * kSubpixelScale, stepY0 = -(x2 - x1) * kSubpixelScale;
     const std::int64_t stepX1 = (y0 - y2) * kSubpixelScale, stepY1 = -(x0 - x2) * kSubpixelScale;
     const std::int64_t stepX2 = (y1 - y0) * kSubpixelScale, stepY2 = -(x1 - x0) * kSubpixelScale;
