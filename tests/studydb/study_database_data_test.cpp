@@ -79,6 +79,11 @@ private slots:
                      qPrintable(QString::number(record.tiltDegrees)));
             QVERIFY2(warnings.contains(QStringLiteral("tilt")), qPrintable(warnings));
         }
+        // Each fact once: the importer's own wording beside the assembler's listed the tilt and
+        // the gaps twice in the browser.
+        for (const QString& fact :
+             {QStringLiteral("tilt"), QStringLiteral("slice gaps"), QStringLiteral("missing")})
+            QVERIFY2(record.warnings().filter(fact).size() <= 1, qPrintable(warnings));
         QVERIFY(!record.thumbnail().isNull());
         QCOMPARE(record.fileCount, StudyDatabase(dbPath()).seriesFiles(record.uid).size());
     }

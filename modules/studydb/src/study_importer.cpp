@@ -61,17 +61,10 @@ void addWarning(SeriesRecord& record, const QString& text) {
     record.messages.append({SeriesMessage::Kind::Warning, QString(), text});
 }
 
-// Geometry warnings of one plan; `prefix` names the volume when the series was split.
+// Geometry warnings of one plan; `prefix` names the volume when the series was split. The plan
+// states the tilt, uneven gaps and missing slices itself (what opening the series shows too),
+// so each is listed once, in the same words in the browser and the review.
 void addPlanWarnings(SeriesRecord& record, const dicom::VolumePlan& plan, const QString& prefix) {
-    if (plan.tiltDegrees > 0.01)
-        addWarning(record,
-                   prefix + QStringLiteral("gantry tilt %1°").arg(plan.tiltDegrees, 0, 'f', 1));
-    if (plan.unevenGaps)
-        addWarning(record, prefix + QStringLiteral("uneven slice gaps (%1 to %2 mm)")
-                                        .arg(plan.minGap, 0, 'f', 2)
-                                        .arg(plan.maxGap, 0, 'f', 2));
-    if (plan.missingSlices > 0)
-        addWarning(record, prefix + QStringLiteral("%1 slice(s) missing").arg(plan.missingSlices));
     for (const std::string& warning : plan.warnings)
         addWarning(record, prefix + qs(warning));
 }
