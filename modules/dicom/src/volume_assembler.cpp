@@ -153,15 +153,12 @@ bool occurrenceLess(const FrameRef& a, const FrameRef& b) {
     return rank(a) < rank(b);
 }
 
-// Frames at one position in groups of duplicates. Returns the groups split so that no
-// position repeats: by a header attribute when one separates them cleanly, otherwise by the
-// order of occurrence (the first frame at each position goes to volume 1, the second to 2...).
-std::vector<Group> splitDuplicates(Group group, std::vector<std::string>& seriesWarnings) {
+// The group's frames sorted along its slice normal, in clusters of frames at one position.
+std::vector<std::vector<FrameRef>> positionClusters(Group& group) {
     const glm::dvec3 normal = normalOf(group.key);
     std::sort(group.frames.begin(), group.frames.end(), [&](const FrameRef& a, const FrameRef& b) {
         return distanceAlongNormal(a, normal) < distanceAlongNormal(b, normal);
     });
-    // Clusters of frames at the same position.
     std::vector<std::vector<FrameRef>> positions;
     for (const FrameRef& f : group.frames) {
         if (!positions.empty() &&
@@ -173,20 +170,13 @@ std::vector<Group> splitDuplicates(Group group, std::vector<std::string>& series
         else
             positions.push_back({f});
     }
-    std::size_t duplicates = 0;
-    for (const auto& p : positions)
-        duplicates += p.size() - 1;
-    if (duplicates == 0)
-        return {std::move(group)};
+    return positions;
+}
 
-    if (positions.size() == 1) {
-        seriesWarnings.push_back(
-            "all " + std::to_string(group.frames.size()) +
-            " slices share one position: not a volume (no volume made of them)");
-        return {};
-    }
-
-    // A header attribute that separates the repeats cleanly (each value once per position).
+// The group split by a header attribute that separates the repeats cleanly (each value once per
+// position), labelled with the attribute; empty when no attribute does.
+std::vector<Group> splitByAttribute(const Group& group,
+                                    const std::vector<std::vector<FrameRef>>& positions) {
     using Discriminator = std::function<std::optional<int>(const FrameRef&)>;
     const std::vector<std::pair<std::string, Discriminator>> candidates = {
         {"temporal position", [](const FrameRef& f) { return f.frameInfo->temporalPosition; }},
@@ -194,16 +184,14 @@ std::vector<Group> splitDuplicates(Group group, std::vector<std::string>& series
     };
     for (const auto& [name, value] : candidates) {
         std::map<int, std::vector<FrameRef>> split;
-        bool usable = true;
-        for (const FrameRef& f : group.frames) {
-            auto v = value(f);
-            if (!v) {
-                usable = false;
-                break;
-            }
-            split[*v].push_back(f);
-        }
-        if (!usable || split.size() < 2)
+        const bool everyFrame =
+            std::all_of(group.frames.begin(), group.frames.end(),
+                        [&](const FrameRef& f) { return value(f).has_value(); });
+        if (!everyFrame)
+            continue;
+        for (const FrameRef& f : group.frames)
+            split[*value(f)].push_back(f);
+        if (split.size() < 2)
             continue;
         bool clean = true;
         for (const auto& p : positions) {
@@ -223,8 +211,13 @@ std::vector<Group> splitDuplicates(Group group, std::vector<std::string>& series
         }
         return result;
     }
+    return {};
+}
 
-    // dcm2niix style: the n-th frame at each position goes to volume n.
+// dcm2niix style: the n-th frame at each position (in acquisition order) goes to volume n.
+std::vector<Group> splitByOccurrence(const Group& group,
+                                     std::vector<std::vector<FrameRef>> positions,
+                                     std::size_t duplicates) {
     std::size_t volumes = 0;
     for (auto& p : positions) {
         std::sort(p.begin(), p.end(), occurrenceLess);
@@ -244,6 +237,28 @@ std::vector<Group> splitDuplicates(Group group, std::vector<std::string>& series
         for (std::size_t k = 0; k < p.size(); ++k)
             result[k].frames.push_back(p[k]);
     return result;
+}
+
+// Frames at one position in groups of duplicates. Returns the groups split so that no
+// position repeats: by a header attribute when one separates them cleanly, otherwise by the
+// order of occurrence (the first frame at each position goes to volume 1, the second to 2...).
+std::vector<Group> splitDuplicates(Group group, std::vector<std::string>& seriesWarnings) {
+    std::vector<std::vector<FrameRef>> positions = positionClusters(group);
+    std::size_t duplicates = 0;
+    for (const auto& p : positions)
+        duplicates += p.size() - 1;
+    if (duplicates == 0)
+        return {std::move(group)};
+    if (positions.size() == 1) {
+        seriesWarnings.push_back(
+            "all " + std::to_string(group.frames.size()) +
+            " slices share one position: not a volume (no volume made of them)");
+        return {};
+    }
+    std::vector<Group> byAttribute = splitByAttribute(group, positions);
+    if (!byAttribute.empty())
+        return byAttribute;
+    return splitByOccurrence(group, std::move(positions), duplicates);
 }
 
 // The most common gap, clustering gaps within 1% of each other (ties: the smaller gap).
