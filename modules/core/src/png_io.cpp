@@ -7,6 +7,8 @@
 #include <cstdlib>
 #include <cstring>
 #include <limits>
+#include <optional>
+#include <string>
 #include <zlib.h>
 
 namespace lw::core {
@@ -77,11 +79,16 @@ int paeth(int a, int b, int c) {
 // left (a), upper (b) and upper-left (c) bytes; encoder and decoder must agree on it exactly.
 int filterPredictor(int type, int a, int b, int c) {
     switch (type) {
-    case 1: return a;
-    case 2: return b;
-    case 3: return (a + b) / 2;
-    case 4: return paeth(a, b, c);
-    default: return 0;
+    case 1:
+        return a;
+    case 2:
+        return b;
+    case 3:
+        return (a + b) / 2;
+    case 4:
+        return paeth(a, b, c);
+    default:
+        return 0;
     }
 }
 
@@ -190,19 +197,60 @@ void writePng(const std::filesystem::path& path, const ImageRgba8& image, PngFor
     writeFileAtomically(path, bytes.data(), bytes.size());
 }
 
-ImageRgba8 decodePng(const std::byte* data, std::size_t size, const std::string& subject,
-                     PngFormat* storedFormat) {
-    if (size < kSignature.size() || std::memcmp(data, kSignature.data(), kSignature.size()) != 0)
-        throw Error(subject, "not a PNG file (bad signature)");
-    std::size_t pos = kSignature.size();
-    bool haveHeader = false;
-    bool haveEnd = false;
+namespace {
+
+// What decoding needs of the IHDR chunk.
+struct PngHeader {
     std::uint32_t width = 0, height = 0;
     int channels = 0;
     PngFormat format = PngFormat::Rgba;
-    std::vector<std::uint8_t> compressed;
+};
 
-    while (!haveEnd) {
+PngHeader parsePngHeader(const std::byte* body, std::uint32_t length, const std::string& subject) {
+    if (length != 13)
+        throw Error(subject, "PNG header has the wrong length");
+    PngHeader header;
+    header.width = getU32(body);
+    header.height = getU32(body + 4);
+    const auto bitDepth = std::uint8_t(body[8]);
+    const auto colourType = std::uint8_t(body[9]);
+    if (header.width == 0 || header.height == 0 ||
+        std::uint64_t(header.width) * header.height > kMaxPixels)
+        throw Error(subject, "PNG size " + std::to_string(header.width) + "x" +
+                                 std::to_string(header.height) + " is empty or too large");
+    if (bitDepth != 8)
+        throw Error(subject,
+                    "unsupported PNG bit depth " + std::to_string(bitDepth) + " (only 8 is read)");
+    switch (colourType) {
+    case 0:
+        header = {header.width, header.height, 1, PngFormat::Gray};
+        break;
+    case 2:
+        header = {header.width, header.height, 3, PngFormat::Rgb};
+        break;
+    case 4:
+        header = {header.width, header.height, 2, PngFormat::Rgba};
+        break;
+    case 6:
+        header = {header.width, header.height, 4, PngFormat::Rgba};
+        break;
+    default:
+        throw Error(subject, "unsupported PNG colour type " + std::to_string(colourType) +
+                                 " (gray, gray+alpha, RGB and RGBA are read)");
+    }
+    if (std::uint8_t(body[10]) != 0 || std::uint8_t(body[11]) != 0)
+        throw Error(subject, "unknown PNG compression or filter method");
+    if (std::uint8_t(body[12]) != 0)
+        throw Error(subject, "interlaced PNGs are not supported");
+    return header;
+}
+
+// Walks the chunks after the signature: the header, and the IDAT chunks' bytes joined.
+PngHeader readPngChunks(const std::byte* data, std::size_t size, const std::string& subject,
+                        std::vector<std::uint8_t>& compressed) {
+    std::size_t pos = kSignature.size();
+    std::optional<PngHeader> header;
+    for (;;) {
         if (size - pos < 12)
             throw Error(subject,
                         "PNG is truncated (chunk header at byte " + std::to_string(pos) + ")");
@@ -218,68 +266,42 @@ ImageRgba8 decodePng(const std::byte* data, std::size_t size, const std::string&
         pos += std::size_t(length) + 12;
 
         if (type == "IHDR") {
-            if (length != 13)
-                throw Error(subject, "PNG header has the wrong length");
-            width = getU32(body);
-            height = getU32(body + 4);
-            const auto bitDepth = std::uint8_t(body[8]);
-            const auto colourType = std::uint8_t(body[9]);
-            const auto compression = std::uint8_t(body[10]);
-            const auto filterMethod = std::uint8_t(body[11]);
-            const auto interlace = std::uint8_t(body[12]);
-            if (width == 0 || height == 0 || std::uint64_t(width) * height > kMaxPixels)
-                throw Error(subject, "PNG size " + std::to_string(width) + "x" +
-                                         std::to_string(height) + " is empty or too large");
-            if (bitDepth != 8)
-                throw Error(subject, "unsupported PNG bit depth " + std::to_string(bitDepth) +
-                                         " (only 8 is read)");
-            switch (colourType) {
-            case 0:
-                channels = 1;
-                format = PngFormat::Gray;
-                break;
-            case 2:
-                channels = 3;
-                format = PngFormat::Rgb;
-                break;
-            case 4:
-                channels = 2;
-                format = PngFormat::Rgba;
-                break;
-            case 6:
-                channels = 4;
-                format = PngFormat::Rgba;
-                break;
-            default:
-                throw Error(subject, "unsupported PNG colour type " + std::to_string(colourType) +
-                                         " (gray, gray+alpha, RGB and RGBA are read)");
-            }
-            if (compression != 0 || filterMethod != 0)
-                throw Error(subject, "unknown PNG compression or filter method");
-            if (interlace != 0)
-                throw Error(subject, "interlaced PNGs are not supported");
-            haveHeader = true;
-        } else if (!haveHeader) {
+            header = parsePngHeader(body, length, subject);
+        } else if (!header) {
             throw Error(subject, "PNG does not start with an IHDR chunk");
         } else if (type == "IDAT") {
             compressed.insert(compressed.end(), reinterpret_cast<const std::uint8_t*>(body),
                               reinterpret_cast<const std::uint8_t*>(body) + length);
         } else if (type == "IEND") {
-            haveEnd = true;
+            return *header;
         } else if ((std::uint8_t(type[0]) & 0x20) == 0) {
             // Upper-case first letter: a critical chunk (e.g. PLTE) we cannot honour.
             throw Error(subject, "unsupported critical PNG chunk " + type);
         }
     }
-    if (compressed.empty())
-        throw Error(subject, "PNG has no image data");
+}
 
-    const std::size_t rowBytes = std::size_t(width) * std::size_t(channels);
-    const auto raw = inflateExactly(compressed, (rowBytes + 1) * height, subject);
+Rgba8 expandPixel(const std::uint8_t* p, int channels) {
+    switch (channels) {
+    case 1:
+        return {p[0], p[0], p[0], 255};
+    case 2:
+        return {p[0], p[0], p[0], p[1]};
+    case 3:
+        return {p[0], p[1], p[2], 255};
+    default:
+        return {p[0], p[1], p[2], p[3]};
+    }
+}
 
-    ImageRgba8 image(static_cast<int>(width), static_cast<int>(height));
+// The inflated rows, each a filter type byte and the filtered pixels, undone into RGBA.
+ImageRgba8 unfilterRows(const std::vector<std::uint8_t>& raw, const PngHeader& header,
+                        const std::string& subject) {
+    const int channels = header.channels;
+    const std::size_t rowBytes = std::size_t(header.width) * std::size_t(channels);
+    ImageRgba8 image(static_cast<int>(header.width), static_cast<int>(header.height));
     std::vector<std::uint8_t> row(rowBytes), prev(rowBytes, 0);
-    for (std::uint32_t y = 0; y < height; ++y) {
+    for (std::uint32_t y = 0; y < header.height; ++y) {
         const std::uint8_t* in = raw.data() + std::size_t(y) * (rowBytes + 1);
         const int type = in[0];
         if (type > 4)
@@ -293,27 +315,28 @@ ImageRgba8 decodePng(const std::byte* data, std::size_t size, const std::string&
             row[i] = static_cast<std::uint8_t>(in[i] + filterPredictor(type, a, b, c));
         }
         Rgba8* out = image.row(static_cast<int>(y));
-        for (std::uint32_t x = 0; x < width; ++x) {
-            const std::uint8_t* p = row.data() + std::size_t(x) * std::size_t(channels);
-            switch (channels) {
-            case 1:
-                out[x] = {p[0], p[0], p[0], 255};
-                break;
-            case 2:
-                out[x] = {p[0], p[0], p[0], p[1]};
-                break;
-            case 3:
-                out[x] = {p[0], p[1], p[2], 255};
-                break;
-            default:
-                out[x] = {p[0], p[1], p[2], p[3]};
-                break;
-            }
-        }
+        for (std::uint32_t x = 0; x < header.width; ++x)
+            out[x] = expandPixel(row.data() + std::size_t(x) * std::size_t(channels), channels);
         prev.swap(row);
     }
+    return image;
+}
+
+} // namespace
+
+ImageRgba8 decodePng(const std::byte* data, std::size_t size, const std::string& subject,
+                     PngFormat* storedFormat) {
+    if (size < kSignature.size() || std::memcmp(data, kSignature.data(), kSignature.size()) != 0)
+        throw Error(subject, "not a PNG file (bad signature)");
+    std::vector<std::uint8_t> compressed;
+    const PngHeader header = readPngChunks(data, size, subject, compressed);
+    if (compressed.empty())
+        throw Error(subject, "PNG has no image data");
+    const std::size_t rowBytes = std::size_t(header.width) * std::size_t(header.channels);
+    const auto raw = inflateExactly(compressed, (rowBytes + 1) * header.height, subject);
+    ImageRgba8 image = unfilterRows(raw, header, subject);
     if (storedFormat)
-        *storedFormat = format;
+        *storedFormat = header.format;
     return image;
 }
 
