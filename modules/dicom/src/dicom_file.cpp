@@ -2,10 +2,11 @@
 
 #include "deflated_dataset.h"
 #include "dicom_dcmtk.h"
-
 #include "lw/core/error.h"
 #include "lw/core/file_util.h"
 
+#include <algorithm>
+#include <cmath>
 #include <dcmtk/dcmdata/dcdeftag.h>
 #include <dcmtk/dcmdata/dcfilefo.h>
 #include <dcmtk/dcmdata/dcistrmb.h>
@@ -14,9 +15,6 @@
 #include <dcmtk/dcmdata/dcuid.h>
 #include <dcmtk/dcmdata/dcxfer.h>
 #include <dcmtk/oflog/oflog.h>
-
-#include <algorithm>
-#include <cmath>
 #include <fstream>
 
 namespace lw::dicom {
@@ -105,11 +103,10 @@ std::optional<std::uint64_t> nativePixelDataLength(DcmDataset& ds) {
     return length;
 }
 
-void fillInstance(DcmFileFormat& file, const LoadedDicom& loaded, InstanceInfo& info,
-                  const core::ImportLimits& limits) {
+// SOP identity and the transfer syntax as parsed (and as written, where the meta says so).
+void fillSopAndSyntax(DcmFileFormat& file, InstanceInfo& info) {
     DcmDataset& ds = *file.getDataset();
     DcmMetaInfo* meta = file.getMetaInfo();
-
     info.sopInstanceUid = getString(ds, DCM_SOPInstanceUID);
     info.sopClassUid = getString(ds, DCM_SOPClassUID);
     if (info.sopClassUid.empty() && meta)
@@ -126,7 +123,10 @@ void fillInstance(DcmFileFormat& file, const LoadedDicom& loaded, InstanceInfo& 
         if (!metaSyntax.empty())
             info.transferSyntaxUid = metaSyntax;
     }
+}
 
+// Patient, study and series attributes: the browser's tree and the series grouping.
+void fillNames(DcmDataset& ds, InstanceInfo& info) {
     info.patientId = getString(ds, DCM_PatientID);
     info.patientName = getString(ds, DCM_PatientName);
     info.patientBirthDate = getString(ds, DCM_PatientBirthDate);
@@ -143,12 +143,17 @@ void fillInstance(DcmFileFormat& file, const LoadedDicom& loaded, InstanceInfo& 
     info.seriesNumber = getInt(ds, DCM_SeriesNumber);
     info.instanceNumber = getInt(ds, DCM_InstanceNumber);
     info.acquisitionNumber = getInt(ds, DCM_AcquisitionNumber);
+}
 
+// The pixel module, checked against the import limits before any pixel is read.
+void fillPixelDescription(DcmDataset& ds, const LoadedDicom& loaded, InstanceInfo& info,
+                          const core::ImportLimits& limits) {
     info.rows = getUnsigned(ds, DCM_Rows).value_or(0);
     info.columns = getUnsigned(ds, DCM_Columns).value_or(0);
     info.bitsAllocated = getUnsigned(ds, DCM_BitsAllocated).value_or(0);
     info.bitsStored = getUnsigned(ds, DCM_BitsStored).value_or(info.bitsAllocated);
-    info.highBit = getUnsigned(ds, DCM_HighBit).value_or(info.bitsStored > 0 ? info.bitsStored - 1 : 0);
+    info.highBit =
+        getUnsigned(ds, DCM_HighBit).value_or(info.bitsStored > 0 ? info.bitsStored - 1 : 0);
     info.pixelRepresentation = getUnsigned(ds, DCM_PixelRepresentation).value_or(0);
     info.samplesPerPixel = getUnsigned(ds, DCM_SamplesPerPixel).value_or(1);
     info.photometricInterpretation = getString(ds, DCM_PhotometricInterpretation);
@@ -160,12 +165,10 @@ void fillInstance(DcmFileFormat& file, const LoadedDicom& loaded, InstanceInfo& 
             loaded.pixelDataSkipped ? loaded.skippedPixelDataLength : nativePixelDataLength(ds);
         checkDeclaredPixels(info, limits);
     }
+}
 
-    info.gantryTilt = getDouble(ds, DCM_GantryDetectorTilt);
-    info.spacingBetweenSlices = getDouble(ds, DCM_SpacingBetweenSlices);
-
-    // The frame defaults come from the classic top-level attributes; the functional groups of
-    // an enhanced object override them.
+// The frame defaults from the classic top-level attributes.
+FrameInfo classicFrameDefaults(DcmDataset& ds) {
     FrameInfo base;
     if (auto ipp = getDoubles(ds, DCM_ImagePositionPatient, 3))
         base.position = glm::dvec3((*ipp)[0], (*ipp)[1], (*ipp)[2]);
@@ -183,7 +186,11 @@ void fillInstance(DcmFileFormat& file, const LoadedDicom& loaded, InstanceInfo& 
     base.frameType = joinValues(ds, DCM_FrameType);
     if (base.frameType.empty())
         base.frameType = joinValues(ds, DCM_ImageType);
+    return base;
+}
 
+// One FrameInfo per frame: an enhanced object's functional groups override the defaults.
+void fillFrames(DcmDataset& ds, const FrameInfo& base, InstanceInfo& info) {
     DcmSequenceOfItems* perFrame = nullptr;
     if (ds.findAndGetSequence(DCM_PerFrameFunctionalGroupsSequence, perFrame, OFFalse).bad())
         perFrame = nullptr;
@@ -219,6 +226,18 @@ void fillInstance(DcmFileFormat& file, const LoadedDicom& loaded, InstanceInfo& 
     }
 }
 
+void fillInstance(DcmFileFormat& file, const LoadedDicom& loaded, InstanceInfo& info,
+                  const core::ImportLimits& limits) {
+    DcmDataset& ds = *file.getDataset();
+    fillSopAndSyntax(file, info);
+    fillNames(ds, info);
+    fillPixelDescription(ds, loaded, info, limits);
+    info.gantryTilt = getDouble(ds, DCM_GantryDetectorTilt);
+    info.spacingBetweenSlices = getDouble(ds, DCM_SpacingBetweenSlices);
+    // The functional groups of an enhanced object override the classic attributes' defaults.
+    fillFrames(ds, classicFrameDefaults(ds), info);
+}
+
 // Reads the raw bytes of a gzip-wrapped file and inflates them; empty when the file is not gzip.
 std::vector<std::byte> gunzippedContents(const std::filesystem::path& path,
                                          const core::ImportLimits& limits) {
@@ -237,8 +256,8 @@ std::vector<std::byte> gunzippedContents(const std::filesystem::path& path,
 // nonsense tags; accept a result only when it carries attributes every DICOM object has.
 bool looksLikeDicom(DcmFileFormat& file) {
     DcmDataset& ds = *file.getDataset();
-    return ds.tagExists(DCM_SOPClassUID) || ds.tagExists(DCM_Rows) || ds.tagExists(DCM_SOPInstanceUID) ||
-           ds.tagExists(DCM_DirectoryRecordSequence);
+    return ds.tagExists(DCM_SOPClassUID) || ds.tagExists(DCM_Rows) ||
+           ds.tagExists(DCM_SOPInstanceUID) || ds.tagExists(DCM_DirectoryRecordSequence);
 }
 
 // Process-wide DCMTK settings, made once. VR UN elements (explicit_VR-UN.dcm: a TCIA export
@@ -257,15 +276,17 @@ void configureDcmtk() {
 // Deflated files are read by deflated_dataset.cpp (bounded inflation) instead of DCMTK's own
 // stream filter; a plain file is read into memory for it only when its meta names deflate.
 std::optional<DeflatedRead> readDeflated(const std::filesystem::path& path,
-                                         const std::vector<std::byte>& gunzipped, DcmFileFormat& file,
-                                         bool headerOnly, std::optional<std::size_t> expectedPixelBytes,
+                                         const std::vector<std::byte>& gunzipped,
+                                         DcmFileFormat& file, bool headerOnly,
+                                         std::optional<std::size_t> expectedPixelBytes,
                                          const core::ImportLimits& limits) {
     if (!gunzipped.empty())
-        return readIfDeflated(gunzipped, file, headerOnly, expectedPixelBytes, path.string(), limits);
+        return readIfDeflated(gunzipped, file, headerOnly, expectedPixelBytes, path.string(),
+                              limits);
     if (!isDeflatedFile(path.string()))
         return std::nullopt;
-    return readIfDeflated(core::readFileBytes(path), file, headerOnly, expectedPixelBytes, path.string(),
-                          limits);
+    return readIfDeflated(core::readFileBytes(path), file, headerOnly, expectedPixelBytes,
+                          path.string(), limits);
 }
 
 } // namespace
@@ -276,7 +297,8 @@ LoadedDicom loadDicomFile(const std::filesystem::path& path, DcmFileFormat& file
     std::error_code ec;
     if (!std::filesystem::is_regular_file(path, ec))
         throw core::Error(path.string(), "not a readable file");
-    // Anything shorter than one element header cannot be DICOM; DCMTK would call it an empty dataset.
+    // Anything shorter than one element header cannot be DICOM; DCMTK would call it an empty
+    // dataset.
     if (std::filesystem::file_size(path, ec) < 8)
         throw core::Error(path.string(), "not a DICOM file (too short)");
 
@@ -297,13 +319,14 @@ LoadedDicom loadDicomFile(const std::filesystem::path& path, DcmFileFormat& file
     // encodings are tried before giving up. Good files succeed on the first attempt.
     OFCondition firstStatus;
     bool parsedSomething = false; // a DICOM stream, but without the attributes an image needs
-    for (E_TransferSyntax guess : {EXS_Unknown, EXS_LittleEndianExplicit, EXS_LittleEndianImplicit,
-                                   EXS_BigEndianExplicit}) {
+    for (E_TransferSyntax guess :
+         {EXS_Unknown, EXS_LittleEndianExplicit, EXS_LittleEndianImplicit, EXS_BigEndianExplicit}) {
         file.clear();
         OFCondition status;
         if (bytes.empty()) {
             status = file.loadFile(OFFilename(path.c_str()), guess, EGL_noChange,
-                                   headerOnly ? kHeaderMaxReadLength : DCM_MaxReadLength, ERM_autoDetect);
+                                   headerOnly ? kHeaderMaxReadLength : DCM_MaxReadLength,
+                                   ERM_autoDetect);
         } else {
             // A memory buffer cannot be re-opened later, so everything is read at once.
             DcmInputBufferStream stream;
@@ -330,8 +353,9 @@ LoadedDicom loadDicomFile(const std::filesystem::path& path, DcmFileFormat& file
         throw core::Error(path.string(), "cannot parse DICOM: " + detail);
     }
     if (parsedSomething)
-        throw core::Error(path.string(), "DICOM data without SOPClassUID, SOPInstanceUID or Rows: "
-                                         "not an image object (or its encoding cannot be determined)");
+        throw core::Error(path.string(),
+                          "DICOM data without SOPClassUID, SOPInstanceUID or Rows: "
+                          "not an image object (or its encoding cannot be determined)");
     throw core::Error(path.string(), "not a DICOM file (no recognisable DICOM attributes)");
 }
 
@@ -374,9 +398,10 @@ volume::VoxelType storedVoxelType(const InstanceInfo& instance) {
     if (!instance.hasPixelData)
         throw core::Error(instance.path, "no pixel data");
     if (instance.samplesPerPixel != 1)
-        throw core::Error(instance.path, "colour images (" + std::to_string(instance.samplesPerPixel) +
-                                             " samples per pixel, " + instance.photometricInterpretation +
-                                             ") cannot be a volume");
+        throw core::Error(instance.path,
+                          "colour images (" + std::to_string(instance.samplesPerPixel) +
+                              " samples per pixel, " + instance.photometricInterpretation +
+                              ") cannot be a volume");
     if (instance.photometricInterpretation == "PALETTE COLOR")
         throw core::Error(instance.path, "palette colour images cannot be a volume");
     if (instance.rows <= 0 || instance.columns <= 0)
@@ -384,11 +409,14 @@ volume::VoxelType storedVoxelType(const InstanceInfo& instance) {
     switch (instance.bitsAllocated) {
     case 8:
         // Signed 8-bit values need a signed type; int16 holds them all.
-        return instance.pixelRepresentation == 1 ? volume::VoxelType::Int16 : volume::VoxelType::UInt8;
+        return instance.pixelRepresentation == 1 ? volume::VoxelType::Int16
+                                                 : volume::VoxelType::UInt8;
     case 16:
-        return instance.pixelRepresentation == 1 ? volume::VoxelType::Int16 : volume::VoxelType::UInt16;
+        return instance.pixelRepresentation == 1 ? volume::VoxelType::Int16
+                                                 : volume::VoxelType::UInt16;
     default:
-        throw core::Error(instance.path, "unsupported BitsAllocated " + std::to_string(instance.bitsAllocated) +
+        throw core::Error(instance.path, "unsupported BitsAllocated " +
+                                             std::to_string(instance.bitsAllocated) +
                                              " (8 and 16 are supported)");
     }
 }
