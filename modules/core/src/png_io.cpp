@@ -3,9 +3,11 @@
 #include "lw/core/error.h"
 #include "lw/core/file_util.h"
 
+#include <algorithm>
 #include <array>
 #include <cstdlib>
 #include <cstring>
+#include <iterator>
 #include <limits>
 #include <optional>
 #include <string>
@@ -206,6 +208,17 @@ struct PngHeader {
     PngFormat format = PngFormat::Rgba;
 };
 
+// The colour types read (8 bits a sample): gray, RGB, gray + alpha, RGBA.
+struct ColourType {
+    std::uint8_t code;
+    int channels;
+    PngFormat format;
+};
+constexpr ColourType kReadColourTypes[] = {{0, 1, PngFormat::Gray},
+                                           {2, 3, PngFormat::Rgb},
+                                           {4, 2, PngFormat::Rgba},
+                                           {6, 4, PngFormat::Rgba}};
+
 PngHeader parsePngHeader(const std::byte* body, std::uint32_t length, const std::string& subject) {
     if (length != 13)
         throw Error(subject, "PNG header has the wrong length");
@@ -221,23 +234,13 @@ PngHeader parsePngHeader(const std::byte* body, std::uint32_t length, const std:
     if (bitDepth != 8)
         throw Error(subject,
                     "unsupported PNG bit depth " + std::to_string(bitDepth) + " (only 8 is read)");
-    switch (colourType) {
-    case 0:
-        header = {header.width, header.height, 1, PngFormat::Gray};
-        break;
-    case 2:
-        header = {header.width, header.height, 3, PngFormat::Rgb};
-        break;
-    case 4:
-        header = {header.width, header.height, 2, PngFormat::Rgba};
-        break;
-    case 6:
-        header = {header.width, header.height, 4, PngFormat::Rgba};
-        break;
-    default:
+    const auto* known = std::find_if(std::begin(kReadColourTypes), std::end(kReadColourTypes),
+                                     [&](const ColourType& t) { return t.code == colourType; });
+    if (known == std::end(kReadColourTypes))
         throw Error(subject, "unsupported PNG colour type " + std::to_string(colourType) +
                                  " (gray, gray+alpha, RGB and RGBA are read)");
-    }
+    header.channels = known->channels;
+    header.format = known->format;
     if (std::uint8_t(body[10]) != 0 || std::uint8_t(body[11]) != 0)
         throw Error(subject, "unknown PNG compression or filter method");
     if (std::uint8_t(body[12]) != 0)
