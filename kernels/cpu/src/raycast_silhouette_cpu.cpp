@@ -138,64 +138,86 @@ public:
             throw core::Error("method 2", "volumes of more than 2^32 voxels are not supported");
         const std::vector<int> active = grid.activeBricks(m_iso);
         activeBricks = active.size();
-        // One unit per (brick, cell layer): enough units to balance, each a contiguous run.
-        struct Unit {
-            int brick;
-            int z;
-        };
-        std::vector<Unit> units;
-        for (int b : active) {
-            const auto& brick = grid.bricks()[std::size_t(b)];
-            for (int z = brick.cellBegin.z; z < brick.cellEnd.z; ++z)
-                units.push_back({b, z});
-        }
+        const std::vector<LayerUnit> units = layerUnits(grid, active);
         if (unitCells.size() < units.size())
             unitCells.resize(units.size());
         core::parallelFor(
             units.size(),
             [&](std::size_t u) {
-                const auto& brick = grid.bricks()[std::size_t(units[u].brick)];
-                auto& list = unitCells[u];
-                list.clear();
+                unitCells[u].clear();
                 if (cancelled())
                     return; // the remaining layers are skipped; the caller drops the result
-                const int z = units[u].z;
-                // Classify the voxel rows of layers z and z+1 first (a branch-free count the
-                // compiler vectorises): a cell row whose four voxel rows are all outside or all
-                // inside holds no active cell, which is most rows of a CT.
-                const int rowsY = brick.cellEnd.y - brick.cellBegin.y + 1;
-                const int width = brick.cellEnd.x - brick.cellBegin.x + 1;
-                thread_local std::vector<std::uint8_t> rowState;
-                rowState.resize(std::size_t(2 * rowsY));
-                for (int dz = 0; dz < 2; ++dz)
-                    for (int r = 0; r < rowsY; ++r) {
-                        const T* row =
-                            m_voxels + voxelIndex(brick.cellBegin.x, brick.cellBegin.y + r, z + dz);
-                        int n = 0;
-                        for (int x = 0; x < width; ++x)
-                            n += int(float(row[x]) >= m_isoF);
-                        rowState[std::size_t(dz * rowsY + r)] =
-                            std::uint8_t(n == 0 ? 0 : (n == width ? 1 : 2));
-                    }
-                for (int y = brick.cellBegin.y; y < brick.cellEnd.y; ++y) {
-                    const int r = y - brick.cellBegin.y;
-                    const std::uint8_t s0 = rowState[std::size_t(r)];
-                    if (s0 != 2 && rowState[std::size_t(r + 1)] == s0 &&
-                        rowState[std::size_t(rowsY + r)] == s0 &&
-                        rowState[std::size_t(rowsY + r + 1)] == s0)
-                        continue;
-                    const std::size_t base = voxelIndex(0, y, z);
-                    int column = columnBits(base + std::size_t(brick.cellBegin.x));
-                    for (int x = brick.cellBegin.x; x < brick.cellEnd.x; ++x) {
-                        const int next = columnBits(base + std::size_t(x) + 1);
-                        const int cubeCase = mcCaseFromColumns(column, next);
-                        column = next;
-                        if (cubeCase != 0 && cubeCase != 255)
-                            list.push_back(std::uint32_t(base + std::size_t(x)));
-                    }
-                }
+                findLayerCells(grid.bricks()[std::size_t(units[u].brick)], units[u].z,
+                               unitCells[u]);
             },
             threads);
+        joinUnitsInChunks(units);
+        if (cancelled())
+            return false;
+        if (withCones)
+            buildCones(threads);
+        return true;
+    }
+
+    // One unit of the cell search per (brick, cell layer): enough units to balance, each a
+    // contiguous run of cells.
+    struct LayerUnit {
+        int brick;
+        int z;
+    };
+
+    static std::vector<LayerUnit> layerUnits(const volume::BrickGrid& grid,
+                                             const std::vector<int>& active) {
+        std::vector<LayerUnit> units;
+        for (int b : active) {
+            const auto& brick = grid.bricks()[std::size_t(b)];
+            for (int z = brick.cellBegin.z; z < brick.cellEnd.z; ++z)
+                units.push_back({b, z});
+        }
+        return units;
+    }
+
+    // The active cells (a crossing, not case 0 or 255) of one brick's cell layer z.
+    void findLayerCells(const volume::Brick& brick, int z, std::vector<std::uint32_t>& list) const {
+        // Classify the voxel rows of layers z and z+1 first (a branch-free count the compiler
+        // vectorises): a cell row whose four voxel rows are all outside or all inside holds no
+        // active cell, which is most rows of a CT.
+        const int rowsY = brick.cellEnd.y - brick.cellBegin.y + 1;
+        const int width = brick.cellEnd.x - brick.cellBegin.x + 1;
+        thread_local std::vector<std::uint8_t> rowState;
+        rowState.resize(std::size_t(2 * rowsY));
+        for (int dz = 0; dz < 2; ++dz)
+            for (int r = 0; r < rowsY; ++r) {
+                const T* row =
+                    m_voxels + voxelIndex(brick.cellBegin.x, brick.cellBegin.y + r, z + dz);
+                int n = 0;
+                for (int x = 0; x < width; ++x)
+                    n += int(float(row[x]) >= m_isoF);
+                rowState[std::size_t(dz * rowsY + r)] =
+                    std::uint8_t(n == 0 ? 0 : (n == width ? 1 : 2));
+            }
+        for (int y = brick.cellBegin.y; y < brick.cellEnd.y; ++y) {
+            const int r = y - brick.cellBegin.y;
+            const std::uint8_t s0 = rowState[std::size_t(r)];
+            if (s0 != 2 && rowState[std::size_t(r + 1)] == s0 &&
+                rowState[std::size_t(rowsY + r)] == s0 &&
+                rowState[std::size_t(rowsY + r + 1)] == s0)
+                continue;
+            const std::size_t base = voxelIndex(0, y, z);
+            int column = columnBits(base + std::size_t(brick.cellBegin.x));
+            for (int x = brick.cellBegin.x; x < brick.cellEnd.x; ++x) {
+                const int next = columnBits(base + std::size_t(x) + 1);
+                const int cubeCase = mcCaseFromColumns(column, next);
+                column = next;
+                if (cubeCase != 0 && cubeCase != 255)
+                    list.push_back(std::uint32_t(base + std::size_t(x)));
+            }
+        }
+    }
+
+    // The per-layer lists joined into the flat cell list, cut into chunks of at most kChunkCells
+    // that never straddle a brick.
+    void joinUnitsInChunks(const std::vector<LayerUnit>& units) {
         std::size_t total = 0;
         for (std::size_t u = 0; u < units.size(); ++u)
             total += unitCells[u].size();
@@ -215,24 +237,22 @@ public:
         // Release the per-layer lists of a large volume: the cache is the flat list only.
         unitCells.clear();
         unitCells.shrink_to_fit();
-        if (cancelled())
-            return false;
-        if (withCones) {
-            cones.resize(cells.size());
-            chunkTriangleTotal.assign(chunkStarts.size() - 1, 0);
-            core::parallelFor(
-                chunkStarts.size() - 1,
-                [&](std::size_t c) {
-                    std::size_t triangles = 0;
-                    for (std::size_t i = chunkStarts[c]; i < chunkStarts[c + 1]; ++i) {
-                        cones[i] = normalCone(cells[i]);
-                        triangles += cellTriangleCount(cells[i]);
-                    }
-                    chunkTriangleTotal[c] = triangles;
-                },
-                threads);
-        }
-        return true;
+    }
+
+    void buildCones(unsigned threads) {
+        cones.resize(cells.size());
+        chunkTriangleTotal.assign(chunkStarts.size() - 1, 0);
+        core::parallelFor(
+            chunkStarts.size() - 1,
+            [&](std::size_t c) {
+                std::size_t triangles = 0;
+                for (std::size_t i = chunkStarts[c]; i < chunkStarts[c + 1]; ++i) {
+                    cones[i] = normalCone(cells[i]);
+                    triangles += cellTriangleCount(cells[i]);
+                }
+                chunkTriangleTotal[c] = triangles;
+            },
+            threads);
     }
 
     void buildMacroGrid(unsigned threads) {
