@@ -113,6 +113,73 @@ struct EglHeadlessContext::Impl {
     EglPlatform platform = EglPlatform::DefaultDisplay;
     std::string vendor, renderer, version;
 
+    static EGLConfig pbufferConfig(EGLDisplay dpy) {
+        const EGLint configAttribs[] = {EGL_SURFACE_TYPE,
+                                        EGL_PBUFFER_BIT,
+                                        EGL_RENDERABLE_TYPE,
+                                        EGL_OPENGL_BIT,
+                                        EGL_RED_SIZE,
+                                        8,
+                                        EGL_GREEN_SIZE,
+                                        8,
+                                        EGL_BLUE_SIZE,
+                                        8,
+                                        EGL_NONE};
+        EGLConfig config = nullptr;
+        EGLint configCount = 0;
+        const bool found =
+            eglChooseConfig(dpy, configAttribs, &config, 1, &configCount) && configCount >= 1;
+        return found ? config : nullptr;
+    }
+
+    // An OpenGL core context, or EGL_NO_CONTEXT with each version's error in `errors`.
+    static EGLContext createCoreContext(EGLDisplay dpy, EGLConfig config,
+                                        const EglContextOptions& options, std::string& errors) {
+        // 4.5 first (what the renderers are written against); 4.1 still has geometry shaders and
+        // everything the silhouette pipeline uses, so older drivers get a chance too.
+        std::vector<std::pair<int, int>> versions{{options.majorVersion, options.minorVersion}};
+        if (options.majorVersion > 4 || (options.majorVersion == 4 && options.minorVersion > 1))
+            versions.emplace_back(4, 1);
+        for (auto [want, wantMinor] : versions) {
+            const EGLint contextAttribs[] = {EGL_CONTEXT_MAJOR_VERSION,
+                                             want,
+                                             EGL_CONTEXT_MINOR_VERSION,
+                                             wantMinor,
+                                             EGL_CONTEXT_OPENGL_PROFILE_MASK,
+                                             EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
+                                             EGL_CONTEXT_OPENGL_DEBUG,
+                                             options.debug ? EGL_TRUE : EGL_FALSE,
+                                             EGL_NONE};
+            const EGLContext created =
+                eglCreateContext(dpy, config, EGL_NO_CONTEXT, contextAttribs);
+            if (created != EGL_NO_CONTEXT)
+                return created;
+            // append(), not operator+ on a literal: GCC 12 reports a false -Wrestrict for that.
+            errors.append(" ")
+                .append(std::to_string(want))
+                .append(".")
+                .append(std::to_string(wantMinor));
+            errors.append(": ").append(eglErrorText(eglGetError()));
+        }
+        return EGL_NO_CONTEXT;
+    }
+
+    // Reads the context's strings; empty when usable, else why not.
+    std::string checkUsable() {
+        // A context that cannot answer glGetString is not usable (e.g. a vendor library that
+        // loaded but has no device behind it).
+        renderer = glString(GL_RENDERER);
+        vendor = glString(GL_VENDOR);
+        version = glString(GL_VERSION);
+        if (renderer.empty() || version.empty())
+            return "the context reports no GL_RENDERER/GL_VERSION";
+        GLint glMajor = 0;
+        glGetIntegerv(GL_MAJOR_VERSION, &glMajor);
+        if (glMajor < 4)
+            return "OpenGL " + version + " is older than 4.x";
+        return {};
+    }
+
     // Tries one display; on failure cleans up and returns the reason.
     bool tryDisplay(const Candidate& candidate, const EglContextOptions& options,
                     std::string& reason) {
@@ -145,48 +212,12 @@ struct EglHeadlessContext::Impl {
         if (!eglBindAPI(EGL_OPENGL_API))
             return fail(eglFailure("eglBindAPI(EGL_OPENGL_API)"));
 
-        const EGLint configAttribs[] = {EGL_SURFACE_TYPE,
-                                        EGL_PBUFFER_BIT,
-                                        EGL_RENDERABLE_TYPE,
-                                        EGL_OPENGL_BIT,
-                                        EGL_RED_SIZE,
-                                        8,
-                                        EGL_GREEN_SIZE,
-                                        8,
-                                        EGL_BLUE_SIZE,
-                                        8,
-                                        EGL_NONE};
-        EGLConfig config = nullptr;
-        EGLint configCount = 0;
-        if (!eglChooseConfig(dpy, configAttribs, &config, 1, &configCount) || configCount < 1)
+        EGLConfig config = pbufferConfig(dpy);
+        if (!config)
             return fail("no EGL config with OpenGL and pbuffer support");
 
-        // 4.5 first (what the renderers are written against); 4.1 still has geometry shaders and
-        // everything the silhouette pipeline uses, so older drivers get a chance too.
-        std::vector<std::pair<int, int>> versions{{options.majorVersion, options.minorVersion}};
-        if (options.majorVersion > 4 || (options.majorVersion == 4 && options.minorVersion > 1))
-            versions.emplace_back(4, 1);
         std::string contextErrors;
-        for (auto [want, wantMinor] : versions) {
-            const EGLint contextAttribs[] = {EGL_CONTEXT_MAJOR_VERSION,
-                                             want,
-                                             EGL_CONTEXT_MINOR_VERSION,
-                                             wantMinor,
-                                             EGL_CONTEXT_OPENGL_PROFILE_MASK,
-                                             EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
-                                             EGL_CONTEXT_OPENGL_DEBUG,
-                                             options.debug ? EGL_TRUE : EGL_FALSE,
-                                             EGL_NONE};
-            context = eglCreateContext(dpy, config, EGL_NO_CONTEXT, contextAttribs);
-            if (context != EGL_NO_CONTEXT)
-                break;
-            // append(), not operator+ on a literal: GCC 12 reports a false -Wrestrict for that.
-            contextErrors.append(" ")
-                .append(std::to_string(want))
-                .append(".")
-                .append(std::to_string(wantMinor));
-            contextErrors.append(": ").append(eglErrorText(eglGetError()));
-        }
+        context = createCoreContext(dpy, config, options, contextErrors);
         if (context == EGL_NO_CONTEXT)
             return fail("eglCreateContext (OpenGL core) failed:" + contextErrors);
         if (!surfaceless) {
@@ -197,17 +228,8 @@ struct EglHeadlessContext::Impl {
         }
         if (!eglMakeCurrent(dpy, surface, surface, context))
             return fail(eglFailure("eglMakeCurrent"));
-        // A context that cannot answer glGetString is not usable (e.g. a vendor library that
-        // loaded but has no device behind it).
-        renderer = glString(GL_RENDERER);
-        vendor = glString(GL_VENDOR);
-        version = glString(GL_VERSION);
-        if (renderer.empty() || version.empty())
-            return fail("the context reports no GL_RENDERER/GL_VERSION");
-        GLint glMajor = 0;
-        glGetIntegerv(GL_MAJOR_VERSION, &glMajor);
-        if (glMajor < 4)
-            return fail("OpenGL " + version + " is older than 4.x");
+        if (std::string unusable = checkUsable(); !unusable.empty())
+            return fail(unusable);
         display = dpy;
         platform = candidate.platform;
         return true;
