@@ -182,15 +182,23 @@ private:
         hi = a.right == b.right ? std::min(end, std::max(a.xr, b.xr) + 1) : end;
     }
 
+    // Counts one unit's vertices and triangles (the first pass): its voxel rows classified,
+    // then per row the crossing edges it owns and per cell row the triangles.
     void countUnit(Unit& unit) {
         const auto& brick = m_grid.bricks()[std::size_t(unit.brick)];
-        const glm::ivec3 cb = brick.cellBegin, ce = brick.cellEnd;
-        const int bx = cb.x / m_brickCells.x;
-        unit.rowY1 = std::min(ce.y + 1, m_dims.ny - 1);
+        unit.rowY1 = std::min(brick.cellEnd.y + 1, m_dims.ny - 1);
         unit.rowZ1 = std::min(unit.z1 + 1, m_dims.nz - 1);
+        classifyRows(unit);
+        countVertices(unit);
+        countCells(unit);
+    }
+
+    // Per voxel row of the unit (and the rows one past it): where its x-crossings lie.
+    void classifyRows(Unit& unit) {
+        const auto& brick = m_grid.bricks()[std::size_t(unit.brick)];
+        const glm::ivec3 cb = brick.cellBegin, ce = brick.cellEnd;
         const int width = unit.rowY1 - cb.y + 1;
         unit.rows.resize(std::size_t(width) * std::size_t(unit.rowZ1 - unit.z0 + 1));
-
         for (int z = unit.z0; z <= unit.rowZ1; ++z)
             for (int y = cb.y; y <= unit.rowY1; ++y) {
                 const T* p = m_voxels + voxelIndex(0, y, z);
@@ -219,7 +227,13 @@ private:
                 unit.rows[std::size_t(z - unit.z0) * std::size_t(width) + std::size_t(y - cb.y)] =
                     info;
             }
+    }
 
+    // The crossing edges each voxel row owns (x, y and z edges leaving its voxels).
+    void countVertices(const Unit& unit) {
+        const auto& brick = m_grid.bricks()[std::size_t(unit.brick)];
+        const glm::ivec3 cb = brick.cellBegin, ce = brick.cellEnd;
+        const int bx = cb.x / m_brickCells.x;
         const int ownXEnd = ce.x == m_dims.cx ? m_dims.nx : ce.x;
         const int ownYEnd = ce.y == m_dims.cy ? m_dims.ny : ce.y;
         const int ownZEnd = unit.z1 == m_dims.cz ? m_dims.nz : unit.z1;
@@ -245,7 +259,13 @@ private:
                                    std::size_t(m_gx) +
                                std::size_t(bx)] = n;
             }
+    }
 
+    // The unit's active cells (listed for the second pass) and each cell row's triangles.
+    void countCells(Unit& unit) {
+        const auto& brick = m_grid.bricks()[std::size_t(unit.brick)];
+        const glm::ivec3 cb = brick.cellBegin, ce = brick.cellEnd;
+        const int bx = cb.x / m_brickCells.x;
         for (int z = unit.z0; z < unit.z1; ++z)
             for (int y = cb.y; y < ce.y; ++y) {
                 int lo, hi;
