@@ -8,7 +8,8 @@
 # Prints the edge coverage libFuzzer reports after reading the seeds (INITED cov) and at the
 # end (DONE cov). A crash, a sanitizer finding, a leak or an input slower than 10 s is a
 # finding: its input is kept in build/fuzz/findings/TARGET/ and the script fails; it belongs in
-# tests/data/fuzz/TARGET/ with a regression test. Without clang++ it says so and does nothing.
+# tests/data/fuzz/TARGET/ with a regression test (exit 1). A build that fails exits 2. Without
+# clang++ it says so and does nothing.
 set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 cd "$root"
@@ -25,12 +26,18 @@ data=${LINEWORK_SHARED_DATA:-$(cd .. && pwd)/shared/data}
 build=${LINEWORK_FUZZ_BUILD_DIR:-build/fuzz}
 jobs=${LINEWORK_JOBS:-$(nproc)}
 
+# A build that fails is no finding: it is the commit's (clang rejects what GCC took), so it
+# exits 2, which scripts/linework.sh treats as a failure whatever LINEWORK_FUZZ_STRICT says.
+kBuildFailed=2
 cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
       -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ \
       "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 -g1" "-DCMAKE_C_FLAGS_RELWITHDEBINFO=-O1 -g1" \
       -DLINEWORK_FUZZ=ON -DLINEWORK_SANITIZE=address,undefined -DLINEWORK_GUI=OFF \
-      -DLINEWORK_CUDA=OFF "-DLINEWORK_SHARED_DATA=$data" >/dev/null
-cmake --build "$build" --parallel "$jobs" --target lw_fuzzers
+      -DLINEWORK_CUDA=OFF "-DLINEWORK_SHARED_DATA=$data" >/dev/null || exit $kBuildFailed
+cmake --build "$build" --parallel "$jobs" --target lw_fuzzers || {
+  echo "fuzz: the fuzz targets do not build with clang (above)" >&2
+  exit $kBuildFailed
+}
 
 # Seeds: links to the shared files a target reads. DICOM files over 300 KB are left out: under
 # the sanitizers each costs ~0.1 s per run and the smaller ones cover the same syntaxes.

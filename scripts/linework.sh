@@ -13,7 +13,8 @@
 # LINEWORK_CUDA_ARCHITECTURES (default 90, the H100/H200 of the GPU machine and what CI
 # compiles; e.g. "75;80;86;89;90" for other GPUs). For `test`: LINEWORK_SANITIZERS=0 skips the
 # sanitizer build and suite, LINEWORK_FUZZ_SECONDS (default 45; 0 skips) bounds each fuzz target,
-# LINEWORK_FUZZ_STRICT=1 makes a fuzz finding fail the command.
+# LINEWORK_FUZZ_STRICT=1 makes a fuzz finding fail the command (fuzz targets that do not build
+# with clang always fail it).
 set -euo pipefail
 
 command=${1:-}
@@ -127,7 +128,12 @@ if [ "${LINEWORK_FUZZ_SECONDS:-45}" != 0 ]; then
   # the command only with LINEWORK_FUZZ_STRICT=1, so CI stays a function of the commit; the
   # finding and its log are printed either way (build/fuzz/findings). Known findings do gate:
   # lw_fuzz_regression_tests replays tests/data/fuzz in both suites above.
-  if ! LINEWORK_JOBS=$jobs scripts/fuzz.sh "${LINEWORK_FUZZ_SECONDS:-45}"; then
+  # The fuzz targets' build (clang) is not random: it failing fails the command.
+  fuzz_status=0
+  LINEWORK_JOBS=$jobs scripts/fuzz.sh "${LINEWORK_FUZZ_SECONDS:-45}" || fuzz_status=$?
+  if [ "$fuzz_status" = 2 ]; then
+    failed+=("fuzz targets' build (clang)")
+  elif [ "$fuzz_status" != 0 ]; then
     if [ "${LINEWORK_FUZZ_STRICT:-0}" = 1 ]; then
       failed+=("fuzzing")
     else

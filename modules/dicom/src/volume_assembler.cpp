@@ -182,7 +182,11 @@ std::vector<Group> splitByAttribute(const Group& group,
         {"temporal position", [](const FrameRef& f) { return f.frameInfo->temporalPosition; }},
         {"acquisition", [](const FrameRef& f) { return f.info->acquisitionNumber; }},
     };
-    for (const auto& [name, value] : candidates) {
+    for (const auto& candidate : candidates) {
+        // Named, not a structured binding: lambdas may not capture those before C++20's P1091
+        // (clang 14, the fuzz build's compiler, rejects it).
+        const std::string& name = candidate.first;
+        const Discriminator& value = candidate.second;
         std::map<int, std::vector<FrameRef>> split;
         const bool everyFrame =
             std::all_of(group.frames.begin(), group.frames.end(),
