@@ -154,9 +154,10 @@ std::string generatedPage(const fs::path& data) {
             "`core::Error`, more\n"
          << "than 10 s or one allocation over 1 GB. The random fuzz runs of `scripts/linework.sh "
             "test` only print\n"
-         << "new findings (they fail it with `LINEWORK_FUZZ_STRICT=1`); a fixed finding joins "
-            "tests/data/fuzz and is\n"
-         << "gated from then on (docs/architecture.md, Tests).\n\n"
+         << "new findings (they fail it with `LINEWORK_FUZZ_STRICT=1`; fuzz targets that do not "
+            "build always\n"
+         << "fail it); a fixed finding joins tests/data/fuzz and is gated from then on "
+            "(docs/architecture.md, Tests).\n\n"
          << "## ../shared/data/dicom-odd (SOURCES.md there says what each file is)\n\n";
     addRows(page, data / "dicom-odd", false);
     page << "\n## tests/data/fuzz (hostile inputs and fuzz findings; README.md there gives their "
