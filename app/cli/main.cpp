@@ -47,7 +47,7 @@ commands:
                               pixel within 1 px; blue: true, not drawn) as PNGs in DIR
   quality INPUT [--series UID] --iso HU [--views sweep|N | --view AZ,EL] [--size WxH]
           [--min-stroke PX] [--chunks ..] [--mode ..] [--camera ..] [--backend ..] [--threads N]
-          [--border ..] [--gradient ..] [--images DIR] [--json]
+          [--border ..] [--gradient ..] [--oversample ..] [--images DIR] [--json]
                               line quality on a real CT (issue 7's goals): at each view (default
                               the 32 of the accuracy sweep, 1024x1024, strokes pruned as in
                               `render`) the shaded panel's outer outline covered by each method's
@@ -57,7 +57,8 @@ commands:
          [--visibility on|off] [--view AZ,EL] [--camera perspective|ortho] [--size WxH]
          [--panel iso|silhouette|both] [--backend cpu|cuda|auto] [--repeat N] [--threads N]
          [--min-stroke PX] [--border closed|open] [--gradient central|smoothed]
-         [--format png|svg] [--suggestive [--suggestive-threshold TAU]] -o OUT.png
+         [--oversample auto|off] [--format png|svg]
+         [--suggestive [--suggestive-threshold TAU]] -o OUT.png
                               one view as PNG (default 512x512, silhouette, method 3, view 0,0);
                               INPUT: volume file, DICOM folder/DICOMDIR or phantom:N[xNYxNZ][:sphere];
                               both = shaded iso-surface left, silhouette right (width 2W);
@@ -67,12 +68,16 @@ commands:
                               --gradient smoothed: normals from differences averaged over the
                               neighbouring voxels (Sobel; in-plane only across thick slices),
                               for noisy scans (default central differences);
+                              --oversample off: the volume's own cells (default auto: an axis
+                              whose cells exceed 1/128 of the volume's diagonal, thick slices
+                              or a coarse grid, is split linearly until they do not, so the
+                              triangles follow the same surface more finely);
                               --suggestive: suggestive contours drawn with the silhouette
                               (PNG or SVG; TAU: their derivative test, default 1)
   bench [--sizes 32,256,512,512x512x1024] [--input FILE --iso HU] [--backend cpu|cuda|auto]
         [--methods mc,1,2,3] [--variants S,L] [--modes a,b] [--repeat N] [--image WxH]
         [--border closed|open] [--min-stroke PX] [--gradient central|smoothed]
-        [--peak-memory-of METHOD,VARIANT] [--gpu-budget MIB] [--json]
+        [--oversample off|auto] [--peak-memory-of METHOD,VARIANT] [--gpu-budget MIB] [--json]
                               the paper's Tables 1-4: median ms of marching cubes and of each
                               method x S/L x mode a/b x visibility on/off (default phantom
                               32,256, 1024x1024, 5 runs), stage times, peak memory (VmHWM);
@@ -80,7 +85,8 @@ commands:
                               the methods' surface is closed at the border (--border open:
                               marching cubes' open surface; mc rows are always open) and no
                               strokes are pruned (--min-stroke 0); --min-stroke 10 with
-                              --border closed times a frame as `render` and the review draw it
+                              --border closed (and --oversample auto, off by default here)
+                              times a frame as `render` and the review draw it
   convert INPUT [--series UID] -o OUT.nrrd
                               any INPUT `render` reads (DICOM folder/DICOMDIR/file, volume
                               file, phantom:N) as an NRRD file (uneven slice gaps become their
@@ -89,7 +95,8 @@ commands:
          [--panel both|iso|silhouette] [--annotations FILE.json] [--comment TEXT] [--anonymise]
          [--png OUT.png] [--pdf OUT.pdf] [--svg OUT.svg] [--sc FOLDER] [--force]
          [--chunks ..] [--mode ..] [--visibility ..] [--camera ..] [--backend ..] [--threads N]
-         [--min-stroke PX] [--border ..] [--gradient ..] [--suggestive [--suggestive-threshold TAU]]
+         [--min-stroke PX] [--border ..] [--gradient ..] [--oversample ..]
+         [--suggestive [--suggestive-threshold TAU]]
                               the review as a report, any combination of outputs: PNG with the
                               annotations burned in (lines and text scale with --size, the size
                               of each panel), a 2-page PDF report (header, picture, measurements,

@@ -163,8 +163,8 @@ RenderedPanels renderPanels(render::SilhouetteRenderer& renderer, const volume::
 
 const std::set<std::string>& panelRenderOptions() {
     static const std::set<std::string> names = {
-        "iso",  "method",  "chunks",  "mode",       "visibility", "view",    "camera",
-        "size", "backend", "threads", "min-stroke", "border",     "gradient"};
+        "iso",  "method",  "chunks",  "mode",       "visibility", "view",     "camera",
+        "size", "backend", "threads", "min-stroke", "border",     "gradient", "oversample"};
     return names;
 }
 
@@ -191,6 +191,25 @@ render::GradientStencil parseGradientOption(const Arguments& arguments) {
     if (!stencil)
         throw UsageError("--gradient " + gradient, "expected central or smoothed");
     return *stencil;
+}
+
+render::Oversampling parseOversamplingOption(const Arguments& arguments,
+                                             render::Oversampling fallback) {
+    const std::string text =
+        arguments.option("oversample", std::string(render::oversamplingName(fallback)));
+    const std::optional<render::Oversampling> oversampling = render::parseOversampling(text);
+    if (!oversampling)
+        throw UsageError("--oversample " + text, "expected auto or off");
+    return *oversampling;
+}
+
+void oversampleForRendering(const Arguments& arguments, render::Oversampling fallback,
+                            volume::Volume& volume) {
+    const render::Oversampling oversampling = parseOversamplingOption(arguments, fallback);
+    const unsigned threads = unsigned(std::max(0.0, arguments.number("threads", 0)));
+    if (std::optional<volume::Volume> finer =
+            render::oversampledToRender(volume, oversampling, threads))
+        volume = std::move(*finer);
 }
 
 void parseSuggestiveThreshold(const Arguments& arguments, RenderRequest& request) {

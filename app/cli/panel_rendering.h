@@ -10,6 +10,7 @@
 #include "lw/render/renderer_factory.h"
 #include "lw/render/silhouette_renderer.h"
 #include "lw/render/suggestive_contours.h"
+#include "lw/render/surface_sampling.h"
 #include "lw/render/visible_polylines.h"
 #include "lw/volume/volume.h"
 
@@ -59,6 +60,14 @@ void parseLineOptions(const Arguments& arguments, int defaultMinStroke,
                       render::SilhouetteSettings& settings);
 // --gradient central|smoothed (default central): the normals' finite differences.
 render::GradientStencil parseGradientOption(const Arguments& arguments);
+// --oversample auto|off (default `fallback`), then `volume` replaced by its oversampled copy
+// where the rule asks for one (render/surface_sampling.h): what the review draws. `render`,
+// `quality` and `export` default to auto, `bench` to off (the methods on the grid as given).
+void oversampleForRendering(const Arguments& arguments, render::Oversampling fallback,
+                            volume::Volume& volume);
+// --oversample auto|off (default `fallback`); throws UsageError for another value.
+render::Oversampling parseOversamplingOption(const Arguments& arguments,
+                                             render::Oversampling fallback);
 // --view, --camera; the bounds are set once the volume is known (frameSurface).
 render::CameraSetup parseCameraView(const Arguments& arguments);
 // --size, default 512x512.

@@ -153,10 +153,10 @@ void writeQualityTable(const QualityRun& run, const std::vector<ViewQuality>& ro
                        std::ostream& out) {
     char line[512];
     std::snprintf(line, sizeof line,
-                  "line quality of %s (%s): iso %g, %dx%d, %zu views, strokes under %d px "
+                  "line quality of %s (%s; %s): iso %g, %dx%d, %zu views, strokes under %d px "
                   "pruned, 1 px tolerance\n",
-                  run.input.c_str(), run.description.c_str(), run.iso, run.width, run.height,
-                  rows.size(), run.minStrokePixels);
+                  run.input.c_str(), run.description.c_str(), run.sampling.c_str(), run.iso,
+                  run.width, run.height, rows.size(), run.minStrokePixels);
     out << line;
     out << "cov = outer outline of the shaded panel within 1 px of a line; frag = line pixels in "
            "groups under "
@@ -203,6 +203,7 @@ void writeQualityJson(const QualityRun& run, const std::vector<ViewQuality>& row
     core::JsonWriter writer;
     writer.beginObject();
     writer.field("input", run.input).field("description", run.description).field("iso", run.iso);
+    writer.field("sampling", run.sampling);
     writer.field("width", run.width).field("height", run.height);
     writer.field("min_stroke_px", run.minStrokePixels).field("tolerance_px", 1);
     writer.field("fragment_px", evaluation::kFragmentPixels);

@@ -121,7 +121,7 @@ public:
             }
         }
         m_cellScale = rayGrid.cellScale();
-        m_neighbourReach = neighbourReachCells(rayGrid.slabOverPixel());
+        m_neighbourReach = rayGrid.neighbourReach();
     }
 
     bool findCells(const volume::BrickGrid& grid, bool withCones, unsigned threads,

@@ -91,7 +91,9 @@ double VolumeGeometry::sliceOffset(double k) const {
     return m_sliceOffsets[k0] + t * (m_sliceOffsets[k0 + 1] - m_sliceOffsets[k0]);
 }
 
-double VolumeGeometry::sliceGap(int k) const { return sliceOffset(k + 1) - sliceOffset(k); }
+double VolumeGeometry::sliceGap(int k) const {
+    return sliceOffset(k + 1) - sliceOffset(k);
+}
 
 double VolumeGeometry::tiltDegrees() const {
     const double c = std::clamp(std::abs(glm::dot(m_stackAxis, sliceNormal())), 0.0, 1.0);
@@ -106,7 +108,8 @@ glm::dvec3 VolumeGeometry::indexToPatient(glm::dvec3 ijk) const {
 glm::dmat3 VolumeGeometry::jacobian(double k) const {
     double step = m_uniformStep;
     if (m_sliceOffsets.size() >= 2) {
-        const auto k0 = static_cast<int>(std::clamp(std::floor(k), 0.0, double(m_sliceOffsets.size() - 2)));
+        const auto k0 =
+            static_cast<int>(std::clamp(std::floor(k), 0.0, double(m_sliceOffsets.size() - 2)));
         step = m_sliceOffsets[std::size_t(k0) + 1] - m_sliceOffsets[std::size_t(k0)];
     }
     return glm::dmat3(m_spacingI * m_axisI, m_spacingJ * m_axisJ, step * m_stackAxis);
@@ -129,6 +132,23 @@ VolumeGeometry VolumeGeometry::subStack(int firstSlice, int count) const {
         const double base = sliceOffset(firstSlice);
         for (int k = 0; k < count; ++k)
             g.m_sliceOffsets.push_back(sliceOffset(firstSlice + k) - base);
+    }
+    return g;
+}
+
+VolumeGeometry VolumeGeometry::refined(glm::ivec3 factors, int slices) const {
+    if (factors.x < 1 || factors.y < 1 || factors.z < 1)
+        throw core::Error("volume geometry", "refinement factors must be at least 1");
+    VolumeGeometry g = *this;
+    g.m_spacingI = m_spacingI / factors.x;
+    g.m_spacingJ = m_spacingJ / factors.y;
+    g.m_uniformStep = m_uniformStep / factors.z;
+    g.m_refinement = m_refinement * factors;
+    if (!m_sliceOffsets.empty()) {
+        g.m_sliceOffsets.clear();
+        const int refinedSlices = slices > 1 ? (slices - 1) * factors.z + 1 : slices;
+        for (int k = 0; k < refinedSlices; ++k)
+            g.m_sliceOffsets.push_back(sliceOffset(double(k) / factors.z));
     }
     return g;
 }

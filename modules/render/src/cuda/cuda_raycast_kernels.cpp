@@ -51,7 +51,7 @@ kernels::cuda::RayGridSetup rayGridSetup(const volume::Volume& volume) {
     setup.offsets = grid.offsets();
     setup.view = grid.view();
     setup.cellScale = grid.cellScale();
-    setup.neighbourReach = kernels::neighbourReachCells(grid.slabOverPixel());
+    setup.neighbourReach = grid.neighbourReach();
     return setup;
 }
 

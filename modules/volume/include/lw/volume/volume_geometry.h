@@ -1,7 +1,6 @@
 #pragma once
 
 #include <glm/glm.hpp>
-
 #include <vector>
 
 namespace lw::volume {
@@ -70,6 +69,15 @@ public:
 
     // Describes the same grid restricted to slices [firstSlice, firstSlice + count).
     VolumeGeometry subStack(int firstSlice, int count) const;
+    // The same box sampled `factors` times as densely along (i, j, k): spacing divided by the
+    // factor, and on an uneven stack each gap split into equal parts (sliceOffset(k / factor)),
+    // so index n * factor of the refined grid is index n of this one. `slices` is this stack's
+    // slice count (the per-slice list of a uniform grid is empty).
+    VolumeGeometry refined(glm::ivec3 factors, int slices) const;
+    // Samples per sample of the grid this one was refined from ((1, 1, 1) unless refined()): the
+    // field is that grid's, so what depends on how thick its slabs are (method 2's neighbour
+    // reach, the terraces of a thick-slice series) still can.
+    glm::ivec3 refinement() const { return m_refinement; }
 
 private:
     glm::dvec3 m_origin{0.0};
@@ -80,6 +88,7 @@ private:
     double m_spacingJ = 1.0;
     double m_uniformStep = 1.0;         // used when m_sliceOffsets is empty
     std::vector<double> m_sliceOffsets; // offsets along stackAxis, m_sliceOffsets[0] == 0
+    glm::ivec3 m_refinement{1};
 };
 
 } // namespace lw::volume

@@ -38,6 +38,7 @@ public:
         const glm::dmat3 frame(g.spacingI() * g.axisI(), g.spacingJ() * g.axisJ(), stack);
         m_toGrid = glm::inverse(frame);
         m_toPatient = frame;
+        m_slabRefinement = g.refinement().z;
     }
 
     glm::ivec3 dims() const { return m_dims; }
@@ -94,6 +95,13 @@ public:
         return pixel > 0.0 ? cellScale().z / pixel : 1.0;
     }
 
+    // The neighbour ray's reach (neighbourReachCells) on this grid. An oversampled volume
+    // (volume/oversampling.h) holds the field of its original grid, whose terraces are as deep
+    // as the original slabs: `refinement` of them make one, so the reach counts those.
+    double neighbourReach() const {
+        return neighbourReachCells(slabOverPixel() * m_slabRefinement);
+    }
+
     // RayGridView::cellOf and ::walk (voxel_ray_walk.h).
     bool cellOf(glm::dvec3 u, glm::dvec3 direction, glm::ivec3& cell) const {
         return view().cellOf(u, direction, cell);
@@ -109,6 +117,7 @@ private:
     glm::dmat3 m_toGrid{1.0};
     glm::dmat3 m_toPatient{1.0};
     std::vector<double> m_offsets{0.0};
+    int m_slabRefinement = 1; // volume::VolumeGeometry::refinement().z
 };
 
 } // namespace lw::kernels::cpu
