@@ -985,6 +985,18 @@
         <source>Normals:</source>
         <translation>Normalen:</translation>
     </message>
+    <message>
+        <source>Finer triangles on thick slices and coarse grids</source>
+        <translation>Feinere Dreiecke bei dicken Schichten und groben Rastern</translation>
+    </message>
+    <message>
+        <source>Splits the cells of a coarse axis (thick slices, a coarse grid) by linear interpolation, so the triangles follow the same surface closely and the lines lie on the shaded outline. No value is invented; costs some speed on such series.</source>
+        <translation>Teilt die Zellen einer groben Achse (dicke Schichten, ein grobes Raster) durch lineare Interpolation, sodass die Dreiecke derselben Oberfläche eng folgen und die Linien auf dem schattierten Umriss liegen. Es wird kein Wert erfunden; kostet bei solchen Serien etwas Geschwindigkeit.</translation>
+    </message>
+    <message>
+        <source>Surface:</source>
+        <translation>Oberfläche:</translation>
+    </message>
 </context>
 <context>
     <name>lw::gui::StudyBrowser</name>

@@ -985,6 +985,18 @@
         <source>Normals:</source>
         <translation>Normale:</translation>
     </message>
+    <message>
+        <source>Finer triangles on thick slices and coarse grids</source>
+        <translation>Triunghiuri mai fine la secțiuni groase și grile grosiere</translation>
+    </message>
+    <message>
+        <source>Splits the cells of a coarse axis (thick slices, a coarse grid) by linear interpolation, so the triangles follow the same surface closely and the lines lie on the shaded outline. No value is invented; costs some speed on such series.</source>
+        <translation>Împarte celulele unei axe grosiere (secțiuni groase, o grilă grosieră) prin interpolare liniară, astfel încât triunghiurile urmează îndeaproape aceeași suprafață, iar liniile stau pe conturul umbrit. Nicio valoare nu este inventată; costă puțină viteză la astfel de serii.</translation>
+    </message>
+    <message>
+        <source>Surface:</source>
+        <translation>Suprafață:</translation>
+    </message>
 </context>
 <context>
     <name>lw::gui::StudyBrowser</name>

@@ -40,6 +40,7 @@ private slots:
     void methodAndChunkingSwitchTheRightPanel();
     void camerasAreLinked();
     void suggestiveContoursAddLines();
+    void oversamplingRefinesTheMesh();
     void panelsReRenderAtAnySize();
     void pickingFindsTheSphereSurface_data();
     void pickingFindsTheSphereSurface();
@@ -175,6 +176,31 @@ void ReviewTest::camerasAreLinked() {
 
     review.setStandardView(StandardView::Left);
     QCOMPARE(review.camera().cameraSetup().azimuthDeg, 90.0);
+}
+
+// The settings' "Finer triangles" (Auto) splits a coarse grid's cells: the 24^3 phantom's
+// mesh comes back finer (each axis split 4 times: some 16 times the triangles) and both panels
+// still draw it; switching it off brings the grid's own mesh back.
+void ReviewTest::oversamplingRefinesTheMesh() {
+    ReviewWidget review(phantomSource("phantom:24", 300.5), settingsFor(3, Chunking::Off));
+    review.resize(900, 600);
+    review.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&review));
+    QVERIFY(waitSettled(review));
+    const std::size_t asLoaded = review.status().triangles;
+    QVERIFY(asLoaded > 100);
+    ReviewSettings settings = settingsFor(3, Chunking::Off);
+    settings.oversampling = lw::render::Oversampling::Auto;
+    review.applySettings(settings);
+    QVERIFY(waitSettled(review, review.status().framesShown + 1));
+    QVERIFY2(review.errorText().isEmpty(), qPrintable(review.errorText()));
+    QVERIFY2(review.status().triangles > 8 * asLoaded,
+             qPrintable(QString("%1 vs %2").arg(review.status().triangles).arg(asLoaded)));
+    const QImage silhouette = review.silhouettePanel().grabImage();
+    QVERIFY(lw::test::pixelsDifferentFrom(silhouette, Qt::white, 100) > 300);
+    review.applySettings(settingsFor(3, Chunking::Off));
+    QVERIFY(waitSettled(review, review.status().framesShown + 1));
+    QCOMPARE(review.status().triangles, asLoaded);
 }
 
 // The settings' "Suggestive contours" adds the CT phantom's suggestive contours to the

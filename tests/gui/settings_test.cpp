@@ -59,6 +59,9 @@ void SettingsTest::roundTripThroughQSettings() {
     settings.suggestiveContours = method != 2; // off is the default: both values round-trip
     settings.gradientStencil =
         method == 1 ? lw::render::GradientStencil::Smoothed : lw::render::GradientStencil::Central;
+    // Auto is the default: both values round-trip.
+    settings.oversampling =
+        method == 2 ? lw::render::Oversampling::Off : lw::render::Oversampling::Auto;
     settings.mode =
         modeB ? lw::render::ExtractionMode::EveryFrameB : lw::render::ExtractionMode::CachedA;
     settings.projection =
@@ -127,6 +130,11 @@ void SettingsTest::dialogReportsChangesAndStoresThem() {
     QVERIFY(!smoothNormals->isChecked()); // central differences by default
     smoothNormals->click();
     QCOMPARE(dialog.settings().gradientStencil, lw::render::GradientStencil::Smoothed);
+    auto* oversample = dialog.findChild<QCheckBox*>("oversample");
+    QVERIFY(oversample);
+    QVERIFY(oversample->isChecked()); // coarse axes split by default
+    oversample->click();
+    QCOMPARE(dialog.settings().oversampling, lw::render::Oversampling::Off);
     // Applied live and kept for the next start.
     QSettings store;
     const ReviewSettings stored = ReviewSettings::load(store);
@@ -136,6 +144,7 @@ void SettingsTest::dialogReportsChangesAndStoresThem() {
     QCOMPARE(stored.minStrokePixels, 0);
     QVERIFY(stored.suggestiveContours);
     QCOMPARE(stored.gradientStencil, lw::render::GradientStencil::Smoothed);
+    QCOMPARE(stored.oversampling, lw::render::Oversampling::Off);
 }
 
 void SettingsTest::cudaIsGreyedOutWithTheReason() {

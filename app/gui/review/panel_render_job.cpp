@@ -5,6 +5,7 @@
 #include "lw/render/shaded_surface_cpu.h"
 #include "lw/render/silhouette_gl_renderer.h"
 #include "lw/render/suggestive_contours.h"
+#include "lw/render/surface_sampling.h"
 #include "review/qt_image.h"
 #include "review/review_panel.h"
 
@@ -61,8 +62,11 @@ QImage linesToImage(const render::PixelMask& lines, const ReviewSettings& appear
 
 std::pair<QImage, QImage> renderPanelJob(const PanelRenderJob& job) {
     QImage iso = renderIso(job);
+    // The volume the review's methods draw (its oversampled copy where the settings make one).
+    const std::shared_ptr<const volume::Volume> volume =
+        render::volumeToRender(job.volume, job.appearance.oversampling);
     auto renderer = render::createSilhouetteRenderer(job.appearance.method, job.appearance.backend);
-    renderer->setVolume(*job.volume);
+    renderer->setVolume(*volume);
     render::SilhouetteSettings settings;
     settings.isoReal = job.iso;
     settings.brickCells = job.brickCells;
@@ -73,8 +77,8 @@ std::pair<QImage, QImage> renderPanelJob(const PanelRenderJob& job) {
     settings.gradientStencil = job.appearance.gradientStencil;
     render::SilhouetteFrame frame = renderer->render(job.camera, settings);
     if (job.appearance.suggestiveContours) {
-        const render::Mesh surface = render::surfaceOfFrame(*renderer, *job.volume, settings);
-        render::SuggestiveContourRenderer suggestive(*job.volume, surface, job.iso, 0,
+        const render::Mesh surface = render::surfaceOfFrame(*renderer, *volume, settings);
+        render::SuggestiveContourRenderer suggestive(*volume, surface, job.iso, 0,
                                                      settings.gradientStencil);
         render::SuggestiveContourSettings lines;
         lines.visibility = settings.visibility;

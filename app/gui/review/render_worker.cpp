@@ -24,7 +24,7 @@ double millisecondsSince(std::chrono::steady_clock::time_point start) {
 } // namespace
 
 RenderWorker::RenderWorker(std::shared_ptr<const volume::Volume> volume)
-    : m_volume(std::move(volume)) {}
+    : m_source(std::move(volume)) {}
 
 RenderWorker::~RenderWorker() = default;
 
@@ -47,6 +47,23 @@ void RenderWorker::release() {
     m_mesh.reset();
 }
 
+// The volume of the request's sampling: made once (the oversampled copy on this thread, off the
+// UI's), and on a change everything made of the old one goes with it.
+void RenderWorker::prepareVolume(const FrameRequest& request) {
+    if (m_volume && m_volumeSampling == request.oversampling)
+        return;
+    m_suggestive.reset();
+    m_suggestiveMesh.reset();
+    m_renderer.reset();
+    m_extractor.reset();
+    m_mesh.reset();
+    m_uploadedMesh = nullptr;
+    m_uploadedMeshOwner.reset();
+    m_volume.reset();
+    m_volume = render::volumeToRender(m_source, request.oversampling, request.settings.threads);
+    m_volumeSampling = request.oversampling;
+}
+
 FrameResult RenderWorker::run(const FrameRequest& request) {
     FrameResult result;
     result.id = request.id;
@@ -58,6 +75,7 @@ FrameResult RenderWorker::run(const FrameRequest& request) {
     try {
         if (request.cancel->isCancelled())
             throw core::Cancelled();
+        prepareVolume(request);
         if (request.wantSilhouette)
             renderSilhouette(request, result);
         if (request.cancel->isCancelled())

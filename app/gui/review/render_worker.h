@@ -13,6 +13,7 @@
 #include "lw/render/silhouette_gl_renderer.h"
 #include "lw/render/silhouette_renderer.h"
 #include "lw/render/suggestive_contours.h"
+#include "lw/render/surface_sampling.h"
 #include "lw/volume/volume.h"
 #include "review/silhouette_textures.h"
 
@@ -46,6 +47,9 @@ struct FrameRequest {
     render::SilhouetteMethod method = render::SilhouetteMethod::ZBuffer;
     render::Backend backend = render::Backend::Auto;
     render::SilhouetteSettings settings;
+    // The volume the methods draw: as loaded, or oversampled where its cells are coarse
+    // (render/surface_sampling.h); the worker keeps the copy while this stays the same.
+    render::Oversampling oversampling = render::Oversampling::Auto;
     render::Camera camera;
     // The silhouette panel can draw a texture (its GL view): method 3 on CUDA then writes its
     // lines into one of the worker's textures (silhouette_textures.h) instead of host memory.
@@ -91,6 +95,7 @@ public:
     void release();
 
 private:
+    void prepareVolume(const FrameRequest& request);
     void renderSilhouette(const FrameRequest& request, FrameResult& result);
     void extractMesh(const FrameRequest& request, FrameResult& result);
     render::SilhouetteRenderer& rendererFor(const FrameRequest& request, FrameResult& result);
@@ -112,7 +117,11 @@ private:
         bool operator==(const SurfaceForm&) const = default;
     };
 
+    std::shared_ptr<const volume::Volume> m_source; // as loaded
+    // What the methods draw: m_source, or its oversampled copy (m_volumeSampling); everything
+    // below is of this volume and goes when it changes.
     std::shared_ptr<const volume::Volume> m_volume;
+    std::optional<render::Oversampling> m_volumeSampling;
     std::unique_ptr<render::IsoSurfaceExtractor> m_extractor;
     int m_extractorBricks = -1;
     SurfaceForm m_extractorForm; // the extractor's IsoSurfaceOptions

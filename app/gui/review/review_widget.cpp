@@ -310,6 +310,7 @@ void ReviewWidget::requestFrame(bool newIso) {
     request.settings.minStrokePixels = m_settings.minStrokePixels;
     request.settings.closeAtBorder = m_settings.closeAtBorder;
     request.settings.gradientStencil = m_settings.gradientStencil;
+    request.oversampling = m_settings.oversampling;
     request.settings.gpuMemoryBudget = std::size_t(m_settings.gpuMemoryBudgetMiB) << 20;
     request.settings.isoReal = m_iso;
     request.wantSilhouette = !methodOneInPanel();

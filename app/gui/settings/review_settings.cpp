@@ -65,6 +65,9 @@ ReviewSettings ReviewSettings::load(QSettings& settings) {
     s.gradientStencil =
         render::parseGradientStencil(settings.value("gradient").toString().toStdString())
             .value_or(s.gradientStencil);
+    s.oversampling =
+        render::parseOversampling(settings.value("oversample").toString().toStdString())
+            .value_or(s.oversampling);
     s.suggestiveContours = settings.value("suggestiveContours", s.suggestiveContours).toBool();
     s.lineWidth = std::clamp(settings.value("lineWidth", s.lineWidth).toDouble(), 1.0, 8.0);
     s.lineColour = colourOr(settings.value("lineColour"), s.lineColour);
@@ -97,6 +100,8 @@ void ReviewSettings::save(QSettings& settings) const {
     settings.setValue("closeAtBorder", closeAtBorder);
     settings.setValue("gradient",
                       QString::fromUtf8(render::gradientStencilName(gradientStencil).data()));
+    settings.setValue("oversample",
+                      QString::fromUtf8(render::oversamplingName(oversampling).data()));
     settings.setValue("suggestiveContours", suggestiveContours);
     settings.setValue("lineWidth", lineWidth);
     settings.setValue("lineColour", lineColour.name());

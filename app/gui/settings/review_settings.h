@@ -7,6 +7,7 @@
 #include "lw/render/camera.h"
 #include "lw/render/renderer_factory.h"
 #include "lw/render/silhouette_renderer.h"
+#include "lw/render/surface_sampling.h"
 
 #include <QColor>
 #include <QList>
@@ -46,6 +47,8 @@ struct ReviewSettings {
     bool closeAtBorder = true; // the surface closed where the volume's border cuts it
     // The normals' gradient: smoothed for noisy scans (render/iso_surface.h GradientStencil).
     render::GradientStencil gradientStencil = render::GradientStencil::Central;
+    // Coarse axes split for finer triangles (render/surface_sampling.h): on by default.
+    render::Oversampling oversampling = render::Oversampling::Auto;
     bool suggestiveContours = false; // drawn with the silhouette (render/suggestive_contours.h)
     double lineWidth = 1.0;          // pixels
     QColor lineColour = QColor(0, 0, 0);

@@ -124,6 +124,13 @@ QWidget* SettingsDialog::makeMethodPage() {
         tr("Normals from differences averaged over the neighbouring voxels (Sobel): fewer "
            "specks on noisy, thin-slice scans. Thick slices are smoothed within the slice only."));
     form->addRow(tr("Normals:"), m_smoothNormals);
+    m_oversample = new QCheckBox(tr("Finer triangles on thick slices and coarse grids"));
+    m_oversample->setObjectName("oversample");
+    m_oversample->setToolTip(
+        tr("Splits the cells of a coarse axis (thick slices, a coarse grid) by linear "
+           "interpolation, so the triangles follow the same surface closely and the lines lie "
+           "on the shaded outline. No value is invented; costs some speed on such series."));
+    form->addRow(tr("Surface:"), m_oversample);
 
     addBackendRows(form, page);
 
@@ -133,8 +140,8 @@ QWidget* SettingsDialog::makeMethodPage() {
         connect(box, &QComboBox::currentIndexChanged, this, [this] { readControls(); });
     for (QSpinBox* box : {m_brickCells, m_memoryBudget, m_gpuMemoryBudget, m_minStroke})
         connect(box, &QSpinBox::valueChanged, this, [this] { readControls(); });
-    for (QCheckBox* box :
-         {m_visibility, m_alongSegment, m_closeAtBorder, m_smoothNormals, m_suggestive})
+    for (QCheckBox* box : {m_visibility, m_alongSegment, m_closeAtBorder, m_smoothNormals,
+                           m_oversample, m_suggestive})
         connect(box, &QCheckBox::toggled, this, [this] { readControls(); });
     return page;
 }
@@ -294,6 +301,7 @@ void SettingsDialog::showSettings() {
     m_minStroke->setValue(m_settings.minStrokePixels);
     m_closeAtBorder->setChecked(m_settings.closeAtBorder);
     m_smoothNormals->setChecked(m_settings.gradientStencil == render::GradientStencil::Smoothed);
+    m_oversample->setChecked(m_settings.oversampling == render::Oversampling::Auto);
     m_suggestive->setChecked(m_settings.suggestiveContours);
     m_backend->button(int(m_settings.backend))->setChecked(true);
     m_lineWidth->setValue(m_settings.lineWidth);
@@ -329,6 +337,8 @@ void SettingsDialog::readControls() {
     s.closeAtBorder = m_closeAtBorder->isChecked();
     s.gradientStencil = m_smoothNormals->isChecked() ? render::GradientStencil::Smoothed
                                                      : render::GradientStencil::Central;
+    s.oversampling =
+        m_oversample->isChecked() ? render::Oversampling::Auto : render::Oversampling::Off;
     s.suggestiveContours = m_suggestive->isChecked();
     s.backend = render::Backend(m_backend->checkedId());
     s.lineWidth = m_lineWidth->value();

@@ -53,6 +53,7 @@ private:
     QSpinBox* m_minStroke = nullptr;
     QCheckBox* m_closeAtBorder = nullptr;
     QCheckBox* m_smoothNormals = nullptr;
+    QCheckBox* m_oversample = nullptr;
     QComboBox* m_mode = nullptr;
     QCheckBox* m_visibility = nullptr;
     QCheckBox* m_alongSegment = nullptr;
