@@ -3,7 +3,8 @@
 # the time of a new view (bench mode a: surface kept, only the camera turns; mode b too) of
 # methods 1, 2, 3 (S, 1024x1024) on the demo CT at 400 HU and the 256^3 phantom, for
 #   base     BASE_CLI's bench as it is (before issue 7: surface open, no stroke pruning),
-#   closed   NEW_CLI --border closed --min-stroke 10 (what the review draws),
+#   closed   NEW_CLI --border closed --min-stroke 10 --oversample auto (what the review draws:
+#            a coarse or thick-slice volume oversampled, render/surface_sampling.h),
 #   closed0  NEW_CLI --border closed --min-stroke 0 (closing alone; bench's default),
 #   open     NEW_CLI --border open --min-stroke 0 (the methods as published),
 # interleaved: each round runs every method once per configuration, one short bench per method
@@ -39,7 +40,7 @@ run_one() { # CONFIG INPUT_ARGS OUT.json
   local cli=$new_cli extra=""
   case $1 in
   base) cli=$base_cli ;;
-  closed) extra="--border closed --min-stroke 10" ;;
+  closed) extra="--border closed --min-stroke 10 --oversample auto" ;;
   closed0) extra="--border closed --min-stroke 0" ;;
   open) extra="--border open --min-stroke 0" ;;
   esac

@@ -2,7 +2,8 @@
 # Issue 7's cost goal on the GPU machine: the time of a new view (bench mode a, 512^3 phantom,
 # 1024x1024, methods 1-3 S) of a base commit's linework-cli against this tree's, built on the same
 # machine and run interleaved (3 rounds): the base as it was, this tree closed at the border with
-# strokes under 10 px pruned (what the review draws), and open without pruning (as published).
+# strokes under 10 px pruned and coarse volumes oversampled (what the review draws; the 512^3
+# phantom is fine enough to stay as it is), and open without pruning (as published).
 # The device gets no .git: make the base's sources first, untracked in the repository root,
 #   git archive e1013b8 | gzip > base_src.tar.gz
 # then run `bash scripts/gpu_view_cost.sh` there (device tool, carry .gpu). Prints per method and
@@ -17,7 +18,7 @@ new=$PWD/build-gpu/app/cli/linework-cli
 common="--sizes 512 --backend cuda --methods 1,2,3 --variants S --modes a --repeat 15 --json"
 for round in 1 2 3; do
   $base bench $common > $OUT/base_$round.json 2>/dev/null
-  $new bench $common --border closed --min-stroke 10 > $OUT/closed_$round.json 2>/dev/null
+  $new bench $common --border closed --min-stroke 10 --oversample auto > $OUT/closed_$round.json 2>/dev/null
   $new bench $common --border open --min-stroke 0 > $OUT/open_$round.json 2>/dev/null
 done
 python3 - <<'PY'
