@@ -734,6 +734,10 @@
         <source> · %1 triangles · %2 segments</source>
         <translation> · %1 Dreiecke · %2 Segmente</translation>
     </message>
+    <message>
+        <source> · voxels split %1×%2×%3</source>
+        <translation> · Voxel geteilt %1×%2×%3</translation>
+    </message>
 </context>
 <context>
     <name>lw::gui::SettingsDialog</name>

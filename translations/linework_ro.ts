@@ -734,6 +734,10 @@
         <source> · %1 triangles · %2 segments</source>
         <translation> · %1 triunghiuri · %2 segmente</translation>
     </message>
+    <message>
+        <source> · voxels split %1×%2×%3</source>
+        <translation> · voxeli împărțiți %1×%2×%3</translation>
+    </message>
 </context>
 <context>
     <name>lw::gui::SettingsDialog</name>

@@ -196,11 +196,14 @@ void ReviewTest::oversamplingRefinesTheMesh() {
     QVERIFY2(review.errorText().isEmpty(), qPrintable(review.errorText()));
     QVERIFY2(review.status().triangles > 8 * asLoaded,
              qPrintable(QString("%1 vs %2").arg(review.status().triangles).arg(asLoaded)));
+    QCOMPARE(review.status().refinement, glm::ivec3(4)); // 23 cells of 39.8 / 128 -> 4 each
+    QVERIFY(review.statusText().contains(QString::fromUtf8("voxels split 4×4×4")));
     const QImage silhouette = review.silhouettePanel().grabImage();
     QVERIFY(lw::test::pixelsDifferentFrom(silhouette, Qt::white, 100) > 300);
     review.applySettings(settingsFor(3, Chunking::Off));
     QVERIFY(waitSettled(review, review.status().framesShown + 1));
     QCOMPARE(review.status().triangles, asLoaded);
+    QVERIFY(!review.statusText().contains("split"));
 }
 
 // The settings' "Suggestive contours" adds the CT phantom's suggestive contours to the

@@ -76,6 +76,7 @@ FrameResult RenderWorker::run(const FrameRequest& request) {
         if (request.cancel->isCancelled())
             throw core::Cancelled();
         prepareVolume(request);
+        result.refinement = m_volume->geometry().refinement();
         if (request.wantSilhouette)
             renderSilhouette(request, result);
         if (request.cancel->isCancelled())

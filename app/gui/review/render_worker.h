@@ -75,7 +75,8 @@ struct FrameResult {
     double isoRenderMs = 0.0;
     render::SilhouetteMethod method = render::SilhouetteMethod::ZBuffer;
     int brickCells = 0;
-    QString backend; // the back-end that actually ran
+    glm::ivec3 refinement{1}; // how the drawn volume split the loaded one's cells (oversampling)
+    QString backend;          // the back-end that actually ran
     QString backendNote;
     QString error; // empty on success
     bool cancelled = false;

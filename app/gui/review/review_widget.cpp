@@ -355,6 +355,7 @@ void ReviewWidget::takeFrame(const std::shared_ptr<const FrameResult>& result) {
     m_errorLine->hide();
     m_status.backend = result->backend.isEmpty() ? QStringLiteral("gl") : result->backend;
     m_status.brickCells = result->brickCells;
+    m_status.refinement = result->refinement;
     ++m_status.framesShown;
     if (!result->isoImage.isNull()) {
         m_isoPanel->setImage(result->isoImage);
@@ -443,6 +444,9 @@ QString ReviewWidget::statusText() const {
     }
     text += tr(" · %1 triangles · %2 segments")
                 .arg(count(m_status.triangles), count(m_status.segments));
+    const glm::ivec3 split = m_status.refinement;
+    if (split != glm::ivec3(1))
+        text += tr(" · voxels split %1×%2×%3").arg(split.x).arg(split.y).arg(split.z);
     return text;
 }
 

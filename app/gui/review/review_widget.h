@@ -54,6 +54,7 @@ struct ReviewStatus {
     double isoPaintMs = 0.0;
     double silhouettePaintMs = 0.0;
     int brickCells = 0;
+    glm::ivec3 refinement{1}; // the loaded volume's cells split this many times (oversampling)
     QString backend;
     std::uint64_t framesShown = 0; // results taken from the worker
 };
