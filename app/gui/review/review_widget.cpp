@@ -8,6 +8,7 @@
 #include "lw/render/renderer_factory.h"
 #include "lw/render/silhouette_gl_renderer.h"
 #include "lw/render/surface_picking.h"
+#include "lw/volume/oversampling.h"
 #include "review/iso_control.h"
 #include "review/panel_render_job.h"
 #include "review/render_scheduler.h"
@@ -249,8 +250,15 @@ bool ReviewWidget::methodOneInPanel() const {
            m_drawsInPanels;
 }
 
+// Of the volume the worker draws: the oversampled copy where the settings make one.
 int ReviewWidget::brickCells() const {
-    return m_settings.brickCellsFor(m_source.volume->dims(), m_source.volume->byteSize());
+    const volume::Volume& loaded = *m_source.volume;
+    const glm::ivec3 drawn = volume::oversampledDims(
+        loaded.dims(),
+        render::oversamplingFactors(loaded.dims(), loaded.geometry(), m_settings.oversampling));
+    const std::size_t bytes = std::size_t(drawn.x) * std::size_t(drawn.y) * std::size_t(drawn.z) *
+                              volume::voxelSize(loaded.voxelType());
+    return m_settings.brickCellsFor(drawn, bytes);
 }
 
 bool ReviewWidget::isBusy() const {
