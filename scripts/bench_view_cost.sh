@@ -83,7 +83,7 @@ for volume in sorted({c[0] for c in cells}):
     print(f"\n{volume}: median ms over the rounds [fastest frame]; closed / base: median of the "
           "rounds' ratios [ratio of the fastest frames]")
     print("\n| method | mode | vis | base | closed, pruned 10 | closed / base | closed, unpruned "
-          "| open, unpruned | closing (closed0 / open) | pruning ms (closed - closed0) | rounds |")
+          "| open, unpruned | closing (closed0 / open) | pruning and oversampling ms (closed - closed0) | rounds |")
     print("|---|---|---|---|---|---|---|---|---|---|---|")
     for cell in (c for c in cells if c[0] == volume):
         by = {c: runs.get(cell + (c,), {}) for c in configs}
