@@ -47,8 +47,13 @@ void ScreenVertices::resize(std::size_t count) {
     front.resize(count);
 }
 
-void projectVertices(const glm::vec3* positions, const glm::vec3* normals, std::size_t count,
-                     const ViewTransform& view, ScreenVertices& out, unsigned threads) {
+namespace {
+
+// The per-vertex pass: Burns' d always, the screen position only when `Screen` (a frame without
+// visibility draws no surface, so its vertices need not be projected).
+template <bool Screen>
+void vertexPass(const glm::vec3* positions, const glm::vec3* normals, std::size_t count,
+                const ViewTransform& view, ScreenVertices& out, unsigned threads) {
     out.resize(count);
     const glm::vec3 eyeOrDirection = glm::vec3(view.orthographic ? view.toViewer : view.eye);
     const ScreenProjection projection = view.projection();
@@ -57,18 +62,33 @@ void projectVertices(const glm::vec3* positions, const glm::vec3* normals, std::
         [&](std::size_t chunk) {
             const std::size_t end = std::min(count, (chunk + 1) * kVerticesPerChunk);
             for (std::size_t i = chunk * kVerticesPerChunk; i < end; ++i) {
-                glm::dvec2 pixel;
-                float key = 0.0f, invW = 0.0f;
-                const bool ok = projectInline(projection, glm::dvec3(positions[i]), pixel, key, invW);
-                out.xy[i] = snapVertex(ok, pixel.x, pixel.y);
-                out.key[i] = key;
-                out.invW[i] = invW;
+                if constexpr (Screen) {
+                    glm::dvec2 pixel;
+                    float key = 0.0f, invW = 0.0f;
+                    const bool ok =
+                        projectInline(projection, glm::dvec3(positions[i]), pixel, key, invW);
+                    out.xy[i] = snapVertex(ok, pixel.x, pixel.y);
+                    out.key[i] = key;
+                    out.invW[i] = invW;
+                }
                 out.facing[i] =
                     silhouetteDistance(positions[i], normals[i], eyeOrDirection, view.orthographic);
                 out.front[i] = out.facing[i] >= 0.0f ? 1 : 0;
             }
         },
         threads);
+}
+
+} // namespace
+
+void projectVertices(const glm::vec3* positions, const glm::vec3* normals, std::size_t count,
+                     const ViewTransform& view, ScreenVertices& out, unsigned threads) {
+    vertexPass<true>(positions, normals, count, view, out, threads);
+}
+
+void evaluateFacing(const glm::vec3* positions, const glm::vec3* normals, std::size_t count,
+                    const ViewTransform& view, ScreenVertices& out, unsigned threads) {
+    vertexPass<false>(positions, normals, count, view, out, threads);
 }
 
 void DepthBuffer::reset(int width, int height, unsigned threads) {
@@ -315,7 +335,7 @@ void drawSegmentsDepth(const ScreenSegment* segments, std::size_t count, DepthBu
                     lines.writeMax(std::size_t(y) * std::size_t(width) + std::size_t(x), key);
                 });
             }
-            },
+        },
         threads);
 }
 
@@ -329,9 +349,8 @@ void resolveSilhouette(const DepthBuffer& surface, const DepthBuffer& lines, flo
                 int(std::min<std::size_t>(std::size_t(height), (chunk + 1) * kRowsPerChunk));
             for (int y = int(chunk * kRowsPerChunk); y < yEnd; ++y) {
                 for (int x = 0; x < width; ++x)
-                    mask[std::size_t(y) * std::size_t(width) + std::size_t(x)] =
-                        resolvePixel(surface.bits(), lines.bits(), x, y, width, height, epsilon,
-                                     visibility);
+                    mask[std::size_t(y) * std::size_t(width) + std::size_t(x)] = resolvePixel(
+                        surface.bits(), lines.bits(), x, y, width, height, epsilon, visibility);
             }
         },
         threads);

@@ -133,8 +133,10 @@ void CpuZBufferKernels::drawWhole(const Camera&, const SilhouetteSettings& setti
                                   SilhouetteFrame& frame) {
     const unsigned threads = settings.threads;
     auto start = Clock::now();
-    kernels::cpu::projectVertices(m_mesh.positions.data(), m_mesh.normals.data(),
-                                  m_mesh.vertexCount(), m_view, m_screen, threads);
+    // Without visibility no surface is drawn: the vertices' facing is all the frame needs.
+    (settings.visibility ? kernels::cpu::projectVertices : kernels::cpu::evaluateFacing)(
+        m_mesh.positions.data(), m_mesh.normals.data(), m_mesh.vertexCount(), m_view, m_screen,
+        threads);
     const std::uint32_t* indices = m_mesh.indices.data();
     m_segments.clear();
     kernels::cpu::findSilhouetteSegments(m_mesh.positions.data(), m_screen, indices,
@@ -170,8 +172,8 @@ void CpuZBufferKernels::drawPiece(const Mesh& piece, bool visibility, bool close
     if (triangles == 0)
         return;
     auto t = Clock::now();
-    kernels::cpu::projectVertices(piece.positions.data(), piece.normals.data(),
-                                  piece.positions.size(), m_view, w.screen, 1);
+    (visibility ? kernels::cpu::projectVertices : kernels::cpu::evaluateFacing)(
+        piece.positions.data(), piece.normals.data(), piece.positions.size(), m_view, w.screen, 1);
     w.segments.clear();
     kernels::cpu::findSilhouetteSegments(piece.positions.data(), w.screen, piece.indices.data(),
                                          triangles, m_view, w.scratch, w.segments, 1);

@@ -46,6 +46,11 @@ struct ScreenVertices {
 // Projects `count` vertices and evaluates Burns' d with their normals, on `threads` threads.
 void projectVertices(const glm::vec3* positions, const glm::vec3* normals, std::size_t count,
                      const ViewTransform& view, ScreenVertices& out, unsigned threads = 0);
+// Burns' d (facing, front) alone, the screen fields left as they are: what the silhouette pass
+// reads (its segments' ends are projected where they are found), for a frame that rasterizes no
+// surface (visibility off).
+void evaluateFacing(const glm::vec3* positions, const glm::vec3* normals, std::size_t count,
+                    const ViewTransform& view, ScreenVertices& out, unsigned threads = 0);
 
 // Depth keys of one viewport, 0 = empty. Writes keep the largest key (the nearest fragment)
 // through an atomic max on the float's bit pattern (positive IEEE floats order like their bits
