@@ -52,14 +52,25 @@ glm::dvec2 octEncode(glm::dvec3 n) {
                        (1.0 - std::abs(p.x)) * (p.y >= 0.0 ? 1.0 : -1.0));
     return p;
 }
-glm::dvec3 octDecode(double x, double y) {
+// A stored octahedron coordinate in [-1, 1]: one expression for the cone's build and its cull,
+// a multiplication because the cull runs for every cell of every view.
+double octCoordinate(std::int16_t q) {
+    return double(q) * (1.0 / 32767.0);
+}
+
+// The octahedron point of (x, y), a direction not yet of unit length.
+glm::dvec3 octAxis(double x, double y) {
     glm::dvec3 v(x, y, 1.0 - std::abs(x) - std::abs(y));
     if (v.z < 0.0) {
         const double vx = v.x;
         v.x = (1.0 - std::abs(v.y)) * (vx >= 0.0 ? 1.0 : -1.0);
         v.y = (1.0 - std::abs(vx)) * (v.y >= 0.0 ? 1.0 : -1.0);
     }
-    return glm::normalize(v);
+    return v;
+}
+
+glm::dvec3 octDecode(double x, double y) {
+    return glm::normalize(octAxis(x, y));
 }
 
 } // namespace
@@ -362,12 +373,14 @@ private:
                             m_dims.sz);
     }
 
+    // In 32 bits: a cell index is one (the cell list is uint32), so are the strides below it,
+    // and the cull decodes every cell of every view.
     glm::ivec3 cellCoords(std::uint32_t cellIndex) const {
-        const std::size_t index = cellIndex;
-        const int z = int(index / m_dims.sz);
-        const std::size_t rest = index - std::size_t(z) * m_dims.sz;
-        const int y = int(rest / m_dims.sy);
-        return {int(rest - std::size_t(y) * m_dims.sy), y, z};
+        const auto slice = std::uint32_t(m_dims.sz), row = std::uint32_t(m_dims.sy);
+        const std::uint32_t z = cellIndex / slice;
+        const std::uint32_t rest = cellIndex - z * slice;
+        const std::uint32_t y = rest / row;
+        return {int(rest - y * row), int(y), int(z)};
     }
 
     int cellCase(glm::ivec3 p, float v[8]) const {
@@ -406,7 +419,7 @@ private:
         const glm::dvec2 oct = octEncode(sum / length);
         cone.u = std::int16_t(std::lround(oct.x * 32767.0));
         cone.v = std::int16_t(std::lround(oct.y * 32767.0));
-        const glm::dvec3 axis = octDecode(cone.u / 32767.0, cone.v / 32767.0);
+        const glm::dvec3 axis = octDecode(octCoordinate(cone.u), octCoordinate(cone.v));
         double minCos = 1.0;
         for (int e = 0; e < 12; ++e)
             if (edges & (1u << e))
@@ -428,29 +441,33 @@ private:
         if (cone.angle >= kConeNever - 1)
             return false;
         const double cosA = coneTrig().cosA[cone.angle], sinA = coneTrig().sinA[cone.angle];
+        // Every cell of every view passes here, most of them culled: two square roots, not four
+        // (|w| once, the axis's length folded into it, the cone test squared).
         glm::dvec3 w;
-        double rw = 0.0;
+        double wl = 0.0, rw = 0.0;
         if (view.orthographic) {
             w = view.eyeOrDirection;
+            wl = glm::length(w);
         } else {
             w = view.eyeOrDirection - cellCentre(cellCoords(cellIndex));
-            const double distance = glm::length(w);
-            if (!(distance > 2.0 * m_cellRadius))
+            wl = glm::length(w);
+            if (!(wl > 2.0 * m_cellRadius))
                 return false;
-            rw = m_cellRadius / distance;
+            rw = m_cellRadius / wl;
         }
-        const double wl = glm::length(w);
         if (!(wl > 0.0))
             return false;
-        const double c = glm::dot(octDecode(cone.u / 32767.0, cone.v / 32767.0), w) / wl;
-        const double sn = std::sqrt(std::max(0.0, 1.0 - c * c));
+        const glm::dvec3 axis =
+            octAxis(octCoordinate(cone.u), octCoordinate(cone.v)); // not unit length
+        const double c = glm::dot(axis, w) / (std::sqrt(glm::dot(axis, axis)) * wl);
         const double margin = rw + kConeSlack;
-        // min over the cone of N . w^ is cos(theta + alpha), max is cos(theta - alpha).
-        if (c > 0.0 && c * cosA - sn * sinA > margin)
-            return true;
-        if (c < 0.0 && c * cosA + sn * sinA < -margin)
-            return true;
-        return false;
+        // min over the cone of N . w^ is cos(theta + alpha), max is cos(theta - alpha): one sign
+        // throughout when |c| cos(alpha) - sqrt(1 - c^2) sin(alpha) > margin, both sides of the
+        // comparison with sin(alpha) then non-negative, so it may be squared.
+        const double reach = std::abs(c) * cosA - margin;
+        if (!(reach > 0.0))
+            return false;
+        return reach * reach > std::max(0.0, 1.0 - c * c) * sinA * sinA;
     }
 
     // The marching-cubes vertices (patient mm) and outward normals of cell p's crossing edges,
