@@ -153,7 +153,6 @@ int runQuality(const std::vector<std::string>& args, std::ostream& out) {
     createRenderers(options.request, renderers, notes);
     input::OpenedVolume opened = openCliInput(options.input, options.series);
     volume = std::move(opened.volume);
-    const glm::ivec3 loadedDims = volume.dims();
     oversampleForRendering(arguments, render::Oversampling::Auto, volume);
     fitToVolume(arguments, volume, options.request, options.setup);
     for (auto& renderer : renderers)
@@ -167,8 +166,9 @@ int runQuality(const std::vector<std::string>& args, std::ostream& out) {
     QualityRun run;
     run.input = options.input;
     run.description = opened.description;
-    run.sampling =
-        volume.dims() == loadedDims ? "as loaded" : "oversampled to " + dimsText(volume.dims());
+    run.sampling = volume.geometry().refinement() == glm::ivec3(1)
+                       ? "as loaded"
+                       : "oversampled to " + dimsText(volume.dims());
     run.iso = options.request.settings.isoReal;
     run.minStrokePixels = options.request.settings.minStrokePixels;
     run.width = options.size.x;

@@ -59,7 +59,7 @@ void RenderWorker::prepareVolume(const FrameRequest& request) {
     m_mesh.reset();
     m_uploadedMesh = nullptr;
     m_uploadedMeshOwner.reset();
-    m_volume.reset();
+    m_volume.reset(); // the old copy goes before a new one is made: one at a time in memory
     m_volume = render::volumeToRender(m_source, request.oversampling, request.settings.threads);
     m_volumeSampling = request.oversampling;
 }
