@@ -3,6 +3,7 @@
 #include "lw/evaluation/analytic_shapes.h"
 #include "lw/evaluation/contour_score.h"
 #include "lw/evaluation/true_contour.h"
+#include "lw/kernels/cpu/raycast_silhouette_cpu.h"
 #include "lw/kernels/cpu/voxel_ray.h"
 #include "lw/kernels/silhouette_segment.h"
 #include "lw/kernels/voxel_ray_walk.h"
@@ -13,6 +14,7 @@
 
 #if __has_include("lw/render/zbuffer_silhouette_renderer.h")
 #include "lw/render/zbuffer_silhouette_renderer.h"
+#include "lw/volume/bricks.h"
 #define LW_TEST_HAVE_METHOD3 1
 #else
 #define LW_TEST_HAVE_METHOD3 0
@@ -578,6 +580,53 @@ TEST(RayCastSilhouette, NormalConeCullKeepsEverySegment) {
                 << "view " << view;
             EXPECT_TRUE(a.lines == b.lines) << "view " << view;
         }
+}
+
+// The cull reads float cell centres relative to the volume's centre and a float cone per cell:
+// far from the patient origin, and on a tilted, unevenly spaced stack, it must still lose no
+// segment, and it must skip most cells (a cull that never culls would pass the test above).
+TEST(RayCastSilhouette, NormalConeCullOnShiftedAndTiltedGrids) {
+    const MetaballsShape blobs;
+    for (int geometryCase = 0; geometryCase < 3; ++geometryCase) {
+        volume::Volume v = sampleShape(blobs, 40);
+        const auto& g = v.geometry();
+        const glm::dvec3 shift = geometryCase == 0 ? glm::dvec3(0.0) : glm::dvec3(4e3, -6e3, 9e3);
+        std::vector<glm::dvec3> positions;
+        double s = 0.0;
+        for (int k = 0; k < v.dims().z; ++k) {
+            const double tilt = geometryCase == 2 ? 0.3 * s : 0.0;
+            positions.push_back(g.origin() + shift + glm::dvec3(0.0, tilt, s));
+            s += g.spacingI() * (geometryCase == 2 && k % 3 == 0 ? 1.4 : 1.0);
+        }
+        v.setGeometry(volume::VolumeGeometry::fromSlicePositions({1, 0, 0}, {0, 1, 0}, g.spacingI(),
+                                                                 g.spacingJ(), positions));
+        const volume::BrickGrid grid = volume::BrickGrid::build(v, glm::ivec3(16));
+        kernels::cpu::RayCastSilhouetteCpu culled, everyCell;
+        ASSERT_TRUE(culled.prepare(v, grid, kShapeIso, true, 2));
+        ASSERT_TRUE(everyCell.prepare(v, grid, kShapeIso, false, 2));
+        const glm::dvec3 centre = v.geometry().indexToPatient(0.5 * glm::dvec3(v.dims() - 1));
+        for (int view = 0; view < 8; ++view) {
+            const double az = glm::radians(-170.0 + 47.0 * view),
+                         el = glm::radians(-70.0 + 19.0 * view);
+            const glm::dvec3 toEye(std::cos(el) * std::cos(az), std::cos(el) * std::sin(az),
+                                   std::sin(el));
+            kernels::cpu::SilhouetteView silhouetteView;
+            silhouetteView.orthographic = view % 2 == 1;
+            silhouetteView.eyeOrDirection =
+                silhouetteView.orthographic ? toEye : centre + 300.0 * toEye;
+            std::vector<kernels::SegmentEndpoints> a, b;
+            culled.extractSegments(silhouetteView, a, 2);
+            everyCell.extractSegments(silhouetteView, b, 2);
+            ASSERT_GT(b.size(), 50u);
+            ASSERT_EQ(a.size(), b.size()) << "geometry " << geometryCase << " view " << view;
+            for (std::size_t i = 0; i < a.size(); ++i)
+                ASSERT_TRUE(a[i].a == b[i].a && a[i].b == b[i].b)
+                    << "geometry " << geometryCase << " view " << view << " segment " << i;
+            EXPECT_EQ(everyCell.builtCellCount(), everyCell.activeCellCount());
+            EXPECT_LT(culled.builtCellCount(), culled.activeCellCount() / 2)
+                << "geometry " << geometryCase << " view " << view;
+        }
+    }
 }
 
 TEST_P(RayCastBackend, AlongSegmentSphereAccuracyAt64) {

@@ -22,56 +22,22 @@ constexpr std::size_t kChunkCells = 2048;
 // The visibility rule and its constants (start offset, self skip, neighbour ray, macro cells) are
 // kernels/common's RayVisibility, shared with the CUDA back-end.
 constexpr int kMacroCells = RayVisibilityRule::kMacroCells;
-// Slack of the normal-cone cull, relative to |eye - cell centre|: float round-off of d = N . V
+// Slack of the normal-cone cull, relative to |eye - cell centre|: the cull's float round-off
 // (relative 1e-6 at most) must never turn a culled cell into one with a segment.
-constexpr double kConeSlack = 1e-4;
-constexpr std::uint16_t kConeNever = 0xffff;
-constexpr double kConeAngleStep = 0.5 * 3.14159265358979323846 / 65534.0;
+constexpr float kConeSlack = 1e-4f;
+// Cells culled per block: the cull fills a block's flags in one loop the compiler vectorises,
+// then the block's uncertain cells are built.
+constexpr std::size_t kCullBlock = 256;
 
-// cos and sin of every quantised cone angle, so the per-view cull needs no trigonometry.
-struct ConeTrig {
-    std::vector<float> cosA, sinA;
-    ConeTrig() : cosA(65535), sinA(65535) {
-        for (int q = 0; q < 65535; ++q) {
-            cosA[std::size_t(q)] = float(std::cos(q * kConeAngleStep));
-            sinA[std::size_t(q)] = float(std::sin(q * kConeAngleStep));
-        }
-    }
+// The view as the cull reads it: w = eye - centreWeight * centre (the direction itself for
+// an orthographic view), the cell's radius (0 for an orthographic view: w is the same at
+// every point), and the squared distance below which a cell is too near the eye to cull.
+struct CullView {
+    glm::vec3 eye{0.0f};
+    float centreWeight = 0.0f;
+    float radius = 0.0f;
+    float nearLimit2 = 0.0f;
 };
-const ConeTrig& coneTrig() {
-    static const ConeTrig trig;
-    return trig;
-}
-
-// Octahedral mapping of a unit vector to two values in [-1, 1] and back.
-glm::dvec2 octEncode(glm::dvec3 n) {
-    const double l1 = std::abs(n.x) + std::abs(n.y) + std::abs(n.z);
-    glm::dvec2 p(n.x / l1, n.y / l1);
-    if (n.z < 0.0)
-        p = glm::dvec2((1.0 - std::abs(p.y)) * (p.x >= 0.0 ? 1.0 : -1.0),
-                       (1.0 - std::abs(p.x)) * (p.y >= 0.0 ? 1.0 : -1.0));
-    return p;
-}
-// A stored octahedron coordinate in [-1, 1]: one expression for the cone's build and its cull,
-// a multiplication because the cull runs for every cell of every view.
-double octCoordinate(std::int16_t q) {
-    return double(q) * (1.0 / 32767.0);
-}
-
-// The octahedron point of (x, y), a direction not yet of unit length.
-glm::dvec3 octAxis(double x, double y) {
-    glm::dvec3 v(x, y, 1.0 - std::abs(x) - std::abs(y));
-    if (v.z < 0.0) {
-        const double vx = v.x;
-        v.x = (1.0 - std::abs(v.y)) * (vx >= 0.0 ? 1.0 : -1.0);
-        v.y = (1.0 - std::abs(vx)) * (v.y >= 0.0 ? 1.0 : -1.0);
-    }
-    return v;
-}
-
-glm::dvec3 octDecode(double x, double y) {
-    return glm::normalize(octAxis(x, y));
-}
 
 } // namespace
 
@@ -87,24 +53,32 @@ struct RayCastSilhouetteCpu::Impl {
     std::vector<std::uint32_t> cells;     // voxel index of each active cell's lowest corner
     std::vector<std::size_t> chunkStarts; // chunk c = cells [chunkStarts[c], chunkStarts[c + 1])
     std::size_t activeBricks = 0;
-    // Per active cell (mode a only): a cone holding every vertex normal of the cell, so a view
-    // skips the cells whose normals cannot straddle the view direction. 8 bytes, because on a
-    // 512 x 512 x 1024 CT there are millions of active cells: the axis octahedron-encoded in two
-    // int16, the half angle in units of kConeAngleStep rounded up (kConeNever: never culled).
-    // The stored angle is measured from the decoded axis, so the cone stays conservative.
-    struct NormalCone {
-        std::int16_t u = 0, v = 0;
-        std::uint16_t angle = 0xffff;
-        std::uint16_t unused = 0;
+    // Per active cell (mode a only): a cone holding every vertex normal of the cell and the
+    // cell's centre, so a view skips the cells whose normals cannot straddle the view direction.
+    // In float planes (structure of arrays), because the cull tests every cell of every view and
+    // then runs four to eight cells per instruction: 32 bytes a cell (20 MB for the 610 thousand
+    // cells of the demo split in three). A cell never culled has cosA = 0 (its reach is negative).
+    struct ConePlanes {
+        std::vector<float> centreX, centreY, centreZ; // mm, relative to coneOrigin
+        std::vector<float> axisX, axisY, axisZ;       // unit length
+        std::vector<float> cosA, sinA;                // of the half angle
+        void resize(std::size_t n) {
+            for (auto* plane : {&centreX, &centreY, &centreZ, &axisX, &axisY, &axisZ, &cosA, &sinA})
+                plane->assign(n, 0.0f);
+        }
+        bool empty() const { return cosA.empty(); }
+        void clear() { resize(0); }
     };
-    static_assert(sizeof(NormalCone) == 8);
-    std::vector<NormalCone> cones;
+    ConePlanes cones;
+    glm::dvec3 coneOrigin{0.0};   // the volume's centre: the float centres keep their precision
+    double coneOriginSlack = 0.0; // mm, covers the float centres' and eye's round-off
     std::vector<std::uint8_t> macroOccupied;  // per macro cell: holds a voxel >= iso
     std::vector<std::uint8_t> coarseOccupied; // per coarse block: holds an occupied macro cell
     // Per-chunk outputs, kept between frames so a new view allocates nothing once warm.
     std::vector<std::vector<SegmentEndpoints>> chunkSegments;
     std::size_t usedChunks = 0; // chunks of the last extract (chunkSegments may hold more)
     std::vector<std::size_t> chunkTriangles;
+    std::vector<std::size_t> chunkBuiltCells;    // per chunk of the last extract: cells not culled
     std::vector<std::size_t> chunkTriangleTotal; // with cones: triangles of every cell of the chunk
     std::vector<std::vector<std::uint32_t>> unitCells;
 };
@@ -252,18 +226,33 @@ public:
 
     void buildCones(unsigned threads) {
         cones.resize(cells.size());
+        placeConeOrigin();
         chunkTriangleTotal.assign(chunkStarts.size() - 1, 0);
         core::parallelFor(
             chunkStarts.size() - 1,
             [&](std::size_t c) {
                 std::size_t triangles = 0;
-                for (std::size_t i = chunkStarts[c]; i < chunkStarts[c + 1]; ++i) {
-                    cones[i] = normalCone(cells[i]);
-                    triangles += cellTriangleCount(cells[i]);
-                }
+                for (std::size_t i = chunkStarts[c]; i < chunkStarts[c + 1]; ++i)
+                    triangles += buildCone(i);
                 chunkTriangleTotal[c] = triangles;
             },
             threads);
+    }
+
+    // The cones' centres are stored relative to the volume's centre, so their float round-off is
+    // relative to the volume's extent; the cull's absolute slack covers it (with the eye's) 20
+    // times over.
+    void placeConeOrigin() {
+        const glm::ivec3 last(m_dims.cx - 1, m_dims.cy - 1, m_dims.cz - 1);
+        coneOrigin = 0.5 * (cellCentre({0, 0, 0}) + cellCentre(last));
+        double extent = 0.0;
+        for (int corner = 0; corner < 8; ++corner) {
+            const glm::ivec3 p((corner & 1) ? last.x : 0, (corner & 2) ? last.y : 0,
+                               (corner & 4) ? last.z : 0);
+            const glm::dvec3 d = glm::abs(cellCentre(p) - coneOrigin);
+            extent = std::max({extent, d.x, d.y, d.z});
+        }
+        coneOriginSlack = 1e-5 * extent;
     }
 
     void buildMacroGrid(unsigned threads) {
@@ -314,31 +303,44 @@ public:
         if (chunkSegments.size() < chunks)
             chunkSegments.resize(chunks);
         chunkTriangles.assign(chunks, 0);
-        const glm::vec3 eye(view.eyeOrDirection);
+        chunkBuiltCells.assign(chunks, 0);
+        const CullView cull = cullView(view);
         core::parallelFor(
-            chunks,
-            [&](std::size_t c) {
-                auto& segments = chunkSegments[c];
-                segments.clear();
-                if (cones.empty()) {
-                    std::size_t triangles = 0;
-                    for (std::size_t i = chunkStarts[c]; i < chunkStarts[c + 1]; ++i)
-                        triangles += cellSegments(cells[i], eye, view.orthographic, segments);
-                    chunkTriangles[c] = triangles;
-                    return;
-                }
-                // Every cell's triangles count as visited; only the uncertain cells are built.
-                for (std::size_t i = chunkStarts[c]; i < chunkStarts[c + 1]; ++i)
-                    if (!cannotHoldSilhouette(cells[i], cones[i], view))
-                        cellSegments(cells[i], eye, view.orthographic, segments);
-                chunkTriangles[c] = chunkTriangleTotal[c];
-            },
-            threads);
+            chunks, [&](std::size_t c) { extractChunk(c, view, cull); }, threads);
         usedChunks = chunks;
         std::size_t triangles = 0;
         for (std::size_t c = 0; c < chunks; ++c)
             triangles += chunkTriangles[c];
         return triangles;
+    }
+
+    void extractChunk(std::size_t c, const SilhouetteView& view, const CullView& cull) {
+        const glm::vec3 eye(view.eyeOrDirection);
+        auto& segments = chunkSegments[c];
+        segments.clear();
+        const std::size_t begin = chunkStarts[c], end = chunkStarts[c + 1];
+        if (cones.empty()) {
+            std::size_t triangles = 0;
+            for (std::size_t i = begin; i < end; ++i)
+                triangles += cellSegments(cells[i], eye, view.orthographic, segments);
+            chunkTriangles[c] = triangles;
+            chunkBuiltCells[c] = end - begin;
+            return;
+        }
+        // Every cell's triangles count as visited; only the uncertain cells are built.
+        std::uint8_t keep[kCullBlock];
+        std::size_t built = 0;
+        for (std::size_t block = begin; block < end; block += kCullBlock) {
+            const std::size_t n = std::min(kCullBlock, end - block);
+            markUncertain(block, n, cull, keep);
+            for (std::size_t k = 0; k < n; ++k)
+                if (keep[k]) {
+                    cellSegments(cells[block + k], eye, view.orthographic, segments);
+                    ++built;
+                }
+        }
+        chunkTriangles[c] = chunkTriangleTotal[c];
+        chunkBuiltCells[c] = built;
     }
 
     bool visible(glm::dvec3 point, const SilhouetteView& view) const override {
@@ -390,11 +392,6 @@ private:
         return mcCaseIndex(v, m_isoF);
     }
 
-    std::size_t cellTriangleCount(std::uint32_t cellIndex) const {
-        float v[8];
-        return kMcTriangleCount.count[cellCase(cellCoords(cellIndex), v)];
-    }
-
     // Centre of cell p in patient mm.
     glm::dvec3 cellCentre(glm::ivec3 p) const {
         const double s = 0.5 * (m_offset[std::size_t(p.z)] + m_offset[std::size_t(p.z) + 1]);
@@ -402,72 +399,86 @@ private:
                (p.y + 0.5) * m_voxelGrid.stepJ() + s * m_voxelGrid.stack();
     }
 
-    RayCastSilhouetteCpu::Impl::NormalCone normalCone(std::uint32_t cellIndex) const {
-        const glm::ivec3 p = cellCoords(cellIndex);
+    // Cell i's centre and the cone around its vertex normals into the planes; returns the cell's
+    // triangle count.
+    std::size_t buildCone(std::size_t i) {
+        const glm::ivec3 p = cellCoords(cells[i]);
+        const glm::dvec3 centre = cellCentre(p) - coneOrigin;
+        cones.centreX[i] = float(centre.x);
+        cones.centreY[i] = float(centre.y);
+        cones.centreZ[i] = float(centre.z);
         float v[8];
         const int cubeCase = cellCase(p, v);
         glm::vec3 position[12], normal[12];
         const unsigned edges = cellVertices(p, v, cubeCase, position, normal);
+        const std::size_t triangles = std::size_t(kMcTriangleCount.count[cubeCase]);
         glm::dvec3 sum(0.0);
         for (int e = 0; e < 12; ++e)
             if (edges & (1u << e))
                 sum += glm::dvec3(normal[e]);
-        NormalCone cone; // angle kConeNever: never culled
         const double length = glm::length(sum);
         if (!(length > 1e-6))
-            return cone;
-        const glm::dvec2 oct = octEncode(sum / length);
-        cone.u = std::int16_t(std::lround(oct.x * 32767.0));
-        cone.v = std::int16_t(std::lround(oct.y * 32767.0));
-        const glm::dvec3 axis = octDecode(octCoordinate(cone.u), octCoordinate(cone.v));
+            return triangles; // cosA 0: never culled
+        // The angle is measured from the float axis the cull reads, so the cone stays
+        // conservative; 1e-5 rad more for the float cos and sin.
+        const glm::vec3 axis(sum / length);
         double minCos = 1.0;
         for (int e = 0; e < 12; ++e)
             if (edges & (1u << e))
-                minCos = std::min(minCos, glm::dot(axis, glm::dvec3(normal[e])) /
+                minCos = std::min(minCos, glm::dot(glm::dvec3(axis), glm::dvec3(normal[e])) /
                                               glm::length(glm::dvec3(normal[e])));
-        // Slack for the float decode at view time and the float cos/sin table.
         const double angle = std::acos(std::clamp(minCos, -1.0, 1.0)) + 1e-5;
-        const double steps = std::ceil(angle / kConeAngleStep);
-        if (!(steps < 65534.0))
-            return cone;
-        cone.angle = std::uint16_t(steps);
-        return cone;
+        if (!(angle < 0.5 * 3.14159265358979323846))
+            return triangles; // a cone of 90 degrees holds both sides of every view
+        cones.axisX[i] = axis.x;
+        cones.axisY[i] = axis.y;
+        cones.axisZ[i] = axis.z;
+        cones.cosA[i] = float(std::cos(angle));
+        cones.sinA[i] = float(std::sin(angle));
+        return triangles;
     }
 
-    // True when d = N . (eye - B) has the same sign, with margin, at every point B of the cell
-    // and every normal N of its cone: then none of its triangles has a silhouette segment.
-    bool cannotHoldSilhouette(std::uint32_t cellIndex, const NormalCone& cone,
-                              const SilhouetteView& view) const {
-        if (cone.angle >= kConeNever - 1)
-            return false;
-        const double cosA = coneTrig().cosA[cone.angle], sinA = coneTrig().sinA[cone.angle];
-        // Every cell of every view passes here, most of them culled: two square roots, not four
-        // (|w| once, the axis's length folded into it, the cone test squared).
-        glm::dvec3 w;
-        double wl = 0.0, rw = 0.0;
-        if (view.orthographic) {
-            w = view.eyeOrDirection;
-            wl = glm::length(w);
-        } else {
-            w = view.eyeOrDirection - cellCentre(cellCoords(cellIndex));
-            wl = glm::length(w);
-            if (!(wl > 2.0 * m_cellRadius))
-                return false;
-            rw = m_cellRadius / wl;
+    CullView cullView(const SilhouetteView& view) const {
+        if (view.orthographic)
+            return {glm::vec3(view.eyeOrDirection), 0.0f, 0.0f, 0.0f};
+        const auto radius = float((m_cellRadius + coneOriginSlack) * (1.0 + 1e-6));
+        return {glm::vec3(view.eyeOrDirection - coneOrigin), 1.0f, radius,
+                float(4.0 * m_cellRadius * m_cellRadius)};
+    }
+
+    // keep[k] = 0 where cell begin + k certainly holds no silhouette segment: d = N . w has the
+    // same sign, with margin, at every point of the cell and every normal N of its cone. The
+    // minimum over the cone of N . w^ is cos(theta + alpha): one sign throughout when
+    // |d| cos(alpha) - margin > |axis x w| sin(alpha) (both sides then non-negative, so squared).
+    // |axis x w|, not sqrt(|w|^2 - d^2): no cancellation where w runs along the axis, so the
+    // float round-off stays far below the slack. One branch-free loop over the planes, which the
+    // compiler vectorises: every cell of every view passes here.
+    void markUncertain(std::size_t begin, std::size_t n, const CullView& view,
+                       std::uint8_t* keep) const {
+        const float* cx = cones.centreX.data() + begin;
+        const float* cy = cones.centreY.data() + begin;
+        const float* cz = cones.centreZ.data() + begin;
+        const float* ax = cones.axisX.data() + begin;
+        const float* ay = cones.axisY.data() + begin;
+        const float* az = cones.axisZ.data() + begin;
+        const float* cosA = cones.cosA.data() + begin;
+        const float* sinA = cones.sinA.data() + begin;
+        for (std::size_t k = 0; k < n; ++k) {
+            const float wx = view.eye.x - view.centreWeight * cx[k];
+            const float wy = view.eye.y - view.centreWeight * cy[k];
+            const float wz = view.eye.z - view.centreWeight * cz[k];
+            const float l2 = wx * wx + wy * wy + wz * wz;
+            const float d = ax[k] * wx + ay[k] * wy + az[k] * wz;
+            const float px = ay[k] * wz - az[k] * wy;
+            const float py = az[k] * wx - ax[k] * wz;
+            const float pz = ax[k] * wy - ay[k] * wx;
+            const float across = (px * px + py * py + pz * pz) * (sinA[k] * sinA[k]);
+            const float margin =
+                view.radius + kConeSlack * (std::abs(wx) + std::abs(wy) + std::abs(wz));
+            const float reach = std::abs(d) * cosA[k] - margin;
+            const bool culled = (l2 > view.nearLimit2) & (reach > 0.0f) & (reach * reach > across);
+            keep[k] = std::uint8_t(!culled);
         }
-        if (!(wl > 0.0))
-            return false;
-        const glm::dvec3 axis =
-            octAxis(octCoordinate(cone.u), octCoordinate(cone.v)); // not unit length
-        const double c = glm::dot(axis, w) / (std::sqrt(glm::dot(axis, axis)) * wl);
-        const double margin = rw + kConeSlack;
-        // min over the cone of N . w^ is cos(theta + alpha), max is cos(theta - alpha): one sign
-        // throughout when |c| cos(alpha) - sqrt(1 - c^2) sin(alpha) > margin, both sides of the
-        // comparison with sin(alpha) then non-negative, so it may be squared.
-        const double reach = std::abs(c) * cosA - margin;
-        if (!(reach > 0.0))
-            return false;
-        return reach * reach > std::max(0.0, 1.0 - c * c) * sinA * sinA;
     }
 
     // The marching-cubes vertices (patient mm) and outward normals of cell p's crossing edges,
@@ -583,6 +594,13 @@ std::size_t RayCastSilhouetteCpu::segmentChunkCount() const {
 
 const std::vector<SegmentEndpoints>& RayCastSilhouetteCpu::segmentChunk(std::size_t chunk) const {
     return m_impl->chunkSegments[chunk];
+}
+
+std::size_t RayCastSilhouetteCpu::builtCellCount() const {
+    std::size_t n = 0;
+    for (std::size_t c = 0; c < segmentChunkCount(); ++c)
+        n += m_impl->chunkBuiltCells[c];
+    return n;
 }
 
 std::size_t RayCastSilhouetteCpu::segmentCount() const {

@@ -38,9 +38,9 @@ public:
     // bricks of `grid` whose min/max admit `storedIso`, in brick order. Inside = value >= iso,
     // as in marchingCubes(). `volume` must outlive this object or the next prepare().
     // withNormalCones (for mode a, where the cells serve many views) also keeps, per cell, a cone
-    // around its vertex normals (20 bytes) so that a view skips the cells that cannot hold a
-    // silhouette; the cull is conservative, the segments are the same with or without it.
-    // Also builds an occupancy grid of 8^3-cell macro cells that lets the visibility rays jump
+    // around its vertex normals and its centre (32 bytes) so that a view skips the cells that
+    // cannot hold a silhouette; the cull is conservative, the segments are the same with or without
+    // it. Also builds an occupancy grid of 8^3-cell macro cells that lets the visibility rays jump
     // over empty space.
     // `cancel` (optional) is polled between cell layers; false = cancelled, nothing prepared.
     // `stencil`: the normals' gradient, as marchingCubes() was given it.
@@ -63,6 +63,9 @@ public:
     std::size_t segmentChunkCount() const;
     const std::vector<SegmentEndpoints>& segmentChunk(std::size_t chunk) const;
     std::size_t segmentCount() const;
+    // Cells the last extractSegments() built (those the normal-cone cull could not skip; every
+    // active cell without cones).
+    std::size_t builtCellCount() const;
     // Convenience (tests, tools): extractSegments() and the segments in one flat list.
     std::size_t extractSegments(const SilhouetteView& view, std::vector<SegmentEndpoints>& out,
                                 unsigned threads = 0);
