@@ -102,6 +102,48 @@ std::vector<int> rampPixels(int rows, int columns, int start, int step) {
     return values;
 }
 
+namespace {
+// The slice's pixels as PixelData in its BitsAllocated (8 or 16), native.
+void putPixelData(DcmDataset& ds, const TestSlice& s) {
+    const std::size_t count = std::size_t(s.rows) * std::size_t(s.columns) * std::size_t(s.numberOfFrames);
+    if (!s.pixels.empty() && s.pixels.size() != count)
+        throw std::runtime_error("test DICOM writer: pixel count does not match rows*columns*frames");
+    if (s.bitsAllocated == 8) {
+        std::vector<Uint8> bytes(count, 0);
+        for (std::size_t i = 0; i < s.pixels.size(); ++i)
+            bytes[i] = Uint8(s.pixels[i] & 0xFF);
+        // An odd number of bytes is padded to even length by DCMTK when written.
+        check(ds.putAndInsertUint8Array(DCM_PixelData, bytes.data(), unsigned(count)), "PixelData");
+    } else if (s.bitsAllocated == 16) {
+        std::vector<Uint16> words(count, 0);
+        for (std::size_t i = 0; i < s.pixels.size(); ++i)
+            words[i] = Uint16(std::uint32_t(s.pixels[i]) & 0xFFFFu);
+        check(ds.putAndInsertUint16Array(DCM_PixelData, words.data(), unsigned(count)), "PixelData");
+    } else {
+        throw std::runtime_error("test DICOM writer: BitsAllocated must be 8 or 16");
+    }
+}
+
+// An encapsulated transfer syntax: the native PixelData re-encoded by DCMTK's codecs.
+void encodePixelData(DcmDataset& ds, const TestSlice& s, E_TransferSyntax xfer) {
+    if (DcmXfer(xfer).isEncapsulated()) {
+        std::unique_ptr<DcmRepresentationParameter> params;
+        if (s.transferSyntax == TestTransferSyntax::JpegLossless)
+            params = std::make_unique<DJ_RPLossless>(1, 0);
+        else if (s.transferSyntax == TestTransferSyntax::JpegLsLossless && !dcmtkCharlsIsBound())
+            throw std::runtime_error("test DICOM writer: JpegLsEncode resolves to the system CharLS, not DCMTK's; "
+                                     "link DCMTK::dcmjpls first with --no-as-needed");
+        else if (s.transferSyntax == TestTransferSyntax::JpegLsLossless)
+            params = std::make_unique<DJLSRepresentationParameter>(2, OFTrue);
+        else
+            params = std::make_unique<DcmRLERepresentationParameter>();
+        check(ds.chooseRepresentation(xfer, params.get()), "encode " + transferSyntaxUid(s.transferSyntax));
+        if (!ds.canWriteXfer(xfer))
+            throw std::runtime_error("test DICOM writer: DCMTK could not encode " + transferSyntaxUid(s.transferSyntax));
+    }
+}
+} // namespace
+
 void writeTestSlice(const std::filesystem::path& path, const TestSlice& s) {
     ensureEncoders();
     DcmFileFormat file;
@@ -147,42 +189,10 @@ void writeTestSlice(const std::filesystem::path& path, const TestSlice& s) {
     if (s.numberOfFrames > 1)
         put(DCM_NumberOfFrames, std::to_string(s.numberOfFrames));
 
-    if (s.writePixelData) {
-        const std::size_t count = std::size_t(s.rows) * std::size_t(s.columns) * std::size_t(s.numberOfFrames);
-        if (!s.pixels.empty() && s.pixels.size() != count)
-            throw std::runtime_error("test DICOM writer: pixel count does not match rows*columns*frames");
-        if (s.bitsAllocated == 8) {
-            std::vector<Uint8> bytes(count, 0);
-            for (std::size_t i = 0; i < s.pixels.size(); ++i)
-                bytes[i] = Uint8(s.pixels[i] & 0xFF);
-            // An odd number of bytes is padded to even length by DCMTK when written.
-            check(ds->putAndInsertUint8Array(DCM_PixelData, bytes.data(), unsigned(count)), "PixelData");
-        } else if (s.bitsAllocated == 16) {
-            std::vector<Uint16> words(count, 0);
-            for (std::size_t i = 0; i < s.pixels.size(); ++i)
-                words[i] = Uint16(std::uint32_t(s.pixels[i]) & 0xFFFFu);
-            check(ds->putAndInsertUint16Array(DCM_PixelData, words.data(), unsigned(count)), "PixelData");
-        } else {
-            throw std::runtime_error("test DICOM writer: BitsAllocated must be 8 or 16");
-        }
-    }
-
+    if (s.writePixelData)
+        putPixelData(*ds, s);
     const E_TransferSyntax xfer = toXfer(s.transferSyntax);
-    if (DcmXfer(xfer).isEncapsulated()) {
-        std::unique_ptr<DcmRepresentationParameter> params;
-        if (s.transferSyntax == TestTransferSyntax::JpegLossless)
-            params = std::make_unique<DJ_RPLossless>(1, 0);
-        else if (s.transferSyntax == TestTransferSyntax::JpegLsLossless && !dcmtkCharlsIsBound())
-            throw std::runtime_error("test DICOM writer: JpegLsEncode resolves to the system CharLS, not DCMTK's; "
-                                     "link DCMTK::dcmjpls first with --no-as-needed");
-        else if (s.transferSyntax == TestTransferSyntax::JpegLsLossless)
-            params = std::make_unique<DJLSRepresentationParameter>(2, OFTrue);
-        else
-            params = std::make_unique<DcmRLERepresentationParameter>();
-        check(ds->chooseRepresentation(xfer, params.get()), "encode " + transferSyntaxUid(s.transferSyntax));
-        if (!ds->canWriteXfer(xfer))
-            throw std::runtime_error("test DICOM writer: DCMTK could not encode " + transferSyntaxUid(s.transferSyntax));
-    }
+    encodePixelData(*ds, s, xfer);
     check(file.saveFile(OFFilename(path.c_str()), xfer), "save " + path.string());
 }
 

@@ -349,6 +349,28 @@ private:
         }
     }
 
+    // Voxels [lo, hi) of voxel row (y, z) that may start a crossing edge: the row's own mixed
+    // range widened by where it differs from the row above it in y and in z; false when none.
+    bool edgeRange(const Unit& unit, glm::ivec3 cb, glm::ivec3 ce, int y, int z, int& lo,
+                   int& hi) const {
+        const RowInfo& r = row(unit, y, z);
+        lo = r.xl;
+        hi = r.xr;
+        const auto widen = [&](const RowInfo& other) {
+            int l2, h2;
+            differingRange(r, other, cb.x, ce.x + 1, l2, h2);
+            if (l2 < h2) {
+                lo = std::min(lo, l2);
+                hi = std::max(hi, h2);
+            }
+        };
+        if (y + 1 < m_dims.ny)
+            widen(row(unit, y + 1, z));
+        if (z + 1 < m_dims.nz)
+            widen(row(unit, y, z + 1));
+        return lo < hi;
+    }
+
     void layerIds(const Unit& unit, glm::ivec3 cb, glm::ivec3 ce, int z, LayerIds& ids) {
         const int bx = cb.x / m_brickCells.x;
         const int width = ce.x - cb.x + 1;
@@ -360,25 +382,9 @@ private:
         const bool ownLayer = z < ownZEnd;
         const bool hasZ = z + 1 < m_dims.nz;
         for (int y = cb.y; y <= ce.y; ++y) {
-            const RowInfo& r = row(unit, y, z);
             const bool hasY = y + 1 < m_dims.ny;
-            int lo = r.xl, hi = r.xr;
-            int l2, h2;
-            if (hasY) {
-                differingRange(r, row(unit, y + 1, z), cb.x, ce.x + 1, l2, h2);
-                if (l2 < h2) {
-                    lo = std::min(lo, l2);
-                    hi = std::max(hi, h2);
-                }
-            }
-            if (hasZ) {
-                differingRange(r, row(unit, y, z + 1), cb.x, ce.x + 1, l2, h2);
-                if (l2 < h2) {
-                    lo = std::min(lo, l2);
-                    hi = std::max(hi, h2);
-                }
-            }
-            if (lo >= hi)
+            int lo, hi;
+            if (!edgeRange(unit, cb, ce, y, z, lo, hi))
                 continue;
             const std::size_t segment =
                 (std::size_t(z) * std::size_t(m_dims.ny) + std::size_t(y)) * std::size_t(m_gx) +

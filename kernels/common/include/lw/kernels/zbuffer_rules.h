@@ -141,6 +141,15 @@ LW_HOST_DEVICE inline std::int64_t topLeftBias(std::int64_t ax, std::int64_t ay,
     const std::int64_t dx = bx - ax, dy = by - ay;
     return (dy > 0 || (dy == 0 && dx < 0)) ? 0 : -1;
 }
+// Whether any pixel of the box [i0, i1] x [j0, j1] is marked in `mask` (width bytes a row).
+LW_HOST_DEVICE inline bool boxHoldsMarkedPixel(const std::uint8_t* mask, int width, std::int64_t i0,
+                                               std::int64_t i1, std::int64_t j0, std::int64_t j1) {
+    for (std::int64_t j = j0; j <= j1; ++j)
+        for (std::int64_t i = i0; i <= i1; ++i)
+            if (mask[j * width + i])
+                return true;
+    return false;
+}
 } // namespace detail
 
 // Calls fn(px, py, key) for every pixel centre covered by the triangle (pa, pb, pc) with depth
@@ -172,19 +181,10 @@ forEachCoveredPixel(glm::ivec2 pa, glm::ivec2 pb, glm::ivec2 pc, float k0, float
     j1 = j1 < height - 1 ? j1 : height - 1;
     if (i0 > i1 || j0 > j1)
         return;
-    if (pixelFilter) {
-        // Only pixels the caller will read matter; most triangles cover one or two pixels, so
-        // checking the box is far cheaper than setting the triangle up.
-        bool wanted = false;
-        for (std::int64_t j = j0; j <= j1 && !wanted; ++j)
-            for (std::int64_t i = i0; i <= i1; ++i)
-                if (pixelFilter[j * width + i]) {
-                    wanted = true;
-                    break;
-                }
-        if (!wanted)
-            return;
-    }
+    // Only pixels the caller will read matter; most triangles cover one or two pixels, so
+    // checking the box is far cheaper than setting the triangle up.
+    if (pixelFilter && !detail::boxHoldsMarkedPixel(pixelFilter, width, i0, i1, j0, j1))
+        return;
     // Edge function of a -> b at p: (b.y - a.y)(p.x - a.x) - (b.x - a.x)(p.y - a.y); with y down
     // it is positive on the interior of a triangle whose area E_01(v2) is positive.
     std::int64_t area = (y1 - y0) * (x2 - x0) - (x1 - x0) * (y2 - y0);
