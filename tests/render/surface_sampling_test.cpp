@@ -85,5 +85,19 @@ TEST(SurfaceSampling, NeighbourReachFollowsTheOriginalSlabs) {
     EXPECT_NEAR(inPlane.neighbourReach(), 8.0, 1e-12); // cells of 0.25 mm: 2 mm
 }
 
+// A grid coarse in plane and fine across slices (VTK's quarter head: 3.2 mm pixels, 1.5 mm
+// slices) is terraced in plane: the reach spans its pixel in units of its slab, as loaded and
+// after the in-plane split, and an isotropic grid keeps one cell.
+TEST(SurfaceSampling, NeighbourReachFollowsCoarsePixels) {
+    const volume::Volume coarse({6, 6, 6}, volume::VoxelType::Int16,
+                                VolumeGeometry::regular({0, 0, 0}, {3.2, 3.2, 1.5}));
+    EXPECT_NEAR(kernels::cpu::VoxelRayGrid(coarse).neighbourReach(), 3.2 / 1.5, 1e-12);
+    const kernels::cpu::VoxelRayGrid split(volume::oversampled(coarse, {2, 2, 1}));
+    EXPECT_NEAR(split.neighbourReach(), 3.2 / 1.5, 1e-12); // 1.6 mm pixels, 1.5 mm slices
+    const volume::Volume isotropic({6, 6, 6}, volume::VoxelType::Int16,
+                                   VolumeGeometry::regular({0, 0, 0}, {0.7, 0.7, 0.7}));
+    EXPECT_NEAR(kernels::cpu::VoxelRayGrid(isotropic).neighbourReach(), 1.0, 1e-12);
+}
+
 } // namespace
 } // namespace lw::render

@@ -214,7 +214,9 @@ struct RayGridView {
 // slower. An oversampled volume (volume/oversampling.h) holds its original grid's field, so its
 // terraces are as deep as the original slabs: the caller passes the ratio of those
 // (kernels/cpu VoxelRayGrid::neighbourReach); with the finer slabs' own ratio dicom2stl's 4 mm CT
-// split in two drew its outline at 24 of 32 views.
+// split in two drew its outline at 24 of 32 views. A grid coarse in plane (VTK's quarter head,
+// 3.2 mm pixels on 1.5 mm slices) is terraced in plane: the reach is then its pixel against its
+// slab -- in general the coarsest original cell against the finest cell.
 //
 // Empty-space skipping: macro cells of kMacroCells^3 cells that hold no inside voxel cannot
 // occlude (a bilinear wall value is a convex combination of its corners); the walk crosses them

@@ -38,7 +38,7 @@ public:
         const glm::dmat3 frame(g.spacingI() * g.axisI(), g.spacingJ() * g.axisJ(), stack);
         m_toGrid = glm::inverse(frame);
         m_toPatient = frame;
-        m_slabRefinement = g.refinement().z;
+        m_refinement = g.refinement();
     }
 
     glm::ivec3 dims() const { return m_dims; }
@@ -89,17 +89,26 @@ public:
     }
 
     // How many times its pixels' width a slab is thick (the mean slab against the finer
-    // in-plane spacing): what the neighbour ray's reach follows (neighbourReachCells).
+    // in-plane spacing).
     double slabOverPixel() const {
         const double pixel = std::min(glm::length(m_toPatient[0]), glm::length(m_toPatient[1]));
         return pixel > 0.0 ? cellScale().z / pixel : 1.0;
     }
 
-    // The neighbour ray's reach (neighbourReachCells) on this grid. An oversampled volume
-    // (volume/oversampling.h) holds the field of its original grid, whose terraces are as deep
-    // as the original slabs: `refinement` of them make one, so the reach counts those.
+    // The neighbour ray's reach (neighbourReachCells) on this grid: how many of its finest cells
+    // the coarsest cell of the grid it was sampled from spans, since the terraces of a coarse
+    // axis are as deep as its cells. A thick-slice series: its slab against its pixel
+    // (slabOverPixel); a grid coarse in plane and fine across slices (VTK's quarter head, 3.2 mm
+    // pixels on 1.5 mm slices): its pixel against its slab. An oversampled volume
+    // (volume/oversampling.h) holds the field of its original grid: `refinement` of its cells
+    // make one of the original's, so the reach counts those.
     double neighbourReach() const {
-        return neighbourReachCells(slabOverPixel() * m_slabRefinement);
+        const glm::dvec3 cell(glm::length(m_toPatient[0]), glm::length(m_toPatient[1]),
+                              cellScale().z);
+        const double finest = std::min({cell.x, cell.y, cell.z});
+        const double coarsestOriginal =
+            std::max({cell.x * m_refinement.x, cell.y * m_refinement.y, cell.z * m_refinement.z});
+        return neighbourReachCells(finest > 0.0 ? coarsestOriginal / finest : 1.0);
     }
 
     // RayGridView::cellOf and ::walk (voxel_ray_walk.h).
@@ -117,7 +126,7 @@ private:
     glm::dmat3 m_toGrid{1.0};
     glm::dmat3 m_toPatient{1.0};
     std::vector<double> m_offsets{0.0};
-    int m_slabRefinement = 1; // volume::VolumeGeometry::refinement().z
+    glm::ivec3 m_refinement{1}; // volume::VolumeGeometry::refinement()
 };
 
 } // namespace lw::kernels::cpu
