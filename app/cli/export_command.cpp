@@ -121,7 +121,8 @@ void writeOutputs(const ExportJob& job, const ExportTargets& targets, std::ostre
                                            report::SilhouetteLines::LeftOut);
             const report::PictureLines lines{report::pictureLines(job.panels, job.layout),
                                              job.panels.silhouetteLineWidth,
-                                             job.panels.silhouetteLineColour};
+                                             job.panels.silhouetteLineColour,
+                                             report::pictureHiddenLines(job.panels, job.layout)};
             write(*targets.pdf, report::renderPdfReport(job.info, base, job.annotations, lines));
         }
         if (targets.sc) {
@@ -147,13 +148,18 @@ int runExport(const std::vector<std::string>& args, std::ostream& out) {
     std::set<std::string> options = panelRenderOptions();
     options.insert({"series", "panel", "annotations", "comment", "png", "pdf", "svg", "sc",
                     "suggestive-threshold"});
-    const Arguments arguments(args, {"force", "anonymise", "suggestive"}, options);
+    options.insert(lineStyleOptions().begin(), lineStyleOptions().end());
+    const Arguments arguments(args, {"force", "anonymise", "suggestive", kHiddenLinesFlag},
+                              options);
     if (arguments.positionals().size() != 1)
         throw UsageError("export", "expects exactly one INPUT");
     const ExportTargets targets = parseTargets(arguments);
     ExportJob job;
     job.layout = parseLayout(arguments);
     RenderRequest request = parseRenderRequest(arguments, "export");
+    const LineStyle lineStyle = parseLineStyle(arguments);
+    if (lineStyle.hidden && !request.settings.visibility)
+        throw UsageError("--hidden-lines", "needs --visibility on: without it nothing is hidden");
     request.wantIso = job.layout != report::PanelLayout::SilhouettePanel;
     request.wantSilhouette = job.layout != report::PanelLayout::IsoPanel;
     request.suggestive = arguments.flag("suggestive") && request.wantSilhouette;
@@ -189,12 +195,15 @@ int runExport(const std::vector<std::string>& args, std::ostream& out) {
     job.panels.silhouette = report::toQImage(panels.silhouette);
     if (request.wantSilhouette) {
         // The lines as vectors too: antialiased in the PNG, paths in the SVG and the PDF.
-        job.panels.silhouetteLines =
-            silhouettePolylines(*renderer, volume, job.panels.camera, request, panels.lines);
+        render::PolylineSplit lines = silhouettePolylines(*renderer, volume, job.panels.camera,
+                                                          request, lineStyle.hidden, panels.lines);
+        job.panels.silhouetteLines = std::move(lines.visible);
         job.panels.silhouetteLines.insert(job.panels.silhouetteLines.end(),
                                           panels.suggestivePolylines.begin(),
                                           panels.suggestivePolylines.end());
-        job.panels.silhouetteLineWidth = 2.0 * request.lineRadius + 1.0;
+        job.panels.hiddenLines = std::move(lines.hidden);
+        job.panels.silhouetteLineWidth = lineStyle.widthPx.value_or(2.0 * request.lineRadius + 1.0);
+        job.panels.silhouetteLineColour = QColor(QString::fromStdString(lineStyle.colour));
     }
 
     job.info.identity = opened.dicom;

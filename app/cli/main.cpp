@@ -58,6 +58,7 @@ commands:
          [--panel iso|silhouette|both] [--backend cpu|cuda|auto] [--repeat N] [--threads N]
          [--min-stroke PX] [--border closed|open] [--gradient central|smoothed]
          [--oversample auto|off] [--format png|svg]
+         [--line-width PX] [--line-colour #RRGGBB] [--hidden-lines]
          [--suggestive [--suggestive-threshold TAU]] -o OUT.png
                               one view as PNG (default 512x512, silhouette, method 3, view 0,0);
                               INPUT: volume file, DICOM folder/DICOMDIR or phantom:N[xNYxNZ][:sphere];
@@ -73,7 +74,10 @@ commands:
                               or a coarse grid, is split linearly until they do not, so the
                               triangles follow the same surface more finely);
                               --suggestive: suggestive contours drawn with the silhouette
-                              (PNG or SVG; TAU: their derivative test, default 1)
+                              (PNG or SVG; TAU: their derivative test, default 1);
+                              SVG: the visible silhouette as paths, --line-width (default 1)
+                              and --line-colour (default #000000) style them, --hidden-lines
+                              adds the hidden parts thin, dashed and grey beneath
   bench [--sizes 32,256,512,512x512x1024] [--input FILE --iso HU] [--backend cpu|cuda|auto]
         [--methods mc,1,2,3] [--variants S,L] [--modes a,b] [--repeat N] [--image WxH]
         [--border closed|open] [--min-stroke PX] [--gradient central|smoothed]
@@ -97,12 +101,17 @@ commands:
          [--chunks ..] [--mode ..] [--visibility ..] [--camera ..] [--backend ..] [--threads N]
          [--min-stroke PX] [--border ..] [--gradient ..] [--oversample ..]
          [--suggestive [--suggestive-threshold TAU]]
+         [--line-width PX] [--line-colour #RRGGBB] [--hidden-lines]
                               the review as a report, any combination of outputs: PNG with the
                               annotations burned in (lines and text scale with --size, the size
                               of each panel), a 2-page PDF report (header, picture, measurements,
                               comment), SVG (the panels as a raster, annotations as vectors),
                               DICOM Secondary Capture (a new series in the source study, needs
-                              DICOM input); existing files are kept unless --force
+                              DICOM input); existing files are kept unless --force; the
+                              silhouette as antialiased strokes (PNG) or paths (PDF, SVG) of
+                              --line-width pixels (default: 1 per 512 of --size's height) in
+                              --line-colour, and with --hidden-lines its hidden parts thin,
+                              dashed and grey beneath
   help                        this text
 
 Exit codes: 0 success, 1 error (the message names the file and the reason), 2 usage error.

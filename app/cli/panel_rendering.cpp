@@ -11,6 +11,7 @@
 #endif
 
 #include <algorithm>
+#include <cctype>
 #include <cstdio>
 #include <ostream>
 
@@ -291,11 +292,11 @@ core::ImageRgba8 sideBySide(const core::ImageRgba8& left, const core::ImageRgba8
     return image;
 }
 
-std::vector<render::Polyline> silhouettePolylines(render::SilhouetteRenderer& renderer,
-                                                  const volume::Volume& volume,
-                                                  const render::Camera& camera,
-                                                  const RenderRequest& request,
-                                                  const render::PixelMask& lines) {
+render::PolylineSplit silhouettePolylines(render::SilhouetteRenderer& renderer,
+                                          const volume::Volume& volume,
+                                          const render::Camera& camera,
+                                          const RenderRequest& request, bool withHidden,
+                                          const render::PixelMask& lines) {
     render::Mesh extracted;
     const render::Mesh* mesh = renderer.surfaceMesh();
     if (!mesh) {
@@ -304,7 +305,31 @@ std::vector<render::Polyline> silhouettePolylines(render::SilhouetteRenderer& re
     }
     render::PolylineOptions options;
     options.minLengthPx = double(request.settings.minStrokePixels);
-    return render::visiblePolylines(*mesh, camera, lines, options);
+    return render::splitPolylines(*mesh, camera, lines, options, withHidden);
+}
+
+const std::set<std::string>& lineStyleOptions() {
+    static const std::set<std::string> names = {"line-width", "line-colour"};
+    return names;
+}
+
+LineStyle parseLineStyle(const Arguments& arguments) {
+    LineStyle style;
+    if (arguments.option("line-width")) {
+        const double width = arguments.number("line-width", 1.0);
+        if (!(width > 0.0 && width <= 64.0))
+            throw UsageError("--line-width", "expected pixels in (0, 64]");
+        style.widthPx = width;
+    }
+    style.colour = arguments.option("line-colour", style.colour);
+    const bool hex = style.colour.size() == 7 && style.colour[0] == '#' &&
+                     std::all_of(style.colour.begin() + 1, style.colour.end(), [](char c) {
+                         return std::isxdigit(static_cast<unsigned char>(c));
+                     });
+    if (!hex)
+        throw UsageError("--line-colour " + style.colour, "expected #RRGGBB");
+    style.hidden = arguments.flag(kHiddenLinesFlag);
+    return style;
 }
 
 } // namespace lw::cli

@@ -17,6 +17,7 @@
 #include <glm/glm.hpp>
 #include <iosfwd>
 #include <memory>
+#include <optional>
 #include <set>
 #include <string>
 #include <vector>
@@ -82,13 +83,28 @@ RenderedPanels renderPanels(render::SilhouetteRenderer& renderer, const volume::
                             const render::Camera& camera, const RenderRequest& request,
                             std::ostream& out);
 
-// The visible silhouette of `lines` (a frame of `renderer` for `camera`) as polylines: the mesh
-// the frame drew (or, for method 2, which keeps none, the same surface extracted on the CPU).
-std::vector<render::Polyline> silhouettePolylines(render::SilhouetteRenderer& renderer,
-                                                  const volume::Volume& volume,
-                                                  const render::Camera& camera,
-                                                  const RenderRequest& request,
-                                                  const render::PixelMask& lines);
+// How the vector lines are drawn (render --format svg, export): --line-width PX (unset: the
+// command's default), --line-colour #RRGGBB, --hidden-lines (the hidden parts thin, dashed and
+// grey under the visible ones).
+struct LineStyle {
+    std::optional<double> widthPx;
+    std::string colour = "#000000";
+    bool hidden = false;
+};
+// The option and flag names parseLineStyle reads.
+const std::set<std::string>& lineStyleOptions();
+inline constexpr const char* kHiddenLinesFlag = "hidden-lines";
+// Throws UsageError for a width outside (0, 64] or a colour not #RRGGBB.
+LineStyle parseLineStyle(const Arguments& arguments);
+
+// The silhouette of `lines` (a frame of `renderer` for `camera`) as polylines, visible and, with
+// `withHidden`, hidden: the mesh the frame drew (or, for method 2, which keeps none, the same
+// surface extracted on the CPU).
+render::PolylineSplit silhouettePolylines(render::SilhouetteRenderer& renderer,
+                                          const volume::Volume& volume,
+                                          const render::Camera& camera,
+                                          const RenderRequest& request, bool withHidden,
+                                          const render::PixelMask& lines);
 
 // The renderer of `method` on `backend`, for the commands that measure every method (`accuracy`,
 // `quality`): method 1 without an OpenGL context gives null and a note saying why, so they still

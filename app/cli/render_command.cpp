@@ -17,7 +17,8 @@ namespace lw::cli {
 int runRender(const std::vector<std::string>& args, std::ostream& out) {
     std::set<std::string> options = panelRenderOptions();
     options.insert({"series", "panel", "repeat", "format", "suggestive-threshold"});
-    const Arguments arguments(args, {"suggestive"}, options);
+    options.insert(lineStyleOptions().begin(), lineStyleOptions().end());
+    const Arguments arguments(args, {"suggestive", kHiddenLinesFlag}, options);
     if (arguments.positionals().size() != 1)
         throw UsageError("render", "expects exactly one INPUT");
     const auto output = arguments.option("output");
@@ -35,6 +36,14 @@ int runRender(const std::vector<std::string>& args, std::ostream& out) {
     if (format == "svg" && panel != "silhouette")
         throw UsageError("--format svg", "holds the silhouette lines only (--panel silhouette)");
     RenderRequest request = parseRenderRequest(arguments, "render");
+    const LineStyle lineStyle = parseLineStyle(arguments);
+    if (format != "svg" &&
+        (lineStyle.widthPx || arguments.option("line-colour") || lineStyle.hidden))
+        throw UsageError("--line-width, --line-colour, --hidden-lines",
+                         "style the vector lines of --format svg (export --png draws them as "
+                         "antialiased strokes)");
+    if (lineStyle.hidden && !request.settings.visibility)
+        throw UsageError("--hidden-lines", "needs --visibility on: without it nothing is hidden");
     request.suggestive = arguments.flag("suggestive");
     if (request.suggestive && panel == "iso")
         throw UsageError("--suggestive", "draws into the silhouette panel (--panel iso has none)");
@@ -56,17 +65,21 @@ int runRender(const std::vector<std::string>& args, std::ostream& out) {
 
     RenderedPanels panels = renderPanels(*renderer, volume, camera, request, out);
     if (format == "svg") {
-        std::vector<render::Polyline> lines =
-            silhouettePolylines(*renderer, volume, camera, request, panels.lines);
-        lines.insert(lines.end(), panels.suggestivePolylines.begin(),
-                     panels.suggestivePolylines.end());
+        render::PolylineSplit lines =
+            silhouettePolylines(*renderer, volume, camera, request, lineStyle.hidden, panels.lines);
+        lines.visible.insert(lines.visible.end(), panels.suggestivePolylines.begin(),
+                             panels.suggestivePolylines.end());
         render::SvgLineStyle style;
         style.background = "#ffffff";
-        const std::string svg =
-            render::silhouetteSvg(lines, camera.width(), camera.height(), style);
+        style.colour = lineStyle.colour;
+        style.widthPx = lineStyle.widthPx.value_or(1.0);
+        const std::string svg = render::silhouetteSvg(lines.visible, camera.width(),
+                                                      camera.height(), style, lines.hidden);
         core::writeFileAtomically(*output, svg.data(), svg.size());
-        out << "wrote " << *output << " (" << lines.size() << " polylines, " << camera.width()
-            << "x" << camera.height() << ")\n";
+        out << "wrote " << *output << " (" << lines.visible.size() << " polylines";
+        if (lineStyle.hidden)
+            out << ", " << lines.hidden.size() << " hidden";
+        out << ", " << camera.width() << "x" << camera.height() << ")\n";
         return 0;
     }
 

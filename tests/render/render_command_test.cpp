@@ -74,6 +74,38 @@ TEST(RenderCommand, SvgHoldsTheSilhouetteAsPaths) {
     EXPECT_FALSE(std::filesystem::exists(out));
 }
 
+// --line-width and --line-colour style the SVG's paths; --hidden-lines adds the hidden parts (the
+// phantom's inner surfaces) as a dashed grey group beneath. Styles on a PNG, a bad width or
+// colour, and hidden lines without visibility are usage errors that write nothing.
+TEST(RenderCommand, SvgLineStyleAndHiddenLines) {
+    const std::string common =
+        "render phantom:64 --iso 300.5 --method 3 --size 200x160 --view 30,10 --backend cpu ";
+    const auto out = outputPath("styled.svg");
+    ASSERT_EQ(runCli(common + "--line-width 2.5 --line-colour '#a01020' --hidden-lines -o '" +
+                     out.string() + "'"),
+              0);
+    std::ifstream in(out);
+    const std::string svg((std::istreambuf_iterator<char>(in)), {});
+    EXPECT_NE(svg.find("stroke-width=\"2.500\" stroke-linecap=\"round\""), std::string::npos);
+    EXPECT_NE(svg.find("stroke=\"#a01020\""), std::string::npos);
+    const std::size_t dashed = svg.find("stroke-dasharray=\"10.000 7.500\"");
+    ASSERT_NE(dashed, std::string::npos) << "the hidden group, dashes of 4 and gaps of 3 widths";
+    EXPECT_LT(dashed, svg.find("stroke=\"#a01020\"")) << "beneath the visible lines";
+    EXPECT_NE(svg.find("stroke-width=\"1.250\""), std::string::npos) << "half the width";
+
+    const auto refused = outputPath("refused.svg");
+    const auto refusedPng = outputPath("refused.png");
+    for (const std::string& bad : {"--hidden-lines --visibility off -o '" + refused.string() + "'",
+                                   "--line-width 0 -o '" + refused.string() + "'",
+                                   "--line-width 65 -o '" + refused.string() + "'",
+                                   "--line-colour red -o '" + refused.string() + "'",
+                                   "--line-width 2 -o '" + refusedPng.string() + "'",
+                                   "--hidden-lines -o '" + refusedPng.string() + "'"})
+        EXPECT_EQ(runCli(common + bad), 2) << bad;
+    EXPECT_FALSE(std::filesystem::exists(refused));
+    EXPECT_FALSE(std::filesystem::exists(refusedPng));
+}
+
 TEST(RenderCommand, BothPanelsSideBySideChunkedOrtho) {
     const auto out = outputPath("both.png");
     ASSERT_EQ(runCli("render phantom:48 --iso 300.5 --method 3 --chunks 16 --mode b --camera ortho "

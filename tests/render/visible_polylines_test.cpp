@@ -129,6 +129,56 @@ TEST_P(VisiblePolylines, SvgHoldsExactlyThePolylines) {
     EXPECT_EQ(closedPaths, closedLines);
 }
 
+// The hidden parts: off the frame's lines, and with the visible parts the whole contour (what
+// the frame draws without visibility); none when nothing was tested. The linked tori hide part
+// of each other's contour at every view.
+TEST(HiddenPolylines, WithTheVisibleOnesTheyAreTheWholeContour) {
+    const auto shape = makeAnalyticShape("tori");
+    const lw::volume::Volume volume = sampleShape(*shape, 64);
+    CameraSetup setup;
+    setup.bounds = shape->bounds();
+    setup.azimuthDeg = 200;
+    setup.elevationDeg = -35;
+    const Camera camera(setup, 300, 300);
+    auto renderer = createSilhouetteRenderer(SilhouetteMethod::ZBuffer, Backend::Cpu);
+    renderer->setVolume(volume);
+    SilhouetteSettings settings;
+    settings.isoReal = kShapeIso;
+    settings.minStrokePixels = 0;
+    const SilhouetteFrame visible = renderer->render(camera, settings);
+    const Mesh mesh = *renderer->surfaceMesh();
+    settings.visibility = false;
+    const SilhouetteFrame all = renderer->render(camera, settings);
+    ASSERT_GT(all.lines.count(), visible.lines.count() + 50) << "nothing hidden: tests nothing";
+
+    const PolylineSplit split = splitPolylines(mesh, camera, visible.lines, {}, true);
+    ASSERT_FALSE(split.hidden.empty());
+    const PixelMask hidden = rasterize(split.hidden, 300, 300);
+    // Away from the visible lines (a run ends within a pixel or two of where they begin).
+    EXPECT_LE(coveredWithinOnePixel(hidden, visible.lines), 0.15);
+    // Visible and hidden together: every line the frame draws without visibility.
+    PixelMask both = rasterize(split.visible, 300, 300);
+    for (std::size_t i = 0; i < both.pixels().size(); ++i)
+        if (hidden.pixels()[i])
+            both.set(int(i % 300), int(i / 300));
+    EXPECT_GE(coveredWithinOnePixel(all.lines, both), 0.97);
+    // Without visibility nothing is hidden.
+    EXPECT_TRUE(splitPolylines(mesh, camera, all.lines, {}, true).hidden.empty());
+    EXPECT_TRUE(splitPolylines(mesh, camera, visible.lines, {}, false).hidden.empty());
+
+    // The SVG draws them beneath, thin, dashed and grey: one more group, one path each.
+    const std::string svg =
+        silhouetteSvg(split.visible, 300, 300, {"#000000", 2.0, ""}, split.hidden);
+    const std::size_t hiddenGroup = svg.find("stroke-dasharray=\"8.000 6.000\"");
+    ASSERT_NE(hiddenGroup, std::string::npos);
+    EXPECT_LT(hiddenGroup, svg.find("stroke=\"#000000\""));
+    EXPECT_NE(svg.find(std::string("stroke=\"") + kHiddenLineColour + "\""), std::string::npos);
+    std::size_t paths = 0;
+    for (std::size_t at = 0; (at = svg.find("<path ", at)) != std::string::npos; ++at)
+        ++paths;
+    EXPECT_EQ(paths, split.visible.size() + split.hidden.size());
+}
+
 INSTANTIATE_TEST_SUITE_P(
     Shapes, VisiblePolylines,
     testing::Values(ShapeView{"sphere", 30, 20, 1}, ShapeView{"torus", 30, 60, 2},

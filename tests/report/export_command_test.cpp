@@ -7,6 +7,7 @@
 #include "lw/core/png_io.h"
 #include "test_support.h"
 
+#include <cstdlib>
 #include <filesystem>
 #include <gtest/gtest.h>
 
@@ -84,6 +85,39 @@ TEST(ExportCommand, RefusedExportsWriteNothing) {
     EXPECT_EQ(notDicom.exitCode, 1);
     EXPECT_NE(notDicom.err.find("must be DICOM"), std::string::npos) << notDicom.err;
     EXPECT_EQ(entries(dir.path()), 1u); // only notes.json
+}
+
+// --hidden-lines: the hidden parts go into the SVG as a dashed group and into the PNG as grey
+// dashes; --line-width and --line-colour style the visible strokes.
+TEST(ExportCommand, HiddenLinesAndLineStyle) {
+    test::TempDir dir;
+    const std::string common = "export phantom:64 --iso 300.5 --size 300x200 --view 30,10 "
+                               "--panel silhouette --line-width 3 --line-colour '#c00000' ";
+    ASSERT_EQ(runCli(common + "--hidden-lines --png " + quoted((dir / "h.png").string()) +
+                     " --svg " + quoted((dir / "h.svg").string()) + " --pdf " +
+                     quoted((dir / "h.pdf").string()))
+                  .exitCode,
+              0);
+    const std::string svg = core::readFileText(dir / "h.svg");
+    EXPECT_NE(svg.find("stroke-dasharray=\"12.000 9.000\""), std::string::npos);
+    EXPECT_NE(svg.find("stroke=\"#c00000\""), std::string::npos);
+    const core::ImageRgba8 png = core::readPng(dir / "h.png");
+    std::size_t red = 0, grey = 0;
+    for (int y = 0; y < png.height(); ++y)
+        for (int x = 0; x < png.width(); ++x) {
+            const core::Rgba8 p = png.row(y)[x];
+            const int r = p.r, g = p.g, b = p.b;
+            red += r > 150 && g < 80 && b < 80 ? 1 : 0;
+            grey += std::abs(r - g) < 8 && std::abs(g - b) < 8 && r > 100 && r < 200 ? 1 : 0;
+        }
+    EXPECT_GT(red, 300u) << "the visible lines in their colour";
+    EXPECT_GT(grey, 20u) << "the hidden lines' grey dashes";
+    EXPECT_EQ(core::readFileText(dir / "h.pdf").rfind("%PDF", 0), 0u);
+    EXPECT_EQ(
+        runCli(common + "--hidden-lines --visibility off --png " + quoted((dir / "x.png").string()))
+            .exitCode,
+        2);
+    EXPECT_FALSE(std::filesystem::exists(dir / "x.png"));
 }
 
 TEST(ExportCommand, UsageErrors) {

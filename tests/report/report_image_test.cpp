@@ -171,6 +171,47 @@ TEST(ReportImage, SilhouetteLinesGoInAsVectors) {
     EXPECT_EQ(dark, 0u) << "left out for the PDF to draw as paths: the panel stays blank";
 }
 
+// Hidden lines go under the visible ones thin, dashed and grey: along one drawn across the empty
+// top of the silhouette panel the picture alternates grey dashes and white gaps, never black; the
+// SVG holds them as a dashed group of their own.
+TEST(ReportImage, HiddenLinesAreDashedAndGrey) {
+    test::ensureGuiApplication();
+    report::RenderedPanels panels = test::renderSphereReview(kWindowPanel);
+    const test::SphereReview& review = test::sphereReview();
+    panels.silhouetteLines = render::visiblePolylines(
+        review.mesh, panels.camera,
+        render::PixelMask::fromImage(report::toCoreImage(panels.silhouette), {255, 255, 255, 255}));
+    ASSERT_FALSE(panels.silhouetteLines.empty());
+    panels.silhouetteLineWidth = 2.0;
+    render::Polyline hidden;
+    hidden.points = {{10.0f, 8.5f}, {float(kWindowPanel) - 10.0f, 8.5f}};
+    panels.hiddenLines = {hidden};
+    const QImage picture =
+        report::composeExportImage(panels, {}, report::PanelLayout::SilhouettePanel);
+    int grey = 0, white = 0, dark = 0, transitions = 0;
+    bool wasGrey = false;
+    for (int x = 12; x < kWindowPanel - 12; ++x) {
+        const int value = qGray(picture.pixel(x, 8));
+        const bool isGrey = value < 235;
+        grey += isGrey ? 1 : 0;
+        white += value >= 235 ? 1 : 0;
+        dark += value < 100 ? 1 : 0;
+        transitions += x > 12 && isGrey != wasGrey ? 1 : 0;
+        wasGrey = isGrey;
+    }
+    EXPECT_EQ(dark, 0) << "grey, not black";
+    EXPECT_GT(grey, kWindowPanel / 4);
+    EXPECT_GT(white, kWindowPanel / 6) << "gaps between the dashes";
+    EXPECT_GE(transitions, kWindowPanel / 8) << "dashes of 8 px and gaps of 6 px at width 2";
+
+    const QString svg =
+        QString::fromUtf8(report::renderSvg(panels, {}, report::PanelLayout::SideBySide));
+    EXPECT_EQ(svg.count("stroke-dasharray=\"8.000 6.000\""), 1);
+    EXPECT_EQ(svg.count("<path d=\"M"), qsizetype(panels.silhouetteLines.size() + 1));
+    EXPECT_LT(svg.indexOf("stroke-dasharray"),
+              svg.indexOf("stroke-linecap=\"round\" stroke-linejoin"));
+}
+
 // An existing file is kept byte for byte, and nothing else appears in the folder.
 TEST(ReportExportRefused, ExistingFileIsKeptAndNothingIsLeftBehind) {
     test::TempDir dir;

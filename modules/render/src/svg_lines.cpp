@@ -33,32 +33,8 @@ std::string attribute(const std::string& value) {
     return out;
 }
 
-} // namespace
-
-std::string silhouetteSvg(const std::vector<Polyline>& polylines, int width, int height,
-                          const SvgLineStyle& style) {
-    char header[512];
-    std::snprintf(header, sizeof header,
-                  "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
-                  "<svg xmlns=\"http://www.w3.org/2000/svg\" version=\"1.1\" width=\"%d\" "
-                  "height=\"%d\" viewBox=\"0 0 %d %d\">\n",
-                  width, height, width, height);
-    std::string svg = header;
-    if (!style.background.empty())
-        svg +=
-            "<rect width=\"100%\" height=\"100%\" fill=\"" + attribute(style.background) + "\"/>\n";
-    svg += silhouettePaths(polylines, style);
-    svg += "</svg>\n";
-    return svg;
-}
-
-std::string silhouettePaths(const std::vector<Polyline>& polylines, const SvgLineStyle& style) {
-    char group[256];
-    std::snprintf(group, sizeof group,
-                  "<g fill=\"none\" stroke-width=\"%.3f\" stroke-linecap=\"round\" "
-                  "stroke-linejoin=\"round\" stroke=\"",
-                  style.widthPx);
-    std::string svg = group + attribute(style.colour) + "\">\n";
+// One <path> per polyline.
+void appendPaths(std::string& svg, const std::vector<Polyline>& polylines) {
     for (const Polyline& line : polylines) {
         if (line.points.size() < 2)
             continue;
@@ -70,6 +46,48 @@ std::string silhouettePaths(const std::vector<Polyline>& polylines, const SvgLin
             svg += "Z";
         svg += "\"/>\n";
     }
+}
+
+} // namespace
+
+std::string silhouetteSvg(const std::vector<Polyline>& polylines, int width, int height,
+                          const SvgLineStyle& style, const std::vector<Polyline>& hidden) {
+    char header[512];
+    std::snprintf(header, sizeof header,
+                  "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
+                  "<svg xmlns=\"http://www.w3.org/2000/svg\" version=\"1.1\" width=\"%d\" "
+                  "height=\"%d\" viewBox=\"0 0 %d %d\">\n",
+                  width, height, width, height);
+    std::string svg = header;
+    if (!style.background.empty())
+        svg +=
+            "<rect width=\"100%\" height=\"100%\" fill=\"" + attribute(style.background) + "\"/>\n";
+    svg += silhouettePaths(polylines, style, hidden);
+    svg += "</svg>\n";
+    return svg;
+}
+
+std::string silhouettePaths(const std::vector<Polyline>& polylines, const SvgLineStyle& style,
+                            const std::vector<Polyline>& hidden) {
+    std::string svg;
+    if (!hidden.empty()) {
+        char group[320];
+        std::snprintf(group, sizeof group,
+                      "<g fill=\"none\" stroke-width=\"%.3f\" stroke-dasharray=\"%.3f %.3f\" "
+                      "stroke=\"%s\">\n",
+                      style.widthPx * kHiddenLineWidthFactor, style.widthPx * kHiddenDashWidths,
+                      style.widthPx * kHiddenGapWidths, kHiddenLineColour);
+        svg += group;
+        appendPaths(svg, hidden);
+        svg += "</g>\n";
+    }
+    char group[256];
+    std::snprintf(group, sizeof group,
+                  "<g fill=\"none\" stroke-width=\"%.3f\" stroke-linecap=\"round\" "
+                  "stroke-linejoin=\"round\" stroke=\"",
+                  style.widthPx);
+    svg += group + attribute(style.colour) + "\">\n";
+    appendPaths(svg, polylines);
     svg += "</g>\n";
     return svg;
 }

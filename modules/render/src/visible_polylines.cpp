@@ -133,12 +133,13 @@ void simplify(std::vector<glm::vec2>& points, double tolerance) {
     points.resize(out);
 }
 
-// Appends the visible runs of the chain's projected points to `out`.
-void cutToVisible(const std::vector<glm::dvec2>& pixels, bool closed, const PixelMask& shown,
-                  const PolylineOptions& options, std::vector<Polyline>& out) {
+// Appends the runs of the chain's projected points that `shown` shows (wantShown) or that lie in
+// the image where it shows nothing (!wantShown: the hidden lines) to `out`.
+void cutByMask(const std::vector<glm::dvec2>& pixels, bool closed, const PixelMask& shown,
+               bool wantShown, const PolylineOptions& options, std::vector<Polyline>& out) {
     const auto visible = [&](glm::dvec2 p) {
         const int x = int(std::floor(p.x)), y = int(std::floor(p.y));
-        return shown.contains(x, y) && shown.get(x, y);
+        return shown.contains(x, y) && shown.get(x, y) == wantShown;
     };
     Polyline run;
     double runLength = 0.0;
@@ -236,17 +237,31 @@ std::vector<Polyline> visiblePolylines(const Mesh& mesh, const Camera& camera,
 std::vector<Polyline> visiblePolylines(const std::vector<SilhouetteChain>& chains,
                                        const Camera& camera, const PixelMask& lines,
                                        const PolylineOptions& options) {
+    return splitPolylines(chains, camera, lines, options, false).visible;
+}
+
+PolylineSplit splitPolylines(const std::vector<SilhouetteChain>& chains, const Camera& camera,
+                             const PixelMask& lines, const PolylineOptions& options,
+                             bool withHidden) {
     const PixelMask shown = lines.dilated(std::max(0, options.tolerancePx));
-    std::vector<Polyline> polylines;
+    PolylineSplit split;
     for (const SilhouetteChain& chain : chains) {
         std::vector<glm::dvec2> pixels;
         pixels.reserve(chain.points.size());
         for (const glm::vec3& p : chain.points)
             pixels.push_back(camera.project(glm::dvec3(p)).pixel);
-        if (pixels.size() >= 2)
-            cutToVisible(pixels, chain.closed, shown, options, polylines);
+        if (pixels.size() < 2)
+            continue;
+        cutByMask(pixels, chain.closed, shown, true, options, split.visible);
+        if (withHidden)
+            cutByMask(pixels, chain.closed, shown, false, options, split.hidden);
     }
-    return polylines;
+    return split;
+}
+
+PolylineSplit splitPolylines(const Mesh& mesh, const Camera& camera, const PixelMask& lines,
+                             const PolylineOptions& options, bool withHidden) {
+    return splitPolylines(chainSilhouette(mesh, camera), camera, lines, options, withHidden);
 }
 
 } // namespace lw::render

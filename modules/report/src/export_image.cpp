@@ -1,5 +1,7 @@
 #include "lw/report/export_image.h"
 
+#include "lw/render/svg_lines.h"
+
 #include <QPainter>
 #include <QPainterPath>
 #include <algorithm>
@@ -18,6 +20,38 @@ QImage silhouetteBase(const RenderedPanels& panels) {
     return blank;
 }
 
+// `lines` (silhouette panel pixels) placed in the picture of `layout`: shifted past the iso
+// panel side by side, none without a silhouette panel.
+std::vector<render::Polyline> placedLines(std::vector<render::Polyline> lines,
+                                          const RenderedPanels& panels, PanelLayout layout) {
+    if (layout == PanelLayout::IsoPanel)
+        return {};
+    const float shift = layout == PanelLayout::SideBySide ? float(panels.iso.width()) : 0.0f;
+    for (render::Polyline& line : lines)
+        for (glm::vec2& p : line.points)
+            p.x += shift;
+    return lines;
+}
+
+// Each polyline as one antialiased path in `pen`.
+void strokePaths(QPainter& painter, const std::vector<render::Polyline>& lines, const QPen& pen) {
+    painter.save();
+    painter.setRenderHint(QPainter::Antialiasing, true);
+    painter.setPen(pen);
+    painter.setBrush(Qt::NoBrush);
+    for (const render::Polyline& line : lines) {
+        if (line.points.size() < 2)
+            continue;
+        QPainterPath path(QPointF(line.points[0].x, line.points[0].y));
+        for (std::size_t i = 1; i < line.points.size(); ++i)
+            path.lineTo(line.points[i].x, line.points[i].y);
+        if (line.closed)
+            path.closeSubpath();
+        painter.drawPath(path);
+    }
+    painter.restore();
+}
+
 } // namespace
 
 std::vector<QImage> panelsOf(const RenderedPanels& panels, PanelLayout layout) {
@@ -33,36 +67,30 @@ std::vector<QImage> panelsOf(const RenderedPanels& panels, PanelLayout layout) {
 }
 
 std::vector<render::Polyline> pictureLines(const RenderedPanels& panels, PanelLayout layout) {
-    if (layout == PanelLayout::IsoPanel)
-        return {};
-    std::vector<render::Polyline> lines = panels.silhouetteLines;
-    const float shift = layout == PanelLayout::SideBySide ? float(panels.iso.width()) : 0.0f;
-    for (render::Polyline& line : lines)
-        for (glm::vec2& p : line.points)
-            p.x += shift;
-    return lines;
+    return placedLines(panels.silhouetteLines, panels, layout);
+}
+
+std::vector<render::Polyline> pictureHiddenLines(const RenderedPanels& panels, PanelLayout layout) {
+    return placedLines(panels.hiddenLines, panels, layout);
 }
 
 void strokeLines(QPainter& painter, const std::vector<render::Polyline>& lines, double width,
                  QColor colour) {
-    painter.save();
-    painter.setRenderHint(QPainter::Antialiasing, true);
     QPen pen(colour, width);
     pen.setCapStyle(Qt::RoundCap);
     pen.setJoinStyle(Qt::RoundJoin);
-    painter.setPen(pen);
-    painter.setBrush(Qt::NoBrush);
-    for (const render::Polyline& line : lines) {
-        if (line.points.size() < 2)
-            continue;
-        QPainterPath path(QPointF(line.points[0].x, line.points[0].y));
-        for (std::size_t i = 1; i < line.points.size(); ++i)
-            path.lineTo(line.points[i].x, line.points[i].y);
-        if (line.closed)
-            path.closeSubpath();
-        painter.drawPath(path);
-    }
-    painter.restore();
+    strokePaths(painter, lines, pen);
+}
+
+void strokeHiddenLines(QPainter& painter, const std::vector<render::Polyline>& lines,
+                       double visibleWidth) {
+    const double width = visibleWidth * render::kHiddenLineWidthFactor;
+    QPen pen(QColor(render::kHiddenLineColour), width);
+    pen.setCapStyle(Qt::FlatCap);
+    // Qt measures a dash pattern in pen widths; the style measures it in visible widths.
+    pen.setDashPattern({render::kHiddenDashWidths / render::kHiddenLineWidthFactor,
+                        render::kHiddenGapWidths / render::kHiddenLineWidthFactor});
+    strokePaths(painter, lines, pen);
 }
 
 QImage sideBySide(const std::vector<QImage>& images, QColor background) {
@@ -93,6 +121,7 @@ QImage composeExportImage(const RenderedPanels& panels,
         QImage& silhouette = annotated.back();
         silhouette = silhouette.convertToFormat(QImage::Format_ARGB32_Premultiplied);
         QPainter painter(&silhouette);
+        strokeHiddenLines(painter, panels.hiddenLines, panels.silhouetteLineWidth);
         strokeLines(painter, panels.silhouetteLines, panels.silhouetteLineWidth,
                     panels.silhouetteLineColour);
     }

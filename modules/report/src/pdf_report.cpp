@@ -146,11 +146,12 @@ void drawPicture(QPainter& painter, QRectF area, const QImage& picture, const Pi
             ? picture.scaled(size.toSize(), Qt::KeepAspectRatio, Qt::SmoothTransformation)
             : picture;
     painter.drawImage(QRectF(area.topLeft(), size), embedded);
-    if (!lines.lines.empty()) {
+    if (!lines.lines.empty() || !lines.hidden.empty()) {
         // In the picture's pixels, scaled like it: paths in the PDF, not pixels.
         painter.save();
         painter.translate(area.topLeft());
         painter.scale(size.width() / picture.width(), size.height() / picture.height());
+        strokeHiddenLines(painter, lines.hidden, lines.width);
         strokeLines(painter, lines.lines, lines.width, lines.colour);
         painter.restore();
     }

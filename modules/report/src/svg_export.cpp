@@ -83,7 +83,8 @@ QByteArray renderSvg(const RenderedPanels& panels,
         render::SvgLineStyle lineStyle;
         lineStyle.colour = panels.silhouetteLineColour.name().toStdString();
         lineStyle.widthPx = panels.silhouetteLineWidth;
-        svg += QString::fromStdString(render::silhouettePaths(lines, lineStyle));
+        svg += QString::fromStdString(
+            render::silhouettePaths(lines, lineStyle, pictureHiddenLines(panels, layout)));
     }
     const QString colour = style.colour.name();
     int x = 0;

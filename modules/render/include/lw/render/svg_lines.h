@@ -18,9 +18,19 @@ struct SvgLineStyle {
     std::string background = ""; // e.g. "#ffffff"; empty: transparent
 };
 
+// Hidden lines (splitPolylines) as technical illustration draws them, here and in the report's
+// PNG and PDF strokes alike: grey, half the visible lines' width, dashes of 4 and gaps of 3 of
+// those widths, so a larger export scales them with its lines.
+inline constexpr const char* kHiddenLineColour = "#8c8c8c";
+inline constexpr double kHiddenLineWidthFactor = 0.5;
+inline constexpr double kHiddenDashWidths = 4.0;
+inline constexpr double kHiddenGapWidths = 3.0;
+
+// `hidden` (optional) goes under the visible lines in the hidden style.
 std::string silhouetteSvg(const std::vector<Polyline>& polylines, int width, int height,
-                          const SvgLineStyle& style = {});
-// Only the <g> element with the paths, for a document that has its own <svg> (the report).
-std::string silhouettePaths(const std::vector<Polyline>& polylines, const SvgLineStyle& style);
+                          const SvgLineStyle& style = {}, const std::vector<Polyline>& hidden = {});
+// Only the <g> elements with the paths, for a document that has its own <svg> (the report).
+std::string silhouettePaths(const std::vector<Polyline>& polylines, const SvgLineStyle& style,
+                            const std::vector<Polyline>& hidden = {});
 
 } // namespace lw::render

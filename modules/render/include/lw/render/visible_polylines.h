@@ -66,4 +66,20 @@ std::vector<Polyline> visiblePolylines(const std::vector<SilhouetteChain>& chain
 std::vector<Polyline> visiblePolylines(const Mesh& mesh, const Camera& camera,
                                        const PixelMask& lines, const PolylineOptions& options = {});
 
+// The visible parts and, with `withHidden`, the hidden ones: the parts in the image that `lines`
+// does not show within the tolerance -- behind the surface when the frame tested visibility
+// (the technical-illustration convention draws them thin, dashed and grey: svg_lines.h).
+// Hidden runs shorter than minLengthPx are dropped like visible ones, so the speckle that
+// pruning removed does not come back dashed. With visibility off every part is shown: none is
+// hidden.
+struct PolylineSplit {
+    std::vector<Polyline> visible;
+    std::vector<Polyline> hidden;
+};
+PolylineSplit splitPolylines(const std::vector<SilhouetteChain>& chains, const Camera& camera,
+                             const PixelMask& lines, const PolylineOptions& options,
+                             bool withHidden);
+PolylineSplit splitPolylines(const Mesh& mesh, const Camera& camera, const PixelMask& lines,
+                             const PolylineOptions& options, bool withHidden);
+
 } // namespace lw::render

@@ -29,15 +29,23 @@ struct RenderedPanels {
     std::vector<render::Polyline> silhouetteLines;
     double silhouetteLineWidth = 1.0;
     QColor silhouetteLineColour = Qt::black;
+    // The silhouette's hidden parts (render::splitPolylines), drawn under the visible lines thin,
+    // dashed and grey (render/svg_lines.h's hidden style); empty: none drawn.
+    std::vector<render::Polyline> hiddenLines;
 };
 
 // The silhouette lines placed in the picture of `layout` (shifted onto the silhouette panel);
 // empty when the layout has no silhouette panel or the panels carry no lines.
 std::vector<render::Polyline> pictureLines(const RenderedPanels& panels, PanelLayout layout);
+// The same for the hidden lines.
+std::vector<render::Polyline> pictureHiddenLines(const RenderedPanels& panels, PanelLayout layout);
 
 // Strokes `lines` (picture pixels) onto `painter`, antialiased, `width` pixels wide.
 void strokeLines(QPainter& painter, const std::vector<render::Polyline>& lines, double width,
                  QColor colour);
+// Strokes hidden lines in the hidden style for visible lines `visibleWidth` pixels wide.
+void strokeHiddenLines(QPainter& painter, const std::vector<render::Polyline>& lines,
+                       double visibleWidth);
 
 // The panels `layout` shows, left to right (one or two).
 std::vector<QImage> panelsOf(const RenderedPanels& panels, PanelLayout layout);

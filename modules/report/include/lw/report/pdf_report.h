@@ -47,6 +47,7 @@ struct PictureLines {
     std::vector<render::Polyline> lines;
     double width = 1.0;
     QColor colour = Qt::black;
+    std::vector<render::Polyline> hidden; // under them, in the hidden style (strokeHiddenLines)
 };
 
 // The PDF's bytes. `picture` is the exported image with the annotations burned in; `lines`, when
