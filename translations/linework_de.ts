@@ -1001,6 +1001,14 @@
         <source>Surface:</source>
         <translation>Oberfläche:</translation>
     </message>
+    <message>
+        <source>Hidden lines in exports, thin, dashed and grey</source>
+        <translation>Verdeckte Linien in Exporten, dünn, gestrichelt und grau</translation>
+    </message>
+    <message>
+        <source>The technical-illustration convention: the parts of the silhouette behind the surface, under the visible lines</source>
+        <translation>Wie in technischen Zeichnungen: die Teile der Silhouette hinter der Oberfläche, unter den sichtbaren Linien</translation>
+    </message>
 </context>
 <context>
     <name>lw::gui::StudyBrowser</name>

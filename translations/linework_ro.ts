@@ -1001,6 +1001,14 @@
         <source>Surface:</source>
         <translation>Suprafață:</translation>
     </message>
+    <message>
+        <source>Hidden lines in exports, thin, dashed and grey</source>
+        <translation>Linii ascunse în exporturi, subțiri, întrerupte și gri</translation>
+    </message>
+    <message>
+        <source>The technical-illustration convention: the parts of the silhouette behind the surface, under the visible lines</source>
+        <translation>Convenția desenului tehnic: părțile siluetei din spatele suprafeței, sub liniile vizibile</translation>
+    </message>
 </context>
 <context>
     <name>lw::gui::StudyBrowser</name>

@@ -11,6 +11,7 @@
 
 #include <QPainter>
 #include <cstring>
+#include <optional>
 
 namespace lw::gui {
 namespace {
@@ -60,7 +61,7 @@ QImage linesToImage(const render::PixelMask& lines, const ReviewSettings& appear
     return image;
 }
 
-std::pair<QImage, QImage> renderPanelJob(const PanelRenderJob& job) {
+std::pair<QImage, QImage> renderPanelJob(const PanelRenderJob& job, PanelVectors* vectors) {
     QImage iso = renderIso(job);
     // The volume the review's methods draw (its oversampled copy where the settings make one).
     const std::shared_ptr<const volume::Volume> volume =
@@ -76,14 +77,31 @@ std::pair<QImage, QImage> renderPanelJob(const PanelRenderJob& job) {
     settings.closeAtBorder = job.appearance.closeAtBorder;
     settings.gradientStencil = job.appearance.gradientStencil;
     render::SilhouetteFrame frame = renderer->render(job.camera, settings);
+    render::PolylineOptions options;
+    options.minLengthPx = double(settings.minStrokePixels);
+    std::optional<render::Mesh> surface;
+    if (vectors || job.appearance.suggestiveContours)
+        surface = render::surfaceOfFrame(*renderer, *volume, settings);
+    if (vectors) {
+        render::PolylineSplit split =
+            render::splitPolylines(*surface, job.camera, frame.lines, options,
+                                   job.appearance.hiddenLines && settings.visibility);
+        vectors->lines = std::move(split.visible);
+        vectors->hidden = std::move(split.hidden);
+    }
     if (job.appearance.suggestiveContours) {
-        const render::Mesh surface = render::surfaceOfFrame(*renderer, *volume, settings);
-        render::SuggestiveContourRenderer suggestive(*volume, surface, job.iso, 0,
+        render::SuggestiveContourRenderer suggestive(*volume, *surface, job.iso, 0,
                                                      settings.gradientStencil);
         render::SuggestiveContourSettings lines;
         lines.visibility = settings.visibility;
         lines.minStrokePixels = settings.minStrokePixels;
-        render::addLines(frame.lines, suggestive.render(job.camera, lines).lines);
+        const render::SuggestiveFrame contours = suggestive.render(job.camera, lines);
+        render::addLines(frame.lines, contours.lines);
+        if (vectors) {
+            const std::vector<render::Polyline> more = render::visiblePolylines(
+                render::chainSegments(contours.kept), job.camera, contours.lines, options);
+            vectors->lines.insert(vectors->lines.end(), more.begin(), more.end());
+        }
     }
     return {iso, linesToImage(frame.lines, job.appearance, false, job.appearance.lineWidth)};
 }

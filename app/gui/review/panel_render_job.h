@@ -8,6 +8,7 @@
 #include "lw/render/iso_surface.h"
 #include "lw/render/pixel_mask.h"
 #include "lw/render/silhouette_gl_renderer.h"
+#include "lw/render/visible_polylines.h"
 #include "lw/volume/volume.h"
 #include "settings/review_settings.h"
 
@@ -29,8 +30,18 @@ struct PanelRenderJob {
     bool isoOnCpu = true; // shade with the CPU rasterizer (software GL), else a headless GL context
 };
 
-// Thread-safe: reads only `job`. Throws core::Error when a renderer fails.
-std::pair<QImage, QImage> renderPanelJob(const PanelRenderJob& job);
+// The silhouette panel's lines as vectors (render/visible_polylines.h, panel pixels), for the
+// exports to draw as antialiased strokes or paths: the visible ones (suggestive contours with
+// them) and, where the settings ask for them, the hidden ones.
+struct PanelVectors {
+    std::vector<render::Polyline> lines;
+    std::vector<render::Polyline> hidden;
+};
+
+// Thread-safe: reads only `job`. Throws core::Error when a renderer fails. `vectors` (optional)
+// receives the silhouette's lines as vectors.
+std::pair<QImage, QImage> renderPanelJob(const PanelRenderJob& job,
+                                         PanelVectors* vectors = nullptr);
 // The iso panel shaded by the CPU rasterizer in the GL panel's light and colours (`options`),
 // with its depth for picking when `depth` is given; a null mesh gives the background.
 QImage shadeIsoOnCpu(const render::Mesh* mesh, const render::Camera& camera,

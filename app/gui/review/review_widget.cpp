@@ -494,18 +494,19 @@ bool ReviewWidget::rendersOnUiThread() const {
     return m_drawsInPanels;
 }
 
-std::pair<QImage, QImage> ReviewWidget::renderPanels(QSize size) {
+std::pair<QImage, QImage> ReviewWidget::renderPanels(QSize size, PanelVectors* vectors) {
     const PanelRenderJob job = renderJob(size);
     if (!m_drawsInPanels) {
         releaseQtContext(); // the job may make an EGL context on this thread
-        return renderPanelJob(job);
+        return renderPanelJob(job, vectors);
     }
     // A GPU: the panels' own contexts draw the GL parts; a CPU method renders its lines here.
+    // Method 1 in the panel's context gives the raster only (no vectors: the exports use it).
     QImage iso = m_isoPanel->renderImage(size, &job.appearance);
     if (methodOneInPanel())
         return {iso, m_silhouettePanel->renderImage(size, &job.appearance)};
     releaseQtContext();
-    auto [unused, silhouette] = renderPanelJob(job);
+    auto [unused, silhouette] = renderPanelJob(job, vectors);
     return {iso, silhouette};
 }
 

@@ -87,7 +87,7 @@ public:
     // Both panels re-rendered at `size` (not scaled), the silhouette with the chosen method on
     // the calling thread. Lines widen with the size (a 2x export has 2x wider lines, as printed
     // reports need). Throws core::Error when a renderer fails.
-    std::pair<QImage, QImage> renderPanels(QSize size);
+    std::pair<QImage, QImage> renderPanels(QSize size, PanelVectors* vectors = nullptr);
     // The two panels side by side at `panelSize` each (iso left, silhouette right).
     QImage renderSideBySide(QSize panelSize);
     // What an export at `size` needs, copied so renderPanelJob() can run on another thread;

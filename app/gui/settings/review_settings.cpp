@@ -71,6 +71,7 @@ ReviewSettings ReviewSettings::load(QSettings& settings) {
     s.suggestiveContours = settings.value("suggestiveContours", s.suggestiveContours).toBool();
     s.lineWidth = std::clamp(settings.value("lineWidth", s.lineWidth).toDouble(), 1.0, 8.0);
     s.lineColour = colourOr(settings.value("lineColour"), s.lineColour);
+    s.hiddenLines = settings.value("hiddenLines", s.hiddenLines).toBool();
     s.background = colourOr(settings.value("background"), s.background);
     s.silhouetteOnIso = settings.value("silhouetteOnIso", s.silhouetteOnIso).toBool();
     s.projection = settings.value("projection").toString() == "ortho"
@@ -105,6 +106,7 @@ void ReviewSettings::save(QSettings& settings) const {
     settings.setValue("suggestiveContours", suggestiveContours);
     settings.setValue("lineWidth", lineWidth);
     settings.setValue("lineColour", lineColour.name());
+    settings.setValue("hiddenLines", hiddenLines);
     settings.setValue("background", background.name());
     settings.setValue("silhouetteOnIso", silhouetteOnIso);
     settings.setValue("projection",

@@ -207,6 +207,11 @@ QWidget* SettingsDialog::makeAppearancePage() {
     form->addRow(tr("Line width:"), m_lineWidth);
     m_lineColour = new QPushButton;
     form->addRow(tr("Line colour:"), m_lineColour);
+    m_hiddenLines = new QCheckBox(tr("Hidden lines in exports, thin, dashed and grey"));
+    m_hiddenLines->setObjectName("hiddenLines");
+    m_hiddenLines->setToolTip(tr("The technical-illustration convention: the parts of the "
+                                 "silhouette behind the surface, under the visible lines"));
+    form->addRow(QString(), m_hiddenLines);
     m_background = new QPushButton;
     form->addRow(tr("Background:"), m_background);
     m_silhouetteOnIso = new QCheckBox(tr("Draw the silhouette over the iso-surface panel too"));
@@ -247,6 +252,7 @@ QWidget* SettingsDialog::makeAppearancePage() {
 
     connect(m_lineWidth, &QDoubleSpinBox::valueChanged, this, [this] { readControls(); });
     connect(m_silhouetteOnIso, &QCheckBox::toggled, this, [this] { readControls(); });
+    connect(m_hiddenLines, &QCheckBox::toggled, this, [this] { readControls(); });
     connect(m_projection, &QComboBox::currentIndexChanged, this, [this] { readControls(); });
     connect(m_panelGl, &QComboBox::currentIndexChanged, this, [this] { readControls(); });
     connect(m_lineColour, &QPushButton::clicked, this,
@@ -306,6 +312,7 @@ void SettingsDialog::showSettings() {
     m_backend->button(int(m_settings.backend))->setChecked(true);
     m_lineWidth->setValue(m_settings.lineWidth);
     showColour(m_lineColour, m_settings.lineColour);
+    m_hiddenLines->setChecked(m_settings.hiddenLines);
     showColour(m_background, m_settings.background);
     m_silhouetteOnIso->setChecked(m_settings.silhouetteOnIso);
     m_projection->setCurrentIndex(m_settings.projection == render::Projection::Orthographic);
@@ -343,6 +350,7 @@ void SettingsDialog::readControls() {
     s.backend = render::Backend(m_backend->checkedId());
     s.lineWidth = m_lineWidth->value();
     s.silhouetteOnIso = m_silhouetteOnIso->isChecked();
+    s.hiddenLines = m_hiddenLines->isChecked();
     s.projection = m_projection->currentIndex() == 1 ? render::Projection::Orthographic
                                                      : render::Projection::Perspective;
     s.panelGl = PanelGl(m_panelGl->currentIndex());
@@ -387,6 +395,7 @@ void SettingsDialog::updateEnabledControls() {
     m_gpuMemoryBudget->setEnabled(m_backend->checkedId() != int(render::Backend::Cpu) &&
                                   cudaUnavailableReason().isEmpty());
     m_alongSegment->setEnabled(m_method->checkedId() == 2 && m_visibility->isChecked());
+    m_hiddenLines->setEnabled(m_visibility->isChecked()); // without visibility none is hidden
 }
 
 } // namespace lw::gui

@@ -60,6 +60,7 @@ private:
     QCheckBox* m_suggestive = nullptr;
     QDoubleSpinBox* m_lineWidth = nullptr;
     QPushButton* m_lineColour = nullptr;
+    QCheckBox* m_hiddenLines = nullptr;
     QPushButton* m_background = nullptr;
     QCheckBox* m_silhouetteOnIso = nullptr;
     QComboBox* m_projection = nullptr;

@@ -33,6 +33,16 @@ struct ExportContent {
     QImage picture() const {
         return report::composeExportImage(panels, annotations, layout, background);
     }
+    // For the PDF: the picture without the silhouette's vector lines, and those lines, which it
+    // draws as paths (with no vectors the picture keeps the raster lines and these are none).
+    QImage pictureWithoutLines() const {
+        return report::composeExportImage(panels, annotations, layout, background, {},
+                                          report::SilhouetteLines::LeftOut);
+    }
+    report::PictureLines vectorLines() const {
+        return {report::pictureLines(panels, layout), panels.silhouetteLineWidth,
+                panels.silhouetteLineColour, report::pictureHiddenLines(panels, layout)};
+    }
 };
 
 // Writes the files of one export; throws core::Error naming the file.
@@ -56,14 +66,18 @@ template <typename Work> QString guarded(const QString& target, QSize size, Work
     }
 }
 
-// Renders (as the job says, on the calling thread) and writes.
-void renderAndWrite(ExportContent content, const std::pair<QImage, QImage>& panels,
-                    const render::Camera& camera, const QString& target,
-                    const ExportWriter& write) {
+// Writes the rendered panels and their vector lines, drawn in the job's line style.
+void writeRendered(ExportContent content, const std::pair<QImage, QImage>& panels,
+                   PanelVectors vectors, const PanelRenderJob& job, const QString& target,
+                   const ExportWriter& write) {
     if (panels.first.isNull() && panels.second.isNull())
         throw core::Error(target.toStdString(),
                           "nothing to export yet (the surface is still being computed)");
-    content.panels = {panels.first, panels.second, camera};
+    content.panels = {panels.first, panels.second, job.camera};
+    content.panels.silhouetteLines = std::move(vectors.lines);
+    content.panels.hiddenLines = std::move(vectors.hidden);
+    content.panels.silhouetteLineWidth = job.appearance.lineWidth;
+    content.panels.silhouetteLineColour = job.appearance.lineColour;
     write(content);
 }
 
@@ -95,11 +109,15 @@ QString runExport(ReviewWidget& review, const ExportPicture& picture, const QStr
         {}, review.annotations().annotations(), picture.layout, review.settings().background};
     if (review.rendersOnUiThread()) // a GPU draws in the panels' contexts: fast, and only here
         return guarded(target, size, [&] {
-            renderAndWrite(content, review.renderPanels(size), job.camera, target, write);
+            PanelVectors vectors;
+            const std::pair<QImage, QImage> panels = review.renderPanels(size, &vectors);
+            writeRendered(content, panels, std::move(vectors), job, target, write);
         });
     QFuture<QString> future = QtConcurrent::run([job, content, target, size, write] {
         return guarded(target, size, [&] {
-            renderAndWrite(content, renderPanelJob(job), job.camera, target, write);
+            PanelVectors vectors;
+            const std::pair<QImage, QImage> panels = renderPanelJob(job, &vectors);
+            writeRendered(content, panels, std::move(vectors), job, target, write);
         });
     });
     return waitWithProgress(future,
@@ -140,9 +158,11 @@ QString exportReviewReport(ReviewWidget& review, const QString& path, const Repo
     return runExport(
         review, options.picture, path, [&] { core::checkWritableTarget(fsPath(path), overwrite); },
         [path, overwrite, info](const ExportContent& content) {
-            report::writeExportFile(
-                fsPath(path), report::renderPdfReport(info, content.picture(), content.annotations),
-                overwrite);
+            report::writeExportFile(fsPath(path),
+                                    report::renderPdfReport(info, content.pictureWithoutLines(),
+                                                            content.annotations,
+                                                            content.vectorLines()),
+                                    overwrite);
         },
         progressParent);
 }
