@@ -57,6 +57,7 @@ void SettingsTest::roundTripThroughQSettings() {
     settings.gpuMemoryBudgetMiB = method * 256; // 0 (automatic) is the default: another value
     settings.minStrokePixels = method * 4;
     settings.suggestiveContours = method != 2; // off is the default: both values round-trip
+    settings.hiddenLines = method == 3;
     settings.gradientStencil =
         method == 1 ? lw::render::GradientStencil::Smoothed : lw::render::GradientStencil::Central;
     // Auto is the default: both values round-trip.
@@ -135,6 +136,11 @@ void SettingsTest::dialogReportsChangesAndStoresThem() {
     QVERIFY(oversample->isChecked()); // coarse axes split by default
     oversample->click();
     QCOMPARE(dialog.settings().oversampling, lw::render::Oversampling::Off);
+    auto* hiddenLines = dialog.findChild<QCheckBox*>("hiddenLines");
+    QVERIFY(hiddenLines);
+    QVERIFY(!hiddenLines->isChecked()); // off by default
+    hiddenLines->click();
+    QVERIFY(dialog.settings().hiddenLines);
     // Applied live and kept for the next start.
     QSettings store;
     const ReviewSettings stored = ReviewSettings::load(store);
@@ -145,6 +151,7 @@ void SettingsTest::dialogReportsChangesAndStoresThem() {
     QVERIFY(stored.suggestiveContours);
     QCOMPARE(stored.gradientStencil, lw::render::GradientStencil::Smoothed);
     QCOMPARE(stored.oversampling, lw::render::Oversampling::Off);
+    QVERIFY(stored.hiddenLines);
 }
 
 void SettingsTest::cudaIsGreyedOutWithTheReason() {
