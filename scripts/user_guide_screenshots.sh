@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# Regenerates docs/screenshots/{browser,review,review_annotations,settings}.png from the real
-# windows: imports the demo study (and, when ../shared/data is beside the project, the Philips
+# Regenerates docs/screenshots/{browser,review,review_annotations,settings,settings_appearance}.png
+# from the real windows: imports the demo study (and, when ../shared/data is beside the project, the Philips
 # DICOMDIR export with its missing files) into a temporary database, opens the review (once more
 # with a ruler, a label, an arrow and an angle placed by clicks) and the settings page under Xvfb
 # and grabs what the X server shows. Run after `scripts/linework.sh test` (or give a build dir).

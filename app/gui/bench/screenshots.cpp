@@ -16,6 +16,7 @@
 #include <QDir>
 #include <QElapsedTimer>
 #include <QScreen>
+#include <QTabWidget>
 #include <QTemporaryDir>
 #include <QTest>
 #include <cmath>
@@ -151,5 +152,11 @@ int main(int argc, char* argv[]) {
     if (!settings || !QTest::qWaitForWindowExposed(settings))
         return 1;
     ok = saveWindow(*settings, out.filePath("settings.png")) && ok;
+    // The appearance page: line width and colour, the hidden lines of exports.
+    if (auto* tabs = settings->findChild<QTabWidget*>()) {
+        tabs->setCurrentIndex(1);
+        QTest::qWait(200);
+        ok = saveWindow(*settings, out.filePath("settings_appearance.png")) && ok;
+    }
     return ok ? 0 : 1;
 }
