@@ -8,6 +8,7 @@
 
 #include <QApplication>
 #include <QImage>
+#include <QSettings>
 #include <QStandardPaths>
 #include <QTemporaryDir>
 #include <QTest>
@@ -79,6 +80,10 @@ template <typename TestClass> int runGuiTest(int argc, char** argv, bool needsDa
     qputenv("XDG_CACHE_HOME", (home.path() + "/cache").toLocal8Bit());
     qputenv("QT_QPA_PLATFORM", "xcb");
     QStandardPaths::setTestModeEnabled(true);
+    // Test mode alone puts QSettings in ~/.qttest, shared by every test process and every run:
+    // one test's stored settings (the settings dialog's) became another's starting ones.
+    for (const QSettings::Format format : {QSettings::NativeFormat, QSettings::IniFormat})
+        QSettings::setPath(format, QSettings::UserScope, home.path() + "/config");
     gui::requestCoreProfileFormat();
     QApplication app(argc, argv);
     QApplication::setOrganizationName("LineworkTest");
