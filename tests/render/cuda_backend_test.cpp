@@ -4,6 +4,7 @@
 // that are not multiples of the 256-voxel classification tile or the 16-cell skip brick, a
 // gantry-tilted stack with uneven gaps, and surfaces cut open by the volume's border.
 
+#include "filled_volume.h"
 #include "lw/core/error.h"
 #include "lw/evaluation/analytic_shapes.h"
 #include "lw/kernels/cpu/marching_cubes_cpu.h"
@@ -36,18 +37,6 @@ struct Case {
     double iso;
 };
 
-template <typename T, typename F>
-Volume makeVolume(glm::ivec3 dims, VoxelType type, F&& value,
-                  volume::VolumeGeometry geometry = {}) {
-    Volume v(dims, type, std::move(geometry));
-    T* data = v.dataAs<T>();
-    for (int z = 0; z < dims.z; ++z)
-        for (int y = 0; y < dims.y; ++y)
-            for (int x = 0; x < dims.x; ++x)
-                data[v.index(x, y, z)] = T(value(x, y, z));
-    return v;
-}
-
 Volume tiltedSphere() {
     const double tilt = 25.0 * 3.14159265358979323846 / 180.0;
     std::vector<glm::dvec3> slices;
@@ -59,8 +48,8 @@ Volume tiltedSphere() {
     const auto geometry =
         volume::VolumeGeometry::fromSlicePositions({1, 0, 0}, {0, 1, 0}, 0.7, 0.9, slices);
     const glm::dvec3 centre = geometry.indexToPatient({21.5, 30.0, 18.0});
-    return makeVolume<float>(
-        {45, 61, 37}, VoxelType::Float32,
+    return lw::test::makeFilledVolume<float>(
+        {45, 61, 37},
         [&](int x, int y, int z) {
             return 11.0 -
                    glm::length(geometry.indexToPatient({double(x), double(y), double(z)}) - centre);
@@ -73,7 +62,7 @@ Volume noise(glm::ivec3 dims, VoxelType type, unsigned seed) {
     std::uniform_int_distribution<int> value(0, 200);
     return volume::dispatchVoxelType(type, [&](auto zero) {
         using T = decltype(zero);
-        return makeVolume<T>(dims, type, [&](int, int, int) { return value(random); });
+        return lw::test::makeFilledVolume<T>(dims, [&](int, int, int) { return value(random); });
     });
 }
 

@@ -1,5 +1,6 @@
 // Oversampling (volume/oversampling.h): finer samples of the same trilinear field, on every
 // voxel type, with the geometry of the original grid (uniform, uneven and tilted stacks).
+#include "filled_volume.h"
 #include "lw/core/error.h"
 #include "lw/volume/oversampling.h"
 #include "lw/volume/volume.h"
@@ -20,13 +21,9 @@ double trilinear(double i, double j, double k) {
 }
 
 Volume floatVolumeOf(glm::ivec3 dims) {
-    Volume v(dims, VoxelType::Float32, VolumeGeometry::regular({0, 0, 0}, {0.5, 0.5, 5.0}));
-    float* data = v.dataAs<float>();
-    for (int k = 0; k < dims.z; ++k)
-        for (int j = 0; j < dims.y; ++j)
-            for (int i = 0; i < dims.x; ++i)
-                data[v.index(i, j, k)] = float(trilinear(i, j, k));
-    return v;
+    return lw::test::makeFilledVolume<float>(
+        dims, [](int i, int j, int k) { return trilinear(i, j, k); },
+        VolumeGeometry::regular({0, 0, 0}, {0.5, 0.5, 5.0}));
 }
 
 void expectNear(glm::dvec3 a, glm::dvec3 b) {
