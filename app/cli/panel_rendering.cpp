@@ -89,7 +89,7 @@ core::ImageRgba8 renderIsoPanel(render::SilhouetteRenderer& renderer, const volu
     const render::Mesh* mesh = &extracted;
     const render::Mesh* kept =
         renderer.method() == render::SilhouetteMethod::ZBuffer ? renderer.surfaceMesh() : nullptr;
-    if (kept && kept->triangleCount() > 0 && request.wantSilhouette)
+    if (kept && request.wantSilhouette)
         mesh = kept;
     else
         extracted = extractForRequest(volume, request);
@@ -299,7 +299,7 @@ render::PolylineSplit silhouettePolylines(render::SilhouetteRenderer& renderer,
                                           const render::PixelMask& lines) {
     render::Mesh extracted;
     const render::Mesh* mesh = renderer.surfaceMesh();
-    if (!mesh || mesh->triangleCount() == 0) { // method 2, or a chunked frame that freed it
+    if (!mesh) { // method 2, or a chunked frame of method 1, keeps none
         extracted = extractForRequest(volume, request);
         mesh = &extracted;
     }

@@ -36,8 +36,7 @@ SilhouetteFrame SilhouetteRenderer::render(const Camera& camera,
 
 Mesh surfaceOfFrame(const SilhouetteRenderer& renderer, const volume::Volume& volume,
                     const SilhouetteSettings& settings) {
-    // A chunked (L) frame of methods 1 and 3 frees the whole mesh it drew brick by brick.
-    if (const Mesh* drawn = renderer.surfaceMesh(); drawn && drawn->triangleCount() > 0)
+    if (const Mesh* drawn = renderer.surfaceMesh())
         return *drawn;
     IsoSurfaceOptions options;
     options.threads = settings.threads;

@@ -301,6 +301,10 @@ const Mesh& GeometryShaderSilhouetteRenderer::mesh() const {
     return s.mesh;
 }
 
+const Mesh* GeometryShaderSilhouetteRenderer::surfaceMesh() const {
+    return m_state->meshIso ? &mesh() : nullptr;
+}
+
 std::string GeometryShaderSilhouetteRenderer::contextDescription() const {
     return m_state->context->description();
 }

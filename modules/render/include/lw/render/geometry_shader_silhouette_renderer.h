@@ -79,7 +79,9 @@ public:
     // The mesh of the last S frame or iso panel (cached in mode a); empty before the first frame
     // and after an L frame.
     const Mesh& mesh() const;
-    const Mesh* surfaceMesh() const override { return &mesh(); }
+    // mesh(), or null where the renderer keeps none (before the first frame, after an L frame):
+    // the caller then extracts the surface itself (surfaceOfFrame).
+    const Mesh* surfaceMesh() const override;
     const GeometryShaderFrameStats& lastFrameStats() const;
     // The triangle count of each brick that may hold the surface, in the order an L frame
     // with `brickCells` draws them (the same per-brick extraction; for checks and tooling).

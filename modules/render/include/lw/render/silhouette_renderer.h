@@ -140,8 +140,8 @@ protected:
 };
 
 // The surface the last frame of `renderer` drew with `settings`, on the host: a copy of the
-// renderer's own, or for a method that keeps none (method 2, a chunked frame of methods 1 and
-// 3) extracted as its frame's (at
+// renderer's own, or for a method that keeps none (method 2, a chunked frame of method 1)
+// extracted as its frame's (at
 // settings.isoReal, closed at the border when settings.closeAtBorder). What the suggestive
 // contours are drawn on, so that they and the silhouette see one surface.
 Mesh surfaceOfFrame(const SilhouetteRenderer& renderer, const volume::Volume& volume,
