@@ -157,9 +157,7 @@ int runExport(const std::vector<std::string>& args, std::ostream& out) {
     ExportJob job;
     job.layout = parseLayout(arguments);
     RenderRequest request = parseRenderRequest(arguments, "export");
-    const LineStyle lineStyle = parseLineStyle(arguments);
-    if (lineStyle.hidden && !request.settings.visibility)
-        throw UsageError("--hidden-lines", "needs --visibility on: without it nothing is hidden");
+    const LineStyle lineStyle = parseLineStyle(arguments, request.settings.visibility);
     request.wantIso = job.layout != report::PanelLayout::SilhouettePanel;
     request.wantSilhouette = job.layout != report::PanelLayout::IsoPanel;
     request.suggestive = arguments.flag("suggestive") && request.wantSilhouette;

@@ -313,7 +313,7 @@ const std::set<std::string>& lineStyleOptions() {
     return names;
 }
 
-LineStyle parseLineStyle(const Arguments& arguments) {
+LineStyle parseLineStyle(const Arguments& arguments, bool visibility) {
     LineStyle style;
     if (arguments.option("line-width")) {
         const double width = arguments.number("line-width", 1.0);
@@ -329,6 +329,8 @@ LineStyle parseLineStyle(const Arguments& arguments) {
     if (!hex)
         throw UsageError("--line-colour " + style.colour, "expected #RRGGBB");
     style.hidden = arguments.flag(kHiddenLinesFlag);
+    if (style.hidden && !visibility)
+        throw UsageError("--hidden-lines", "needs --visibility on: without it nothing is hidden");
     return style;
 }
 

@@ -94,8 +94,9 @@ struct LineStyle {
 // The option and flag names parseLineStyle reads.
 const std::set<std::string>& lineStyleOptions();
 inline constexpr const char* kHiddenLinesFlag = "hidden-lines";
-// Throws UsageError for a width outside (0, 64] or a colour not #RRGGBB.
-LineStyle parseLineStyle(const Arguments& arguments);
+// Throws UsageError for a width outside (0, 64], a colour not #RRGGBB, or hidden lines asked for
+// without `visibility` (nothing is hidden then).
+LineStyle parseLineStyle(const Arguments& arguments, bool visibility);
 
 // The silhouette of `lines` (a frame of `renderer` for `camera`) as polylines, visible and, with
 // `withHidden`, hidden: the mesh the frame drew (or, for method 2, which keeps none, the same

@@ -36,14 +36,12 @@ int runRender(const std::vector<std::string>& args, std::ostream& out) {
     if (format == "svg" && panel != "silhouette")
         throw UsageError("--format svg", "holds the silhouette lines only (--panel silhouette)");
     RenderRequest request = parseRenderRequest(arguments, "render");
-    const LineStyle lineStyle = parseLineStyle(arguments);
+    const LineStyle lineStyle = parseLineStyle(arguments, request.settings.visibility);
     if (format != "svg" &&
         (lineStyle.widthPx || arguments.option("line-colour") || lineStyle.hidden))
         throw UsageError("--line-width, --line-colour, --hidden-lines",
                          "style the vector lines of --format svg (export --png draws them as "
                          "antialiased strokes)");
-    if (lineStyle.hidden && !request.settings.visibility)
-        throw UsageError("--hidden-lines", "needs --visibility on: without it nothing is hidden");
     request.suggestive = arguments.flag("suggestive");
     if (request.suggestive && panel == "iso")
         throw UsageError("--suggestive", "draws into the silhouette panel (--panel iso has none)");
