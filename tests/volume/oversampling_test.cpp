@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdint>
 #include <gtest/gtest.h>
+#include <utility>
 #include <vector>
 
 namespace lw::volume {
@@ -144,6 +145,72 @@ TEST(Oversampling, VolumeCarriesTheRefinedGeometry) {
     EXPECT_EQ(fine.dims(), glm::ivec3(3, 3, 9));
     EXPECT_EQ(fine.geometry().refinement(), glm::ivec3(1, 1, 4));
     expectNear(fine.geometry().indexToPatient({2, 2, 8}), v.geometry().indexToPatient({2, 2, 2}));
+}
+
+// The monotone cubic along the slices (SliceInterpolation::MonotoneCubic): a field linear in k
+// stays exactly linear (ends included), rows and columns stay linear, the slices themselves
+// are kept.
+TEST(OversamplingMonotone, ReproducesAFieldLinearAlongTheSlices) {
+    const glm::ivec3 coarseDims(4, 3, 7);
+    const auto linear = [](double i, double j, double k) { return 5.0 + 2.0 * i - j + 3.0 * k; };
+    const Volume coarse = lw::test::makeFilledVolume<float>(
+        coarseDims, [&](int i, int j, int k) { return linear(i, j, k); },
+        VolumeGeometry::regular({0, 0, 0}, {0.5, 0.5, 5.0}));
+    const glm::ivec3 factors(2, 1, 4);
+    const Volume fine = oversampled(coarse, factors, 2, SliceInterpolation::MonotoneCubic);
+    ASSERT_EQ(fine.dims(), oversampledDims(coarseDims, factors));
+    for (int k = 0; k < fine.dims().z; ++k)
+        for (int j = 0; j < fine.dims().y; ++j)
+            for (int i = 0; i < fine.dims().x; ++i)
+                ASSERT_NEAR(fine.storedValue(i, j, k),
+                            linear(double(i) / factors.x, j, double(k) / factors.z), 1e-4)
+                    << i << "," << j << "," << k;
+}
+
+// A step between two slices (air, then bone) rises monotonically from one plateau to the other,
+// through the slices' own values, and never overshoots either: no value is invented, no speck
+// of surface in the air.
+TEST(OversamplingMonotone, AStepRisesWithoutOvershoot) {
+    Volume v({1, 1, 6}, VoxelType::Int16);
+    const std::int16_t values[] = {-1000, -1000, -900, 1100, 1200, 1200};
+    std::copy(std::begin(values), std::end(values), v.dataAs<std::int16_t>());
+    const Volume fine = oversampled(v, {1, 1, 8}, 1, SliceInterpolation::MonotoneCubic);
+    ASSERT_EQ(fine.dims().z, 41);
+    double previous = -1000.0;
+    for (int k = 0; k < fine.dims().z; ++k) {
+        const double value = fine.storedValue(0, 0, k);
+        EXPECT_GE(value, previous) << k;
+        EXPECT_LE(value, 1200.0) << k;
+        if (k % 8 == 0) {
+            EXPECT_EQ(value, double(values[k / 8])) << k;
+        }
+        previous = value;
+    }
+    // Flat where the plateau is flat: both ends of a segment between equal slices.
+    EXPECT_EQ(fine.storedValue(0, 0, 4), -1000.0);
+    EXPECT_EQ(fine.storedValue(0, 0, 36), 1200.0);
+}
+
+// Unlike linear interpolation the cubic has no crease at a slice: its slope on either side of
+// slice 2 agrees (a smooth profile), where straight lines turn from one slope to the other.
+TEST(OversamplingMonotone, HasNoCreaseAtASlice) {
+    Volume v({1, 1, 5}, VoxelType::Float32);
+    const float values[] = {0.0f, 1.0f, 4.0f, 9.0f, 16.0f}; // k^2: slopes 1, 3, 5, 7
+    std::copy(std::begin(values), std::end(values), v.dataAs<float>());
+    const int factor = 16;
+    const Volume cubic = oversampled(v, {1, 1, factor}, 1, SliceInterpolation::MonotoneCubic);
+    const Volume straight = oversampled(v, {1, 1, factor}, 1, SliceInterpolation::Linear);
+    const auto slopes = [&](const Volume& f) {
+        const int at = 2 * factor;
+        const double before = (f.storedValue(0, 0, at) - f.storedValue(0, 0, at - 1)) * factor;
+        const double after = (f.storedValue(0, 0, at + 1) - f.storedValue(0, 0, at)) * factor;
+        return std::pair(before, after);
+    };
+    const auto [cubicBefore, cubicAfter] = slopes(cubic);
+    EXPECT_NEAR(cubicBefore, cubicAfter, 0.6); // both near the tangent 2*3*5/8 = 3.75
+    const auto [straightBefore, straightAfter] = slopes(straight);
+    EXPECT_NEAR(straightBefore, 3.0, 1e-4);
+    EXPECT_NEAR(straightAfter, 5.0, 1e-4);
 }
 
 } // namespace

@@ -4,6 +4,7 @@
 #include "lw/core/limits.h"
 #include "lw/core/parallel.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <type_traits>
@@ -32,11 +33,32 @@ std::vector<Blend> blendsAlong(int originalCount, int factor) {
     return blends;
 }
 
+// Along the slices under SliceInterpolation::MonotoneCubic: the cubic Hermite segment between
+// slices k and k + 1 at t, with Fritsch-Butland tangents (the harmonic mean of the two secants
+// where they agree in sign, else 0; one-sided at the ends). Tangents at most twice the smaller
+// secant keep each segment within its two end values (Fritsch & Carlson 1980): no overshoot.
+inline float monotoneTangent(float before, float after) {
+    // Written without a branch so the loop over a plane vectorises; the quotient is only used
+    // where both secants share a sign (their sum is then not zero).
+    const float product = before * after;
+    const float sum = before + after;
+    const float harmonic = 2.0f * product / (sum != 0.0f ? sum : 1.0f);
+    return product > 0.0f ? harmonic : 0.0f;
+}
+
+// The cubic Hermite basis at t: the weights of y(k), m(k), y(k + 1), m(k + 1).
+struct HermiteWeights {
+    float y0, m0, y1, m1;
+    explicit HermiteWeights(float t)
+        : y0(2.0f * t * t * t - 3.0f * t * t + 1.0f), m0(t * t * t - 2.0f * t * t + t),
+          y1(-2.0f * t * t * t + 3.0f * t * t), m1(t * t * t - t * t) {}
+};
+
 template <typename T> T storedFrom(float value) {
     if constexpr (std::is_floating_point_v<T>)
         return T(value);
     else
-        return T(std::lround(value)); // a blend of two T values lies between them: no clamp
+        return T(std::lround(value)); // linear and monotone blends stay between the T values
 }
 
 // One refined slice: the two original slices it lies between blended into `plane` (float, the
@@ -48,11 +70,35 @@ template <typename T> struct SliceRefiner {
     const std::vector<Blend>& alongI;
     const std::vector<Blend>& alongJ;
     const std::vector<Blend>& alongK;
+    bool monotoneK; // else linear along k
     T* target;
+
+    // Slices lower and lower + 1 on the Hermite curve at t, with their tangents from slices
+    // lower - 1 and lower + 2 (one-sided at the ends: the end segment's own secant).
+    void blendPlaneMonotone(const Blend& b, std::size_t planeSize,
+                            std::vector<float>& plane) const {
+        const T* y1 = source + planeSize * std::size_t(b.lower);
+        const T* y2 = y1 + planeSize;
+        const T* y0 = b.lower > 0 ? y1 - planeSize : y1;
+        const T* y3 = b.lower + 2 < sourceDims.z ? y2 + planeSize : y2;
+        const bool first = b.lower == 0;
+        const bool last = b.lower + 2 >= sourceDims.z;
+        const HermiteWeights w(b.upperWeight);
+        for (std::size_t v = 0; v < planeSize; ++v) {
+            const float secant = float(y2[v]) - float(y1[v]);
+            const float m1 = first ? secant : monotoneTangent(float(y1[v]) - float(y0[v]), secant);
+            const float m2 = last ? secant : monotoneTangent(secant, float(y3[v]) - float(y2[v]));
+            plane[v] = w.y0 * float(y1[v]) + w.m0 * m1 + w.y1 * float(y2[v]) + w.m1 * m2;
+        }
+    }
 
     void blendPlane(int k, std::vector<float>& plane) const {
         const std::size_t planeSize = std::size_t(sourceDims.x) * std::size_t(sourceDims.y);
         const Blend b = alongK[std::size_t(k)];
+        if (monotoneK && b.upperWeight > 0.0f) {
+            blendPlaneMonotone(b, planeSize, plane);
+            return;
+        }
         const T* lower = source + planeSize * std::size_t(b.lower);
         const T* upper = b.upperWeight > 0.0f ? lower + planeSize : lower;
         for (std::size_t v = 0; v < planeSize; ++v)
@@ -73,13 +119,17 @@ template <typename T> struct SliceRefiner {
         }
     }
 
-    void operator()(std::size_t k) const {
+    // Refined slices [first, end): the scratch is made once for them (a fresh megabyte per
+    // slice would cost its page faults anew).
+    void refineSlices(std::size_t first, std::size_t end) const {
         std::vector<float> plane(std::size_t(sourceDims.x) * std::size_t(sourceDims.y));
         std::vector<float> row(std::size_t(sourceDims.x));
-        blendPlane(int(k), plane);
-        T* slice = target + std::size_t(dims.x) * std::size_t(dims.y) * k;
-        for (int j = 0; j < dims.y; ++j)
-            refineRow(plane, j, row, slice + std::size_t(dims.x) * std::size_t(j));
+        for (std::size_t k = first; k < end; ++k) {
+            blendPlane(int(k), plane);
+            T* slice = target + std::size_t(dims.x) * std::size_t(dims.y) * k;
+            for (int j = 0; j < dims.y; ++j)
+                refineRow(plane, j, row, slice + std::size_t(dims.x) * std::size_t(j));
+        }
     }
 };
 
@@ -90,7 +140,8 @@ glm::ivec3 oversampledDims(glm::ivec3 dims, glm::ivec3 factors) {
             oversampledCount(dims.z, factors.z)};
 }
 
-Volume oversampled(const Volume& volume, glm::ivec3 factors, unsigned threads) {
+Volume oversampled(const Volume& volume, glm::ivec3 factors, unsigned threads,
+                   SliceInterpolation alongSlices) {
     if (factors.x < 1 || factors.y < 1 || factors.z < 1)
         throw core::Error("oversampling", "factors must be at least 1");
     const glm::ivec3 dims = oversampledDims(volume.dims(), factors);
@@ -103,11 +154,22 @@ Volume oversampled(const Volume& volume, glm::ivec3 factors, unsigned threads) {
     const std::vector<Blend> alongI = blendsAlong(volume.dims().x, factors.x);
     const std::vector<Blend> alongJ = blendsAlong(volume.dims().y, factors.y);
     const std::vector<Blend> alongK = blendsAlong(volume.dims().z, factors.z);
+    const bool monotoneK = alongSlices == SliceInterpolation::MonotoneCubic && volume.dims().z > 2;
     dispatchVoxelType(volume.voxelType(), [&](auto tag) {
         using T = decltype(tag);
         const SliceRefiner<T> refiner{
-            volume.dataAs<T>(), volume.dims(), dims, alongI, alongJ, alongK, result.dataAs<T>()};
-        core::parallelFor(std::size_t(dims.z), refiner, threads);
+            volume.dataAs<T>(), volume.dims(),     dims, alongI, alongJ, alongK,
+            monotoneK,          result.dataAs<T>()};
+        // Runs of a few slices each: enough runs to balance the threads, few scratch planes.
+        const std::size_t slices = std::size_t(dims.z);
+        const std::size_t runs =
+            std::min<std::size_t>(slices, 8 * std::size_t(core::workerCount()));
+        core::parallelFor(
+            runs,
+            [&](std::size_t run) {
+                refiner.refineSlices(slices * run / runs, slices * (run + 1) / runs);
+            },
+            threads);
     });
     return result;
 }

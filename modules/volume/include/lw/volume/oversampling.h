@@ -13,6 +13,14 @@
 //
 //   factors (1, 1, 2), 3 slices -> 5:   slice  0 . 1 . 2        (. = new, the mean of its two
 //                                       index  0 1 2 3 4        neighbours)
+//
+// Along the slice axis alone the refined slices may instead follow a monotone cubic
+// (SliceInterpolation::MonotoneCubic): the cubic Hermite curve through the slices with
+// Fritsch-Butland tangents. It passes through every slice, is continuously differentiable
+// across them -- so a surface slanted across thick slices has no crease at each slice, whose
+// normals would turn there and draw a line -- and never leaves the range of the two slices it
+// lies between (no overshoot: the ringing that rules out Catmull-Rom). The thick-slice field of
+// volume/slice_distance.h is refined this way. A field linear along k stays exactly linear.
 
 #include "lw/volume/volume.h"
 
@@ -20,14 +28,21 @@
 
 namespace lw::volume {
 
+// How refined samples along the slice axis (k) come from the slices.
+enum class SliceInterpolation {
+    Linear,        // the trilinear field, sampled finer (unchanged)
+    MonotoneCubic, // smooth across the slices (see above); i and j stay linear
+};
+
 // (n - 1) * factor + 1 samples per axis of n > 1; an axis of one sample stays one.
 glm::ivec3 oversampledDims(glm::ivec3 dims, glm::ivec3 factors);
 
 // `volume` sampled `factors` times as densely along (i, j, k), in its own voxel type (integer
 // types rounded to the nearest value: the field then differs from the original by at most half
 // a stored unit), with the geometry of VolumeGeometry::refined and the same value mapping and
-// description. Factors of (1, 1, 1) give a clone. Throws core::Error for a factor below 1 or a
-// result larger than core::ImportLimits allows a volume.
-Volume oversampled(const Volume& volume, glm::ivec3 factors, unsigned threads = 0);
+// description. Factors of (1, 1, 1) give a clone (Linear). Throws core::Error for a factor below 1
+// or a result larger than core::ImportLimits allows a volume.
+Volume oversampled(const Volume& volume, glm::ivec3 factors, unsigned threads = 0,
+                   SliceInterpolation alongSlices = SliceInterpolation::Linear);
 
 } // namespace lw::volume

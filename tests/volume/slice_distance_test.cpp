@@ -1,0 +1,122 @@
+// Shape-based interpolation across thick slices (volume/slice_distance.h): each slice's signed
+// in-plane distance to its iso contour, to the sub-pixel contour, in millimetres; interpolated
+// between slices it moves a contour straight from one slice's ring to the next one's, where
+// grey values leave a flat tread.
+#include "filled_volume.h"
+#include "lw/core/error.h"
+#include "lw/volume/oversampling.h"
+#include "lw/volume/slice_distance.h"
+#include "lw/volume/volume.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <gtest/gtest.h>
+#include <vector>
+
+namespace lw::volume {
+namespace {
+
+constexpr double kIso = 300.0;
+constexpr double kLimitMm = 100.0; // beyond every distance in these slices
+
+// A stack of discs of radius radii[k] (mm) about (cx, cy), bone (1000) inside and water (0)
+// outside, with a one-pixel partial-volume rim as a scanner gives: the value falls linearly
+// from 1000 to 0 across the pixel the edge runs through.
+Volume discStack(glm::ivec3 dims, glm::dvec2 spacing, const std::vector<double>& radii) {
+    const double cx = 0.5 * (dims.x - 1) * spacing.x;
+    const double cy = 0.5 * (dims.y - 1) * spacing.y;
+    return lw::test::makeFilledVolume<std::int16_t>(
+        dims,
+        [&](int i, int j, int k) {
+            const double r = std::hypot(i * spacing.x - cx, j * spacing.y - cy);
+            const double inside =
+                std::clamp(0.5 + (radii[std::size_t(k)] - r) / spacing.x, 0.0, 1.0);
+            return std::lround(1000.0 * inside);
+        },
+        VolumeGeometry::regular({0, 0, 0}, {spacing.x, spacing.y, 5.0}));
+}
+
+// Where the real value crosses kIso along row j of slice k, from the centre outward (mm from
+// the centre column), by linear interpolation between samples.
+double crossingAlongRow(const Volume& v, int j, int k) {
+    const int centre = (v.dims().x - 1) / 2;
+    const double spacing = v.geometry().spacingI();
+    const ValueMapping m = v.valueMapping();
+    for (int i = centre; i + 1 < v.dims().x; ++i) {
+        const double a = m.toReal(v.storedValue(i, j, k)) - kIso;
+        const double b = m.toReal(v.storedValue(i + 1, j, k)) - kIso;
+        if (a >= 0.0 && b < 0.0)
+            return (double(i - centre) + a / (a - b)) * spacing;
+    }
+    return -1.0;
+}
+
+TEST(SliceDistance, IsTheSignedDistanceToTheSubPixelContour) {
+    const Volume discs = discStack({81, 81, 1}, {0.5, 0.5}, {12.3});
+    const Volume distance = signedSliceDistance(discs, kIso, kLimitMm, 2);
+    ASSERT_EQ(distance.dims(), discs.dims());
+    EXPECT_EQ(distance.voxelType(), VoxelType::Int16);
+    EXPECT_EQ(distance.valueMapping().intercept, kIso);
+    // The contour is where the grey values put it (drawn at kIso, the same crossing) ...
+    EXPECT_NEAR(crossingAlongRow(distance, 40, 0), crossingAlongRow(discs, 40, 0), 0.02);
+    // ... and every sample holds its distance to it: the centre about the radius inside, a
+    // corner its distance to the circle outside (the grey values' contour is the circle of
+    // radius 12.3 mm + 0.2 px, the rim's 30 % level, as a polygon through the crossings).
+    const double radius = crossingAlongRow(discs, 40, 0);
+    const ValueMapping m = distance.valueMapping();
+    EXPECT_NEAR(m.toReal(distance.storedValue(40, 40, 0)) - kIso, radius, 0.05);
+    EXPECT_NEAR(m.toReal(distance.storedValue(0, 0, 0)) - kIso, -(std::hypot(20.0, 20.0) - radius),
+                0.1);
+    EXPECT_NEAR(m.toReal(distance.storedValue(40, 70, 0)) - kIso, -(15.0 - radius), 0.1);
+}
+
+// Pixels 0.5 x 1.0 mm: distances count millimetres, not pixels.
+TEST(SliceDistance, CountsMillimetresOnAnisotropicPixels) {
+    Volume v({41, 21, 1}, VoxelType::Float32, VolumeGeometry::regular({0, 0, 0}, {0.5, 1.0, 5.0}));
+    for (int j = 0; j < 21; ++j)
+        for (int i = 0; i < 41; ++i)
+            v.dataAs<float>()[v.index(i, j, 0)] = i <= 20 && j <= 10 ? 1000.0f : 0.0f;
+    const Volume distance = signedSliceDistance(v, 500.0, kLimitMm, 1);
+    const ValueMapping m = distance.valueMapping();
+    // The contour runs half a pixel beyond the last bone pixel: x = 10.25 mm, y = 10.5 mm.
+    EXPECT_NEAR(m.toReal(distance.storedValue(0, 0, 0)) - 500.0, 10.25, 0.02);
+    EXPECT_NEAR(m.toReal(distance.storedValue(30, 0, 0)) - 500.0, -(15.0 - 10.25), 0.02);
+    EXPECT_NEAR(m.toReal(distance.storedValue(0, 20, 0)) - 500.0, -(20.0 - 10.5), 0.02);
+}
+
+// Distances stop at the limit, and a slice with no contour is at it throughout: the disc of
+// slice 0 (radius 5 mm) closes 5 / (5 + 4) of the way to slice 1 under a 4 mm limit.
+TEST(SliceDistance, ASliceWithoutContourIsAtTheLimit) {
+    const Volume discs = discStack({21, 21, 2}, {1.0, 1.0}, {5.0, -10.0});
+    const Volume distance = signedSliceDistance(discs, kIso, 4.0, 1);
+    const ValueMapping m = distance.valueMapping();
+    EXPECT_NEAR(m.toReal(distance.storedValue(10, 10, 1)) - kIso, -4.0, 1e-9);
+    EXPECT_NEAR(m.toReal(distance.storedValue(0, 0, 0)) - kIso, -4.0, 1e-9);
+    const double centre = m.toReal(distance.storedValue(10, 10, 0)) - kIso;
+    EXPECT_NEAR(centre, 4.0, 1e-9); // 5.2 mm from the rim, limited
+    EXPECT_THROW(signedSliceDistance(discs, kIso, 0.0, 1), core::Error);
+    EXPECT_THROW(signedSliceDistance(discs, kIso, 1000.0, 1), core::Error);
+}
+
+// Two slices whose discs differ by 8 mm in radius (a wall at a shallow angle): halfway
+// between them the interpolated distance puts the contour halfway between the two rings, and
+// a quarter of the way a quarter of the way -- a straight slope. The grey values, linearly
+// interpolated, keep the contour of the nearer slice for most of the gap.
+TEST(SliceDistance, InterpolatedItMovesTheContourStraightFromRingToRing) {
+    const Volume discs = discStack({101, 101, 2}, {0.5, 0.5}, {8.0, 16.0});
+    const Volume shapes = oversampled(signedSliceDistance(discs, kIso, kLimitMm, 2), {1, 1, 4}, 2);
+    const double first = crossingAlongRow(discs, 50, 0);
+    const double last = crossingAlongRow(discs, 50, 1);
+    for (int step = 0; step <= 4; ++step)
+        EXPECT_NEAR(crossingAlongRow(shapes, 50, step), first + (last - first) * step / 4.0, 0.05)
+            << step;
+    // Grey values: the band between the rings is 1000 in one slice and 0 in the other, so it
+    // crosses 300 at t = 0.3 everywhere at once -- a tread at the first ring, then a riser.
+    const Volume greys = oversampled(discs, {1, 1, 4}, 2);
+    EXPECT_NEAR(crossingAlongRow(greys, 50, 1), first, 0.3);
+    EXPECT_NEAR(crossingAlongRow(greys, 50, 2), last, 0.3);
+}
+
+} // namespace
+} // namespace lw::volume
