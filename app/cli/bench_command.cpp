@@ -113,9 +113,10 @@ struct Plan {
     bool closeAtBorder = true;
     int minStrokePixels = 0;
     render::GradientStencil gradientStencil = render::GradientStencil::Central; // --gradient
-    // --oversample: off by default (the methods on the grid as given); auto times what the
-    // review draws on a coarse or thick-slice volume (render/surface_sampling.h).
-    render::Oversampling oversampling = render::Oversampling::Off;
+    // --oversample, --thick-slices: off and linear by default (the methods on the grid as
+    // given); auto and smooth time what the review draws on a coarse or thick-slice volume
+    // (render/surface_sampling.h).
+    render::VolumeSampling sampling = render::kSamplingAsLoaded;
 };
 
 int brickCellsFor(const std::string& variant, const volume::Volume& volume) {
@@ -384,9 +385,9 @@ std::vector<std::string> parseChoiceList(const std::string& text, const std::str
 namespace {
 
 const std::set<std::string> kBenchOptions = {
-    "sizes",  "input",      "iso",      "backend",   "methods",        "variants",
-    "modes",  "repeat",     "image",    "threads",   "peak-memory-of", "gpu-budget",
-    "border", "min-stroke", "gradient", "oversample"};
+    "sizes",  "input",      "iso",      "backend",    "methods",        "variants",
+    "modes",  "repeat",     "image",    "threads",    "peak-memory-of", "gpu-budget",
+    "border", "min-stroke", "gradient", "oversample", "thick-slices"};
 
 // What to run: methods, variants, modes, repeat, image, threads, budget; --peak-memory-of
 // narrows it to one configuration (returned in `peakMethod`).
@@ -415,7 +416,7 @@ Plan parsePlan(const Arguments& arguments, std::optional<std::string>& peakMetho
     plan.closeAtBorder = lines.closeAtBorder;
     plan.minStrokePixels = lines.minStrokePixels;
     plan.gradientStencil = lines.gradientStencil;
-    plan.oversampling = parseOversamplingOption(arguments, render::Oversampling::Off);
+    plan.sampling = parseVolumeSampling(arguments, render::kSamplingAsLoaded);
     if (const auto peak = arguments.option("peak-memory-of")) {
         const std::vector<std::string> parts = splitList(*peak);
         if (parts.size() != 2)
@@ -475,7 +476,8 @@ void writeJsonReport(const Plan& plan, const BenchResult& result, std::ostream& 
     writer.field("border", plan.closeAtBorder ? "closed" : "open");
     writer.field("min_stroke", plan.minStrokePixels);
     writer.field("gradient", render::gradientStencilName(plan.gradientStencil));
-    writer.field("oversample", render::oversamplingName(plan.oversampling));
+    writer.field("oversample", render::oversamplingName(plan.sampling.oversampling));
+    writer.field("thick_slices", render::thickSlicesName(plan.sampling.thickSlices));
     writer.key("notes").beginArray();
     for (const std::string& note : result.notes)
         writer.value(note);
@@ -501,11 +503,12 @@ void writeTextReport(const Plan& plan, const BenchResult& result, std::ostream& 
     std::snprintf(line, sizeof line,
                   "bench: view az %g el %g perspective (+%g deg per run), image %dx%d, median of "
                   "%d runs after a warm-up; border %s, min stroke %d px, gradient %s, "
-                  "oversample %s\n",
+                  "oversample %s, thick slices %s\n",
                   kAzimuthDeg, kElevationDeg, kViewStepDeg, plan.image.x, plan.image.y, plan.repeat,
                   plan.closeAtBorder ? "closed" : "open", plan.minStrokePixels,
                   render::gradientStencilName(plan.gradientStencil).data(),
-                  render::oversamplingName(plan.oversampling).data());
+                  render::oversamplingName(plan.sampling.oversampling).data(),
+                  render::thickSlicesName(plan.sampling.thickSlices).data());
     out << line;
     std::snprintf(line, sizeof line,
                   "%-6s %-7s %-4s %-4s %-5s %-14s %9s %9s %10s %9s %8s %8s %8s %8s\n", "method",
@@ -551,7 +554,7 @@ int runBench(const std::vector<std::string>& args, std::ostream& out) {
             bench.label = "phantom " + dimsText(dims);
         }
         if (std::optional<volume::Volume> finer =
-                render::oversampledToRender(bench.volume, plan.oversampling, plan.threads))
+                render::oversampledToRender(bench.volume, plan.sampling, bench.iso, plan.threads))
             bench.volume = std::move(*finer);
         result.volumeBytes = std::max(result.volumeBytes, bench.volume.byteSize());
         kLog.info("bench: " + bench.label + " (" + dimsText(bench.volume.dims()) + ")");

@@ -182,7 +182,7 @@ int runExport(const std::vector<std::string>& args, std::ostream& out) {
     input::OpenedVolume opened =
         openCliInput(arguments.positionals()[0], arguments.option("series"));
     volume = std::move(opened.volume);
-    oversampleForRendering(arguments, render::Oversampling::Auto, volume);
+    oversampleForRendering(arguments, render::VolumeSampling{}, volume);
     if (targets.sc && !opened.dicom) // before rendering: nothing is written then
         throw core::Error(targets.sc->string(), "a Secondary Capture joins the source's study: "
                                                 "the input must be DICOM");

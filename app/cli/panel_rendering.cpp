@@ -163,9 +163,10 @@ RenderedPanels renderPanels(render::SilhouetteRenderer& renderer, const volume::
 }
 
 const std::set<std::string>& panelRenderOptions() {
-    static const std::set<std::string> names = {
-        "iso",  "method",  "chunks",  "mode",       "visibility", "view",     "camera",
-        "size", "backend", "threads", "min-stroke", "border",     "gradient", "oversample"};
+    static const std::set<std::string> names = {"iso",        "method",     "chunks",      "mode",
+                                                "visibility", "view",       "camera",      "size",
+                                                "backend",    "threads",    "min-stroke",  "border",
+                                                "gradient",   "oversample", "thick-slices"};
     return names;
 }
 
@@ -194,22 +195,29 @@ render::GradientStencil parseGradientOption(const Arguments& arguments) {
     return *stencil;
 }
 
-render::Oversampling parseOversamplingOption(const Arguments& arguments,
-                                             render::Oversampling fallback) {
-    const std::string text =
-        arguments.option("oversample", std::string(render::oversamplingName(fallback)));
+render::VolumeSampling parseVolumeSampling(const Arguments& arguments,
+                                           render::VolumeSampling fallback) {
+    const std::string text = arguments.option(
+        "oversample", std::string(render::oversamplingName(fallback.oversampling)));
     const std::optional<render::Oversampling> oversampling = render::parseOversampling(text);
     if (!oversampling)
         throw UsageError("--oversample " + text, "expected auto or off");
-    return *oversampling;
+    const std::string thick = arguments.option(
+        "thick-slices", std::string(render::thickSlicesName(fallback.thickSlices)));
+    const std::optional<render::ThickSlices> thickSlices = render::parseThickSlices(thick);
+    if (!thickSlices)
+        throw UsageError("--thick-slices " + thick, "expected smooth or linear");
+    return {*oversampling, *thickSlices};
 }
 
-void oversampleForRendering(const Arguments& arguments, render::Oversampling fallback,
+void oversampleForRendering(const Arguments& arguments, render::VolumeSampling fallback,
                             volume::Volume& volume) {
-    const render::Oversampling oversampling = parseOversamplingOption(arguments, fallback);
+    const render::VolumeSampling sampling = parseVolumeSampling(arguments, fallback);
     const unsigned threads = unsigned(std::max(0.0, arguments.number("threads", 0)));
+    // Every command that draws takes --iso; the shape-based field of thick slices is of it.
+    const double iso = arguments.number("iso", 0.0);
     if (std::optional<volume::Volume> finer =
-            render::oversampledToRender(volume, oversampling, threads))
+            render::oversampledToRender(volume, sampling, iso, threads))
         volume = std::move(*finer);
 }
 
@@ -280,6 +288,19 @@ std::unique_ptr<render::SilhouetteRenderer> createRendererOrSkip(render::Silhoue
         notes.push_back("method 1 skipped: " + error.reason());
         return nullptr;
     }
+}
+
+ViewSweepOptions parseViewSweepOptions(const Arguments& arguments, const std::string& command,
+                                       const std::string& defaultSize) {
+    ViewSweepOptions options;
+    options.request = parseRenderRequest(arguments, command);
+    options.setup = parseCameraView(arguments);
+    options.size = parseImageSize("--size", arguments.option("size", defaultSize), 16);
+    options.views = parseViewChoice(arguments, evaluation::kDefaultSweepViewCount).views;
+    options.json = arguments.flag("json");
+    if (const auto images = arguments.option("images"))
+        options.imagesDir = *images;
+    return options;
 }
 
 core::ImageRgba8 sideBySide(const core::ImageRgba8& left, const core::ImageRgba8& right) {

@@ -6,6 +6,7 @@
 
 #include "arguments.h"
 #include "lw/core/image.h"
+#include "lw/evaluation/view_sweep.h"
 #include "lw/render/camera.h"
 #include "lw/render/renderer_factory.h"
 #include "lw/render/silhouette_renderer.h"
@@ -14,6 +15,7 @@
 #include "lw/render/visible_polylines.h"
 #include "lw/volume/volume.h"
 
+#include <filesystem>
 #include <glm/glm.hpp>
 #include <iosfwd>
 #include <memory>
@@ -61,14 +63,16 @@ void parseLineOptions(const Arguments& arguments, int defaultMinStroke,
                       render::SilhouetteSettings& settings);
 // --gradient central|smoothed (default central): the normals' finite differences.
 render::GradientStencil parseGradientOption(const Arguments& arguments);
-// --oversample auto|off (default `fallback`), then `volume` replaced by its oversampled copy
-// where the rule asks for one (render/surface_sampling.h): what the review draws. `render`,
-// `quality` and `export` default to auto, `bench` to off (the methods on the grid as given).
-void oversampleForRendering(const Arguments& arguments, render::Oversampling fallback,
+// --oversample auto|off and --thick-slices smooth|linear (defaults from `fallback`), then
+// `volume` replaced by its resampled copy where the rule asks for one
+// (render/surface_sampling.h): what the review draws. `render`, `quality` and `export` default
+// to auto and smooth, `bench` to the grid as loaded.
+void oversampleForRendering(const Arguments& arguments, render::VolumeSampling fallback,
                             volume::Volume& volume);
-// --oversample auto|off (default `fallback`); throws UsageError for another value.
-render::Oversampling parseOversamplingOption(const Arguments& arguments,
-                                             render::Oversampling fallback);
+// --oversample auto|off and --thick-slices smooth|linear (defaults from `fallback`); throws
+// UsageError for another value.
+render::VolumeSampling parseVolumeSampling(const Arguments& arguments,
+                                           render::VolumeSampling fallback);
 // --view, --camera; the bounds are set once the volume is known (frameSurface).
 render::CameraSetup parseCameraView(const Arguments& arguments);
 // --size, default 512x512.
@@ -113,6 +117,20 @@ render::PolylineSplit silhouettePolylines(render::SilhouetteRenderer& renderer,
 std::unique_ptr<render::SilhouetteRenderer> createRendererOrSkip(render::SilhouetteMethod method,
                                                                  render::Backend backend,
                                                                  std::vector<std::string>& notes);
+
+// What the commands that measure drawings over the view sweep (`quality`, `thick-slices`) read
+// alike: the render options, the camera, --size (default `defaultSize`), --view/--views (default
+// the sweep), --json and --images DIR.
+struct ViewSweepOptions {
+    RenderRequest request; // the settings of `render`, stroke pruning as there
+    render::CameraSetup setup;
+    glm::ivec2 size{0};
+    std::vector<evaluation::View> views;
+    bool json = false;
+    std::optional<std::filesystem::path> imagesDir;
+};
+ViewSweepOptions parseViewSweepOptions(const Arguments& arguments, const std::string& command,
+                                       const std::string& defaultSize);
 
 // The iso-surface left, its silhouette right, the same height.
 core::ImageRgba8 sideBySide(const core::ImageRgba8& left, const core::ImageRgba8& right);

@@ -35,15 +35,9 @@ namespace {
 
 using evaluation::View;
 
-struct Options {
+struct Options : ViewSweepOptions {
     std::string input;
     std::optional<std::string> series;
-    RenderRequest request; // the settings of `render`, stroke pruning as there
-    render::CameraSetup setup;
-    glm::ivec2 size{0};
-    std::vector<View> views;
-    bool json = false;
-    std::optional<std::filesystem::path> imagesDir;
 };
 
 // `render`'s options less the ones this command sets itself (every method is drawn, with
@@ -61,15 +55,10 @@ Options parseOptions(const Arguments& arguments) {
     if (arguments.positionals().size() != 1)
         throw UsageError("quality", "expects exactly one INPUT");
     Options options;
+    static_cast<ViewSweepOptions&>(options) =
+        parseViewSweepOptions(arguments, "quality", "1024x1024");
     options.input = arguments.positionals()[0];
     options.series = arguments.option("series");
-    options.request = parseRenderRequest(arguments, "quality");
-    options.setup = parseCameraView(arguments);
-    options.size = parseImageSize("--size", arguments.option("size", "1024x1024"), 16);
-    options.views = parseViewChoice(arguments, evaluation::kDefaultSweepViewCount).views;
-    options.json = arguments.flag("json");
-    if (const auto images = arguments.option("images"))
-        options.imagesDir = *images;
     return options;
 }
 
@@ -153,7 +142,7 @@ int runQuality(const std::vector<std::string>& args, std::ostream& out) {
     createRenderers(options.request, renderers, notes);
     input::OpenedVolume opened = openCliInput(options.input, options.series);
     volume = std::move(opened.volume);
-    oversampleForRendering(arguments, render::Oversampling::Auto, volume);
+    oversampleForRendering(arguments, render::VolumeSampling{}, volume);
     fitToVolume(arguments, volume, options.request, options.setup);
     for (auto& renderer : renderers)
         if (renderer)

@@ -57,7 +57,7 @@ int runRender(const std::vector<std::string>& args, std::ostream& out) {
     const std::unique_ptr<render::SilhouetteRenderer> renderer =
         render::createSilhouetteRenderer(request.method, request.backend);
     volume = loadInput(input, arguments.option("series"));
-    oversampleForRendering(arguments, render::Oversampling::Auto, volume);
+    oversampleForRendering(arguments, render::VolumeSampling{}, volume);
     fitToVolume(arguments, volume, request, setup);
     const render::Camera camera(setup, size.x, size.y);
 

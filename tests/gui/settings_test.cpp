@@ -63,6 +63,9 @@ void SettingsTest::roundTripThroughQSettings() {
     // Auto is the default: both values round-trip.
     settings.oversampling =
         method == 2 ? lw::render::Oversampling::Off : lw::render::Oversampling::Auto;
+    // Smooth is the default: both values round-trip.
+    settings.thickSlices =
+        method == 3 ? lw::render::ThickSlices::Linear : lw::render::ThickSlices::Smooth;
     settings.mode =
         modeB ? lw::render::ExtractionMode::EveryFrameB : lw::render::ExtractionMode::CachedA;
     settings.projection =
@@ -136,6 +139,11 @@ void SettingsTest::dialogReportsChangesAndStoresThem() {
     QVERIFY(oversample->isChecked()); // coarse axes split by default
     oversample->click();
     QCOMPARE(dialog.settings().oversampling, lw::render::Oversampling::Off);
+    auto* smoothThickSlices = dialog.findChild<QCheckBox*>("smoothThickSlices");
+    QVERIFY(smoothThickSlices);
+    QVERIFY(smoothThickSlices->isChecked()); // shape-based across thick slices by default
+    smoothThickSlices->click();
+    QCOMPARE(dialog.settings().thickSlices, lw::render::ThickSlices::Linear);
     auto* hiddenLines = dialog.findChild<QCheckBox*>("hiddenLines");
     QVERIFY(hiddenLines);
     QVERIFY(!hiddenLines->isChecked()); // off by default
@@ -151,6 +159,7 @@ void SettingsTest::dialogReportsChangesAndStoresThem() {
     QVERIFY(stored.suggestiveContours);
     QCOMPARE(stored.gradientStencil, lw::render::GradientStencil::Smoothed);
     QCOMPARE(stored.oversampling, lw::render::Oversampling::Off);
+    QCOMPARE(stored.thickSlices, lw::render::ThickSlices::Linear);
     QVERIFY(stored.hiddenLines);
 }
 

@@ -5,13 +5,25 @@
 #include "lw/volume/oversampling.h"
 
 #include <cctype>
+#include <cmath>
+#include <cstdint>
 #include <gtest/gtest.h>
 #include <memory>
+#include <string>
+#include <vector>
 
 namespace lw::render {
 namespace {
 
 using volume::VolumeGeometry;
+
+// A parameter's name as a test name: letters and digits, the rest '_'.
+std::string testNameOf(std::string name) {
+    for (char& ch : name)
+        if (!std::isalnum(static_cast<unsigned char>(ch)))
+            ch = '_';
+    return name;
+}
 
 TEST(SurfaceSampling, NamesParse) {
     EXPECT_EQ(parseOversampling("auto"), Oversampling::Auto);
@@ -50,24 +62,118 @@ INSTANTIATE_TEST_SUITE_P(
                       SeriesCase{"unit 256^3", {256, 256, 256}, {1.0, 1.0, 1.0}, {1, 1, 1}},
                       SeriesCase{"one slice", {512, 512, 1}, {0.5, 0.5, 5.0}, {1, 1, 1}},
                       SeriesCase{"a needle", {2, 2, 400}, {50.0, 50.0, 1.0}, {8, 8, 1}}),
-    [](const auto& info) {
-        std::string name = info.param.name;
-        for (char& ch : name)
-            if (!std::isalnum(static_cast<unsigned char>(ch)))
-                ch = '_';
-        return name;
-    });
+    [](const auto& info) { return testNameOf(info.param.name); });
 
 TEST(SurfaceSampling, VolumeToRenderCopiesOnlyWhenItMust) {
     auto fine =
         std::make_shared<const volume::Volume>(glm::ivec3(16, 16, 16), volume::VoxelType::Int16,
                                                VolumeGeometry::regular({0, 0, 0}, {0.1, 0.1, 0.1}));
     // 16 cells on a diagonal: every cell is coarser than 1/128 of it.
-    EXPECT_EQ(volumeToRender(fine, Oversampling::Off), fine);
-    const auto finer = volumeToRender(fine, Oversampling::Auto);
+    EXPECT_EQ(volumeToRender(fine, {Oversampling::Off, ThickSlices::Smooth}, 0.0), fine);
+    const auto finer = volumeToRender(fine, {Oversampling::Auto, ThickSlices::Smooth}, 0.0);
     ASSERT_NE(finer, fine);
     EXPECT_EQ(finer->dims(), volume::oversampledDims({16, 16, 16}, finer->geometry().refinement()));
-    EXPECT_EQ(volumeToRender(nullptr, Oversampling::Auto), nullptr);
+    EXPECT_EQ(volumeToRender(nullptr, VolumeSampling{}, 0.0), nullptr);
+}
+
+TEST(SurfaceSampling, ThickSliceNamesParse) {
+    EXPECT_EQ(parseThickSlices("smooth"), ThickSlices::Smooth);
+    EXPECT_EQ(parseThickSlices("linear"), ThickSlices::Linear);
+    EXPECT_FALSE(parseThickSlices("cubic").has_value());
+    EXPECT_EQ(thickSlicesName(ThickSlices::Smooth), "smooth");
+    EXPECT_EQ(thickSlicesName(ThickSlices::Linear), "linear");
+    EXPECT_EQ(VolumeSampling{}, (VolumeSampling{Oversampling::Auto, ThickSlices::Smooth}));
+}
+
+struct ThickCase {
+    const char* name;
+    glm::ivec3 dims;
+    glm::dvec3 spacing;
+    double tiltDeg;
+    glm::ivec3 smoothFactors; // under Auto + Smooth; all 1 = as loaded
+    bool smoothed;
+};
+
+class SurfaceSamplingThick : public ::testing::TestWithParam<ThickCase> {};
+
+VolumeGeometry stackOf(const ThickCase& c) {
+    const double tilt = c.tiltDeg * 3.14159265358979323846 / 180.0;
+    const glm::dvec3 stack(0.0, std::sin(tilt), std::cos(tilt));
+    std::vector<glm::dvec3> positions;
+    // The slice step along the normal is spacing.z: along the tilted stack it is longer.
+    for (int k = 0; k < c.dims.z; ++k)
+        positions.push_back(double(k) * c.spacing.z / std::cos(tilt) * stack);
+    return VolumeGeometry::fromSlicePositions({1, 0, 0}, {0, 1, 0}, c.spacing.x, c.spacing.y,
+                                              positions);
+}
+
+// Smooth where the slices are at least three (finer) pixels apart along their normal, with the
+// slice axis split at least kThickSliceFactor times; everything else exactly as oversampling
+// alone has it, and Linear is oversampling alone.
+TEST_P(SurfaceSamplingThick, SmoothsThickSlicesOnly) {
+    const ThickCase& c = GetParam();
+    const VolumeGeometry g = stackOf(c);
+    EXPECT_EQ(hasThickSlices(c.dims, g), c.smoothed) << c.name;
+    const SamplingPlan smooth = samplingPlan(c.dims, g, {Oversampling::Auto, ThickSlices::Smooth});
+    EXPECT_EQ(smooth.factors, c.smoothFactors) << c.name;
+    EXPECT_EQ(smooth.shapeBased, c.smoothed) << c.name;
+    EXPECT_EQ(smooth.dependsOnIso(), c.smoothed) << c.name;
+    EXPECT_EQ(smooth.alongSlices == volume::SliceInterpolation::MonotoneCubic, c.smoothed);
+    const SamplingPlan linear = samplingPlan(c.dims, g, {Oversampling::Auto, ThickSlices::Linear});
+    EXPECT_EQ(linear.factors, oversamplingFactors(c.dims, g, Oversampling::Auto)) << c.name;
+    EXPECT_EQ(linear.alongSlices, volume::SliceInterpolation::Linear);
+    EXPECT_FALSE(linear.shapeBased);
+    const SamplingPlan smoothOnly =
+        samplingPlan(c.dims, g, {Oversampling::Off, ThickSlices::Smooth});
+    EXPECT_EQ(smoothOnly.factors.z, c.smoothed ? kThickSliceFactor : 1) << c.name;
+    EXPECT_TRUE(samplingPlan(c.dims, g, kSamplingAsLoaded).asLoaded()) << c.name;
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Series, SurfaceSamplingThick,
+    ::testing::Values(
+        ThickCase{"head 5 mm", {512, 512, 28}, {0.4512, 0.4512, 5.0}, 0.0, {1, 1, 3}, true},
+        ThickCase{"tilted 2.4 mm", {512, 512, 54}, {0.48, 0.48, 2.4}, 18.5, {1, 1, 3}, true},
+        ThickCase{"head 1 mm", {512, 512, 140}, {0.4512, 0.4512, 1.0}, 0.0, {1, 1, 1}, false},
+        ThickCase{"CThead 1x1x2", {256, 256, 113}, {1.0, 1.0, 2.0}, 0.0, {1, 1, 1}, false},
+        ThickCase{"quarter head", {64, 64, 93}, {3.2, 3.2, 1.5}, 0.0, {2, 2, 1}, false},
+        ThickCase{"two thick slices", {512, 512, 2}, {0.5, 0.5, 5.0}, 0.0, {1, 1, 2}, false},
+        ThickCase{"unit 256^3", {256, 256, 256}, {1.0, 1.0, 1.0}, 0.0, {1, 1, 1}, false}),
+    [](const auto& info) { return testNameOf(info.param.name); });
+
+// The copy the methods draw on thick slices is the shape-based field at the iso-value: a wall
+// whose edge moves one pixel a slice (a staircase of slices, the shallow wall of a skull cap)
+// crosses the iso-value between the slices where the contour moves, not at one height across
+// the band as the grey values do.
+TEST(SurfaceSampling, VolumeToRenderInterpolatesThickSlicesByShape) {
+    auto thick =
+        std::make_shared<volume::Volume>(glm::ivec3(12, 1, 6), volume::VoxelType::Int16,
+                                         VolumeGeometry::regular({0, 0, 0}, {0.5, 0.5, 5.0}));
+    for (int k = 0; k < 6; ++k)
+        for (int i = 0; i < 12; ++i)
+            thick->dataAs<std::int16_t>()[k * 12 + i] = std::int16_t(i < 2 * k + 1 ? 1000 : -1000);
+    const std::shared_ptr<const volume::Volume> loaded = thick;
+    EXPECT_EQ(volumeToRender(loaded, {Oversampling::Off, ThickSlices::Linear}, 0.0), loaded);
+    const auto shaped = volumeToRender(loaded, {Oversampling::Off, ThickSlices::Smooth}, 0.0);
+    ASSERT_NE(shaped, loaded);
+    EXPECT_EQ(shaped->dims(), glm::ivec3(12, 1, 16));
+    EXPECT_EQ(shaped->geometry().refinement(), glm::ivec3(1, 1, kThickSliceFactor));
+    // Slice 2's edge lies at column 4.5, slice 3's at 6.5 (refined k = 6 and 9). A third of the
+    // way across the shape puts it at 5.17, two thirds at 5.83: column 5 inside at k = 7,
+    // column 6 still outside at k = 8. The grey values cross 0 over the whole band at once,
+    // halfway: column 5 outside at k = 7 (-333), column 6 inside at k = 8 (+333).
+    const auto real = [&](int i, int k) {
+        return shaped->valueMapping().toReal(shaped->storedValue(i, 0, k));
+    };
+    EXPECT_GT(real(5, 7), 0.0);
+    EXPECT_LT(real(6, 7), 0.0);
+    EXPECT_GT(real(5, 8), 0.0);
+    EXPECT_LT(real(6, 8), 0.0);
+    // The slices themselves keep their contours.
+    EXPECT_GT(real(4, 6), 0.0);
+    EXPECT_LT(real(5, 6), 0.0);
+    EXPECT_GT(real(6, 9), 0.0);
+    EXPECT_LT(real(7, 9), 0.0);
 }
 
 // The field of an oversampled volume is its original's, terraces as deep as the original slabs:

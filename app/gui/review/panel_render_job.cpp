@@ -65,7 +65,7 @@ std::pair<QImage, QImage> renderPanelJob(const PanelRenderJob& job, PanelVectors
     QImage iso = renderIso(job);
     // The volume the review's methods draw (its oversampled copy where the settings make one).
     const std::shared_ptr<const volume::Volume> volume =
-        render::volumeToRender(job.volume, job.appearance.oversampling);
+        render::volumeToRender(job.volume, job.appearance.volumeSampling(), job.iso);
     auto renderer = render::createSilhouetteRenderer(job.appearance.method, job.appearance.backend);
     renderer->setVolume(*volume);
     render::SilhouetteSettings settings;

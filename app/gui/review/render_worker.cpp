@@ -48,9 +48,11 @@ void RenderWorker::release() {
 }
 
 // The volume of the request's sampling: made once (the oversampled copy on this thread, off the
-// UI's), and on a change everything made of the old one goes with it.
+// UI's) -- once per iso-value where it is the shape-based field of thick slices -- and on a
+// change everything made of the old one goes with it.
 void RenderWorker::prepareVolume(const FrameRequest& request) {
-    if (m_volume && m_volumeSampling == request.oversampling)
+    if (m_volume && m_volumeSampling == request.sampling &&
+        (!m_volumeDependsOnIso || m_volumeIso == request.iso))
         return;
     m_suggestive.reset();
     m_suggestiveMesh.reset();
@@ -60,8 +62,13 @@ void RenderWorker::prepareVolume(const FrameRequest& request) {
     m_uploadedMesh = nullptr;
     m_uploadedMeshOwner.reset();
     m_volume.reset(); // the old copy goes before a new one is made: one at a time in memory
-    m_volume = render::volumeToRender(m_source, request.oversampling, request.settings.threads);
-    m_volumeSampling = request.oversampling;
+    m_volume =
+        render::volumeToRender(m_source, request.sampling, request.iso, request.settings.threads);
+    m_volumeSampling = request.sampling;
+    m_volumeIso = request.iso;
+    m_volumeDependsOnIso =
+        render::samplingPlan(m_source->dims(), m_source->geometry(), request.sampling)
+            .dependsOnIso();
 }
 
 FrameResult RenderWorker::run(const FrameRequest& request) {

@@ -47,9 +47,9 @@ struct FrameRequest {
     render::SilhouetteMethod method = render::SilhouetteMethod::ZBuffer;
     render::Backend backend = render::Backend::Auto;
     render::SilhouetteSettings settings;
-    // The volume the methods draw: as loaded, or oversampled where its cells are coarse
-    // (render/surface_sampling.h); the worker keeps the copy while this stays the same.
-    render::Oversampling oversampling = render::Oversampling::Auto;
+    // The volume the methods draw: as loaded, or oversampled where its cells are coarse or its
+    // slices thick (render/surface_sampling.h); the worker keeps the copy while this stays.
+    render::VolumeSampling sampling;
     render::Camera camera;
     // The silhouette panel can draw a texture (its GL view): method 3 on CUDA then writes its
     // lines into one of the worker's textures (silhouette_textures.h) instead of host memory.
@@ -122,7 +122,9 @@ private:
     // What the methods draw: m_source, or its oversampled copy (m_volumeSampling); everything
     // below is of this volume and goes when it changes.
     std::shared_ptr<const volume::Volume> m_volume;
-    std::optional<render::Oversampling> m_volumeSampling;
+    std::optional<render::VolumeSampling> m_volumeSampling;
+    double m_volumeIso = 0.0;          // the iso-value of a shape-based copy
+    bool m_volumeDependsOnIso = false; // thick slices: the copy is of one iso-value
     std::unique_ptr<render::IsoSurfaceExtractor> m_extractor;
     int m_extractorBricks = -1;
     SurfaceForm m_extractorForm; // the extractor's IsoSurfaceOptions

@@ -255,7 +255,8 @@ int ReviewWidget::brickCells() const {
     const volume::Volume& loaded = *m_source.volume;
     const glm::ivec3 drawn = volume::oversampledDims(
         loaded.dims(),
-        render::oversamplingFactors(loaded.dims(), loaded.geometry(), m_settings.oversampling));
+        render::samplingPlan(loaded.dims(), loaded.geometry(), m_settings.volumeSampling())
+            .factors);
     const std::size_t bytes = std::size_t(drawn.x) * std::size_t(drawn.y) * std::size_t(drawn.z) *
                               volume::voxelSize(loaded.voxelType());
     return m_settings.brickCellsFor(drawn, bytes);
@@ -318,7 +319,7 @@ void ReviewWidget::requestFrame(bool newIso) {
     request.settings.minStrokePixels = m_settings.minStrokePixels;
     request.settings.closeAtBorder = m_settings.closeAtBorder;
     request.settings.gradientStencil = m_settings.gradientStencil;
-    request.oversampling = m_settings.oversampling;
+    request.sampling = m_settings.volumeSampling();
     request.settings.gpuMemoryBudget = std::size_t(m_settings.gpuMemoryBudgetMiB) << 20;
     request.settings.isoReal = m_iso;
     request.wantSilhouette = !methodOneInPanel();

@@ -68,6 +68,8 @@ ReviewSettings ReviewSettings::load(QSettings& settings) {
     s.oversampling =
         render::parseOversampling(settings.value("oversample").toString().toStdString())
             .value_or(s.oversampling);
+    s.thickSlices = render::parseThickSlices(settings.value("thickSlices").toString().toStdString())
+                        .value_or(s.thickSlices);
     s.suggestiveContours = settings.value("suggestiveContours", s.suggestiveContours).toBool();
     s.lineWidth = std::clamp(settings.value("lineWidth", s.lineWidth).toDouble(), 1.0, 8.0);
     s.lineColour = colourOr(settings.value("lineColour"), s.lineColour);
@@ -103,6 +105,8 @@ void ReviewSettings::save(QSettings& settings) const {
                       QString::fromUtf8(render::gradientStencilName(gradientStencil).data()));
     settings.setValue("oversample",
                       QString::fromUtf8(render::oversamplingName(oversampling).data()));
+    settings.setValue("thickSlices",
+                      QString::fromUtf8(render::thickSlicesName(thickSlices).data()));
     settings.setValue("suggestiveContours", suggestiveContours);
     settings.setValue("lineWidth", lineWidth);
     settings.setValue("lineColour", lineColour.name());

@@ -49,6 +49,9 @@ struct ReviewSettings {
     render::GradientStencil gradientStencil = render::GradientStencil::Central;
     // Coarse axes split for finer triangles (render/surface_sampling.h): on by default.
     render::Oversampling oversampling = render::Oversampling::Auto;
+    // Thick slices smoothed across by a cubic B-spline (render/surface_sampling.h): on by default.
+    render::ThickSlices thickSlices = render::ThickSlices::Smooth;
+    render::VolumeSampling volumeSampling() const { return {oversampling, thickSlices}; }
     bool suggestiveContours = false; // drawn with the silhouette (render/suggestive_contours.h)
     double lineWidth = 1.0;          // pixels
     QColor lineColour = QColor(0, 0, 0);

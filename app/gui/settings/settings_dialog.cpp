@@ -131,6 +131,13 @@ QWidget* SettingsDialog::makeMethodPage() {
            "interpolation, so the triangles follow the same surface closely and the lines lie "
            "on the shaded outline. No value is invented; costs some speed on such series."));
     form->addRow(tr("Surface:"), m_oversample);
+    m_smoothThickSlices = new QCheckBox(tr("Smooth across thick slices"));
+    m_smoothThickSlices->setObjectName("smoothThickSlices");
+    m_smoothThickSlices->setToolTip(
+        tr("Where the slices are three or more pixels apart, the surface between them follows a "
+           "smooth curve (a cubic B-spline) instead of straight lines, so a skull drawn from a "
+           "thick-slice series shows no terraces. Off: straight lines between the slices."));
+    form->addRow(QString(), m_smoothThickSlices);
 
     addBackendRows(form, page);
 
@@ -141,7 +148,7 @@ QWidget* SettingsDialog::makeMethodPage() {
     for (QSpinBox* box : {m_brickCells, m_memoryBudget, m_gpuMemoryBudget, m_minStroke})
         connect(box, &QSpinBox::valueChanged, this, [this] { readControls(); });
     for (QCheckBox* box : {m_visibility, m_alongSegment, m_closeAtBorder, m_smoothNormals,
-                           m_oversample, m_suggestive})
+                           m_oversample, m_smoothThickSlices, m_suggestive})
         connect(box, &QCheckBox::toggled, this, [this] { readControls(); });
     return page;
 }
@@ -308,6 +315,7 @@ void SettingsDialog::showSettings() {
     m_closeAtBorder->setChecked(m_settings.closeAtBorder);
     m_smoothNormals->setChecked(m_settings.gradientStencil == render::GradientStencil::Smoothed);
     m_oversample->setChecked(m_settings.oversampling == render::Oversampling::Auto);
+    m_smoothThickSlices->setChecked(m_settings.thickSlices == render::ThickSlices::Smooth);
     m_suggestive->setChecked(m_settings.suggestiveContours);
     m_backend->button(int(m_settings.backend))->setChecked(true);
     m_lineWidth->setValue(m_settings.lineWidth);
@@ -346,6 +354,8 @@ void SettingsDialog::readControls() {
                                                      : render::GradientStencil::Central;
     s.oversampling =
         m_oversample->isChecked() ? render::Oversampling::Auto : render::Oversampling::Off;
+    s.thickSlices = m_smoothThickSlices->isChecked() ? render::ThickSlices::Smooth
+                                                     : render::ThickSlices::Linear;
     s.suggestiveContours = m_suggestive->isChecked();
     s.backend = render::Backend(m_backend->checkedId());
     s.lineWidth = m_lineWidth->value();

@@ -54,6 +54,7 @@ private:
     QCheckBox* m_closeAtBorder = nullptr;
     QCheckBox* m_smoothNormals = nullptr;
     QCheckBox* m_oversample = nullptr;
+    QCheckBox* m_smoothThickSlices = nullptr;
     QComboBox* m_mode = nullptr;
     QCheckBox* m_visibility = nullptr;
     QCheckBox* m_alongSegment = nullptr;

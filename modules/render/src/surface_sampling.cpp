@@ -2,14 +2,28 @@
 
 #include "lw/core/log.h"
 #include "lw/volume/oversampling.h"
+#include "lw/volume/slice_distance.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <string>
 
 namespace lw::render {
 namespace {
 constexpr core::LogCategory kLog("lw.render");
+std::string shortNumber(double value) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%g", value);
+    return text;
+}
+
+// The shape-based field's limit: one slice step along the normal (volume/slice_distance.h).
+double distanceLimit(const volume::Volume& volume) {
+    return kThickSliceDistanceLimitSteps * std::abs(volume.geometry().sliceStepAlongNormal());
+}
+
 } // namespace
 
 std::string_view oversamplingName(Oversampling oversampling) {
@@ -22,6 +36,36 @@ std::optional<Oversampling> parseOversampling(std::string_view name) {
     if (name == "off")
         return Oversampling::Off;
     return std::nullopt;
+}
+
+std::string_view thickSlicesName(ThickSlices thickSlices) {
+    return thickSlices == ThickSlices::Smooth ? "smooth" : "linear";
+}
+
+std::optional<ThickSlices> parseThickSlices(std::string_view name) {
+    if (name == "smooth")
+        return ThickSlices::Smooth;
+    if (name == "linear")
+        return ThickSlices::Linear;
+    return std::nullopt;
+}
+
+bool hasThickSlices(glm::ivec3 dims, const volume::VolumeGeometry& geometry) {
+    const double pixel = std::min(geometry.spacingI(), geometry.spacingJ());
+    return dims.z >= 3 && pixel > 0.0 &&
+           std::abs(geometry.sliceStepAlongNormal()) >= kThickSliceOverPixel * pixel;
+}
+
+SamplingPlan samplingPlan(glm::ivec3 dims, const volume::VolumeGeometry& geometry,
+                          VolumeSampling sampling) {
+    SamplingPlan plan;
+    plan.factors = oversamplingFactors(dims, geometry, sampling.oversampling);
+    if (sampling.thickSlices == ThickSlices::Smooth && hasThickSlices(dims, geometry)) {
+        plan.factors.z = std::max(plan.factors.z, kThickSliceFactor);
+        plan.shapeBased = true;
+        plan.alongSlices = volume::SliceInterpolation::MonotoneCubic;
+    }
+    return plan;
 }
 
 glm::ivec3 oversamplingFactors(glm::ivec3 dims, const volume::VolumeGeometry& geometry,
@@ -47,24 +91,40 @@ glm::ivec3 oversamplingFactors(glm::ivec3 dims, const volume::VolumeGeometry& ge
 }
 
 std::optional<volume::Volume> oversampledToRender(const volume::Volume& volume,
-                                                  Oversampling oversampling, unsigned threads) {
-    const glm::ivec3 factors = oversamplingFactors(volume.dims(), volume.geometry(), oversampling);
-    if (factors == glm::ivec3(1))
+                                                  VolumeSampling sampling, double iso,
+                                                  unsigned threads) {
+    const SamplingPlan plan = samplingPlan(volume.dims(), volume.geometry(), sampling);
+    if (plan.asLoaded())
         return std::nullopt;
-    volume::Volume finer = volume::oversampled(volume, factors, threads);
+    const auto start = std::chrono::steady_clock::now();
+    volume::Volume finer =
+        plan.shapeBased ? volume::oversampled(volume::signedSliceDistance(
+                                                  volume, iso, distanceLimit(volume), threads),
+                                              plan.factors, threads, plan.alongSlices)
+                        : volume::oversampled(volume, plan.factors, threads, plan.alongSlices);
     const glm::ivec3 dims = finer.dims();
-    kLog.info("oversampled " + std::to_string(factors.x) + "x" + std::to_string(factors.y) + "x" +
-              std::to_string(factors.z) + " for rendering (cells at most 1/" +
-              std::to_string(int(kOversamplingCellsPerDiagonal)) + " of the diagonal): " +
-              std::to_string(dims.x) + "x" + std::to_string(dims.y) + "x" + std::to_string(dims.z));
+    const glm::ivec3 factors = plan.factors;
+    kLog.info(
+        "oversampled " + std::to_string(factors.x) + "x" + std::to_string(factors.y) + "x" +
+        std::to_string(factors.z) + " for rendering (cells at most 1/" +
+        std::to_string(int(kOversamplingCellsPerDiagonal)) + " of the diagonal" +
+        (plan.shapeBased ? "; thick slices by shape-based interpolation at " + shortNumber(iso)
+                         : std::string()) +
+        "): " + std::to_string(dims.x) + "x" + std::to_string(dims.y) + "x" +
+        std::to_string(dims.z) + " in " +
+        std::to_string(
+            int(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+                    .count())) +
+        " ms");
     return finer;
 }
 
 std::shared_ptr<const volume::Volume> volumeToRender(std::shared_ptr<const volume::Volume> volume,
-                                                     Oversampling oversampling, unsigned threads) {
+                                                     VolumeSampling sampling, double iso,
+                                                     unsigned threads) {
     if (!volume)
         return volume;
-    std::optional<volume::Volume> finer = oversampledToRender(*volume, oversampling, threads);
+    std::optional<volume::Volume> finer = oversampledToRender(*volume, sampling, iso, threads);
     if (!finer)
         return volume;
     return std::make_shared<const volume::Volume>(std::move(*finer));

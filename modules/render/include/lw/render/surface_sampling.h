@@ -8,7 +8,17 @@
 // 1024-pixel view), so coarse axes get finer and fine ones stay: a 5 mm series of a head gets
 // 2.5 mm slabs, a 0.5 mm one nothing, and a refined axis never holds much more than 128
 // samples, so the copy stays small.
+//
+// Thick slices (ThickSlices::Smooth, the default): where the slices are at least
+// kThickSliceOverPixel times as far apart as the finer pixel spacing, the field drawn is the
+// shape-based interpolation of the iso contours (volume/slice_distance.h says why grey values
+// cannot avoid terraces there), with the slice axis split at least kThickSliceFactor times so
+// the triangles follow the surface between the slices. That field is of one iso-value: a new
+// iso-value needs a new copy (SamplingPlan::dependsOnIso). Everything drawn reads the copy --
+// every method, S and L, CPU and CUDA, the shaded panel -- so they all draw the same surface.
+// Grids that are not thick (analytic shapes, isotropic CT) are untouched.
 
+#include "lw/volume/oversampling.h"
 #include "lw/volume/volume.h"
 
 #include <glm/glm.hpp>
@@ -19,27 +29,65 @@
 namespace lw::render {
 
 enum class Oversampling { Off, Auto };
+enum class ThickSlices { Linear, Smooth };
 
 inline constexpr double kOversamplingCellsPerDiagonal = 128.0;
 inline constexpr int kMaxOversamplingFactor = 8;
 
+inline constexpr double kThickSliceOverPixel = 3.0;
+inline constexpr int kThickSliceFactor = 3;
+// The shape-based field's distance limit in slice steps (volume/slice_distance.h).
+inline constexpr double kThickSliceDistanceLimitSteps = 1.0;
+
 std::string_view oversamplingName(Oversampling oversampling); // "off" | "auto"
 std::optional<Oversampling> parseOversampling(std::string_view name);
+std::string_view thickSlicesName(ThickSlices thickSlices); // "linear" | "smooth"
+std::optional<ThickSlices> parseThickSlices(std::string_view name);
+
+// How the methods sample a volume: the two choices above (Settings and the CLI's --oversample
+// and --thick-slices).
+struct VolumeSampling {
+    Oversampling oversampling = Oversampling::Auto;
+    ThickSlices thickSlices = ThickSlices::Smooth;
+    bool operator==(const VolumeSampling&) const = default;
+};
+// The grid as loaded: what `bench` and `accuracy` measure by default.
+inline constexpr VolumeSampling kSamplingAsLoaded{Oversampling::Off, ThickSlices::Linear};
+
+// What a sampling makes of one volume: the factors along (i, j, k), whether the field is the
+// slices' signed distance to the iso contour (shape-based) and how the slice axis is
+// interpolated. All factors 1 means the volume as loaded.
+struct SamplingPlan {
+    glm::ivec3 factors{1};
+    bool shapeBased = false;
+    volume::SliceInterpolation alongSlices = volume::SliceInterpolation::Linear;
+    bool asLoaded() const { return factors == glm::ivec3(1) && !shapeBased; }
+    bool dependsOnIso() const { return shapeBased; }
+};
+
+// True where the mean slice step (along the slice normal) is at least kThickSliceOverPixel times
+// the finer pixel spacing, on a stack of at least three slices.
+bool hasThickSlices(glm::ivec3 dims, const volume::VolumeGeometry& geometry);
+SamplingPlan samplingPlan(glm::ivec3 dims, const volume::VolumeGeometry& geometry,
+                          VolumeSampling sampling);
 
 // The factors along (i, j, k) that `oversampling` gives a volume of `dims` on `geometry`:
 // (1, 1, 1) for Off, for a volume of one voxel along every axis, or when no cell is too large.
 glm::ivec3 oversamplingFactors(glm::ivec3 dims, const volume::VolumeGeometry& geometry,
                                Oversampling oversampling);
 
-// `volume` oversampled by oversamplingFactors (volume::oversampled; logged on lw.render), or
-// nothing where the factors are all 1: the volume itself is the one to draw.
+// `volume` resampled by samplingPlan (volume::signedSliceDistance at `iso` where shape-based,
+// then volume::oversampled; logged on lw.render), or nothing where the plan keeps it as
+// loaded: the volume itself is the one to draw. `iso` (real units) matters only where the plan
+// dependsOnIso.
 std::optional<volume::Volume> oversampledToRender(const volume::Volume& volume,
-                                                  Oversampling oversampling, unsigned threads = 0);
+                                                  VolumeSampling sampling, double iso,
+                                                  unsigned threads = 0);
 
-// The volume the methods draw: `volume` itself where the factors are all 1, else its
-// oversampled copy.
+// The volume the methods draw: `volume` itself where the plan keeps it as loaded, else its
+// resampled copy.
 std::shared_ptr<const volume::Volume> volumeToRender(std::shared_ptr<const volume::Volume> volume,
-                                                     Oversampling oversampling,
+                                                     VolumeSampling sampling, double iso,
                                                      unsigned threads = 0);
 
 } // namespace lw::render
