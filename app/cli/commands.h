@@ -16,6 +16,8 @@ int runBenchMc(const std::vector<std::string>& args, std::ostream& out);
 int runAccuracy(const std::vector<std::string>& args, std::ostream& out);
 int runBench(const std::vector<std::string>& args, std::ostream& out);
 int runQuality(const std::vector<std::string>& args, std::ostream& out);
+// The thin INPUT's drawing against its thick version's (made by averaging, or read).
+int runThickSlices(const std::vector<std::string>& args, std::ostream& out);
 int runConvert(const std::vector<std::string>& args, std::ostream& out);
 // In a build without modules/report (no Qt or no DCMTK) it says so and returns 1.
 int runExport(const std::vector<std::string>& args, std::ostream& out);

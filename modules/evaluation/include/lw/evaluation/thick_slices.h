@@ -1,0 +1,21 @@
+#pragma once
+
+// Thick slices made from thin ones, as a scanner makes a thick reconstruction: each thick slice
+// is the mean of `slicesPerSlab` neighbouring thin slices (the scanner integrates over the slab
+// it reconstructs), placed at their mean position. A thin series and its thick version show the
+// same anatomy, so the thin one's drawing is the reference the thick one's is measured against
+// (`linework-cli thick-slices`).
+//
+//   thin   0 1 2 3 4 | 5 6 7 8 9 | 10 ...     slicesPerSlab = 5; a last partial slab is dropped
+//   thick      0     |     1     |  ...       at the mean position of its five
+
+#include "lw/volume/volume.h"
+
+namespace lw::evaluation {
+
+// Throws core::Error when fewer than two whole slabs fit or slicesPerSlab < 1. Integer voxel
+// types are rounded to the nearest value; the value mapping and description are kept, the
+// in-plane geometry and a gantry tilt too, and uneven thin gaps give uneven thick ones.
+volume::Volume thickSlabsOf(const volume::Volume& thin, int slicesPerSlab);
+
+} // namespace lw::evaluation

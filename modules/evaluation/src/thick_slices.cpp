@@ -1,0 +1,73 @@
+#include "lw/evaluation/thick_slices.h"
+
+#include "lw/core/error.h"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <type_traits>
+#include <vector>
+
+namespace lw::evaluation {
+namespace {
+
+template <typename T> T meanValue(double sum, int count) {
+    const double mean = sum / double(count);
+    if constexpr (std::is_floating_point_v<T>)
+        return T(mean);
+    else
+        return T(std::lround(mean)); // the mean of T values lies between them: no clamp
+}
+
+volume::VolumeGeometry thickGeometry(const volume::VolumeGeometry& thin, int slabs,
+                                     int slicesPerSlab) {
+    std::vector<glm::dvec3> positions;
+    positions.reserve(std::size_t(slabs));
+    for (int slab = 0; slab < slabs; ++slab) {
+        glm::dvec3 sum(0.0);
+        for (int s = 0; s < slicesPerSlab; ++s)
+            sum += thin.indexToPatient({0.0, 0.0, double(slab * slicesPerSlab + s)});
+        positions.push_back(sum / double(slicesPerSlab));
+    }
+    return volume::VolumeGeometry::fromSlicePositions(thin.axisI(), thin.axisJ(), thin.spacingI(),
+                                                      thin.spacingJ(), positions);
+}
+
+} // namespace
+
+volume::Volume thickSlabsOf(const volume::Volume& thin, int slicesPerSlab) {
+    if (slicesPerSlab < 1)
+        throw core::Error("thick slices", "slices per slab must be at least 1");
+    const glm::ivec3 dims = thin.dims();
+    const int slabs = dims.z / slicesPerSlab;
+    if (slabs < 2)
+        throw core::Error("thick slices", std::to_string(dims.z) +
+                                              " slices make fewer than two "
+                                              "slabs of " +
+                                              std::to_string(slicesPerSlab));
+    volume::Volume thick({dims.x, dims.y, slabs}, thin.voxelType(),
+                         thickGeometry(thin.geometry(), slabs, slicesPerSlab));
+    thick.setValueMapping(thin.valueMapping());
+    thick.setDescription(thin.description());
+    const std::size_t plane = std::size_t(dims.x) * std::size_t(dims.y);
+    volume::dispatchVoxelType(thin.voxelType(), [&](auto tag) {
+        using T = decltype(tag);
+        const T* source = thin.dataAs<T>();
+        T* target = thick.dataAs<T>();
+        std::vector<double> sum(plane);
+        for (int slab = 0; slab < slabs; ++slab) {
+            std::fill(sum.begin(), sum.end(), 0.0);
+            for (int s = 0; s < slicesPerSlab; ++s) {
+                const T* slice = source + plane * std::size_t(slab * slicesPerSlab + s);
+                for (std::size_t v = 0; v < plane; ++v)
+                    sum[v] += double(slice[v]);
+            }
+            T* out = target + plane * std::size_t(slab);
+            for (std::size_t v = 0; v < plane; ++v)
+                out[v] = meanValue<T>(sum[v], slicesPerSlab);
+        }
+    });
+    return thick;
+}
+
+} // namespace lw::evaluation
