@@ -1009,6 +1009,14 @@
         <source>The technical-illustration convention: the parts of the silhouette behind the surface, under the visible lines</source>
         <translation>Wie in technischen Zeichnungen: die Teile der Silhouette hinter der Oberfläche, unter den sichtbaren Linien</translation>
     </message>
+    <message>
+        <source>Smooth across thick slices</source>
+        <translation>Glatt über dicke Schichten hinweg</translation>
+    </message>
+    <message>
+        <source>Where the slices are three or more pixels apart, the surface between them joins the outlines of neighbouring slices smoothly (shape-based interpolation) instead of drawing straight lines between their grey values, so a skull drawn from a thick-slice series shows no terraces. Off: straight lines between the slices.</source>
+        <translation>Wo die Schichten drei oder mehr Pixel auseinanderliegen, verbindet die Oberfläche zwischen ihnen die Umrisse benachbarter Schichten glatt (formbasierte Interpolation), statt gerade Linien zwischen ihren Grauwerten zu ziehen; so zeigt ein Schädel aus einer Serie mit dicken Schichten keine Terrassen. Aus: gerade Linien zwischen den Schichten.</translation>
+    </message>
 </context>
 <context>
     <name>lw::gui::StudyBrowser</name>

@@ -1009,6 +1009,14 @@
         <source>The technical-illustration convention: the parts of the silhouette behind the surface, under the visible lines</source>
         <translation>Convenția desenului tehnic: părțile siluetei din spatele suprafeței, sub liniile vizibile</translation>
     </message>
+    <message>
+        <source>Smooth across thick slices</source>
+        <translation>Netezire peste secțiunile groase</translation>
+    </message>
+    <message>
+        <source>Where the slices are three or more pixels apart, the surface between them joins the outlines of neighbouring slices smoothly (shape-based interpolation) instead of drawing straight lines between their grey values, so a skull drawn from a thick-slice series shows no terraces. Off: straight lines between the slices.</source>
+        <translation>Acolo unde secțiunile sunt la trei sau mai mulți pixeli distanță, suprafața dintre ele unește lin contururile secțiunilor vecine (interpolare bazată pe formă), în loc să tragă linii drepte între valorile lor de gri; astfel, un craniu dintr-o serie cu secțiuni groase nu arată terase. Dezactivat: linii drepte între secțiuni.</translation>
+    </message>
 </context>
 <context>
     <name>lw::gui::StudyBrowser</name>

@@ -134,8 +134,9 @@ QWidget* SettingsDialog::makeMethodPage() {
     m_smoothThickSlices = new QCheckBox(tr("Smooth across thick slices"));
     m_smoothThickSlices->setObjectName("smoothThickSlices");
     m_smoothThickSlices->setToolTip(
-        tr("Where the slices are three or more pixels apart, the surface between them follows a "
-           "smooth curve (a cubic B-spline) instead of straight lines, so a skull drawn from a "
+        tr("Where the slices are three or more pixels apart, the surface between them joins "
+           "the outlines of neighbouring slices smoothly (shape-based interpolation) instead of "
+           "drawing straight lines between their grey values, so a skull drawn from a "
            "thick-slice series shows no terraces. Off: straight lines between the slices."));
     form->addRow(QString(), m_smoothThickSlices);
 
