@@ -38,8 +38,7 @@ std::uint64_t RenderScheduler::request(FrameRequest request) {
     }
     request.textureSurface = m_textureSurface.get();
     if (m_running) {
-        if (m_running->iso != request.iso ||
-            m_running->settingsGeneration != request.settingsGeneration)
+        if (m_running->settingsGeneration != request.settingsGeneration)
             m_running->cancel->cancel();
         m_waiting = std::move(request);
         return m_nextId;
@@ -49,7 +48,7 @@ std::uint64_t RenderScheduler::request(FrameRequest request) {
 }
 
 void RenderScheduler::dispatch(FrameRequest request) {
-    m_running = Running{request.iso, request.settingsGeneration, request.cancel};
+    m_running = Running{request.settingsGeneration, request.cancel};
     emit busyChanged(true);
     QPointer<RenderScheduler> self(this);
     std::shared_ptr<RenderWorker> worker = m_worker;

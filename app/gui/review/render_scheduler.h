@@ -1,8 +1,10 @@
 #pragma once
 
 // Feeds RenderWorker on its own thread: at most one request runs, at most one waits (the newest
-// replaces an older waiting one), and a request for another iso-value or other settings cancels
-// the running one. Results arrive on the UI thread through frameReady().
+// replaces an older waiting one). A request for other settings cancels the running one (its
+// result would be dropped); one for another iso-value lets it finish, so that while the slider
+// is dragged the panels show each frame that completes and then the newest value, instead of
+// nothing until the drag stops. Results arrive on the UI thread through frameReady().
 
 #include "review/render_worker.h"
 
@@ -42,7 +44,6 @@ private:
     QObject* m_threadContext = nullptr; // lives in m_thread; queued calls run there
     std::uint64_t m_nextId = 0;
     struct Running {
-        double iso;
         std::uint64_t settingsGeneration;
         std::shared_ptr<core::CancelToken> cancel;
     };

@@ -349,9 +349,10 @@ void ReviewWidget::requestFrame(bool newIso) {
 }
 
 void ReviewWidget::takeFrame(const std::shared_ptr<const FrameResult>& result) {
-    // A result for an iso-value or settings already moved on is stale: drop it. One for an
-    // older camera is still the best picture there is until the newer one arrives.
-    if (result->settingsGeneration != m_settingsGeneration || result->iso != m_iso)
+    // A result for settings already moved on is stale: drop it. One for an older iso-value (the
+    // slider dragged on while it ran) or an older camera is still the best picture there is
+    // until the newer one arrives: shown, the newest value's frame follows.
+    if (result->settingsGeneration != m_settingsGeneration)
         return;
     if (!result->error.isEmpty()) {
         showError(result->error);
@@ -375,7 +376,7 @@ void ReviewWidget::takeFrame(const std::shared_ptr<const FrameResult>& result) {
         m_mesh = result->mesh;
         m_isoPanel->setMesh(result->mesh);
         m_silhouettePanel->setMesh(methodOneInPanel() ? result->mesh : nullptr);
-        m_meshCurrent = true;
+        m_meshCurrent = result->iso == m_iso;
         m_status.triangles = result->mesh->triangleCount();
         m_status.isoShown = result->iso;
         if (result->meshMs > 0.0 || !result->silhouette)
