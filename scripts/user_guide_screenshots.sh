@@ -1,9 +1,11 @@
 #!/usr/bin/env bash
-# Regenerates docs/screenshots/{browser,review,review_annotations,settings,settings_appearance}.png
+# Regenerates docs/screenshots/{browser,review,review_annotations,settings,settings_appearance,
+# thick_slices_smooth,thick_slices_linear}.png
 # from the real windows: imports the demo study (and, when ../shared/data is beside the project, the Philips
 # DICOMDIR export with its missing files) into a temporary database, opens the review (once more
 # with a ruler, a label, an arrow and an angle placed by clicks) and the settings page under Xvfb
-# and grabs what the X server shows. Run after `scripts/linework.sh test` (or give a build dir).
+# and grabs what the X server shows; then opens the demo study by path and shows it smoothed across
+# its thick slices and with straight lines between them. Run after `scripts/linework.sh test` (or give a build dir).
 #
 #   scripts/user_guide_screenshots.sh [BUILD_DIR]
 set -euo pipefail

@@ -84,6 +84,36 @@ bool annotate(ReviewWidget& review) {
     return made == 4;
 }
 
+// The demo study (`path`, 5.6 mm slices on average) opened in the window, then shown smoothed
+// across its thick slices (the default) and with straight lines between them (Settings:
+// "Smooth across thick slices" off): the user guide's after and before.
+bool saveThickSliceReviews(MainWindow& window, const QString& path, const QDir& out) {
+    // The review of this path, not the one open before it.
+    ReviewWidget* opened = nullptr;
+    const QMetaObject::Connection connection = QObject::connect(
+        &window, &MainWindow::reviewOpened, [&](ReviewWidget* review) { opened = review; });
+    window.openPath(path);
+    const bool open = bench::waitFor([&] { return opened != nullptr; });
+    QObject::disconnect(connection);
+    if (!open)
+        return false;
+    ReviewWidget& review = *opened;
+    // Settled at a view: the camera's frame asked for and shown, the worker idle.
+    const auto showAt = [&](const std::function<void()>& change) {
+        const std::uint64_t shown = review.status().framesShown;
+        change();
+        return bench::waitFor(
+            [&] { return review.status().framesShown > shown && !review.isBusy(); });
+    };
+    bool ok = bench::waitFor([&] { return review.status().framesShown > 0 && !review.isBusy(); });
+    ok = showAt([&] { review.camera().setView(30.0, 15.0); }) && ok;
+    ok = saveWindow(window, out.filePath("thick_slices_smooth.png")) && ok;
+    ReviewSettings straight = review.settings();
+    straight.thickSlices = lw::render::ThickSlices::Linear;
+    ok = showAt([&] { review.applySettings(straight); }) && ok;
+    return saveWindow(window, out.filePath("thick_slices_linear.png")) && ok;
+}
+
 } // namespace
 
 int main(int argc, char* argv[]) {
@@ -158,5 +188,7 @@ int main(int argc, char* argv[]) {
         QTest::qWait(200);
         ok = saveWindow(*settings, out.filePath("settings_appearance.png")) && ok;
     }
+    settings->close();
+    ok = saveThickSliceReviews(window, args.at(1), out) && ok;
     return ok ? 0 : 1;
 }
