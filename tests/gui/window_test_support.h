@@ -9,6 +9,7 @@
 #include "shell/main_window.h"
 
 #include <QElapsedTimer>
+#include <QPointer>
 #include <QSignalSpy>
 #include <QTemporaryDir>
 #include <QTest>
@@ -19,16 +20,28 @@ inline QString demoStudy() {
     return sourcePath() + "/resources/demo/ct_head_ge_tilt";
 }
 
+// Waits for the review that the open call just made brings (MainWindow::reviewOpened: a new tab,
+// or the tab of a series that was open already) and for its first frame -- not for whichever
+// review is current, which right after an open can still be the one open before it. Call it
+// right after openPath / openSeries: the review arrives through the event loop, which has not
+// run yet.
 inline bool waitForReview(gui::MainWindow& window, int timeoutMs = 60000) {
+    QPointer<gui::ReviewWidget> opened;
+    bool arrived = false;
+    const QMetaObject::Connection connection =
+        QObject::connect(&window, &gui::MainWindow::reviewOpened, [&](gui::ReviewWidget* review) {
+            opened = review;
+            arrived = true;
+        });
     QElapsedTimer timer;
     timer.start();
-    while (timer.elapsed() < timeoutMs) {
+    bool shown = false;
+    while (!shown && timer.elapsed() < timeoutMs) {
         QTest::qWait(20);
-        gui::ReviewWidget* review = window.currentReview();
-        if (review && review->status().framesShown > 0 && !review->isBusy())
-            return true;
+        shown = arrived && opened && opened->status().framesShown > 0 && !opened->isBusy();
     }
-    return false;
+    QObject::disconnect(connection);
+    return shown;
 }
 
 inline QString importAndFindSeries(gui::MainWindow& window, const QString& path) {
