@@ -54,11 +54,20 @@ struct HermiteWeights {
           y1(-2.0f * t * t * t + 3.0f * t * t), m1(t * t * t - t * t) {}
 };
 
+// std::lround's rounding (halves away from zero), written out so that it inlines: the integer
+// part by truncation and the fraction compared with one half -- both exact for the 8- and 16-bit
+// ranges of the integer voxel types (a float holds every integer up to 2^24 and its fraction).
+inline int roundHalfAway(float value) {
+    const int whole = int(value);
+    const float fraction = value - float(whole);
+    return whole + int(fraction >= 0.5f) - int(fraction <= -0.5f);
+}
+
 template <typename T> T storedFrom(float value) {
     if constexpr (std::is_floating_point_v<T>)
         return T(value);
     else
-        return T(std::lround(value)); // linear and monotone blends stay between the T values
+        return T(roundHalfAway(value)); // linear and monotone blends stay between the T values
 }
 
 // One refined slice: the two original slices it lies between blended into `plane` (float, the
@@ -124,9 +133,15 @@ template <typename T> struct SliceRefiner {
     void refineSlices(std::size_t first, std::size_t end) const {
         std::vector<float> plane(std::size_t(sourceDims.x) * std::size_t(sourceDims.y));
         std::vector<float> row(std::size_t(sourceDims.x));
+        const bool inPlaneAsIs = dims.x == sourceDims.x && dims.y == sourceDims.y;
         for (std::size_t k = first; k < end; ++k) {
             blendPlane(int(k), plane);
             T* slice = target + std::size_t(dims.x) * std::size_t(dims.y) * k;
+            if (inPlaneAsIs) { // split along k only: the plane is the slice (the same values)
+                for (std::size_t v = 0; v < plane.size(); ++v)
+                    slice[v] = storedFrom<T>(plane[v]);
+                continue;
+            }
             for (int j = 0; j < dims.y; ++j)
                 refineRow(plane, j, row, slice + std::size_t(dims.x) * std::size_t(j));
         }
