@@ -47,12 +47,14 @@ commands:
                               pixel within 1 px; blue: true, not drawn) as PNGs in DIR
   quality INPUT [--series UID] --iso HU [--views sweep|N | --view AZ,EL] [--size WxH]
           [--min-stroke PX] [--chunks ..] [--mode ..] [--camera ..] [--backend ..] [--threads N]
-          [--border ..] [--gradient ..] [--oversample ..] [--thick-slices ..] [--images DIR] [--json]
+          [--border ..] [--gradient ..] [--oversample ..] [--thick-slices ..] [--noise HU]
+          [--images DIR] [--json]
                               line quality on a real CT (issue 7's goals): at each view (default
                               the 32 of the accuracy sweep, 1024x1024, strokes pruned as in
                               `render`) the shaded panel's outer outline covered by each method's
                               lines (1 px), line pixels in groups under 10 px, methods 1~3 and
-                              2 (along-segment)~3 agreeing both ways; worst and median
+                              2 (along-segment)~3 agreeing both ways; worst and median;
+                              --noise HU: Gaussian noise of that deviation added first (seeded)
   thick-slices INPUT [--series UID] --iso HU [--average N | --thick PATH [--thick-series UID]]
           [--method 1|2|3] [--views sweep|N | --view AZ,EL] [--size WxH] [--backend ..]
           [--threads N] [--min-stroke PX] [--images DIR] [--save-thick OUT.nrrd] [--json]

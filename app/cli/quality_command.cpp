@@ -14,6 +14,7 @@
 #include "lw/core/png_io.h"
 #include "lw/evaluation/contour_score.h"
 #include "lw/evaluation/line_quality.h"
+#include "lw/evaluation/thick_slices.h"
 #include "lw/evaluation/view_sweep.h"
 #include "lw/render/renderer_factory.h"
 #include "lw/render/shaded_surface_cpu.h"
@@ -47,7 +48,7 @@ std::set<std::string> qualityOptions() {
     std::set<std::string> names = panelRenderOptions();
     for (const char* own : {"method", "visibility", "view"})
         names.erase(own);
-    names.insert({"series", "view", "views", "images"});
+    names.insert({"series", "view", "views", "images", "noise"});
     return names;
 }
 
@@ -142,6 +143,11 @@ int runQuality(const std::vector<std::string>& args, std::ostream& out) {
     createRenderers(options.request, renderers, notes);
     input::OpenedVolume opened = openCliInput(options.input, options.series);
     volume = std::move(opened.volume);
+    // --noise SIGMA: scanner-like noise (real units) before anything else, as a sharp kernel's.
+    const double noise = arguments.number("noise", 0.0);
+    if (!(noise >= 0.0))
+        throw UsageError("--noise", "expected a standard deviation >= 0 (real units, HU for CT)");
+    evaluation::addVoxelNoise(volume, noise);
     oversampleForRendering(arguments, render::VolumeSampling{}, volume);
     fitToVolume(arguments, volume, options.request, options.setup);
     for (auto& renderer : renderers)

@@ -1,7 +1,8 @@
 // `linework-cli thick-slices` end to end on the CT phantom: a thick version (the mean of every
 // five 1 mm slices, 5 mm) drawn smoothly across its slices meets issue 27's goals against the
 // thin drawing and does better than straight lines; a series measured against itself agrees
-// exactly (one camera for both); --save-thick writes the thick series; bad options are refused.
+// exactly (one camera for both); --save-thick writes the thick series; bad options are refused;
+// and `quality --noise` adds speckle.
 #include "cli_runner.h"
 #include "quality_cli.h"
 #include "test_support.h"
@@ -77,4 +78,18 @@ TEST(ThickSlicesCommand, RefusesBadOptions) {
         EXPECT_EQ(r.exitCode, 2) << options << "\n" << r.out << r.err;
     }
     EXPECT_EQ(runCli("thick-slices phantom:32:ct --iso 300 --average 40 --view 0,0").exitCode, 1);
+}
+
+// quality --noise: the drawing of a noised phantom has more speckle before pruning than the
+// clean one's; a negative deviation is a usage error.
+TEST(QualityNoise, NoiseAddsSpeckle) {
+    const std::string command =
+        "quality phantom:64:ct --iso 300.5 --view 30,20 --size 256x256 --json";
+    const CliResult clean = runCli(command);
+    const CliResult noisy = runCli(command + " --noise 150");
+    ASSERT_EQ(clean.exitCode, 0) << clean.out << clean.err;
+    ASSERT_EQ(noisy.exitCode, 0) << noisy.out << noisy.err;
+    EXPECT_GT(numberOf(compact(noisy.out), "fragment_share_m3_unpruned"),
+              numberOf(compact(clean.out), "fragment_share_m3_unpruned"));
+    EXPECT_EQ(runCli(command + " --noise -5").exitCode, 2);
 }

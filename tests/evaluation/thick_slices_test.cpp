@@ -4,6 +4,7 @@
 #include "lw/core/error.h"
 #include "lw/evaluation/thick_slices.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <gtest/gtest.h>
@@ -63,6 +64,39 @@ TEST(ThickSlabs, RefusesTooFewSlices) {
     EXPECT_THROW(thickSlabsOf(thin, 5), core::Error);
     EXPECT_THROW(thickSlabsOf(thin, 0), core::Error);
     EXPECT_NO_THROW(thickSlabsOf(thin, 4));
+}
+
+} // namespace
+} // namespace lw::evaluation
+
+namespace lw::evaluation {
+namespace {
+
+// Scanner-like noise: zero mean and the asked deviation (in real units: a slope of 2 halves it in
+// stored units), the same from the same seed, clamped to the voxel type.
+TEST(VoxelNoise, HasTheAskedDeviationAndRepeats) {
+    volume::Volume a({64, 64, 16}, volume::VoxelType::Int16);
+    a.setValueMapping({2.0, -1024.0});
+    std::fill_n(a.dataAs<std::int16_t>(), a.voxelCount(), std::int16_t(700));
+    volume::Volume b = a.clone();
+    addVoxelNoise(a, 40.0, 7);
+    addVoxelNoise(b, 40.0, 7);
+    double sum = 0.0, squares = 0.0;
+    for (std::size_t v = 0; v < a.voxelCount(); ++v) {
+        ASSERT_EQ(a.dataAs<std::int16_t>()[v], b.dataAs<std::int16_t>()[v]);
+        const double stored = a.dataAs<std::int16_t>()[v] - 700.0;
+        sum += stored;
+        squares += stored * stored;
+    }
+    const double n = double(a.voxelCount());
+    EXPECT_NEAR(sum / n, 0.0, 0.1);
+    EXPECT_NEAR(std::sqrt(squares / n), 20.0, 0.3); // 40 HU at 2 HU a stored unit
+    volume::Volume bytes({256, 1, 1}, volume::VoxelType::UInt8);
+    std::fill_n(bytes.dataAs<std::uint8_t>(), 256, std::uint8_t(250));
+    addVoxelNoise(bytes, 50.0);
+    EXPECT_EQ(*std::max_element(bytes.dataAs<std::uint8_t>(), bytes.dataAs<std::uint8_t>() + 256),
+              255);
+    EXPECT_THROW(addVoxelNoise(bytes, -1.0), core::Error);
 }
 
 } // namespace

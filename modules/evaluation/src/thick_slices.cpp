@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <random>
 #include <string>
 #include <type_traits>
 #include <vector>
@@ -68,6 +70,29 @@ volume::Volume thickSlabsOf(const volume::Volume& thin, int slicesPerSlab) {
         }
     });
     return thick;
+}
+
+void addVoxelNoise(volume::Volume& volume, double sigma, unsigned seed) {
+    if (!(sigma >= 0.0))
+        throw core::Error("noise", "sigma must be at least 0");
+    if (sigma == 0.0)
+        return;
+    // Stored units: the mapping's slope scales real noise into them.
+    const double storedSigma = sigma / std::abs(volume.valueMapping().slope);
+    std::mt19937 random(seed);
+    std::normal_distribution<double> noise(0.0, storedSigma);
+    volume::dispatchVoxelType(volume.voxelType(), [&](auto tag) {
+        using T = decltype(tag);
+        T* data = volume.dataAs<T>();
+        for (std::size_t v = 0; v < volume.voxelCount(); ++v) {
+            const double value = double(data[v]) + noise(random);
+            if constexpr (std::is_floating_point_v<T>)
+                data[v] = T(value);
+            else
+                data[v] = T(std::clamp(std::round(value), double(std::numeric_limits<T>::min()),
+                                       double(std::numeric_limits<T>::max())));
+        }
+    });
 }
 
 } // namespace lw::evaluation

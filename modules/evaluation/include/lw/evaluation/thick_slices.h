@@ -18,4 +18,11 @@ namespace lw::evaluation {
 // in-plane geometry and a gantry tilt too, and uneven thin gaps give uneven thick ones.
 volume::Volume thickSlabsOf(const volume::Volume& thin, int slicesPerSlab);
 
+// Scanner-like noise for the line-quality measures: independent Gaussian noise of `sigma` real
+// units (HU for CT) added to every voxel, from a fixed seed, so a run is repeatable (integer
+// voxels rounded and clamped to their type's range). The noise of a sharp (bone) kernel is
+// close to white at the voxel scale; a thin series so noised stands in for a bone-kernel scan.
+// Throws core::Error for a negative sigma.
+void addVoxelNoise(volume::Volume& volume, double sigma, unsigned seed = 1);
+
 } // namespace lw::evaluation
