@@ -1,5 +1,5 @@
-// gtest main for Linework. Error-level log messages fail the running test (DESIGN.md: errors at
-// error level fail tests). With LINEWORK_TEST_REQUIRES_DATA the binary exits with the SKIP code
+// gtest main for Linework. Error-level log messages fail the running test (an error logged is a
+// failure, even where the code goes on). With LINEWORK_TEST_REQUIRES_DATA the binary exits with the SKIP code
 // when ../shared/data is missing, with LINEWORK_TEST_REQUIRES_CUDA when no CUDA device is present.
 // GL tests use gtest_main_gl.cpp instead. Any of them exits with the SKIP code when a program named
 // in the environment variable LINEWORK_TEST_REQUIRES_TOOLS (space separated, e.g. "pdftotext

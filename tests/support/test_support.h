@@ -6,7 +6,8 @@
 
 namespace lw::test {
 
-// Error-level log messages fail the running test (DESIGN.md: errors at error level fail tests);
+// Error-level log messages fail the running test (an error logged is a failure, even where the
+// code goes on);
 // every message is echoed to stderr. Installed by the gtest mains before RUN_ALL_TESTS.
 void installFailingLogSink();
 // ../shared/data (or $LINEWORK_SHARED_DATA) when it exists.

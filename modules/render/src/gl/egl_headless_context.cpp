@@ -246,7 +246,8 @@ EglHeadlessContext::EglHeadlessContext(const EglContextOptions& options)
 
     // Candidates in order of preference. Hardware devices first (the NVIDIA machine has no window
     // system at all); Mesa lists its software rasterizer as a device too, which we only want
-    // after surfaceless Mesa (the path DESIGN.md documents for llvmpipe).
+    // after surfaceless Mesa (EGL_MESA_platform_surfaceless: llvmpipe without a window system,
+    // the path CI and the development machines take).
     std::vector<Candidate> hardware, software;
     std::string attempts;
     // EGL_EXT_device_base is the older name that bundles enumeration and query.

@@ -1,8 +1,9 @@
 #pragma once
 
-// The GL renderers need nothing but "a current OpenGL 4.x core context" (DESIGN.md, plain GL behind
-// a thin context): headless EGL here and in the CLI, QOpenGLWidget's context in the GUI. Only this
-// interface crosses module boundaries; EGL types stay in the .cpp.
+// The GL renderers need nothing but a current OpenGL 4.x core context -- plain GL behind a thin
+// context, so the same renderer code runs headless and in a widget: headless EGL here and in the
+// CLI, QOpenGLWidget's context in the GUI. Only this interface crosses module boundaries; EGL
+// types stay in the .cpp.
 
 #include <algorithm>
 #include <cctype>

@@ -1,7 +1,8 @@
 #pragma once
 
 // Picks the implementation of a silhouette method for a requested back-end, so the CLI, the GUI
-// and the benchmarks do not each repeat the choice (DESIGN.md: one interface, chosen at run time).
+// and the benchmarks do not each repeat the choice: one interface per method
+// (silhouette_renderer.h), its back-end chosen at run time.
 
 #include "lw/render/silhouette_renderer.h"
 
