@@ -6,6 +6,7 @@
 #include "test_support.h"
 
 #include <filesystem>
+#include <fstream>
 #include <gtest/gtest.h>
 #include <random>
 #include <zlib.h>
@@ -262,7 +263,36 @@ TEST(ImageCompare, BaselineHelperWritesDiffAndActual) {
     EXPECT_FALSE(result.matches);
     EXPECT_TRUE(std::filesystem::exists(dir / "case.diff.png"));
     EXPECT_EQ(readPng(dir / "case.diff.actual.png"), changed);
-    EXPECT_THROW(compareWithBaseline(changed, dir / "missing.png", ImageTolerance{}), Error);
+}
+
+// The one baseline policy: a missing baseline fails, naming the path and how to make it (the
+// actual image left beside the diff path); LINEWORK_UPDATE_BASELINES=1 writes instead of
+// comparing; an unreadable baseline throws.
+TEST(ImageCompare, BaselinePolicyMissingUpdateUnreadable) {
+    lw::test::TempDir dir;
+    const ImageRgba8 image = testImage(9, 9, 8);
+    const std::filesystem::path baseline = dir / "new" / "case.png";
+    const auto missing =
+        compareWithBaseline(image, baseline, ContentTolerance{}, dir / "case.diff.png");
+    EXPECT_FALSE(missing.matches);
+    EXPECT_TRUE(missing.baselineMissing);
+    EXPECT_NE(missing.describe().find(baseline.string()), std::string::npos);
+    EXPECT_NE(missing.describe().find("LINEWORK_UPDATE_BASELINES=1"), std::string::npos);
+    EXPECT_EQ(readPng(dir / "case.diff.actual.png"), image);
+    EXPECT_FALSE(std::filesystem::exists(baseline)); // never written unasked
+
+    ASSERT_EQ(setenv("LINEWORK_UPDATE_BASELINES", "1", 1), 0);
+    EXPECT_TRUE(updatingBaselines());
+    const auto written = compareWithBaseline(image, baseline, ImageTolerance{});
+    unsetenv("LINEWORK_UPDATE_BASELINES");
+    EXPECT_TRUE(written.baselineWritten);
+    EXPECT_TRUE(written.matches);
+    EXPECT_EQ(readPng(baseline), image);
+    EXPECT_FALSE(updatingBaselines());
+    EXPECT_TRUE(compareWithBaseline(image, baseline, ContentTolerance{}).matches);
+
+    std::ofstream(dir / "broken.png") << "not a png";
+    EXPECT_THROW(compareWithBaseline(image, dir / "broken.png", ImageTolerance{}), Error);
 }
 
 // The baseline helper the image tests share: tolerance relative to the content, and an empty

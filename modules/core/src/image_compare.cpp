@@ -6,7 +6,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <optional>
 #include <sstream>
+#include <string_view>
 
 namespace lw::core {
 
@@ -20,6 +22,11 @@ int channelDifference(Rgba8 a, Rgba8 b) {
 } // namespace
 
 std::string ImageComparison::describe() const {
+    if (baselineMissing)
+        return "missing baseline " + baselinePath.string() +
+               ": run the test with LINEWORK_UPDATE_BASELINES=1 to write it, look at it, commit it";
+    if (baselineWritten)
+        return "baseline written: " + baselinePath.string() + " (LINEWORK_UPDATE_BASELINES)";
     std::ostringstream out;
     out << (matches ? "images match" : "images differ");
     if (!sizesMatch)
@@ -96,17 +103,57 @@ ImageComparison compareImages(const ImageRgba8& actual, const ImageRgba8& expect
     return result;
 }
 
+bool updatingBaselines() {
+    const char* update = std::getenv("LINEWORK_UPDATE_BASELINES");
+    return update && std::string_view(update) == "1";
+}
+
+namespace {
+
+// The actual image beside the diff path, as "<diff stem>.actual.png".
+void writeActualBeside(const ImageRgba8& actual, const std::filesystem::path& diffPath) {
+    if (diffPath.empty() || actual.isEmpty())
+        return;
+    auto actualPath = diffPath;
+    actualPath.replace_filename(diffPath.stem().string() + ".actual.png");
+    writePng(actualPath, actual, PngFormat::Rgba);
+}
+
+// What the policy does before any comparison: write the baseline, or report it missing.
+std::optional<ImageComparison> baselineWrittenOrMissing(const ImageRgba8& actual,
+                                                        const std::filesystem::path& baselinePng,
+                                                        const std::filesystem::path& diffPath) {
+    ImageComparison result;
+    result.baselinePath = baselinePng;
+    if (updatingBaselines()) {
+        if (baselinePng.has_parent_path())
+            std::filesystem::create_directories(baselinePng.parent_path());
+        writePng(baselinePng, actual, PngFormat::Rgba);
+        result.baselineWritten = true;
+        result.matches = true;
+        return result;
+    }
+    if (std::filesystem::exists(baselinePng))
+        return std::nullopt;
+    writeActualBeside(actual, diffPath);
+    result.baselineMissing = true;
+    return result;
+}
+
+} // namespace
+
 ImageComparison compareWithBaseline(const ImageRgba8& actual,
                                     const std::filesystem::path& baselinePng,
                                     ImageTolerance tolerance,
                                     const std::filesystem::path& diffPath) {
+    if (std::optional<ImageComparison> early =
+            baselineWrittenOrMissing(actual, baselinePng, diffPath))
+        return *early;
     const ImageRgba8 expected = readPng(baselinePng);
     ImageComparison result = compareImages(actual, expected, tolerance, diffPath);
-    if (result.diffWritten && !actual.isEmpty()) {
-        auto actualPath = diffPath;
-        actualPath.replace_filename(diffPath.stem().string() + ".actual.png");
-        writePng(actualPath, actual, PngFormat::Rgba);
-    }
+    result.baselinePath = baselinePng;
+    if (result.diffWritten)
+        writeActualBeside(actual, diffPath);
     return result;
 }
 
@@ -125,6 +172,9 @@ ImageComparison compareWithBaseline(const ImageRgba8& actual,
                                     const std::filesystem::path& baselinePng,
                                     ContentTolerance tolerance,
                                     const std::filesystem::path& diffPath) {
+    if (std::optional<ImageComparison> early =
+            baselineWrittenOrMissing(actual, baselinePng, diffPath))
+        return *early;
     const ImageRgba8 expected = readPng(baselinePng);
     if (expected.isEmpty())
         throw Error(baselinePng.string(), "the baseline image is empty");

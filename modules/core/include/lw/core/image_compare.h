@@ -36,6 +36,11 @@ struct ImageComparison {
     bool matches = false;
     bool diffWritten = false;
     std::filesystem::path diffPath;
+    // compareWithBaseline only: the baseline file was not there (matches is false), or
+    // LINEWORK_UPDATE_BASELINES asked for it to be written instead of compared (matches is true).
+    bool baselineMissing = false;
+    bool baselineWritten = false;
+    std::filesystem::path baselinePath;
 
     // One line for test failure messages.
     std::string describe() const;
@@ -57,14 +62,20 @@ ImageRgba8 diffImage(const ImageRgba8& actual, const ImageRgba8& expected,
 ImageComparison compareImages(const ImageRgba8& actual, const ImageRgba8& expected,
                               ImageTolerance tolerance, const std::filesystem::path& diffPath);
 
-// The baseline-test helper: reads `baselinePng` (Error if missing or unreadable) and compares
-// `actual` with it; on mismatch writes `diffPath` (if given) and `actual` next to it as
-// "<diff stem>.actual.png", so a reviewer can accept the new image by copying it over.
+// The baseline policy of every image test. With LINEWORK_UPDATE_BASELINES=1 in the environment
+// `actual` is written to `baselinePng` (atomically; a person then looks at it and commits it) and
+// nothing is compared. Otherwise `actual` is compared with the baseline; on mismatch `diffPath`
+// (if given) is written, and `actual` next to it as "<diff stem>.actual.png", so a reviewer can
+// accept the new image by copying it over. A missing baseline does not match: describe() names
+// the path to create and how (`actual` written beside the diff path as for a mismatch). An
+// unreadable baseline throws core::Error.
 ImageComparison compareWithBaseline(const ImageRgba8& actual,
                                     const std::filesystem::path& baselinePng,
                                     ImageTolerance tolerance,
                                     const std::filesystem::path& diffPath = {});
 // The same with a tolerance relative to the baseline's content (see ContentTolerance).
+// True when LINEWORK_UPDATE_BASELINES=1 asks compareWithBaseline to write baselines.
+bool updatingBaselines();
 ImageComparison compareWithBaseline(const ImageRgba8& actual,
                                     const std::filesystem::path& baselinePng,
                                     ContentTolerance tolerance,
