@@ -24,18 +24,6 @@
         <translation>Haut</translation>
     </message>
     <message>
-        <source>Method 1: marching cubes + geometry shader</source>
-        <translation>Methode 1: Marching Cubes + Geometry-Shader</translation>
-    </message>
-    <message>
-        <source>Method 2: silhouette only + ray-cast visibility</source>
-        <translation>Methode 2: nur Silhouette + Sichtbarkeit per Raycasting</translation>
-    </message>
-    <message>
-        <source>Method 3: own z-buffer rasterizer</source>
-        <translation>Methode 3: eigener Z-Buffer-Rasterisierer</translation>
-    </message>
-    <message>
         <source>System language</source>
         <translation>Systemsprache</translation>
     </message>
@@ -1302,6 +1290,21 @@ Die Dateien auf dem Datenträger bleiben erhalten; Sie können sie erneut import
     <message>
         <source>out of memory while loading the volume</source>
         <translation>zu wenig Speicher beim Laden des Volumens</translation>
+    </message>
+</context>
+<context>
+    <name>lw::render::SilhouetteMethod</name>
+    <message>
+        <source>Method 1: marching cubes + geometry shader</source>
+        <translation>Methode 1: Marching Cubes + Geometry-Shader</translation>
+    </message>
+    <message>
+        <source>Method 2: silhouette only + ray-cast visibility</source>
+        <translation>Methode 2: nur Silhouette + Sichtbarkeit per Raycasting</translation>
+    </message>
+    <message>
+        <source>Method 3: own z-buffer rasterizer</source>
+        <translation>Methode 3: eigener Z-Buffer-Rasterisierer</translation>
     </message>
 </context>
 <context>

@@ -24,18 +24,6 @@
         <translation>Piele</translation>
     </message>
     <message>
-        <source>Method 1: marching cubes + geometry shader</source>
-        <translation>Metoda 1: marching cubes + geometry shader</translation>
-    </message>
-    <message>
-        <source>Method 2: silhouette only + ray-cast visibility</source>
-        <translation>Metoda 2: doar silueta + vizibilitate prin ray casting</translation>
-    </message>
-    <message>
-        <source>Method 3: own z-buffer rasterizer</source>
-        <translation>Metoda 3: rasterizator propriu cu z-buffer</translation>
-    </message>
-    <message>
         <source>System language</source>
         <translation>Limba sistemului</translation>
     </message>
@@ -1307,6 +1295,21 @@ Fișierele de pe disc sunt păstrate; le puteți importa din nou.</numerusform>
     <message>
         <source>out of memory while loading the volume</source>
         <translation>memorie insuficientă la încărcarea volumului</translation>
+    </message>
+</context>
+<context>
+    <name>lw::render::SilhouetteMethod</name>
+    <message>
+        <source>Method 1: marching cubes + geometry shader</source>
+        <translation>Metoda 1: marching cubes + geometry shader</translation>
+    </message>
+    <message>
+        <source>Method 2: silhouette only + ray-cast visibility</source>
+        <translation>Metoda 2: doar silueta + vizibilitate prin ray casting</translation>
+    </message>
+    <message>
+        <source>Method 3: own z-buffer rasterizer</source>
+        <translation>Metoda 3: rasterizator propriu cu z-buffer</translation>
     </message>
 </context>
 <context>

@@ -12,6 +12,7 @@
 #include "lw/render/iso_surface.h"
 #include "lw/render/phantom.h"
 #include "lw/render/renderer_factory.h"
+#include "lw/render/silhouette_methods.h"
 #include "lw/volume/volume_reader.h"
 #include "panel_rendering.h"
 
@@ -80,7 +81,7 @@ struct BenchVolume {
 };
 
 struct Row {
-    std::string method; // "1", "2", "3" or "mc"
+    std::string method; // a silhouette method's key or "mc"
     std::string variant;
     std::string mode;               // empty for mc (it always extracts)
     std::optional<bool> visibility; // none for mc
@@ -98,7 +99,7 @@ struct Row {
 };
 
 struct Plan {
-    std::vector<std::string> methods; // in order, "mc" and "1".."3"
+    std::vector<std::string> methods; // in order, "mc" and method keys
     std::vector<std::string> variants;
     std::vector<std::string> modes;
     std::vector<bool> visibilities{true, false};
@@ -260,17 +261,18 @@ void benchVolume(const BenchVolume& input, const Plan& plan, std::vector<Row>& r
         }
         std::unique_ptr<render::SilhouetteRenderer> renderer;
         std::string skipped;
+        const render::SilhouetteMethodInfo& info =
+            render::silhouetteMethodInfo(render::parseSilhouetteMethod(method, "--methods"));
         try {
             std::string note;
-            renderer = render::createSilhouetteRenderer(
-                render::parseSilhouetteMethod(method, "--methods"), plan.backend, &note);
+            renderer = render::createSilhouetteRenderer(info.method, plan.backend, &note);
             if (!note.empty() && std::find(notes.begin(), notes.end(), note) == notes.end())
                 notes.push_back(note);
             renderer->setVolume(input.volume);
         } catch (const core::Error& error) {
             // Only an unavailable method is skipped (no GL context, no CUDA kernels for it);
             // anything else is a failure.
-            if (method != "1")
+            if (!info.needsOpenGl)
                 throw;
             skipped = error.what();
             kLog.warning("bench: method " + method + " skipped: " + skipped);
@@ -289,7 +291,7 @@ void benchVolume(const BenchVolume& input, const Plan& plan, std::vector<Row>& r
                     row.mode = mode;
                     row.visibility = visibility;
                     row.backend =
-                        method == "1" ? "gl" : std::string(render::backendName(plan.backend));
+                        info.needsOpenGl ? "gl" : std::string(render::backendName(plan.backend));
                     row.volume = input.label;
                     row.brickCells = brickCellsFor(variant, input.volume);
                     row.skipped = skipped;
@@ -362,6 +364,16 @@ void writeTextRow(std::ostream& out, const Row& row) {
     out << line;
 }
 
+// What bench measures: "mc" (marching cubes alone) and every silhouette method's key.
+std::string benchChoices(const char* separator) {
+    std::string choices = "mc";
+    for (const render::SilhouetteMethodInfo& info : render::silhouetteMethods()) {
+        choices += separator;
+        choices += info.key;
+    }
+    return choices;
+}
+
 std::vector<std::string> parseChoiceList(const std::string& text, const std::string& option,
                                          const std::vector<std::string>& allowed) {
     std::vector<std::string> values;
@@ -396,8 +408,8 @@ Plan parsePlan(const Arguments& arguments, std::optional<std::string>& peakMetho
     plan.backend =
         parseUsage([&] { return render::parseBackend(arguments.option("backend", "auto")); });
     render::resolveBackend(plan.backend); // fail before the first run (no CUDA device)
-    plan.methods = parseChoiceList(arguments.option("methods", "mc,1,2,3"), "--methods",
-                                   {"mc", "1", "2", "3"});
+    plan.methods = parseChoiceList(arguments.option("methods", benchChoices(",")), "--methods",
+                                   splitList(benchChoices(",")));
     plan.variants = parseChoiceList(arguments.option("variants", "S,L"), "--variants", {"S", "L"});
     plan.modes = parseChoiceList(arguments.option("modes", "a,b"), "--modes", {"a", "b"});
     const double repeat = arguments.number("repeat", 5);
@@ -421,7 +433,7 @@ Plan parsePlan(const Arguments& arguments, std::optional<std::string>& peakMetho
         const std::vector<std::string> parts = splitList(*peak);
         if (parts.size() != 2)
             throw UsageError("--peak-memory-of " + *peak, "expected METHOD,VARIANT, e.g. 3,L");
-        plan.methods = parseChoiceList(parts[0], "--peak-memory-of", {"mc", "1", "2", "3"});
+        plan.methods = parseChoiceList(parts[0], "--peak-memory-of", splitList(benchChoices(",")));
         plan.variants = parseChoiceList(parts[1], "--peak-memory-of", {"S", "L"});
         peakMethod = *peak;
     }

@@ -5,10 +5,7 @@
 #include "lw/render/iso_surface.h"
 #include "lw/render/renderer_factory.h"
 #include "lw/render/shaded_surface_cpu.h"
-
-#if LINEWORK_GL
-#include "lw/render/geometry_shader_silhouette_renderer.h"
-#endif
+#include "lw/render/silhouette_methods.h"
 
 #include <algorithm>
 #include <cctype>
@@ -81,14 +78,11 @@ render::Mesh extractForRequest(const volume::Volume& volume, const RenderRequest
 // method 3 from the mesh its silhouette frame extracted so both panels show the same surface.
 core::ImageRgba8 renderIsoPanel(render::SilhouetteRenderer& renderer, const volume::Volume& volume,
                                 const render::Camera& camera, const RenderRequest& request) {
-#if LINEWORK_GL
-    if (auto* gl = dynamic_cast<render::GeometryShaderSilhouetteRenderer*>(&renderer))
-        return gl->renderIsoPanel(camera, request.settings);
-#endif
+    if (std::optional<core::ImageRgba8> own = renderer.shadedIsoPanel(camera, request.settings))
+        return std::move(*own);
     render::Mesh extracted;
     const render::Mesh* mesh = &extracted;
-    const render::Mesh* kept =
-        renderer.method() == render::SilhouetteMethod::ZBuffer ? renderer.surfaceMesh() : nullptr;
+    const render::Mesh* kept = renderer.surfaceMesh();
     if (kept && request.wantSilhouette)
         mesh = kept;
     else
@@ -283,9 +277,10 @@ std::unique_ptr<render::SilhouetteRenderer> createRendererOrSkip(render::Silhoue
     try {
         return render::createSilhouetteRenderer(method, backend);
     } catch (const core::Error& error) {
-        if (method != render::SilhouetteMethod::GeometryShader)
+        const render::SilhouetteMethodInfo& info = render::silhouetteMethodInfo(method);
+        if (!info.needsOpenGl)
             throw;
-        notes.push_back("method 1 skipped: " + error.reason());
+        notes.push_back("method " + std::string(info.key) + " skipped: " + error.reason());
         return nullptr;
     }
 }

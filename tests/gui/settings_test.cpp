@@ -91,7 +91,7 @@ void SettingsTest::brokenValuesFallBackToDefaults() {
     store.setValue("review/gpuMemoryBudgetMiB", -5);
     const ReviewSettings loaded = ReviewSettings::load(store);
     const ReviewSettings defaults;
-    QCOMPARE(int(loaded.method), 3);        // clamped into 1..3
+    QCOMPARE(int(loaded.method), 3);        // no method 7: the default
     QCOMPARE(loaded.gpuMemoryBudgetMiB, 0); // clamped: automatic
     QCOMPARE(loaded.lineColour, defaults.lineColour);
     QCOMPARE(loaded.fixedBrickCells, defaults.fixedBrickCells);

@@ -3,6 +3,7 @@
 #include "lw/core/error.h"
 #include "lw/core/log.h"
 #include "lw/render/renderer_factory.h"
+#include "lw/render/silhouette_methods.h"
 
 #include <gtest/gtest.h>
 #include <string>
@@ -27,6 +28,27 @@ TEST(RendererFactory, ParsesMethodsAndBackends) {
     EXPECT_EQ(parseBackend("cuda"), Backend::Cuda);
     EXPECT_EQ(parseBackend("auto"), Backend::Auto);
     EXPECT_EQ(backendName(Backend::Cuda), "cuda");
+}
+
+// The method registry: every method once, in number order, its key parsing back to it, the
+// capabilities the callers ask for; a value that is no method throws instead of being clamped.
+TEST(SilhouetteMethods, OneDescriptorPerMethod) {
+    int expected = 1;
+    for (const SilhouetteMethodInfo& info : silhouetteMethods()) {
+        EXPECT_EQ(info.number, expected++);
+        EXPECT_EQ(parseSilhouetteMethod(info.key), info.method);
+        EXPECT_EQ(&silhouetteMethodInfo(info.method), &info);
+        EXPECT_EQ(findSilhouetteMethod(info.key), &info);
+        EXPECT_FALSE(info.name.empty());
+        EXPECT_NE(info.label.find(std::to_string(info.number)), std::string_view::npos);
+    }
+    EXPECT_EQ(silhouetteMethods().size(), 3u);
+    EXPECT_EQ(silhouetteMethodKeys(), "1, 2 or 3");
+    EXPECT_TRUE(silhouetteMethodInfo(SilhouetteMethod::GeometryShader).needsOpenGl);
+    EXPECT_FALSE(silhouetteMethodInfo(SilhouetteMethod::RayCastVisibility).keepsMesh);
+    EXPECT_TRUE(silhouetteMethodInfo(SilhouetteMethod::ZBuffer).drawsToTexture);
+    EXPECT_EQ(findSilhouetteMethod("4"), nullptr);
+    EXPECT_THROW(silhouetteMethodInfo(SilhouetteMethod(4)), lw::core::Error);
 }
 
 TEST(RendererFactory, BadValuesNameTheOption) {

@@ -181,16 +181,15 @@ void RenderWorker::addSuggestive(const FrameRequest& request, FrameResult& resul
     result.silhouette->times.drawMs += frame.ms;
 }
 
-// A texture for this frame where one can be drawn: the panel asks for it, and the renderer is
-// method 3 on CUDA with nothing to do on the host mask afterwards. Anywhere else no GL context
-// is made for nothing.
+// A texture for this frame where one can be drawn: the panel asks for it, and the renderer can
+// draw into one (method 3 on CUDA) with nothing to do on the host mask afterwards. Anywhere
+// else no GL context is made for nothing.
 render::GlFrameTarget* RenderWorker::frameTargetFor(const FrameRequest& request,
                                                     const render::SilhouetteRenderer& renderer,
                                                     std::shared_ptr<const LinesTexture>& token) {
     const glm::ivec2 size(request.camera.width(), request.camera.height());
     if (!request.silhouetteToTexture || !request.textureSurface ||
-        renderer.method() != render::SilhouetteMethod::ZBuffer ||
-        renderer.backendName() != "cuda" ||
+        !renderer.drawsToFrameTargets() ||
         render::frameTargetUse(size, size) != render::FrameTargetUse::Texture)
         return nullptr;
     if (!m_textures)

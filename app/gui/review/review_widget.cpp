@@ -7,6 +7,7 @@
 #include "lw/render/gl_context.h"
 #include "lw/render/renderer_factory.h"
 #include "lw/render/silhouette_gl_renderer.h"
+#include "lw/render/silhouette_methods.h"
 #include "lw/render/surface_picking.h"
 #include "lw/volume/oversampling.h"
 #include "review/iso_control.h"
@@ -329,7 +330,7 @@ void ReviewWidget::requestFrame(bool newIso) {
     // suggestive contours (added to the mask on the host) still need the mask on the host.
     request.silhouetteToTexture = m_drawsInPanels && !m_settings.silhouetteOnIso &&
                                   !request.suggestive &&
-                                  m_settings.method == render::SilhouetteMethod::ZBuffer;
+                                  render::silhouetteMethodInfo(m_settings.method).drawsToTexture;
     request.wantMesh = newIso || !m_meshCurrent || (modeB && methodOneInPanel());
     request.forceExtract = modeB && methodOneInPanel() && !newIso;
     if (!m_drawsInPanels) {

@@ -1,7 +1,9 @@
 #include "settings/review_settings.h"
 
 #include "lw/render/iso_surface.h"
+#include "lw/render/silhouette_methods.h"
 
+#include <QCoreApplication>
 #include <QObject>
 #include <QSettings>
 #include <algorithm>
@@ -50,7 +52,10 @@ QList<IsoPreset> ReviewSettings::defaultPresets() {
 ReviewSettings ReviewSettings::load(QSettings& settings) {
     ReviewSettings s;
     settings.beginGroup(kGroup);
-    s.method = render::SilhouetteMethod(clampInt(settings.value("method"), 1, 3, int(s.method)));
+    // A key no method has (an older or newer build's) keeps the default.
+    if (const render::SilhouetteMethodInfo* info =
+            render::findSilhouetteMethod(settings.value("method").toString().toStdString()))
+        s.method = info->method;
     s.chunking = Chunking(clampInt(settings.value("chunking"), 0, 2, int(s.chunking)));
     s.fixedBrickCells = clampInt(settings.value("brickCells"), 8, 1024, s.fixedBrickCells);
     s.memoryBudgetMiB = clampInt(settings.value("memoryBudgetMiB"), 64, 1 << 20, s.memoryBudgetMiB);
@@ -91,7 +96,9 @@ ReviewSettings ReviewSettings::load(QSettings& settings) {
 
 void ReviewSettings::save(QSettings& settings) const {
     settings.beginGroup(kGroup);
-    settings.setValue("method", int(method));
+    settings.setValue(
+        "method", QString::fromUtf8(render::silhouetteMethodInfo(method).key.data(),
+                                    qsizetype(render::silhouetteMethodInfo(method).key.size())));
     settings.setValue("chunking", int(chunking));
     settings.setValue("brickCells", fixedBrickCells);
     settings.setValue("memoryBudgetMiB", memoryBudgetMiB);
@@ -142,15 +149,8 @@ int ReviewSettings::brickCellsFor(glm::ivec3 dims, std::size_t bytes) const {
 }
 
 QString methodName(render::SilhouetteMethod method) {
-    switch (method) {
-    case render::SilhouetteMethod::GeometryShader:
-        return QObject::tr("Method 1: marching cubes + geometry shader");
-    case render::SilhouetteMethod::RayCastVisibility:
-        return QObject::tr("Method 2: silhouette only + ray-cast visibility");
-    case render::SilhouetteMethod::ZBuffer:
-        return QObject::tr("Method 3: own z-buffer rasterizer");
-    }
-    return {};
+    const std::string label(render::silhouetteMethodInfo(method).label);
+    return QCoreApplication::translate(render::kSilhouetteMethodContext, label.c_str());
 }
 
 } // namespace lw::gui

@@ -1,6 +1,7 @@
 #include "settings/settings_dialog.h"
 
 #include "lw/core/error.h"
+#include "lw/render/silhouette_methods.h"
 #include "review/review_panel.h"
 #include "settings/ui_language.h"
 
@@ -79,12 +80,10 @@ QWidget* SettingsDialog::makeMethodPage() {
 
     auto* methods = new QVBoxLayout;
     m_method = new QButtonGroup(page);
-    for (auto method :
-         {render::SilhouetteMethod::GeometryShader, render::SilhouetteMethod::RayCastVisibility,
-          render::SilhouetteMethod::ZBuffer}) {
-        auto* button = new QRadioButton(methodName(method));
-        button->setObjectName(QStringLiteral("method%1").arg(int(method)));
-        m_method->addButton(button, int(method));
+    for (const render::SilhouetteMethodInfo& info : render::silhouetteMethods()) {
+        auto* button = new QRadioButton(methodName(info.method));
+        button->setObjectName(QStringLiteral("method%1").arg(info.number));
+        m_method->addButton(button, int(info.method));
         methods->addWidget(button);
     }
     form->addRow(tr("Silhouette method:"), methods);

@@ -3,6 +3,7 @@
 #include "lw/core/error.h"
 #include "lw/core/log.h"
 #include "lw/render/raycast_silhouette_renderer.h"
+#include "lw/render/silhouette_methods.h"
 #include "lw/render/zbuffer_silhouette_renderer.h"
 
 #if LINEWORK_GL
@@ -25,13 +26,10 @@ constexpr bool kCudaGlInterop = false;
 } // namespace
 
 SilhouetteMethod parseSilhouetteMethod(std::string_view text, std::string_view option) {
-    if (text == "1")
-        return SilhouetteMethod::GeometryShader;
-    if (text == "2")
-        return SilhouetteMethod::RayCastVisibility;
-    if (text == "3")
-        return SilhouetteMethod::ZBuffer;
-    throw core::Error(std::string(option) + " " + std::string(text), "expected 1, 2 or 3");
+    if (const SilhouetteMethodInfo* info = findSilhouetteMethod(text))
+        return info->method;
+    throw core::Error(std::string(option) + " " + std::string(text),
+                      "expected " + silhouetteMethodKeys());
 }
 
 Backend parseBackend(std::string_view text, std::string_view option) {
@@ -81,21 +79,21 @@ Backend resolveBackend(Backend requested, SilhouetteMethod method, std::string* 
     Backend chosen = Backend::Cpu;
     if (requested != Backend::Cpu) {
         const CudaAvailability cuda = cudaAvailability();
-        const bool hasKernels = method == SilhouetteMethod::ZBuffer ||
-                                method == SilhouetteMethod::RayCastVisibility ||
-                                (method == SilhouetteMethod::GeometryShader && kCudaGlInterop);
+        // A method drawn with OpenGL has CUDA only where this build has CUDA-GL interop.
+        const SilhouetteMethodInfo& info = silhouetteMethodInfo(method);
+        const bool hasKernels = info.hasCuda && (!info.needsOpenGl || kCudaGlInterop);
         if (requested == Backend::Cuda) {
             if (!cuda.available)
                 throw core::Error("--backend cuda", cuda.reason);
             if (!hasKernels)
                 throw core::Error("--backend cuda",
-                                  "method " + std::to_string(int(method)) +
+                                  "method " + std::string(info.key) +
                                       " has no CUDA implementation in this build");
             chosen = Backend::Cuda;
         } else if (!cuda.available) {
             note = "auto: " + cuda.reason + ", using CPU";
         } else if (!hasKernels) {
-            note = "auto: method " + std::to_string(int(method)) +
+            note = "auto: method " + std::string(info.key) +
                    " has no CUDA implementation yet, using CPU";
         } else {
             chosen = Backend::Cuda;
@@ -137,7 +135,8 @@ createSilhouetteRenderer(SilhouetteMethod method, Backend requested, std::string
         return std::make_unique<ZBufferSilhouetteRenderer>(backend == Backend::Cuda ? Backend::Cuda
                                                                                     : Backend::Cpu);
     }
-    throw core::Error("silhouette method", std::to_string(int(method)) + " is not 1, 2 or 3");
+    throw core::Error("silhouette method",
+                      std::to_string(int(method)) + " is not " + silhouetteMethodKeys());
 }
 
 } // namespace lw::render

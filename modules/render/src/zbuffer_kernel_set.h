@@ -26,6 +26,9 @@ class ZBufferKernelSet {
 public:
     virtual ~ZBufferKernelSet() = default;
     virtual std::string_view backendName() const = 0;
+    // Whether resolve() may draw into settings.frameTarget (the CUDA kernels, through CUDA-GL
+    // interop); the others fill the host mask.
+    virtual bool drawsToFrameTargets() const { return false; }
     // A new volume, or none: whatever was kept of the last one goes (device memory, host
     // registrations, the kept surface).
     virtual void bind(const volume::Volume* volume) = 0;

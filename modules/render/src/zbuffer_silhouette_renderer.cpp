@@ -120,6 +120,10 @@ std::string_view ZBufferSilhouetteRenderer::backendName() const {
                                : m_state->kernels->backendName();
 }
 
+bool ZBufferSilhouetteRenderer::drawsToFrameTargets() const {
+    return !m_state->onFallback && m_state->kernels->drawsToFrameTargets();
+}
+
 void ZBufferSilhouetteRenderer::setVolume(const volume::Volume& volume) {
     State& s = *m_state;
     s.volume = &volume;

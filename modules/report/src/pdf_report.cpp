@@ -1,5 +1,6 @@
 #include "lw/report/pdf_report.h"
 
+#include "lw/render/silhouette_methods.h"
 #include "lw/report/export_image.h"
 
 #include <QBuffer>
@@ -212,15 +213,13 @@ std::vector<Block> measurementBlocks(const ReportInfo& info,
 
 std::string describeRendering(render::SilhouetteMethod method, double iso,
                               const render::CameraSetup& view) {
-    static const char* const names[] = {"", "marching cubes + geometry-shader silhouette",
-                                        "silhouette with ray-cast visibility",
-                                        "z-buffer silhouette"};
-    const int number = std::clamp(int(method), 1, 3);
+    const render::SilhouetteMethodInfo& info = render::silhouetteMethodInfo(method);
     char text[256];
     std::snprintf(text, sizeof text,
                   "Linework silhouette method %d (%s, Morar et al. 2013), iso-value %g, "
                   "view azimuth %g, elevation %g",
-                  number, names[number], iso, view.azimuthDeg, view.elevationDeg);
+                  info.number, std::string(info.name).c_str(), iso, view.azimuthDeg,
+                  view.elevationDeg);
     return text;
 }
 

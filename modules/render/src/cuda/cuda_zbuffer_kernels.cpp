@@ -64,6 +64,7 @@ void check(const CudaStatus& status) {
 class CudaZBufferKernels final : public ZBufferKernelSet {
 public:
     std::string_view backendName() const override { return "cuda"; }
+    bool drawsToFrameTargets() const override { return true; }
 
     void bind(const volume::Volume* volume) override {
         m_marchingCubes.release(); // device buffers and a streamed volume's host registration

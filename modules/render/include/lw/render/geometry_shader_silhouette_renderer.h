@@ -75,6 +75,10 @@ public:
     // The shaded iso-surface panel for the same camera and settings (extracts first if the
     // cached mesh does not match them), RGBA8 top row first: `render --panel both`'s left half.
     core::ImageRgba8 renderIsoPanel(const Camera& camera, const SilhouetteSettings& settings);
+    std::optional<core::ImageRgba8> shadedIsoPanel(const Camera& camera,
+                                                   const SilhouetteSettings& settings) override {
+        return renderIsoPanel(camera, settings);
+    }
 
     // The mesh of the last S frame or iso panel (cached in mode a); empty before the first frame
     // and after an L frame.

@@ -9,6 +9,7 @@
 // Chunked ("L") variants are the same code with a brick schedule (settings.brickCells > 0);
 // the whole-volume ("S") variant is the one-brick case.
 
+#include "lw/core/image.h"
 #include "lw/core/progress.h"
 #include "lw/kernels/triangle_mesh.h"
 #include "lw/render/camera.h"
@@ -18,6 +19,7 @@
 
 #include <cstddef>
 #include <glm/glm.hpp>
+#include <optional>
 #include <string_view>
 
 namespace lw::render {
@@ -133,6 +135,18 @@ public:
     // show the same surface); null for a method that keeps no mesh (method 2). May extract or
     // download it on first use after a frame that did not need it on the host.
     virtual const Mesh* surfaceMesh() const { return nullptr; }
+    // Whether a frame given settings.frameTarget may draw its lines there (method 3 on CUDA
+    // with CUDA-GL interop): callers ask the renderer, not its method or back-end name.
+    virtual bool drawsToFrameTargets() const { return false; }
+    // The shaded iso panel of this camera drawn by the renderer itself (a method that draws with
+    // OpenGL shades with its own shaders), or nothing: the caller shades surfaceMesh() or an
+    // extracted mesh on the CPU.
+    virtual std::optional<core::ImageRgba8> shadedIsoPanel(const Camera& camera,
+                                                           const SilhouetteSettings& settings) {
+        (void)camera;
+        (void)settings;
+        return std::nullopt;
+    }
 
 protected:
     virtual SilhouetteFrame renderFrame(const Camera& camera,

@@ -39,6 +39,7 @@ public:
     SilhouetteMethod method() const override { return SilhouetteMethod::ZBuffer; }
     // The back-end of the last frame: "cuda", or "cpu" (also after a fall back to the CPU).
     std::string_view backendName() const override;
+    bool drawsToFrameTargets() const override;
     void setVolume(const volume::Volume& volume) override;
     void releaseVolume() override;
     SilhouetteFrame renderFrame(const Camera& camera, const SilhouetteSettings& settings) override;
