@@ -204,15 +204,26 @@ render::VolumeSampling parseVolumeSampling(const Arguments& arguments,
     return {*oversampling, *thickSlices};
 }
 
-void oversampleForRendering(const Arguments& arguments, render::VolumeSampling fallback,
-                            volume::Volume& volume) {
+render::SamplingPlan oversampleForRendering(const Arguments& arguments,
+                                            render::VolumeSampling fallback,
+                                            volume::Volume& volume) {
     const render::VolumeSampling sampling = parseVolumeSampling(arguments, fallback);
+    const render::SamplingPlan plan =
+        render::samplingPlan(volume.dims(), volume.geometry(), sampling);
     const unsigned threads = unsigned(std::max(0.0, arguments.number("threads", 0)));
     // Every command that draws takes --iso; the shape-based field of thick slices is of it.
     const double iso = arguments.number("iso", 0.0);
     if (std::optional<volume::Volume> finer =
             render::oversampledToRender(volume, sampling, iso, threads))
         volume = std::move(*finer);
+    return plan;
+}
+
+std::string samplingDescription(const render::SamplingPlan& plan, glm::ivec3 drawnDims) {
+    if (plan.asLoaded())
+        return "as loaded";
+    return (plan.shapeBased ? "shape-based across thick slices, " : "oversampled to ") +
+           dimsText(drawnDims);
 }
 
 void parseSuggestiveThreshold(const Arguments& arguments, RenderRequest& request) {

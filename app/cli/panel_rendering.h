@@ -66,9 +66,13 @@ render::GradientStencil parseGradientOption(const Arguments& arguments);
 // --oversample auto|off and --thick-slices smooth|linear (defaults from `fallback`), then
 // `volume` replaced by its resampled copy where the rule asks for one
 // (render/surface_sampling.h): what the review draws. `render`, `quality` and `export` default
-// to auto and smooth, `bench` to the grid as loaded.
-void oversampleForRendering(const Arguments& arguments, render::VolumeSampling fallback,
-                            volume::Volume& volume);
+// to auto and smooth, `bench` to the grid as loaded. Returns the plan it followed.
+render::SamplingPlan oversampleForRendering(const Arguments& arguments,
+                                            render::VolumeSampling fallback,
+                                            volume::Volume& volume);
+// What a report says of the grid drawn: "as loaded", "oversampled to WxHxD" or "shape-based
+// across thick slices, WxHxD".
+std::string samplingDescription(const render::SamplingPlan& plan, glm::ivec3 drawnDims);
 // --oversample auto|off and --thick-slices smooth|linear (defaults from `fallback`); throws
 // UsageError for another value.
 render::VolumeSampling parseVolumeSampling(const Arguments& arguments,

@@ -148,7 +148,8 @@ int runQuality(const std::vector<std::string>& args, std::ostream& out) {
     if (!(noise >= 0.0))
         throw UsageError("--noise", "expected a standard deviation >= 0 (real units, HU for CT)");
     evaluation::addVoxelNoise(volume, noise);
-    oversampleForRendering(arguments, render::VolumeSampling{}, volume);
+    const render::SamplingPlan sampling =
+        oversampleForRendering(arguments, render::VolumeSampling{}, volume);
     fitToVolume(arguments, volume, options.request, options.setup);
     for (auto& renderer : renderers)
         if (renderer)
@@ -161,9 +162,7 @@ int runQuality(const std::vector<std::string>& args, std::ostream& out) {
     QualityRun run;
     run.input = options.input;
     run.description = opened.description;
-    run.sampling = volume.geometry().refinement() == glm::ivec3(1)
-                       ? "as loaded"
-                       : "oversampled to " + dimsText(volume.dims());
+    run.sampling = samplingDescription(sampling, volume.dims());
     run.iso = options.request.settings.isoReal;
     run.minStrokePixels = options.request.settings.minStrokePixels;
     run.width = options.size.x;

@@ -34,7 +34,7 @@ ViewQuality measureLines(const evaluation::View& view, const render::PixelMask& 
 struct QualityRun {
     std::string input;
     std::string description;
-    std::string sampling; // "as loaded" or "oversampled to WxHxD" (--oversample)
+    std::string sampling; // samplingDescription (panel_rendering.h): the grid drawn
     double iso = 0.0;
     int minStrokePixels = 0;
     int width = 0;

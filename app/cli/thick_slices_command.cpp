@@ -76,6 +76,7 @@ struct DrawnSeries {
     std::string label;
     volume::Volume volume;
     std::unique_ptr<render::SilhouetteRenderer> renderer;
+    std::string sampling; // samplingDescription of the grid drawn
 };
 
 void prepare(DrawnSeries& series, const volume::Volume& loaded, render::VolumeSampling sampling,
@@ -83,6 +84,8 @@ void prepare(DrawnSeries& series, const volume::Volume& loaded, render::VolumeSa
     std::optional<volume::Volume> finer = render::oversampledToRender(
         loaded, sampling, options.request.settings.isoReal, options.request.settings.threads);
     series.volume = finer ? std::move(*finer) : loaded.clone();
+    series.sampling = samplingDescription(
+        render::samplingPlan(loaded.dims(), loaded.geometry(), sampling), series.volume.dims());
     series.renderer =
         render::createSilhouetteRenderer(options.request.method, options.request.backend);
     series.renderer->setVolume(series.volume);
@@ -246,12 +249,6 @@ void writeJson(const RunInfo& info, const Options& options, const std::vector<Vi
     out << writer.str() << "\n";
 }
 
-std::string samplingText(const volume::Volume& drawn) {
-    return drawn.geometry().refinement() == glm::ivec3(1)
-               ? "as loaded"
-               : "resampled to " + dimsText(drawn.dims());
-}
-
 } // namespace
 
 int runThickSlices(const std::vector<std::string>& args, std::ostream& out) {
@@ -269,16 +266,15 @@ int runThickSlices(const std::vector<std::string>& args, std::ostream& out) {
         volume::writeNrrd(*options.saveThick, thickLoaded);
 
     RunInfo info;
-    DrawnSeries thin{"thin", {}, nullptr};
+    DrawnSeries thin{"thin", {}, nullptr, {}};
     prepare(thin, thinLoaded, render::VolumeSampling{}, options);
     fitToVolume(arguments, thin.volume, options.request, options.setup); // the thin surface framed
-    DrawnSeries thick[2] = {{"linear", {}, nullptr}, {"smooth", {}, nullptr}};
+    DrawnSeries thick[2] = {{"linear", {}, nullptr, {}}, {"smooth", {}, nullptr, {}}};
     for (int mode = 0; mode < 2; ++mode) {
         prepare(thick[mode], thickLoaded, {render::Oversampling::Auto, kThickModes[mode]}, options);
-        info.sampled[mode] = samplingText(thick[mode].volume);
+        info.sampled[mode] = thick[mode].sampling;
     }
-    info.thin =
-        options.input + " " + dimsText(thinLoaded.dims()) + ", " + samplingText(thin.volume);
+    info.thin = options.input + " " + dimsText(thinLoaded.dims()) + ", " + thin.sampling;
     info.thick = (options.thickInput
                       ? *options.thickInput
                       : "the mean of every " + std::to_string(options.average) + " thin slices") +
