@@ -1,9 +1,11 @@
 // linework-review-bench: the workstation's responsiveness on a real series, measured on the
 // real widgets (docs/BENCHMARKS.md): UI-thread stalls while importing, dragging the iso slider
-// and orbiting; iso release → both panels updated; a new view in mode a per method; and the time
-// from start to the first review drawn.
+// and orbiting; iso release → both panels updated; an iso drag (20 steps of 10 HU at 60 Hz):
+// the panels' updates per second while it lasts; a new view in mode a per method; the time
+// from start to the first review drawn; the exports.
 //
-//   linework-review-bench PATH [--iso HU] [--repeat N]
+//   linework-review-bench PATH [--iso HU] [--repeat N] [--panel-gl ..] [--backend cpu|cuda|auto]
+//                         [--thick-slices smooth|linear]
 //
 // Run under a display (xvfb-run -a -s "-screen 0 1920x1080x24"). Prints one line per figure.
 #include "bench/bench_support.h"
@@ -79,6 +81,54 @@ void report(const char* what, double value, const char* unit = "ms") {
     std::fflush(stdout);
 }
 
+// A drag of the iso slider as a hand makes it: 20 steps of 10 HU, one a display frame (60 Hz).
+// The figure: results shown on both panels per second from the first step until the drag's last
+// value is on screen; and how long that last value took after the drag ended.
+struct DragFigures {
+    double updatesPerSecond = 0.0;
+    double lastValueAfterMs = 0.0;
+    double longestStallMs = 0.0;
+};
+
+DragFigures dragIso(ReviewWidget& review, double iso, StallMonitor& monitor) {
+    constexpr int kSteps = 20;
+    constexpr double kStepHu = 10.0;
+    constexpr int kFrameMs = 17;
+    const double last = iso + kStepHu * kSteps;
+    int shown = 0;
+    const QMetaObject::Connection counting =
+        QObject::connect(&review, &ReviewWidget::frameShown, [&] { ++shown; });
+    monitor.start();
+    QElapsedTimer timer;
+    timer.start();
+    for (int step = 1; step <= kSteps; ++step) {
+        review.setIso(iso + kStepHu * step);
+        QTest::qWait(kFrameMs); // the event loop runs between steps, as between mouse moves
+    }
+    const double releasedAtMs = double(timer.nsecsElapsed()) / 1e6;
+    bench::waitFor([&] { return review.status().isoShown == last && !review.isBusy(); });
+    const double doneAtMs = double(timer.nsecsElapsed()) / 1e6;
+    QObject::disconnect(counting);
+    DragFigures figures;
+    figures.updatesPerSecond = doneAtMs > 0.0 ? 1000.0 * double(shown) / doneAtMs : 0.0;
+    figures.lastValueAfterMs = doneAtMs - releasedAtMs;
+    figures.longestStallMs = monitor.longestStallMs();
+    review.setIso(iso); // back where the other figures start
+    bench::waitFor([&] { return review.status().isoShown == iso && !review.isBusy(); });
+    return figures;
+}
+
+void reportDrag(int method, const DragFigures& drag) {
+    char line[160];
+    std::snprintf(line, sizeof line, "method %d: iso drag, both panels updated per second", method);
+    report(line, drag.updatesPerSecond, "/s");
+    std::snprintf(line, sizeof line, "method %d: iso drag, its last value shown after release",
+                  method);
+    report(line, drag.lastValueAfterMs);
+    std::snprintf(line, sizeof line, "method %d: longest UI stall, iso drag", method);
+    report(line, drag.longestStallMs);
+}
+
 void benchMethod(ReviewWidget& review, MainWindow& window, int method, double iso, int repeat,
                  StallMonitor& monitor) {
     ReviewSettings settings = window.settings();
@@ -104,6 +154,7 @@ void benchMethod(ReviewWidget& review, MainWindow& window, int method, double is
             [&] { review.camera().rotateByDrag(QPointF(8.0, 0.0), review.isoPanel().size()); },
             worker));
     const double orbitStall = monitor.longestStallMs();
+    const DragFigures drag = dragIso(review, iso, monitor);
     char line[160];
     std::snprintf(line, sizeof line, "method %d: iso change -> both panels updated (median)",
                   method);
@@ -114,6 +165,7 @@ void benchMethod(ReviewWidget& review, MainWindow& window, int method, double is
     report(line, isoStall);
     std::snprintf(line, sizeof line, "method %d: longest UI stall, orbit", method);
     report(line, orbitStall);
+    reportDrag(method, drag);
     std::snprintf(line, sizeof line, "method %d: last paint, iso panel (UI thread)", method);
     report(line, review.isoPanel().lastPaintMs());
     std::snprintf(line, sizeof line, "method %d: last paint, silhouette panel (UI thread)", method);
@@ -123,13 +175,19 @@ void benchMethod(ReviewWidget& review, MainWindow& window, int method, double is
     report(line, double(review.status().triangles), "");
 }
 
-// The GL placement the main window starts with (QSettings lives in the temporary folder).
-void storePanelGl(const QString& where) {
+// The GL placement and back-end the main window starts with (QSettings lives in the temporary
+// folder).
+void storeStartSettings(const QString& where, const QString& backend, const QString& thick) {
     QSettings store;
     ReviewSettings settings = ReviewSettings::load(store);
     settings.panelGl = where == "panels"   ? PanelGl::InPanels
                        : where == "worker" ? PanelGl::OnWorker
                                            : PanelGl::Auto;
+    settings.backend = backend == "cpu"    ? lw::render::Backend::Cpu
+                       : backend == "cuda" ? lw::render::Backend::Cuda
+                                           : lw::render::Backend::Auto;
+    settings.thickSlices =
+        lw::render::parseThickSlices(thick.toStdString()).value_or(lw::render::ThickSlices::Smooth);
     settings.save(store);
 }
 
@@ -225,16 +283,23 @@ int main(int argc, char* argv[]) {
     const QCommandLineOption repeatOption("repeat", "Repetitions per figure.", "N", "9");
     const QCommandLineOption panelGlOption(
         "panel-gl", "Where the GL draws: auto, panels or worker (settings page).", "WHERE", "auto");
-    parser.addOptions({isoOption, repeatOption, panelGlOption});
+    const QCommandLineOption backendOption(
+        "backend", "Back-end: cpu, cuda or auto (settings page).", "BACKEND", "auto");
+    const QCommandLineOption thickOption(
+        "thick-slices", "Thick slices: smooth or linear (settings page).", "HOW", "smooth");
+    parser.addOptions({isoOption, repeatOption, panelGlOption, backendOption, thickOption});
     parser.process(app);
     if (parser.positionalArguments().size() != 1) {
-        std::fprintf(stderr, "usage: linework-review-bench PATH [--iso HU] [--repeat N]\n");
+        std::fprintf(stderr, "usage: linework-review-bench PATH [--iso HU] [--repeat N] "
+                             "[--panel-gl auto|panels|worker] [--backend cpu|cuda|auto] "
+                             "[--thick-slices smooth|linear]\n");
         return 2;
     }
     const QString path = parser.positionalArguments().front();
     const double iso = parser.value(isoOption).toDouble();
     const int repeat = std::max(1, parser.value(repeatOption).toInt());
-    storePanelGl(parser.value(panelGlOption));
+    storeStartSettings(parser.value(panelGlOption), parser.value(backendOption),
+                       parser.value(thickOption));
 
     MainWindowOptions options;
     options.databasePath = home.path() + "/studies.sqlite";
@@ -253,8 +318,8 @@ int main(int argc, char* argv[]) {
     for (int method : {3, 2, 1})
         benchMethod(*review, window, method, iso, repeat, monitor);
     measureIdleAndRepaint(*review, monitor);
-    // The report issue's export goal: a 4096 x 2048 side-by-side PNG.
-    for (int method : {3, 1}) {
+    // The report issue's export goal: a 4096 x 2048 side-by-side PNG, by every method.
+    for (int method : {3, 2, 1}) {
         ReviewSettings settings = window.settings();
         settings.method = lw::render::SilhouetteMethod(method);
         window.applySettings(settings);
@@ -262,7 +327,7 @@ int main(int argc, char* argv[]) {
         monitor.start();
         QElapsedTimer exportTimer;
         exportTimer.start();
-        // Both methods write the same file: the second replaces the first.
+        // The methods write the same file: each replaces the one before.
         const QString error = exportReviewPng(
             *review, home.filePath("export.png"),
             {QSize(2048, 2048), lw::report::PanelLayout::SideBySide}, lw::core::Overwrite::Allow);
