@@ -270,9 +270,7 @@ template <typename Score> Spread spreadOf(const std::vector<const Row*>& group, 
         }
         values.push_back(value);
     }
-    std::sort(values.begin(), values.end());
-    const std::size_t half = values.size() / 2;
-    spread.median = values.size() % 2 ? values[half] : 0.5 * (values[half - 1] + values[half]);
+    spread.median = medianOf(std::move(values));
     return spread;
 }
 

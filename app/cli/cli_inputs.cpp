@@ -4,11 +4,20 @@
 #include "lw/core/error.h"
 #include "lw/input/open_input.h"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <sstream>
 
 namespace lw::cli {
+
+double medianOf(std::vector<double> values) {
+    if (values.empty())
+        return 0.0;
+    std::sort(values.begin(), values.end());
+    const std::size_t half = values.size() / 2;
+    return values.size() % 2 ? values[half] : 0.5 * (values[half - 1] + values[half]);
+}
 
 std::vector<std::string> splitList(const std::string& text, char separator, bool keepEmpty) {
     std::vector<std::string> parts;

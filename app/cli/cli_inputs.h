@@ -20,6 +20,10 @@ namespace lw::cli {
 std::vector<std::string> splitList(const std::string& text, char separator = ',',
                                    bool keepEmpty = true);
 // Numbers separated by `separator`; throws core::Error(subject, ...) naming a part that is not one.
+// The median of `values` (the mean of the two middle ones for an even count; 0 for none): what
+// the measuring commands report beside the worst view.
+double medianOf(std::vector<double> values);
+
 std::vector<double> parseNumbers(const std::string& text, char separator,
                                  const std::string& subject);
 

@@ -1,5 +1,6 @@
 #include "quality_report.h"
 
+#include "cli_inputs.h"
 #include "lw/core/json_writer.h"
 
 #include <algorithm>
@@ -98,10 +99,8 @@ std::optional<Spread> spreadOf(const Metric& metric, const std::vector<ViewQuali
     }
     if (values.empty())
         return std::nullopt;
-    std::sort(values.begin(), values.end());
-    const std::size_t half = values.size() / 2;
     spread.views = int(values.size());
-    spread.median = values.size() % 2 ? values[half] : 0.5 * (values[half - 1] + values[half]);
+    spread.median = medianOf(std::move(values));
     return spread;
 }
 

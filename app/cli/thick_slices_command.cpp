@@ -145,14 +145,6 @@ ViewRow measureView(DrawnSeries& thin, DrawnSeries (&thick)[2], const Options& o
     return row;
 }
 
-double medianOf(std::vector<double> values) {
-    if (values.empty())
-        return 0.0;
-    std::sort(values.begin(), values.end());
-    const std::size_t mid = values.size() / 2;
-    return values.size() % 2 ? values[mid] : 0.5 * (values[mid - 1] + values[mid]);
-}
-
 struct Summary {
     double precision = 0.0, recall = 0.0, ratio = 0.0; // medians
     double worstPrecision = 0.0, worstRecall = 0.0, worstRatio = 0.0;

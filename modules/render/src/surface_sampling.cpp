@@ -13,6 +13,8 @@
 namespace lw::render {
 namespace {
 constexpr core::LogCategory kLog("lw.render");
+
+// A number as the log shows it (300.5, not 300.500000).
 std::string shortNumber(double value) {
     char text[32];
     std::snprintf(text, sizeof text, "%g", value);
