@@ -268,8 +268,7 @@ void AnnotationTest::keysPickToolsAndEscapeBacksOut() {
     QFETCH(int, tool);
     const auto review = showSphere(PanelGl::OnWorker);
     QVERIFY(settleShown(*review));
-    review->activateWindow();
-    QVERIFY(QTest::qWaitForWindowActive(review.get()));
+    QVERIFY(lw::test::makeActiveForKeys(*review));
     ReviewPanel& iso = review->isoPanel();
     iso.setFocus();
     AnnotationToolController& tools = review->annotationTools();

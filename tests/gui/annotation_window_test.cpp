@@ -132,8 +132,7 @@ void AnnotationWindowTest::undoAndRedoFromTheKeys() {
     QTemporaryDir dir;
     MainWindow window(isolatedOptions(dir));
     QVERIFY(showAndOpen(window, "phantom:48"));
-    window.activateWindow();
-    QVERIFY(QTest::qWaitForWindowActive(&window));
+    QVERIFY(lw::test::makeActiveForKeys(window));
     AnnotationDocument& document = window.currentReview()->annotations();
     document.add(kRuler);
     document.add(kLabel);

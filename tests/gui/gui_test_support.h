@@ -62,6 +62,16 @@ inline bool annotationColourNear(const QImage& image, QPointF at, int radius = 4
     return false;
 }
 
+// Makes `window` the active window, for tests whose keys go through window shortcuts (Ctrl+Z,
+// a tool's letter). Asking the X server is not enough: without a window manager it ignores a
+// focus request whose timestamp predates its last focus change (an earlier test's window
+// closing), and nothing asks again, so qWaitForWindowActive fails by luck. Shortcuts consult
+// Qt's own active window, which this sets directly and then checks.
+inline bool makeActiveForKeys(QWidget& window) {
+    QApplication::setActiveWindow(&window);
+    return QApplication::activeWindow() == &window;
+}
+
 // Runs a Qt Test class the way the workstation starts: isolated settings and data folders, an
 // OpenGL 4.5 core default format, SKIP without a display.
 template <typename TestClass> int runGuiTest(int argc, char** argv, bool needsData = false) {
