@@ -23,6 +23,7 @@
 #include <cmath>
 #include <cstring>
 #include <filesystem>
+#include <memory>
 
 using namespace lw::gui;
 
@@ -420,14 +421,16 @@ void ReviewTest::linesTextureDrawsAsTheHostImage() {
 
 // The worker's texture slots: a slot held by a result or the panel is never written again until
 // let go; a size change makes a new texture; with every slot held the frame gets none (it then
-// takes the host path). The textures live in Qt's share group, so the panels' contexts see them.
+// takes the host path). The textures live in Qt's share group, so the panels' contexts see them,
+// and they are gone once the slots are destroyed.
 void ReviewTest::silhouetteTexturesAreNeverHandedOutTwice() {
     QOpenGLContext* global = QOpenGLContext::globalShareContext();
     QVERIFY2(global, "requestCoreProfileFormat() shares every context with Qt's global one");
     QOffscreenSurface surface;
     surface.setFormat(global->format());
     surface.create();
-    SilhouetteTextures textures(&surface);
+    auto owned = std::make_unique<SilhouetteTextures>(&surface);
+    SilhouetteTextures& textures = *owned;
     std::shared_ptr<const LinesTexture> held[3];
     lw::render::GlFrameTarget* targets[3] = {};
     for (int i = 0; i < 3; ++i) {
@@ -463,7 +466,10 @@ void ReviewTest::silhouetteTexturesAreNeverHandedOutTwice() {
     QVERIFY(other.makeCurrent(&surface));
     QVERIFY(other.functions()->glIsTexture(name));
     other.doneCurrent();
-    textures.release();
+    owned.reset();
+    QVERIFY(other.makeCurrent(&surface));
+    QVERIFY(!other.functions()->glIsTexture(name));
+    other.doneCurrent();
 }
 
 LW_GUI_TEST_MAIN(ReviewTest)

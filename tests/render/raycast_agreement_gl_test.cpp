@@ -72,7 +72,6 @@ TEST(SilhouetteMethodsAgree, Method2AndMethod1AndMethod3) {
 #endif
         }
     }
-    gl.release();
 }
 
 } // namespace

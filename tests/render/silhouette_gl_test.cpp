@@ -116,7 +116,6 @@ std::filesystem::path outputDir() {
 class SilhouetteGl : public testing::Test {
 protected:
     void SetUp() override { lw::test::glContext().makeCurrent(); }
-    void TearDown() override { m_renderer.release(); }
     SilhouetteGlRenderer m_renderer;
 };
 
@@ -128,6 +127,37 @@ TEST(GlContext, ReportsRenderer) {
     EXPECT_FALSE(context.version().empty());
     EXPECT_NE(context.description().find(context.renderer()), std::string::npos);
     std::printf("GL context: %s\n", context.description().c_str());
+}
+
+// Every GL object has one owner: a moved GlObject hands its name on, and a destroyed renderer
+// leaves none of its programs, buffers, framebuffers or textures behind.
+TEST(GlObjects, TheOwnerDeletesTheObject) {
+    lw::test::glContext().makeCurrent();
+    GlBuffer first = GlBuffer::create();
+    const unsigned name = first.get();
+    ASSERT_NE(name, 0u);
+    glBindBuffer(GL_ARRAY_BUFFER, name); // a buffer name is an object once bound
+    glBindBuffer(GL_ARRAY_BUFFER, 0);
+    GlBuffer second = std::move(first);
+    EXPECT_FALSE(first);
+    EXPECT_EQ(second.get(), name);
+    EXPECT_TRUE(glIsBuffer(name));
+    second.reset();
+    EXPECT_FALSE(glIsBuffer(name));
+
+    unsigned framebuffer = 0, colour = 0, positions = 0;
+    {
+        SilhouetteGlRenderer renderer;
+        renderer.uploadMesh(icosphere({0, 0, 0}, 1.0f, 2));
+        renderer.render(orthoCamera({{-1, -1, -1}, {1, 1, 1}}, 32));
+        framebuffer = renderer.framebuffer();
+        colour = renderer.colourTexture();
+        positions = renderer.positionBuffer();
+        EXPECT_TRUE(glIsFramebuffer(framebuffer) && glIsTexture(colour) && glIsBuffer(positions));
+    }
+    EXPECT_FALSE(glIsFramebuffer(framebuffer));
+    EXPECT_FALSE(glIsTexture(colour));
+    EXPECT_FALSE(glIsBuffer(positions));
 }
 
 TEST_F(SilhouetteGl, IsoPanelShadesTheProjectedDisc) {

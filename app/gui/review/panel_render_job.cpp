@@ -25,9 +25,7 @@ QImage renderIso(const PanelRenderJob& job) {
     render::EglHeadlessContext context;
     render::SilhouetteGlRenderer gl;
     gl.uploadMesh(job.mesh ? *job.mesh : render::Mesh());
-    QImage image = toQImage(gl.renderImage(job.camera, options));
-    gl.release();
-    return image;
+    return toQImage(gl.renderImage(job.camera, options)); // gl goes before the context
 }
 
 } // namespace

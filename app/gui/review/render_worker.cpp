@@ -29,13 +29,9 @@ RenderWorker::RenderWorker(std::shared_ptr<const volume::Volume> volume)
 RenderWorker::~RenderWorker() = default;
 
 void RenderWorker::release() {
-    if (m_textures)
-        m_textures->release(); // their CUDA registrations and GL textures, in their context
-    m_textures.reset();
-    if (m_isoGl && m_glContext) {
-        m_glContext->makeCurrent();
-        m_isoGl->release();
-    }
+    m_textures.reset(); // their CUDA registrations and GL textures, in their context
+    if (m_isoGl && m_glContext)
+        m_glContext->makeCurrent(); // the iso renderer's GL objects go with it, in its context
     m_isoGl.reset();
     m_glContext.reset();
     m_uploadedMesh = nullptr;

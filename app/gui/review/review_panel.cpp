@@ -159,12 +159,18 @@ void ReviewPanel::setGlView(bool glView) {
 
 void ReviewPanel::releaseGl() {
     // GL objects die with the context they were made in: release them while it still exists.
-    if (!m_glView || !m_glView->context() || (!m_gl.isInitialized() && !m_linesView.holdsGl()))
+    if (!m_glView || !m_glView->context() || (!m_gl && !m_linesView))
         return;
     m_glView->makeCurrent();
-    m_gl.release();
-    m_linesView.release();
+    m_gl.reset();
+    m_linesView.reset();
     m_glView->doneCurrent();
+}
+
+render::SilhouetteGlRenderer& ReviewPanel::glRenderer() {
+    if (!m_gl)
+        m_gl = std::make_unique<render::SilhouetteGlRenderer>();
+    return *m_gl;
 }
 
 void ReviewPanel::initializeGlView() {
@@ -240,17 +246,18 @@ bool ReviewPanel::drawsGl() const {
 void ReviewPanel::uploadPendingMesh() {
     if (m_meshUploaded || !m_mesh)
         return;
-    m_gl.uploadMesh(*m_mesh);
+    glRenderer().uploadMesh(*m_mesh);
     m_meshUploaded = true;
 }
 
 void ReviewPanel::drawGl(const render::Camera& camera) {
     uploadPendingMesh();
+    render::SilhouetteGlRenderer& gl = glRenderer();
     m_lastStats =
-        m_gl.render(camera, panelGlOptions(m_kind, m_appearance, camera, m_camera.bounds()));
+        gl.render(camera, panelGlOptions(m_kind, m_appearance, camera, m_camera.bounds()));
     // The engine draws into its own framebuffer object; copy it into the widget's.
     QOpenGLExtraFunctions* f = m_glView->context()->extraFunctions();
-    f->glBindFramebuffer(GL_READ_FRAMEBUFFER, m_gl.framebuffer());
+    f->glBindFramebuffer(GL_READ_FRAMEBUFFER, gl.framebuffer());
     f->glBindFramebuffer(GL_DRAW_FRAMEBUFFER, m_glView->defaultFramebufferObject());
     f->glBlitFramebuffer(0, 0, camera.width(), camera.height(), 0, 0, camera.width(),
                          camera.height(), GL_COLOR_BUFFER_BIT, GL_NEAREST);
@@ -291,8 +298,10 @@ void ReviewPanel::paintGlView() {
 
 void ReviewPanel::drawLinesTexture() {
     try {
-        m_linesView.draw(*m_linesTexture, lineDilationRadius(m_appearance.lineWidth),
-                         m_appearance.lineColour, m_appearance.background);
+        if (!m_linesView)
+            m_linesView = std::make_unique<LinesTextureView>();
+        m_linesView->draw(*m_linesTexture, lineDilationRadius(m_appearance.lineWidth),
+                          m_appearance.lineColour, m_appearance.background);
     } catch (const core::Error& error) {
         m_linesTexture.reset();
         m_message = tr("OpenGL failed: %1").arg(error.what());
@@ -370,9 +379,9 @@ QImage ReviewPanel::renderImage(QSize size, const ReviewSettings* appearance) {
     try {
         uploadPendingMesh();
         const render::Camera camera = m_camera.camera(size.width(), size.height());
-        image = toQImage(
-            m_gl.renderImage(camera, panelGlOptions(m_kind, appearance ? *appearance : m_appearance,
-                                                    camera, m_camera.bounds())));
+        image = toQImage(glRenderer().renderImage(
+            camera, panelGlOptions(m_kind, appearance ? *appearance : m_appearance, camera,
+                                   m_camera.bounds())));
     } catch (const core::Error& error) {
         m_message = tr("OpenGL failed: %1").arg(error.what());
     }
@@ -409,8 +418,9 @@ std::optional<glm::dvec3> ReviewPanel::pickPatientPoint(QPoint position) {
     float depth = 1.0f;
     try {
         uploadPendingMesh();
-        m_gl.render(camera, panelGlOptions(m_kind, m_appearance, camera, m_camera.bounds()));
-        depth = m_gl.readDepthAt(x, y);
+        render::SilhouetteGlRenderer& gl = glRenderer();
+        gl.render(camera, panelGlOptions(m_kind, m_appearance, camera, m_camera.bounds()));
+        depth = gl.readDepthAt(x, y);
     } catch (const core::Error&) {
         depth = 1.0f;
     }

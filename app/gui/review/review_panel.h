@@ -142,6 +142,8 @@ private:
     void drawMessage(QPainter& painter);
     void drawOverlayPainter(QPainter& painter);
     void releaseGl();
+    // The renderer of the view's context (made on first use; the context current).
+    render::SilhouetteGlRenderer& glRenderer();
     void updateView();
     void reportPaint(double milliseconds);
     std::optional<glm::dvec3> pickFromDepthImage(QPoint position) const;
@@ -152,14 +154,16 @@ private:
     PanelGlView* m_glView = nullptr; // created on first need
     PanelImageView* m_imageView = nullptr;
     bool m_glViewActive = false;
-    render::SilhouetteGlRenderer m_gl;
+    // The GL objects of the view's context, made there on first need and destroyed with it
+    // current (releaseGl, on the context's aboutToBeDestroyed and in the destructor).
+    std::unique_ptr<render::SilhouetteGlRenderer> m_gl;
     std::shared_ptr<const render::Mesh> m_mesh;
     bool m_meshUploaded = false;
     bool m_useGl = false;
     bool m_glBroken = false;
     QImage m_image;
     std::shared_ptr<const LinesTexture> m_linesTexture; // held while shown: not written meanwhile
-    LinesTextureView m_linesView;
+    std::unique_ptr<LinesTextureView> m_linesView;
     QImage m_overlay;
     std::vector<float> m_depth;
     render::Camera m_depthCamera;

@@ -55,8 +55,12 @@ void main() {
 SilhouetteTextures::SilhouetteTextures(QOffscreenSurface* surface) : m_surface(surface) {}
 
 SilhouetteTextures::~SilhouetteTextures() {
-    if (m_context)
-        kLog.warning("SilhouetteTextures destroyed without release(); its textures leak");
+    if (!m_context)
+        return;
+    m_context->makeCurrent(m_surface); // the targets' registrations and textures go with it
+    for (Slot& slot : m_slots)
+        slot = Slot();
+    m_context->doneCurrent();
 }
 
 bool SilhouetteTextures::makeContext() {
@@ -125,32 +129,20 @@ void SilhouetteTextures::done() {
     }
 }
 
-void SilhouetteTextures::release() {
-    if (!m_context)
-        return;
-    m_context->makeCurrent(m_surface); // the targets' registrations and textures go with it
-    for (Slot& slot : m_slots)
-        slot = Slot();
-    m_context->doneCurrent();
-    m_context.reset();
+LinesTextureView::LinesTextureView()
+    : m_program(std::make_unique<QOpenGLShaderProgram>()),
+      m_vertexArray(std::make_unique<QOpenGLVertexArrayObject>()) {
+    if (!m_program->addShaderFromSourceCode(QOpenGLShader::Vertex, kVertexShader) ||
+        !m_program->addShaderFromSourceCode(QOpenGLShader::Fragment, kFragmentShader) ||
+        !m_program->link())
+        throw core::Error("silhouette texture", m_program->log().toStdString());
+    m_vertexArray->create(); // a core profile draws nothing without one bound
 }
-
-LinesTextureView::LinesTextureView() = default;
 
 LinesTextureView::~LinesTextureView() = default;
 
 void LinesTextureView::draw(const LinesTexture& lines, int radius, QColor line, QColor background) {
     QOpenGLFunctions* f = QOpenGLContext::currentContext()->functions();
-    if (!m_program) {
-        auto program = std::make_unique<QOpenGLShaderProgram>();
-        if (!program->addShaderFromSourceCode(QOpenGLShader::Vertex, kVertexShader) ||
-            !program->addShaderFromSourceCode(QOpenGLShader::Fragment, kFragmentShader) ||
-            !program->link())
-            throw core::Error("silhouette texture", program->log().toStdString());
-        m_vertexArray = std::make_unique<QOpenGLVertexArrayObject>();
-        m_vertexArray->create(); // a core profile draws nothing without one bound
-        m_program = std::move(program);
-    }
     GLint viewport[4] = {0, 0, 1, 1};
     f->glGetIntegerv(GL_VIEWPORT, viewport);
     m_program->bind();
@@ -167,13 +159,8 @@ void LinesTextureView::draw(const LinesTexture& lines, int radius, QColor line, 
     f->glDrawArrays(GL_TRIANGLES, 0, 3);
     // QPainter draws over it next and expects the state it left.
     f->glBindTexture(GL_TEXTURE_2D, 0);
-    m_vertexArray->release();
-    m_program->release();
-}
-
-void LinesTextureView::release() {
-    m_vertexArray.reset();
-    m_program.reset();
+    m_vertexArray->release(); // unbinds
+    m_program->release();     // unbinds
 }
 
 } // namespace lw::gui

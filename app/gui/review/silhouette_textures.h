@@ -40,7 +40,8 @@ class SilhouetteTextures {
 public:
     // `surface`: made on the UI thread (Qt requires it), outliving this; null: no textures.
     explicit SilhouetteTextures(QOffscreenSurface* surface);
-    // release() first, on the worker thread.
+    // Deletes the targets (their registrations, then their textures) with the worker's context
+    // current, then the context: destroy it on the worker thread, before it stops.
     ~SilhouetteTextures();
     SilhouetteTextures(const SilhouetteTextures&) = delete;
     SilhouetteTextures& operator=(const SilhouetteTextures&) = delete;
@@ -52,8 +53,6 @@ public:
                                    std::shared_ptr<const LinesTexture>& token);
     // After the frame: the context is no longer needed on this thread.
     void done();
-    // Deletes the targets and the context (on the worker thread, before it stops).
-    void release();
 
 private:
     bool makeContext();
@@ -68,9 +67,10 @@ private:
     bool m_unavailable = false;
 };
 
-// The panel's side, in the GL view's context (current in draw and release).
+// The panel's side, in the GL view's context: made, drawn and destroyed with it current.
 class LinesTextureView {
 public:
+    // Compiles the program; throws core::Error with the log when it does not link.
     LinesTextureView();
     ~LinesTextureView();
     LinesTextureView(const LinesTextureView&) = delete;
@@ -79,9 +79,6 @@ public:
     // Fills the current viewport: `lines` stretched over it, each line pixel widened by
     // `radius` pixels of the texture (as PixelMask::dilated) in `line`, elsewhere `background`.
     void draw(const LinesTexture& lines, int radius, QColor line, QColor background);
-    // Frees the program (the context current), e.g. when the context goes.
-    void release();
-    bool holdsGl() const { return m_program != nullptr; }
 
 private:
     std::unique_ptr<QOpenGLShaderProgram> m_program;

@@ -236,12 +236,13 @@ GeometryShaderSilhouetteRenderer::GeometryShaderSilhouetteRenderer(GlContext& co
 }
 
 GeometryShaderSilhouetteRenderer::~GeometryShaderSilhouetteRenderer() {
-    // GL objects belong to the context: free them while it is still alive and current.
+    // GL objects belong to the context: they must go while it is still alive and current. The
+    // source's interop registrations go here; the renderer's GL objects go with State, whose
+    // renderer is destroyed before the context it owns (declared after it).
     try {
         m_state->context->makeCurrent();
         if (m_state->source)
             m_state->source->releaseGl();
-        m_state->gl.release();
     } catch (const std::exception& error) {
         kLog.warning(std::string("method 1: GL objects not released: ") + error.what());
     }

@@ -15,8 +15,8 @@ GlFrameTarget::GlFrameTarget(int width, int height) : m_width(width), m_height(h
     gl::checkGlError("before GlFrameTarget"); // someone else's error is not ours
     GLint bound = 0;
     glGetIntegerv(GL_TEXTURE_BINDING_2D, &bound);
-    glGenTextures(1, &m_texture);
-    glBindTexture(GL_TEXTURE_2D, m_texture);
+    m_texture = GlTexture::create();
+    glBindTexture(GL_TEXTURE_2D, m_texture.get());
     // Immutable storage: CUDA registers the texture once, and nothing may reallocate it after.
     glTexStorage2D(GL_TEXTURE_2D, 1, GL_R8, width, height);
     // A mask is sampled texel for texel: no filtering may blend a line into its neighbours.
@@ -31,19 +31,12 @@ GlFrameTarget::GlFrameTarget(int width, int height) : m_width(width), m_height(h
     glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, width, height, GL_RED, GL_UNSIGNED_BYTE, off.data());
     glPixelStorei(GL_UNPACK_ALIGNMENT, alignment);
     glBindTexture(GL_TEXTURE_2D, GLuint(bound));
-    try {
-        gl::checkGlError("GlFrameTarget");
-    } catch (...) {
-        glDeleteTextures(1, &m_texture);
-        throw;
-    }
+    gl::checkGlError("GlFrameTarget"); // a throw here deletes the texture with m_texture
 }
 
-GlFrameTarget::~GlFrameTarget() {
-    m_attachment.reset(); // a CUDA registration must not outlive the texture
-    if (m_texture)
-        glDeleteTextures(1, &m_texture);
-}
+// A CUDA registration must not outlive the texture: m_attachment, declared after m_texture, is
+// destroyed first.
+GlFrameTarget::~GlFrameTarget() = default;
 
 PixelMask GlFrameTarget::read() const {
     PixelMask mask(m_width, m_height);
@@ -51,7 +44,7 @@ PixelMask GlFrameTarget::read() const {
     glGetIntegerv(GL_TEXTURE_BINDING_2D, &bound);
     glGetIntegerv(GL_PACK_ALIGNMENT, &alignment);
     glPixelStorei(GL_PACK_ALIGNMENT, 1); // rows of any width, tightly packed like the mask
-    glBindTexture(GL_TEXTURE_2D, m_texture);
+    glBindTexture(GL_TEXTURE_2D, m_texture.get());
     glGetTexImage(GL_TEXTURE_2D, 0, GL_RED, GL_UNSIGNED_BYTE, mask.pixels().data());
     glBindTexture(GL_TEXTURE_2D, GLuint(bound));
     glPixelStorei(GL_PACK_ALIGNMENT, alignment);

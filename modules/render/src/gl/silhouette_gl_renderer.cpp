@@ -27,21 +27,18 @@ std::string withVisibilityRule(const char* source, const std::string& defines) {
     return text;
 }
 
-GLuint compileShader(GLenum type, const std::string& source, const char* name) {
-    const GLuint shader = glCreateShader(type);
-    if (shader == 0)
-        throw core::Error(std::string("shader ") + name, "glCreateShader failed");
+GlShader compileShader(GLenum type, const std::string& source, const char* name) {
+    GlShader shader = GlShader::create(type);
     const char* text = source.c_str();
-    glShaderSource(shader, 1, &text, nullptr);
-    glCompileShader(shader);
+    glShaderSource(shader.get(), 1, &text, nullptr);
+    glCompileShader(shader.get());
     GLint ok = GL_FALSE;
-    glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
+    glGetShaderiv(shader.get(), GL_COMPILE_STATUS, &ok);
     if (!ok) {
         GLint length = 0;
-        glGetShaderiv(shader, GL_INFO_LOG_LENGTH, &length);
+        glGetShaderiv(shader.get(), GL_INFO_LOG_LENGTH, &length);
         std::string log(std::size_t(std::max(length, 1)), '\0');
-        glGetShaderInfoLog(shader, GLsizei(log.size()), nullptr, log.data());
-        glDeleteShader(shader);
+        glGetShaderInfoLog(shader.get(), GLsizei(log.size()), nullptr, log.data());
         throw core::Error(std::string("shader ") + name,
                           "compile failed: " + std::string(log.c_str()));
     }
@@ -54,33 +51,24 @@ struct ShaderSource {
     const char* name;
 };
 
-GLuint linkProgram(const std::vector<ShaderSource>& sources, const char* name) {
-    std::vector<GLuint> shaders;
-    try {
-        for (const ShaderSource& source : sources)
-            shaders.push_back(compileShader(source.type, source.text, source.name));
-    } catch (...) {
-        for (GLuint shader : shaders)
-            glDeleteShader(shader);
-        throw;
-    }
-    const GLuint program = glCreateProgram();
-    for (GLuint shader : shaders)
-        glAttachShader(program, shader);
-    glLinkProgram(program);
-    // The program keeps the compiled code; the shader objects are not needed any more.
-    for (GLuint shader : shaders) {
-        glDetachShader(program, shader);
-        glDeleteShader(shader);
-    }
+GlProgram linkProgram(const std::vector<ShaderSource>& sources, const char* name) {
+    std::vector<GlShader> shaders;
+    for (const ShaderSource& source : sources)
+        shaders.push_back(compileShader(source.type, source.text, source.name));
+    GlProgram program = GlProgram::create();
+    for (const GlShader& shader : shaders)
+        glAttachShader(program.get(), shader.get());
+    glLinkProgram(program.get());
+    // The program keeps the compiled code; the shader objects go when `shaders` does.
+    for (const GlShader& shader : shaders)
+        glDetachShader(program.get(), shader.get());
     GLint ok = GL_FALSE;
-    glGetProgramiv(program, GL_LINK_STATUS, &ok);
+    glGetProgramiv(program.get(), GL_LINK_STATUS, &ok);
     if (!ok) {
         GLint length = 0;
-        glGetProgramiv(program, GL_INFO_LOG_LENGTH, &length);
+        glGetProgramiv(program.get(), GL_INFO_LOG_LENGTH, &length);
         std::string log(std::size_t(std::max(length, 1)), '\0');
-        glGetProgramInfoLog(program, GLsizei(log.size()), nullptr, log.data());
-        glDeleteProgram(program);
+        glGetProgramInfoLog(program.get(), GLsizei(log.size()), nullptr, log.data());
         throw core::Error(std::string("GL program ") + name,
                           "link failed: " + std::string(log.c_str()));
     }
@@ -88,21 +76,21 @@ GLuint linkProgram(const std::vector<ShaderSource>& sources, const char* name) {
     return program;
 }
 
+// Method 1's pass-2 program: the silhouette segments, their fragments tested for visibility or not.
+GlProgram linkLineProgram(bool testVisibility) {
+    return linkProgram({{GL_VERTEX_SHADER, gl::shaders::silhouette_vert, "silhouette.vert.glsl"},
+                        {GL_GEOMETRY_SHADER, gl::shaders::silhouette_geom, "silhouette.geom.glsl"},
+                        {GL_FRAGMENT_SHADER,
+                         withVisibilityRule(gl::shaders::silhouette_frag,
+                                            std::string("#define LW_TEST_VISIBILITY ") +
+                                                (testVisibility ? "1\n" : "0\n")),
+                         "silhouette.frag.glsl"}},
+                       "silhouette lines");
+}
+
 GLint uniform(GLuint program, const char* name) {
     // -1 (optimised away) is legal for glUniform*, so it is not an error here.
     return glGetUniformLocation(program, name);
-}
-
-void deleteBuffer(GLuint& id) {
-    if (id)
-        glDeleteBuffers(1, &id);
-    id = 0;
-}
-
-void deleteProgram(GLuint& id) {
-    if (id)
-        glDeleteProgram(id);
-    id = 0;
 }
 
 // Grows a buffer only when the data does not fit (mode b re-uploads every frame: reallocating
@@ -157,94 +145,55 @@ double queryResultMs(GLuint query) {
 } // namespace
 
 SilhouetteGlRenderer::~SilhouetteGlRenderer() {
-    if (m_surfaceProgram != 0)
-        kLog.debug(
-            "SilhouetteGlRenderer destroyed without release(); its GL objects go with the context");
+    // A CUDA registration of the colour texture must go before the texture does; the GlObject
+    // members then delete every GL object.
+    if (m_colourTexture && m_beforeColourChange)
+        m_beforeColourChange();
 }
 
 void SilhouetteGlRenderer::initialize() {
     if (isInitialized())
         return;
     gl::checkGlError("before SilhouetteGlRenderer::initialize"); // someone else's error is not ours
-    try {
-        m_surfaceProgram =
-            linkProgram({{GL_VERTEX_SHADER, gl::shaders::surface_vert, "surface.vert.glsl"},
-                         {GL_FRAGMENT_SHADER, gl::shaders::surface_frag, "surface.frag.glsl"}},
-                        "surface");
-        for (const bool testVisibility : {false, true})
-            m_linePrograms[testVisibility] = linkProgram(
-                {{GL_VERTEX_SHADER, gl::shaders::silhouette_vert, "silhouette.vert.glsl"},
-                 {GL_GEOMETRY_SHADER, gl::shaders::silhouette_geom, "silhouette.geom.glsl"},
-                 {GL_FRAGMENT_SHADER,
-                  withVisibilityRule(gl::shaders::silhouette_frag,
-                                     std::string("#define LW_TEST_VISIBILITY ") +
-                                         (testVisibility ? "1\n" : "0\n")),
-                  "silhouette.frag.glsl"}},
-                "silhouette lines");
-        resolveProgram(0, true); // a resolve variant, so that a compile error shows here
+    // Everything is made into locals first: when a step throws, what was made so far deletes
+    // itself and the renderer stays uninitialised.
+    GlProgram surfaceProgram =
+        linkProgram({{GL_VERTEX_SHADER, gl::shaders::surface_vert, "surface.vert.glsl"},
+                     {GL_FRAGMENT_SHADER, gl::shaders::surface_frag, "surface.frag.glsl"}},
+                    "surface");
+    GlProgram linePrograms[2] = {linkLineProgram(false), linkLineProgram(true)};
+    resolveProgram(0, true); // a resolve variant, so that a compile error shows here
+    GlVertexArray vertexArray = GlVertexArray::create();
+    GlBuffer positionBuffer = GlBuffer::create(), normalBuffer = GlBuffer::create();
+    glBindVertexArray(vertexArray.get());
+    // Separate position and normal buffers: Mesh keeps them apart, so each uploads without an
+    // interleaving copy.
+    glBindBuffer(GL_ARRAY_BUFFER, positionBuffer.get());
+    glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, sizeof(glm::vec3), nullptr);
+    glEnableVertexAttribArray(0);
+    glBindBuffer(GL_ARRAY_BUFFER, normalBuffer.get());
+    glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, sizeof(glm::vec3), nullptr);
+    glEnableVertexAttribArray(1);
+    glBindVertexArray(0);
+    glBindBuffer(GL_ARRAY_BUFFER, 0);
+    GlVertexArray emptyVertexArray = GlVertexArray::create();
+    GlBuffer indexBuffer = GlBuffer::create(), candidateBuffer = GlBuffer::create();
+    GlQuery segmentQuery = GlQuery::create();
+    GlQuery timerQueries[2] = {GlQuery::create(), GlQuery::create()};
+    gl::checkGlError("SilhouetteGlRenderer::initialize");
 
-        glGenVertexArrays(1, &m_vertexArray);
-        glGenVertexArrays(1, &m_emptyVertexArray);
-        glGenBuffers(1, &m_positionBuffer);
-        glGenBuffers(1, &m_normalBuffer);
-        glGenBuffers(1, &m_indexBuffer);
-        glGenBuffers(1, &m_candidateBuffer);
-        glGenQueries(1, &m_segmentQuery);
-        glGenQueries(2, m_timerQueries);
-        glBindVertexArray(m_vertexArray);
-        // Separate position and normal buffers: Mesh keeps them apart, so each uploads without
-        // an interleaving copy.
-        glBindBuffer(GL_ARRAY_BUFFER, m_positionBuffer);
-        glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, sizeof(glm::vec3), nullptr);
-        glEnableVertexAttribArray(0);
-        glBindBuffer(GL_ARRAY_BUFFER, m_normalBuffer);
-        glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, sizeof(glm::vec3), nullptr);
-        glEnableVertexAttribArray(1);
-        glBindVertexArray(0);
-        gl::checkGlError("SilhouetteGlRenderer::initialize");
-    } catch (...) {
-        release();
-        throw;
-    }
-}
-
-void SilhouetteGlRenderer::release() {
-    deleteProgram(m_surfaceProgram);
-    for (GLuint& program : m_linePrograms)
-        deleteProgram(program);
-    for (auto& [key, program] : m_resolvePrograms)
-        deleteProgram(program);
-    m_resolvePrograms.clear();
-    for (GLuint* array : {&m_vertexArray, &m_emptyVertexArray}) {
-        if (*array)
-            glDeleteVertexArrays(1, array);
-        *array = 0;
-    }
-    deleteBuffer(m_positionBuffer);
-    deleteBuffer(m_normalBuffer);
-    deleteBuffer(m_indexBuffer);
-    deleteBuffer(m_candidateBuffer);
-    m_candidateCapacity = 0;
-    if (m_segmentQuery)
-        glDeleteQueries(1, &m_segmentQuery);
-    m_segmentQuery = 0;
-    if (m_timerQueries[0])
-        glDeleteQueries(2, m_timerQueries);
-    m_timerQueries[0] = m_timerQueries[1] = 0;
-    for (GLuint* framebuffer : {&m_framebuffer, &m_lineFramebuffer, &m_resolveFramebuffer}) {
-        if (*framebuffer)
-            glDeleteFramebuffers(1, framebuffer);
-        *framebuffer = 0;
-    }
-    if (m_colourTexture && m_beforeColourChange)
-        m_beforeColourChange();
-    for (GLuint* texture : {&m_colourTexture, &m_surfaceDepthTexture, &m_lineDepthTexture}) {
-        if (*texture)
-            glDeleteTextures(1, texture);
-        *texture = 0;
-    }
-    m_vertexCapacity = m_indexCapacity = m_indexCount = 0;
-    m_width = m_height = 0;
+    m_linePrograms[0] = std::move(linePrograms[0]);
+    m_linePrograms[1] = std::move(linePrograms[1]);
+    m_vertexArray = std::move(vertexArray);
+    m_emptyVertexArray = std::move(emptyVertexArray);
+    m_positionBuffer = std::move(positionBuffer);
+    m_normalBuffer = std::move(normalBuffer);
+    m_indexBuffer = std::move(indexBuffer);
+    m_candidateBuffer = std::move(candidateBuffer);
+    m_segmentQuery = std::move(segmentQuery);
+    m_timerQueries[0] = std::move(timerQueries[0]);
+    m_timerQueries[1] = std::move(timerQueries[1]);
+    m_surfaceProgram = std::move(surfaceProgram); // last: isInitialized() from here on
 }
 
 void SilhouetteGlRenderer::uploadMesh(const Mesh& mesh) {
@@ -271,17 +220,17 @@ void SilhouetteGlRenderer::uploadMesh(std::span<const glm::vec3> positions,
     initialize();
     std::size_t vertexBytes = m_vertexCapacity * sizeof(glm::vec3);
     std::size_t normalBytes = vertexBytes;
-    uploadBuffer(GL_ARRAY_BUFFER, m_positionBuffer, positions.data(), positions.size_bytes(),
+    uploadBuffer(GL_ARRAY_BUFFER, m_positionBuffer.get(), positions.data(), positions.size_bytes(),
                  vertexBytes);
-    uploadBuffer(GL_ARRAY_BUFFER, m_normalBuffer, normals.data(), normals.size_bytes(),
+    uploadBuffer(GL_ARRAY_BUFFER, m_normalBuffer.get(), normals.data(), normals.size_bytes(),
                  normalBytes);
     const std::size_t oldVertexCapacity = m_vertexCapacity, oldIndexCapacity = m_indexCapacity;
     m_vertexCapacity = std::min(vertexBytes, normalBytes) / sizeof(glm::vec3);
     glBindBuffer(GL_ARRAY_BUFFER, 0);
     // The element buffer binding is vertex array state.
-    glBindVertexArray(m_vertexArray);
+    glBindVertexArray(m_vertexArray.get());
     std::size_t indexBytes = m_indexCapacity * sizeof(std::uint32_t);
-    uploadBuffer(GL_ELEMENT_ARRAY_BUFFER, m_indexBuffer, indices.data(), indices.size_bytes(),
+    uploadBuffer(GL_ELEMENT_ARRAY_BUFFER, m_indexBuffer.get(), indices.data(), indices.size_bytes(),
                  indexBytes);
     m_indexCapacity = indexBytes / sizeof(std::uint32_t);
     glBindVertexArray(0);
@@ -299,7 +248,7 @@ bool SilhouetteGlRenderer::reserveLineCandidates(std::size_t triangleCount) {
     const std::size_t capacity = indices + indices / 8;
     // Bound outside any vertex array: GL_ELEMENT_ARRAY_BUFFER is vertex-array state.
     glBindVertexArray(0);
-    glBindBuffer(GL_COPY_WRITE_BUFFER, m_candidateBuffer);
+    glBindBuffer(GL_COPY_WRITE_BUFFER, m_candidateBuffer.get());
     glBufferData(GL_COPY_WRITE_BUFFER, GLsizeiptr(capacity * sizeof(std::uint32_t)), nullptr,
                  GL_DYNAMIC_DRAW);
     glBindBuffer(GL_COPY_WRITE_BUFFER, 0);
@@ -318,9 +267,9 @@ void SilhouetteGlRenderer::writeMeshTail(std::size_t firstVertex, std::size_t fi
                           "the piece does not fit the reserved mesh buffers");
     const auto vertexBytes = GLsizeiptr(piece.vertexCount() * sizeof(glm::vec3));
     const auto vertexOffset = GLintptr(firstVertex * sizeof(glm::vec3));
-    glBindBuffer(GL_ARRAY_BUFFER, m_positionBuffer);
+    glBindBuffer(GL_ARRAY_BUFFER, m_positionBuffer.get());
     glBufferSubData(GL_ARRAY_BUFFER, vertexOffset, vertexBytes, piece.positions.data());
-    glBindBuffer(GL_ARRAY_BUFFER, m_normalBuffer);
+    glBindBuffer(GL_ARRAY_BUFFER, m_normalBuffer.get());
     glBufferSubData(GL_ARRAY_BUFFER, vertexOffset, vertexBytes, piece.normals.data());
     glBindBuffer(GL_ARRAY_BUFFER, 0);
     std::vector<std::uint32_t> shifted(piece.indices.size());
@@ -328,7 +277,7 @@ void SilhouetteGlRenderer::writeMeshTail(std::size_t firstVertex, std::size_t fi
         shifted[i] = std::uint32_t(firstVertex) + piece.indices[i];
     // Bound outside any vertex array: GL_ELEMENT_ARRAY_BUFFER is vertex-array state.
     glBindVertexArray(0);
-    glBindBuffer(GL_COPY_WRITE_BUFFER, m_indexBuffer);
+    glBindBuffer(GL_COPY_WRITE_BUFFER, m_indexBuffer.get());
     glBufferSubData(GL_COPY_WRITE_BUFFER, GLintptr(firstTriangle * 3 * sizeof(std::uint32_t)),
                     GLsizeiptr(shifted.size() * sizeof(std::uint32_t)), shifted.data());
     glBindBuffer(GL_COPY_WRITE_BUFFER, 0);
@@ -343,7 +292,7 @@ void SilhouetteGlRenderer::writeLineCandidatesTail(std::size_t firstIndex,
         throw core::Error("SilhouetteGlRenderer::writeLineCandidatesTail",
                           "the indices do not fit the reserved candidate buffer");
     glBindVertexArray(0);
-    glBindBuffer(GL_COPY_WRITE_BUFFER, m_candidateBuffer);
+    glBindBuffer(GL_COPY_WRITE_BUFFER, m_candidateBuffer.get());
     glBufferSubData(GL_COPY_WRITE_BUFFER, GLintptr(firstIndex * sizeof(std::uint32_t)),
                     GLsizeiptr(indices.size() * sizeof(std::uint32_t)), indices.data());
     glBindBuffer(GL_COPY_WRITE_BUFFER, 0);
@@ -358,7 +307,7 @@ bool SilhouetteGlRenderer::reserveMesh(std::size_t vertexCount, std::size_t tria
     const auto grow = [](std::size_t n) { return n + n / 8; };
     if (vertexCount > m_vertexCapacity || m_vertexCapacity == 0) {
         const std::size_t capacity = std::max<std::size_t>(grow(vertexCount), 1);
-        for (GLuint buffer : {m_positionBuffer, m_normalBuffer}) {
+        for (GLuint buffer : {m_positionBuffer.get(), m_normalBuffer.get()}) {
             glBindBuffer(GL_ARRAY_BUFFER, buffer);
             glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(capacity * sizeof(glm::vec3)), nullptr,
                          GL_DYNAMIC_DRAW);
@@ -369,8 +318,8 @@ bool SilhouetteGlRenderer::reserveMesh(std::size_t vertexCount, std::size_t tria
     }
     if (triangleCount * 3 > m_indexCapacity || m_indexCapacity == 0) {
         const std::size_t capacity = std::max<std::size_t>(grow(triangleCount * 3), 3);
-        glBindVertexArray(m_vertexArray);
-        glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, m_indexBuffer);
+        glBindVertexArray(m_vertexArray.get());
+        glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, m_indexBuffer.get());
         glBufferData(GL_ELEMENT_ARRAY_BUFFER, GLsizeiptr(capacity * sizeof(std::uint32_t)), nullptr,
                      GL_DYNAMIC_DRAW);
         glBindVertexArray(0);
@@ -387,13 +336,13 @@ bool SilhouetteGlRenderer::reserveMesh(std::size_t vertexCount, std::size_t tria
 void SilhouetteGlRenderer::clearMesh() {
     if (!isInitialized())
         return;
-    glBindBuffer(GL_ARRAY_BUFFER, m_positionBuffer);
+    glBindBuffer(GL_ARRAY_BUFFER, m_positionBuffer.get());
     glBufferData(GL_ARRAY_BUFFER, 0, nullptr, GL_DYNAMIC_DRAW);
-    glBindBuffer(GL_ARRAY_BUFFER, m_normalBuffer);
+    glBindBuffer(GL_ARRAY_BUFFER, m_normalBuffer.get());
     glBufferData(GL_ARRAY_BUFFER, 0, nullptr, GL_DYNAMIC_DRAW);
     glBindBuffer(GL_ARRAY_BUFFER, 0);
-    glBindVertexArray(m_vertexArray);
-    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, m_indexBuffer);
+    glBindVertexArray(m_vertexArray.get());
+    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, m_indexBuffer.get());
     glBufferData(GL_ELEMENT_ARRAY_BUFFER, 0, nullptr, GL_DYNAMIC_DRAW);
     glBindVertexArray(0);
     m_vertexCapacity = m_indexCapacity = m_indexCount = 0;
@@ -413,11 +362,11 @@ void SilhouetteGlRenderer::clearBuffers(glm::vec4 background) {
     glDisable(GL_SCISSOR_TEST);
     glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
     glDepthMask(GL_TRUE);
-    glBindFramebuffer(GL_FRAMEBUFFER, m_framebuffer);
+    glBindFramebuffer(GL_FRAMEBUFFER, m_framebuffer.get());
     glClearColor(background.r, background.g, background.b, background.a);
     glClearDepth(1.0);
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-    glBindFramebuffer(GL_FRAMEBUFFER, m_lineFramebuffer);
+    glBindFramebuffer(GL_FRAMEBUFFER, m_lineFramebuffer.get());
     glClear(GL_DEPTH_BUFFER_BIT);
 }
 
@@ -449,22 +398,19 @@ void checkFramebufferComplete(const char* which) {
 } // namespace
 
 void SilhouetteGlRenderer::ensureFramebufferObjects() {
-    if (!m_framebuffer)
-        glGenFramebuffers(1, &m_framebuffer);
-    if (!m_lineFramebuffer)
-        glGenFramebuffers(1, &m_lineFramebuffer);
-    if (!m_resolveFramebuffer)
-        glGenFramebuffers(1, &m_resolveFramebuffer);
-    for (GLuint* texture : {&m_colourTexture, &m_surfaceDepthTexture, &m_lineDepthTexture})
+    for (GlFramebuffer* framebuffer : {&m_framebuffer, &m_lineFramebuffer, &m_resolveFramebuffer})
+        if (!*framebuffer)
+            *framebuffer = GlFramebuffer::create();
+    for (GlTexture* texture : {&m_colourTexture, &m_surfaceDepthTexture, &m_lineDepthTexture})
         if (!*texture)
-            glGenTextures(1, texture);
+            *texture = GlTexture::create();
 }
 
 void SilhouetteGlRenderer::ensureFramebuffer(int width, int height) {
     if (width <= 0 || height <= 0)
         throw core::Error("GL render target",
                           "invalid size " + std::to_string(width) + "x" + std::to_string(height));
-    if (m_framebuffer && width == m_width && height == m_height)
+    if (m_framebuffer.get() && width == m_width && height == m_height)
         return;
     GLint maxSize = 0;
     glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxSize);
@@ -472,28 +418,31 @@ void SilhouetteGlRenderer::ensureFramebuffer(int width, int height) {
         throw core::Error("GL render target", std::to_string(width) + "x" + std::to_string(height) +
                                                   " exceeds the driver's limit of " +
                                                   std::to_string(maxSize));
-    if (m_colourTexture && m_beforeColourChange)
+    if (m_colourTexture.get() && m_beforeColourChange)
         m_beforeColourChange();
     ensureFramebufferObjects();
-    allocateTexture(m_colourTexture, GL_RGBA8, GL_RGBA, GL_UNSIGNED_BYTE, width, height);
+    allocateTexture(m_colourTexture.get(), GL_RGBA8, GL_RGBA, GL_UNSIGNED_BYTE, width, height);
     // 32-bit float depth: CT surfaces span hundreds of mm, the tolerance is 0.1 % of that.
-    for (GLuint texture : {m_surfaceDepthTexture, m_lineDepthTexture})
+    for (GLuint texture : {m_surfaceDepthTexture.get(), m_lineDepthTexture.get()})
         allocateTexture(texture, GL_DEPTH_COMPONENT32F, GL_DEPTH_COMPONENT, GL_FLOAT, width,
                         height);
-    glBindFramebuffer(GL_FRAMEBUFFER, m_framebuffer);
-    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, m_colourTexture, 0);
+    glBindFramebuffer(GL_FRAMEBUFFER, m_framebuffer.get());
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D,
+                           m_colourTexture.get(), 0);
     glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D,
-                           m_surfaceDepthTexture, 0);
+                           m_surfaceDepthTexture.get(), 0);
     checkFramebufferComplete("surface");
     // Pass 2 writes line depth and, when it draws the final lines itself, the colour.
-    glBindFramebuffer(GL_FRAMEBUFFER, m_lineFramebuffer);
-    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, m_colourTexture, 0);
-    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, m_lineDepthTexture,
-                           0);
+    glBindFramebuffer(GL_FRAMEBUFFER, m_lineFramebuffer.get());
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D,
+                           m_colourTexture.get(), 0);
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D,
+                           m_lineDepthTexture.get(), 0);
     checkFramebufferComplete("line depth");
     // Pass 3 reads both depth textures, so none of them may be attached where it draws.
-    glBindFramebuffer(GL_FRAMEBUFFER, m_resolveFramebuffer);
-    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, m_colourTexture, 0);
+    glBindFramebuffer(GL_FRAMEBUFFER, m_resolveFramebuffer.get());
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D,
+                           m_colourTexture.get(), 0);
     checkFramebufferComplete("resolve");
     gl::checkGlError("SilhouetteGlRenderer: framebuffers");
     m_width = width;
@@ -529,16 +478,16 @@ SilhouetteGlStats SilhouetteGlRenderer::render(const glm::mat4& viewProjection, 
     const bool drawSurface = m_indexCount > 0 && (iso || options.visibility);
     if (drawSurface) {
         if (options.timePasses)
-            glBeginQuery(GL_TIME_ELAPSED, m_timerQueries[0]);
+            glBeginQuery(GL_TIME_ELAPSED, m_timerQueries[0].get());
         drawSurfacePass(viewProjection, viewer, lightDirection, options);
         if (options.timePasses)
             glEndQuery(GL_TIME_ELAPSED);
     }
     if (drawLines) {
         if (options.timePasses)
-            glBeginQuery(GL_TIME_ELAPSED, m_timerQueries[1]);
+            glBeginQuery(GL_TIME_ELAPSED, m_timerQueries[1].get());
         if (options.countSegments)
-            glBeginQuery(GL_PRIMITIVES_GENERATED, m_segmentQuery);
+            glBeginQuery(GL_PRIMITIVES_GENERATED, m_segmentQuery.get());
         // One-pixel lines of a complete frame need no pass 3: pass 2 colours them itself.
         const bool direct = options.resolve && dilationRadius(options.lineWidth) == 0;
         if (m_indexCount > 0)
@@ -553,12 +502,12 @@ SilhouetteGlStats SilhouetteGlRenderer::render(const glm::mat4& viewProjection, 
     // The queries are read once every pass is queued: reading one right after its pass would
     // stall the CPU until the GPU had drained, with the next pass not yet sent.
     if (drawSurface && options.timePasses)
-        stats.surfacePassMs = queryResultMs(m_timerQueries[0]);
+        stats.surfacePassMs = queryResultMs(m_timerQueries[0].get());
     if (drawLines && options.timePasses)
-        stats.linePassMs = queryResultMs(m_timerQueries[1]);
+        stats.linePassMs = queryResultMs(m_timerQueries[1].get());
     if (drawLines && options.countSegments) {
         GLuint primitives = 0;
-        glGetQueryObjectuiv(m_segmentQuery, GL_QUERY_RESULT, &primitives);
+        glGetQueryObjectuiv(m_segmentQuery.get(), GL_QUERY_RESULT, &primitives);
         stats.segments = primitives;
     }
     glBindVertexArray(0);
@@ -572,15 +521,18 @@ void SilhouetteGlRenderer::drawSurfacePass(const glm::mat4& viewProjection, glm:
                                            glm::vec3 lightDirection,
                                            const SilhouetteGlOptions& options) {
     const bool iso = options.panel == GlPanel::Iso;
-    glBindFramebuffer(GL_FRAMEBUFFER, m_framebuffer);
-    glUseProgram(m_surfaceProgram);
-    glUniformMatrix4fv(uniform(m_surfaceProgram, "uViewProjection"), 1, GL_FALSE,
+    glBindFramebuffer(GL_FRAMEBUFFER, m_framebuffer.get());
+    glUseProgram(m_surfaceProgram.get());
+    glUniformMatrix4fv(uniform(m_surfaceProgram.get(), "uViewProjection"), 1, GL_FALSE,
                        glm::value_ptr(viewProjection));
-    glUniform4fv(uniform(m_surfaceProgram, "uViewer"), 1, glm::value_ptr(viewer));
-    glUniform3fv(uniform(m_surfaceProgram, "uLightDirection"), 1, glm::value_ptr(lightDirection));
-    glUniform3fv(uniform(m_surfaceProgram, "uFrontColour"), 1, glm::value_ptr(options.frontColour));
-    glUniform3fv(uniform(m_surfaceProgram, "uBackColour"), 1, glm::value_ptr(options.backColour));
-    glUniform4fv(uniform(m_surfaceProgram, "uMaterial"), 1, glm::value_ptr(options.material));
+    glUniform4fv(uniform(m_surfaceProgram.get(), "uViewer"), 1, glm::value_ptr(viewer));
+    glUniform3fv(uniform(m_surfaceProgram.get(), "uLightDirection"), 1,
+                 glm::value_ptr(lightDirection));
+    glUniform3fv(uniform(m_surfaceProgram.get(), "uFrontColour"), 1,
+                 glm::value_ptr(options.frontColour));
+    glUniform3fv(uniform(m_surfaceProgram.get(), "uBackColour"), 1,
+                 glm::value_ptr(options.backColour));
+    glUniform4fv(uniform(m_surfaceProgram.get(), "uMaterial"), 1, glm::value_ptr(options.material));
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);
     glDepthMask(GL_TRUE);
@@ -590,7 +542,7 @@ void SilhouetteGlRenderer::drawSurfacePass(const glm::mat4& viewProjection, glm:
         glFrontFace(GL_CCW);
         glCullFace(GL_BACK);
     }
-    glBindVertexArray(m_vertexArray);
+    glBindVertexArray(m_vertexArray.get());
     glDrawElements(GL_TRIANGLES, GLsizei(m_indexCount), GL_UNSIGNED_INT, nullptr);
     glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
     glDisable(GL_CULL_FACE);
@@ -602,16 +554,16 @@ void SilhouetteGlRenderer::drawSurfacePass(const glm::mat4& viewProjection, glm:
 // by now, so the fragments test visibility here; pieces leave it to the resolve.
 void SilhouetteGlRenderer::drawLinePass(const glm::mat4& viewProjection, glm::vec4 viewer,
                                         const SilhouetteGlOptions& options, bool writeColour) {
-    glBindFramebuffer(GL_FRAMEBUFFER, m_lineFramebuffer);
+    glBindFramebuffer(GL_FRAMEBUFFER, m_lineFramebuffer.get());
     const bool testVisibility = options.visibility && options.resolve;
-    const GLuint program = m_linePrograms[testVisibility];
+    const GLuint program = m_linePrograms[testVisibility].get();
     glUseProgram(program);
     glUniformMatrix4fv(uniform(program, "uViewProjection"), 1, GL_FALSE,
                        glm::value_ptr(viewProjection));
     glUniform4fv(uniform(program, "uViewer"), 1, glm::value_ptr(viewer));
     glUniform2f(uniform(program, "uViewportSize"), float(m_width), float(m_height));
     glActiveTexture(GL_TEXTURE0);
-    glBindTexture(GL_TEXTURE_2D, testVisibility ? m_surfaceDepthTexture : 0);
+    glBindTexture(GL_TEXTURE_2D, testVisibility ? m_surfaceDepthTexture.get() : 0);
     glUniform1i(uniform(program, "uSurfaceDepth"), 0);
     glUniform1f(uniform(program, "uTolerance"), options.depthTolerance);
     glUniform4fv(uniform(program, "uLineColour"), 1, glm::value_ptr(options.lineColour));
@@ -619,13 +571,13 @@ void SilhouetteGlRenderer::drawLinePass(const glm::mat4& viewProjection, glm::ve
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);
     glDepthMask(GL_TRUE);
-    glBindVertexArray(m_vertexArray);
+    glBindVertexArray(m_vertexArray.get());
     if (options.useLineCandidates) {
-        glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, m_candidateBuffer);
+        glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, m_candidateBuffer.get());
         glDrawElements(GL_TRIANGLES,
                        GLsizei(std::min(options.lineCandidateIndices, m_candidateCapacity)),
                        GL_UNSIGNED_INT, nullptr);
-        glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, m_indexBuffer);
+        glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, m_indexBuffer.get());
     } else {
         glDrawElements(GL_TRIANGLES, GLsizei(m_indexCount), GL_UNSIGNED_INT, nullptr);
     }
@@ -638,20 +590,19 @@ unsigned SilhouetteGlRenderer::resolveProgram(int radius, bool visibility) {
     const int key = radius * 2 + (visibility ? 1 : 0);
     for (const auto& [programKey, program] : m_resolvePrograms)
         if (programKey == key)
-            return program;
+            return program.get();
     const std::string defines = "#define LW_RADIUS " + std::to_string(radius) +
                                 "\n#define LW_VISIBILITY " + (visibility ? "1" : "0") + "\n";
-    const GLuint program = linkProgram(
+    GlProgram program = linkProgram(
         {{GL_VERTEX_SHADER, gl::shaders::silhouette_resolve_vert, "silhouette_resolve.vert.glsl"},
          {GL_FRAGMENT_SHADER, withVisibilityRule(gl::shaders::silhouette_resolve_frag, defines),
           "silhouette_resolve.frag.glsl"}},
         "silhouette resolve");
-    m_resolvePrograms.emplace_back(key, program);
-    return program;
+    return m_resolvePrograms.emplace_back(key, std::move(program)).second.get();
 }
 
 void SilhouetteGlRenderer::resolve(const SilhouetteGlOptions& options) {
-    if (!m_framebuffer)
+    if (!m_framebuffer.get())
         throw core::Error("silhouette resolve", "nothing has been drawn yet");
     const FramebufferBindingGuard bindingGuard;
     glViewport(0, 0, m_width, m_height);
@@ -665,20 +616,20 @@ void SilhouetteGlRenderer::resolve(const SilhouetteGlOptions& options) {
 // `testVisibility` the nearest line of each pixel is tested here (a frame drawn in pieces).
 void SilhouetteGlRenderer::drawResolvePass(const SilhouetteGlOptions& options,
                                            bool testVisibility) {
-    glBindFramebuffer(GL_FRAMEBUFFER, m_resolveFramebuffer);
+    glBindFramebuffer(GL_FRAMEBUFFER, m_resolveFramebuffer.get());
     glDisable(GL_DEPTH_TEST);
     glDisable(GL_BLEND);
     const GLuint program = resolveProgram(dilationRadius(options.lineWidth), testVisibility);
     glUseProgram(program);
     glActiveTexture(GL_TEXTURE0);
-    glBindTexture(GL_TEXTURE_2D, m_surfaceDepthTexture);
+    glBindTexture(GL_TEXTURE_2D, m_surfaceDepthTexture.get());
     glActiveTexture(GL_TEXTURE1);
-    glBindTexture(GL_TEXTURE_2D, m_lineDepthTexture);
+    glBindTexture(GL_TEXTURE_2D, m_lineDepthTexture.get());
     glUniform1i(uniform(program, "uSurfaceDepth"), 0);
     glUniform1i(uniform(program, "uLineDepth"), 1);
     glUniform1f(uniform(program, "uTolerance"), options.depthTolerance);
     glUniform4fv(uniform(program, "uLineColour"), 1, glm::value_ptr(options.lineColour));
-    glBindVertexArray(m_emptyVertexArray);
+    glBindVertexArray(m_emptyVertexArray.get());
     glDrawArrays(GL_TRIANGLES, 0, 3);
     glBindTexture(GL_TEXTURE_2D, 0);
     glActiveTexture(GL_TEXTURE0);
@@ -710,10 +661,10 @@ void readFramebuffer(unsigned framebuffer, int x, int y, int width, int height, 
 } // namespace
 
 core::ImageRgba8 SilhouetteGlRenderer::readImage() const {
-    if (!m_framebuffer)
+    if (!m_framebuffer.get())
         throw core::Error("GL read-back", "nothing has been rendered yet");
     core::ImageRgba8 image(m_width, m_height);
-    readFramebuffer(m_framebuffer, 0, 0, m_width, m_height, GL_RGBA, GL_UNSIGNED_BYTE,
+    readFramebuffer(m_framebuffer.get(), 0, 0, m_width, m_height, GL_RGBA, GL_UNSIGNED_BYTE,
                     image.bytes(), "SilhouetteGlRenderer::readImage");
     image.flipRows(); // GL's first row is the bottom one
     return image;
@@ -721,14 +672,14 @@ core::ImageRgba8 SilhouetteGlRenderer::readImage() const {
 
 void SilhouetteGlRenderer::readRedMask(std::uint8_t backgroundRed,
                                        std::vector<std::uint8_t>& mask) const {
-    if (!m_framebuffer)
+    if (!m_framebuffer.get())
         throw core::Error("GL read-back", "nothing has been rendered yet");
     // Read straight into the mask (no second buffer per frame), then turn GL's bottom-up rows
     // around and threshold in place.
     const std::size_t width = std::size_t(m_width);
     mask.resize(width * std::size_t(m_height));
-    readFramebuffer(m_framebuffer, 0, 0, m_width, m_height, GL_RED, GL_UNSIGNED_BYTE, mask.data(),
-                    "SilhouetteGlRenderer::readRedMask");
+    readFramebuffer(m_framebuffer.get(), 0, 0, m_width, m_height, GL_RED, GL_UNSIGNED_BYTE,
+                    mask.data(), "SilhouetteGlRenderer::readRedMask");
     for (int y = 0; y < m_height / 2; ++y)
         std::swap_ranges(mask.begin() + std::ptrdiff_t(std::size_t(y) * width),
                          mask.begin() + std::ptrdiff_t(std::size_t(y + 1) * width),
@@ -738,10 +689,10 @@ void SilhouetteGlRenderer::readRedMask(std::uint8_t backgroundRed,
 }
 
 std::vector<float> SilhouetteGlRenderer::readDepth() const {
-    if (!m_framebuffer)
+    if (!m_framebuffer.get())
         throw core::Error("GL depth read-back", "nothing has been rendered yet");
     std::vector<float> depth(std::size_t(m_width) * std::size_t(m_height));
-    readFramebuffer(m_framebuffer, 0, 0, m_width, m_height, GL_DEPTH_COMPONENT, GL_FLOAT,
+    readFramebuffer(m_framebuffer.get(), 0, 0, m_width, m_height, GL_DEPTH_COMPONENT, GL_FLOAT,
                     depth.data(), "SilhouetteGlRenderer::readDepth");
     // GL's first row is the bottom one; callers index top row first like the images.
     for (int y = 0; y < m_height / 2; ++y)
@@ -752,13 +703,13 @@ std::vector<float> SilhouetteGlRenderer::readDepth() const {
 }
 
 float SilhouetteGlRenderer::readDepthAt(int x, int y) const {
-    if (!m_framebuffer)
+    if (!m_framebuffer.get())
         throw core::Error("GL depth read-back", "nothing has been rendered yet");
     if (x < 0 || y < 0 || x >= m_width || y >= m_height)
         return 1.0f;
     float depth = 1.0f;
-    readFramebuffer(m_framebuffer, x, m_height - 1 - y, 1, 1, GL_DEPTH_COMPONENT, GL_FLOAT, &depth,
-                    "SilhouetteGlRenderer::readDepthAt");
+    readFramebuffer(m_framebuffer.get(), x, m_height - 1 - y, 1, 1, GL_DEPTH_COMPONENT, GL_FLOAT,
+                    &depth, "SilhouetteGlRenderer::readDepthAt");
     return depth;
 }
 

@@ -11,6 +11,7 @@
 // keeps of the texture (CUDA: its interop registration) is an Attachment owned here, so that it
 // goes before the texture does. Public header: no GL or CUDA types.
 
+#include "lw/render/gl_object.h"
 #include "lw/render/pixel_mask.h"
 
 #include <memory>
@@ -22,12 +23,12 @@ class GlFrameTarget {
 public:
     // Makes the texture in the current context (all texels off); throws core::Error on failure.
     GlFrameTarget(int width, int height);
-    // Drops the attachment, then deletes the texture.
+    // Drops the attachment, then deletes the texture (the context current).
     ~GlFrameTarget();
     GlFrameTarget(const GlFrameTarget&) = delete;
     GlFrameTarget& operator=(const GlFrameTarget&) = delete;
 
-    unsigned texture() const { return m_texture; }
+    unsigned texture() const { return m_texture.get(); }
     int width() const { return m_width; }
     int height() const { return m_height; }
     // The texels as a mask (read back from GL; for tests and checks, not per frame).
@@ -43,9 +44,9 @@ public:
     }
 
 private:
-    unsigned m_texture = 0;
+    GlTexture m_texture;
     int m_width = 0, m_height = 0;
-    std::unique_ptr<Attachment> m_attachment;
+    std::unique_ptr<Attachment> m_attachment; // after the texture: destroyed before it
 };
 
 } // namespace lw::render

@@ -28,12 +28,13 @@
 // Mode a (mesh uploaded once, only the view changes) and mode b (re-upload every frame) are the
 // caller's choice: uploadMesh() and render() are separate, and buffers are reused when they fit.
 //
-// Every GL call needs the context that was current at initialize() to be current again. GL
-// objects are freed by release() (call it while the context is still current); the destructor
-// makes no GL calls because the context may already be gone.
+// Every GL call needs the context that was current at initialize() to be current again. Each GL
+// object is owned by a GlObject (lw/render/gl_object.h), so destroying the renderer frees them
+// all: its owner destroys it while that context is still current.
 
 #include "lw/core/image.h"
 #include "lw/render/camera.h"
+#include "lw/render/gl_object.h"
 #include "lw/render/iso_surface.h"
 
 #include <cstddef>
@@ -98,16 +99,16 @@ struct SilhouetteGlStats {
 class SilhouetteGlRenderer {
 public:
     SilhouetteGlRenderer() = default;
+    // Deletes the GL objects: the context they were made in must be current.
     ~SilhouetteGlRenderer();
     SilhouetteGlRenderer(const SilhouetteGlRenderer&) = delete;
     SilhouetteGlRenderer& operator=(const SilhouetteGlRenderer&) = delete;
 
     // Compiles the shaders and creates the vertex arrays. Needs a current context; throws
-    // core::Error with the compile/link log or the GL error. Called by the first upload/render.
+    // core::Error with the compile/link log or the GL error, having made nothing. Called by the
+    // first upload/render.
     void initialize();
-    bool isInitialized() const { return m_surfaceProgram != 0; }
-    // Frees every GL object; the context they were created in must be current. Safe to call twice.
-    void release();
+    bool isInitialized() const { return bool(m_surfaceProgram); }
 
     // Uploads an indexed mesh (positions and normals per vertex, three indices per triangle).
     // Buffers are reused when the new data fits; throws core::Error for inconsistent sizes or
@@ -129,13 +130,13 @@ public:
     void writeLineCandidatesTail(std::size_t firstIndex, std::span<const std::uint32_t> indices);
     // The buffer names (GL_ARRAY_BUFFER positions and normals as 3 floats a vertex,
     // GL_ELEMENT_ARRAY_BUFFER indices as uint32), for interop.
-    unsigned positionBuffer() const { return m_positionBuffer; }
-    unsigned normalBuffer() const { return m_normalBuffer; }
-    unsigned indexBuffer() const { return m_indexBuffer; }
+    unsigned positionBuffer() const { return m_positionBuffer.get(); }
+    unsigned normalBuffer() const { return m_normalBuffer.get(); }
+    unsigned indexBuffer() const { return m_indexBuffer.get(); }
     // A GL_ELEMENT_ARRAY_BUFFER for up to `triangleCount` triangles of pass-2 candidates (see
     // SilhouetteGlOptions::useLineCandidates); its name, and true when its storage was
     // reallocated (a CUDA registration must be renewed).
-    unsigned lineCandidateBuffer() const { return m_candidateBuffer; }
+    unsigned lineCandidateBuffer() const { return m_candidateBuffer.get(); }
     bool reserveLineCandidates(std::size_t triangleCount);
     // The last frame's red channel as a mask, top row first: 1 where it differs from
     // `backgroundRed` (lines drawn in another red than the background). A quarter of readImage's
@@ -176,8 +177,8 @@ public:
 
     // The framebuffer object and its colour texture (GL_RGBA8), for a GUI that blits or samples
     // them into its own framebuffer.
-    unsigned framebuffer() const { return m_framebuffer; }
-    unsigned colourTexture() const { return m_colourTexture; }
+    unsigned framebuffer() const { return m_framebuffer.get(); }
+    unsigned colourTexture() const { return m_colourTexture.get(); }
     // Called before the colour texture's storage is re-specified (a frame of another size) or
     // the texture deleted: a CUDA registration of it (GlMaskReader) must go first, GL refuses
     // to re-specify a registered texture. One observer; an empty function clears it.
@@ -200,30 +201,30 @@ private:
     // (constant loop bounds: see silhouette_resolve.frag.glsl).
     unsigned resolveProgram(int radius, bool visibility);
 
-    unsigned m_surfaceProgram = 0;
-    unsigned m_linePrograms[2] = {0, 0}; // geometry shader emitting GL lines; [test visibility]
-    unsigned m_vertexArray = 0;
-    std::vector<std::pair<int, unsigned>> m_resolvePrograms; // (radius * 2 + visibility, name)
-    unsigned m_emptyVertexArray = 0; // the resolve's full-screen triangle has no attributes
-    unsigned m_positionBuffer = 0;
-    unsigned m_normalBuffer = 0;
-    unsigned m_indexBuffer = 0;
-    unsigned m_segmentQuery = 0;
-    unsigned m_timerQueries[2] = {0, 0};
+    GlProgram m_surfaceProgram;
+    GlProgram m_linePrograms[2]; // geometry shader emitting GL lines; [test visibility]
+    GlVertexArray m_vertexArray;
+    std::vector<std::pair<int, GlProgram>> m_resolvePrograms; // (radius * 2 + visibility, program)
+    GlVertexArray m_emptyVertexArray; // the resolve's full-screen triangle has no attributes
+    GlBuffer m_positionBuffer;
+    GlBuffer m_normalBuffer;
+    GlBuffer m_indexBuffer;
+    GlQuery m_segmentQuery;
+    GlQuery m_timerQueries[2];
     std::size_t m_vertexCapacity = 0; // vertices the position/normal buffers can hold
     std::size_t m_indexCapacity = 0;
     std::size_t m_indexCount = 0;
     std::size_t m_storageGeneration = 0;
-    unsigned m_candidateBuffer = 0;
+    GlBuffer m_candidateBuffer;
     std::size_t m_candidateCapacity = 0; // indices
 
-    unsigned m_framebuffer = 0;        // colour + surface depth (passes 1 and the read-backs)
-    unsigned m_lineFramebuffer = 0;    // line depth (pass 2)
-    unsigned m_resolveFramebuffer = 0; // colour only (pass 3 samples both depth textures)
-    unsigned m_colourTexture = 0;
+    GlFramebuffer m_framebuffer;        // colour + surface depth (passes 1 and the read-backs)
+    GlFramebuffer m_lineFramebuffer;    // line depth (pass 2)
+    GlFramebuffer m_resolveFramebuffer; // colour only (pass 3 samples both depth textures)
+    GlTexture m_colourTexture;
     std::function<void()> m_beforeColourChange; // setColourTextureObserver
-    unsigned m_surfaceDepthTexture = 0;
-    unsigned m_lineDepthTexture = 0;
+    GlTexture m_surfaceDepthTexture;
+    GlTexture m_lineDepthTexture;
     int m_width = 0;
     int m_height = 0;
 };
