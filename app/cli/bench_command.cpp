@@ -10,9 +10,9 @@
 #include "lw/render/camera.h"
 #include "lw/render/cuda_iso_surface.h"
 #include "lw/render/iso_surface.h"
-#include "lw/render/phantom.h"
 #include "lw/render/renderer_factory.h"
 #include "lw/render/silhouette_methods.h"
+#include "lw/volume/phantom.h"
 #include "lw/volume/volume_reader.h"
 #include "panel_rendering.h"
 
@@ -77,7 +77,7 @@ double mib(std::size_t bytes) {
 struct BenchVolume {
     std::string label;
     volume::Volume volume;
-    double iso = render::kPhantomBoneIso;
+    double iso = volume::kPhantomBoneIso;
 };
 
 struct Row {
@@ -556,13 +556,13 @@ int runBench(const std::vector<std::string>& args, std::ostream& out) {
     result.baselineRss = procStatusBytes("VmRSS");
     for (const std::string& spec : volumeSpecs) {
         BenchVolume bench{
-            .label = {}, .volume = {}, .iso = arguments.number("iso", render::kPhantomBoneIso)};
+            .label = {}, .volume = {}, .iso = arguments.number("iso", volume::kPhantomBoneIso)};
         if (input) {
             bench.volume = volume::readVolumeFile(spec);
             bench.label = spec;
         } else {
             const glm::ivec3 dims = parseDimsOption("--sizes", spec, 2);
-            bench.volume = render::makePhantom(dims, render::PhantomKind::Ct, plan.threads);
+            bench.volume = volume::makePhantom(dims, volume::PhantomKind::Ct, plan.threads);
             bench.label = "phantom " + dimsText(dims);
         }
         if (std::optional<volume::Volume> finer =

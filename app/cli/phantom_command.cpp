@@ -4,7 +4,7 @@
 #include "commands.h"
 #include "lw/core/error.h"
 #include "lw/render/iso_surface.h"
-#include "lw/render/phantom.h"
+#include "lw/volume/phantom.h"
 #include "lw/volume/volume_reader.h"
 
 #include <algorithm>
@@ -38,17 +38,17 @@ int runPhantom(const std::vector<std::string>& args, std::ostream& out) {
     if (!size || !output || !arguments.positionals().empty())
         throw UsageError("phantom", "needs --size and -o OUT.nrrd, and no other arguments");
     const glm::ivec3 dims = parseDimsOption("--size", *size, 1);
-    const render::PhantomKind kind =
-        parseUsage([&] { return render::parsePhantomKind(arguments.option("kind", "ct")); });
+    const volume::PhantomKind kind =
+        parseUsage([&] { return volume::parsePhantomKind(arguments.option("kind", "ct")); });
     const auto start = std::chrono::steady_clock::now();
     const volume::Volume phantom =
-        render::makePhantom(dims, kind, unsigned(arguments.number("threads", 0)));
+        volume::makePhantom(dims, kind, unsigned(arguments.number("threads", 0)));
     const double seconds = secondsSince(start);
-    const render::PhantomChecksum checksum = render::phantomChecksum(phantom);
+    const volume::PhantomChecksum checksum = volume::phantomChecksum(phantom);
     volume::writeNrrd(*output, phantom);
     char line[256];
     std::snprintf(line, sizeof line, "gen %s %s via linework: %.2fs sum=%lld above_iso=%lld\n",
-                  std::string(render::phantomKindName(kind)).c_str(), dimsText(dims).c_str(),
+                  std::string(volume::phantomKindName(kind)).c_str(), dimsText(dims).c_str(),
                   seconds, static_cast<long long>(checksum.sum),
                   static_cast<long long>(checksum.above));
     out << line;
@@ -58,14 +58,14 @@ int runPhantom(const std::vector<std::string>& args, std::ostream& out) {
 int runBenchMc(const std::vector<std::string>& args, std::ostream& out) {
     const Arguments arguments(args, {}, {"size", "kind", "chunks", "repeat", "iso", "threads"});
     const glm::ivec3 dims = parseDimsOption("--size", arguments.option("size", "256"), 1);
-    const render::PhantomKind kind =
-        parseUsage([&] { return render::parsePhantomKind(arguments.option("kind", "ct")); });
+    const volume::PhantomKind kind =
+        parseUsage([&] { return volume::parsePhantomKind(arguments.option("kind", "ct")); });
     const int repeat = std::max(1, int(arguments.number("repeat", 10)));
-    const double iso = arguments.number("iso", render::kPhantomBoneIso);
+    const double iso = arguments.number("iso", volume::kPhantomBoneIso);
     const std::string chunks = arguments.option("chunks", "off");
 
     auto start = std::chrono::steady_clock::now();
-    const volume::Volume phantom = render::makePhantom(dims, kind);
+    const volume::Volume phantom = volume::makePhantom(dims, kind);
     const double generateSeconds = secondsSince(start);
 
     render::IsoSurfaceOptions options;
@@ -98,7 +98,7 @@ int runBenchMc(const std::vector<std::string>& args, std::ostream& out) {
         "runs (CPU %.1f ms per run, all threads); triangles=%zu vertices=%zu; brick min/max %.1f "
         "ms; "
         "phantom generated in %.2f s\n",
-        std::string(render::phantomKindName(kind)).c_str(), dimsText(dims).c_str(), iso,
+        std::string(volume::phantomKindName(kind)).c_str(), dimsText(dims).c_str(), iso,
         chunks.c_str(), options.brickCells, stats.activeBricks, stats.totalBricks, median,
         times.front(), repeat, cpuMs, mesh.triangleCount(), mesh.vertexCount(),
         brickSeconds * 1000.0, generateSeconds);

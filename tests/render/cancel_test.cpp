@@ -6,10 +6,10 @@
 #include "lw/kernels/cpu/marching_cubes_cpu.h"
 #include "lw/kernels/cpu/raycast_silhouette_cpu.h"
 #include "lw/render/iso_surface.h"
-#include "lw/render/phantom.h"
 #include "lw/render/raycast_silhouette_renderer.h"
 #include "lw/render/zbuffer_silhouette_renderer.h"
 #include "lw/volume/bricks.h"
+#include "lw/volume/phantom.h"
 
 #include <gtest/gtest.h>
 #include <memory>
@@ -19,7 +19,7 @@ using namespace lw;
 namespace {
 
 volume::Volume phantom() {
-    return render::makePhantom(glm::ivec3(48), render::PhantomKind::Ct);
+    return volume::makePhantom(glm::ivec3(48), volume::PhantomKind::Ct);
 }
 
 render::Camera camera(const volume::Volume& volume) {
@@ -40,7 +40,7 @@ TEST(Cancel, MarchingCubesKernelReportsCancelledWithEmptyOutput) {
     kernels::cpu::McOutput out;
     out.indices = {1, 2, 3}; // whatever was there before must not survive
     const kernels::cpu::McResult result =
-        kernels::cpu::marchingCubes(volume, grid, render::kPhantomBoneIso, out, 0, &token);
+        kernels::cpu::marchingCubes(volume, grid, volume::kPhantomBoneIso, out, 0, &token);
     EXPECT_EQ(result.status, kernels::cpu::McStatus::Cancelled);
     EXPECT_TRUE(out.indices.empty());
     EXPECT_TRUE(out.positions.empty());
@@ -49,15 +49,15 @@ TEST(Cancel, MarchingCubesKernelReportsCancelledWithEmptyOutput) {
 TEST(Cancel, ExtractorThrowsAndTheNextExtractionIsUnchanged) {
     const volume::Volume volume = phantom();
     const render::IsoSurfaceExtractor extractor(volume);
-    const render::Mesh expected = extractor.extract(render::kPhantomBoneIso);
+    const render::Mesh expected = extractor.extract(volume::kPhantomBoneIso);
     ASSERT_GT(expected.triangleCount(), 1000u);
     core::CancelToken token;
     token.cancel();
     render::Mesh mesh;
-    EXPECT_THROW(extractor.extract(render::kPhantomBoneIso, mesh, nullptr, &token),
+    EXPECT_THROW(extractor.extract(volume::kPhantomBoneIso, mesh, nullptr, &token),
                  core::Cancelled);
     EXPECT_TRUE(mesh.isEmpty());
-    extractor.extract(render::kPhantomBoneIso, mesh);
+    extractor.extract(volume::kPhantomBoneIso, mesh);
     EXPECT_EQ(mesh.indices, expected.indices);
     EXPECT_EQ(mesh.positions, expected.positions);
 }
@@ -67,7 +67,7 @@ template <typename Renderer> void expectRendererCancels(int brickCells) {
     Renderer renderer;
     renderer.setVolume(volume);
     render::SilhouetteSettings settings;
-    settings.isoReal = render::kPhantomBoneIso;
+    settings.isoReal = volume::kPhantomBoneIso;
     settings.brickCells = brickCells;
     const render::PixelMask expected = renderer.render(camera(volume), settings).lines;
     ASSERT_GT(expected.count(), 50u);
@@ -97,8 +97,8 @@ TEST(Cancel, MethodTwoCellPreparationStopsAndPreparesNothing) {
     core::CancelToken token;
     token.cancel();
     kernels::cpu::RayCastSilhouetteCpu kernel;
-    EXPECT_FALSE(kernel.prepare(volume, grid, render::kPhantomBoneIso, true, 0, &token));
+    EXPECT_FALSE(kernel.prepare(volume, grid, volume::kPhantomBoneIso, true, 0, &token));
     EXPECT_FALSE(kernel.isPrepared());
-    EXPECT_TRUE(kernel.prepare(volume, grid, render::kPhantomBoneIso));
+    EXPECT_TRUE(kernel.prepare(volume, grid, volume::kPhantomBoneIso));
     EXPECT_GT(kernel.activeCellCount(), 1000u);
 }

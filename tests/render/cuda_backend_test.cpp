@@ -12,10 +12,10 @@
 #include "lw/kernels/cuda/stroke_pruning_cuda.h"
 #include "lw/render/gpu_memory_plan.h"
 #include "lw/render/iso_surface.h"
-#include "lw/render/phantom.h"
 #include "lw/render/pixel_mask.h"
 #include "lw/render/renderer_factory.h"
 #include "lw/render/zbuffer_silhouette_renderer.h"
+#include "lw/volume/phantom.h"
 
 #include <cmath>
 #include <cstdio>
@@ -70,22 +70,22 @@ std::vector<Case> cases() {
     return {
         {"phantom 64^3 int16",
          [] {
-             return makePhantom({64, 64, 64}, PhantomKind::Ct);
+             return volume::makePhantom({64, 64, 64}, volume::PhantomKind::Ct);
          },
          300.5},
         {"phantom 100x67x45 int16 (odd sizes)",
          [] {
-             return makePhantom({100, 67, 45}, PhantomKind::Ct);
+             return volume::makePhantom({100, 67, 45}, volume::PhantomKind::Ct);
          },
          300.5},
         {"phantom soft tissue",
          [] {
-             return makePhantom({96, 80, 70}, PhantomKind::Ct);
+             return volume::makePhantom({96, 80, 70}, volume::PhantomKind::Ct);
          },
          -500.0},
         {"sphere 33^3",
          [] {
-             return makePhantom({33, 33, 33}, PhantomKind::Sphere);
+             return volume::makePhantom({33, 33, 33}, volume::PhantomKind::Sphere);
          },
          300.5},
         {"tilted uneven float", tiltedSphere, 0.0},
@@ -371,7 +371,7 @@ struct FramesUnderBudget {
 };
 
 FramesUnderBudget framesUnderBudget(SilhouetteMethod method) {
-    const Volume volume = makePhantom({512, 512, 1024}, PhantomKind::Ct);
+    const Volume volume = volume::makePhantom({512, 512, 1024}, volume::PhantomKind::Ct);
     auto whole = createSilhouetteRenderer(method, Backend::Cuda);
     auto budgeted = createSilhouetteRenderer(method, Backend::Cuda);
     whole->setVolume(volume);
@@ -427,7 +427,7 @@ TEST(CudaBackendMethod1, CudaExtractionDrawsTheCpuImage) {
         GTEST_SKIP() << "no OpenGL for method 1: " << error.what();
     }
     ASSERT_EQ(cuda->backendName(), "cuda+gl");
-    const Volume volume = makePhantom({128, 120, 96}, PhantomKind::Ct);
+    const Volume volume = volume::makePhantom({128, 120, 96}, volume::PhantomKind::Ct);
     cpu->setVolume(volume);
     cuda->setVolume(volume);
     const Camera camera = cameraAt(volumeBounds(volume), 30, 20, Projection::Perspective, 512, 512);
@@ -528,16 +528,17 @@ TEST_P(CudaBudget, OverTheBudgetFallsBackAndKeepsTheImage) {
 
 INSTANTIATE_TEST_SUITE_P(
     Budgets, CudaBudget,
-    testing::Values(BudgetCase{"TinyBudgetEndsOnTheCpu",
-                               [] {
-                                   return makePhantom({96, 80, 70}, PhantomKind::Ct);
-                               },
-                               300.5, std::size_t(1) << 20},
-                    BudgetCase{"NoisyMeshOverflowsTheEstimate",
-                               [] {
-                                   return noise({64, 64, 64}, VoxelType::UInt8, 4);
-                               },
-                               100.0, 0}),
+    testing::Values(
+        BudgetCase{"TinyBudgetEndsOnTheCpu",
+                   [] {
+                       return volume::makePhantom({96, 80, 70}, volume::PhantomKind::Ct);
+                   },
+                   300.5, std::size_t(1) << 20},
+        BudgetCase{"NoisyMeshOverflowsTheEstimate",
+                   [] {
+                       return noise({64, 64, 64}, VoxelType::UInt8, 4);
+                   },
+                   100.0, 0}),
     [](const testing::TestParamInfo<BudgetCase>& info) { return info.param.name; });
 
 // The accuracy command's pattern: one renderer per method, bound to one analytic shape after the

@@ -8,9 +8,9 @@
 #include "lw/core/log.h"
 #include "lw/render/gl_context.h"
 #include "lw/render/gl_frame_target.h"
-#include "lw/render/phantom.h"
 #include "lw/render/renderer_factory.h"
 #include "lw/render/zbuffer_silhouette_renderer.h"
+#include "lw/volume/phantom.h"
 
 #include <gtest/gtest.h>
 #include <memory>
@@ -62,7 +62,7 @@ protected:
         // Interop needs the GL context on the CUDA device: NVIDIA's driver, not Mesa's.
         if (m_context->vendor().find("NVIDIA") == std::string::npos)
             GTEST_SKIP() << "the GL context is not NVIDIA's: " << m_context->description();
-        m_volume = makePhantom({128, 120, 96}, PhantomKind::Ct);
+        m_volume = volume::makePhantom({128, 120, 96}, volume::PhantomKind::Ct);
         m_renderer = createSilhouetteRenderer(SilhouetteMethod::ZBuffer, Backend::Cuda);
         m_renderer->setVolume(m_volume);
     }

@@ -4,8 +4,8 @@
 
 #include "gl_test_context.h"
 #include "lw/render/gl_frame_target.h"
-#include "lw/render/phantom.h"
 #include "lw/render/zbuffer_silhouette_renderer.h"
+#include "lw/volume/phantom.h"
 
 #include <gtest/gtest.h>
 
@@ -27,7 +27,7 @@ TEST_F(GlFrameTargetTest, ANewTargetIsAllOff) {
 }
 
 TEST_F(GlFrameTargetTest, TheCpuFillsTheHostMask) {
-    const volume::Volume volume = makePhantom({48, 40, 36}, PhantomKind::Ct);
+    const volume::Volume volume = volume::makePhantom({48, 40, 36}, volume::PhantomKind::Ct);
     CameraSetup setup;
     setup.bounds = volumeBounds(volume);
     setup.azimuthDeg = 30;

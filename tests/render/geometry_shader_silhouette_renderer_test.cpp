@@ -8,8 +8,8 @@
 #include "lw/render/camera.h"
 #include "lw/render/geometry_shader_silhouette_renderer.h"
 #include "lw/render/iso_surface.h"
-#include "lw/render/phantom.h"
 #include "lw/render/renderer_factory.h"
+#include "lw/volume/phantom.h"
 
 #include <algorithm>
 #include <gtest/gtest.h>
@@ -21,7 +21,8 @@ namespace {
 // The benchmark phantom is small enough here and has what the checks need: several bones
 // (contours hidden behind others) and bricks that split the surface.
 const volume::Volume& phantom() {
-    static const volume::Volume volume = makePhantom(glm::ivec3(48), PhantomKind::Ct);
+    static const volume::Volume volume =
+        volume::makePhantom(glm::ivec3(48), volume::PhantomKind::Ct);
     return volume;
 }
 
@@ -35,7 +36,7 @@ Camera camera(double azimuth = 30.0, double elevation = 20.0) {
 
 SilhouetteSettings settings(ExtractionMode mode, int brickCells = 0, bool visibility = true) {
     SilhouetteSettings s;
-    s.isoReal = kPhantomBoneIso;
+    s.isoReal = volume::kPhantomBoneIso;
     s.mode = mode;
     s.brickCells = brickCells;
     s.visibility = visibility;
@@ -68,7 +69,7 @@ TEST(GeometryShaderSilhouetteRenderer, CountsMatchTheMeshAndLinesAreDrawn) {
     GeometryShaderSilhouetteRenderer renderer(lw::test::glContext());
     renderer.setVolume(phantom());
     const SilhouetteFrame frame = renderer.render(camera(), settings(ExtractionMode::CachedA));
-    const Mesh mesh = extractIsoSurface(phantom(), kPhantomBoneIso);
+    const Mesh mesh = extractIsoSurface(phantom(), volume::kPhantomBoneIso);
     ASSERT_FALSE(mesh.isEmpty());
     EXPECT_EQ(frame.triangles, mesh.triangleCount());
     EXPECT_EQ(renderer.mesh().triangleCount(), mesh.triangleCount());
@@ -148,7 +149,7 @@ TEST(GeometryShaderSilhouetteRenderer, ChunkedHoldsOneBrickAtATime) {
     // The largest brick's surface, from the same per-brick extraction.
     std::size_t largest = 0, bricksWithTriangles = 0, sum = 0;
     for (const std::size_t n : GeometryShaderSilhouetteRenderer::brickTriangleCounts(
-             phantom(), kPhantomBoneIso, brickCells)) {
+             phantom(), volume::kPhantomBoneIso, brickCells)) {
         largest = std::max(largest, n);
         bricksWithTriangles += n > 0 ? 1 : 0;
         sum += n;

@@ -1,7 +1,7 @@
 #include "float_volume.h"
 #include "lw/kernels/marching_cubes_tables.h"
 #include "lw/render/iso_surface.h"
-#include "lw/render/phantom.h"
+#include "lw/volume/phantom.h"
 
 #include <bit>
 #include <cmath>
@@ -166,7 +166,7 @@ TEST(MarchingCubes, EdgeTableMatchesCornerClassification) {
 }
 
 Volume spherePhantom(glm::ivec3 dims) {
-    return makePhantom(dims, PhantomKind::Sphere);
+    return volume::makePhantom(dims, volume::PhantomKind::Sphere);
 }
 
 TEST(MarchingCubes, SphereIsWatertightAndIdenticalForEveryBrickSize) {

@@ -10,11 +10,11 @@
 #include "lw/kernels/cpu/marching_cubes_cpu.h"
 #include "lw/kernels/cpu/zbuffer_rasterizer_cpu.h"
 #include "lw/kernels/marching_cubes_tables.h"
-#include "lw/render/phantom.h"
 #include "lw/render/renderer_factory.h"
 #include "lw/render/shaded_surface_cpu.h"
 #include "lw/render/zbuffer_silhouette_renderer.h"
 #include "lw/volume/bricks.h"
+#include "lw/volume/phantom.h"
 
 #include <algorithm>
 #include <array>
@@ -84,7 +84,8 @@ TEST_P(ZBufferBackend, SphereContourWithinOnePixelOfTruth) {
 }
 
 TEST_P(ZBufferBackend, ChunkedEqualsWholeAndModesAgree) {
-    const lw::volume::Volume phantom = makePhantom(glm::ivec3(64), PhantomKind::Ct);
+    const lw::volume::Volume phantom =
+        lw::volume::makePhantom(glm::ivec3(64), lw::volume::PhantomKind::Ct);
     const auto ownedWhole = make(), ownedChunked = make(), ownedEveryFrame = make();
     SilhouetteRenderer &whole = *ownedWhole, &chunked = *ownedChunked,
                        &everyFrame = *ownedEveryFrame;
@@ -95,10 +96,10 @@ TEST_P(ZBufferBackend, ChunkedEqualsWholeAndModesAgree) {
         for (const bool visibility : {true, false}) {
             const Camera camera = cameraFor(phantom, az, 15.0, Projection::Perspective, 256);
             const SilhouetteFrame a =
-                whole.render(camera, settingsFor(kPhantomBoneIso, 0, visibility));
+                whole.render(camera, settingsFor(lw::volume::kPhantomBoneIso, 0, visibility));
             const SilhouetteFrame b =
-                chunked.render(camera, settingsFor(kPhantomBoneIso, 16, visibility));
-            SilhouetteSettings modeB = settingsFor(kPhantomBoneIso, 8, visibility);
+                chunked.render(camera, settingsFor(lw::volume::kPhantomBoneIso, 16, visibility));
+            SilhouetteSettings modeB = settingsFor(lw::volume::kPhantomBoneIso, 8, visibility);
             modeB.mode = ExtractionMode::EveryFrameB;
             modeB.threads = 1;
             const SilhouetteFrame c = everyFrame.render(camera, modeB);
@@ -112,8 +113,9 @@ TEST_P(ZBufferBackend, ChunkedEqualsWholeAndModesAgree) {
     }
     // Mode a: the second frame reuses the mesh.
     const Camera camera = cameraFor(phantom, 10.0, 0.0, Projection::Orthographic, 128);
-    EXPECT_EQ(whole.render(camera, settingsFor(kPhantomBoneIso)).times.extractMs, 0.0);
-    EXPECT_GT(whole.render(camera, settingsFor(kPhantomBoneIso + 100.0)).times.extractMs, 0.0)
+    EXPECT_EQ(whole.render(camera, settingsFor(lw::volume::kPhantomBoneIso)).times.extractMs, 0.0);
+    EXPECT_GT(
+        whole.render(camera, settingsFor(lw::volume::kPhantomBoneIso + 100.0)).times.extractMs, 0.0)
         << "a new iso-value must re-extract";
 }
 
@@ -158,9 +160,10 @@ void expectBrickSurfacesEqualWholeMesh(const lw::volume::Volume& volume, double 
 }
 
 TEST(ZBufferSilhouette, BrickSurfacesEqualWholeMesh) {
-    const lw::volume::Volume phantom = makePhantom(glm::ivec3(64, 56, 48), PhantomKind::Ct);
+    const lw::volume::Volume phantom =
+        lw::volume::makePhantom(glm::ivec3(64, 56, 48), lw::volume::PhantomKind::Ct);
     for (const int cells : {7, 16, 64})
-        expectBrickSurfacesEqualWholeMesh(phantom, kPhantomBoneIso, cells);
+        expectBrickSurfacesEqualWholeMesh(phantom, lw::volume::kPhantomBoneIso, cells);
 
     std::vector<glm::dvec3> slices;
     double zPos = 0.0;
@@ -217,8 +220,9 @@ TEST(ZBufferSilhouette, OneBrickSurfaceIsTheWholeMesh) {
         }
         expectOneBrickSurfaceIsTheMesh(cube, 0.5, "case " + std::to_string(c));
     }
-    const lw::volume::Volume phantom = makePhantom(glm::ivec3(40, 36, 32), PhantomKind::Ct);
-    expectOneBrickSurfaceIsTheMesh(phantom, kPhantomBoneIso, "phantom");
+    const lw::volume::Volume phantom =
+        lw::volume::makePhantom(glm::ivec3(40, 36, 32), lw::volume::PhantomKind::Ct);
+    expectOneBrickSurfaceIsTheMesh(phantom, lw::volume::kPhantomBoneIso, "phantom");
 }
 
 // A big sphere in front of a small one: seen from the front (az 0 looks along +y), the small
@@ -372,12 +376,13 @@ void expectMatchesBaseline(const lw::core::ImageRgba8& image, const std::string&
 }
 
 TEST_P(ZBufferBackend, GoldenPhantomSilhouetteAndShadedPanel) {
-    const lw::volume::Volume phantom = makePhantom(glm::ivec3(64), PhantomKind::Ct);
+    const lw::volume::Volume phantom =
+        lw::volume::makePhantom(glm::ivec3(64), lw::volume::PhantomKind::Ct);
     const Camera camera = cameraFor(phantom, 30.0, 20.0, Projection::Perspective, 192);
     const auto owned = make();
     SilhouetteRenderer& renderer = *owned;
     renderer.setVolume(phantom);
-    const SilhouetteFrame frame = renderer.render(camera, settingsFor(kPhantomBoneIso));
+    const SilhouetteFrame frame = renderer.render(camera, settingsFor(lw::volume::kPhantomBoneIso));
     // A few pixels may flip where a segment grazes a pixel border (float rounding differs
     // between compilers); a real regression moves hundreds.
     expectMatchesBaseline(frame.lines.toImage({0, 0, 0, 255}, {255, 255, 255, 255}),
@@ -416,9 +421,9 @@ INSTANTIATE_TEST_SUITE_P(Backends, ZBufferBackend, testing::ValuesIn(lw::test::b
 // share the chunked path's brick grid (the second one was culled with the first one's ranges).
 TEST(ZBufferSilhouette, AnotherVolumeOfTheSameSizeDropsTheBrickGrid) {
     const lw::volume::Volume ct =
-        lw::render::makePhantom(glm::ivec3(48), lw::render::PhantomKind::Ct);
+        lw::volume::makePhantom(glm::ivec3(48), lw::volume::PhantomKind::Ct);
     const lw::volume::Volume sphere =
-        lw::render::makePhantom(glm::ivec3(48), lw::render::PhantomKind::Sphere);
+        lw::volume::makePhantom(glm::ivec3(48), lw::volume::PhantomKind::Sphere);
     lw::render::SilhouetteSettings settings;
     settings.isoReal = 0.0;
     settings.brickCells = 8; // small enough that the sphere's bricks miss the skin's

@@ -57,11 +57,10 @@ void vertexPass(const glm::vec3* positions, const glm::vec3* normals, std::size_
     out.resize(count);
     const glm::vec3 eyeOrDirection = glm::vec3(view.orthographic ? view.toViewer : view.eye);
     const ScreenProjection projection = view.projection();
-    core::parallelFor(
-        chunkCount(count, kVerticesPerChunk),
-        [&](std::size_t chunk) {
-            const std::size_t end = std::min(count, (chunk + 1) * kVerticesPerChunk);
-            for (std::size_t i = chunk * kVerticesPerChunk; i < end; ++i) {
+    core::parallelForRanges(
+        count, kVerticesPerChunk,
+        [&](std::size_t begin, std::size_t end) {
+            for (std::size_t i = begin; i < end; ++i) {
                 if constexpr (Screen) {
                     glm::dvec2 pixel;
                     float key = 0.0f, invW = 0.0f;
@@ -97,11 +96,9 @@ void DepthBuffer::reset(int width, int height, unsigned threads) {
     const std::size_t count = std::size_t(m_width) * std::size_t(m_height);
     m_bits.resize(count);
     // Clearing in parallel keeps the pages on the cores that will touch them.
-    core::parallelFor(
-        chunkCount(std::size_t(m_height), kRowsPerChunk),
-        [&](std::size_t chunk) {
-            const std::size_t begin = chunk * kRowsPerChunk * std::size_t(m_width);
-            const std::size_t end = std::min(count, begin + kRowsPerChunk * std::size_t(m_width));
+    core::parallelForRanges(
+        count, kRowsPerChunk * std::size_t(m_width),
+        [&](std::size_t begin, std::size_t end) {
             std::fill(m_bits.begin() + std::ptrdiff_t(begin), m_bits.begin() + std::ptrdiff_t(end),
                       0u);
         },
@@ -118,11 +115,10 @@ void drawTrianglesDepth(const ScreenVertices& vertices, const std::uint32_t* ind
                         std::size_t triangleCount, DepthBuffer& depth, unsigned threads,
                         bool cullBackFaces) {
     const int width = depth.width(), height = depth.height();
-    core::parallelFor(
-        chunkCount(triangleCount, kTrianglesPerChunk),
-        [&](std::size_t chunk) {
-            const std::size_t end = std::min(triangleCount, (chunk + 1) * kTrianglesPerChunk);
-            for (std::size_t t = chunk * kTrianglesPerChunk; t < end; ++t) {
+    core::parallelForRanges(
+        triangleCount, kTrianglesPerChunk,
+        [&](std::size_t begin, std::size_t end) {
+            for (std::size_t t = begin; t < end; ++t) {
                 const std::uint32_t* tri = indices + 3 * t;
                 forEachCoveredPixel(
                     vertices, tri[0], tri[1], tri[2], width, height,
@@ -205,11 +201,10 @@ void drawClustersDepth(const ScreenVertices& vertices, const std::uint32_t* indi
     const int width = depth.width(), height = depth.height();
     constexpr std::size_t kClustersPerChunk = 64;
     const ScreenProjection projection = view.projection();
-    core::parallelFor(
-        chunkCount(clusterCount, kClustersPerChunk),
-        [&](std::size_t chunk) {
-            const std::size_t end = std::min(clusterCount, (chunk + 1) * kClustersPerChunk);
-            for (std::size_t c = chunk * kClustersPerChunk; c < end; ++c) {
+    core::parallelForRanges(
+        clusterCount, kClustersPerChunk,
+        [&](std::size_t begin, std::size_t end) {
+            for (std::size_t c = begin; c < end; ++c) {
                 const TriangleCluster& cluster = clusters[c];
                 // The projected box: its 8 corners bound the projection of everything inside as
                 // long as all lie in front of the eye; otherwise draw the cluster unconditionally.
@@ -255,11 +250,10 @@ void drawTrianglesNearest(const ScreenVertices& vertices, const std::uint32_t* i
                           std::vector<std::uint64_t>& nearest, int width, int height,
                           unsigned threads) {
     nearest.resize(std::size_t(std::max(width, 0)) * std::size_t(std::max(height, 0)));
-    core::parallelFor(
-        chunkCount(triangleCount, kTrianglesPerChunk),
-        [&](std::size_t chunk) {
-            const std::size_t end = std::min(triangleCount, (chunk + 1) * kTrianglesPerChunk);
-            for (std::size_t t = chunk * kTrianglesPerChunk; t < end; ++t) {
+    core::parallelForRanges(
+        triangleCount, kTrianglesPerChunk,
+        [&](std::size_t begin, std::size_t end) {
+            for (std::size_t t = begin; t < end; ++t) {
                 const std::uint32_t* tri = indices + 3 * t;
                 const std::uint64_t id = std::uint64_t(firstTriangle) + t + 1;
                 forEachCoveredPixel(
@@ -290,13 +284,12 @@ void findSilhouetteSegments(const glm::vec3* positions, const ScreenVertices& ve
     const std::size_t chunks = chunkCount(triangleCount, kTrianglesPerChunk);
     if (scratch.chunks.size() < chunks)
         scratch.chunks.resize(chunks);
-    core::parallelFor(
-        chunks,
-        [&](std::size_t chunk) {
-            std::vector<ScreenSegment>& local = scratch.chunks[chunk];
+    core::parallelForRanges(
+        triangleCount, kTrianglesPerChunk,
+        [&](std::size_t begin, std::size_t end) {
+            std::vector<ScreenSegment>& local = scratch.chunks[begin / kTrianglesPerChunk];
             local.clear();
-            const std::size_t end = std::min(triangleCount, (chunk + 1) * kTrianglesPerChunk);
-            for (std::size_t t = chunk * kTrianglesPerChunk; t < end; ++t) {
+            for (std::size_t t = begin; t < end; ++t) {
                 const std::uint32_t* tri = indices + 3 * t;
                 // Cheap sign test first: almost every triangle is entirely front- or back-facing.
                 const unsigned sides = unsigned(vertices.front[tri[0]]) + vertices.front[tri[1]] +
@@ -326,11 +319,10 @@ void drawSegmentsDepth(const ScreenSegment* segments, std::size_t count, DepthBu
                        unsigned threads) {
     const int width = lines.width(), height = lines.height();
     constexpr std::size_t kSegmentsPerChunk = 4096;
-    core::parallelFor(
-        chunkCount(count, kSegmentsPerChunk),
-        [&](std::size_t chunk) {
-            const std::size_t end = std::min(count, (chunk + 1) * kSegmentsPerChunk);
-            for (std::size_t s = chunk * kSegmentsPerChunk; s < end; ++s) {
+    core::parallelForRanges(
+        count, kSegmentsPerChunk,
+        [&](std::size_t begin, std::size_t end) {
+            for (std::size_t s = begin; s < end; ++s) {
                 forEachSegmentPixel(segments[s], width, height, [&](int x, int y, float key) {
                     lines.writeMax(std::size_t(y) * std::size_t(width) + std::size_t(x), key);
                 });
@@ -342,12 +334,10 @@ void drawSegmentsDepth(const ScreenSegment* segments, std::size_t count, DepthBu
 void resolveSilhouette(const DepthBuffer& surface, const DepthBuffer& lines, float epsilon,
                        bool visibility, std::uint8_t* mask, unsigned threads) {
     const int width = lines.width(), height = lines.height();
-    core::parallelFor(
-        chunkCount(std::size_t(height), kRowsPerChunk),
-        [&](std::size_t chunk) {
-            const int yEnd =
-                int(std::min<std::size_t>(std::size_t(height), (chunk + 1) * kRowsPerChunk));
-            for (int y = int(chunk * kRowsPerChunk); y < yEnd; ++y) {
+    core::parallelForRanges(
+        std::size_t(height), kRowsPerChunk,
+        [&](std::size_t rowBegin, std::size_t rowEnd) {
+            for (int y = int(rowBegin); y < int(rowEnd); ++y) {
                 for (int x = 0; x < width; ++x)
                     mask[std::size_t(y) * std::size_t(width) + std::size_t(x)] = resolvePixel(
                         surface.bits(), lines.bits(), x, y, width, height, epsilon, visibility);

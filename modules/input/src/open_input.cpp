@@ -2,7 +2,7 @@
 
 #include "lw/core/error.h"
 #include "lw/core/log.h"
-#include "lw/render/phantom.h"
+#include "lw/volume/phantom.h"
 #include "lw/volume/volume_reader.h"
 
 #ifdef LINEWORK_HAVE_DICOM
@@ -22,8 +22,8 @@ constexpr core::LogCategory kLog("lw.input");
 OpenedVolume openPhantom(const std::string& spec, core::Progress* progress) {
     const std::string body = spec.substr(std::string("phantom:").size());
     const auto colon = body.find(':');
-    const render::PhantomKind kind =
-        render::parsePhantomKind(colon == std::string::npos ? "ct" : body.substr(colon + 1));
+    const volume::PhantomKind kind =
+        volume::parsePhantomKind(colon == std::string::npos ? "ct" : body.substr(colon + 1));
     const std::optional<glm::ivec3> dims = parseDims(body.substr(0, colon), 2, 4096);
     if (!dims)
         throw core::Error(
@@ -32,10 +32,10 @@ OpenedVolume openPhantom(const std::string& spec, core::Progress* progress) {
     if (progress)
         progress->report(0.0, "Generating the phantom");
     OpenedVolume opened;
-    opened.volume = render::makePhantom(*dims, kind);
+    opened.volume = volume::makePhantom(*dims, kind);
     opened.source = spec;
     opened.description =
-        "phantom " + std::string(render::phantomKindName(kind)) + " " + dimsText(*dims);
+        "phantom " + std::string(volume::phantomKindName(kind)) + " " + dimsText(*dims);
     if (progress)
         progress->report(1.0, "Phantom ready");
     return opened;

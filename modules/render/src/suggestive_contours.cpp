@@ -24,10 +24,7 @@ constexpr std::size_t kChunk = 4096;
 
 // Calls body(first, end) over [0, count) in chunks on the pool.
 template <typename Body> void forChunks(std::size_t count, unsigned threads, Body&& body) {
-    core::parallelFor(
-        (count + kChunk - 1) / kChunk,
-        [&](std::size_t chunk) { body(chunk * kChunk, std::min(count, (chunk + 1) * kChunk)); },
-        threads);
+    core::parallelForRanges(count, kChunk, body, threads);
 }
 
 // For each vertex, the triangles that use it (compressed rows).

@@ -136,14 +136,13 @@ SurfaceDerivatives surfaceDerivatives(const volume::Volume& volume,
     out.hessian.resize(count);
     constexpr std::size_t kChunk = 4096;
     withProbe(volume, stencil, [&](const auto& probe) {
-        core::parallelFor((count + kChunk - 1) / kChunk,
-                          [&](std::size_t chunk) {
-                              const std::size_t end = std::min(count, (chunk + 1) * kChunk);
-                              for (std::size_t v = chunk * kChunk; v < end; ++v)
-                                  probe.at(glm::dvec3(mesh.positions[v]), out.gradient[v],
-                                           out.hessian[v]);
-                          },
-                          threads);
+        core::parallelForRanges(
+            count, kChunk,
+            [&](std::size_t begin, std::size_t end) {
+                for (std::size_t v = begin; v < end; ++v)
+                    probe.at(glm::dvec3(mesh.positions[v]), out.gradient[v], out.hessian[v]);
+            },
+            threads);
         flattenBorderCaps(probe, mesh, out);
     });
     return out;

@@ -5,6 +5,7 @@
 //   L   bricks of a volume::BrickGrid handed to the workers: each active brick extracted,
 //       drawn into both buffers (per-pixel maxima) and dropped; the brick's vertices are the
 //       whole mesh's, so the image is S's
+#include "cpu_brick_schedule.h"
 #include "lw/core/parallel.h"
 #include "lw/kernels/cpu/marching_cubes_cpu.h"
 #include "lw/kernels/cpu/zbuffer_rasterizer_cpu.h"
@@ -43,8 +44,7 @@ public:
         m_volume = volume;
         releaseMesh();
         // Even for a volume of the same size: the brick min/max would cull it with the old one's.
-        m_gridBrickCells = -1;
-        m_grid = volume::BrickGrid{};
+        m_bricks.reset();
         m_cap.clear();
     }
 
@@ -123,8 +123,7 @@ private:
     kernels::cpu::SegmentScratch m_scratch;
     std::vector<kernels::cpu::ScreenSegment> m_segments;
     // L: the brick grid (min/max per brick, one scan of the volume) and the workers' scratch.
-    volume::BrickGrid m_grid;
-    int m_gridBrickCells = -1;
+    CpuBrickSchedule m_bricks;
     std::vector<std::unique_ptr<BrickWorker>> m_workers;
     BorderCapCache m_cap;
 };
@@ -213,24 +212,20 @@ void CpuZBufferKernels::drawPieces(const Camera&, const SilhouetteSettings& sett
     const unsigned threads = settings.threads == 0 ? core::workerCount() : settings.threads;
     releaseMesh();
     auto start = Clock::now();
-    // S beyond no budget never comes here on the CPU: brickCells > 0.
-    if (m_gridBrickCells != settings.brickCells) {
-        m_grid = volume::BrickGrid::build(*m_volume, glm::ivec3(settings.brickCells));
-        m_gridBrickCells = settings.brickCells;
-    }
-    const std::vector<int> active = m_grid.activeBricks(storedIso);
-    const kernels::cpu::BrickSurfaceExtractor extractor(*m_volume, storedIso,
-                                                        settings.gradientStencil);
+    // S beyond no budget never comes here on the CPU: brickCells > 0. The grid is kept in mode
+    // b too: method 3 extracts every frame in both modes.
+    const CpuBrickPass pass =
+        m_bricks.pass(*m_volume, settings.brickCells, storedIso, settings.gradientStencil, false);
     frame.times.extractMs += msSince(start);
 
     // Bricks are handed out dynamically; a worker's scratch is checked out for one brick at a time.
     const std::size_t workerCount =
-        std::min<std::size_t>(threads, std::max<std::size_t>(active.size(), 1));
+        std::min<std::size_t>(threads, std::max<std::size_t>(pass.size(), 1));
     std::vector<BrickWorker*> idle = readyWorkers(workerCount);
     std::mutex idleMutex;
     start = Clock::now();
     core::parallelFor(
-        active.size(),
+        pass.size(),
         [&](std::size_t i) {
             if (settings.cancel && settings.cancel->isCancelled())
                 throw core::Cancelled(); // parallelFor stops the other bricks and rethrows
@@ -240,8 +235,7 @@ void CpuZBufferKernels::drawPieces(const Camera&, const SilhouetteSettings& sett
                 worker = idle.back();
                 idle.pop_back();
             }
-            drawBrick(extractor, m_grid.bricks()[std::size_t(active[i])], settings.visibility,
-                      closed, *worker);
+            drawBrick(pass.extractor, pass.brick(i), settings.visibility, closed, *worker);
             std::lock_guard lock(idleMutex);
             idle.push_back(worker);
         },

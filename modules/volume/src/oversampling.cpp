@@ -177,14 +177,10 @@ Volume oversampled(const Volume& volume, glm::ivec3 factors, unsigned threads,
             monotoneK,          result.dataAs<T>()};
         // Runs of a few slices each: enough runs to balance the threads, few scratch planes.
         const std::size_t slices = std::size_t(dims.z);
-        const std::size_t runs =
-            std::min<std::size_t>(slices, 8 * std::size_t(core::workerCount()));
-        core::parallelFor(
-            runs,
-            [&](std::size_t run) {
-                refiner.refineSlices(slices * run / runs, slices * (run + 1) / runs);
-            },
-            threads);
+        const std::size_t runs = 8 * std::size_t(core::workerCount());
+        core::parallelForRanges(
+            slices, (slices + runs - 1) / runs,
+            [&](std::size_t begin, std::size_t end) { refiner.refineSlices(begin, end); }, threads);
     });
     return result;
 }

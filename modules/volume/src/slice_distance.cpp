@@ -155,14 +155,14 @@ Volume signedSliceDistance(const Volume& volume, double iso, double limitMm, uns
     std::int16_t* target = result.dataAs<std::int16_t>();
     // Runs of slices, each with its own scratch (made once per run, not per slice).
     const std::size_t slices = std::size_t(dims.z);
-    const std::size_t runs = std::min<std::size_t>(slices, 4 * std::size_t(core::workerCount()));
-    core::parallelFor(
-        runs,
-        [&](std::size_t run) {
+    const std::size_t runs = 4 * std::size_t(core::workerCount());
+    core::parallelForRanges(
+        slices, (slices + runs - 1) / runs,
+        [&](std::size_t begin, std::size_t end) {
             std::vector<float> above(plane);
             SliceDistanceField field(dims.x, dims.y, volume.geometry().spacingI(),
                                      volume.geometry().spacingJ());
-            for (std::size_t k = slices * run / runs; k < slices * (run + 1) / runs; ++k) {
+            for (std::size_t k = begin; k < end; ++k) {
                 aboveIso(volume, int(k), iso, above);
                 field.reset();
                 field.seed(above);

@@ -1,5 +1,6 @@
 #include "lw/render/geometry_shader_silhouette_renderer.h"
 
+#include "../cpu_brick_schedule.h"
 #include "gl_api.h"
 #include "gl_mesh_source.h"
 #include "lw/core/error.h"
@@ -59,8 +60,7 @@ struct GeometryShaderSilhouetteRenderer::State {
 
     // L variant: the brick grid (per-brick min/max: small) is all that mode a keeps between
     // frames; the one brick's surface is scratch reused from brick to brick.
-    volume::BrickGrid grid;
-    int gridBrickCells = 0; // 0: no grid for the current volume
+    CpuBrickSchedule bricks;
     kernels::cpu::BrickSurface brick;
     // Host line candidates (hostLineCandidates): per chunk of triangles, then all of them.
     std::vector<std::vector<std::uint32_t>> chunkCandidates;
@@ -85,18 +85,13 @@ struct GeometryShaderSilhouetteRenderer::State {
     void drawCpuBricks(const SilhouetteSettings& settings, double storedIso, SilhouetteFrame& frame,
                        const std::function<void(std::size_t)>& drawPiece) {
         auto start = Clock::now();
-        if (settings.mode == ExtractionMode::EveryFrameB || gridBrickCells != settings.brickCells) {
-            gridBrickCells = 0;
-            grid = volume::BrickGrid::build(*volume, glm::ivec3(settings.brickCells));
-            gridBrickCells = settings.brickCells;
-        }
-        const std::vector<int> active = grid.activeBricks(storedIso);
-        const kernels::cpu::BrickSurfaceExtractor extractor(*volume, storedIso,
-                                                            settings.gradientStencil);
+        const CpuBrickPass pass =
+            bricks.pass(*volume, settings.brickCells, storedIso, settings.gradientStencil,
+                        settings.mode == ExtractionMode::EveryFrameB);
         frame.times.extractMs += msSince(start);
-        for (const int index : active) {
+        for (std::size_t i = 0; i < pass.size(); ++i) {
             start = Clock::now();
-            extractor.extract(grid.bricks()[std::size_t(index)], brick);
+            pass.extractor.extract(pass.brick(i), brick);
             const std::size_t triangles = brick.triangleCount();
             if (triangles > 0) {
                 gl.uploadMesh(brick.positions, brick.normals, brick.indices);
@@ -154,12 +149,12 @@ struct GeometryShaderSilhouetteRenderer::State {
         const std::size_t triangles = mesh.triangleCount();
         const std::size_t chunks = (triangles + kChunk - 1) / kChunk;
         chunkCandidates.resize(chunks);
-        core::parallelFor(
-            chunks,
-            [&](std::size_t c) {
-                std::vector<std::uint32_t>& out = chunkCandidates[c];
+        core::parallelForRanges(
+            triangles, kChunk,
+            [&](std::size_t begin, std::size_t end) {
+                std::vector<std::uint32_t>& out = chunkCandidates[begin / kChunk];
                 out.clear();
-                for (std::size_t t = c * kChunk; t < std::min(triangles, (c + 1) * kChunk); ++t) {
+                for (std::size_t t = begin; t < end; ++t) {
                     const std::uint32_t* v = &mesh.indices[3 * t];
                     const glm::vec3 p[3] = {mesh.positions[v[0]], mesh.positions[v[1]],
                                             mesh.positions[v[2]]};
@@ -273,8 +268,7 @@ void GeometryShaderSilhouetteRenderer::releaseVolume() {
     s.closedIso.reset();
     s.cap.clear();
     s.mesh = Mesh{};
-    s.gridBrickCells = 0;
-    s.grid = volume::BrickGrid{};
+    s.bricks.reset();
 }
 
 void GeometryShaderSilhouetteRenderer::setVolume(const volume::Volume& volume) {
@@ -285,8 +279,7 @@ void GeometryShaderSilhouetteRenderer::setVolume(const volume::Volume& volume) {
     m_state->closedIso.reset();
     m_state->cap.clear();
     m_state->mesh = Mesh{};
-    m_state->gridBrickCells = 0;
-    m_state->grid = volume::BrickGrid{};
+    m_state->bricks.reset();
 }
 
 const GeometryShaderFrameStats& GeometryShaderSilhouetteRenderer::lastFrameStats() const {
@@ -367,12 +360,13 @@ GeometryShaderSilhouetteRenderer::brickTriangleCounts(const volume::Volume& volu
     if (brickCells <= 0)
         throw core::Error("brick triangle counts", "brickCells must be positive");
     const double storedIso = volume.valueMapping().toStored(isoReal);
-    const volume::BrickGrid grid = volume::BrickGrid::build(volume, glm::ivec3(brickCells));
-    const kernels::cpu::BrickSurfaceExtractor extractor(volume, storedIso);
+    CpuBrickSchedule schedule;
+    const CpuBrickPass pass =
+        schedule.pass(volume, brickCells, storedIso, GradientStencil::Central, true);
     kernels::cpu::BrickSurface surface;
     std::vector<std::size_t> counts;
-    for (const int index : grid.activeBricks(storedIso)) {
-        extractor.extract(grid.bricks()[std::size_t(index)], surface);
+    for (std::size_t i = 0; i < pass.size(); ++i) {
+        pass.extractor.extract(pass.brick(i), surface);
         counts.push_back(surface.triangleCount());
     }
     return counts;

@@ -38,4 +38,19 @@ template <typename Body> void parallelFor(std::size_t count, Body&& body, unsign
         count, threads, [](void* b, std::size_t i) { (*static_cast<BodyType*>(b))(i); }, erased);
 }
 
+// Runs body(begin, end) over consecutive ranges covering [0, count), each `grain` items long (the
+// last one shorter), handed out as parallelFor hands out indices: for loops whose items are too
+// small to hand out one at a time (vertices, pixels, triangles). The ranges, and so which items
+// share a call, do not depend on the number of threads.
+template <typename Body>
+void parallelForRanges(std::size_t count, std::size_t grain, Body&& body, unsigned threads = 0) {
+    const std::size_t step = grain == 0 ? 1 : grain;
+    parallelFor((count + step - 1) / step,
+                [&](std::size_t range) {
+                    const std::size_t begin = range * step;
+                    body(begin, count - begin < step ? count : begin + step);
+                },
+                threads);
+}
+
 } // namespace lw::core

@@ -1,11 +1,11 @@
 #include "lw/core/error.h"
-#include "lw/render/phantom.h"
+#include "lw/volume/phantom.h"
 
 #include <cstdlib>
 #include <cstring>
 #include <gtest/gtest.h>
 
-namespace lw::render {
+namespace lw::volume {
 namespace {
 
 // phantom.py allows +-1 per voxel (float32 exp/sin/cos may round differently from numpy), so
@@ -50,4 +50,4 @@ TEST(Phantom, RejectsBadInput) {
 }
 
 } // namespace
-} // namespace lw::render
+} // namespace lw::volume

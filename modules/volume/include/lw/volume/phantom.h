@@ -5,7 +5,7 @@
 #include <cstdint>
 #include <string_view>
 
-namespace lw::render {
+namespace lw::volume {
 
 // The deterministic CT-like benchmark phantom of ../shared/tools/phantom.py, reproduced voxel
 // for voxel (within +-1 HU: float32 exp/sin/cos of numpy and libm may round differently).
@@ -29,4 +29,4 @@ PhantomChecksum phantomChecksum(const volume::Volume& volume, double iso = 300.5
 // The bone iso-value phantom.py names.
 inline constexpr double kPhantomBoneIso = 300.5;
 
-} // namespace lw::render
+} // namespace lw::volume

@@ -1,4 +1,4 @@
-#include "lw/render/phantom.h"
+#include "lw/volume/phantom.h"
 
 #include "lw/core/error.h"
 #include "lw/core/parallel.h"
@@ -13,7 +13,7 @@
 // order, so the only differences left are the last-bit rounding of exp/sin/cos (+-1 HU after
 // rounding, which the reference allows). Do not "simplify" the arithmetic: it is the contract.
 
-namespace lw::render {
+namespace lw::volume {
 namespace {
 
 constexpr double kW = 0.008;
@@ -267,4 +267,4 @@ PhantomChecksum phantomChecksum(const volume::Volume& volume, double iso) {
     return total;
 }
 
-} // namespace lw::render
+} // namespace lw::volume

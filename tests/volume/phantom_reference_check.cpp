@@ -1,7 +1,7 @@
 // Compares makePhantom voxel by voxel with ../shared/tools/phantom.py (every voxel within
 // +-1). Exits with the SKIP code when python3 with numpy or the script is not available, so
 // CTest reports SKIP instead of a PASS that compared nothing.
-#include "lw/render/phantom.h"
+#include "lw/volume/phantom.h"
 
 #include <cstdio>
 #include <cstdlib>
@@ -29,8 +29,8 @@ std::string findPython() {
 
 std::string g_python;
 
-int compare(glm::ivec3 dims, lw::render::PhantomKind kind, const std::filesystem::path& dir) {
-    const std::string name = std::string(lw::render::phantomKindName(kind));
+int compare(glm::ivec3 dims, lw::volume::PhantomKind kind, const std::filesystem::path& dir) {
+    const std::string name = std::string(lw::volume::phantomKindName(kind));
     const std::filesystem::path raw = dir / (name + ".raw");
     const std::string command = "'" + g_python + "' '" + std::string(LINEWORK_PHANTOM_PY) + "' " +
                                 std::to_string(dims.x) + " " + std::to_string(dims.y) + " " +
@@ -39,7 +39,7 @@ int compare(glm::ivec3 dims, lw::render::PhantomKind kind, const std::filesystem
         std::printf("FAIL: %s failed\n", command.c_str());
         return 1;
     }
-    const lw::volume::Volume ours = lw::render::makePhantom(dims, kind);
+    const lw::volume::Volume ours = lw::volume::makePhantom(dims, kind);
     std::vector<std::int16_t> reference(ours.voxelCount());
     std::ifstream in(raw, std::ios::binary);
     in.read(reinterpret_cast<char*>(reference.data()), std::streamsize(reference.size() * 2));
@@ -78,9 +78,9 @@ int main() {
         std::filesystem::temp_directory_path() / ("lw_phantom_check_" + std::to_string(::getpid()));
     std::filesystem::create_directories(dir);
     int failures = 0;
-    failures += compare(glm::ivec3(64), lw::render::PhantomKind::Ct, dir);
-    failures += compare(glm::ivec3(64), lw::render::PhantomKind::Sphere, dir);
-    failures += compare(glm::ivec3(47, 38, 29), lw::render::PhantomKind::Ct, dir);
+    failures += compare(glm::ivec3(64), lw::volume::PhantomKind::Ct, dir);
+    failures += compare(glm::ivec3(64), lw::volume::PhantomKind::Sphere, dir);
+    failures += compare(glm::ivec3(47, 38, 29), lw::volume::PhantomKind::Ct, dir);
     std::filesystem::remove_all(dir);
     return failures == 0 ? 0 : 1;
 }
