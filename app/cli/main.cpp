@@ -86,9 +86,10 @@ commands:
                               or a coarse grid, is split linearly until they do not, so the
                               triangles follow the same surface more finely);
                               --thick-slices linear: straight lines between thick slices
-                              (default smooth: where slices are 3 or more pixels apart, a cubic
-                              B-spline across them, split 4 times, so a smooth wall slanted
-                              across the slices draws without terraces);
+                              (default smooth: where slices are 3 or more pixels apart, each
+                              slice's signed distance to the iso contour, joined across the
+                              slices by a monotone cubic with at least 3 samples a gap, so a
+                              smooth wall slanted across the slices draws without terraces);
                               --suggestive: suggestive contours drawn with the silhouette
                               (PNG or SVG; TAU: their derivative test, default 1);
                               SVG: the visible silhouette as paths, --line-width (default 1)

@@ -186,8 +186,8 @@ struct RayGridView {
 // difference between the linear mesh and the trilinear field would hide it. (A grazing zone of
 // two cells, where a wall had to be inside by a tenth of its corners' spread to occlude, was
 // there before the neighbour ray; with the neighbour ray it only drew terrace rims that method 3
-// hides, and the analytic sweep is the same without it: docs/BENCHMARKS.md, "Without the
-// grazing zone".) Rays leaving the grid, or reaching the eye, are visible; a ray
+// hides, and the analytic sweep is the same without it: kernels/common/README.md, "Method 2's
+// ray walk".) Rays leaving the grid, or reaching the eye, are visible; a ray
 // that starts outside it (a neighbour ray shifted past the border) is walked from where it enters
 // it, and entering through an inside border wall crosses the cap that closes the surface there.
 //
@@ -225,7 +225,7 @@ struct RayVisibilityRule {
     static constexpr double kStartOffsetCells = 1e-4;
     // Half of what the rule had before the neighbour ray: with it, real CT loses no outline and
     // the demo's worst agreement with method 3 improves; the analytic sweep is unchanged
-    // (docs/BENCHMARKS.md, "Method 2 on real CT").
+    // (kernels/common/README.md, "Method 2's ray walk").
     static constexpr double kSelfSkipCells = 0.5;
     static constexpr int kMacroCells = 8;
     // Coarse blocks of kCoarseMacros^3 macro cells (32^3 cells): a ray through empty space
