@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The GPU machine's run in one command (each device call starts a bare machine): unpack the GL,
-# EGL, GLM, GoogleTest and zlib packages carried in .gpu/debs (scripts/fetch_gpu_debs.sh fetches
-# them), configure the engine preset with CUDA for sm_90, build, run the tests (all of them: the
+# EGL, GLM, libpng, nlohmann-json, GoogleTest and zlib packages carried in .gpu/debs
+# (scripts/fetch_gpu_debs.sh fetches them; unpacked into / they sit where CMake looks, so the
+# configure needs no paths), configure the engine preset with CUDA for sm_90, build, run the tests (all of them: the
 # `gpu` ones run against the CPU reference there), then the CUDA benchmarks. Logs and the JSON go
 # to $OUT (or out/gpu when run elsewhere).
 #   scripts/gpu_run.sh [test|bench|all]   (default all)

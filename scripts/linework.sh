@@ -27,7 +27,7 @@ shift || true
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 cd "$root"
 
-packages=(build-essential cmake ninja-build file pkg-config zlib1g-dev libgtest-dev
+packages=(build-essential cmake ninja-build file pkg-config zlib1g-dev libpng-dev nlohmann-json3-dev libgtest-dev
           qt6-base-dev qt6-tools-dev qt6-l10n-tools libqt6opengl6-dev libqt6sql6-sqlite
           libdcmtk-dev dcmtk libopenjp2-7-dev libglm-dev libegl-dev libgl-dev libopengl-dev libegl-mesa0 libgl1-mesa-dri
           xvfb xauth python3-numpy desktop-file-utils appstream clang libclang-rt-14-dev

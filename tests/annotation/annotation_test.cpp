@@ -105,6 +105,40 @@ TEST(Annotation, ReadingAFileNamesItOnError) {
     EXPECT_EQ(measurementText(read[0]), "5.0 mm");
 }
 
+// What `export --annotations FILE.json` tells a user about a bad file: the file, then the line
+// and column of a syntax error or the key whose value has the wrong type.
+TEST(Annotation, FileErrorsNameTheFileTheLineAndTheKey) {
+    lw::test::TempDir dir;
+    const auto errorOf = [&](const std::string& name, const std::string& text) {
+        lw::core::writeFileAtomically(dir / name, text.data(), text.size());
+        try {
+            readAnnotationsFile(dir / name);
+        } catch (const lw::core::Error& error) {
+            EXPECT_EQ(error.subject(), (dir / name).string());
+            return error.reason();
+        }
+        ADD_FAILURE() << name << " was read";
+        return std::string();
+    };
+    const std::string syntax =
+        errorOf("syntax.json", "{\"annotations\": [\n  {\"type\": \"ruler\"\n   \"points\": []}]}");
+    EXPECT_NE(syntax.find("line 3, column 11, in annotations[0]: syntax error"), std::string::npos)
+        << syntax;
+    const std::string type = errorOf("type.json", R"({"annotations": [{"type": "label",
+        "points": [[0,0,0]], "text": 12}]})");
+    EXPECT_NE(type.find("annotations[0].text: expected string, found number"), std::string::npos)
+        << type;
+
+    // One byte over the limit is refused before it is read (the reason says so, not a parse error).
+    std::string big(kMaxAnnotationFileBytes + 1, ' ');
+    big.replace(0, 19, R"({"annotations": []})");
+    const std::string reason = errorOf("big.json", big);
+    EXPECT_NE(reason.find("more than the limit of 16777216 bytes"), std::string::npos) << reason;
+    big.resize(kMaxAnnotationFileBytes); // at the limit: read, trailing spaces and all
+    lw::core::writeFileAtomically(dir / "limit.json", big.data(), big.size());
+    EXPECT_TRUE(readAnnotationsFile(dir / "limit.json").empty());
+}
+
 TEST(Annotation, ProjectionPutsAnchorsWhereTheCameraSeesThem) {
     lw::render::CameraSetup setup;
     setup.bounds = {{-50, -50, -50}, {50, 50, 50}};

@@ -38,6 +38,23 @@ TEST(JsonWriter, NestedStructuresAndEscaping) {
                        "\"nested\":{\"ok\":true,\"x\":0.5},\"nothing\":null}");
 }
 
+// Escaping is nlohmann-json's: short escapes where JSON has them, \u00XX for other control
+// characters, UTF-8 passed through, bytes that are not UTF-8 replaced by U+FFFD.
+TEST(JsonWriter, EscapesControlCharactersAndReplacesInvalidUtf8) {
+    EXPECT_EQ(JsonWriter::escape("\"\\\n\r\t\b\f\x01\x1f/\x7f"),
+              "\"\\\"\\\\\\n\\r\\t\\b\\f\\u0001\\u001f/\x7f\"");
+    EXPECT_EQ(JsonWriter::escape("L\xc3\xa4sion \xe2\x82\xac"), "\"L\xc3\xa4sion \xe2\x82\xac\"");
+    EXPECT_EQ(JsonWriter::escape("Z\xfcrich"), "\"Z\xef\xbf\xbdrich\""); // Latin-1 \xfc
+}
+
+// Ten significant digits, integral values without a point: the CLI's JSON has always looked so.
+TEST(JsonWriter, NumbersKeepTheirFormat) {
+    JsonWriter w(0);
+    w.beginArray().value(0.0).value(1.0).value(398.4835037).value(0.48828125).value(1e-5);
+    w.value(12345678901.5).value(std::int64_t(-7)).endArray();
+    EXPECT_EQ(w.str(), "[0,1,398.4835037,0.48828125,1e-05,1.23456789e+10,-7]");
+}
+
 TEST(JsonWriter, NonFiniteNumbersBecomeNull) {
     JsonWriter w(0);
     w.beginArray().value(std::numeric_limits<double>::quiet_NaN()).value(1.25).endArray();

@@ -5,6 +5,7 @@
 #include "lw/core/png_io.h"
 #include "test_support.h"
 
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <gtest/gtest.h>
@@ -43,6 +44,20 @@ std::vector<std::byte> withFixedCrc(std::vector<std::byte> png, std::size_t chun
     for (int i = 0; i < 4; ++i)
         png[chunkStart + 8 + length + std::size_t(i)] = std::byte((crc >> (24 - 8 * i)) & 0xff);
     return png;
+}
+
+// Where the chunk of `type` starts (its length field) in an encoded PNG.
+std::size_t chunkAt(const std::vector<std::byte>& png, const char* type) {
+    for (std::size_t pos = 8; pos + 12 <= png.size();) {
+        const std::uint32_t length =
+            (std::uint32_t(png[pos]) << 24) | (std::uint32_t(png[pos + 1]) << 16) |
+            (std::uint32_t(png[pos + 2]) << 8) | std::uint32_t(png[pos + 3]);
+        if (std::memcmp(png.data() + pos + 4, type, 4) == 0)
+            return pos;
+        pos += std::size_t(length) + 12;
+    }
+    ADD_FAILURE() << "no " << type << " chunk";
+    return 0;
 }
 
 void expectDecodeError(const std::vector<std::byte>& bytes, const std::string& reasonPart) {
@@ -165,38 +180,43 @@ TEST(PngIo, WritesAtomicallyAndReadsBack) {
 
 TEST(PngIo, CorruptFilesGiveErrors) {
     const auto good = encodePng(testImage(16, 16, 1), PngFormat::Rgba);
-    // Layout: signature (8), IHDR chunk at 8 (12 + 13 bytes), IDAT chunk at 33.
-    const std::size_t ihdr = 8, idat = 33;
+    const std::size_t ihdr = chunkAt(good, "IHDR"), idat = chunkAt(good, "IDAT");
 
     auto badSignature = good;
     badSignature[1] = std::byte{'X'};
-    expectDecodeError(badSignature, "signature");
+    expectDecodeError(badSignature, "Not a PNG file");
 
     const std::vector<std::byte> truncated(good.begin(),
                                            good.begin() + std::ptrdiff_t(good.size() / 2));
-    expectDecodeError(truncated, "truncated");
+    expectDecodeError(truncated, "read beyond end of data");
 
+    // A flipped byte in the data: zlib notices first. One in the checksum: the CRC check does.
     auto flipped = good;
     flipped[idat + 8 + 5] ^= std::byte{0x55};
-    expectDecodeError(flipped, "CRC");
+    expectDecodeError(flipped, "PNG image data is corrupt: IDAT: ");
+    auto badCrc = good;
+    badCrc[chunkAt(good, "IEND") - 1] ^= std::byte{0x55};
+    expectDecodeError(badCrc, "IDAT: CRC error");
 
     // Damaged compressed data behind a valid CRC: the inflater must notice.
     auto damaged = flipped;
     for (std::size_t i = idat + 8 + 2; i < idat + 8 + 40; ++i)
         damaged[i] = std::byte{0xff};
-    expectDecodeError(withFixedCrc(damaged, idat), "PNG image data");
+    expectDecodeError(withFixedCrc(damaged, idat), "PNG image data is corrupt");
 
     auto sixteenBit = good;
     sixteenBit[ihdr + 8 + 8] = std::byte{16};
-    expectDecodeError(withFixedCrc(sixteenBit, ihdr), "bit depth");
+    expectDecodeError(withFixedCrc(sixteenBit, ihdr), "bit depth 16");
 
+    // Palette and interlaced files are read (ReadsInterlacedPaletteFiles); these headers do not
+    // match their data, which must be noticed.
     auto palette = good;
     palette[ihdr + 8 + 9] = std::byte{3};
-    expectDecodeError(withFixedCrc(palette, ihdr), "colour type");
+    expectDecodeError(withFixedCrc(palette, ihdr), "PLTE");
 
     auto interlaced = good;
     interlaced[ihdr + 8 + 12] = std::byte{1};
-    expectDecodeError(withFixedCrc(interlaced, ihdr), "interlaced");
+    expectDecodeError(withFixedCrc(interlaced, ihdr), "PNG image data is corrupt");
 
     lw::test::TempDir dir;
     const auto path = dir / "broken.png";
@@ -207,6 +227,57 @@ TEST(PngIo, CorruptFilesGiveErrors) {
     } catch (const Error& error) {
         EXPECT_EQ(error.subject(), path.string());
     }
+}
+
+// A header declaring 60000 x 60000 pixels (14 GB of RGBA) is refused from the header alone, before
+// anything of that size is allocated: the file is a few dozen bytes.
+TEST(PngIo, AbsurdSizesAreRefusedBeforeAllocating) {
+    const auto good = encodePng(testImage(4, 4, 2), PngFormat::Rgba);
+    const std::size_t ihdr = chunkAt(good, "IHDR");
+    for (const std::uint32_t side : {60000u, 1u << 30}) {
+        auto huge = good;
+        for (std::size_t field : {ihdr + 8, ihdr + 12})
+            for (int i = 0; i < 4; ++i)
+                huge[field + std::size_t(i)] = std::byte((side >> (24 - 8 * i)) & 0xff);
+        try {
+            const auto fixed = withFixedCrc(huge, ihdr);
+            decodePng(fixed.data(), fixed.size(), "huge.png");
+            FAIL() << side << " x " << side << " was decoded";
+        } catch (const Error& error) {
+            EXPECT_EQ(error.subject(), "huge.png");
+            // 2^30 is beyond libpng's own limit (a million pixels a side), 60000 only beyond ours.
+            EXPECT_NE(error.reason().find(side == 60000u ? "60000x60000 is empty or too large"
+                                                         : "Invalid IHDR data"),
+                      std::string::npos)
+                << error.reason();
+        }
+    }
+}
+
+// Written by a separate encoder (a short Python script): 7 x 5 pixels, palette with a tRNS
+// chunk, Adam7 interlaced. The hand-written decoder refused both; libpng reads them.
+TEST(PngIo, ReadsInterlacedPaletteFiles) {
+    static const unsigned char kInterlacedPalette[] = {
+        0x89, 0x50, 0x4e, 0x47, 0x0d, 0x0a, 0x1a, 0x0a, 0x00, 0x00, 0x00, 0x0d, 0x49, 0x48,
+        0x44, 0x52, 0x00, 0x00, 0x00, 0x07, 0x00, 0x00, 0x00, 0x05, 0x08, 0x03, 0x00, 0x00,
+        0x01, 0xc9, 0x43, 0x36, 0x7c, 0x00, 0x00, 0x00, 0x0c, 0x50, 0x4c, 0x54, 0x45, 0xff,
+        0x00, 0x00, 0x00, 0xff, 0x00, 0x00, 0x00, 0xff, 0x0a, 0x14, 0x1e, 0x22, 0x88, 0x29,
+        0x04, 0x00, 0x00, 0x00, 0x01, 0x74, 0x52, 0x4e, 0x53, 0x80, 0xad, 0x5e, 0x5b, 0x46,
+        0x00, 0x00, 0x00, 0x1e, 0x49, 0x44, 0x41, 0x54, 0x78, 0xda, 0x63, 0x60, 0x80, 0x00,
+        0x26, 0x26, 0x10, 0x62, 0x00, 0x92, 0x0c, 0x8c, 0xcc, 0x8c, 0x70, 0xcc, 0xc4, 0xcc,
+        0xc0, 0x08, 0xc4, 0x30, 0x1a, 0x00, 0x03, 0xc8, 0x00, 0x32, 0xf1, 0x0f, 0x1a, 0x13,
+        0x00, 0x00, 0x00, 0x00, 0x49, 0x45, 0x4e, 0x44, 0xae, 0x42, 0x60, 0x82};
+    const Rgba8 palette[] = {
+        {255, 0, 0, 128}, {0, 255, 0, 255}, {0, 0, 255, 255}, {10, 20, 30, 255}};
+    PngFormat stored = PngFormat::Gray;
+    const ImageRgba8 image = decodePng(reinterpret_cast<const std::byte*>(kInterlacedPalette),
+                                       sizeof(kInterlacedPalette), "palette.png", &stored);
+    EXPECT_EQ(stored, PngFormat::Rgba);
+    ASSERT_EQ(image.width(), 7);
+    ASSERT_EQ(image.height(), 5);
+    for (int y = 0; y < 5; ++y)
+        for (int x = 0; x < 7; ++x)
+            EXPECT_EQ(image.at(x, y), palette[(x + 2 * y) % 4]) << x << "," << y;
 }
 
 TEST(ImageCompare, ToleranceAndBadPixelCount) {

@@ -45,7 +45,7 @@ if grep -v ' root/root ' <<<"$contents"; then
   fail "files not owned by root (above)"
 fi
 depends=$(dpkg-deb -f "$deb" Depends)
-for package in libqt6widgets6 libqt6sql6-sqlite libdcmtk; do
+for package in libqt6widgets6 libqt6sql6-sqlite libdcmtk libpng16-16; do
   grep -q "$package" <<<"$depends" || fail "Depends lacks $package: $depends"
 done
 grep -q "qt6-translations-l10n" <<<"$(dpkg-deb -f "$deb" Recommends)" ||

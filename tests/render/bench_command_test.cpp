@@ -1,9 +1,9 @@
 // `linework-cli bench --json` as the benchmark page uses it: the output parses as JSON and every
 // row carries the keys docs/BENCHMARKS.md is written from, with plausible values.
 #include "cli_runner.h"
+#include "lw/core/json_reader.h"
 #include "test_support.h"
 
-#include <cctype>
 #include <cstdlib>
 #include <filesystem>
 #include <gtest/gtest.h>
@@ -20,8 +20,8 @@ using lw::test::CliResult;
 using lw::test::quoted;
 using lw::test::runCli;
 
-// Just enough JSON (RFC 8259 without \u escapes) to check the output really parses: a malformed
-// document throws instead of being searched for substrings.
+// The output as a tree the checks below walk: parsed by lw::core::parseJson (nlohmann-json), so
+// a malformed document throws instead of being searched for substrings. Keys are unique.
 struct Json {
     enum class Kind { Null, Bool, Number, String, Array, Object } kind = Kind::Null;
     bool boolean = false;
@@ -38,120 +38,31 @@ struct Json {
     }
 };
 
-class JsonParser {
-public:
-    explicit JsonParser(const std::string& text) : m_text(text) {}
-    Json parseDocument() {
-        Json value = parseValue();
-        skipSpace();
-        if (m_pos != m_text.size())
-            fail("trailing characters");
-        return value;
-    }
+Json treeOf(const lw::core::JsonValue& value) {
+    using Type = lw::core::JsonValue::Type;
+    Json out;
+    static_assert(int(Json::Kind::Object) == int(Type::Object) &&
+                  int(Json::Kind::Bool) == int(Type::Bool)); // the same kinds in the same order
+    out.kind = Json::Kind(int(value.type()));
+    if (value.type() == Type::Bool)
+        out.boolean = value.boolean();
+    else if (value.isNumber())
+        out.number = value.number();
+    else if (value.isString())
+        out.string = value.string();
+    else if (value.isArray())
+        for (const auto& item : value.array())
+            out.array.push_back(treeOf(item));
+    else if (value.isObject())
+        for (const auto& [key, member] : value.object())
+            if (!out.object.emplace(key, treeOf(member)).second)
+                throw std::runtime_error("JSON: duplicate key " + key);
+    return out;
+}
 
-private:
-    [[noreturn]] void fail(const std::string& what) const {
-        throw std::runtime_error("JSON: " + what + " at offset " + std::to_string(m_pos));
-    }
-    void skipSpace() {
-        while (m_pos < m_text.size() && std::isspace(static_cast<unsigned char>(m_text[m_pos])))
-            ++m_pos;
-    }
-    bool consume(const std::string& token) {
-        if (m_text.compare(m_pos, token.size(), token) != 0)
-            return false;
-        m_pos += token.size();
-        return true;
-    }
-    void expect(char c) {
-        skipSpace();
-        if (m_pos >= m_text.size() || m_text[m_pos] != c)
-            fail(std::string("expected '") + c + "'");
-        ++m_pos;
-    }
-    std::string parseString() {
-        expect('"');
-        std::string out;
-        while (m_pos < m_text.size() && m_text[m_pos] != '"') {
-            char c = m_text[m_pos++];
-            if (c == '\\') {
-                if (m_pos >= m_text.size())
-                    fail("bad escape");
-                const char e = m_text[m_pos++];
-                c = e == 'n'   ? '\n'
-                    : e == 't' ? '\t'
-                    : e == 'r' ? '\r'
-                    : e == 'b' ? '\b'
-                    : e == 'f' ? '\f'
-                               : e;
-                if (e == 'u')
-                    fail("\\u escapes are not expected here");
-            }
-            out += c;
-        }
-        if (m_pos >= m_text.size())
-            fail("unterminated string");
-        ++m_pos;
-        return out;
-    }
-    Json parseValue() {
-        skipSpace();
-        if (m_pos >= m_text.size())
-            fail("unexpected end");
-        Json value;
-        const char c = m_text[m_pos];
-        if (c == '{') {
-            value.kind = Json::Kind::Object;
-            ++m_pos;
-            skipSpace();
-            if (consume("}"))
-                return value;
-            do {
-                const std::string key = parseString();
-                expect(':');
-                if (!value.object.emplace(key, parseValue()).second)
-                    fail("duplicate key " + key);
-                skipSpace();
-            } while (consume(","));
-            expect('}');
-        } else if (c == '[') {
-            value.kind = Json::Kind::Array;
-            ++m_pos;
-            skipSpace();
-            if (consume("]"))
-                return value;
-            do {
-                value.array.push_back(parseValue());
-                skipSpace();
-            } while (consume(","));
-            expect(']');
-        } else if (c == '"') {
-            value.kind = Json::Kind::String;
-            value.string = parseString();
-        } else if (consume("true") || consume("false")) {
-            value.kind = Json::Kind::Bool;
-            value.boolean = m_text[m_pos - 1] == 'e' && m_text[m_pos - 2] == 'u';
-        } else if (consume("null")) {
-            value.kind = Json::Kind::Null;
-        } else {
-            std::size_t used = 0;
-            try {
-                value.number = std::stod(m_text.substr(m_pos, 64), &used);
-            } catch (const std::exception&) {
-                fail("bad value");
-            }
-            value.kind = Json::Kind::Number;
-            m_pos += used;
-        }
-        return value;
-    }
-
-    const std::string& m_text;
-    std::size_t m_pos = 0;
-};
-
+// Throws (lw::core::Error is a std::runtime_error) for anything that is not strict JSON.
 Json parseJson(const std::string& text) {
-    return JsonParser(text).parseDocument();
+    return treeOf(lw::core::parseJson(text, "bench --json"));
 }
 
 // These tests check the CPU rows and the errors of a machine without a GPU, so the CLI they start

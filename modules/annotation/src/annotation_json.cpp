@@ -112,7 +112,7 @@ std::vector<Annotation> parseAnnotationsJson(std::string_view text, const std::s
 }
 
 std::vector<Annotation> readAnnotationsFile(const std::filesystem::path& path) {
-    return parseAnnotationsJson(core::readFileText(path), path.string());
+    return parseAnnotationsJson(core::readFileText(path, kMaxAnnotationFileBytes), path.string());
 }
 
 std::string annotationsToJson(const std::vector<Annotation>& annotations) {

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <cstdint>
 #include <cstdio>
 #include <cstring>
 #include <fcntl.h>
@@ -15,7 +16,7 @@
 
 namespace lw::core {
 
-std::vector<std::byte> readFileBytes(const std::filesystem::path& path) {
+std::vector<std::byte> readFileBytes(const std::filesystem::path& path, std::size_t maxBytes) {
     // A folder opens as a stream whose "size" is the largest offset: refuse it before sizing.
     std::error_code ec;
     if (std::filesystem::exists(path, ec) && !std::filesystem::is_regular_file(path, ec))
@@ -27,6 +28,10 @@ std::vector<std::byte> readFileBytes(const std::filesystem::path& path) {
     const std::streamoff size = in.tellg();
     if (size < 0)
         throw Error(path.string(), "cannot determine the file size");
+    if (static_cast<std::uintmax_t>(size) > maxBytes)
+        throw Error(path.string(), "the file is " + std::to_string(size) +
+                                       " bytes, more than the limit of " +
+                                       std::to_string(maxBytes) + " bytes for this kind of file");
     in.seekg(0);
     std::vector<std::byte> bytes(static_cast<std::size_t>(size));
     if (size > 0 && !in.read(reinterpret_cast<char*>(bytes.data()), size))
@@ -34,8 +39,8 @@ std::vector<std::byte> readFileBytes(const std::filesystem::path& path) {
     return bytes;
 }
 
-std::string readFileText(const std::filesystem::path& path) {
-    const auto bytes = readFileBytes(path);
+std::string readFileText(const std::filesystem::path& path, std::size_t maxBytes) {
+    const auto bytes = readFileBytes(path, maxBytes);
     return std::string(reinterpret_cast<const char*>(bytes.data()), bytes.size());
 }
 

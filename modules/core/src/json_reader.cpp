@@ -2,8 +2,9 @@
 
 #include "lw/core/error.h"
 
-#include <charconv>
-#include <cstdint>
+#include <algorithm>
+#include <nlohmann/json.hpp>
+#include <optional>
 
 namespace lw::core {
 
@@ -23,256 +24,138 @@ const char* jsonTypeName(JsonValue::Type type) {
 
 namespace {
 
-constexpr int kMaxDepth = 256;
+constexpr std::size_t kMaxDepth = 256;
 
-// Recursive descent over the text; every error names the line and column where it was found.
-class JsonParser {
+using Sax = nlohmann::json_sax<nlohmann::json>;
+
+// "syntax error while parsing object key - unexpected '}'; ..." out of nlohmann's
+// "[json.exception.parse_error.101] parse error at line 1, column 9: syntax error ...": the
+// place is said once, by us, with the path.
+std::string reasonOf(const nlohmann::detail::exception& error) {
+    std::string_view what = error.what();
+    if (const auto close = what.find("] "); close != std::string_view::npos)
+        what.remove_prefix(close + 2);
+    if (what.starts_with("parse error"))
+        if (const auto colon = what.find(": "); colon != std::string_view::npos)
+            what.remove_prefix(colon + 2);
+    return std::string(what);
+}
+
+// "line L, column C" of the byte nlohmann stopped at (`position`: bytes read, so 1-based).
+std::string lineAndColumn(std::string_view text, std::size_t position) {
+    const std::size_t at = std::min(position > 0 ? position - 1 : 0, text.size());
+    const auto line = 1 + std::count(text.begin(), text.begin() + std::ptrdiff_t(at), '\n');
+    const std::size_t newline = at > 0 ? text.rfind('\n', at - 1) : std::string_view::npos;
+    const std::size_t lineStart = newline == std::string_view::npos ? 0 : newline + 1;
+    return "line " + std::to_string(line) + ", column " + std::to_string(at - lineStart + 1);
+}
+
+// Builds JsonValues from nlohmann's parse events on an explicit stack (no recursion however
+// deep the input), refuses nesting beyond kMaxDepth (JsonValue's destructor and the readers of
+// a document do recurse) and knows the path to the innermost open value for messages.
+class Builder final : public Sax {
 public:
-    JsonParser(std::string_view text, const std::string& subject)
-        : m_text(text), m_subject(subject) {}
+    JsonValue document;
 
-    JsonValue document() {
-        JsonValue value = parseValue(0);
-        skipSpace();
-        if (m_pos != m_text.size())
-            fail("unexpected text after the end of the document");
-        return value;
+    // Why parsing stopped: "line L, column C, in annotations[0]: reason".
+    std::string failure(std::string_view text) const {
+        const std::string place = m_position ? lineAndColumn(text, *m_position) : std::string();
+        const std::string path = openPath();
+        std::string where = place;
+        if (!path.empty())
+            where += (where.empty() ? "in " : ", in ") + path;
+        return where.empty() ? m_reason : where + ": " + m_reason;
     }
 
-private:
-    [[noreturn]] void fail(const std::string& reason) const {
-        int line = 1, column = 1;
-        for (std::size_t i = 0; i < m_pos && i < m_text.size(); ++i) {
-            column = m_text[i] == '\n' ? 1 : column + 1;
-            line += m_text[i] == '\n' ? 1 : 0;
-        }
-        throw Error(m_subject, "line " + std::to_string(line) + ", column " +
-                                   std::to_string(column) + ": " + reason);
+    bool null() override { return add(JsonValue()); }
+    bool boolean(bool flag) override { return add(JsonValue(flag)); }
+    bool number_integer(number_integer_t n) override { return add(JsonValue(double(n))); }
+    bool number_unsigned(number_unsigned_t n) override { return add(JsonValue(double(n))); }
+    bool number_float(number_float_t n, const string_t&) override { return add(JsonValue(n)); }
+    bool string(string_t& text) override { return add(JsonValue(std::move(text))); }
+    bool binary(binary_t&) override { return false; } // JSON text has no binary values
+    bool start_object(std::size_t) override { return open(true); }
+    bool start_array(std::size_t) override { return open(false); }
+    bool key(string_t& name) override {
+        m_open.back().key = std::move(name);
+        return true;
     }
-
-    void skipSpace() {
-        while (m_pos < m_text.size() && (m_text[m_pos] == ' ' || m_text[m_pos] == '\t' ||
-                                         m_text[m_pos] == '\n' || m_text[m_pos] == '\r'))
-            ++m_pos;
-    }
-
-    bool consume(char c) {
-        skipSpace();
-        if (m_pos < m_text.size() && m_text[m_pos] == c) {
-            ++m_pos;
-            return true;
-        }
+    bool end_object() override { return close(); }
+    bool end_array() override { return close(); }
+    bool parse_error(std::size_t position, const std::string&,
+                     const nlohmann::detail::exception& error) override {
+        m_position = position;
+        m_reason = reasonOf(error);
         return false;
     }
 
-    void expect(char c, const char* what) {
-        if (!consume(c))
-            fail(std::string("expected ") + what);
-    }
+private:
+    struct Open {
+        bool isObject;
+        std::string key; // an object's member being read
+        JsonValue::Array items;
+        JsonValue::Object members;
+    };
 
-    bool literal(std::string_view word) {
-        if (m_text.substr(m_pos, word.size()) != word)
-            return false;
-        m_pos += word.size();
+    bool add(JsonValue value) {
+        if (m_open.empty()) {
+            document = std::move(value);
+        } else if (Open& top = m_open.back(); top.isObject) {
+            top.members.emplace_back(std::move(top.key), std::move(value));
+            top.key.clear(); // no member pending until the next key
+        } else {
+            top.items.push_back(std::move(value));
+        }
         return true;
     }
 
-    JsonValue parseValue(int depth) {
-        if (depth > kMaxDepth)
-            fail("nested deeper than " + std::to_string(kMaxDepth) + " levels");
-        skipSpace();
-        if (m_pos >= m_text.size())
-            fail("unexpected end of the document");
-        const char c = m_text[m_pos];
-        if (c == '{')
-            return parseObject(depth);
-        if (c == '[')
-            return parseArray(depth);
-        if (c == '"')
-            return JsonValue(parseString());
-        if (literal("true"))
-            return JsonValue(true);
-        if (literal("false"))
-            return JsonValue(false);
-        if (literal("null"))
-            return JsonValue();
-        if (c == '-' || (c >= '0' && c <= '9'))
-            return JsonValue(parseNumber());
-        fail(std::string("unexpected character '") + c + "'");
-    }
-
-    JsonValue parseObject(int depth) {
-        ++m_pos; // '{'
-        JsonValue::Object members;
-        if (consume('}'))
-            return JsonValue(std::move(members));
-        do {
-            skipSpace();
-            if (m_pos >= m_text.size() || m_text[m_pos] != '"')
-                fail("expected a member name in double quotes");
-            std::string name = parseString();
-            expect(':', "':' after a member name");
-            members.emplace_back(std::move(name), parseValue(depth + 1));
-        } while (consume(','));
-        expect('}', "',' or '}' in an object");
-        return JsonValue(std::move(members));
-    }
-
-    JsonValue parseArray(int depth) {
-        ++m_pos; // '['
-        JsonValue::Array items;
-        if (consume(']'))
-            return JsonValue(std::move(items));
-        do
-            items.push_back(parseValue(depth + 1));
-        while (consume(','));
-        expect(']', "',' or ']' in an array");
-        return JsonValue(std::move(items));
-    }
-
-    double parseNumber() {
-        // JSON's grammar is stricter than from_chars: no leading '+', no leading zeros, digits
-        // on both sides of the point.
-        const std::size_t start = m_pos;
-        const auto digits = [&] {
-            const std::size_t from = m_pos;
-            while (m_pos < m_text.size() && m_text[m_pos] >= '0' && m_text[m_pos] <= '9')
-                ++m_pos;
-            return m_pos - from;
-        };
-        if (m_text[m_pos] == '-')
-            ++m_pos;
-        const std::size_t integerStart = m_pos;
-        const std::size_t integerDigits = digits();
-        if (integerDigits == 0 || (integerDigits > 1 && m_text[integerStart] == '0'))
-            fail("malformed number");
-        if (m_pos < m_text.size() && m_text[m_pos] == '.') {
-            ++m_pos;
-            if (digits() == 0)
-                fail("malformed number: digits expected after '.'");
+    bool open(bool isObject) {
+        if (m_open.size() >= kMaxDepth) {
+            m_reason = "nested deeper than " + std::to_string(kMaxDepth) + " levels";
+            return false;
         }
-        if (m_pos < m_text.size() && (m_text[m_pos] == 'e' || m_text[m_pos] == 'E')) {
-            ++m_pos;
-            if (m_pos < m_text.size() && (m_text[m_pos] == '+' || m_text[m_pos] == '-'))
-                ++m_pos;
-            if (digits() == 0)
-                fail("malformed number: digits expected in the exponent");
+        m_open.push_back({isObject, {}, {}, {}});
+        return true;
+    }
+
+    bool close() {
+        Open top = std::move(m_open.back());
+        m_open.pop_back();
+        return add(top.isObject ? JsonValue(std::move(top.members))
+                                : JsonValue(std::move(top.items)));
+    }
+
+    // "annotations[2].points": where each open container sits in the one around it, and the
+    // member of the innermost object whose value was being read.
+    std::string openPath() const {
+        if (m_open.size() > 16) // a path through hostile nesting would be longer than useful
+            return {};
+        std::string path;
+        for (std::size_t i = 0; i < m_open.size(); ++i) {
+            const bool innermost = i + 1 == m_open.size();
+            if (m_open[i].isObject && !m_open[i].key.empty())
+                path += (path.empty() ? "" : ".") + m_open[i].key;
+            else if (!m_open[i].isObject && !innermost)
+                path += "[" + std::to_string(m_open[i].items.size()) + "]";
         }
-        double value = 0.0;
-        const auto [end, error] =
-            std::from_chars(m_text.data() + start, m_text.data() + m_pos, value);
-        if (error != std::errc() || end != m_text.data() + m_pos)
-            fail("number out of range");
-        return value;
+        return path;
     }
 
-    unsigned hex4() {
-        if (m_pos + 4 > m_text.size())
-            fail("truncated \\u escape");
-        unsigned code = 0;
-        const auto [end, error] =
-            std::from_chars(m_text.data() + m_pos, m_text.data() + m_pos + 4, code, 16);
-        if (error != std::errc() || end != m_text.data() + m_pos + 4)
-            fail("malformed \\u escape");
-        m_pos += 4;
-        return code;
-    }
-
-    static void appendUtf8(std::string& out, std::uint32_t code) {
-        if (code < 0x80) {
-            out += char(code);
-        } else if (code < 0x800) {
-            out += char(0xC0 | (code >> 6));
-            out += char(0x80 | (code & 0x3F));
-        } else if (code < 0x10000) {
-            out += char(0xE0 | (code >> 12));
-            out += char(0x80 | ((code >> 6) & 0x3F));
-            out += char(0x80 | (code & 0x3F));
-        } else {
-            out += char(0xF0 | (code >> 18));
-            out += char(0x80 | ((code >> 12) & 0x3F));
-            out += char(0x80 | ((code >> 6) & 0x3F));
-            out += char(0x80 | (code & 0x3F));
-        }
-    }
-
-    // \uXXXX, joining a UTF-16 surrogate pair into one code point.
-    void unicodeEscape(std::string& out) {
-        std::uint32_t code = hex4();
-        if (code >= 0xD800 && code < 0xDC00) {
-            if (!literal("\\u"))
-                fail("unpaired UTF-16 surrogate in a \\u escape");
-            const unsigned low = hex4();
-            if (low < 0xDC00 || low > 0xDFFF)
-                fail("unpaired UTF-16 surrogate in a \\u escape");
-            code = 0x10000 + ((code - 0xD800) << 10) + (low - 0xDC00);
-        } else if (code >= 0xDC00 && code < 0xE000) {
-            fail("unpaired UTF-16 surrogate in a \\u escape");
-        }
-        appendUtf8(out, code);
-    }
-
-    std::string parseString() {
-        ++m_pos; // opening quote
-        std::string out;
-        while (true) {
-            if (m_pos >= m_text.size())
-                fail("unterminated string");
-            const char c = m_text[m_pos++];
-            if (c == '"')
-                return out;
-            if (static_cast<unsigned char>(c) < 0x20)
-                fail("control character inside a string (escape it)");
-            if (c != '\\') {
-                out += c;
-                continue;
-            }
-            if (m_pos >= m_text.size())
-                fail("unterminated string");
-            const char e = m_text[m_pos++];
-            switch (e) {
-            case '"':
-                out += '"';
-                break;
-            case '\\':
-                out += '\\';
-                break;
-            case '/':
-                out += '/';
-                break;
-            case 'b':
-                out += '\b';
-                break;
-            case 'f':
-                out += '\f';
-                break;
-            case 'n':
-                out += '\n';
-                break;
-            case 'r':
-                out += '\r';
-                break;
-            case 't':
-                out += '\t';
-                break;
-            case 'u':
-                unicodeEscape(out);
-                break;
-            default:
-                fail(std::string("unknown escape '\\") + e + "'");
-            }
-        }
-    }
-
-    std::string_view m_text;
-    const std::string& m_subject;
-    std::size_t m_pos = 0;
+    std::vector<Open> m_open;
+    std::optional<std::size_t> m_position;
+    std::string m_reason;
 };
 
 } // namespace
 
 JsonValue parseJson(std::string_view text, const std::string& subject) {
-    return JsonParser(text, subject).document();
+    Builder builder;
+    // Strict RFC 8259: no comments, nothing after the document.
+    if (!nlohmann::json::sax_parse(text.begin(), text.end(), &builder,
+                                   nlohmann::json::input_format_t::json, /*strict=*/true,
+                                   /*ignore_comments=*/false))
+        throw Error(subject, builder.failure(text));
+    return std::move(builder.document);
 }
 
 } // namespace lw::core

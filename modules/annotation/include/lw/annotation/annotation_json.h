@@ -14,6 +14,7 @@
 
 #include "lw/annotation/annotation.h"
 
+#include <cstddef>
 #include <filesystem>
 #include <string>
 #include <string_view>
@@ -22,11 +23,14 @@
 namespace lw::annotation {
 
 inline constexpr int kAnnotationFileVersion = 1;
+// A few hundred bytes an annotation: 16 MiB is tens of thousands of them. A larger file is
+// refused before it is read.
+inline constexpr std::size_t kMaxAnnotationFileBytes = std::size_t(16) << 20;
 
 // Throws core::Error(subject, reason) naming the place ("annotations[2].points: ...", or the
 // line and column of a JSON syntax error).
 std::vector<Annotation> parseAnnotationsJson(std::string_view text, const std::string& subject);
-// Reads and parses a file; errors name the file.
+// Reads and parses a file of at most kMaxAnnotationFileBytes; errors name the file.
 std::vector<Annotation> readAnnotationsFile(const std::filesystem::path& path);
 // The file's text for `annotations` (parseAnnotationsJson reads back the same annotations, the
 // coordinates to 10 significant digits).

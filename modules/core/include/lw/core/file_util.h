@@ -9,9 +9,14 @@
 
 namespace lw::core {
 
-// Reads a whole file (opened read-only). Throws Error naming the file on failure.
-std::vector<std::byte> readFileBytes(const std::filesystem::path& path);
-std::string readFileText(const std::filesystem::path& path);
+// Reads a whole file (opened read-only). Throws Error naming the file on failure, and before
+// reading or allocating anything when the file is larger than `maxBytes` (a file a user hands
+// over whose size has no reason to be large, such as an annotation file).
+std::vector<std::byte>
+readFileBytes(const std::filesystem::path& path,
+              std::size_t maxBytes = std::numeric_limits<std::size_t>::max());
+std::string readFileText(const std::filesystem::path& path,
+                         std::size_t maxBytes = std::numeric_limits<std::size_t>::max());
 
 // Inflates gzip or zlib data; throws Error naming `subject` when the stream is corrupt or would
 // inflate to more than `maxOutput` bytes: a reader passes inflateBound(what its header declares)

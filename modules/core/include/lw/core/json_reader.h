@@ -9,7 +9,8 @@
 namespace lw::core {
 
 // A parsed JSON document (RFC 8259), small and strict: files a user hands the CLI (annotations)
-// are read with it. The counterpart of JsonWriter.
+// are read with it. The counterpart of JsonWriter. nlohmann-json parses; this keeps its types out
+// of the headers.
 class JsonValue {
 public:
     enum class Type { Null, Bool, Number, String, Array, Object };
@@ -46,9 +47,12 @@ private:
 // "null", "boolean", "number", "string", "array", "object": for messages.
 const char* jsonTypeName(JsonValue::Type type);
 
-// Parses one JSON document. Throws Error(subject, "line L, column C: reason") for anything that
-// is not strict JSON (trailing commas, comments, single quotes, bad escapes, text after the end)
-// and for nesting deeper than 256 levels.
+// Parses one JSON document with nlohmann-json. Throws Error(subject, "line L, column C, in
+// PATH: reason") for anything that is not strict JSON (trailing commas, comments, single quotes,
+// bad escapes, invalid UTF-8, text after the end); C is where the parser stopped, the end of the
+// token that does not fit; PATH ("annotations[2].points") names the value being read and is left
+// out at the top level. Nesting deeper than 256 levels is refused too (Error(subject, "nested
+// deeper than 256 levels")).
 JsonValue parseJson(std::string_view text, const std::string& subject);
 
 } // namespace lw::core

@@ -8,7 +8,9 @@
 namespace lw::core {
 
 // A small streaming JSON writer for the CLI's machine-readable output. It tracks nesting so
-// commas are placed correctly; keys are only valid inside objects.
+// commas are placed correctly; keys are only valid inside objects. Strings are escaped by
+// nlohmann-json (invalid UTF-8 becomes U+FFFD); doubles are written with 10 significant digits
+// ("%.10g"; NaN and infinities as null), the format the CLI's JSON has always had.
 class JsonWriter {
 public:
     explicit JsonWriter(int indent = 2) : m_indent(indent) {}

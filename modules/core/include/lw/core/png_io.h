@@ -13,7 +13,8 @@ namespace lw::core {
 // callers pass grey images with r == g == b; Rgb drops alpha.
 enum class PngFormat { Gray, Rgb, Rgba };
 
-// Encodes 8-bit, non-interlaced PNG bytes (per-row adaptive filtering, zlib deflate).
+// Encodes 8-bit, non-interlaced PNG bytes with libpng (adaptive filtering, an sRGB chunk).
+// Throws Error for an empty image.
 std::vector<std::byte> encodePng(const ImageRgba8& image, PngFormat format = PngFormat::Rgba);
 
 // Writes a PNG atomically (temporary sibling + rename), so a crash never leaves half an image.
@@ -21,10 +22,13 @@ std::vector<std::byte> encodePng(const ImageRgba8& image, PngFormat format = Png
 void writePng(const std::filesystem::path& path, const ImageRgba8& image,
               PngFormat format = PngFormat::Rgba);
 
-// Decodes 8-bit, non-interlaced gray, gray+alpha, RGB and RGBA PNGs into RGBA (gray expands to
-// r = g = b, missing alpha becomes 255). Anything else (palette, 16-bit, interlaced, corrupt,
-// truncated, CRC mismatch) throws Error naming `subject` and the reason. `storedFormat`, when
-// given, receives the stored colour type (gray+alpha reports Rgba).
+// Decodes PNGs of up to 8 bits a sample with libpng: gray, gray+alpha, RGB, RGBA and palette,
+// interlaced or not, into RGBA (gray expands to r = g = b, missing alpha becomes 255; a file
+// with a gamma other than sRGB's is converted to sRGB). A header declaring more than 2^28 pixels
+// is refused before anything is allocated; that, 16-bit samples (libpng would convert them,
+// not read them as stored) and corrupt, truncated or CRC-mismatched files throw Error naming
+// `subject` and the reason. `storedFormat`, when given, receives the stored colour type (gray+
+// alpha and palettes with transparency report Rgba, other palettes Rgb).
 ImageRgba8 decodePng(const std::byte* data, std::size_t size, const std::string& subject,
                      PngFormat* storedFormat = nullptr);
 ImageRgba8 readPng(const std::filesystem::path& path, PngFormat* storedFormat = nullptr);
