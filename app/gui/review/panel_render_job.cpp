@@ -16,16 +16,25 @@
 namespace lw::gui {
 namespace {
 
-QImage renderIso(const PanelRenderJob& job) {
+// `mesh`: the surface on screen, or (the review keeps its surface on the device) the one made
+// here on demand from the drawn volume.
+QImage renderIso(const PanelRenderJob& job, const render::Mesh& mesh) {
     const render::SilhouetteGlOptions options =
         panelGlOptions(PanelKind::Iso, job.appearance, job.camera, job.bounds);
     if (job.isoOnCpu)
-        return shadeIsoOnCpu(job.mesh.get(), job.camera, options);
+        return shadeIsoOnCpu(&mesh, job.camera, options);
     // A headless context of this thread's own (no Qt context may be current here).
     render::EglHeadlessContext context;
     render::SilhouetteGlRenderer gl;
-    gl.uploadMesh(job.mesh ? *job.mesh : render::Mesh());
+    gl.uploadMesh(mesh);
     return toQImage(gl.renderImage(job.camera, options)); // gl goes before the context
+}
+
+render::Mesh extractedSurface(const PanelRenderJob& job, const volume::Volume& volume) {
+    render::IsoSurfaceOptions options;
+    options.closeAtBorder = job.appearance.closeAtBorder;
+    options.gradientStencil = job.appearance.gradientStencil;
+    return render::extractIsoSurface(volume, job.iso, options);
 }
 
 } // namespace
@@ -60,10 +69,10 @@ QImage linesToImage(const render::PixelMask& lines, const ReviewSettings& appear
 }
 
 std::pair<QImage, QImage> renderPanelJob(const PanelRenderJob& job, PanelVectors* vectors) {
-    QImage iso = renderIso(job);
     // The volume the review's methods draw (its oversampled copy where the settings make one).
     const std::shared_ptr<const volume::Volume> volume =
         render::volumeToRender(job.volume, job.appearance.volumeSampling(), job.iso);
+    QImage iso = renderIso(job, job.mesh ? *job.mesh : extractedSurface(job, *volume));
     auto renderer = render::createSilhouetteRenderer(job.appearance.method, job.appearance.backend);
     renderer->setVolume(*volume);
     render::SilhouetteSettings settings;

@@ -21,7 +21,8 @@ namespace lw::gui {
 
 struct PanelRenderJob {
     std::shared_ptr<const volume::Volume> volume;
-    std::shared_ptr<const render::Mesh> mesh; // the iso panel's surface
+    // The iso panel's surface; null where the review keeps it on the device (extracted then).
+    std::shared_ptr<const render::Mesh> mesh;
     render::Camera camera;                    // at the export size
     render::Aabb bounds;                      // what the camera frames (the depth tolerance's box)
     ReviewSettings appearance;                // line width already scaled to the size

@@ -95,7 +95,11 @@ void ReviewWidget::setUpAnnotations() {
 std::optional<glm::dvec3> ReviewWidget::pickSurface(ReviewPanel& panel, QPoint position) {
     if (&panel == m_isoPanel)
         return m_isoPanel->pickPatientPoint(position);
-    // The silhouette panel keeps no depth of its own: a ray against the mesh both panels show.
+    // The silhouette panel keeps no depth of its own. The iso pass's depth at the same camera
+    // where the panels are of one size (the device path holds no host mesh), else a ray against
+    // the mesh both panels show.
+    if (!m_mesh && m_isoPanel->renderSize() == panel.renderSize())
+        return m_isoPanel->pickPatientPoint(position);
     if (!m_mesh || !m_meshCurrent)
         return std::nullopt;
     return render::pickMeshSurface(*m_mesh, panel.viewCamera(),
@@ -163,7 +167,7 @@ void ReviewWidget::connectParts() {
             m_cursorLine->setText(point ? patientPositionText(*point) : QString());
         });
         connect(panel, &ReviewPanel::painted, this, [this, panel](double milliseconds) {
-            if (!m_drawsInPanels)
+            if (!m_drawsInPanels || (panel == m_isoPanel && m_isoOnDevice))
                 return; // the worker's GL time is what counts, and it came with the result
             (panel == m_isoPanel ? m_status.isoPaintMs : m_status.silhouettePaintMs) = milliseconds;
             if (panel == m_silhouettePanel && methodOneInPanel())
@@ -248,7 +252,7 @@ bool ReviewWidget::drawsInPanels() const {
 
 bool ReviewWidget::methodOneInPanel() const {
     return m_settings.method == render::SilhouetteMethod::GeometryShader && brickCells() == 0 &&
-           m_drawsInPanels;
+           m_drawsInPanels && !m_isoOnDevice;
 }
 
 // Of the volume the worker draws: the oversampled copy where the settings make one.
@@ -274,9 +278,13 @@ void ReviewWidget::applySettings(const ReviewSettings& settings) {
     m_isoPanel->setAppearance(settings);
     m_silhouettePanel->setAppearance(settings);
     m_drawsInPanels = drawsInPanels();
+    m_isoOnDevice = m_drawsInPanels && render::reviewIsoOnDevice(settings.backend);
     m_isoPanel->setGlView(m_drawsInPanels);
     m_silhouettePanel->setGlView(m_drawsInPanels);
-    m_isoPanel->setUseGl(m_drawsInPanels);
+    m_isoPanel->setUseGl(m_drawsInPanels && !m_isoOnDevice);
+    m_isoPanel->setMesh(nullptr);
+    m_silhouettePanel->setMesh(nullptr);
+    m_mesh.reset();
     m_silhouettePanel->setUseGl(methodOneInPanel());
     m_silhouettePanel->setImage({});
     m_silhouettePanel->setLinesTexture(nullptr);
@@ -307,46 +315,55 @@ void ReviewWidget::resetCamera() {
 void ReviewWidget::requestFrame(bool newIso) {
     if (!m_scheduler)
         return;
-    const bool modeB = m_settings.mode == render::ExtractionMode::EveryFrameB;
     FrameRequest request;
     request.settingsGeneration = m_settingsGeneration;
-    request.iso = m_iso;
-    request.method = m_settings.method;
-    request.backend = m_settings.backend;
-    request.settings.brickCells = brickCells();
-    request.settings.mode = m_settings.mode;
-    request.settings.visibility = m_settings.visibility;
-    request.settings.testAlongSegment = m_settings.testAlongSegment;
-    request.settings.minStrokePixels = m_settings.minStrokePixels;
-    request.settings.closeAtBorder = m_settings.closeAtBorder;
-    request.settings.gradientStencil = m_settings.gradientStencil;
-    request.sampling = m_settings.volumeSampling();
-    request.settings.gpuMemoryBudget = std::size_t(m_settings.gpuMemoryBudgetMiB) << 20;
-    request.settings.isoReal = m_iso;
-    request.wantSilhouette = !methodOneInPanel();
+    render::ReviewFrameRequest& frame = request.frame;
+    frame.iso = m_iso;
+    frame.method = m_settings.method;
+    frame.backend = m_settings.backend;
+    frame.settings = silhouetteSettings();
+    frame.sampling = m_settings.volumeSampling();
+    frame.wantSilhouette = !methodOneInPanel();
     // Drawn on the worker with the silhouette (CPU); method 1 in the panel's own GL has none yet.
-    request.suggestive = m_settings.suggestiveContours && request.wantSilhouette;
+    frame.suggestive = m_settings.suggestiveContours && frame.wantSilhouette;
     // The GL panel draws a texture the worker's CUDA writes; the iso panel's overlay and the
     // suggestive contours (added to the mask on the host) still need the mask on the host.
     request.silhouetteToTexture = m_drawsInPanels && !m_settings.silhouetteOnIso &&
-                                  !request.suggestive &&
+                                  !frame.suggestive &&
                                   render::silhouetteMethodInfo(m_settings.method).drawsToTexture;
-    request.wantMesh = newIso || !m_meshCurrent || (modeB && methodOneInPanel());
-    request.forceExtract = modeB && methodOneInPanel() && !newIso;
-    if (!m_drawsInPanels) {
+    const bool modeB = m_settings.mode == render::ExtractionMode::EveryFrameB;
+    // A panel that draws the mesh with its own GL needs it on the host.
+    const bool panelsDrawMesh = m_drawsInPanels && !m_isoOnDevice;
+    frame.wantMesh = panelsDrawMesh && (newIso || !m_meshCurrent || (modeB && methodOneInPanel()));
+    frame.forceExtract = modeB && methodOneInPanel() && !newIso;
+    if (!panelsDrawMesh) {
         // The worker draws the iso panel too: every new view and iso-value needs an image.
-        request.wantIsoImage = true;
+        frame.wantIsoImage = true;
         const QSize isoSize = m_isoPanel->renderSize();
-        request.isoCamera = m_camera.camera(isoSize.width(), isoSize.height());
-        request.isoOptions =
-            panelGlOptions(PanelKind::Iso, m_settings, request.isoCamera, m_camera.bounds());
-        request.isoOnCpu = displayGlInfo().prefersCpu();
+        frame.isoCamera = m_camera.camera(isoSize.width(), isoSize.height());
+        frame.isoOptions =
+            panelGlOptions(PanelKind::Iso, m_settings, frame.isoCamera, m_camera.bounds());
+        frame.isoOnCpu = displayGlInfo().prefersCpu();
     }
-    if (!request.wantMesh && !request.wantSilhouette && !request.wantIsoImage)
+    if (!frame.wantMesh && !frame.wantSilhouette && !frame.wantIsoImage)
         return; // method 1 S in mode a: the panels redraw the cached mesh themselves
     const QSize size = m_silhouettePanel->renderSize();
-    request.camera = m_camera.camera(size.width(), size.height());
+    frame.camera = m_camera.camera(size.width(), size.height());
     m_scheduler->request(std::move(request));
+}
+
+render::SilhouetteSettings ReviewWidget::silhouetteSettings() const {
+    render::SilhouetteSettings settings;
+    settings.brickCells = brickCells();
+    settings.mode = m_settings.mode;
+    settings.visibility = m_settings.visibility;
+    settings.testAlongSegment = m_settings.testAlongSegment;
+    settings.minStrokePixels = m_settings.minStrokePixels;
+    settings.closeAtBorder = m_settings.closeAtBorder;
+    settings.gradientStencil = m_settings.gradientStencil;
+    settings.gpuMemoryBudget = std::size_t(m_settings.gpuMemoryBudgetMiB) << 20;
+    settings.isoReal = m_iso;
+    return settings;
 }
 
 void ReviewWidget::takeFrame(const std::shared_ptr<const FrameResult>& result) {
@@ -375,29 +392,38 @@ void ReviewWidget::takeFrame(const std::shared_ptr<const FrameResult>& result) {
     }
     if (result->mesh) {
         m_mesh = result->mesh;
-        m_isoPanel->setMesh(result->mesh);
+        m_isoPanel->setMesh(m_isoOnDevice ? nullptr : result->mesh);
         m_silhouettePanel->setMesh(methodOneInPanel() ? result->mesh : nullptr);
-        m_meshCurrent = result->iso == m_iso;
-        m_status.triangles = result->mesh->triangleCount();
-        m_status.isoShown = result->iso;
-        if (result->meshMs > 0.0 || !result->silhouette)
-            m_status.extractMs = result->meshMs;
-        const bool empty = result->mesh->isEmpty();
-        const QString none = tr("No surface at %1 HU").arg(result->iso);
-        m_isoPanel->setMessage(empty ? none : QString());
-        m_silhouettePanel->setMessage(empty ? none : QString());
     }
+    if (result->surfaceTriangles)
+        showSurfaceCounts(*result);
     if (result->silhouette)
         showSilhouette(*result);
     updateStatusLine();
     emit frameShown();
 }
 
+// The surface's triangle count (the device's on the device path) and "no surface" where there
+// is none.
+void ReviewWidget::showSurfaceCounts(const FrameResult& result) {
+    if (!result.mesh && m_isoOnDevice)
+        m_mesh.reset(); // an older iso-value's host mesh is not what the panels show now
+    m_meshCurrent = result.iso == m_iso;
+    m_status.triangles = *result.surfaceTriangles;
+    m_status.isoShown = result.iso;
+    if (result.meshMs > 0.0 || !result.silhouette)
+        m_status.extractMs = result.meshMs;
+    const bool empty = *result.surfaceTriangles == 0;
+    const QString none = tr("No surface at %1 HU").arg(result.iso);
+    m_isoPanel->setMessage(empty ? none : QString());
+    m_silhouettePanel->setMessage(empty ? none : QString());
+}
+
 void ReviewWidget::showSilhouette(const FrameResult& result) {
     const render::SilhouetteFrame& frame = *result.silhouette;
     m_status.segments = frame.segments;
     m_status.silhouetteTimes = frame.times;
-    if (!result.mesh)
+    if (!result.surfaceTriangles)
         m_status.triangles = std::max(m_status.triangles, frame.triangles);
     if (result.linesTexture && m_silhouettePanel->hasGlView()) {
         // Method 3 on CUDA wrote the lines into a texture the panel draws: nothing to upload.
@@ -448,9 +474,10 @@ QString ReviewWidget::statusText() const {
         text += tr(" · silhouette: extract %1, segments %2, visibility %3, draw %4 ms")
                     .arg(ms(t.extractMs), ms(t.silhouetteMs), ms(t.visibilityMs), ms(t.drawMs));
         const bool cpu = displayGlInfo().prefersCpu();
-        text += (m_drawsInPanels ? tr(" · GL iso %1 ms")
-                 : cpu           ? tr(" · iso shaded on the CPU %1 ms")
-                                 : tr(" · GL iso on the worker %1 ms"))
+        text += (m_isoOnDevice     ? tr(" · iso shaded from the device's mesh %1 ms")
+                 : m_drawsInPanels ? tr(" · GL iso %1 ms")
+                 : cpu             ? tr(" · iso shaded on the CPU %1 ms")
+                                   : tr(" · GL iso on the worker %1 ms"))
                     .arg(ms(m_status.isoPaintMs));
     }
     text += tr(" · %1 triangles · %2 segments")
@@ -494,12 +521,12 @@ PanelRenderJob ReviewWidget::renderJob(QSize size) const {
 }
 
 bool ReviewWidget::rendersOnUiThread() const {
-    return m_drawsInPanels;
+    return m_drawsInPanels && !m_isoOnDevice;
 }
 
 std::pair<QImage, QImage> ReviewWidget::renderPanels(QSize size, PanelVectors* vectors) {
     const PanelRenderJob job = renderJob(size);
-    if (!m_drawsInPanels) {
+    if (!rendersOnUiThread()) {
         releaseQtContext(); // the job may make an EGL context on this thread
         return renderPanelJob(job, vectors);
     }

@@ -116,6 +116,8 @@ private:
     void requestFrame(bool newIso);
     void takeFrame(const std::shared_ptr<const FrameResult>& result);
     void showSilhouette(const FrameResult& result);
+    void showSurfaceCounts(const FrameResult& result);
+    render::SilhouetteSettings silhouetteSettings() const; // the worker's, from m_settings
     void showError(const QString& message);
     void updateStatusLine();
     void setUpAnnotations();
@@ -128,8 +130,11 @@ private:
     ReviewSettings m_settings;
     std::uint64_t m_settingsGeneration = 1;
     double m_iso = 0.0;
-    bool m_meshCurrent = false;   // the panels hold the mesh at m_iso
+    bool m_meshCurrent = false;   // the panels show the surface at m_iso
     bool m_drawsInPanels = false; // the pipeline the current settings generation was set up for
+    // With it, on CUDA: the worker shades the iso panel from the device's mesh (and method 1
+    // runs there too); the GL panels draw what it made and never hold a mesh.
+    bool m_isoOnDevice = false;
     std::shared_ptr<const render::Mesh> m_mesh; // the mesh on screen (export)
     CameraController m_camera;
     ReviewPanel* m_isoPanel = nullptr;

@@ -129,6 +129,11 @@ void SilhouetteTextures::done() {
     }
 }
 
+void SilhouetteTextures::makeCurrent() {
+    if (!m_context || !m_context->makeCurrent(m_surface))
+        throw core::Error("silhouette texture", "the worker's OpenGL context is not available");
+}
+
 LinesTextureView::LinesTextureView()
     : m_program(std::make_unique<QOpenGLShaderProgram>()),
       m_vertexArray(std::make_unique<QOpenGLVertexArrayObject>()) {

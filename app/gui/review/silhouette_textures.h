@@ -53,6 +53,9 @@ public:
                                    std::shared_ptr<const LinesTexture>& token);
     // After the frame: the context is no longer needed on this thread.
     void done();
+    // The textures' context current again on this thread (after done(), for the frame that
+    // draws into an acquired target); throws core::Error where it cannot be.
+    void makeCurrent();
 
 private:
     bool makeContext();

@@ -442,4 +442,31 @@ GeometryShaderSilhouetteRenderer::renderIsoPanel(const Camera& camera,
     return s.gl.renderImage(camera, options);
 }
 
+GeometryShaderSilhouetteRenderer::IsoPanelFrame
+GeometryShaderSilhouetteRenderer::renderIsoPanel(const Camera& camera,
+                                                 const SilhouetteSettings& settings,
+                                                 const SilhouetteGlOptions& options,
+                                                 bool forceExtract, std::vector<float>* depth) {
+    State& s = *m_state;
+    s.context->makeCurrent();
+    SilhouetteSettings whole = settings;
+    whole.brickCells = 0; // the panel shows the whole surface, whatever the silhouette's chunking
+    IsoPanelFrame frame;
+    frame.extractMs = s.ensureMesh(whole, forceExtract);
+    const auto start = Clock::now();
+    SilhouetteGlOptions iso = options;
+    iso.panel = GlPanel::Iso;
+    iso.useLineCandidates = false;
+    frame.image = s.gl.renderImage(camera, iso);
+    if (depth)
+        *depth = s.gl.readDepth();
+    frame.drawMs = msSince(start);
+    frame.triangles = s.gl.triangleCount();
+    return frame;
+}
+
+bool GeometryShaderSilhouetteRenderer::extractsOnDevice() const {
+    return m_state->source != nullptr;
+}
+
 } // namespace lw::render

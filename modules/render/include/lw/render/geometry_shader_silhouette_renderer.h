@@ -32,6 +32,7 @@
 
 #include "lw/core/image.h"
 #include "lw/render/iso_surface.h"
+#include "lw/render/silhouette_gl_renderer.h"
 #include "lw/render/silhouette_renderer.h"
 
 #include <cstddef>
@@ -42,7 +43,6 @@
 namespace lw::render {
 
 class GlContext;
-class SilhouetteGlRenderer;
 
 // What the last render() held and drew (S: the whole mesh as one "brick").
 struct GeometryShaderFrameStats {
@@ -79,6 +79,23 @@ public:
                                                    const SilhouetteSettings& settings) override {
         return renderIsoPanel(camera, settings);
     }
+
+    // The review's iso panel in the caller's look (`options`, its panel Iso): the whole mesh
+    // (extracted when the cached one is of other settings, or always with `forceExtract`),
+    // shaded for `camera`, with its surface depth where `depth` is given (top row first, [0, 1],
+    // 1 where nothing was drawn: for picking). With the CUDA extraction the mesh never leaves
+    // the device: the GL buffers it was written into are drawn as they are.
+    struct IsoPanelFrame {
+        core::ImageRgba8 image;
+        std::size_t triangles = 0; // in the GL buffers (the device's count with CUDA)
+        double extractMs = 0.0;    // 0 when the cached mesh was drawn
+        double drawMs = 0.0;       // draw and read-back
+    };
+    IsoPanelFrame renderIsoPanel(const Camera& camera, const SilhouetteSettings& settings,
+                                 const SilhouetteGlOptions& options, bool forceExtract,
+                                 std::vector<float>* depth);
+    // Whether whole meshes are extracted on the CUDA device (useCudaExtraction).
+    bool extractsOnDevice() const;
 
     // The mesh of the last S frame or iso panel (cached in mode a); empty before the first frame
     // and after an L frame.

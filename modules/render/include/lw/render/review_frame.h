@@ -1,0 +1,115 @@
+#pragma once
+
+// One frame of the review: both panels' pictures for one iso-value and camera, asked for once.
+// The GUI's render worker hands a ReviewFrameRequest to ReviewFrameRenderer and gets back what
+// the panels show; which surface is reused, where the iso panel is shaded and whether a host
+// mesh is made at all is decided here, next to the engine, so that the engine's tests (no Qt)
+// cover it.
+//
+// Two paths for the shaded iso panel:
+//   device  the back-end resolves to CUDA and this build has CUDA-GL interop: marching cubes on
+//           the device writes the mesh into GL buffers on the renderer's own headless context,
+//           and that context shades them. The mesh never reaches host memory; the triangle count
+//           is the device's. Method 1's whole-volume frame draws the same buffers.
+//   host    anywhere else: the mesh is extracted (or copied from the silhouette renderer that
+//           drew it) on the host and shaded on the CPU or with GL.
+// When the device path cannot start (no EGL device, interop refused) the frame takes the host
+// path; the reason is logged once and kept in ReviewFrame::backendNote.
+//
+// Not thread-safe; one thread drives it (its GL contexts belong to that thread).
+
+#include "lw/core/image.h"
+#include "lw/core/progress.h"
+#include "lw/render/camera.h"
+#include "lw/render/gl_context.h"
+#include "lw/render/iso_surface.h"
+#include "lw/render/renderer_factory.h"
+#include "lw/render/silhouette_gl_renderer.h"
+#include "lw/render/silhouette_renderer.h"
+#include "lw/render/surface_sampling.h"
+#include "lw/volume/volume.h"
+
+#include <cstddef>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace lw::render {
+
+struct ReviewFrameRequest {
+    double iso = 0.0; // real units (HU for CT)
+    SilhouetteMethod method = SilhouetteMethod::ZBuffer;
+    Backend backend = Backend::Auto;
+    // The methods' settings (isoReal and cancel are set from this request).
+    SilhouetteSettings settings;
+    // The volume the methods draw: as loaded, or resampled (surface_sampling.h); the copy is kept
+    // while this stays (per iso-value where it is the shape-based field of thick slices).
+    VolumeSampling sampling;
+    Camera camera; // the silhouette panel's
+
+    bool wantSilhouette = false; // draw the silhouette (else a GL panel draws method 1 itself)
+    bool suggestive = false;     // with the silhouette: its suggestive contours too (host mesh)
+    // A host mesh of the iso-value for a panel that draws it with its own GL; `forceExtract`
+    // (mode b) extracts again even where the kept one is of this iso-value.
+    bool wantMesh = false;
+    bool forceExtract = false;
+    // The shaded iso panel, drawn here: on the CPU (`isoOnCpu`: the software-GL display's
+    // choice) or with GL -- on the device where it can.
+    bool wantIsoImage = false;
+    bool isoOnCpu = false;
+    Camera isoCamera;
+    SilhouetteGlOptions isoOptions;
+
+    // Optional: where the silhouette may go instead of host memory (SilhouetteSettings::
+    // frameTarget), and the context it belongs to, made current for the silhouette alone.
+    GlFrameTarget* silhouetteTarget = nullptr;
+    GlContext* silhouetteTargetContext = nullptr;
+
+    const core::CancelToken* cancel = nullptr; // a newer request stops this one (Cancelled)
+};
+
+struct ReviewFrame {
+    std::optional<SilhouetteFrame> silhouette;
+    // A host mesh of the request's iso-value when one was asked for (wantMesh) or made for the
+    // host path; null on the device path.
+    std::shared_ptr<const Mesh> mesh;
+    double meshMs = 0.0; // marching cubes (and any copy) for the surface; 0 when it was kept
+    // The iso panel when wanted: RGBA8 top row first, its depth ([0, 1], 1 = nothing) for picking.
+    std::optional<core::ImageRgba8> isoImage;
+    std::vector<float> isoDepth;
+    double isoRenderMs = 0.0;
+    // The surface's triangle count wherever it was made (host or device); nullopt when this frame
+    // made or drew no whole surface (a method 2 frame alone).
+    std::optional<std::size_t> surfaceTriangles;
+    bool isoOnDevice = false; // the iso panel came from the device path
+    glm::ivec3 refinement{1}; // how the drawn volume split the loaded one's cells
+    std::string backend;      // the silhouette's back-end that actually ran
+    std::string backendNote;
+};
+
+class ReviewFrameRenderer {
+public:
+    explicit ReviewFrameRenderer(std::shared_ptr<const volume::Volume> source);
+    ~ReviewFrameRenderer();
+    ReviewFrameRenderer(const ReviewFrameRenderer&) = delete;
+    ReviewFrameRenderer& operator=(const ReviewFrameRenderer&) = delete;
+
+    // Throws core::Cancelled, core::Error, std::bad_alloc (after which release() is wise).
+    ReviewFrame render(const ReviewFrameRequest& request);
+    // Drops renderers, contexts and caches on the calling (driving) thread.
+    void release();
+
+    // Test hook: host meshes this renderer made (extracted, copied or downloaded) so far.
+    std::size_t hostMeshesMade() const;
+
+private:
+    struct State;
+    std::unique_ptr<State> m_state;
+};
+
+// Whether a request for `backend` shades the iso panel on the device (the back-end resolves to
+// CUDA for method 1's extraction, which needs CUDA-GL interop), before trying.
+bool reviewIsoOnDevice(Backend backend);
+
+} // namespace lw::render

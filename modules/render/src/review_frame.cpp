@@ -1,0 +1,410 @@
+#include "lw/render/review_frame.h"
+
+#include "lw/core/error.h"
+#include "lw/core/log.h"
+#include "lw/render/shaded_surface_cpu.h"
+#include "lw/render/suggestive_contours.h"
+
+#if LINEWORK_GL
+#include "lw/render/geometry_shader_silhouette_renderer.h"
+#endif
+
+#include <chrono>
+
+namespace lw::render {
+namespace {
+
+constexpr core::LogCategory kLog("lw.render");
+
+using Clock = std::chrono::steady_clock;
+
+double msSince(Clock::time_point start) {
+    return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+}
+
+// What, besides the iso-value, makes one surface differ from another: closed at the border or
+// not, and the gradient behind its normals.
+struct SurfaceForm {
+    bool closed = false;
+    GradientStencil stencil = GradientStencil::Central;
+    static SurfaceForm of(const SilhouetteSettings& settings) {
+        return {settings.closeAtBorder, settings.gradientStencil};
+    }
+    bool operator==(const SurfaceForm&) const = default;
+};
+
+// A host mesh and what it is the surface of.
+struct KeptMesh {
+    std::shared_ptr<const Mesh> mesh;
+    double iso = 0.0;
+    SurfaceForm form;
+    bool matches(double otherIso, SurfaceForm otherForm) const {
+        return mesh && iso == otherIso && form == otherForm;
+    }
+};
+
+// Makes `context` current for the silhouette and releases it afterwards, whatever the frame
+// does: the iso panel's own context may be made current on this thread next.
+class CurrentFor {
+public:
+    explicit CurrentFor(GlContext* context) : m_context(context) {
+        if (m_context)
+            m_context->makeCurrent();
+    }
+    ~CurrentFor() {
+        if (m_context)
+            m_context->doneCurrent();
+    }
+    CurrentFor(const CurrentFor&) = delete;
+    CurrentFor& operator=(const CurrentFor&) = delete;
+
+private:
+    GlContext* m_context;
+};
+
+} // namespace
+
+bool reviewIsoOnDevice(Backend backend) {
+    if (backend == Backend::Cpu)
+        return false;
+    try {
+        return resolveBackend(backend, SilhouetteMethod::GeometryShader) == Backend::Cuda;
+    } catch (const core::Error&) {
+        return false; // --backend cuda where it cannot be: the frame says so itself
+    }
+}
+
+struct ReviewFrameRenderer::State {
+    std::shared_ptr<const volume::Volume> source; // as loaded
+    // What the methods draw: `source` or its resampled copy; everything below is of this volume
+    // and goes when it changes.
+    std::shared_ptr<const volume::Volume> volume;
+    std::optional<VolumeSampling> volumeSampling;
+    double volumeIso = 0.0;
+    bool volumeDependsOnIso = false;
+
+    std::unique_ptr<SilhouetteRenderer> renderer;
+    Backend rendererBackend = Backend::Auto;
+    std::string backendNote;
+
+    std::unique_ptr<IsoSurfaceExtractor> extractor;
+    int extractorBricks = -1;
+    SurfaceForm extractorForm;
+    KeptMesh kept; // the host mesh handed out last
+
+    std::unique_ptr<SuggestiveContourRenderer> suggestive;
+    KeptMesh suggestiveSurface;
+
+#if LINEWORK_GL
+    // The iso panel with GL from a host mesh: a headless context of its own.
+    std::unique_ptr<EglHeadlessContext> isoContext;
+    std::unique_ptr<SilhouetteGlRenderer> isoGl;
+    const Mesh* uploadedMesh = nullptr;
+    std::shared_ptr<const Mesh> uploadedMeshOwner;
+    // The device path: method 1's renderer with the CUDA extraction (its own EGL context), used
+    // for the iso panel alone when the silhouette is another method's or chunked.
+    std::unique_ptr<GeometryShaderSilhouetteRenderer> deviceIso;
+#endif
+    std::string deviceUnavailable; // why the device path could not start (once per volume)
+    std::size_t hostMeshes = 0;
+
+    void dropVolumeCaches() {
+        suggestive.reset();
+        suggestiveSurface = {};
+        renderer.reset();
+        extractor.reset();
+        kept = {};
+#if LINEWORK_GL
+        if (isoGl && isoContext)
+            isoContext->makeCurrent(); // its GL objects go in the context they were made in
+        isoGl.reset();
+        uploadedMesh = nullptr;
+        uploadedMeshOwner.reset();
+        deviceIso.reset();
+#endif
+        deviceUnavailable.clear();
+    }
+
+    void prepareVolume(const ReviewFrameRequest& request);
+    SilhouetteRenderer& rendererFor(const ReviewFrameRequest& request, ReviewFrame& frame);
+    void renderSilhouette(const ReviewFrameRequest& request, ReviewFrame& frame);
+    void addSuggestive(const ReviewFrameRequest& request, ReviewFrame& frame);
+    void keepRendererMesh(const ReviewFrameRequest& request, ReviewFrame& frame);
+    void extractMesh(const ReviewFrameRequest& request, ReviewFrame& frame);
+    void renderIsoOnHost(const ReviewFrameRequest& request, ReviewFrame& frame);
+    bool renderIsoOnDevice(const ReviewFrameRequest& request, ReviewFrame& frame);
+#if LINEWORK_GL
+    GeometryShaderSilhouetteRenderer* deviceIsoRenderer(const ReviewFrameRequest& request);
+#endif
+};
+
+ReviewFrameRenderer::ReviewFrameRenderer(std::shared_ptr<const volume::Volume> source)
+    : m_state(std::make_unique<State>()) {
+    m_state->source = std::move(source);
+}
+
+ReviewFrameRenderer::~ReviewFrameRenderer() {
+    release();
+}
+
+void ReviewFrameRenderer::release() {
+    State& s = *m_state;
+    s.dropVolumeCaches();
+#if LINEWORK_GL
+    s.isoContext.reset();
+#endif
+    s.volume.reset();
+    s.volumeSampling.reset();
+}
+
+std::size_t ReviewFrameRenderer::hostMeshesMade() const {
+    return m_state->hostMeshes;
+}
+
+// The volume of the request's sampling: made once -- once per iso-value where it is the
+// shape-based field of thick slices -- and on a change everything made of the old one goes.
+void ReviewFrameRenderer::State::prepareVolume(const ReviewFrameRequest& request) {
+    if (volume && volumeSampling == request.sampling &&
+        (!volumeDependsOnIso || volumeIso == request.iso))
+        return;
+    dropVolumeCaches();
+    volume.reset(); // the old copy goes before a new one is made: one at a time in memory
+    volume = volumeToRender(source, request.sampling, request.iso, request.settings.threads);
+    volumeSampling = request.sampling;
+    volumeIso = request.iso;
+    volumeDependsOnIso =
+        samplingPlan(source->dims(), source->geometry(), request.sampling).dependsOnIso();
+}
+
+ReviewFrame ReviewFrameRenderer::render(const ReviewFrameRequest& request) {
+    State& s = *m_state;
+    if (request.cancel && request.cancel->isCancelled())
+        throw core::Cancelled();
+    ReviewFrame frame;
+    s.prepareVolume(request);
+    frame.refinement = s.volume->geometry().refinement();
+    if (request.wantSilhouette)
+        s.renderSilhouette(request, frame);
+    if (request.cancel && request.cancel->isCancelled())
+        throw core::Cancelled();
+    const bool isoDone = request.wantIsoImage && !request.isoOnCpu &&
+                         reviewIsoOnDevice(request.backend) && s.renderIsoOnDevice(request, frame);
+    if (request.wantMesh || (request.wantIsoImage && !isoDone))
+        s.extractMesh(request, frame);
+    if (request.cancel && request.cancel->isCancelled())
+        throw core::Cancelled();
+    if (request.wantIsoImage && !isoDone)
+        s.renderIsoOnHost(request, frame);
+    if (!s.deviceUnavailable.empty())
+        frame.backendNote += (frame.backendNote.empty() ? "" : "; ") + s.deviceUnavailable;
+    return frame;
+}
+
+SilhouetteRenderer& ReviewFrameRenderer::State::rendererFor(const ReviewFrameRequest& request,
+                                                            ReviewFrame& frame) {
+    if (!renderer || renderer->method() != request.method || rendererBackend != request.backend) {
+        renderer.reset();
+        renderer = createSilhouetteRenderer(request.method, request.backend, &backendNote);
+        renderer->setVolume(*volume);
+        rendererBackend = request.backend;
+    }
+    frame.backend = std::string(renderer->backendName());
+    frame.backendNote = backendNote;
+    return *renderer;
+}
+
+void ReviewFrameRenderer::State::renderSilhouette(const ReviewFrameRequest& request,
+                                                  ReviewFrame& frame) {
+    SilhouetteSettings settings = request.settings;
+    settings.isoReal = request.iso;
+    settings.cancel = request.cancel;
+    SilhouetteRenderer& drawing = rendererFor(request, frame);
+    if (request.silhouetteTarget && drawing.drawsToFrameTargets())
+        settings.frameTarget = request.silhouetteTarget;
+    {
+        const CurrentFor current(settings.frameTarget ? request.silhouetteTargetContext : nullptr);
+        frame.silhouette = drawing.render(request.camera, settings);
+    }
+    keepRendererMesh(request, frame);
+    if (request.suggestive && !frame.silhouette->drewToTarget)
+        addSuggestive(request, frame);
+}
+
+// The surface the silhouette frame drew (kept, or extracted for a method that keeps none) gets
+// its per-vertex derivatives once per iso-value; each frame then draws the suggestive contours
+// into the silhouette's mask.
+void ReviewFrameRenderer::State::addSuggestive(const ReviewFrameRequest& request,
+                                               ReviewFrame& frame) {
+    const SurfaceForm form = SurfaceForm::of(request.settings);
+    if (!suggestive || !suggestiveSurface.matches(request.iso, form)) {
+        suggestive.reset();
+        if (kept.matches(request.iso, form)) {
+            suggestiveSurface = kept;
+        } else {
+            SilhouetteSettings drawn = request.settings;
+            drawn.isoReal = request.iso;
+            drawn.cancel = request.cancel;
+            suggestiveSurface = {
+                std::make_shared<const Mesh>(surfaceOfFrame(*renderer, *volume, drawn)),
+                request.iso, form};
+            ++hostMeshes;
+        }
+        suggestive = std::make_unique<SuggestiveContourRenderer>(
+            *volume, *suggestiveSurface.mesh, request.iso, request.settings.threads, form.stencil);
+    }
+    SuggestiveContourSettings settings;
+    settings.visibility = request.settings.visibility;
+    settings.minStrokePixels = request.settings.minStrokePixels;
+    settings.threads = request.settings.threads;
+    const SuggestiveFrame contours = suggestive->render(request.camera, settings);
+    addLines(frame.silhouette->lines, contours.lines);
+    frame.silhouette->times.drawMs += contours.ms;
+}
+
+// Methods 1 and 3 (S) keep the mesh they drew: where the host needs the surface (a panel that
+// draws it, the host path of the iso panel) it is that one, and marching cubes does not run
+// twice for one iso-value.
+void ReviewFrameRenderer::State::keepRendererMesh(const ReviewFrameRequest& request,
+                                                  ReviewFrame& frame) {
+    const bool hostIso = request.wantIsoImage &&
+                         (request.isoOnCpu || !reviewIsoOnDevice(request.backend) ||
+                          !deviceUnavailable.empty());
+    if (!(request.wantMesh || hostIso) || request.settings.brickCells != 0)
+        return;
+    const SurfaceForm form = SurfaceForm::of(request.settings);
+    if (kept.matches(request.iso, form) && request.settings.mode == ExtractionMode::CachedA)
+        return; // mode a: the renderer drew the mesh it has already handed out
+    const auto start = Clock::now();
+    const Mesh* mesh = renderer->surfaceMesh();
+    if (!mesh)
+        return;
+    kept = {std::make_shared<const Mesh>(*mesh), request.iso, form};
+    ++hostMeshes;
+    frame.mesh = kept.mesh;
+    frame.surfaceTriangles = kept.mesh->triangleCount();
+    // The marching cubes that made it ran inside the renderer's frame (plus this copy).
+    frame.meshMs = frame.silhouette->times.extractMs + msSince(start);
+}
+
+void ReviewFrameRenderer::State::extractMesh(const ReviewFrameRequest& request,
+                                             ReviewFrame& frame) {
+    if (frame.mesh)
+        return;
+    const SurfaceForm form = SurfaceForm::of(request.settings);
+    if (kept.matches(request.iso, form) && !request.forceExtract) {
+        if (request.wantMesh)
+            frame.mesh = kept.mesh; // else the iso image re-draws the mesh it has
+        frame.surfaceTriangles = kept.mesh->triangleCount();
+        return;
+    }
+    const auto start = Clock::now();
+    // The iso panel's mesh is the same whatever the brick schedule (canonical order), so the
+    // extractor keeps one brick grid and reuses it across iso-values.
+    const int bricks = request.settings.brickCells;
+    if (!extractor || extractorBricks != bricks || extractorForm != form) {
+        IsoSurfaceOptions options;
+        options.brickCells = bricks;
+        options.threads = request.settings.threads;
+        options.closeAtBorder = form.closed;
+        options.gradientStencil = form.stencil;
+        extractor = std::make_unique<IsoSurfaceExtractor>(*volume, options);
+        extractorBricks = bricks;
+        extractorForm = form;
+    }
+    auto mesh = std::make_shared<Mesh>();
+    extractor->extract(request.iso, *mesh, nullptr, request.cancel);
+    ++hostMeshes;
+    kept = {std::move(mesh), request.iso, form};
+    frame.mesh = kept.mesh;
+    frame.surfaceTriangles = kept.mesh->triangleCount();
+    frame.meshMs = msSince(start);
+}
+
+void ReviewFrameRenderer::State::renderIsoOnHost(const ReviewFrameRequest& request,
+                                                 ReviewFrame& frame) {
+    const auto start = Clock::now();
+    const std::shared_ptr<const Mesh> mesh = frame.mesh ? frame.mesh : kept.mesh;
+    if (request.isoOnCpu) {
+        SurfaceShading shading = glPanelShading(request.isoCamera, request.isoOptions);
+        shading.threads = request.settings.threads;
+        frame.isoImage =
+            shadeSurfaceCpu(mesh ? *mesh : Mesh(), request.isoCamera, shading, &frame.isoDepth);
+        frame.isoRenderMs = msSince(start);
+        return;
+    }
+#if LINEWORK_GL
+    if (!isoContext)
+        isoContext = std::make_unique<EglHeadlessContext>();
+    isoContext->makeCurrent();
+    if (!isoGl)
+        isoGl = std::make_unique<SilhouetteGlRenderer>();
+    if (mesh && mesh.get() != uploadedMesh) {
+        isoGl->uploadMesh(*mesh);
+        uploadedMesh = mesh.get();
+        uploadedMeshOwner = mesh;
+    }
+    frame.isoImage = isoGl->renderImage(request.isoCamera, request.isoOptions);
+    frame.isoDepth = isoGl->readDepth();
+    frame.isoRenderMs = msSince(start);
+#else
+    throw core::Error("iso panel", "this build has no OpenGL");
+#endif
+}
+
+#if LINEWORK_GL
+// Method 1's whole-volume renderer on CUDA draws the iso panel from its own buffers; any other
+// silhouette gets a second renderer of that kind for the panel alone. Null (logged once) where
+// it cannot be made.
+GeometryShaderSilhouetteRenderer*
+ReviewFrameRenderer::State::deviceIsoRenderer(const ReviewFrameRequest& request) {
+    if (auto* method1 = dynamic_cast<GeometryShaderSilhouetteRenderer*>(renderer.get());
+        method1 && method1->extractsOnDevice() && request.settings.brickCells == 0 &&
+        request.wantSilhouette) {
+        deviceIso.reset();
+        return method1;
+    }
+    if (deviceIso)
+        return deviceIso.get();
+    if (!deviceUnavailable.empty())
+        return nullptr;
+    try {
+        auto made = std::make_unique<GeometryShaderSilhouetteRenderer>();
+        made->useCudaExtraction();
+        made->setVolume(*volume);
+        deviceIso = std::move(made);
+    } catch (const core::Error& error) {
+        deviceUnavailable = std::string("iso panel on the host: ") + error.what();
+        kLog.warning(deviceUnavailable);
+    }
+    return deviceIso.get();
+}
+#endif
+
+bool ReviewFrameRenderer::State::renderIsoOnDevice(const ReviewFrameRequest& request,
+                                                   ReviewFrame& frame) {
+#if LINEWORK_GL
+    GeometryShaderSilhouetteRenderer* device = deviceIsoRenderer(request);
+    if (!device)
+        return false;
+    SilhouetteSettings settings = request.settings;
+    settings.isoReal = request.iso;
+    settings.cancel = request.cancel;
+    const auto start = Clock::now();
+    GeometryShaderSilhouetteRenderer::IsoPanelFrame iso = device->renderIsoPanel(
+        request.isoCamera, settings, request.isoOptions, request.forceExtract, &frame.isoDepth);
+    frame.isoImage = std::move(iso.image);
+    frame.isoRenderMs = msSince(start) - iso.extractMs;
+    // Method 1's own renderer extracted inside its silhouette frame, when the iso-value changed.
+    const bool extractedBySilhouette = device == renderer.get() && frame.silhouette;
+    frame.meshMs = extractedBySilhouette ? frame.silhouette->times.extractMs : iso.extractMs;
+    frame.surfaceTriangles = iso.triangles;
+    frame.isoOnDevice = true;
+    return true;
+#else
+    (void)request;
+    (void)frame;
+    return false;
+#endif
+}
+
+} // namespace lw::render
