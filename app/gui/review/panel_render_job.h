@@ -23,9 +23,9 @@ struct PanelRenderJob {
     std::shared_ptr<const volume::Volume> volume;
     // The iso panel's surface; null where the review keeps it on the device (extracted then).
     std::shared_ptr<const render::Mesh> mesh;
-    render::Camera camera;                    // at the export size
-    render::Aabb bounds;                      // what the camera frames (the depth tolerance's box)
-    ReviewSettings appearance;                // line width already scaled to the size
+    render::Camera camera;     // at the export size
+    render::Aabb bounds;       // what the camera frames (the depth tolerance's box)
+    ReviewSettings appearance; // line width already scaled to the size
     double iso = 0.0;
     int brickCells = 0;
     bool isoOnCpu = true; // shade with the CPU rasterizer (software GL), else a headless GL context

@@ -266,9 +266,9 @@ void ReviewFrameRenderer::State::addSuggestive(const ReviewFrameRequest& request
 // twice for one iso-value.
 void ReviewFrameRenderer::State::keepRendererMesh(const ReviewFrameRequest& request,
                                                   ReviewFrame& frame) {
-    const bool hostIso = request.wantIsoImage &&
-                         (request.isoOnCpu || !reviewIsoOnDevice(request.backend) ||
-                          !deviceUnavailable.empty());
+    const bool hostIso =
+        request.wantIsoImage &&
+        (request.isoOnCpu || !reviewIsoOnDevice(request.backend) || !deviceUnavailable.empty());
     if (!(request.wantMesh || hostIso) || request.settings.brickCells != 0)
         return;
     const SurfaceForm form = SurfaceForm::of(request.settings);

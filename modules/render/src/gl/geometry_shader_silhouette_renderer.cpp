@@ -442,11 +442,9 @@ GeometryShaderSilhouetteRenderer::renderIsoPanel(const Camera& camera,
     return s.gl.renderImage(camera, options);
 }
 
-GeometryShaderSilhouetteRenderer::IsoPanelFrame
-GeometryShaderSilhouetteRenderer::renderIsoPanel(const Camera& camera,
-                                                 const SilhouetteSettings& settings,
-                                                 const SilhouetteGlOptions& options,
-                                                 bool forceExtract, std::vector<float>* depth) {
+GeometryShaderSilhouetteRenderer::IsoPanelFrame GeometryShaderSilhouetteRenderer::renderIsoPanel(
+    const Camera& camera, const SilhouetteSettings& settings, const SilhouetteGlOptions& options,
+    bool forceExtract, std::vector<float>* depth) {
     State& s = *m_state;
     s.context->makeCurrent();
     SilhouetteSettings whole = settings;

@@ -1,0 +1,82 @@
+// The review's frame on the device path (label gpu: CUDA with NVIDIA's OpenGL): the iso panel
+// shaded from the device's mesh equals the host path's picture, and no host mesh is made.
+
+#include "lw/core/error.h"
+#include "review_frame_test_support.h"
+
+#include <gtest/gtest.h>
+#include <string>
+
+namespace lw::render {
+namespace {
+
+using namespace lw::render::test;
+
+// The device path: CUDA and an NVIDIA OpenGL context (EGL) on the same machine.
+class ReviewFrameOnDevice : public testing::TestWithParam<SilhouetteMethod> {
+protected:
+    void SetUp() override {
+        if (!cudaAvailability().available)
+            GTEST_SKIP() << "no CUDA device: " << cudaAvailability().reason;
+        if (!reviewIsoOnDevice(Backend::Cuda))
+            GTEST_SKIP() << "this build has no CUDA-GL interop";
+        try {
+            EglHeadlessContext probe;
+            if (probe.vendor().find("NVIDIA") == std::string::npos)
+                GTEST_SKIP() << "the GL context is not NVIDIA's: " << probe.description();
+        } catch (const core::Error& error) {
+            GTEST_SKIP() << "no headless OpenGL context: " << error.what();
+        }
+    }
+};
+
+TEST_P(ReviewFrameOnDevice, DrawsTheHostPathsPictureWithNoHostMesh) {
+    const auto volume = phantom();
+    for (const double az : {30.0, 200.0}) {
+        ReviewFrameRenderer device(volume);
+        ReviewFrameRequest request = requestFor(*volume, GetParam(), Backend::Cuda, az);
+        const ReviewFrame onDevice = device.render(request);
+        ASSERT_TRUE(onDevice.isoOnDevice) << onDevice.backendNote;
+        EXPECT_EQ(device.hostMeshesMade(), 0u) << "the iso panel drew the device's mesh";
+        EXPECT_FALSE(onDevice.mesh);
+
+        ReviewFrameRenderer host(volume);
+        ReviewFrameRequest onHostRequest = request;
+        onHostRequest.backend = Backend::Cpu;
+        const ReviewFrame onHost = host.render(onHostRequest);
+        ASSERT_FALSE(onHost.isoOnDevice);
+        EXPECT_GE(host.hostMeshesMade(), 1u);
+
+        ASSERT_TRUE(onDevice.surfaceTriangles && onHost.surfaceTriangles);
+        EXPECT_EQ(*onDevice.surfaceTriangles, *onHost.surfaceTriangles)
+            << "the device's count is the surface's";
+        ASSERT_TRUE(onDevice.isoImage && onHost.isoImage);
+        EXPECT_GT(drawnPixels(*onDevice.isoImage), 800u);
+        EXPECT_GE(agreement(*onDevice.isoImage, *onHost.isoImage, 2), 0.999) << "az " << az;
+        ASSERT_EQ(onDevice.isoDepth.size(), onHost.isoDepth.size());
+        std::size_t depthDiffers = 0;
+        for (std::size_t i = 0; i < onHost.isoDepth.size(); ++i)
+            depthDiffers += std::abs(onDevice.isoDepth[i] - onHost.isoDepth[i]) > 1e-5f;
+        EXPECT_LE(depthDiffers, onHost.isoDepth.size() / 1000) << "az " << az;
+        ASSERT_TRUE(onDevice.silhouette && onHost.silhouette);
+        EXPECT_GT(onDevice.silhouette->lines.count(), 200u);
+
+        // A new view reuses the device's surface: still no host mesh.
+        request.camera = request.isoCamera = cameraAt(*volume, az + 90.0, 0.0);
+        const ReviewFrame turned = device.render(request);
+        EXPECT_TRUE(turned.isoOnDevice);
+        EXPECT_EQ(turned.meshMs, 0.0) << "no extraction for a new view";
+        EXPECT_EQ(device.hostMeshesMade(), 0u);
+    }
+}
+
+INSTANTIATE_TEST_SUITE_P(Methods, ReviewFrameOnDevice,
+                         testing::Values(SilhouetteMethod::GeometryShader,
+                                         SilhouetteMethod::RayCastVisibility,
+                                         SilhouetteMethod::ZBuffer),
+                         [](const testing::TestParamInfo<SilhouetteMethod>& info) {
+                             return "Method" + std::to_string(int(info.param));
+                         });
+
+} // namespace
+} // namespace lw::render

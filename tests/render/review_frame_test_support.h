@@ -1,0 +1,66 @@
+#pragma once
+
+// What the review frame's tests share: a small CT phantom, its cameras and requests, and how
+// pictures are compared.
+
+#include "lw/render/review_frame.h"
+#include "lw/volume/phantom.h"
+
+#include <cstdlib>
+#include <memory>
+
+namespace lw::render::test {
+
+constexpr double kIso = 300.5;
+
+inline std::shared_ptr<const volume::Volume> phantom() {
+    return std::make_shared<const volume::Volume>(
+        volume::makePhantom({72, 64, 56}, volume::PhantomKind::Ct));
+}
+
+inline Camera cameraAt(const volume::Volume& volume, double az, double el) {
+    CameraSetup setup;
+    setup.bounds = volumeBounds(volume);
+    setup.azimuthDeg = az;
+    setup.elevationDeg = el;
+    return Camera(setup, 160, 120);
+}
+
+inline ReviewFrameRequest requestFor(const volume::Volume& volume, SilhouetteMethod method,
+                                     Backend backend, double az) {
+    ReviewFrameRequest request;
+    request.iso = kIso;
+    request.method = method;
+    request.backend = backend;
+    request.sampling.oversampling = Oversampling::Off;
+    request.camera = cameraAt(volume, az, 20.0);
+    request.wantSilhouette = true;
+    request.wantIsoImage = true;
+    request.isoCamera = request.camera;
+    request.isoOptions.panel = GlPanel::Iso;
+    return request;
+}
+
+// Pixels that differ from the top-left corner (the background) in any channel.
+inline std::size_t drawnPixels(const core::ImageRgba8& image) {
+    const core::Rgba8 background = image.pixels().front();
+    std::size_t drawn = 0;
+    for (const core::Rgba8& p : image.pixels())
+        drawn += p.r != background.r || p.g != background.g || p.b != background.b;
+    return drawn;
+}
+
+// The share of pixels whose channels all lie within `tolerance` of the other picture's.
+inline double agreement(const core::ImageRgba8& a, const core::ImageRgba8& b, int tolerance) {
+    if (a.width() != b.width() || a.height() != b.height())
+        return 0.0;
+    std::size_t same = 0;
+    for (std::size_t i = 0; i < a.pixels().size(); ++i) {
+        const core::Rgba8 p = a.pixels()[i], q = b.pixels()[i];
+        same += std::abs(p.r - q.r) <= tolerance && std::abs(p.g - q.g) <= tolerance &&
+                std::abs(p.b - q.b) <= tolerance;
+    }
+    return double(same) / double(a.pixels().size());
+}
+
+} // namespace lw::render::test
