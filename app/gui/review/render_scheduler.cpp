@@ -31,7 +31,8 @@ RenderScheduler::~RenderScheduler() {
 
 std::uint64_t RenderScheduler::request(FrameRequest request) {
     request.id = ++m_nextId;
-    if (request.silhouetteToTexture && !m_textureSurface && QOpenGLContext::globalShareContext()) {
+    if ((request.silhouetteToTexture || request.sharedGl) && !m_textureSurface &&
+        QOpenGLContext::globalShareContext()) {
         m_textureSurface = std::make_unique<QOffscreenSurface>();
         m_textureSurface->setFormat(QOpenGLContext::globalShareContext()->format());
         m_textureSurface->create();

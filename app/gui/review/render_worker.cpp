@@ -30,8 +30,17 @@ RenderWorker::RenderWorker(std::shared_ptr<const volume::Volume> volume)
 RenderWorker::~RenderWorker() = default;
 
 void RenderWorker::release() {
+    m_frames.release(); // its GL objects first, in the shared context where they live
+    m_sharedContext.reset();
     m_textures.reset(); // their CUDA registrations and GL textures, in their context
-    m_frames.release();
+}
+
+SilhouetteTextures& RenderWorker::textures(QOffscreenSurface* surface) {
+    if (!m_textures) {
+        m_textures = std::make_unique<SilhouetteTextures>(surface);
+        m_sharedContext = std::make_unique<TextureContext>(*m_textures);
+    }
+    return *m_textures;
 }
 
 FrameResult RenderWorker::run(const FrameRequest& request) {
@@ -47,9 +56,21 @@ FrameResult RenderWorker::run(const FrameRequest& request) {
         frame.cancel = request.cancel.get(); // a newer request stops this frame in the kernels
         std::shared_ptr<const LinesTexture> texture;
         frame.silhouetteTarget = frameTargetFor(request, texture);
-        std::optional<TextureContext> textureContext;
         if (frame.silhouetteTarget)
-            frame.silhouetteTargetContext = &textureContext.emplace(*m_textures);
+            frame.silhouetteTargetContext = m_sharedContext.get();
+        if (request.sharedGl && request.textureSurface) {
+            textures(request.textureSurface);
+            frame.glContext = m_sharedContext.get();
+        }
+        // Whatever the frame made current on this thread is finished and released after it:
+        // the panels' contexts draw what it wrote next.
+        struct Release {
+            SilhouetteTextures* textures;
+            ~Release() {
+                if (textures)
+                    textures->done();
+            }
+        } release{m_textures.get()};
         render::ReviewFrame made = m_frames.render(frame);
         if (made.silhouette && made.silhouette->drewToTarget)
             result.linesTexture = std::move(texture);
@@ -97,9 +118,7 @@ render::GlFrameTarget* RenderWorker::frameTargetFor(const FrameRequest& request,
     if (!request.silhouetteToTexture || !request.textureSurface ||
         render::frameTargetUse(size, size) != render::FrameTargetUse::Texture)
         return nullptr;
-    if (!m_textures)
-        m_textures = std::make_unique<SilhouetteTextures>(request.textureSurface);
-    render::GlFrameTarget* target = m_textures->acquire(size.x, size.y, token);
+    render::GlFrameTarget* target = textures(request.textureSurface).acquire(size.x, size.y, token);
     m_textures->done();
     return target;
 }

@@ -30,7 +30,11 @@ struct FrameRequest {
     // The silhouette panel can draw a texture (its GL view): method 3 on CUDA then writes its
     // lines into one of the worker's textures (silhouette_textures.h) instead of host memory.
     bool silhouetteToTexture = false;
-    // For those textures: made on the UI thread by RenderScheduler, which outlives the worker.
+    // The engine's GL work (method 1, the iso panel) goes into the worker's context that shares
+    // the panels' (a real GPU's display: a thread that used GLX cannot make EGL current).
+    bool sharedGl = false;
+    // For those textures and that context: made on the UI thread by RenderScheduler, which outlives
+    // the worker.
     QOffscreenSurface* textureSurface = nullptr;
     std::shared_ptr<core::CancelToken> cancel = std::make_shared<core::CancelToken>();
 };
@@ -79,9 +83,14 @@ private:
                                           std::shared_ptr<const LinesTexture>& token);
     void takeFrame(render::ReviewFrame&& frame, FrameResult& result) const;
 
-    render::ReviewFrameRenderer m_frames;
-    // The silhouette panel's textures (made at the first request for one).
+    SilhouetteTextures& textures(QOffscreenSurface* surface);
+
+    // The silhouette panel's textures and their context (made at the first request for one),
+    // declared before the engine's frames, whose GL objects live in that context: destroyed
+    // after them.
     std::unique_ptr<SilhouetteTextures> m_textures;
+    std::unique_ptr<render::GlContext> m_sharedContext; // m_textures' context for the engine
+    render::ReviewFrameRenderer m_frames;
 };
 
 } // namespace lw::gui

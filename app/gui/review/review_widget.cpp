@@ -331,6 +331,7 @@ void ReviewWidget::requestFrame(bool newIso) {
     request.silhouetteToTexture = m_drawsInPanels && !m_settings.silhouetteOnIso &&
                                   !frame.suggestive &&
                                   render::silhouetteMethodInfo(m_settings.method).drawsToTexture;
+    request.sharedGl = m_drawsInPanels;
     const bool modeB = m_settings.mode == render::ExtractionMode::EveryFrameB;
     // A panel that draws the mesh with its own GL needs it on the host.
     const bool panelsDrawMesh = m_drawsInPanels && !m_isoOnDevice;

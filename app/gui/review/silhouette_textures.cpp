@@ -130,7 +130,7 @@ void SilhouetteTextures::done() {
 }
 
 void SilhouetteTextures::makeCurrent() {
-    if (!m_context || !m_context->makeCurrent(m_surface))
+    if (m_unavailable || !makeContext() || !m_context->makeCurrent(m_surface))
         throw core::Error("silhouette texture", "the worker's OpenGL context is not available");
 }
 

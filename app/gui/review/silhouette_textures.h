@@ -53,8 +53,9 @@ public:
                                    std::shared_ptr<const LinesTexture>& token);
     // After the frame: the context is no longer needed on this thread.
     void done();
-    // The textures' context current again on this thread (after done(), for the frame that
-    // draws into an acquired target); throws core::Error where it cannot be.
+    // The textures' context current on this thread (made at first need; after done(), for the
+    // frame that draws into an acquired target, or the engine's own GL work in the context the
+    // panels share); throws core::Error where it cannot be.
     void makeCurrent();
 
 private:

@@ -96,8 +96,10 @@ struct ReviewFrameRenderer::State {
     KeptMesh suggestiveSurface;
 
 #if LINEWORK_GL
-    // The iso panel with GL from a host mesh: a headless context of its own.
-    std::unique_ptr<EglHeadlessContext> isoContext;
+    // The frame's GL context: the request's, or a headless one of its own made at first need.
+    GlContext* glContext = nullptr;
+    std::unique_ptr<EglHeadlessContext> ownContext;
+    // The iso panel with GL from a host mesh.
     std::unique_ptr<SilhouetteGlRenderer> isoGl;
     const Mesh* uploadedMesh = nullptr;
     std::shared_ptr<const Mesh> uploadedMeshOwner;
@@ -115,8 +117,8 @@ struct ReviewFrameRenderer::State {
         extractor.reset();
         kept = {};
 #if LINEWORK_GL
-        if (isoGl && isoContext)
-            isoContext->makeCurrent(); // its GL objects go in the context they were made in
+        if (isoGl && glContext)
+            glContext->makeCurrent(); // its GL objects go in the context they were made in
         isoGl.reset();
         uploadedMesh = nullptr;
         uploadedMeshOwner.reset();
@@ -135,6 +137,18 @@ struct ReviewFrameRenderer::State {
     bool renderIsoOnDevice(const ReviewFrameRequest& request, ReviewFrame& frame);
 #if LINEWORK_GL
     GeometryShaderSilhouetteRenderer* deviceIsoRenderer(const ReviewFrameRequest& request);
+    GlContext& contextFor(const ReviewFrameRequest& request) {
+        if (!glContext) {
+            if (request.glContext) {
+                glContext = request.glContext;
+            } else {
+                ownContext = std::make_unique<EglHeadlessContext>();
+                glContext = ownContext.get();
+            }
+        }
+        return *glContext;
+    }
+    std::unique_ptr<SilhouetteRenderer> createRenderer(const ReviewFrameRequest& request);
 #endif
 };
 
@@ -151,7 +165,8 @@ void ReviewFrameRenderer::release() {
     State& s = *m_state;
     s.dropVolumeCaches();
 #if LINEWORK_GL
-    s.isoContext.reset();
+    s.ownContext.reset();
+    s.glContext = nullptr;
 #endif
     s.volume.reset();
     s.volumeSampling.reset();
@@ -204,7 +219,11 @@ SilhouetteRenderer& ReviewFrameRenderer::State::rendererFor(const ReviewFrameReq
                                                             ReviewFrame& frame) {
     if (!renderer || renderer->method() != request.method || rendererBackend != request.backend) {
         renderer.reset();
+#if LINEWORK_GL
+        renderer = createRenderer(request);
+#else
         renderer = createSilhouetteRenderer(request.method, request.backend, &backendNote);
+#endif
         renderer->setVolume(*volume);
         rendererBackend = request.backend;
     }
@@ -333,9 +352,7 @@ void ReviewFrameRenderer::State::renderIsoOnHost(const ReviewFrameRequest& reque
         return;
     }
 #if LINEWORK_GL
-    if (!isoContext)
-        isoContext = std::make_unique<EglHeadlessContext>();
-    isoContext->makeCurrent();
+    contextFor(request).makeCurrent();
     if (!isoGl)
         isoGl = std::make_unique<SilhouetteGlRenderer>();
     if (mesh && mesh.get() != uploadedMesh) {
@@ -368,7 +385,7 @@ ReviewFrameRenderer::State::deviceIsoRenderer(const ReviewFrameRequest& request)
     if (!deviceUnavailable.empty())
         return nullptr;
     try {
-        auto made = std::make_unique<GeometryShaderSilhouetteRenderer>();
+        auto made = std::make_unique<GeometryShaderSilhouetteRenderer>(contextFor(request));
         made->useCudaExtraction();
         made->setVolume(*volume);
         deviceIso = std::move(made);
@@ -377,6 +394,19 @@ ReviewFrameRenderer::State::deviceIsoRenderer(const ReviewFrameRequest& request)
         kLog.warning(deviceUnavailable);
     }
     return deviceIso.get();
+}
+
+// Method 1 draws in the frame's context (the factory's would be a headless one of its own);
+// the other methods as the factory makes them.
+std::unique_ptr<SilhouetteRenderer>
+ReviewFrameRenderer::State::createRenderer(const ReviewFrameRequest& request) {
+    if (request.method != SilhouetteMethod::GeometryShader || !request.glContext)
+        return createSilhouetteRenderer(request.method, request.backend, &backendNote);
+    const Backend backend = resolveBackend(request.backend, request.method, &backendNote);
+    auto method1 = std::make_unique<GeometryShaderSilhouetteRenderer>(contextFor(request));
+    if (backend == Backend::Cuda)
+        method1->useCudaExtraction();
+    return method1;
 }
 #endif
 

@@ -65,6 +65,11 @@ struct ReviewFrameRequest {
     // frameTarget), and the context it belongs to, made current for the silhouette alone.
     GlFrameTarget* silhouetteTarget = nullptr;
     GlContext* silhouetteTargetContext = nullptr;
+    // Optional: the context the frame's own GL work goes into (method 1, the iso panel), the
+    // same one for the renderer's whole life, outliving it; null: a headless EGL context of the
+    // renderer's own. A GUI passes one of its window system's: where a thread has used GLX,
+    // glvnd will not make an EGL context current on it.
+    GlContext* glContext = nullptr;
 
     const core::CancelToken* cancel = nullptr; // a newer request stops this one (Cancelled)
 };
