@@ -335,6 +335,8 @@ int main(int argc, char* argv[]) {
         std::snprintf(line, sizeof line, "method %d: export 4096x2048 side-by-side PNG%s", method,
                       error.isEmpty() ? "" : " (FAILED)");
         report(line, double(exportTimer.nsecsElapsed()) / 1e6);
+        if (!error.isEmpty())
+            std::fprintf(stderr, "  %s\n", qPrintable(error));
         std::snprintf(line, sizeof line, "method %d: longest UI stall while exporting", method);
         report(line, monitor.longestStallMs());
     }

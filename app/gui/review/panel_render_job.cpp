@@ -1,43 +1,13 @@
 #include "review/panel_render_job.h"
 
-#include "lw/render/gl_context.h"
-#include "lw/render/renderer_factory.h"
 #include "lw/render/shaded_surface_cpu.h"
 #include "lw/render/silhouette_gl_renderer.h"
-#include "lw/render/suggestive_contours.h"
-#include "lw/render/surface_sampling.h"
 #include "review/qt_image.h"
 #include "review/review_panel.h"
 
 #include <QPainter>
-#include <cstring>
-#include <optional>
 
 namespace lw::gui {
-namespace {
-
-// `mesh`: the surface on screen, or (the review keeps its surface on the device) the one made
-// here on demand from the drawn volume.
-QImage renderIso(const PanelRenderJob& job, const render::Mesh& mesh) {
-    const render::SilhouetteGlOptions options =
-        panelGlOptions(PanelKind::Iso, job.appearance, job.camera, job.bounds);
-    if (job.isoOnCpu)
-        return shadeIsoOnCpu(&mesh, job.camera, options);
-    // A headless context of this thread's own (no Qt context may be current here).
-    render::EglHeadlessContext context;
-    render::SilhouetteGlRenderer gl;
-    gl.uploadMesh(mesh);
-    return toQImage(gl.renderImage(job.camera, options)); // gl goes before the context
-}
-
-render::Mesh extractedSurface(const PanelRenderJob& job, const volume::Volume& volume) {
-    render::IsoSurfaceOptions options;
-    options.closeAtBorder = job.appearance.closeAtBorder;
-    options.gradientStencil = job.appearance.gradientStencil;
-    return render::extractIsoSurface(volume, job.iso, options);
-}
-
-} // namespace
 
 QImage shadeIsoOnCpu(const render::Mesh* mesh, const render::Camera& camera,
                      const render::SilhouetteGlOptions& options, unsigned threads,
@@ -68,49 +38,51 @@ QImage linesToImage(const render::PixelMask& lines, const ReviewSettings& appear
     return image;
 }
 
-std::pair<QImage, QImage> renderPanelJob(const PanelRenderJob& job, PanelVectors* vectors) {
-    // The volume the review's methods draw (its oversampled copy where the settings make one).
-    const std::shared_ptr<const volume::Volume> volume =
-        render::volumeToRender(job.volume, job.appearance.volumeSampling(), job.iso);
-    QImage iso = renderIso(job, job.mesh ? *job.mesh : extractedSurface(job, *volume));
-    auto renderer = render::createSilhouetteRenderer(job.appearance.method, job.appearance.backend);
-    renderer->setVolume(*volume);
-    render::SilhouetteSettings settings;
-    settings.isoReal = job.iso;
-    settings.brickCells = job.brickCells;
-    settings.visibility = job.appearance.visibility;
-    settings.testAlongSegment = job.appearance.testAlongSegment;
-    settings.minStrokePixels = job.appearance.minStrokePixels;
-    settings.closeAtBorder = job.appearance.closeAtBorder;
-    settings.gradientStencil = job.appearance.gradientStencil;
-    render::SilhouetteFrame frame = renderer->render(job.camera, settings);
-    render::PolylineOptions options;
-    options.minLengthPx = double(settings.minStrokePixels);
-    std::optional<render::Mesh> surface;
-    if (vectors || job.appearance.suggestiveContours)
-        surface = render::surfaceOfFrame(*renderer, *volume, settings);
+render::ReviewFrameRequest panelFrameRequest(const PanelRenderJob& job, bool polylines) {
+    const ReviewSettings& appearance = job.appearance;
+    render::ReviewFrameRequest request;
+    request.iso = job.iso;
+    request.method = appearance.method;
+    request.backend = appearance.backend;
+    request.settings.isoReal = job.iso;
+    request.settings.brickCells = job.brickCells;
+    request.settings.visibility = appearance.visibility;
+    request.settings.testAlongSegment = appearance.testAlongSegment;
+    request.settings.minStrokePixels = appearance.minStrokePixels;
+    request.settings.closeAtBorder = appearance.closeAtBorder;
+    request.settings.gradientStencil = appearance.gradientStencil;
+    request.settings.gpuMemoryBudget = std::size_t(appearance.gpuMemoryBudgetMiB) << 20;
+    request.sampling = appearance.volumeSampling();
+    request.camera = job.camera;
+    request.wantSilhouette = true;
+    request.suggestive = appearance.suggestiveContours;
+    request.wantIsoImage = true;
+    request.isoOnCpu = job.isoOnCpu;
+    request.isoCamera = job.camera;
+    request.isoOptions = panelGlOptions(PanelKind::Iso, appearance, job.camera, job.bounds);
+    request.wantPolylines = polylines;
+    request.hiddenLines = appearance.hiddenLines;
+    request.polylineOptions.minLengthPx = double(appearance.minStrokePixels);
+    return request;
+}
+
+std::pair<QImage, QImage> panelsOfFrame(render::ReviewFrame&& frame, const PanelRenderJob& job,
+                                        PanelVectors* vectors) {
     if (vectors) {
-        render::PolylineSplit split =
-            render::splitPolylines(*surface, job.camera, frame.lines, options,
-                                   job.appearance.hiddenLines && settings.visibility);
-        vectors->lines = std::move(split.visible);
-        vectors->hidden = std::move(split.hidden);
+        vectors->lines = std::move(frame.polylines.visible);
+        vectors->hidden = std::move(frame.polylines.hidden);
     }
-    if (job.appearance.suggestiveContours) {
-        render::SuggestiveContourRenderer suggestive(*volume, *surface, job.iso, 0,
-                                                     settings.gradientStencil);
-        render::SuggestiveContourSettings lines;
-        lines.visibility = settings.visibility;
-        lines.minStrokePixels = settings.minStrokePixels;
-        const render::SuggestiveFrame contours = suggestive.render(job.camera, lines);
-        render::addLines(frame.lines, contours.lines);
-        if (vectors) {
-            const std::vector<render::Polyline> more = render::visiblePolylines(
-                render::chainSegments(contours.kept), job.camera, contours.lines, options);
-            vectors->lines.insert(vectors->lines.end(), more.begin(), more.end());
-        }
-    }
-    return {iso, linesToImage(frame.lines, job.appearance, false, job.appearance.lineWidth)};
+    return {frame.isoImage ? toQImage(*frame.isoImage) : QImage(),
+            linesToImage(frame.silhouette->lines, job.appearance, false, job.appearance.lineWidth)};
+}
+
+std::pair<QImage, QImage> renderPanelJob(const PanelRenderJob& job, PanelVectors* vectors) {
+    if (job.renderOnWorker)
+        return job.renderOnWorker(job, vectors);
+    // A frame of renderers of its own: the surface again from the volume, shaded on the CPU or
+    // on a headless context of this thread's own (no Qt context may be current here).
+    render::ReviewFrameRenderer frames(job.volume);
+    return panelsOfFrame(frames.render(panelFrameRequest(job, vectors != nullptr)), job, vectors);
 }
 
 QImage sideBySide(const QImage& iso, const QImage& silhouette, QColor background) {

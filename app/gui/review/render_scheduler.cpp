@@ -1,9 +1,12 @@
 #include "review/render_scheduler.h"
 
+#include "lw/core/error.h"
+
 #include <QMetaObject>
 #include <QOffscreenSurface>
 #include <QOpenGLContext>
 #include <QPointer>
+#include <exception>
 
 namespace lw::gui {
 
@@ -46,6 +49,32 @@ std::uint64_t RenderScheduler::request(FrameRequest request) {
     }
     dispatch(std::move(request));
     return m_nextId;
+}
+
+std::function<std::pair<QImage, QImage>(const PanelRenderJob&, PanelVectors*)>
+RenderScheduler::panelRenderer() const {
+    QPointer<QObject> threadContext(m_threadContext);
+    std::shared_ptr<RenderWorker> worker = m_worker;
+    QOffscreenSurface* surface = m_textureSurface.get();
+    return [threadContext, worker, surface](const PanelRenderJob& job, PanelVectors* vectors) {
+        std::pair<QImage, QImage> panels;
+        std::exception_ptr failure;
+        const bool ran = QMetaObject::invokeMethod(
+            threadContext.data(),
+            [&] {
+                try {
+                    panels = worker->renderPanels(job, surface, vectors);
+                } catch (...) {
+                    failure = std::current_exception();
+                }
+            },
+            Qt::BlockingQueuedConnection);
+        if (!ran)
+            throw core::Error("export", "the review was closed while exporting");
+        if (failure)
+            std::rethrow_exception(failure);
+        return panels;
+    };
 }
 
 void RenderScheduler::dispatch(FrameRequest request) {

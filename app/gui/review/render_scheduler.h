@@ -9,7 +9,9 @@
 #include "review/render_worker.h"
 
 #include <QObject>
+#include <QPointer>
 #include <QThread>
+#include <functional>
 #include <memory>
 #include <optional>
 
@@ -27,6 +29,11 @@ public:
     // Queues `request` (its id is assigned here and returned).
     std::uint64_t request(FrameRequest request);
     bool isBusy() const { return m_running.has_value(); }
+    // Renders an export's panels on the worker thread, after the frame in flight, and waits for
+    // them: from any thread but the worker's (an export's pool thread). Thread-safe; throws
+    // core::Error (also when the review has gone meanwhile).
+    std::function<std::pair<QImage, QImage>(const PanelRenderJob&, PanelVectors*)>
+    panelRenderer() const;
 
 signals:
     void frameReady(std::shared_ptr<const lw::gui::FrameResult> result);

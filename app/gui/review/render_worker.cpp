@@ -92,6 +92,24 @@ FrameResult RenderWorker::run(const FrameRequest& request) {
     return result;
 }
 
+std::pair<QImage, QImage> RenderWorker::renderPanels(const PanelRenderJob& job,
+                                                     QOffscreenSurface* surface,
+                                                     PanelVectors* vectors) {
+    render::ReviewFrameRequest frame = panelFrameRequest(job, vectors != nullptr);
+    if (surface) {
+        textures(surface);
+        frame.glContext = m_sharedContext.get();
+    }
+    struct Release {
+        SilhouetteTextures* textures;
+        ~Release() {
+            if (textures)
+                textures->done();
+        }
+    } release{m_textures.get()};
+    return panelsOfFrame(m_frames.render(frame), job, vectors);
+}
+
 void RenderWorker::takeFrame(render::ReviewFrame&& frame, FrameResult& result) const {
     result.mesh = std::move(frame.mesh);
     result.meshMs = frame.meshMs;

@@ -9,6 +9,7 @@
 #include "lw/core/progress.h"
 #include "lw/render/review_frame.h"
 #include "lw/volume/volume.h"
+#include "review/panel_render_job.h"
 #include "review/silhouette_textures.h"
 
 #include <QImage>
@@ -74,6 +75,10 @@ public:
 
     // On the worker thread only. Never throws: errors and cancellation come back in the result.
     FrameResult run(const FrameRequest& request);
+    // An export's panels (panel_render_job.h) with this worker's engine and GL, on the worker
+    // thread; `surface` as FrameRequest::textureSurface. Throws core::Error.
+    std::pair<QImage, QImage> renderPanels(const PanelRenderJob& job, QOffscreenSurface* surface,
+                                           PanelVectors* vectors);
     // Drops renderers, contexts and caches (on the worker thread, before it stops: a GL context
     // belongs to the thread that made it).
     void release();

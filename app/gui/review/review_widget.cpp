@@ -506,7 +506,6 @@ void releaseQtContext() {
 PanelRenderJob ReviewWidget::renderJob(QSize size) const {
     PanelRenderJob job;
     job.volume = m_source.volume;
-    job.mesh = m_mesh;
     job.camera = m_camera.camera(size.width(), size.height());
     job.bounds = m_camera.bounds();
     // Lines keep their width relative to the picture: scaled from the panel on screen.
@@ -518,6 +517,8 @@ PanelRenderJob ReviewWidget::renderJob(QSize size) const {
     job.iso = m_iso;
     job.brickCells = brickCells();
     job.isoOnCpu = displayGlInfo().prefersCpu();
+    if (m_isoOnDevice) // the surface is on the device, in the worker's GL: render it there
+        job.renderOnWorker = m_scheduler->panelRenderer();
     return job;
 }
 

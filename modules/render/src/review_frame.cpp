@@ -131,6 +131,7 @@ struct ReviewFrameRenderer::State {
     SilhouetteRenderer& rendererFor(const ReviewFrameRequest& request, ReviewFrame& frame);
     void renderSilhouette(const ReviewFrameRequest& request, ReviewFrame& frame);
     void addSuggestive(const ReviewFrameRequest& request, ReviewFrame& frame);
+    std::shared_ptr<const Mesh> hostSurface(const ReviewFrameRequest& request);
     void keepRendererMesh(const ReviewFrameRequest& request, ReviewFrame& frame);
     void extractMesh(const ReviewFrameRequest& request, ReviewFrame& frame);
     void renderIsoOnHost(const ReviewFrameRequest& request, ReviewFrame& frame);
@@ -245,8 +246,29 @@ void ReviewFrameRenderer::State::renderSilhouette(const ReviewFrameRequest& requ
         frame.silhouette = drawing.render(request.camera, settings);
     }
     keepRendererMesh(request, frame);
+    if (request.wantPolylines && !frame.silhouette->drewToTarget)
+        frame.polylines = splitPolylines(*hostSurface(request), request.camera,
+                                         frame.silhouette->lines, request.polylineOptions,
+                                         request.hiddenLines && request.settings.visibility);
     if (request.suggestive && !frame.silhouette->drewToTarget)
         addSuggestive(request, frame);
+}
+
+// The surface the silhouette frame drew, on the host: the kept one of this iso-value, or the
+// renderer's own (downloaded where it is on the device), or extracted for a method that keeps
+// none -- then kept.
+std::shared_ptr<const Mesh>
+ReviewFrameRenderer::State::hostSurface(const ReviewFrameRequest& request) {
+    const SurfaceForm form = SurfaceForm::of(request.settings);
+    if (kept.matches(request.iso, form))
+        return kept.mesh;
+    SilhouetteSettings drawn = request.settings;
+    drawn.isoReal = request.iso;
+    drawn.cancel = request.cancel;
+    kept = {std::make_shared<const Mesh>(surfaceOfFrame(*renderer, *volume, drawn)), request.iso,
+            form};
+    ++hostMeshes;
+    return kept.mesh;
 }
 
 // The surface the silhouette frame drew (kept, or extracted for a method that keeps none) gets
@@ -257,17 +279,7 @@ void ReviewFrameRenderer::State::addSuggestive(const ReviewFrameRequest& request
     const SurfaceForm form = SurfaceForm::of(request.settings);
     if (!suggestive || !suggestiveSurface.matches(request.iso, form)) {
         suggestive.reset();
-        if (kept.matches(request.iso, form)) {
-            suggestiveSurface = kept;
-        } else {
-            SilhouetteSettings drawn = request.settings;
-            drawn.isoReal = request.iso;
-            drawn.cancel = request.cancel;
-            suggestiveSurface = {
-                std::make_shared<const Mesh>(surfaceOfFrame(*renderer, *volume, drawn)),
-                request.iso, form};
-            ++hostMeshes;
-        }
+        suggestiveSurface = {hostSurface(request), request.iso, form};
         suggestive = std::make_unique<SuggestiveContourRenderer>(
             *volume, *suggestiveSurface.mesh, request.iso, request.settings.threads, form.stencil);
     }
@@ -278,6 +290,11 @@ void ReviewFrameRenderer::State::addSuggestive(const ReviewFrameRequest& request
     const SuggestiveFrame contours = suggestive->render(request.camera, settings);
     addLines(frame.silhouette->lines, contours.lines);
     frame.silhouette->times.drawMs += contours.ms;
+    if (request.wantPolylines) {
+        const std::vector<Polyline> more = visiblePolylines(
+            chainSegments(contours.kept), request.camera, contours.lines, request.polylineOptions);
+        frame.polylines.visible.insert(frame.polylines.visible.end(), more.begin(), more.end());
+    }
 }
 
 // Methods 1 and 3 (S) keep the mesh they drew: where the host needs the surface (a panel that

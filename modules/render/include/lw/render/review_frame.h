@@ -27,6 +27,7 @@
 #include "lw/render/silhouette_gl_renderer.h"
 #include "lw/render/silhouette_renderer.h"
 #include "lw/render/surface_sampling.h"
+#include "lw/render/visible_polylines.h"
 #include "lw/volume/volume.h"
 
 #include <cstddef>
@@ -71,11 +72,19 @@ struct ReviewFrameRequest {
     // glvnd will not make an EGL context current on it.
     GlContext* glContext = nullptr;
 
+    // The silhouette (and its suggestive contours) as polylines too (visible_polylines.h: the
+    // exports' strokes and paths), cut by the frame's mask; `hiddenLines` adds the hidden runs.
+    // They need the surface on the host: made on demand (downloaded or extracted) and counted.
+    bool wantPolylines = false;
+    bool hiddenLines = false;
+    PolylineOptions polylineOptions;
+
     const core::CancelToken* cancel = nullptr; // a newer request stops this one (Cancelled)
 };
 
 struct ReviewFrame {
     std::optional<SilhouetteFrame> silhouette;
+    PolylineSplit polylines; // with wantPolylines
     // A host mesh of the request's iso-value when one was asked for (wantMesh) or made for the
     // host path; null on the device path.
     std::shared_ptr<const Mesh> mesh;
