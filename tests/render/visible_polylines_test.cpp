@@ -6,6 +6,8 @@
 #include "lw/render/svg_lines.h"
 #include "lw/render/visible_polylines.h"
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <gtest/gtest.h>
 #include <sstream>
@@ -177,6 +179,91 @@ TEST(HiddenPolylines, WithTheVisibleOnesTheyAreTheWholeContour) {
     for (std::size_t at = 0; (at = svg.find("<path ", at)) != std::string::npos; ++at)
         ++paths;
     EXPECT_EQ(paths, split.visible.size() + split.hidden.size());
+}
+
+// A chain through the given image points (unprojected at mid depth), and the mask a frame draws
+// for it: every pixel the line passes through.
+SilhouetteChain chainThrough(const Camera& camera, const std::vector<glm::dvec2>& pixels) {
+    SilhouetteChain chain;
+    for (const glm::dvec2& p : pixels)
+        chain.points.push_back(glm::vec3(camera.unproject(p, 0.0)));
+    return chain;
+}
+void drawLine(const std::vector<glm::dvec2>& pixels, PixelMask& mask) {
+    for (std::size_t i = 0; i + 1 < pixels.size(); ++i)
+        for (int s = 0; s <= 100; ++s) {
+            const glm::dvec2 p = pixels[i] + (pixels[i + 1] - pixels[i]) * (s / 100.0);
+            mask.set(int(std::floor(p.x)), int(std::floor(p.y)));
+        }
+}
+double lengthOf(const std::vector<Polyline>& lines) {
+    double length = 0.0;
+    for (const Polyline& line : lines)
+        for (std::size_t i = 0; i + 1 < line.points.size(); ++i)
+            length += glm::length(line.points[i + 1] - line.points[i]);
+    return length;
+}
+// Distance of `p` to the polyline through `pixels`.
+double distanceTo(glm::dvec2 p, const std::vector<glm::dvec2>& pixels) {
+    double best = 1e9;
+    for (std::size_t i = 0; i + 1 < pixels.size(); ++i) {
+        const glm::dvec2 a = pixels[i], ab = pixels[i + 1] - a;
+        const double t = std::clamp(glm::dot(p - a, ab) / glm::dot(ab, ab), 0.0, 1.0);
+        best = std::min(best, glm::length(p - (a + t * ab)));
+    }
+    return best;
+}
+
+// Where lines crowd, a hidden chain runs a pixel beside a visible one, well within the one-pixel
+// tolerance of the visible line's pixels: it must come out hidden, whole, and not as a second
+// visible stroke (the false hatching of the exports); the drawn chain must come out whole.
+TEST(VisiblePolylinesOwnPixels, AHiddenChainAPixelBesideAVisibleLineStaysHidden) {
+    const Camera camera;
+    // Slanted, so the raster steps and the hidden chain meets the drawn pixels at each step.
+    std::vector<glm::dvec2> drawn, beside;
+    for (int i = 0; i <= 20; ++i) {
+        const glm::dvec2 p(100.3 + 10.0 * i, 200.4 + 0.235 * i);
+        drawn.push_back(p);
+        beside.push_back(p + glm::dvec2(0.0, 1.0));
+    }
+    PixelMask mask(camera.width(), camera.height());
+    drawLine(drawn, mask);
+    const std::vector<SilhouetteChain> chains = {chainThrough(camera, drawn),
+                                                 chainThrough(camera, beside)};
+
+    const PolylineSplit split = splitPolylines(chains, camera, mask, {}, true);
+    ASSERT_EQ(split.visible.size(), 1u);
+    EXPECT_NEAR(lengthOf(split.visible), 200.0, 0.5);
+    for (const glm::vec2& p : split.visible[0].points)
+        EXPECT_LT(distanceTo(glm::dvec2(p), drawn), 0.01) << p.x << ", " << p.y;
+    ASSERT_EQ(split.hidden.size(), 1u);
+    EXPECT_NEAR(lengthOf(split.hidden), 200.0, 0.5);
+    for (const glm::vec2& p : split.hidden[0].points)
+        EXPECT_LT(distanceTo(glm::dvec2(p), beside), 0.01) << p.x << ", " << p.y;
+
+    // Each chain is decided by itself: the order of the chains changes nothing.
+    const PolylineSplit reversed = splitPolylines({chains[1], chains[0]}, camera, mask, {}, true);
+    ASSERT_EQ(reversed.visible.size(), 1u);
+    EXPECT_EQ(reversed.visible[0].points, split.visible[0].points);
+}
+
+// A hidden chain crossing a visible line passes within the tolerance for two pixels or so, but
+// on the line's own pixels for one: no visible tick across the line, even with no least length.
+TEST(VisiblePolylinesOwnPixels, AHiddenChainCrossingAVisibleLineLeavesNoTick) {
+    const Camera camera;
+    const std::vector<glm::dvec2> line = {{100.5, 200.5}, {300.5, 200.5}};
+    const std::vector<glm::dvec2> crossing = {{200.3, 150.2}, {201.1, 250.7}};
+    PixelMask mask(camera.width(), camera.height());
+    drawLine(line, mask);
+    PolylineOptions options;
+    options.minLengthPx = 0.0;
+    const PolylineSplit split = splitPolylines(
+        {chainThrough(camera, line), chainThrough(camera, crossing)}, camera, mask, options, true);
+    ASSERT_EQ(split.visible.size(), 1u);
+    EXPECT_NEAR(lengthOf(split.visible), 200.0, 0.5);
+    // The crossing chain is hidden all through, across the line too.
+    ASSERT_EQ(split.hidden.size(), 1u);
+    EXPECT_NEAR(lengthOf(split.hidden), glm::length(crossing[1] - crossing[0]), 0.5);
 }
 
 INSTANTIATE_TEST_SUITE_P(

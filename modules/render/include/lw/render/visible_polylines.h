@@ -28,12 +28,18 @@ struct Polyline {
 };
 
 struct PolylineOptions {
-    // A sample counts as visible when the mask is on within this many pixels of it (the
-    // accuracy score's tolerance; 0: the pixel itself).
+    // A sample can be visible only where the mask is on within this many pixels of it (the
+    // accuracy score's tolerance; 0: the pixel itself), and only within this much chain length
+    // of a sample on a pixel the mask has on itself (its own pixel).
     int tolerancePx = 1;
+    // A run of such samples is visible when at least this share of its length lies on its own
+    // pixels; else it is hidden. Keeps a hidden chain running a pixel beside a visible line, or
+    // crossing it, from being drawn as visible (dense false hatching where lines crowd).
+    double minOwnPixelShare = 0.5;
     // Samples per pixel of length along a segment when cutting at visibility changes.
     double samplesPerPixel = 2.0;
-    // Visible runs shorter than this (pixels of length) are dropped (see minStrokePixels).
+    // Visible runs shorter than this (pixels of length) are hidden unless nearly all on their
+    // own pixels; hidden ones shorter are dropped (see minStrokePixels).
     double minLengthPx = 0.0;
     // Points within this many pixels of the line through their kept neighbours are dropped
     // (Douglas-Peucker): far below what a screen or a printer shows, and a much smaller file.
@@ -66,12 +72,12 @@ std::vector<Polyline> visiblePolylines(const std::vector<SilhouetteChain>& chain
 std::vector<Polyline> visiblePolylines(const Mesh& mesh, const Camera& camera,
                                        const PixelMask& lines, const PolylineOptions& options = {});
 
-// The visible parts and, with `withHidden`, the hidden ones: the parts in the image that `lines`
-// does not show within the tolerance -- behind the surface when the frame tested visibility
-// (the technical-illustration convention draws them thin, dashed and grey: svg_lines.h).
-// Hidden runs shorter than minLengthPx are dropped like visible ones, so the speckle that
-// pruning removed does not come back dashed. With visibility off every part is shown: none is
-// hidden.
+// The visible parts and, with `withHidden`, the hidden ones: the rest of the chains in the image,
+// what `lines` does not show (PolylineOptions) -- behind the surface when the frame tested
+// visibility (the technical-illustration convention draws them thin, dashed and grey:
+// svg_lines.h). A hidden chain that runs beside a visible line stays hidden there. Hidden runs
+// shorter than minLengthPx are dropped, so the speckle that pruning removed does not come back
+// dashed. With visibility off every part is shown: none is hidden.
 struct PolylineSplit {
     std::vector<Polyline> visible;
     std::vector<Polyline> hidden;
