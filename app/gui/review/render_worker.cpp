@@ -22,6 +22,22 @@ private:
     SilhouetteTextures& m_textures;
 };
 
+// Whatever a frame made current in the textures' context is finished and released after it:
+// the panels' contexts draw what it wrote next.
+class ReleasedAfter {
+public:
+    explicit ReleasedAfter(SilhouetteTextures* textures) : m_textures(textures) {}
+    ~ReleasedAfter() {
+        if (m_textures)
+            m_textures->done();
+    }
+    ReleasedAfter(const ReleasedAfter&) = delete;
+    ReleasedAfter& operator=(const ReleasedAfter&) = delete;
+
+private:
+    SilhouetteTextures* m_textures;
+};
+
 } // namespace
 
 RenderWorker::RenderWorker(std::shared_ptr<const volume::Volume> volume)
@@ -62,15 +78,7 @@ FrameResult RenderWorker::run(const FrameRequest& request) {
             textures(request.textureSurface);
             frame.glContext = m_sharedContext.get();
         }
-        // Whatever the frame made current on this thread is finished and released after it:
-        // the panels' contexts draw what it wrote next.
-        struct Release {
-            SilhouetteTextures* textures;
-            ~Release() {
-                if (textures)
-                    textures->done();
-            }
-        } release{m_textures.get()};
+        const ReleasedAfter release(m_textures.get());
         render::ReviewFrame made = m_frames.render(frame);
         if (made.silhouette && made.silhouette->drewToTarget)
             result.linesTexture = std::move(texture);
@@ -100,13 +108,7 @@ std::pair<QImage, QImage> RenderWorker::renderPanels(const PanelRenderJob& job,
         textures(surface);
         frame.glContext = m_sharedContext.get();
     }
-    struct Release {
-        SilhouetteTextures* textures;
-        ~Release() {
-            if (textures)
-                textures->done();
-        }
-    } release{m_textures.get()};
+    const ReleasedAfter release(m_textures.get());
     return panelsOfFrame(m_frames.render(frame), job, vectors);
 }
 
