@@ -726,6 +726,10 @@
         <source> · voxels split %1×%2×%3</source>
         <translation> · Voxel geteilt %1×%2×%3</translation>
     </message>
+    <message>
+        <source> · iso shaded from the device&apos;s mesh %1 ms</source>
+        <translation> · Iso aus dem Netz auf dem Grafikprozessor schattiert %1 ms</translation>
+    </message>
 </context>
 <context>
     <name>lw::gui::SettingsDialog</name>

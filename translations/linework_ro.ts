@@ -726,6 +726,10 @@
         <source> · voxels split %1×%2×%3</source>
         <translation> · voxeli împărțiți %1×%2×%3</translation>
     </message>
+    <message>
+        <source> · iso shaded from the device&apos;s mesh %1 ms</source>
+        <translation> · izo umbrită din rețeaua de pe GPU %1 ms</translation>
+    </message>
 </context>
 <context>
     <name>lw::gui::SettingsDialog</name>
