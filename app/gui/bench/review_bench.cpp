@@ -148,11 +148,15 @@ void benchMethod(ReviewWidget& review, MainWindow& window, int method, double is
     const double isoStall = monitor.longestStallMs();
     monitor.start();
     const bool worker = method != 1;
-    for (int i = 0; i < repeat; ++i)
+    std::vector<double> orbitWorker, orbitTaken;
+    for (int i = 0; i < repeat; ++i) {
         orbitTimes.push_back(timeUpdate(
             review, paints,
             [&] { review.camera().rotateByDrag(QPointF(8.0, 0.0), review.isoPanel().size()); },
             worker));
+        orbitWorker.push_back(review.status().workerMs);
+        orbitTaken.push_back(review.status().requestToTakenMs);
+    }
     const double orbitStall = monitor.longestStallMs();
     const DragFigures drag = dragIso(review, iso, monitor);
     char line[160];
@@ -161,6 +165,14 @@ void benchMethod(ReviewWidget& review, MainWindow& window, int method, double is
     report(line, median(isoTimes));
     std::snprintf(line, sizeof line, "method %d: new view, mode a -> both panels (median)", method);
     report(line, median(orbitTimes));
+    if (worker) {
+        std::snprintf(line, sizeof line, "method %d: new view, the frame on the worker (median)",
+                      method);
+        report(line, median(orbitWorker));
+        std::snprintf(line, sizeof line, "method %d: new view, request -> result taken (median)",
+                      method);
+        report(line, median(orbitTaken));
+    }
     std::snprintf(line, sizeof line, "method %d: longest UI stall, iso changes", method);
     report(line, isoStall);
     std::snprintf(line, sizeof line, "method %d: longest UI stall, orbit", method);

@@ -34,6 +34,7 @@ RenderScheduler::~RenderScheduler() {
 
 std::uint64_t RenderScheduler::request(FrameRequest request) {
     request.id = ++m_nextId;
+    request.requested = std::chrono::steady_clock::now();
     if ((request.silhouetteToTexture || request.sharedGl) && !m_textureSurface &&
         QOpenGLContext::globalShareContext()) {
         m_textureSurface = std::make_unique<QOffscreenSurface>();

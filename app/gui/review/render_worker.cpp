@@ -60,7 +60,9 @@ SilhouetteTextures& RenderWorker::textures(QOffscreenSurface* surface) {
 }
 
 FrameResult RenderWorker::run(const FrameRequest& request) {
+    const auto start = std::chrono::steady_clock::now();
     FrameResult result;
+    result.requested = request.requested;
     result.id = request.id;
     result.settingsGeneration = request.settingsGeneration;
     result.iso = request.frame.iso;
@@ -97,6 +99,8 @@ FrameResult RenderWorker::run(const FrameRequest& request) {
     } catch (const std::exception& error) {
         result.error = QObject::tr("internal error: %1").arg(error.what());
     }
+    result.workerMs =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     return result;
 }
 

@@ -14,6 +14,7 @@
 
 #include <QImage>
 #include <QString>
+#include <chrono>
 #include <cstdint>
 #include <memory>
 #include <optional>
@@ -38,6 +39,7 @@ struct FrameRequest {
     // the worker.
     QOffscreenSurface* textureSurface = nullptr;
     std::shared_ptr<core::CancelToken> cancel = std::make_shared<core::CancelToken>();
+    std::chrono::steady_clock::time_point requested; // set by RenderScheduler::request
 };
 
 struct FrameResult {
@@ -64,6 +66,8 @@ struct FrameResult {
     QString backendNote;
     QString error; // empty on success
     bool cancelled = false;
+    std::chrono::steady_clock::time_point requested; // the request's
+    double workerMs = 0.0;                           // run() from start to end
 };
 
 class RenderWorker {

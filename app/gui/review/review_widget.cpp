@@ -386,6 +386,10 @@ void ReviewWidget::takeFrame(const std::shared_ptr<const FrameResult>& result) {
     m_status.brickCells = result->brickCells;
     m_status.refinement = result->refinement;
     ++m_status.framesShown;
+    m_status.workerMs = result->workerMs;
+    m_status.requestToTakenMs = std::chrono::duration<double, std::milli>(
+                                    std::chrono::steady_clock::now() - result->requested)
+                                    .count();
     if (!result->isoImage.isNull()) {
         m_isoPanel->setImage(result->isoImage);
         m_isoPanel->setDepth(result->isoDepth, result->isoCamera);

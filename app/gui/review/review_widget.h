@@ -57,6 +57,9 @@ struct ReviewStatus {
     glm::ivec3 refinement{1}; // the loaded volume's cells split this many times (oversampling)
     QString backend;
     std::uint64_t framesShown = 0; // results taken from the worker
+    // The last result: its time on the worker, and from its request to the UI thread taking it.
+    double workerMs = 0.0;
+    double requestToTakenMs = 0.0;
 };
 
 class ReviewWidget : public QWidget {
