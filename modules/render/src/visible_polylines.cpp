@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <iterator>
 #include <limits>
 
 namespace lw::render {
@@ -423,6 +424,25 @@ void appendRuns(const ChainSamples& chain, SampleState wanted, double minLength,
     });
 }
 
+// One chain's visible and, with `withHidden`, hidden runs appended to `split`.
+void splitChain(const SilhouetteChain& chain, const Camera& camera, const PixelMask& lines,
+                const PixelMask& near, const PolylineOptions& options, bool withHidden,
+                PolylineSplit& split) {
+    std::vector<glm::dvec2> pixels;
+    pixels.reserve(chain.points.size());
+    for (const glm::vec3& p : chain.points)
+        pixels.push_back(camera.project(glm::dvec3(p)).pixel);
+    if (pixels.size() < 2)
+        return;
+    ChainSamples samples = sampleChain(pixels, chain.closed, options.samplesPerPixel);
+    classify(samples, lines, near, options);
+    // classify() applied minLengthPx to the visible runs already.
+    appendRuns(samples, SampleState::Visible, 0.0, options.simplifyPx, split.visible);
+    if (withHidden)
+        appendRuns(samples, SampleState::Hidden, options.minLengthPx, options.simplifyPx,
+                   split.hidden);
+}
+
 } // namespace
 
 std::uint64_t meshEdgeKey(std::uint32_t a, std::uint32_t b) {
@@ -474,21 +494,18 @@ PolylineSplit splitPolylines(const std::vector<SilhouetteChain>& chains, const C
                              const PixelMask& lines, const PolylineOptions& options,
                              bool withHidden) {
     const PixelMask near = lines.dilated(std::max(0, options.tolerancePx));
+    // Each chain is decided by itself: ranges of chains in parallel, joined in chain order.
+    constexpr std::size_t kChainGrain = 64;
+    std::vector<PolylineSplit> parts((chains.size() + kChainGrain - 1) / kChainGrain);
+    core::parallelForRanges(chains.size(), kChainGrain, [&](std::size_t begin, std::size_t end) {
+        PolylineSplit& part = parts[begin / kChainGrain];
+        for (std::size_t c = begin; c < end; ++c)
+            splitChain(chains[c], camera, lines, near, options, withHidden, part);
+    });
     PolylineSplit split;
-    for (const SilhouetteChain& chain : chains) {
-        std::vector<glm::dvec2> pixels;
-        pixels.reserve(chain.points.size());
-        for (const glm::vec3& p : chain.points)
-            pixels.push_back(camera.project(glm::dvec3(p)).pixel);
-        if (pixels.size() < 2)
-            continue;
-        ChainSamples samples = sampleChain(pixels, chain.closed, options.samplesPerPixel);
-        classify(samples, lines, near, options);
-        // classify() applied minLengthPx to the visible runs already.
-        appendRuns(samples, SampleState::Visible, 0.0, options.simplifyPx, split.visible);
-        if (withHidden)
-            appendRuns(samples, SampleState::Hidden, options.minLengthPx, options.simplifyPx,
-                       split.hidden);
+    for (PolylineSplit& part : parts) {
+        std::move(part.visible.begin(), part.visible.end(), std::back_inserter(split.visible));
+        std::move(part.hidden.begin(), part.hidden.end(), std::back_inserter(split.hidden));
     }
     return split;
 }
