@@ -2,16 +2,21 @@
 // method 3 the silhouette chains close into loops, the polylines lie on the mask, cover it, and
 // the SVG holds exactly them.
 #include "lw/evaluation/analytic_shapes.h"
+#include "lw/kernels/silhouette_segment.h"
 #include "lw/render/renderer_factory.h"
 #include "lw/render/svg_lines.h"
 #include "lw/render/visible_polylines.h"
+#include "lw/volume/phantom.h"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <gtest/gtest.h>
+#include <random>
 #include <sstream>
 #include <string>
+#include <unordered_map>
 
 namespace {
 
@@ -264,6 +269,208 @@ TEST(VisiblePolylinesOwnPixels, AHiddenChainCrossingAVisibleLineLeavesNoTick) {
     // The crossing chain is hidden all through, across the line too.
     ASSERT_EQ(split.hidden.size(), 1u);
     EXPECT_NEAR(lengthOf(split.hidden), glm::length(crossing[1] - crossing[0]), 0.5);
+}
+
+// The chaining as first written, serial and with hash maps over the whole mesh: the reference
+// the parallel chaining (a weld of the crossed triangles' vertices only, an edge table sorted)
+// must match point for point.
+namespace reference {
+
+// Each vertex's first index with the same position bits, over all vertices.
+std::vector<std::uint32_t> weldedIds(const Mesh& mesh) {
+    struct Key {
+        std::uint32_t bits[3];
+        bool operator==(const Key& o) const { return std::memcmp(bits, o.bits, sizeof bits) == 0; }
+    };
+    struct Hash {
+        std::size_t operator()(const Key& k) const {
+            return std::size_t(k.bits[0]) * 73856093u ^ std::size_t(k.bits[1]) * 19349663u ^
+                   std::size_t(k.bits[2]) * 83492791u;
+        }
+    };
+    std::unordered_map<Key, std::uint32_t, Hash> first;
+    std::vector<std::uint32_t> ids(mesh.vertexCount());
+    for (std::size_t v = 0; v < mesh.vertexCount(); ++v) {
+        Key key;
+        std::memcpy(key.bits, &mesh.positions[v], sizeof key.bits);
+        ids[v] = first.try_emplace(key, std::uint32_t(v)).first->second;
+    }
+    return ids;
+}
+
+std::vector<EdgeSegment> edgeSegments(const Mesh& mesh, const Camera& camera) {
+    const bool ortho = camera.isOrthographic();
+    const glm::vec3 eyeOrDirection = ortho ? glm::vec3(-camera.forward()) : glm::vec3(camera.eye());
+    std::vector<float> distance(mesh.vertexCount());
+    for (std::size_t v = 0; v < mesh.vertexCount(); ++v)
+        distance[v] = lw::kernels::silhouetteDistance(mesh.positions[v], mesh.normals[v],
+                                                      eyeOrDirection, ortho);
+    const std::vector<std::uint32_t> welded = weldedIds(mesh);
+    std::vector<EdgeSegment> segments;
+    for (std::size_t t = 0; t < mesh.triangleCount(); ++t) {
+        const std::uint32_t* v = &mesh.indices[3 * t];
+        const std::uint32_t w[3] = {welded[v[0]], welded[v[1]], welded[v[2]]};
+        const glm::vec3 p[3] = {mesh.positions[v[0]], mesh.positions[v[1]], mesh.positions[v[2]]};
+        const float d[3] = {distance[v[0]], distance[v[1]], distance[v[2]]};
+        lw::kernels::SegmentEndpoints ends;
+        lw::kernels::IsolineCrossing c;
+        if (lw::kernels::silhouetteSegment(p, d, ends, &c))
+            segments.push_back(
+                {{ends.a, ends.b},
+                 {meshEdgeKey(w[c.lone], w[c.other1]), meshEdgeKey(w[c.lone], w[c.other2])}});
+    }
+    return segments;
+}
+
+void walkChain(const std::vector<EdgeSegment>& segments,
+               const std::unordered_multimap<std::uint64_t, std::size_t>& byEdge,
+               std::vector<std::uint8_t>& used, std::size_t start, int side,
+               std::vector<glm::vec3>& points, bool& closed) {
+    for (std::size_t current = start;;) {
+        const std::uint64_t edge = segments[current].edge[side];
+        const auto [first, last] = byEdge.equal_range(edge);
+        std::size_t next = current;
+        for (auto it = first; it != last; ++it)
+            if (it->second != current)
+                next = it->second;
+        if (next == current || std::distance(first, last) != 2)
+            return;
+        if (next == start) {
+            closed = true;
+            return;
+        }
+        if (used[next])
+            return;
+        used[next] = 1;
+        side = segments[next].edge[0] == edge ? 1 : 0;
+        points.push_back(segments[next].point[side]);
+        current = next;
+    }
+}
+
+std::vector<SilhouetteChain> chainSegments(const std::vector<EdgeSegment>& segments) {
+    std::unordered_multimap<std::uint64_t, std::size_t> byEdge;
+    for (std::size_t s = 0; s < segments.size(); ++s)
+        for (const std::uint64_t edge : segments[s].edge)
+            byEdge.emplace(edge, s);
+    std::vector<std::uint8_t> used(segments.size(), 0);
+    std::vector<SilhouetteChain> chains;
+    for (std::size_t s = 0; s < segments.size(); ++s) {
+        if (used[s])
+            continue;
+        used[s] = 1;
+        std::vector<glm::vec3> back;
+        bool closed = false;
+        walkChain(segments, byEdge, used, s, 0, back, closed);
+        SilhouetteChain chain;
+        chain.points.assign(back.rbegin(), back.rend());
+        chain.points.push_back(segments[s].point[0]);
+        chain.points.push_back(segments[s].point[1]);
+        if (!closed)
+            walkChain(segments, byEdge, used, s, 1, chain.points, closed);
+        else
+            chain.points.erase(chain.points.begin());
+        chain.closed = closed;
+        chains.push_back(std::move(chain));
+    }
+    return chains;
+}
+
+} // namespace reference
+
+// The same chains or polylines, point for point, in the same order.
+template <typename Line>
+void expectSameLines(const std::vector<Line>& actual, const std::vector<Line>& expected) {
+    ASSERT_EQ(actual.size(), expected.size());
+    for (std::size_t i = 0; i < actual.size(); ++i) {
+        EXPECT_EQ(actual[i].closed, expected[i].closed) << "line " << i;
+        ASSERT_EQ(actual[i].points, expected[i].points) << "line " << i;
+    }
+}
+
+struct PhantomView {
+    bool closeAtBorder;
+    double az, el;
+    Projection projection;
+};
+
+void PrintTo(const PhantomView& view, std::ostream* out) {
+    *out << (view.closeAtBorder ? "closed" : "open") << " at " << view.az << "," << view.el
+         << (view.projection == Projection::Orthographic ? " ortho" : " perspective");
+}
+
+class PolylinesAsTheReference : public testing::TestWithParam<PhantomView> {};
+
+// The CT phantom's capsules run out of the volume's first slices: closed there, the cap repeats
+// the border vertices (what the weld joins); open, the chains end at the border edges.
+TEST_P(PolylinesAsTheReference, ChainsAndPolylinesArePointForPointTheSame) {
+    const lw::volume::Volume volume =
+        lw::volume::makePhantom(glm::ivec3(96), lw::volume::PhantomKind::Ct);
+    CameraSetup setup;
+    setup.bounds = volumeBounds(volume);
+    setup.azimuthDeg = GetParam().az;
+    setup.elevationDeg = GetParam().el;
+    setup.projection = GetParam().projection;
+    const Camera camera(setup, 400, 400);
+    auto renderer = createSilhouetteRenderer(SilhouetteMethod::ZBuffer, Backend::Cpu);
+    renderer->setVolume(volume);
+    SilhouetteSettings settings;
+    settings.isoReal = 300;
+    settings.closeAtBorder = GetParam().closeAtBorder;
+    const SilhouetteFrame frame = renderer->render(camera, settings);
+    const Mesh mesh = *renderer->surfaceMesh();
+
+    const std::vector<SilhouetteChain> expected =
+        reference::chainSegments(reference::edgeSegments(mesh, camera));
+    ASSERT_GT(expected.size(), 20u) << "too few chains to test anything";
+    std::size_t open = 0;
+    for (const SilhouetteChain& chain : expected)
+        open += chain.closed ? 0 : 1;
+    EXPECT_GT(open, 0u) << "no chain ends: the edge table's ends go untested";
+    const std::vector<SilhouetteChain> chains = chainSilhouette(mesh, camera);
+    expectSameLines(chains, expected);
+
+    // Chains split in parallel: the same as one chain after the other.
+    PolylineOptions options;
+    options.minLengthPx = 2.0;
+    const PolylineSplit split = splitPolylines(mesh, camera, frame.lines, options, true);
+    PolylineSplit serial;
+    for (const SilhouetteChain& chain : expected) {
+        const PolylineSplit one = splitPolylines({chain}, camera, frame.lines, options, true);
+        serial.visible.insert(serial.visible.end(), one.visible.begin(), one.visible.end());
+        serial.hidden.insert(serial.hidden.end(), one.hidden.begin(), one.hidden.end());
+    }
+    ASSERT_FALSE(serial.visible.empty());
+    expectSameLines(split.visible, serial.visible);
+    expectSameLines(split.hidden, serial.hidden);
+}
+
+INSTANTIATE_TEST_SUITE_P(Phantom, PolylinesAsTheReference,
+                         testing::Values(PhantomView{true, 30, 20, Projection::Perspective},
+                                         PhantomView{false, 30, 20, Projection::Perspective},
+                                         PhantomView{true, 200, -60, Projection::Orthographic},
+                                         PhantomView{false, 110, 75, Projection::Orthographic}),
+                         [](const testing::TestParamInfo<PhantomView>& info) {
+                             return std::string(info.param.closeAtBorder ? "Closed" : "Open") +
+                                    std::to_string(info.index);
+                         });
+
+// Segments whose edges come from a small pool, so that edges are shared by one, two, three or
+// more ends and some segments have both ends on one edge (folds, degenerate triangles): the
+// sorted edge table joins exactly where the hash map did.
+TEST(ChainSegments, EdgesSharedByAnyNumberOfEndsChainAsTheReference) {
+    std::mt19937 random(12345);
+    for (const std::uint32_t pool : {4u, 40u, 400u, 4000u}) {
+        std::vector<EdgeSegment> segments(2000);
+        for (std::size_t s = 0; s < segments.size(); ++s) {
+            segments[s].point[0] = glm::vec3(float(s), 0.0f, 0.0f);
+            segments[s].point[1] = glm::vec3(float(s), 1.0f, 0.0f);
+            for (std::uint64_t& edge : segments[s].edge)
+                edge = meshEdgeKey(random() % pool, random() % pool);
+        }
+        expectSameLines(chainSegments(segments), reference::chainSegments(segments));
+    }
+    EXPECT_TRUE(chainSegments({}).empty());
 }
 
 INSTANTIATE_TEST_SUITE_P(

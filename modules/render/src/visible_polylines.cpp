@@ -1,85 +1,187 @@
 #include "lw/render/visible_polylines.h"
 
+#include "lw/core/parallel.h"
 #include "lw/kernels/silhouette_segment.h"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <iterator>
 #include <limits>
-#include <unordered_map>
 
 namespace lw::render {
 namespace {
 
-// Each vertex's first index with the same position bits. A surface closed at the volume border
-// repeats the border-plane vertices of the open surface in its cap (border_cap_cpu.h): welding
-// them lets a contour run from the side of a cut bone onto its cut face in one chain.
-std::vector<std::uint32_t> weldedIds(const Mesh& mesh) {
-    struct Key {
-        std::uint32_t bits[3];
-        bool operator==(const Key& o) const {
-            return bits[0] == o.bits[0] && bits[1] == o.bits[1] && bits[2] == o.bits[2];
-        }
-    };
-    struct Hash {
-        std::size_t operator()(const Key& k) const {
-            return std::size_t(k.bits[0]) * 73856093u ^ std::size_t(k.bits[1]) * 19349663u ^
-                   std::size_t(k.bits[2]) * 83492791u;
-        }
-    };
-    std::unordered_map<Key, std::uint32_t, Hash> first;
-    first.reserve(mesh.vertexCount());
-    std::vector<std::uint32_t> ids(mesh.vertexCount());
-    for (std::size_t v = 0; v < mesh.vertexCount(); ++v) {
-        Key key;
-        std::memcpy(key.bits, &mesh.positions[v], sizeof key.bits);
-        ids[v] = first.try_emplace(key, std::uint32_t(v)).first->second;
-    }
-    return ids;
-}
+// Triangles per parallel range: enough to amortise handing a range out, few enough that two
+// threads balance on a surface whose contour crowds in one part of the index order.
+constexpr std::size_t kTriangleGrain = std::size_t(1) << 15;
+constexpr std::uint32_t kNoVertex = std::numeric_limits<std::uint32_t>::max();
 
-// Burns' rule per triangle (kernels/common), with the crossed edges named: the lone vertex's
-// two edges, in the order silhouetteSegment() gives the endpoints.
-std::vector<EdgeSegment> edgeSegments(const Mesh& mesh, const Camera& camera) {
+// d (silhouetteDistance) at every vertex: each triangle's crossing test needs all three.
+std::vector<float> vertexDistances(const Mesh& mesh, const Camera& camera) {
     const bool ortho = camera.isOrthographic();
     const glm::vec3 eyeOrDirection = ortho ? glm::vec3(-camera.forward()) : glm::vec3(camera.eye());
     std::vector<float> distance(mesh.vertexCount());
-    for (std::size_t v = 0; v < mesh.vertexCount(); ++v)
-        distance[v] =
-            kernels::silhouetteDistance(mesh.positions[v], mesh.normals[v], eyeOrDirection, ortho);
-    const std::vector<std::uint32_t> welded = weldedIds(mesh);
-    std::vector<EdgeSegment> segments;
-    for (std::size_t t = 0; t < mesh.triangleCount(); ++t) {
-        const std::uint32_t* v = &mesh.indices[3 * t];
-        const std::uint32_t w[3] = {welded[v[0]], welded[v[1]], welded[v[2]]};
-        const glm::vec3 p[3] = {mesh.positions[v[0]], mesh.positions[v[1]], mesh.positions[v[2]]};
-        const float d[3] = {distance[v[0]], distance[v[1]], distance[v[2]]};
+    core::parallelForRanges(distance.size(), 4 * kTriangleGrain,
+                            [&](std::size_t begin, std::size_t end) {
+                                for (std::size_t v = begin; v < end; ++v)
+                                    distance[v] = kernels::silhouetteDistance(
+                                        mesh.positions[v], mesh.normals[v], eyeOrDirection, ortho);
+                            });
+    return distance;
+}
+
+// Burns' rule (kernels/common) for triangle t: its segment and which edges the ends lie on.
+bool crossing(const Mesh& mesh, const std::vector<float>& distance, std::size_t t,
+              kernels::SegmentEndpoints& ends, kernels::IsolineCrossing& crossed) {
+    const std::uint32_t* v = &mesh.indices[3 * t];
+    const glm::vec3 p[3] = {mesh.positions[v[0]], mesh.positions[v[1]], mesh.positions[v[2]]};
+    const float d[3] = {distance[v[0]], distance[v[1]], distance[v[2]]};
+    return kernels::silhouetteSegment(p, d, ends, &crossed);
+}
+
+// The triangles that hold a segment, in index order: ranges in parallel, joined in their order,
+// so the result is the serial loop's whatever the number of threads. Only their indices are kept
+// (a few in ten of the mesh): the segments are computed again once their edges can be named.
+std::vector<std::uint32_t> crossedTriangles(const Mesh& mesh, const std::vector<float>& distance) {
+    const std::size_t count = mesh.triangleCount();
+    std::vector<std::vector<std::uint32_t>> parts((count + kTriangleGrain - 1) / kTriangleGrain);
+    core::parallelForRanges(count, kTriangleGrain, [&](std::size_t begin, std::size_t end) {
+        std::vector<std::uint32_t>& part = parts[begin / kTriangleGrain];
         kernels::SegmentEndpoints ends;
-        kernels::IsolineCrossing crossing;
-        if (!kernels::silhouetteSegment(p, d, ends, &crossing))
-            continue;
-        segments.push_back({{ends.a, ends.b},
-                            {meshEdgeKey(w[crossing.lone], w[crossing.other1]),
-                             meshEdgeKey(w[crossing.lone], w[crossing.other2])}});
+        kernels::IsolineCrossing crossed;
+        for (std::size_t t = begin; t < end; ++t)
+            if (crossing(mesh, distance, t, ends, crossed))
+                part.push_back(std::uint32_t(t));
+    });
+    std::vector<std::uint32_t> triangles;
+    for (const auto& part : parts)
+        triangles.insert(triangles.end(), part.begin(), part.end());
+    return triangles;
+}
+
+// Open addressing on the position bits of the vertices inserted, for weldedIds.
+class PositionTable {
+public:
+    PositionTable(const Mesh& mesh, std::size_t most) : m_mesh(mesh) {
+        std::size_t capacity = 16;
+        while (capacity < 2 * most)
+            capacity *= 2;
+        m_slots.assign(capacity, kNoVertex);
     }
+    // The first vertex inserted with the bits of `v`'s position (v itself when it is the first).
+    std::uint32_t firstWithBits(std::uint32_t v) {
+        std::uint32_t bits[3];
+        std::memcpy(bits, &m_mesh.positions[v], sizeof bits);
+        const std::uint64_t h = mix(mix(std::uint64_t(bits[0]) << 32 | bits[1]) ^ bits[2]);
+        const std::size_t mask = m_slots.size() - 1;
+        for (std::size_t slot = std::size_t(h) & mask;; slot = (slot + 1) & mask) {
+            const std::uint32_t held = m_slots[slot];
+            if (held == kNoVertex) {
+                m_slots[slot] = v;
+                return v;
+            }
+            if (std::memcmp(&m_mesh.positions[held], bits, sizeof bits) == 0)
+                return held;
+        }
+    }
+
+private:
+    // splitmix64's finaliser: every bit of a position reaches the low bits the slot is taken from
+    // (grid-aligned coordinates have many trailing zero bits).
+    static std::uint64_t mix(std::uint64_t x) {
+        x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ull;
+        x = (x ^ (x >> 27)) * 0x94d049bb133111ebull;
+        return x ^ (x >> 31);
+    }
+
+    const Mesh& m_mesh;
+    std::vector<std::uint32_t> m_slots;
+};
+
+// Each vertex of the `triangles` mapped to the smallest such vertex index with the same
+// position bits (other entries unset). A surface closed at the volume border repeats the
+// border-plane vertices of the open surface in its cap (border_cap_cpu.h): welding them lets a
+// contour run from the side of a cut bone onto its cut face in one chain. Only the crossed
+// triangles' vertices are welded: the chains compare edges for equality only, which the same
+// welding of fewer vertices keeps.
+std::vector<std::uint32_t> weldedIds(const Mesh& mesh,
+                                     const std::vector<std::uint32_t>& triangles) {
+    // Marked first, then welded in index order: the smallest index of each position comes first.
+    std::vector<std::uint32_t> welded(mesh.vertexCount(), kNoVertex);
+    std::size_t marked = 0;
+    for (const std::uint32_t t : triangles)
+        for (int k = 0; k < 3; ++k) {
+            std::uint32_t& mark = welded[mesh.indices[3 * std::size_t(t) + k]];
+            marked += mark == kNoVertex ? 1 : 0;
+            mark = 0;
+        }
+    PositionTable table(mesh, marked);
+    for (std::size_t v = 0; v < welded.size(); ++v)
+        if (welded[v] != kNoVertex)
+            welded[v] = table.firstWithBits(std::uint32_t(v));
+    return welded;
+}
+
+// The segments of the crossed triangles, in their order, with the edges they cross named by
+// welded vertex indices (meshEdgeKey): the lone vertex's two edges, in the order
+// silhouetteSegment() gives the endpoints.
+std::vector<EdgeSegment> edgeSegments(const Mesh& mesh, const Camera& camera) {
+    const std::vector<float> distance = vertexDistances(mesh, camera);
+    const std::vector<std::uint32_t> triangles = crossedTriangles(mesh, distance);
+    const std::vector<std::uint32_t> welded = weldedIds(mesh, triangles);
+    std::vector<EdgeSegment> segments(triangles.size());
+    core::parallelForRanges(
+        triangles.size(), kTriangleGrain, [&](std::size_t begin, std::size_t end) {
+            kernels::SegmentEndpoints ends;
+            kernels::IsolineCrossing crossed;
+            for (std::size_t s = begin; s < end; ++s) {
+                crossing(mesh, distance, triangles[s], ends, crossed);
+                const std::uint32_t* v = &mesh.indices[3 * std::size_t(triangles[s])];
+                const std::uint32_t lone = welded[v[crossed.lone]];
+                segments[s] = {{ends.a, ends.b},
+                               {meshEdgeKey(lone, welded[v[crossed.other1]]),
+                                meshEdgeKey(lone, welded[v[crossed.other2]])}};
+            }
+        });
     return segments;
 }
 
+// For each segment end (2 s + side), the other segment through its edge when exactly two ends
+// lie on that edge and they belong to different segments; else none (a border edge or a fold
+// ends a chain there). A sort by edge rather than a hash: deterministic, and no node per end.
+constexpr std::size_t kNoSegment = std::numeric_limits<std::size_t>::max();
+std::vector<std::size_t> segmentLinks(const std::vector<EdgeSegment>& segments) {
+    std::vector<std::pair<std::uint64_t, std::size_t>> ends;
+    ends.reserve(2 * segments.size());
+    for (std::size_t s = 0; s < segments.size(); ++s)
+        for (int side = 0; side < 2; ++side)
+            ends.emplace_back(segments[s].edge[side], 2 * s + side);
+    std::sort(ends.begin(), ends.end());
+    std::vector<std::size_t> links(ends.size(), kNoSegment);
+    for (std::size_t i = 0; i < ends.size();) {
+        std::size_t j = i + 1;
+        while (j < ends.size() && ends[j].first == ends[i].first)
+            ++j;
+        if (j - i == 2 && ends[i].second / 2 != ends[i + 1].second / 2) {
+            links[ends[i].second] = ends[i + 1].second / 2;
+            links[ends[i + 1].second] = ends[i].second / 2;
+        }
+        i = j;
+    }
+    return links;
+}
+
 // Walks from segment `start`, leaving through its end `side`, appending each next endpoint.
-void walkChain(const std::vector<EdgeSegment>& segments,
-               const std::unordered_multimap<std::uint64_t, std::size_t>& byEdge,
+void walkChain(const std::vector<EdgeSegment>& segments, const std::vector<std::size_t>& links,
                std::vector<std::uint8_t>& used, std::size_t start, int side,
                std::vector<glm::vec3>& points, bool& closed) {
     std::size_t current = start;
     for (;;) {
         const std::uint64_t edge = segments[current].edge[side];
-        const auto [first, last] = byEdge.equal_range(edge);
-        std::size_t next = current;
-        for (auto it = first; it != last; ++it)
-            if (it->second != current)
-                next = it->second;
-        if (next == current || std::distance(first, last) != 2)
+        const std::size_t next = links[2 * current + std::size_t(side)];
+        if (next == kNoSegment)
             return; // a border edge or a fold: the chain ends here
         if (next == start) {
             closed = true;
@@ -322,6 +424,25 @@ void appendRuns(const ChainSamples& chain, SampleState wanted, double minLength,
     });
 }
 
+// One chain's visible and, with `withHidden`, hidden runs appended to `split`.
+void splitChain(const SilhouetteChain& chain, const Camera& camera, const PixelMask& lines,
+                const PixelMask& near, const PolylineOptions& options, bool withHidden,
+                PolylineSplit& split) {
+    std::vector<glm::dvec2> pixels;
+    pixels.reserve(chain.points.size());
+    for (const glm::vec3& p : chain.points)
+        pixels.push_back(camera.project(glm::dvec3(p)).pixel);
+    if (pixels.size() < 2)
+        return;
+    ChainSamples samples = sampleChain(pixels, chain.closed, options.samplesPerPixel);
+    classify(samples, lines, near, options);
+    // classify() applied minLengthPx to the visible runs already.
+    appendRuns(samples, SampleState::Visible, 0.0, options.simplifyPx, split.visible);
+    if (withHidden)
+        appendRuns(samples, SampleState::Hidden, options.minLengthPx, options.simplifyPx,
+                   split.hidden);
+}
+
 } // namespace
 
 std::uint64_t meshEdgeKey(std::uint32_t a, std::uint32_t b) {
@@ -333,11 +454,7 @@ std::vector<SilhouetteChain> chainSilhouette(const Mesh& mesh, const Camera& cam
 }
 
 std::vector<SilhouetteChain> chainSegments(const std::vector<EdgeSegment>& segments) {
-    std::unordered_multimap<std::uint64_t, std::size_t> byEdge;
-    byEdge.reserve(segments.size() * 2);
-    for (std::size_t s = 0; s < segments.size(); ++s)
-        for (const std::uint64_t edge : segments[s].edge)
-            byEdge.emplace(edge, s);
+    const std::vector<std::size_t> links = segmentLinks(segments);
     std::vector<std::uint8_t> used(segments.size(), 0);
     std::vector<SilhouetteChain> chains;
     for (std::size_t s = 0; s < segments.size(); ++s) {
@@ -347,13 +464,13 @@ std::vector<SilhouetteChain> chainSegments(const std::vector<EdgeSegment>& segme
         // Backwards from end 0 first (reversed afterwards), then forwards from end 1.
         std::vector<glm::vec3> back;
         bool closed = false;
-        walkChain(segments, byEdge, used, s, 0, back, closed);
+        walkChain(segments, links, used, s, 0, back, closed);
         SilhouetteChain chain;
         chain.points.assign(back.rbegin(), back.rend());
         chain.points.push_back(segments[s].point[0]);
         chain.points.push_back(segments[s].point[1]);
         if (!closed)
-            walkChain(segments, byEdge, used, s, 1, chain.points, closed);
+            walkChain(segments, links, used, s, 1, chain.points, closed);
         else
             chain.points.erase(chain.points.begin()); // the loop's first point is its last
         chain.closed = closed;
@@ -377,21 +494,18 @@ PolylineSplit splitPolylines(const std::vector<SilhouetteChain>& chains, const C
                              const PixelMask& lines, const PolylineOptions& options,
                              bool withHidden) {
     const PixelMask near = lines.dilated(std::max(0, options.tolerancePx));
+    // Each chain is decided by itself: ranges of chains in parallel, joined in chain order.
+    constexpr std::size_t kChainGrain = 64;
+    std::vector<PolylineSplit> parts((chains.size() + kChainGrain - 1) / kChainGrain);
+    core::parallelForRanges(chains.size(), kChainGrain, [&](std::size_t begin, std::size_t end) {
+        PolylineSplit& part = parts[begin / kChainGrain];
+        for (std::size_t c = begin; c < end; ++c)
+            splitChain(chains[c], camera, lines, near, options, withHidden, part);
+    });
     PolylineSplit split;
-    for (const SilhouetteChain& chain : chains) {
-        std::vector<glm::dvec2> pixels;
-        pixels.reserve(chain.points.size());
-        for (const glm::vec3& p : chain.points)
-            pixels.push_back(camera.project(glm::dvec3(p)).pixel);
-        if (pixels.size() < 2)
-            continue;
-        ChainSamples samples = sampleChain(pixels, chain.closed, options.samplesPerPixel);
-        classify(samples, lines, near, options);
-        // classify() applied minLengthPx to the visible runs already.
-        appendRuns(samples, SampleState::Visible, 0.0, options.simplifyPx, split.visible);
-        if (withHidden)
-            appendRuns(samples, SampleState::Hidden, options.minLengthPx, options.simplifyPx,
-                       split.hidden);
+    for (PolylineSplit& part : parts) {
+        std::move(part.visible.begin(), part.visible.end(), std::back_inserter(split.visible));
+        std::move(part.hidden.begin(), part.hidden.end(), std::back_inserter(split.hidden));
     }
     return split;
 }
