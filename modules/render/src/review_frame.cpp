@@ -391,6 +391,8 @@ void ReviewFrameRenderer::State::renderIsoOnHost(const ReviewFrameRequest& reque
 // it cannot be made.
 GeometryShaderSilhouetteRenderer*
 ReviewFrameRenderer::State::deviceIsoRenderer(const ReviewFrameRequest& request) {
+    if (!deviceUnavailable.empty())
+        return nullptr;
     if (auto* method1 = dynamic_cast<GeometryShaderSilhouetteRenderer*>(renderer.get());
         method1 && method1->extractsOnDevice() && request.settings.brickCells == 0 &&
         request.wantSilhouette) {
@@ -399,8 +401,6 @@ ReviewFrameRenderer::State::deviceIsoRenderer(const ReviewFrameRequest& request)
     }
     if (deviceIso)
         return deviceIso.get();
-    if (!deviceUnavailable.empty())
-        return nullptr;
     try {
         auto made = std::make_unique<GeometryShaderSilhouetteRenderer>(contextFor(request));
         made->useCudaExtraction();
@@ -437,8 +437,18 @@ bool ReviewFrameRenderer::State::renderIsoOnDevice(const ReviewFrameRequest& req
     settings.isoReal = request.iso;
     settings.cancel = request.cancel;
     const auto start = Clock::now();
-    GeometryShaderSilhouetteRenderer::IsoPanelFrame iso = device->renderIsoPanel(
-        request.isoCamera, settings, request.isoOptions, request.forceExtract, &frame.isoDepth);
+    GeometryShaderSilhouetteRenderer::IsoPanelFrame iso;
+    try {
+        iso = device->renderIsoPanel(request.isoCamera, settings, request.isoOptions,
+                                     request.forceExtract, &frame.isoDepth);
+    } catch (const core::Error& error) {
+        // The context or the interop failed at draw time: the host path from now on (until the
+        // volume changes), said once.
+        deviceUnavailable = std::string("iso panel on the host: ") + error.what();
+        kLog.warning(deviceUnavailable);
+        deviceIso.reset();
+        return false;
+    }
     frame.isoImage = std::move(iso.image);
     frame.isoRenderMs = msSince(start) - iso.extractMs;
     // Method 1's own renderer extracted inside its silhouette frame, when the iso-value changed.
