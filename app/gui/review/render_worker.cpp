@@ -84,7 +84,7 @@ FrameResult RenderWorker::run(const FrameRequest& request) {
         render::ReviewFrame made = m_frames.render(frame);
         if (made.silhouette && made.silhouette->drewToTarget)
             result.linesTexture = std::move(texture);
-        takeFrame(std::move(made), result);
+        takeFrame(std::move(made), request.appearance, result);
         if (!result.isoImage.isNull())
             result.isoCamera = request.frame.isoCamera;
     } catch (const core::Cancelled&) {
@@ -116,11 +116,18 @@ std::pair<QImage, QImage> RenderWorker::renderPanels(const PanelRenderJob& job,
     return panelsOfFrame(m_frames.render(frame), job, vectors);
 }
 
-void RenderWorker::takeFrame(render::ReviewFrame&& frame, FrameResult& result) const {
+void RenderWorker::takeFrame(render::ReviewFrame&& frame, const ReviewSettings& appearance,
+                             FrameResult& result) const {
     result.mesh = std::move(frame.mesh);
     result.meshMs = frame.meshMs;
     result.surfaceTriangles = frame.surfaceTriangles;
     result.silhouette = std::move(frame.silhouette);
+    if (result.silhouette && !result.silhouette->drewToTarget) {
+        const render::PixelMask& lines = result.silhouette->lines;
+        result.silhouetteImage = linesToImage(lines, appearance, false, appearance.lineWidth);
+        if (appearance.silhouetteOnIso)
+            result.isoOverlay = linesToImage(lines, appearance, true, appearance.lineWidth);
+    }
     if (frame.isoImage) {
         result.isoImage = toQImage(*frame.isoImage);
         result.isoDepth = std::move(frame.isoDepth);

@@ -40,6 +40,9 @@ struct FrameRequest {
     QOffscreenSurface* textureSurface = nullptr;
     std::shared_ptr<core::CancelToken> cancel = std::make_shared<core::CancelToken>();
     std::chrono::steady_clock::time_point requested; // set by RenderScheduler::request
+    // The lines' colour, width and background, and whether they go over the iso panel too: the
+    // worker draws the host mask into the panels' images, so the UI thread only shows them.
+    ReviewSettings appearance;
 };
 
 struct FrameResult {
@@ -54,6 +57,10 @@ struct FrameResult {
     std::optional<render::SilhouetteFrame> silhouette;
     // Set when the silhouette went into a texture (silhouette->lines is then empty).
     std::shared_ptr<const LinesTexture> linesTexture;
+    // Otherwise the silhouette panel's image (linesToImage in the request's appearance), and the
+    // lines over the iso panel where the appearance asks for them.
+    QImage silhouetteImage;
+    QImage isoOverlay;
     QImage isoImage;             // when the request wanted it
     std::vector<float> isoDepth; // its depth buffer, top row first (picking)
     render::Camera isoCamera;
@@ -90,7 +97,8 @@ public:
 private:
     render::GlFrameTarget* frameTargetFor(const FrameRequest& request,
                                           std::shared_ptr<const LinesTexture>& token);
-    void takeFrame(render::ReviewFrame&& frame, FrameResult& result) const;
+    void takeFrame(render::ReviewFrame&& frame, const ReviewSettings& appearance,
+                   FrameResult& result) const;
 
     SilhouetteTextures& textures(QOffscreenSurface* surface);
 

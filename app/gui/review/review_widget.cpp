@@ -332,6 +332,7 @@ void ReviewWidget::requestFrame(bool newIso) {
                                   !frame.suggestive &&
                                   render::silhouetteMethodInfo(m_settings.method).drawsToTexture;
     request.sharedGl = m_drawsInPanels;
+    request.appearance = m_settings;
     const bool modeB = m_settings.mode == render::ExtractionMode::EveryFrameB;
     // A panel that draws the mesh with its own GL needs it on the host.
     const bool panelsDrawMesh = m_drawsInPanels && !m_isoOnDevice;
@@ -439,10 +440,8 @@ void ReviewWidget::showSilhouette(const FrameResult& result) {
         return;
     }
     m_silhouettePanel->setLinesTexture(nullptr);
-    m_silhouettePanel->setImage(linesToImage(frame.lines, m_settings, false, m_settings.lineWidth));
-    m_isoPanel->setOverlay(m_settings.silhouetteOnIso
-                               ? linesToImage(frame.lines, m_settings, true, m_settings.lineWidth)
-                               : QImage());
+    m_silhouettePanel->setImage(result.silhouetteImage); // drawn on the worker
+    m_isoPanel->setOverlay(result.isoOverlay);
 }
 
 void ReviewWidget::showError(const QString& message) {
