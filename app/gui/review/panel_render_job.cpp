@@ -44,14 +44,8 @@ render::ReviewFrameRequest panelFrameRequest(const PanelRenderJob& job, bool pol
     request.iso = job.iso;
     request.method = appearance.method;
     request.backend = appearance.backend;
-    request.settings.isoReal = job.iso;
-    request.settings.brickCells = job.brickCells;
-    request.settings.visibility = appearance.visibility;
-    request.settings.testAlongSegment = appearance.testAlongSegment;
-    request.settings.minStrokePixels = appearance.minStrokePixels;
-    request.settings.closeAtBorder = appearance.closeAtBorder;
-    request.settings.gradientStencil = appearance.gradientStencil;
-    request.settings.gpuMemoryBudget = std::size_t(appearance.gpuMemoryBudgetMiB) << 20;
+    request.settings = appearance.silhouetteSettings(job.brickCells, job.iso);
+    request.settings.mode = render::ExtractionMode::CachedA; // one frame: nothing to extract again
     request.sampling = appearance.volumeSampling();
     request.camera = job.camera;
     request.wantSilhouette = true;

@@ -321,7 +321,7 @@ void ReviewWidget::requestFrame(bool newIso) {
     frame.iso = m_iso;
     frame.method = m_settings.method;
     frame.backend = m_settings.backend;
-    frame.settings = silhouetteSettings();
+    frame.settings = m_settings.silhouetteSettings(brickCells(), m_iso);
     frame.sampling = m_settings.volumeSampling();
     frame.wantSilhouette = !methodOneInPanel();
     // Drawn on the worker with the silhouette (CPU); method 1 in the panel's own GL has none yet.
@@ -352,20 +352,6 @@ void ReviewWidget::requestFrame(bool newIso) {
     const QSize size = m_silhouettePanel->renderSize();
     frame.camera = m_camera.camera(size.width(), size.height());
     m_scheduler->request(std::move(request));
-}
-
-render::SilhouetteSettings ReviewWidget::silhouetteSettings() const {
-    render::SilhouetteSettings settings;
-    settings.brickCells = brickCells();
-    settings.mode = m_settings.mode;
-    settings.visibility = m_settings.visibility;
-    settings.testAlongSegment = m_settings.testAlongSegment;
-    settings.minStrokePixels = m_settings.minStrokePixels;
-    settings.closeAtBorder = m_settings.closeAtBorder;
-    settings.gradientStencil = m_settings.gradientStencil;
-    settings.gpuMemoryBudget = std::size_t(m_settings.gpuMemoryBudgetMiB) << 20;
-    settings.isoReal = m_iso;
-    return settings;
 }
 
 void ReviewWidget::takeFrame(const std::shared_ptr<const FrameResult>& result) {

@@ -120,7 +120,6 @@ private:
     void takeFrame(const std::shared_ptr<const FrameResult>& result);
     void showSilhouette(const FrameResult& result);
     void showSurfaceCounts(const FrameResult& result);
-    render::SilhouetteSettings silhouetteSettings() const; // the worker's, from m_settings
     void showError(const QString& message);
     void updateStatusLine();
     void setUpAnnotations();

@@ -153,4 +153,18 @@ QString methodName(render::SilhouetteMethod method) {
     return QCoreApplication::translate(render::kSilhouetteMethodContext, label.c_str());
 }
 
+render::SilhouetteSettings ReviewSettings::silhouetteSettings(int brickCells, double iso) const {
+    render::SilhouetteSettings settings;
+    settings.isoReal = iso;
+    settings.brickCells = brickCells;
+    settings.mode = mode;
+    settings.visibility = visibility;
+    settings.testAlongSegment = testAlongSegment;
+    settings.minStrokePixels = minStrokePixels;
+    settings.closeAtBorder = closeAtBorder;
+    settings.gradientStencil = gradientStencil;
+    settings.gpuMemoryBudget = std::size_t(gpuMemoryBudgetMiB) << 20;
+    return settings;
+}
+
 } // namespace lw::gui

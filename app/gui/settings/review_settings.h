@@ -52,6 +52,8 @@ struct ReviewSettings {
     // Thick slices smoothed across by a cubic B-spline (render/surface_sampling.h): on by default.
     render::ThickSlices thickSlices = render::ThickSlices::Smooth;
     render::VolumeSampling volumeSampling() const { return {oversampling, thickSlices}; }
+    // The methods' settings these choose, for `brickCells` (0: S) at `iso` (real units).
+    render::SilhouetteSettings silhouetteSettings(int brickCells, double iso) const;
     bool suggestiveContours = false; // drawn with the silhouette (render/suggestive_contours.h)
     double lineWidth = 1.0;          // pixels
     QColor lineColour = QColor(0, 0, 0);
