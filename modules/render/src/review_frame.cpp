@@ -129,10 +129,11 @@ struct ReviewFrameRenderer::State {
 
     void prepareVolume(const ReviewFrameRequest& request);
     SilhouetteRenderer& rendererFor(const ReviewFrameRequest& request, ReviewFrame& frame);
-    void renderSilhouette(const ReviewFrameRequest& request, ReviewFrame& frame);
+    // `deviceIso`: the iso panel is to be shaded on the device (where it still can be).
+    void renderSilhouette(const ReviewFrameRequest& request, bool deviceIso, ReviewFrame& frame);
     void addSuggestive(const ReviewFrameRequest& request, ReviewFrame& frame);
     std::shared_ptr<const Mesh> hostSurface(const ReviewFrameRequest& request);
-    void keepRendererMesh(const ReviewFrameRequest& request, ReviewFrame& frame);
+    void keepRendererMesh(const ReviewFrameRequest& request, bool deviceIso, ReviewFrame& frame);
     void extractMesh(const ReviewFrameRequest& request, ReviewFrame& frame);
     void renderIsoOnHost(const ReviewFrameRequest& request, ReviewFrame& frame);
     bool renderIsoOnDevice(const ReviewFrameRequest& request, ReviewFrame& frame);
@@ -199,12 +200,13 @@ ReviewFrame ReviewFrameRenderer::render(const ReviewFrameRequest& request) {
     ReviewFrame frame;
     s.prepareVolume(request);
     frame.refinement = s.volume->geometry().refinement();
+    const bool deviceIso =
+        request.wantIsoImage && !request.isoOnCpu && reviewIsoOnDevice(request.backend);
     if (request.wantSilhouette)
-        s.renderSilhouette(request, frame);
+        s.renderSilhouette(request, deviceIso, frame);
     if (request.cancel && request.cancel->isCancelled())
         throw core::Cancelled();
-    const bool isoDone = request.wantIsoImage && !request.isoOnCpu &&
-                         reviewIsoOnDevice(request.backend) && s.renderIsoOnDevice(request, frame);
+    const bool isoDone = deviceIso && s.renderIsoOnDevice(request, frame);
     if (request.wantMesh || (request.wantIsoImage && !isoDone))
         s.extractMesh(request, frame);
     if (request.cancel && request.cancel->isCancelled())
@@ -233,7 +235,7 @@ SilhouetteRenderer& ReviewFrameRenderer::State::rendererFor(const ReviewFrameReq
     return *renderer;
 }
 
-void ReviewFrameRenderer::State::renderSilhouette(const ReviewFrameRequest& request,
+void ReviewFrameRenderer::State::renderSilhouette(const ReviewFrameRequest& request, bool deviceIso,
                                                   ReviewFrame& frame) {
     SilhouetteSettings settings = request.settings;
     settings.isoReal = request.iso;
@@ -245,7 +247,7 @@ void ReviewFrameRenderer::State::renderSilhouette(const ReviewFrameRequest& requ
         const CurrentFor current(settings.frameTarget ? request.silhouetteTargetContext : nullptr);
         frame.silhouette = drawing.render(request.camera, settings);
     }
-    keepRendererMesh(request, frame);
+    keepRendererMesh(request, deviceIso, frame);
     if (request.wantPolylines && !frame.silhouette->drewToTarget)
         frame.polylines = splitPolylines(*hostSurface(request), request.camera,
                                          frame.silhouette->lines, request.polylineOptions,
@@ -300,11 +302,9 @@ void ReviewFrameRenderer::State::addSuggestive(const ReviewFrameRequest& request
 // Methods 1 and 3 (S) keep the mesh they drew: where the host needs the surface (a panel that
 // draws it, the host path of the iso panel) it is that one, and marching cubes does not run
 // twice for one iso-value.
-void ReviewFrameRenderer::State::keepRendererMesh(const ReviewFrameRequest& request,
+void ReviewFrameRenderer::State::keepRendererMesh(const ReviewFrameRequest& request, bool deviceIso,
                                                   ReviewFrame& frame) {
-    const bool hostIso =
-        request.wantIsoImage &&
-        (request.isoOnCpu || !reviewIsoOnDevice(request.backend) || !deviceUnavailable.empty());
+    const bool hostIso = request.wantIsoImage && (!deviceIso || !deviceUnavailable.empty());
     if (!(request.wantMesh || hostIso) || request.settings.brickCells != 0)
         return;
     const SurfaceForm form = SurfaceForm::of(request.settings);
