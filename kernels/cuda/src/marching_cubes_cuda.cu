@@ -184,8 +184,7 @@ CudaStatus MarchingCubesCuda::extract(double storedIso) {
     return status;
 }
 
-template <typename T>
-CudaStatus MarchingCubesCuda::Impl::markBricksTyped(const mc::Grid<T>& g, bool& touchesBorder) {
+template <typename T> CudaStatus MarchingCubesCuda::Impl::markBricksTyped(const mc::Grid<T>& g) {
     cudaStream_t st = stream.get();
     const std::uint32_t brickCount = bricksX * bricksY * bricksZ;
     mc::markActiveBricks<<<blocksFor(brickCount, 256), 256, 0, st>>>(brickMinMax.data(), brickCount,
@@ -196,41 +195,96 @@ CudaStatus MarchingCubesCuda::Impl::markBricksTyped(const mc::Grid<T>& g, bool& 
         g.box, std::uint32_t(volume.dims.x), std::uint32_t(volume.dims.y),
         std::uint32_t(volume.dims.z), g.threshold, flag.data());
     LW_CUDA_LAUNCHED("mc::borderInside");
-    int touches = 0;
-    LW_CUDA_TRY(cudaMemcpyAsync(&touches, flag.data(), sizeof touches, cudaMemcpyDeviceToHost, st),
-                "mc::borderInside");
-    LW_CUDA_TRY(cudaStreamSynchronize(st), "mc::borderInside");
-    touchesBorder = touches != 0;
-    return CudaStatus::success();
+    // Read after the classification's wait (classifyTyped).
+    return queueCount(flag.data(), kBorderSlot, "mc::borderInside");
 }
 
-template <typename T> CudaStatus MarchingCubesCuda::Impl::classifyGrid(const mc::Grid<T>& g) {
+template <typename T>
+CudaStatus MarchingCubesCuda::Impl::classifyGrid(const mc::Grid<T>& g, CountWait wait) {
     cudaStream_t st = stream.get();
     const std::uint32_t tilesPerRow =
         blocksFor(std::size_t(g.hi.x - g.lo.x + 1), tuning::kClassifyBlock);
     const std::uint32_t slices = std::uint32_t(g.hi.z - g.lo.z + 1);
-    const std::uint32_t tiles = tilesPerRow * g.rowsY * slices;
     const std::uint32_t zGroups = (slices + tuning::kClassifyPlanes - 1) / tuning::kClassifyPlanes;
     const dim3 tileGrid(g.rowsY * zGroups, tilesPerRow); // see mc::TileWalk
-    LW_RETURN_IF_FAILED(tileCounts.reserve(std::size_t(tiles) + 1, "cudaMalloc(tileCounts)"));
-    LW_RETURN_IF_FAILED(tileOffsets.reserve(std::size_t(tiles) + 1, "cudaMalloc(tileOffsets)"));
-    mc::countTiles<T><<<tileGrid, tuning::kClassifyBlock, 0, st>>>(g, tileCounts.data());
-    LW_CUDA_LAUNCHED("mc::countTiles");
-    LW_CUDA_TRY(cudaMemsetAsync(tileCounts.data() + tiles, 0, sizeof(std::uint32_t), st),
-                "cudaMemset(tileCounts)");
+    wordsPerRow = tilesPerRow * (tuning::kClassifyBlock / 32);
+    wordCount = wordsPerRow * g.rowsY * slices;
+    LW_RETURN_IF_FAILED(activeWords.reserve(std::size_t(wordCount) + 1, "cudaMalloc(activeWords)"));
+    LW_RETURN_IF_FAILED(wordOffsets.reserve(std::size_t(wordCount) + 1, "cudaMalloc(wordOffsets)"));
+    mc::classifyWords<T><<<tileGrid, tuning::kClassifyBlock, 0, st>>>(g, activeWords.data());
+    LW_CUDA_LAUNCHED("mc::classifyWords");
+    LW_CUDA_TRY(cudaMemsetAsync(activeWords.data() + wordCount, 0, sizeof(std::uint32_t), st),
+                "cudaMemset(activeWords)");
     LW_RETURN_IF_FAILED(
-        exclusiveSum(tileCounts.data(), tileOffsets.data(), tiles + 1, "cub::DeviceScan(tiles)"));
-    std::uint32_t active = 0;
-    LW_RETURN_IF_FAILED(readBack(tileOffsets.data() + tiles, active, "mc::countTiles"));
-    activeCount = active;
-    if (active == 0)
+        exclusiveSum(thrust::make_transform_iterator(activeWords.data(), BitCount()),
+                     wordOffsets.data(), wordCount + 1, "cub::DeviceScan(words)"));
+    if (wait == CountWait::Pending && listCapacity() > 0) {
+        // generate() learns the count with the totals and writes the list again only if it did
+        // not fit: one wait for the host instead of two.
+        activePending = true;
+        return writeActiveList(g, listCapacity());
+    }
+    activePending = false;
+    LW_RETURN_IF_FAILED(queueCount(activeTotal(), kActiveSlot, "mc::classifyWords"));
+    LW_RETURN_IF_FAILED(waitForCounts("mc::classifyWords"));
+    activeCount = count(kActiveSlot);
+    if (activeCount == 0)
         return CudaStatus::success();
+    LW_RETURN_IF_FAILED(reserveActiveList(activeCount));
+    return writeActiveList(g, activeCount);
+}
+
+CudaStatus MarchingCubesCuda::Impl::reserveActiveList(std::uint32_t active) {
+    const std::size_t entries = std::size_t(active) + 1; // the counts' end entry
     LW_RETURN_IF_FAILED(activeVoxels.reserve(active, "cudaMalloc(activeVoxels)"));
     LW_RETURN_IF_FAILED(activeCodes.reserve(active, "cudaMalloc(activeCodes)"));
-    mc::writeTiles<T><<<tileGrid, tuning::kClassifyBlock, 0, st>>>(
-        g, tileOffsets.data(), activeVoxels.data(), activeCodes.data());
-    LW_CUDA_LAUNCHED("mc::writeTiles");
+    LW_RETURN_IF_FAILED(vertexCounts.reserve(entries, "cudaMalloc(vertexCounts)"));
+    return triangleCounts.reserve(entries, "cudaMalloc(triangleCounts)");
+}
+
+template <typename T>
+CudaStatus MarchingCubesCuda::Impl::writeActiveList(const mc::Grid<T>& g, std::uint32_t capacity) {
+    mc::writeActive<T>
+        <<<blocksFor(wordCount, tuning::kActiveBlock), tuning::kActiveBlock, 0, stream.get()>>>(
+            g, bitmap(), wordCount, capacity, activeVoxels.data(), activeCodes.data(),
+            vertexCounts.data(), triangleCounts.data());
+    LW_CUDA_LAUNCHED("mc::writeActive");
     return CudaStatus::success();
+}
+
+CudaStatus MarchingCubesCuda::Impl::scanGeometry(std::uint32_t capacity) {
+    const std::uint32_t entries = capacity + 1;
+    LW_RETURN_IF_FAILED(vertexOffsets.reserve(entries, "cudaMalloc(vertexOffsets)"));
+    LW_RETURN_IF_FAILED(triangleOffsets.reserve(entries, "cudaMalloc(triangleOffsets)"));
+    LW_RETURN_IF_FAILED(totals.reserve(3, "cudaMalloc(totals)"));
+    LW_RETURN_IF_FAILED(exclusiveSum(vertexCounts.data(), vertexOffsets.data(), entries,
+                                     "cub::DeviceScan(vertices)"));
+    LW_RETURN_IF_FAILED(exclusiveSum(triangleCounts.data(), triangleOffsets.data(), entries,
+                                     "cub::DeviceScan(triangles)"));
+    mc::gatherTotals<<<1, 1, 0, stream.get()>>>(activeTotal(), vertexOffsets.data(),
+                                                triangleOffsets.data(), capacity, totals.data());
+    LW_CUDA_LAUNCHED("mc::gatherTotals");
+    static_assert(kVertexSlot == kActiveSlot + 1 && kTriangleSlot == kActiveSlot + 2);
+    LW_CUDA_TRY(cudaMemcpyAsync(hostCounts.data() + kActiveSlot, totals.data(),
+                                3 * sizeof(std::uint32_t), cudaMemcpyDeviceToHost, stream.get()),
+                "mc::gatherTotals");
+    return waitForCounts("cub::DeviceScan(vertices, triangles)");
+}
+
+template <typename T>
+CudaStatus MarchingCubesCuda::Impl::offsetsOfActiveList(const mc::Grid<T>& g) {
+    if (!activePending)
+        return scanGeometry(activeCount);
+    activePending = false;
+    const std::uint32_t capacity = listCapacity();
+    LW_RETURN_IF_FAILED(scanGeometry(capacity));
+    activeCount = count(kActiveSlot);
+    if (activeCount <= capacity)
+        return CudaStatus::success();
+    // More active voxels than the list held: its writes stopped at the end, so write it again.
+    LW_RETURN_IF_FAILED(reserveActiveList(activeCount));
+    LW_RETURN_IF_FAILED(writeActiveList(g, activeCount));
+    return scanGeometry(activeCount);
 }
 
 template <typename T> CudaStatus MarchingCubesCuda::Impl::generate(const mc::Grid<T>& g) {
@@ -238,31 +292,18 @@ template <typename T> CudaStatus MarchingCubesCuda::Impl::generate(const mc::Gri
     const bool touchesBorder = mesh.touchesBorder;
     mesh = DeviceMeshView();
     mesh.touchesBorder = touchesBorder;
-    const std::uint32_t active = activeCount;
-    if (active == 0)
+    if (!activePending && activeCount == 0)
         return CudaStatus::success();
 
     // Vertex and triangle offsets.
     LW_RETURN_IF_FAILED(timers[2].start(st));
-    const std::size_t entries = std::size_t(active) + 1;
-    LW_RETURN_IF_FAILED(vertexCounts.reserve(entries, "cudaMalloc(vertexCounts)"));
-    LW_RETURN_IF_FAILED(vertexOffsets.reserve(entries, "cudaMalloc(vertexOffsets)"));
-    LW_RETURN_IF_FAILED(triangleCounts.reserve(entries, "cudaMalloc(triangleCounts)"));
-    LW_RETURN_IF_FAILED(triangleOffsets.reserve(entries, "cudaMalloc(triangleOffsets)"));
-    mc::countGeometry<<<blocksFor(entries, tuning::kActiveBlock), tuning::kActiveBlock, 0, st>>>(
-        activeCodes.data(), active, vertexCounts.data(), triangleCounts.data());
-    LW_CUDA_LAUNCHED("mc::countGeometry");
-    LW_RETURN_IF_FAILED(exclusiveSum(vertexCounts.data(), vertexOffsets.data(),
-                                     std::uint32_t(entries), "cub::DeviceScan(vertices)"));
-    LW_RETURN_IF_FAILED(exclusiveSum(triangleCounts.data(), triangleOffsets.data(),
-                                     std::uint32_t(entries), "cub::DeviceScan(triangles)"));
-    std::uint32_t vertexTotal = 0, triangleTotal = 0;
-    LW_CUDA_TRY(cudaMemcpyAsync(&vertexTotal, vertexOffsets.data() + active, sizeof vertexTotal,
-                                cudaMemcpyDeviceToHost, st),
-                "cub::DeviceScan(vertices)");
-    LW_RETURN_IF_FAILED(
-        readBack(triangleOffsets.data() + active, triangleTotal, "cub::DeviceScan(triangles)"));
+    LW_RETURN_IF_FAILED(hostCounts.reserve(kCountSlots, "cudaMallocHost(counts)"));
+    LW_RETURN_IF_FAILED(offsetsOfActiveList(g));
     LW_RETURN_IF_FAILED(timers[2].stop(st));
+    const std::uint32_t active = activeCount;
+    if (active == 0)
+        return CudaStatus::success();
+    const std::uint32_t vertexTotal = count(kVertexSlot), triangleTotal = count(kTriangleSlot);
     // Each active voxel has at most 3 vertices and 5 triangles: with fewer than 2^32 / 16 active
     // voxels no 32-bit count can have wrapped.
     if (active >= std::numeric_limits<std::uint32_t>::max() / 16)
@@ -278,16 +319,10 @@ template <typename T> CudaStatus MarchingCubesCuda::Impl::generate(const mc::Gri
             g, activeVoxels.data(), activeCodes.data(), vertexOffsets.data(), active,
             positions.data(), normals.data());
     LW_CUDA_LAUNCHED("mc::generateVertices");
-    // Box rows (S: the volume's rows): the active list holds box indices.
-    const std::uint32_t boxZ = std::uint32_t(g.hi.z - g.boxOrigin.z + 1);
-    const std::uint32_t rows = g.boxY * boxZ;
-    LW_RETURN_IF_FAILED(rowStart.reserve(std::size_t(rows) + 1, "cudaMalloc(rowStart)"));
-    mc::findRowStarts<<<blocksFor(std::size_t(rows) + 1, 256), 256, 0, st>>>(
-        activeVoxels.data(), active, g.boxX, rows, rowStart.data());
-    LW_CUDA_LAUNCHED("mc::findRowStarts");
-    mc::generateTriangles<<<blocksFor(active, tuning::kActiveBlock), tuning::kActiveBlock, 0, st>>>(
-        activeVoxels.data(), activeCodes.data(), vertexOffsets.data(), triangleOffsets.data(),
-        rowStart.data(), active, g.boxX, g.boxY, indices.data());
+    mc::generateTriangles<T>
+        <<<blocksFor(active, tuning::kActiveBlock), tuning::kActiveBlock, 0, st>>>(
+            g, bitmap(), activeVoxels.data(), activeCodes.data(), vertexOffsets.data(),
+            triangleOffsets.data(), active, indices.data());
     LW_CUDA_LAUNCHED("mc::generateTriangles");
     LW_RETURN_IF_FAILED(timers[3].stop(st));
     LW_CUDA_TRY(cudaStreamSynchronize(st), "mc::generate");
@@ -300,25 +335,27 @@ template <typename T> CudaStatus MarchingCubesCuda::Impl::generate(const mc::Gri
     return CudaStatus::success();
 }
 
-template <typename T> CudaStatus MarchingCubesCuda::Impl::classifyTyped(double iso) {
+template <typename T>
+CudaStatus MarchingCubesCuda::Impl::classifyTyped(double iso, CountWait wait) {
     cudaStream_t st = stream.get();
     const mc::Grid<T> g = grid<T>(iso);
-    bool touches = false;
     LW_RETURN_IF_FAILED(timers[0].start(st));
-    LW_RETURN_IF_FAILED(markBricksTyped<T>(g, touches));
+    LW_RETURN_IF_FAILED(markBricksTyped<T>(g));
     LW_RETURN_IF_FAILED(timers[0].stop(st));
     mesh = DeviceMeshView();
-    mesh.touchesBorder = touches;
     LW_RETURN_IF_FAILED(timers[1].start(st));
-    LW_RETURN_IF_FAILED(classifyGrid<T>(g));
+    LW_RETURN_IF_FAILED(classifyGrid<T>(g, wait));
     LW_RETURN_IF_FAILED(timers[1].stop(st));
+    if (wait == CountWait::Now) // the wait has landed the border flag's copy too
+        mesh.touchesBorder = count(kBorderSlot) != 0;
     return CudaStatus::success();
 }
 
 template <typename T> CudaStatus MarchingCubesCuda::Impl::extractTyped(double iso) {
-    LW_RETURN_IF_FAILED(classifyTyped<T>(iso));
+    LW_RETURN_IF_FAILED(classifyTyped<T>(iso, CountWait::Pending));
     LW_RETURN_IF_FAILED(generate<T>(grid<T>(iso)));
     LW_CUDA_TRY(cudaStreamSynchronize(stream.get()), "mc::extract");
+    mesh.touchesBorder = count(kBorderSlot) != 0;
     times = McCudaTimes{timers[0].ms(), timers[1].ms(), activeCount ? timers[2].ms() : 0.0,
                         activeCount ? timers[3].ms() : 0.0};
     return CudaStatus::success();
@@ -420,7 +457,7 @@ MarchingCubesCuda::Impl::extractSlabsTyped(double iso, const std::vector<CellSla
                          glm::ivec3(0, cells.rows.x, cells.layers.x),
                          glm::ivec3(volume.dims.x - 1, cells.rows.y, cells.layers.y));
         mesh = DeviceMeshView();
-        LW_RETURN_IF_FAILED(classifyGrid<T>(g));
+        LW_RETURN_IF_FAILED(classifyGrid<T>(g, CountWait::Now));
         LW_RETURN_IF_FAILED(generate<T>(g));
         notePeak();
         if (mesh.triangleCount > 0)
@@ -463,7 +500,7 @@ CudaStatus MarchingCubesCuda::classify(double storedIso) {
                                    "no volume: call setVolume first");
     s.mesh = DeviceMeshView();
     return dispatchVoxelKind(s.volume.kind, [&](auto zero) -> CudaStatus {
-        LW_RETURN_IF_FAILED(s.classifyTyped<decltype(zero)>(storedIso));
+        LW_RETURN_IF_FAILED(s.classifyTyped<decltype(zero)>(storedIso, Impl::CountWait::Now));
         LW_CUDA_TRY(cudaStreamSynchronize(s.stream.get()), "mc::classify");
         return CudaStatus::success();
     });

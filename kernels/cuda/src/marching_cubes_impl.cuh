@@ -7,12 +7,26 @@
 #include "lw/kernels/cuda/marching_cubes_cuda.h"
 #include "marching_cubes_kernels.cuh"
 
+#include <algorithm>
 #include <cub/device/device_scan.cuh>
+#include <limits>
+#include <thrust/iterator/transform_iterator.h>
 
 namespace lw::kernels::cuda {
 
 using dispatch::blocksFor;
 using dispatch::DeviceBuffer;
+
+// A word's set bits (the scan of the active bitmap counts them as it reads the words).
+struct BitCount {
+    __host__ __device__ std::uint32_t operator()(std::uint32_t word) const {
+#ifdef __CUDA_ARCH__
+        return std::uint32_t(__popc(word));
+#else
+        return std::uint32_t(__builtin_popcount(word));
+#endif
+    }
+};
 
 struct MarchingCubesCuda::Impl {
     dispatch::Stream stream;
@@ -27,11 +41,16 @@ struct MarchingCubesCuda::Impl {
     DeviceBuffer<std::uint8_t> brickActive;
     DeviceBuffer<int> flag;
 
-    DeviceBuffer<std::uint32_t> tileCounts, tileOffsets;
+    // The active bitmap of the last classification and its words' scanned bit counts
+    // (mc::ActiveBitmap).
+    DeviceBuffer<std::uint32_t> activeWords, wordOffsets;
+    std::uint32_t wordsPerRow = 0;
+    mc::ActiveBitmap bitmap() const {
+        return mc::ActiveBitmap{activeWords.data(), wordOffsets.data(), wordsPerRow};
+    }
     DeviceBuffer<std::uint32_t> activeVoxels, vertexCounts, vertexOffsets, triangleCounts,
         triangleOffsets;
     DeviceBuffer<std::uint16_t> activeCodes;
-    DeviceBuffer<std::uint32_t> rowStart;
     DeviceBuffer<unsigned char> scanTemp;
     DeviceBuffer<glm::vec3> positions, normals;
     DeviceBuffer<std::uint32_t> indices;
@@ -61,19 +80,19 @@ struct MarchingCubesCuda::Impl {
     }
     // The classification and mesh buffers (sized by the last extraction) go back to the device.
     void releaseScratch() {
-        tileCounts.release();
-        tileOffsets.release();
+        activeWords.release();
+        wordOffsets.release();
         activeVoxels.release();
         vertexCounts.release();
         vertexOffsets.release();
         triangleCounts.release();
         triangleOffsets.release();
         activeCodes.release();
-        rowStart.release();
         scanTemp.release();
         positions.release();
         normals.release();
         indices.release();
+        totals.release();
     }
     void notePeak() { peakBytes = deviceBytes() > peakBytes ? deviceBytes() : peakBytes; }
     CudaStatus uploadGridTables(const VoxelGridSetup& setup);
@@ -99,16 +118,16 @@ struct MarchingCubesCuda::Impl {
 
     std::size_t deviceBytes() const {
         return voxels.bytes() + sliceOffset.bytes() + spanK.bytes() + invSpanK.bytes() +
-               brickMinMax.bytes() + brickActive.bytes() + tileCounts.bytes() +
-               tileOffsets.bytes() + activeVoxels.bytes() + vertexCounts.bytes() +
+               brickMinMax.bytes() + brickActive.bytes() + activeWords.bytes() +
+               wordOffsets.bytes() + activeVoxels.bytes() + vertexCounts.bytes() +
                vertexOffsets.bytes() + triangleCounts.bytes() + triangleOffsets.bytes() +
-               activeCodes.bytes() + rowStart.bytes() + slabBox[0].bytes() + slabBox[1].bytes() +
-               scanTemp.bytes() + positions.bytes() + normals.bytes() + indices.bytes();
+               activeCodes.bytes() + slabBox[0].bytes() + slabBox[1].bytes() + scanTemp.bytes() +
+               positions.bytes() + normals.bytes() + indices.bytes() + totals.bytes();
     }
 
     // CUB's exclusive sum over `count` values (temporary storage grown on demand).
-    CudaStatus exclusiveSum(const std::uint32_t* in, std::uint32_t* out, std::uint32_t count,
-                            const char* what) {
+    template <typename Input>
+    CudaStatus exclusiveSum(Input in, std::uint32_t* out, std::uint32_t count, const char* what) {
         std::size_t bytes = 0;
         LW_CUDA_TRY(cub::DeviceScan::ExclusiveSum(nullptr, bytes, in, out, count, stream.get()),
                     what);
@@ -172,20 +191,53 @@ struct MarchingCubesCuda::Impl {
 
     template <typename T> CudaStatus computeBrickMinMax();
     // S: active bricks and the border test (the whole volume only).
-    template <typename T> CudaStatus markBricksTyped(const mc::Grid<T>& g, bool& touchesBorder);
-    // The ordered active voxel list (activeVoxels/activeCodes, activeCount) of g's range.
-    template <typename T> CudaStatus classifyGrid(const mc::Grid<T>& g);
+    template <typename T> CudaStatus markBricksTyped(const mc::Grid<T>& g);
+    // Whether classifyGrid waits for the active count (method 2 and the streamed slabs read it
+    // at once) or leaves it to generate() (one wait fewer per extraction).
+    enum class CountWait { Now, Pending };
+    // The ordered active voxel list of g's range (activeVoxels, activeCodes, their vertex and
+    // triangle counts; activeCount, or activePending until generate() has it).
+    template <typename T> CudaStatus classifyGrid(const mc::Grid<T>& g, CountWait wait);
+    CudaStatus reserveActiveList(std::uint32_t active);
+    template <typename T> CudaStatus writeActiveList(const mc::Grid<T>& g, std::uint32_t capacity);
+    // The vertex and triangle offsets of the first `capacity` list entries and the totals
+    // (active, vertices, triangles) in hostCounts, after one wait.
+    CudaStatus scanGeometry(std::uint32_t capacity);
+    // scanGeometry for the list as classifyGrid left it, writing it again where it did not fit.
+    template <typename T> CudaStatus offsetsOfActiveList(const mc::Grid<T>& g);
+    // The active voxels the list's buffers hold.
+    std::uint32_t listCapacity() const {
+        const std::size_t counts = std::min(vertexCounts.capacity(), triangleCounts.capacity());
+        const std::size_t list = std::min(activeVoxels.capacity(), activeCodes.capacity());
+        const std::size_t fits = std::min(list, counts > 0 ? counts - 1 : 0);
+        return std::uint32_t(
+            std::min<std::size_t>(fits, std::numeric_limits<std::uint32_t>::max() - 1));
+    }
+    const std::uint32_t* activeTotal() const { return wordOffsets.data() + wordCount; }
+    std::uint32_t wordCount = 0;
+    bool activePending = false;
+    DeviceBuffer<std::uint32_t> totals;
     // The mesh of the classified voxels (positions/normals/indices, mesh).
     template <typename T> CudaStatus generate(const mc::Grid<T>& g);
-    template <typename T> CudaStatus classifyTyped(double iso);
+    template <typename T> CudaStatus classifyTyped(double iso, CountWait wait);
     template <typename T> CudaStatus extractTyped(double iso);
-    CudaStatus readBack(const std::uint32_t* device, std::uint32_t& host, const char* what) {
-        LW_CUDA_TRY(
-            cudaMemcpyAsync(&host, device, sizeof host, cudaMemcpyDeviceToHost, stream.get()),
-            what);
+    // Counts the host needs (a size to allocate, a total) land in page-locked slots, so their
+    // copies are asynchronous and one wait serves several: the border flag is copied when its
+    // kernel is queued and read after the classification's wait.
+    enum CountSlot { kBorderSlot, kActiveSlot, kVertexSlot, kTriangleSlot, kCountSlots };
+    dispatch::PinnedBuffer<std::uint32_t> hostCounts;
+    CudaStatus queueCount(const void* device, CountSlot slot, const char* what) {
+        LW_RETURN_IF_FAILED(hostCounts.reserve(kCountSlots, what));
+        LW_CUDA_TRY(cudaMemcpyAsync(hostCounts.data() + slot, device, sizeof(std::uint32_t),
+                                    cudaMemcpyDeviceToHost, stream.get()),
+                    what);
+        return CudaStatus::success();
+    }
+    CudaStatus waitForCounts(const char* what) {
         LW_CUDA_TRY(cudaStreamSynchronize(stream.get()), what);
         return CudaStatus::success();
     }
+    std::uint32_t count(CountSlot slot) const { return hostCounts.data()[slot]; }
 };
 
 } // namespace lw::kernels::cuda

@@ -25,6 +25,13 @@ __constant__ std::int8_t c_edgeOwner[12][4];
 __constant__ std::uint16_t c_edgeTable[256];
 __constant__ std::int8_t c_edgeCorners[12][2];
 __constant__ std::int8_t c_cornerOffset[8][3];
+// The same tables in global memory, for the per-voxel kernels: neighbouring threads hold
+// different cases, and constant memory serves a warp's different addresses one after another
+// while the L1 cache serves them at once. A case's row of the triangle table is one 16-byte
+// load; an edge's owner (dx, dy, dz, axis) one 32-bit word, a byte each.
+__device__ uint4 g_triRows[256];
+__device__ std::uint32_t g_edgeOwnerWord[12];
+__device__ std::uint8_t g_triCount[256];
 
 static CudaStatus uploadTables() {
     static std::once_flag once;
@@ -46,6 +53,11 @@ static CudaStatus uploadTables() {
              "cudaMemcpyToSymbol(edgeCorners)"},
             {c_cornerOffset, kMcCornerOffset, sizeof kMcCornerOffset,
              "cudaMemcpyToSymbol(cornerOffset)"},
+            {g_triRows, kMcTriTable, sizeof kMcTriTable, "cudaMemcpyToSymbol(triRows)"},
+            {g_edgeOwnerWord, kMcEdgeOwner, sizeof kMcEdgeOwner,
+             "cudaMemcpyToSymbol(edgeOwnerWord)"},
+            {g_triCount, kMcTriangleCount.count, sizeof kMcTriangleCount.count,
+             "cudaMemcpyToSymbol(triCount, global)"},
         };
         for (const Table& t : tables) {
             status = dispatch::statusOf(cudaMemcpyToSymbol(t.symbol, t.source, t.bytes), t.what);
@@ -191,15 +203,11 @@ __global__ void borderInside(const T* voxels, std::uint32_t nx, std::uint32_t ny
 // (z - lo.z) * rowsY + (y - lo.y)), so tile order is voxel order. A block walks its column of
 // kClassifyPlanes tiles up along z (blockIdx.x = zGroup * rowsY + y - lo.y, blockIdx.y = the
 // column): each slice's corner bits serve two voxels, and one block does the work of several
-// (block launches, not memory, bounded the one-tile-per-block version). Active voxels are listed
-// by their index in the box (ascending = voxel order).
+// (block launches, not memory, bounded the one-tile-per-block version).
 template <typename T> struct TileWalk {
     const Grid<T>& g;
     std::uint32_t x, y, z0, planes, column;
     bool valid, hasX, hasY;
-    // The upper slice's bits of the last voxel, reused as the next voxel's lower slice.
-    PlaneBits upper;
-    bool haveUpper = false;
 
     __device__ explicit TileWalk(const Grid<T>& grid) : g(grid) {
         const std::uint32_t zGroup = blockIdx.x / g.rowsY;
@@ -217,9 +225,6 @@ template <typename T> struct TileWalk {
         const std::uint32_t row = (z0 + plane - g.lo.z) * g.rowsY + (y - g.lo.y);
         return row * gridDim.y + column;
     }
-    __device__ std::uint32_t index(std::uint32_t plane) const {
-        return valid ? g.boxIndex(x, y, z0 + plane) : 0u;
-    }
     __device__ bool brickActive(std::uint32_t z) const {
         if (!g.brickActive)
             return true;
@@ -229,98 +234,167 @@ template <typename T> struct TileWalk {
         const std::uint32_t bz = (z < cz ? z : cz - 1) >> tuning::kSkipBrickShift;
         return g.brickActive[(bz * g.bricksY + by) * g.bricksX + bx] != 0;
     }
-    // The code of this thread's voxel in `plane` (planes are visited in ascending order; a plane
-    // skipped by the caller must be reported with skip() so the reuse starts over).
-    __device__ std::uint32_t code(std::uint32_t plane) {
-        const std::uint32_t z = z0 + plane;
-        if (!valid || !brickActive(z)) {
-            haveUpper = false;
-            return 0u;
-        }
-        const bool hasZ = int(z) < g.hi.z;
-        const std::size_t sy = g.boxX, sz = std::size_t(g.boxX) * g.boxY;
-        const T* p = g.box + index(plane);
-        const PlaneBits lower = haveUpper ? upper : planeBits(p, sy, g.threshold, hasX, hasY);
-        upper = hasZ ? planeBits(p + sz, sy, g.threshold, hasX, hasY) : PlaneBits{};
-        haveUpper = hasZ;
-        return voxelCode(lower, upper, hasX, hasY, hasZ);
+    // Whether this thread's voxels can be active: a column's planes lie in one layer of skip
+    // bricks (kClassifyPlanes divides the brick edge and groups start at multiples of it), so
+    // its first and last plane tell.
+    __device__ bool mayBeActive() const {
+        return valid && (brickActive(z0) || brickActive(z0 + planes - 1));
     }
-    __device__ void skip() { haveUpper = false; }
+    // The inside bits of this thread's corners in slices z0 .. z0 + planes (the last one only
+    // where it exists), read all at once: the loads are independent, so they are all in flight
+    // together instead of one slice's wait after another's.
+    __device__ void readPlanes(std::uint8_t (&bits)[tuning::kClassifyPlanes + 1]) const {
+        const std::size_t sy = g.boxX, sz = std::size_t(g.boxX) * g.boxY;
+        const T* p = g.box + g.boxIndex(x, y, z0);
+#pragma unroll
+        for (int q = 0; q <= tuning::kClassifyPlanes; ++q) {
+            PlaneBits b;
+            if (int(z0) + q <= g.hi.z)
+                b = planeBits(p + std::size_t(q) * sz, sy, g.threshold, hasX, hasY);
+            bits[q] = std::uint8_t(b.c00 | b.c10 << 1 | b.c01 << 2 | b.c11 << 3);
+        }
+    }
+    // Whether the voxel in `plane` is active (voxelCode != 0). Inside the classified range all
+    // its eight corners exist, and then it is active exactly when they are not all alike (its
+    // edges' ends are corners of its cell): one test on the eight bits instead of the code.
+    __device__ bool isActive(const std::uint8_t (&bits)[tuning::kClassifyPlanes + 1],
+                             int plane) const {
+        const bool hasZ = int(z0) + plane < g.hi.z;
+        if (hasX && hasY && hasZ) {
+            const std::uint32_t corners = bits[plane] | std::uint32_t(bits[plane + 1]) << 4;
+            return corners != 0 && corners != 0xffu;
+        }
+        return voxelCode(unpack(bits[plane]), hasZ ? unpack(bits[plane + 1]) : PlaneBits{}, hasX,
+                         hasY, hasZ) != 0;
+    }
+    __device__ static PlaneBits unpack(std::uint8_t b) {
+        return PlaneBits{(b & 1) != 0, (b & 2) != 0, (b & 4) != 0, (b & 8) != 0};
+    }
 };
+static_assert(tuning::kSkipBrickCells % tuning::kClassifyPlanes == 0,
+              "a classification block's planes must lie in one layer of skip bricks");
 
 __device__ __forceinline__ std::uint32_t laneIndex() {
     return threadIdx.x & 31u;
 }
 
-// Pass 1 of the compaction: active voxels per tile (warp ballots, summed per tile).
-template <typename T> __global__ void countTiles(Grid<T> g, std::uint32_t* tileCounts) {
-    constexpr int kWarps = tuning::kClassifyBlock / 32;
-    __shared__ std::uint32_t warpCounts[tuning::kClassifyPlanes][kWarps];
-    TileWalk<T> walk(g);
-    for (std::uint32_t plane = 0; plane < walk.planes; ++plane) {
-        const unsigned ballot = __ballot_sync(0xffffffffu, walk.code(plane) != 0);
-        if (laneIndex() == 0)
-            warpCounts[plane][threadIdx.x / 32] = __popc(ballot);
-    }
-    __syncthreads();
-    if (threadIdx.x < walk.planes) {
-        std::uint32_t sum = 0;
-        for (int w = 0; w < kWarps; ++w)
-            sum += warpCounts[threadIdx.x][w];
-        tileCounts[walk.tile(threadIdx.x)] = sum;
-    }
-}
-
-// Pass 2: the tiles that hold active voxels write them at the scanned tile offset, in voxel
-// order (a tile without any is skipped by the whole block: no voxel is read).
+// The code of one voxel read on its own (the compaction's second pass and anything that starts
+// from a voxel of the active list): the walk's code() without the reuse or the brick skip. A voxel
+// the walk found active has the same code here.
 template <typename T>
-__global__ void writeTiles(Grid<T> g, const std::uint32_t* tileOffsets, std::uint32_t* activeVoxels,
-                           std::uint16_t* activeCodes) {
-    constexpr int kWarps = tuning::kClassifyBlock / 32;
-    // Two sets of warp counts, alternating between the tiles written: a set is written again
-    // only after the __syncthreads of the tile between, when every thread has read it.
-    __shared__ std::uint32_t warpCounts[2][kWarps];
-    TileWalk<T> walk(g);
-    std::uint32_t written = 0;
-    for (std::uint32_t plane = 0; plane < walk.planes; ++plane) {
-        const std::uint32_t tile = walk.tile(plane);
-        const std::uint32_t first = tileOffsets[tile];
-        if (tileOffsets[tile + 1] == first) {
-            walk.skip();
-            continue;
-        }
-        const std::uint32_t code = walk.code(plane);
-        const unsigned ballot = __ballot_sync(0xffffffffu, code != 0);
-        std::uint32_t* counts = warpCounts[written++ & 1u];
-        const std::uint32_t warp = threadIdx.x / 32;
+__device__ __forceinline__ std::uint32_t voxelCodeAt(const Grid<T>& g, std::uint32_t x,
+                                                     std::uint32_t y, std::uint32_t z) {
+    const bool hasX = int(x) < g.hi.x, hasY = int(y) < g.hi.y, hasZ = int(z) < g.hi.z;
+    const std::size_t sy = g.boxX, sz = std::size_t(g.boxX) * g.boxY;
+    const T* p = g.box + g.boxIndex(x, y, z);
+    const PlaneBits lower = planeBits(p, sy, g.threshold, hasX, hasY);
+    const PlaneBits upper = hasZ ? planeBits(p + sz, sy, g.threshold, hasX, hasY) : PlaneBits{};
+    return voxelCode(lower, upper, hasX, hasY, hasZ);
+}
+
+// The active bitmap: one bit per classified voxel, a 32-bit word per warp of a tile, so word w
+// holds the voxels x = lo.x + 32 * (w % wordsPerRow) + bit of row w / wordsPerRow (rows as the
+// tiles number them). Word order is voxel order, so an exclusive scan of the words' bit counts
+// gives every active voxel its place in the ordered list -- and any voxel's place is two loads
+// (activeSlot), which is how the triangles find their corners' vertices.
+//
+//   row r:  | word r*W+0 | word r*W+1 | ... |   W = wordsPerRow = 8 * tiles per row
+//             x lo..lo+31  lo+32..lo+63
+struct ActiveBitmap {
+    const std::uint32_t* words;
+    const std::uint32_t* offsets; // exclusive scan of the words' popcounts
+    std::uint32_t wordsPerRow;
+
+    __device__ std::uint32_t wordOf(glm::ivec3 lo, std::uint32_t rowsY, std::uint32_t x,
+                                    std::uint32_t y, std::uint32_t z) const {
+        const std::uint32_t row = (z - lo.z) * rowsY + (y - lo.y);
+        return row * wordsPerRow + (x - lo.x) / 32u;
+    }
+    // The place in the active list of an active voxel.
+    __device__ std::uint32_t activeSlot(glm::ivec3 lo, std::uint32_t rowsY, std::uint32_t x,
+                                        std::uint32_t y, std::uint32_t z) const {
+        const std::uint32_t w = wordOf(lo, rowsY, x, y, z);
+        const std::uint32_t bit = (x - lo.x) & 31u;
+        return offsets[w] + __popc(words[w] & ((1u << bit) - 1u));
+    }
+};
+
+// Pass 1 of the compaction: each warp's ballot over its 32 voxels is one word of the bitmap
+// (no shared memory, no barrier).
+template <typename T> __global__ void classifyWords(Grid<T> g, std::uint32_t* activeWords) {
+    constexpr std::uint32_t kWarps = tuning::kClassifyBlock / 32;
+    const TileWalk<T> walk(g);
+    const std::uint32_t warp = threadIdx.x / 32;
+    const bool mayBeActive = walk.mayBeActive();
+    std::uint8_t bits[tuning::kClassifyPlanes + 1] = {};
+    if (mayBeActive)
+        walk.readPlanes(bits);
+    // Word of plane q: the first plane's, one plane of words further per plane.
+    std::uint32_t* word = activeWords + walk.tile(0) * kWarps + warp;
+    const std::uint32_t wordsPerPlane = g.rowsY * gridDim.y * kWarps;
+#pragma unroll
+    for (int plane = 0; plane < tuning::kClassifyPlanes; ++plane) {
+        if (plane >= int(walk.planes))
+            break; // the same for the whole block
+        const bool active = mayBeActive && walk.isActive(bits, plane);
+        const unsigned ballot = __ballot_sync(0xffffffffu, active);
         if (laneIndex() == 0)
-            counts[warp] = __popc(ballot);
-        __syncthreads();
-        if (code != 0) {
-            std::uint32_t rank = __popc(ballot & ((1u << laneIndex()) - 1u));
-            for (std::uint32_t w = 0; w < warp; ++w)
-                rank += counts[w];
-            activeVoxels[first + rank] = walk.index(plane);
-            activeCodes[first + rank] = std::uint16_t(code);
+            *word = ballot;
+        word += wordsPerPlane;
+    }
+}
+
+// Pass 2: the active voxels, their codes and their vertex and triangle counts, in voxel order
+// (entry `count` of the counts is 0, so the exclusive scans end with the totals), as far as
+// `capacity` entries (+ 1 for the counts) go. A
+// warp takes 32 words, one a lane, and visits the non-empty ones together: lane b writes bit b's
+// voxel, so its reads coalesce.
+template <typename T>
+__global__ void writeActive(Grid<T> g, ActiveBitmap bitmap, std::uint32_t wordCount,
+                            std::uint32_t capacity, std::uint32_t* activeVoxels,
+                            std::uint16_t* activeCodes, std::uint32_t* vertexCounts,
+                            std::uint32_t* triangleCounts) {
+    const std::uint32_t lane = laneIndex();
+    const std::uint32_t firstWord = (blockIdx.x * blockDim.x + threadIdx.x) & ~31u;
+    const std::uint32_t mine = firstWord + lane < wordCount ? bitmap.words[firstWord + lane] : 0u;
+    unsigned nonEmpty = __ballot_sync(0xffffffffu, mine != 0);
+    while (nonEmpty) {
+        const int j = __ffs(nonEmpty) - 1;
+        nonEmpty &= nonEmpty - 1;
+        const std::uint32_t bits = __shfl_sync(0xffffffffu, mine, j);
+        if (!(bits & (1u << lane)))
+            continue;
+        const std::uint32_t w = firstWord + std::uint32_t(j);
+        const std::uint32_t row = w / bitmap.wordsPerRow;
+        const std::uint32_t x = g.lo.x + (w % bitmap.wordsPerRow) * 32u + lane;
+        const std::uint32_t y = g.lo.y + row % g.rowsY, z = g.lo.z + row / g.rowsY;
+        const std::uint32_t slot = bitmap.offsets[w] + __popc(bits & ((1u << lane) - 1u));
+        if (slot >= capacity)
+            continue; // the list is too short: the host writes it again, longer
+        const std::uint32_t code = voxelCodeAt(g, x, y, z);
+        activeVoxels[slot] = g.boxIndex(x, y, z);
+        activeCodes[slot] = std::uint16_t(code);
+        vertexCounts[slot] = __popc(code >> 8);
+        triangleCounts[slot] = __ldg(&g_triCount[code & 0xff]);
+        if (slot + 1 == bitmap.offsets[wordCount]) { // the last: the scans' end entry is 0
+            vertexCounts[slot + 1] = 0;
+            triangleCounts[slot + 1] = 0;
         }
     }
 }
 
-// Vertices and triangles per active voxel; entry `count` is 0 so the exclusive scans end with the
-// totals.
-static __global__ void countGeometry(const std::uint16_t* codes, std::uint32_t count,
-                                     std::uint32_t* vertexCounts, std::uint32_t* triangleCounts) {
-    const std::uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
-    if (i > count)
-        return;
-    if (i == count) {
-        vertexCounts[i] = 0;
-        triangleCounts[i] = 0;
-        return;
-    }
-    const std::uint32_t code = codes[i];
-    vertexCounts[i] = __popc(code >> 8);
-    triangleCounts[i] = c_triCount[code & 0xff];
+// totals = {active voxels, vertices, triangles}: what the host needs after the scans, in one
+// place so one copy fetches it. The offsets are read at the active count where the list held it
+// (otherwise they mean nothing: the host writes the list again).
+static __global__ void gatherTotals(const std::uint32_t* activeTotal,
+                                    const std::uint32_t* vertexOffsets,
+                                    const std::uint32_t* triangleOffsets, std::uint32_t capacity,
+                                    std::uint32_t* totals) {
+    const std::uint32_t active = *activeTotal;
+    const std::uint32_t at = active <= capacity ? active : 0u;
+    totals[0] = active;
+    totals[1] = vertexOffsets[at];
+    totals[2] = triangleOffsets[at];
 }
 
 template <typename T>
@@ -351,36 +425,14 @@ __global__ void generateVertices(Grid<T> g, const std::uint32_t* activeVoxels,
     }
 }
 
-// First position in [lo, hi) of `voxels` (ascending) holding a value >= key.
-__device__ __forceinline__ std::uint32_t lowerBound(const std::uint32_t* voxels, std::uint32_t lo,
-                                                    std::uint32_t hi, std::uint32_t key) {
-    while (lo < hi) {
-        const std::uint32_t mid = lo + (hi - lo) / 2;
-        if (voxels[mid] < key)
-            lo = mid + 1;
-        else
-            hi = mid;
-    }
-    return lo;
-}
-
-// rowStart[r] = first position in the ordered active list whose voxel lies in box row r
-// (r = z * boxY + y) or later; entry rows = count. A triangle corner's owning voxel is then found
-// within one row's few active voxels instead of the whole list.
-static __global__ void findRowStarts(const std::uint32_t* activeVoxels, std::uint32_t count,
-                                     std::uint32_t nx, std::uint32_t rows,
-                                     std::uint32_t* rowStart) {
-    const std::uint32_t r = blockIdx.x * blockDim.x + threadIdx.x;
-    if (r > rows)
-        return;
-    rowStart[r] = r == rows ? count : lowerBound(activeVoxels, 0, count, r * nx);
-}
-
-static __global__ void
-generateTriangles(const std::uint32_t* activeVoxels, const std::uint16_t* codes,
-                  const std::uint32_t* vertexOffsets, const std::uint32_t* triangleOffsets,
-                  const std::uint32_t* rowStart, std::uint32_t count, std::uint32_t nx,
-                  std::uint32_t ny, std::uint32_t* indices) {
+// The triangles of each active voxel's cell, their corners the vertices of the edges they cross:
+// an edge's vertex belongs to the edge's owner voxel (this one or a neighbour further on), whose
+// place in the active list the bitmap gives.
+template <typename T>
+__global__ void generateTriangles(Grid<T> g, ActiveBitmap bitmap, const std::uint32_t* activeVoxels,
+                                  const std::uint16_t* codes, const std::uint32_t* vertexOffsets,
+                                  const std::uint32_t* triangleOffsets, std::uint32_t count,
+                                  std::uint32_t* indices) {
     const std::uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
     if (i >= count)
         return;
@@ -388,25 +440,22 @@ generateTriangles(const std::uint32_t* activeVoxels, const std::uint16_t* codes,
     if (cubeCase == 0)
         return;
     const std::uint32_t v = activeVoxels[i];
-    const std::uint32_t row = v / nx;
+    const std::uint32_t x = g.boxOrigin.x + v % g.boxX, y = g.boxOrigin.y + (v / g.boxX) % g.boxY,
+                        z = g.boxOrigin.z + v / (g.boxX * g.boxY);
     std::uint32_t* out = indices + std::size_t(triangleOffsets[i]) * 3;
-    const std::int8_t* table = c_triTable[cubeCase];
-    for (int k = 0; table[k] >= 0; ++k) {
-        const std::int8_t* owner = c_edgeOwner[table[k]];
-        const std::uint32_t ownerVoxel =
-            v + std::uint32_t(owner[0]) +
-            (std::uint32_t(owner[1]) + std::uint32_t(owner[2]) * ny) * nx;
-        // The owner is this voxel or a later one in this row or one of the next rows; it is
-        // active (its edge crosses).
-        std::uint32_t slot = i;
-        if (ownerVoxel != v) {
-            const std::uint32_t ownerRow =
-                row + std::uint32_t(owner[1]) + std::uint32_t(owner[2]) * ny;
-            const std::uint32_t lo = ownerRow == row ? i + 1 : rowStart[ownerRow];
-            slot = lowerBound(activeVoxels, lo, rowStart[ownerRow + 1], ownerVoxel);
-        }
+    const uint4 row = __ldg(&g_triRows[cubeCase]);
+    const std::uint32_t rowWords[4] = {row.x, row.y, row.z, row.w};
+    for (int k = 0; k < 15; ++k) {
+        const int edge = std::int8_t(rowWords[k >> 2] >> (8 * (k & 3)));
+        if (edge < 0)
+            break;
+        const std::uint32_t owner = __ldg(&g_edgeOwnerWord[edge]);
+        const std::uint32_t dx = owner & 0xffu, dy = (owner >> 8) & 0xffu,
+                            dz = (owner >> 16) & 0xffu, axis = owner >> 24;
+        // The owner is active (its edge crosses) and within the classified range.
+        const std::uint32_t slot =
+            (owner & 0xffffffu) == 0 ? i : bitmap.activeSlot(g.lo, g.rowsY, x + dx, y + dy, z + dz);
         const std::uint32_t ownerEdges = codes[slot] >> 8;
-        const int axis = owner[3];
         out[k] = vertexOffsets[slot] + __popc(ownerEdges & ((1u << axis) - 1u));
     }
 }

@@ -116,7 +116,7 @@ CudaStatus RayCastSilhouetteCuda::Impl::prepareTyped(double storedIso, RayCastCu
     MarchingCubesCuda::Impl& m = mc();
     cudaStream_t st = m.stream.get();
     LW_RETURN_IF_FAILED(prepareTimer.start(st));
-    LW_RETURN_IF_FAILED(m.classifyTyped<T>(storedIso));
+    LW_RETURN_IF_FAILED(m.classifyTyped<T>(storedIso, MarchingCubesCuda::Impl::CountWait::Now));
     const std::size_t macroCount =
         std::size_t(macroDims.x) * std::size_t(macroDims.y) * std::size_t(macroDims.z);
     rc::macroOccupancy<T><<<blocksFor(macroCount, 128), 128, 0, st>>>(

@@ -8,9 +8,10 @@ namespace lw::kernels::cuda::tuning {
 // Marching cubes: one classification tile is one block of threads, one voxel each; x fastest,
 // so a tile is a run of a voxel row and its reads coalesce.
 inline constexpr int kClassifyBlock = 256;
-// Slices a classification block walks up along z (one tile each): fewer, longer blocks, and each
-// slice's corner bits serve two voxels. At most 32 (countTiles sums one plane per thread).
-inline constexpr int kClassifyPlanes = 8;
+// Slices a classification block walks up along z (one tile each): fewer, longer blocks, each
+// slice's corner bits serve two voxels, and a thread's reads of all of them are in flight at once.
+// Must divide kSkipBrickCells (a block's planes then lie in one layer of skip bricks).
+inline constexpr int kClassifyPlanes = 16;
 // Cells per brick edge of the min/max skip grid (a power of two: voxel -> brick is a shift).
 inline constexpr int kSkipBrickShift = 4;
 inline constexpr int kSkipBrickCells = 1 << kSkipBrickShift;
