@@ -4,6 +4,7 @@
 // shared data.
 #include "lw/input/open_input.h"
 #include "lw/render/iso_surface.h"
+#include "lw/render/surface_sampling.h"
 #include "lw/volume/slice_contour.h"
 #include "lw/volume/slice_plane.h"
 #include "slice_cut.h"
@@ -17,6 +18,15 @@
 namespace lw::volume {
 namespace {
 
+// Inside the voxel centres by at least `margin` voxels.
+bool awayFromBorder(const Volume& volume, glm::dvec3 patient, double margin) {
+    const glm::dvec3 ijk = volume.geometry().patientToIndex(patient);
+    for (int a = 0; a < 3; ++a)
+        if (ijk[a] < margin || ijk[a] > volume.dims()[a] - 1 - margin)
+            return false;
+    return true;
+}
+
 class TiltedGeSeries : public ::testing::Test {
 protected:
     static void SetUpTestSuite() {
@@ -29,13 +39,8 @@ protected:
     }
     static const Volume& volume() { return *s_volume; }
 
-    // Inside the voxel centres by at least `margin` voxels (an axis of one voxel counts as inside).
     static bool awayFromBorder(glm::dvec3 patient, double margin) {
-        const glm::dvec3 ijk = volume().geometry().patientToIndex(patient);
-        for (int a = 0; a < 3; ++a)
-            if (ijk[a] < margin || ijk[a] > volume().dims()[a] - 1 - margin)
-                return false;
-        return true;
+        return volume::awayFromBorder(volume(), patient, margin);
     }
 
     static Volume* s_volume;
@@ -103,39 +108,54 @@ TEST_F(TiltedGeSeries, ContourEqualsTheMarchingCubesCutWithinHalfTheSmallestSpac
                 all[all.size() * 99 / 100]);
 }
 
+// Surface points (marching-cubes vertices of `surfaceVolume` at `iso`) against the axial
+// contour of the same volume through each, on `axial`'s pixels: the share within 1 mm, and the
+// largest distance.
+// A marching-cubes vertex lies on the trilinear surface, so the contour passes through it up to
+// the interpolation between pixels, except where the surface grazes the plane or the vertex sits
+// on a bump narrower than a pixel (a voxel that just reaches the iso-value between pixel
+// centres, which the image does not sample): nearly all points.
+void expectSurfacePointsOnTheAxialContour(const Volume& surfaceVolume, const SliceGeometry& axial,
+                                          double iso, const std::string& what) {
+    const render::Mesh mesh = render::extractIsoSurface(surfaceVolume, iso);
+    ASSERT_GT(mesh.vertexCount(), 1000u) << what;
+    // About 300 vertices spread over the surface (every n-th of the vertices, which marching
+    // cubes orders by edge, so through the whole volume), away from the border.
+    const std::size_t stride = mesh.vertexCount() / 300;
+    int checked = 0, within = 0;
+    double largest = 0.0;
+    for (std::size_t v = stride / 2; v < mesh.vertexCount(); v += stride) {
+        const glm::dvec3 point(mesh.positions[v]);
+        if (!awayFromBorder(surfaceVolume, point, 1.0))
+            continue;
+        const SliceImage image = sampleSlice(surfaceVolume, axial, axial.positionOf(point));
+        const test::SegmentGrid contour(isoContour(image, iso), 2.0);
+        const double distanceMm =
+            contour.distance(axial.pixelOf(point), 10.0 / axial.pixelMm) * axial.pixelMm;
+        largest = std::max(largest, distanceMm);
+        within += distanceMm <= 1.0;
+        ++checked;
+    }
+    EXPECT_GT(checked, 200) << what;
+    EXPECT_GE(double(within) / checked, 0.98) << what;
+    std::printf("%s: %d of %d surface points within 1 mm of the axial contour, the largest "
+                "distance %.3f mm\n",
+                what.c_str(), within, checked, largest);
+}
+
+// The volume as loaded (the trilinear field), and the copy the review draws for this series
+// (render::volumeToRender: the shape-based field across its thick slices) sampled on the
+// original's pixels, as the slice panels should contour it so that the surface and the contour
+// are one field's.
 TEST_F(TiltedGeSeries, SurfacePointLiesWithinOneMillimetreOfTheAxialContourThroughIt) {
     for (double iso : kIsoValues) {
-        const render::Mesh mesh = render::extractIsoSurface(volume(), iso);
-        ASSERT_GT(mesh.vertexCount(), 1000u);
+        const std::string hu = std::to_string(int(iso)) + " HU";
         const SliceGeometry axial = sliceGeometry(volume(), SliceOrientation::Axial);
-        // A marching-cubes vertex lies on the trilinear surface, so the contour passes through it
-        // up to the interpolation between pixels, except where the surface grazes the plane or
-        // the vertex sits on a bump narrower than a pixel (a voxel that just reaches the
-        // iso-value between pixel centres, which the image does not sample): nearly all points.
-        // About 300 vertices spread over the surface (every n-th of the vertices, which marching
-        // cubes orders by edge, so through the whole volume), away from the border.
-        const std::size_t stride = mesh.vertexCount() / 300;
-        int checked = 0, within = 0;
-        double largest = 0.0;
-        for (std::size_t v = stride / 2; v < mesh.vertexCount(); v += stride) {
-            const glm::dvec3 point(mesh.positions[v]);
-            if (!awayFromBorder(point, 1.0))
-                continue;
-            const double position = axial.positionOf(point);
-            const SliceImage image = sampleSlice(volume(), axial, position);
-            const test::SegmentGrid contour(isoContour(image, iso), 2.0);
-            const double distanceMm =
-                contour.distance(axial.pixelOf(point), 10.0 / axial.pixelMm) * axial.pixelMm;
-            largest = std::max(largest, distanceMm);
-            within += distanceMm <= 1.0;
-            ++checked;
-        }
-        EXPECT_GT(checked, 200) << iso << " HU";
-        EXPECT_GE(double(within) / checked, 0.98) << iso << " HU";
-        RecordProperty("largest_distance_mm_" + std::to_string(int(iso)), std::to_string(largest));
-        std::printf("iso %.0f HU: %d of %d surface points within 1 mm of the axial contour, the "
-                    "largest distance %.3f mm\n",
-                    iso, within, checked, largest);
+        expectSurfacePointsOnTheAxialContour(volume(), axial, iso, "as loaded, " + hu);
+        const std::optional<Volume> drawn =
+            render::oversampledToRender(volume(), render::VolumeSampling{}, iso);
+        ASSERT_TRUE(drawn) << "the GE series' slices are thick: the review draws a copy";
+        expectSurfacePointsOnTheAxialContour(*drawn, axial, iso, "as drawn, " + hu);
     }
 }
 
