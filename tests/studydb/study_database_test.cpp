@@ -370,6 +370,29 @@ private slots:
                  QStringLiteral("2026-11-24T09:12:40Z")); // the user's save time, kept
     }
 
+    // A migration that fails half-way (here: the second document's rewrite refused by a trigger)
+    // leaves the file as the older Linework wrote it, version and rows.
+    void failedMigrationLeavesTheFileAsItWas() {
+        test::loadSqlScript(dbPath(),
+                            QStringLiteral(LINEWORK_STUDYDB_TEST_DATA "/studies_schema_v2.sql"));
+        test::execRaw(dbPath(), QStringLiteral("CREATE TRIGGER refuse_second BEFORE UPDATE ON "
+                                               "series_annotations WHEN old.series_uid LIKE '%.2' "
+                                               "BEGIN SELECT RAISE(ABORT, 'disk full'); END"));
+        const QStringList before = test::snapshot(dbPath());
+        try {
+            StudyDatabase db(dbPath());
+            QFAIL("the migration did not fail");
+        } catch (const core::Error& error) {
+            QVERIFY2(QString::fromStdString(error.reason()).contains(QStringLiteral("disk full")),
+                     error.what());
+        }
+        QCOMPARE(test::userVersion(dbPath()), 2);
+        QCOMPARE(test::snapshot(dbPath()), before); // the first document not rewritten either
+        test::execRaw(dbPath(), QStringLiteral("DROP TRIGGER refuse_second"));
+        StudyDatabase db(dbPath()); // and it migrates once it can
+        QCOMPARE(db.schemaVersion(), StudyDatabase::kSchemaVersion);
+    }
+
     // What the review saves for a ruler on a slice comes back as a ruler on that slice.
     void sliceAnnotationsAreStored() {
         annotation::Annotation onSlice{
