@@ -39,8 +39,8 @@ enum class AnnotationKind {
 // until that header is in the tree, then replaced by `using volume::SliceOrientation;` and
 // using-declarations of its two functions below, which have the same names and signatures.
 enum class SliceOrientation { Axial, Coronal, Sagittal };
-std::string_view
-sliceOrientationName(SliceOrientation orientation); // "axial" | "coronal" | "sagittal"
+// "axial", "coronal", "sagittal": the names in the JSON files and the report.
+std::string_view sliceOrientationName(SliceOrientation orientation);
 std::optional<SliceOrientation> parseSliceOrientation(std::string_view name);
 
 // A slice position is a patient coordinate along the plane's normal:
