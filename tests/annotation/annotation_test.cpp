@@ -190,6 +190,13 @@ TEST(SliceAnnotation, PlanesAndPositionsFollowLps) {
     EXPECT_EQ(slicePositionOf(SliceOrientation::Axial, point), 7.0);
     EXPECT_EQ(slicePositionOf(SliceOrientation::Coronal, point), -2.5);
     EXPECT_EQ(slicePositionOf(SliceOrientation::Sagittal, point), 1.5);
+    // Onto a slice: only the coordinate along the plane's normal changes.
+    EXPECT_EQ(pointOnSlice({SliceOrientation::Axial, 118.5, 5.0}, point),
+              glm::dvec3(1.5, -2.5, 118.5));
+    EXPECT_EQ(pointOnSlice({SliceOrientation::Coronal, 40.0, 1.0}, point),
+              glm::dvec3(1.5, 40.0, 7.0));
+    EXPECT_EQ(pointOnSlice({SliceOrientation::Sagittal, -3.0, 1.0}, point),
+              glm::dvec3(-3.0, -2.5, 7.0));
 }
 
 TEST(SliceAnnotation, MeasurementNamesThePlaneAndPosition) {

@@ -76,6 +76,21 @@ double slicePositionOf(SliceOrientation orientation, const glm::dvec3& patient) 
     return patient.z;
 }
 
+glm::dvec3 pointOnSlice(const SlicePlacement& slice, glm::dvec3 patient) {
+    switch (slice.orientation) {
+    case SliceOrientation::Axial:
+        patient.z = slice.positionMm;
+        break;
+    case SliceOrientation::Coronal:
+        patient.y = slice.positionMm;
+        break;
+    case SliceOrientation::Sagittal:
+        patient.x = slice.positionMm;
+        break;
+    }
+    return patient;
+}
+
 namespace {
 
 void validatePlacement(const Annotation& annotation, const std::string& subject) {

@@ -73,6 +73,11 @@ int anchorCount(AnnotationKind kind);
 const char* kindName(AnnotationKind kind);
 std::optional<AnnotationKind> parseKind(std::string_view name);
 
+// The point moved along the plane's normal onto the slice: where an anchor of an annotation
+// placed on that slice goes when it is dragged in a 3D panel, so it stays on its plane (validate
+// refuses anchors further than half the spacing from it).
+glm::dvec3 pointOnSlice(const SlicePlacement& slice, glm::dvec3 patient);
+
 // Throws core::Error(subject, reason) when the anchors do not fit the kind, an anchor is not
 // finite, a label has no text, or a slice placement has a position that is not finite, a
 // spacing that is not positive, or an anchor further than half its spacing from its plane.
