@@ -120,6 +120,29 @@ TEST(ExportCommand, HiddenLinesAndLineStyle) {
     EXPECT_FALSE(std::filesystem::exists(dir / "x.png"));
 }
 
+// An annotation file of version 2 with a ruler on an axial slice: its caption names the plane.
+// A file from a newer Linework is refused, naming the file and its version.
+TEST(ExportCommand, SliceAnnotationsAndNewerFiles) {
+    test::TempDir dir;
+    writeText(dir / "notes.json", R"({"version": 2, "annotations": [
+  {"type": "ruler", "points": [[-20, 0, 2.5], [20, 0, 2.5]],
+   "slice": {"plane": "axial", "position": 2.5, "spacing": 1.25}}]})");
+    const test::CliResult slice =
+        runCli(exportArguments(dir, "--svg " + quoted((dir / "a.svg").string())));
+    ASSERT_EQ(slice.exitCode, 0) << slice.out << slice.err;
+    EXPECT_NE(core::readFileText(dir / "a.svg").find(">40.0 mm \u00b7 axial 2.5 mm</text>"),
+              std::string::npos);
+    writeText(dir / "notes.json", R"({"version": 3, "annotations": []})");
+    const test::CliResult newer =
+        runCli(exportArguments(dir, "--svg " + quoted((dir / "b.svg").string())));
+    EXPECT_EQ(newer.exitCode, 1);
+    EXPECT_NE(newer.err.find((dir / "notes.json").string() +
+                             ": version 3 is not supported: a newer Linework wrote it"),
+              std::string::npos)
+        << newer.err;
+    EXPECT_FALSE(std::filesystem::exists(dir / "b.svg"));
+}
+
 TEST(ExportCommand, UsageErrors) {
     EXPECT_EQ(runCli("export phantom:32:sphere --iso 300").exitCode, 2);   // no output
     EXPECT_EQ(runCli("export --png x.png").exitCode, 2);                   // no input

@@ -125,6 +125,49 @@ TEST(ReportImage, SvgHoldsTheRasterAndVectorAnnotations) {
     EXPECT_TRUE(svg.trimmed().endsWith("</svg>"));
 }
 
+// A ruler placed on a slice shows in the 3D panels too (its points are patient points), its
+// caption naming the plane.
+TEST(ReportImage, SliceMeasurementsNameTheirPlaneInTheExports) {
+    test::ensureGuiApplication();
+    const annotation::Annotation ruler = test::sphereSliceRuler();
+    const std::string caption = annotation::measurementText(ruler);
+    EXPECT_EQ(caption, "40.0 mm \u00b7 " + annotation::placementText(ruler));
+    const QString svg = QString::fromUtf8(report::renderSvg(
+        test::renderSphereReview(kWindowPanel), {ruler}, report::PanelLayout::SideBySide));
+    EXPECT_EQ(svg.count(">" + QString::fromStdString(caption) + "</text>"), 2) << caption;
+}
+
+// A slice panel shows the annotations of its slice and of slices within half a spacing, and
+// none of another slice; the caption is drawn beside the ruler.
+TEST(ReportImage, SliceAnnotationsBurnIntoTheirSliceOnly) {
+    test::ensureGuiApplication();
+    const annotation::Annotation ruler = test::sphereSliceRuler();
+    const glm::dvec3 centre = test::sphereReview().sphere.centre;
+    report::SliceView view;
+    view.orientation = annotation::SliceOrientation::Axial;
+    view.spacingMm = 2.0;
+    view.toPixel = [&](const glm::dvec3& p) { // 4 px/mm around the sphere's centre
+        // (on a row's centre, so the one-pixel line is not split between two rows)
+        return glm::dvec2(128.0 + 4.0 * (p.x - centre.x), 128.5 + 4.0 * (p.y - centre.y));
+    };
+    const auto annotationPixels = [&](double position) {
+        QImage panel(256, 256, QImage::Format_ARGB32_Premultiplied);
+        panel.fill(Qt::black);
+        view.positionMm = position;
+        report::burnInSliceAnnotations(panel, {ruler}, view);
+        int count = 0;
+        for (int y = 0; y < panel.height(); ++y)
+            for (int x = 0; x < panel.width(); ++x)
+                count += isAnnotationColour(panel.pixel(x, y)) ? 1 : 0;
+        return count;
+    };
+    const int onItsSlice = annotationPixels(centre.z);
+    EXPECT_GT(onItsSlice, 50); // the 160 px line (partly under its caption's halo), ticks, text
+    EXPECT_EQ(annotationPixels(centre.z + 0.9), onItsSlice); // within half a spacing
+    EXPECT_EQ(annotationPixels(centre.z + 2.0), 0);          // the next slice
+    EXPECT_EQ(annotationPixels(centre.z - 2.0), 0);
+}
+
 // With the silhouette's visible polylines the exports carry it as vectors: paths in the SVG (one
 // per polyline, over a raster whose silhouette panel is blank), antialiased strokes in the
 // picture where the raster lines were.

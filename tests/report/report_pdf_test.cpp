@@ -103,6 +103,26 @@ TEST(ReportPdf, PagesAreNotBlank) {
     EXPECT_GT(second, 200) << "page 2: the table and the comment";
 }
 
+// The measurement list names the plane and position of a measurement made on a slice.
+TEST(ReportPdf, SliceMeasurementsNameTheirPlane) {
+    test::ensureGuiApplication();
+    test::TempDir dir;
+    // The longest a measurement gets: an angle on a sagittal slice at a negative position.
+    annotation::Annotation angle{
+        annotation::AnnotationKind::Angle, {{-123.4, 5, 0}, {-123.4, 0, 0}, {-123.4, 0, 5}}, {}};
+    angle.slice = annotation::SlicePlacement{annotation::SliceOrientation::Sagittal, -123.4, 0.7};
+    const std::vector<annotation::Annotation> annotations = {test::sphereSliceRuler(), angle};
+    const auto path = dir / "slice.pdf";
+    report::writeExportFile(path, report::renderPdfReport(sampleInfo(), QImage(), annotations),
+                            core::Overwrite::Refuse);
+    const std::string text = run("pdftotext", test::quoted(path.string()) + " -");
+    EXPECT_EQ(annotation::measurementText(angle), "90.0\u00b0 \u00b7 sagittal -123.4 mm");
+    for (const annotation::Annotation& item : annotations) { // each on one line of its cell
+        const std::string expected = annotation::measurementText(item);
+        EXPECT_NE(text.find(expected), std::string::npos) << expected << " missing in:\n" << text;
+    }
+}
+
 // A long table is not cut off: it continues on further pages with the table's header row again,
 // and every page's footer counts them all.
 TEST(ReportPdf, ManyAnnotationsContinueOnFurtherPages) {

@@ -69,4 +69,14 @@ inline std::vector<annotation::Annotation> sphereAnnotations() {
     };
 }
 
+// A ruler across the sphere on the axial slice through its centre (slices 2 mm apart), as the
+// slice tools place it: "40.0 mm · axial Z mm" with Z the centre's z.
+inline annotation::Annotation sphereSliceRuler() {
+    const KnownSphere& s = sphereReview().sphere;
+    const glm::dvec3 c = s.centre, x{s.radius, 0, 0};
+    annotation::Annotation ruler{annotation::AnnotationKind::Ruler, {c - x, c + x}, {}};
+    ruler.slice = annotation::SlicePlacement{annotation::SliceOrientation::Axial, c.z, 2.0};
+    return ruler;
+}
+
 } // namespace lw::test

@@ -1,7 +1,9 @@
 // Study database and importer on synthetic series: schema and versions (a version 1 file
-// migrated), upsert on re-import, filter, remove, cancel (before and during the write), warnings
-// and file errors, annotations per series.
+// migrated; a version 2 file's annotation documents migrated; a newer file refused), upsert on
+// re-import, filter, remove, cancel (before and during the write), warnings and file errors,
+// annotations per series.
 
+#include "lw/annotation/annotation_json.h"
 #include "lw/core/error.h"
 #include "lw/studydb/study_database.h"
 #include "lw/studydb/study_importer.h"
@@ -14,6 +16,7 @@
 #include <QStandardPaths>
 #include <QTemporaryDir>
 #include <QTest>
+#include <algorithm>
 #include <mutex>
 
 using namespace lw;
@@ -43,6 +46,21 @@ private:
         item.files = {QStringLiteral("/nowhere/%1.dcm").arg(uid)};
         item.sopInstanceUids = {uid + QStringLiteral(".1")};
         return item;
+    }
+
+    // The same annotations, all placed in 3D.
+    static void compareIn3D(const std::vector<annotation::Annotation>& read,
+                            const std::vector<annotation::Annotation>& expected) {
+        QCOMPARE(read.size(), expected.size());
+        for (std::size_t i = 0; i < read.size(); ++i) {
+            QVERIFY(read[i].kind == expected[i].kind);
+            QVERIFY(read[i].anchors == expected[i].anchors);
+            QCOMPARE(QString::fromStdString(read[i].text),
+                     QString::fromStdString(expected[i].text));
+            QVERIFY(!read[i].slice);
+            QCOMPARE(QString::fromStdString(annotation::measurementText(read[i])),
+                     QString::fromStdString(annotation::measurementText(expected[i])));
+        }
     }
 
 private slots:
@@ -76,17 +94,35 @@ private slots:
         QVERIFY(QFileInfo(path).absoluteDir().exists());
     }
 
+    void newerSchemaIsRefused_data() {
+        QTest::addColumn<int>("version");
+        QTest::newRow("the next version") << StudyDatabase::kSchemaVersion + 1;
+        QTest::newRow("far in the future") << 99;
+    }
+
+    // A database from a newer Linework is refused and left exactly as it was.
     void newerSchemaIsRefused() {
-        { StudyDatabase db(dbPath()); }
-        test::execRaw(dbPath(), QStringLiteral("PRAGMA user_version = 99"));
+        QFETCH(int, version);
+        {
+            StudyDatabase db(dbPath());
+            db.setSeriesAnnotations(QStringLiteral("1.2.3"), QStringLiteral("{\"version\": 9}"));
+        }
+        test::execRaw(dbPath(), QStringLiteral("PRAGMA user_version = %1").arg(version));
+        const QStringList before = test::snapshot(dbPath());
         try {
             StudyDatabase db(dbPath());
             QFAIL("a newer schema was accepted");
         } catch (const core::Error& error) {
             QCOMPARE(QString::fromStdString(error.subject()), dbPath());
-            QVERIFY2(QString::fromStdString(error.reason()).contains(QStringLiteral("newer")),
+            QVERIFY2(QString::fromStdString(error.reason())
+                         .contains(QStringLiteral("schema version %1, newer than this Linework "
+                                                  "understands (%2)")
+                                       .arg(version)
+                                       .arg(StudyDatabase::kSchemaVersion)),
                      error.what());
         }
+        QCOMPARE(test::snapshot(dbPath()), before);
+        QCOMPARE(test::userVersion(dbPath()), version);
     }
 
     void notADatabaseIsRefused() {
@@ -271,6 +307,112 @@ private slots:
         QCOMPARE(again.schemaVersion(), StudyDatabase::kSchemaVersion);
         QCOMPARE(again.seriesAnnotations(bone), std::optional<QString>(QStringLiteral("{}")));
         QCOMPARE(again.seriesCount(), 2);
+    }
+
+    // A schema 2 file (annotation documents of file version 1) opened by schema 3: every row of
+    // the index as it was, each document rewritten as file version 2 holding the same
+    // annotations, placed in 3D; the user's save times kept.
+    void migrationFromVersion2KeepsTheAnnotations() {
+        test::loadSqlScript(dbPath(),
+                            QStringLiteral(LINEWORK_STUDYDB_TEST_DATA "/studies_schema_v2.sql"));
+        // A document an older Linework could store but nothing reads: kept as it is.
+        test::execRaw(dbPath(), QStringLiteral("INSERT INTO series_annotations VALUES"
+                                               "('9.9.9', 'not JSON', '2026-11-24T10:00:00Z')"));
+        const QStringList before = test::snapshot(dbPath());
+        QCOMPARE(before.size(), 15); // the 12 rows of version 1 and 3 annotation documents
+        const QString bone = QStringLiteral("1.2.826.0.1.3680043.10.1001.1");
+        const QString soft = QStringLiteral("1.2.826.0.1.3680043.10.1001.2");
+        {
+            StudyDatabase db(dbPath());
+            QCOMPARE(db.schemaVersion(), StudyDatabase::kSchemaVersion);
+        }
+        QCOMPARE(test::userVersion(dbPath()), 3);
+        const QStringList after = test::snapshot(dbPath());
+        QCOMPARE(after.size(), before.size());
+        for (int i = 0; i < before.size(); ++i) {
+            if (before[i].startsWith(QStringLiteral("series_annotations|")))
+                continue;
+            QCOMPARE(after[i], before[i]); // the index untouched
+        }
+        StudyDatabase db(dbPath());
+        QCOMPARE(db.seriesAnnotations(QStringLiteral("9.9.9")),
+                 std::optional<QString>(QStringLiteral("not JSON")));
+        struct Expected {
+            QString uid;
+            std::vector<annotation::Annotation> annotations;
+        };
+        const std::vector<Expected> expected = {
+            {bone,
+             {{annotation::AnnotationKind::Ruler, {{-35.6, -82.1, 54.1}, {75.2, 17.1, 48.9}}, {}},
+              {annotation::AnnotationKind::Label, {{-11.4, -42.8, 2.1}}, "Orbit"},
+              {annotation::AnnotationKind::Angle,
+               {{-58.4, -44.7, 2.7}, {51.1, -60.1, -4.7}, {75.2, 17.1, 48.9}},
+               {}}}},
+            {soft,
+             {{annotation::AnnotationKind::Arrow,
+               {{60.0, -80.0, 150.0}, {7.3, -36.3, 109.3}},
+               "Slice step"}}},
+        };
+        for (const Expected& series : expected) {
+            const std::optional<QString> json = db.seriesAnnotations(series.uid);
+            QVERIFY(json);
+            QVERIFY2(json->contains(QStringLiteral("\"version\": 2")), qPrintable(*json));
+            compareIn3D(annotation::parseAnnotationsJson(json->toStdString(), "migrated"),
+                        series.annotations);
+            if (QTest::currentTestFailed())
+                return;
+        }
+        const QString boneRow = QStringLiteral("series_annotations|") + bone + QLatin1Char('|');
+        const auto row = std::find_if(after.begin(), after.end(),
+                                      [&](const QString& r) { return r.startsWith(boneRow); });
+        QVERIFY(row != after.end());
+        QCOMPARE(row->section(QLatin1Char('|'), -1),
+                 QStringLiteral("2026-11-24T09:12:40Z")); // the user's save time, kept
+    }
+
+    // A migration that fails half-way (here: the second document's rewrite refused by a trigger)
+    // leaves the file as the older Linework wrote it, version and rows.
+    void failedMigrationLeavesTheFileAsItWas() {
+        test::loadSqlScript(dbPath(),
+                            QStringLiteral(LINEWORK_STUDYDB_TEST_DATA "/studies_schema_v2.sql"));
+        test::execRaw(dbPath(), QStringLiteral("CREATE TRIGGER refuse_second BEFORE UPDATE ON "
+                                               "series_annotations WHEN old.series_uid LIKE '%.2' "
+                                               "BEGIN SELECT RAISE(ABORT, 'disk full'); END"));
+        const QStringList before = test::snapshot(dbPath());
+        try {
+            StudyDatabase db(dbPath());
+            QFAIL("the migration did not fail");
+        } catch (const core::Error& error) {
+            QVERIFY2(QString::fromStdString(error.reason()).contains(QStringLiteral("disk full")),
+                     error.what());
+        }
+        QCOMPARE(test::userVersion(dbPath()), 2);
+        QCOMPARE(test::snapshot(dbPath()), before); // the first document not rewritten either
+        test::execRaw(dbPath(), QStringLiteral("DROP TRIGGER refuse_second"));
+        StudyDatabase db(dbPath()); // and it migrates once it can
+        QCOMPARE(db.schemaVersion(), StudyDatabase::kSchemaVersion);
+    }
+
+    // What the review saves for a ruler on a slice comes back as a ruler on that slice.
+    void sliceAnnotationsAreStored() {
+        annotation::Annotation onSlice{
+            annotation::AnnotationKind::Ruler, {{0, 0, 118.5}, {42.3, 0, 118.5}}, {}};
+        onSlice.slice = annotation::SlicePlacement{annotation::SliceOrientation::Axial, 118.5, 5.0};
+        const QString uid = QStringLiteral("1.2.3");
+        {
+            StudyDatabase db(dbPath());
+            db.setSeriesAnnotations(
+                uid, QString::fromStdString(annotation::annotationsToJson({onSlice})));
+        }
+        StudyDatabase again(dbPath());
+        const auto stored =
+            annotation::parseAnnotationsJson(again.seriesAnnotations(uid)->toStdString(), "stored");
+        QCOMPARE(stored.size(), std::size_t(1));
+        QVERIFY(stored[0].slice);
+        QVERIFY(stored[0].slice->orientation == annotation::SliceOrientation::Axial);
+        QCOMPARE(stored[0].slice->spacingMm, 5.0);
+        QCOMPARE(QString::fromStdString(annotation::measurementText(stored[0])),
+                 QStringLiteral("42.3 mm \u00b7 axial 118.5 mm"));
     }
 
     void cancelLeavesTheDatabaseUnchanged_data() {

@@ -89,6 +89,14 @@ void execRaw(const QString& databasePath, const QString& sql) {
         throw std::runtime_error(query.lastError().text().toStdString());
 }
 
+int userVersion(const QString& databasePath) {
+    RawConnection connection(databasePath);
+    QSqlQuery query(connection.db());
+    if (!query.exec(QStringLiteral("PRAGMA user_version")) || !query.next())
+        throw std::runtime_error("cannot read the user version of " + databasePath.toStdString());
+    return query.value(0).toInt();
+}
+
 void loadSqlScript(const QString& databasePath, const QString& scriptPath) {
     QFile script(scriptPath);
     if (!script.open(QIODevice::ReadOnly | QIODevice::Text))

@@ -29,6 +29,10 @@ QStringList snapshot(const QString& databasePath);
 // Runs one SQL statement on the file through its own connection (to fake old or new files).
 void execRaw(const QString& databasePath, const QString& sql);
 
+// PRAGMA user_version of the file, read through its own connection (not StudyDatabase, which
+// would migrate it).
+int userVersion(const QString& databasePath);
+
 // Runs an SQL script of one statement per line ("--" lines are comments) through one
 // connection: a database file as an older Linework wrote it (tests/studydb/data).
 void loadSqlScript(const QString& databasePath, const QString& scriptPath);

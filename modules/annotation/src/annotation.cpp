@@ -44,6 +44,76 @@ std::optional<AnnotationKind> parseKind(std::string_view name) {
     return std::nullopt;
 }
 
+std::string_view sliceOrientationName(SliceOrientation orientation) {
+    switch (orientation) {
+    case SliceOrientation::Axial:
+        return "axial";
+    case SliceOrientation::Coronal:
+        return "coronal";
+    case SliceOrientation::Sagittal:
+        return "sagittal";
+    }
+    return "?";
+}
+
+std::optional<SliceOrientation> parseSliceOrientation(std::string_view name) {
+    for (SliceOrientation orientation :
+         {SliceOrientation::Axial, SliceOrientation::Coronal, SliceOrientation::Sagittal})
+        if (name == sliceOrientationName(orientation))
+            return orientation;
+    return std::nullopt;
+}
+
+double slicePositionOf(SliceOrientation orientation, const glm::dvec3& patient) {
+    switch (orientation) {
+    case SliceOrientation::Axial:
+        return patient.z;
+    case SliceOrientation::Coronal:
+        return patient.y;
+    case SliceOrientation::Sagittal:
+        return patient.x;
+    }
+    return patient.z;
+}
+
+glm::dvec3 pointOnSlice(const SlicePlacement& slice, glm::dvec3 patient) {
+    switch (slice.orientation) {
+    case SliceOrientation::Axial:
+        patient.z = slice.positionMm;
+        break;
+    case SliceOrientation::Coronal:
+        patient.y = slice.positionMm;
+        break;
+    case SliceOrientation::Sagittal:
+        patient.x = slice.positionMm;
+        break;
+    }
+    return patient;
+}
+
+namespace {
+
+void validatePlacement(const Annotation& annotation, const std::string& subject) {
+    const SlicePlacement& slice = *annotation.slice;
+    if (!std::isfinite(slice.positionMm))
+        throw core::Error(subject, "the slice's position is not a finite number");
+    if (!(slice.spacingMm > 0.0) || !std::isfinite(slice.spacingMm))
+        throw core::Error(subject, "the slice's spacing is not a positive number");
+    for (const glm::dvec3& anchor : annotation.anchors) {
+        const double offset =
+            std::abs(slicePositionOf(slice.orientation, anchor) - slice.positionMm);
+        if (offset > 0.5 * slice.spacingMm) {
+            char reason[160];
+            std::snprintf(reason, sizeof reason,
+                          "a point lies %g mm from its %s slice, more than half the spacing",
+                          offset, std::string(sliceOrientationName(slice.orientation)).c_str());
+            throw core::Error(subject, reason);
+        }
+    }
+}
+
+} // namespace
+
 void validate(const Annotation& annotation, const std::string& subject) {
     const int expected = anchorCount(annotation.kind);
     if (int(annotation.anchors.size()) != expected)
@@ -56,6 +126,21 @@ void validate(const Annotation& annotation, const std::string& subject) {
             throw core::Error(subject, "a point is not a finite number");
     if (annotation.kind == AnnotationKind::Label && annotation.text.empty())
         throw core::Error(subject, "a label needs a text");
+    if (annotation.slice)
+        validatePlacement(annotation, subject);
+}
+
+bool showsOnSlice(const Annotation& annotation, SliceOrientation orientation, double positionMm,
+                  double spacingMm) {
+    if (annotation.slice && annotation.slice->orientation != orientation)
+        return false;
+    const double low = positionMm - 0.5 * spacingMm;
+    const double high = positionMm + 0.5 * spacingMm;
+    return std::all_of(annotation.anchors.begin(), annotation.anchors.end(),
+                       [&](const glm::dvec3& anchor) {
+                           const double position = slicePositionOf(orientation, anchor);
+                           return position >= low && position < high;
+                       });
 }
 
 double rulerLengthMm(const Annotation& ruler) {
@@ -72,13 +157,27 @@ double angleDegrees(const Annotation& angle) {
     return glm::degrees(std::atan2(glm::length(glm::cross(a, b)), glm::dot(a, b)));
 }
 
+std::string placementText(const Annotation& annotation) {
+    if (!annotation.slice)
+        return {};
+    char text[64];
+    std::snprintf(text, sizeof text, "%s %.1f mm",
+                  std::string(sliceOrientationName(annotation.slice->orientation)).c_str(),
+                  annotation.slice->positionMm);
+    return text;
+}
+
 std::string measurementText(const Annotation& annotation) {
     char text[64] = "";
     if (annotation.kind == AnnotationKind::Ruler)
         std::snprintf(text, sizeof text, "%.1f mm", rulerLengthMm(annotation));
     else if (annotation.kind == AnnotationKind::Angle)
         std::snprintf(text, sizeof text, "%.1f\u00b0", angleDegrees(annotation));
-    return text;
+    const std::string measurement = text;
+    const std::string placement = placementText(annotation);
+    if (placement.empty() || measurement.empty())
+        return measurement + placement;
+    return measurement + " \u00b7 " + placement; // a middle dot between value and plane
 }
 
 } // namespace lw::annotation

@@ -5,7 +5,9 @@
 #include "lw/core/json_reader.h"
 #include "lw/core/json_writer.h"
 
+#include <cmath>
 #include <cstdio>
+#include <utility>
 
 namespace lw::annotation {
 namespace {
@@ -44,7 +46,38 @@ glm::dvec3 readPoint(const JsonValue& value, const Place& place) {
     return point;
 }
 
-Annotation readAnnotation(const JsonValue& value, const Place& place) {
+SlicePlacement readSlicePlacement(const JsonValue& value, const Place& place) {
+    SlicePlacement slice;
+    const JsonValue* plane = nullptr;
+    const JsonValue* position = nullptr;
+    const JsonValue* spacing = nullptr;
+    for (const auto& [name, member] : require(value, JsonValue::Type::Object, place).object()) {
+        if (name == "plane")
+            plane = &require(member, JsonValue::Type::String, place.member(name));
+        else if (name == "position")
+            position = &require(member, JsonValue::Type::Number, place.member(name));
+        else if (name == "spacing")
+            spacing = &require(member, JsonValue::Type::Number, place.member(name));
+        else
+            place.fail("unknown member \"" + name + "\" (expected plane, position, spacing)");
+    }
+    const std::pair<const char*, const JsonValue*> required[] = {
+        {"plane", plane}, {"position", position}, {"spacing", spacing}};
+    for (const auto& [name, found] : required)
+        if (!found)
+            place.fail(std::string("missing \"") + name +
+                       "\" (a slice has a plane, a position and a spacing)");
+    const std::optional<SliceOrientation> orientation = parseSliceOrientation(plane->string());
+    if (!orientation)
+        place.member("plane").fail("unknown plane \"" + plane->string() +
+                                   "\" (expected axial, coronal or sagittal)");
+    slice.orientation = *orientation;
+    slice.positionMm = position->number();
+    slice.spacingMm = spacing->number();
+    return slice;
+}
+
+Annotation readAnnotation(const JsonValue& value, const Place& place, int version) {
     Annotation annotation;
     const JsonValue* type = nullptr;
     const JsonValue* points = nullptr;
@@ -55,8 +88,13 @@ Annotation readAnnotation(const JsonValue& value, const Place& place) {
             points = &require(member, JsonValue::Type::Array, place.member(name));
         else if (name == "text")
             annotation.text = require(member, JsonValue::Type::String, place.member(name)).string();
+        else if (name == "slice" && version >= 2)
+            annotation.slice = readSlicePlacement(member, place.member(name));
+        else if (name == "slice")
+            place.fail("\"slice\" needs a file of version 2 or later, this one is version " +
+                       std::to_string(version));
         else
-            place.fail("unknown member \"" + name + "\" (expected type, points, text)");
+            place.fail("unknown member \"" + name + "\" (expected type, points, text, slice)");
     }
     if (!type)
         place.fail("missing \"type\" (label, arrow, ruler or angle)");
@@ -77,6 +115,26 @@ Annotation readAnnotation(const JsonValue& value, const Place& place) {
     return annotation;
 }
 
+// The file's version, one this Linework reads: older files stay readable, a newer Linework's
+// file is refused rather than read with its new members misunderstood.
+int readVersion(const JsonValue& value, const Place& place) {
+    const double version = require(value, JsonValue::Type::Number, place).number();
+    char text[192];
+    if (version > kAnnotationFileVersion) {
+        std::snprintf(text, sizeof text,
+                      "version %g is not supported: a newer Linework wrote it (this one reads "
+                      "versions %d to %d)",
+                      version, kOldestAnnotationFileVersion, kAnnotationFileVersion);
+        place.fail(text);
+    }
+    if (version < kOldestAnnotationFileVersion || version != std::floor(version)) {
+        std::snprintf(text, sizeof text, "version %g is not supported (expected %d to %d)", version,
+                      kOldestAnnotationFileVersion, kAnnotationFileVersion);
+        place.fail(text);
+    }
+    return int(version);
+}
+
 } // namespace
 
 std::vector<Annotation> parseAnnotationsJson(std::string_view text, const std::string& subject) {
@@ -86,28 +144,21 @@ std::vector<Annotation> parseAnnotationsJson(std::string_view text, const std::s
         root.fail("expected an object with \"annotations\", found " +
                   std::string(core::jsonTypeName(document.type())));
     const JsonValue* list = nullptr;
+    int version = kAnnotationFileVersion; // a file without "version" is read as the newest
     for (const auto& [name, member] : document.object()) {
-        if (name == "annotations") {
+        if (name == "annotations")
             list = &require(member, JsonValue::Type::Array, {subject, name});
-        } else if (name == "version") {
-            const double version =
-                require(member, JsonValue::Type::Number, {subject, name}).number();
-            if (version != kAnnotationFileVersion) {
-                char text[96];
-                std::snprintf(text, sizeof text, "version %g is not supported (expected %d)",
-                              version, kAnnotationFileVersion);
-                root.fail(text);
-            }
-        } else {
+        else if (name == "version")
+            version = readVersion(member, root);
+        else
             root.fail("unknown member \"" + name + "\" (expected version, annotations)");
-        }
     }
     if (!list)
         root.fail("missing \"annotations\"");
     std::vector<Annotation> annotations;
     for (std::size_t i = 0; i < list->array().size(); ++i)
         annotations.push_back(
-            readAnnotation(list->array()[i], Place{subject, "annotations"}.item(i)));
+            readAnnotation(list->array()[i], Place{subject, "annotations"}.item(i), version));
     return annotations;
 }
 
@@ -125,6 +176,13 @@ std::string annotationsToJson(const std::vector<Annotation>& annotations) {
         json.endArray();
         if (!annotation.text.empty())
             json.field("text", annotation.text);
+        if (annotation.slice)
+            json.key("slice")
+                .beginObject()
+                .field("plane", sliceOrientationName(annotation.slice->orientation))
+                .field("position", annotation.slice->positionMm)
+                .field("spacing", annotation.slice->spacingMm)
+                .endObject();
         json.endObject();
     }
     json.endArray().endObject();

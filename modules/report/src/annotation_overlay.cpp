@@ -60,8 +60,12 @@ void drawAnnotation(QPainter& painter, const annotation::Annotation& annotation,
                     const render::Camera& camera, double scale, const OverlayStyle& style) {
     const annotation::ProjectedAnnotation projected =
         annotation::projectAnnotation(annotation, camera);
-    if (!projected.inFront)
-        return;
+    if (projected.inFront)
+        drawProjectedAnnotation(painter, projected, scale, style);
+}
+
+void drawProjectedAnnotation(QPainter& painter, const annotation::ProjectedAnnotation& projected,
+                             double scale, const OverlayStyle& style) {
     painter.save();
     painter.setRenderHint(QPainter::Antialiasing);
     painter.setRenderHint(QPainter::TextAntialiasing);
@@ -81,6 +85,18 @@ void burnInAnnotations(QImage& panel, const std::vector<annotation::Annotation>&
     QPainter painter(&panel);
     for (const annotation::Annotation& item : annotations)
         drawAnnotation(painter, item, camera, scale, style);
+}
+
+void burnInSliceAnnotations(QImage& panel, const std::vector<annotation::Annotation>& annotations,
+                            const SliceView& slice, const OverlayStyle& style) {
+    if (annotations.empty() || panel.isNull())
+        return;
+    const double scale = overlayScale(panel.height(), style);
+    QPainter painter(&panel);
+    for (const annotation::Annotation& item : annotations)
+        if (annotation::showsOnSlice(item, slice.orientation, slice.positionMm, slice.spacingMm))
+            drawProjectedAnnotation(painter, annotation::projectAnnotation(item, slice.toPixel),
+                                    scale, style);
 }
 
 } // namespace lw::report

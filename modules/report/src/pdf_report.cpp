@@ -161,7 +161,8 @@ void drawPicture(QPainter& painter, QRectF area, const QImage& picture, const Pi
     painter.setPen(Qt::black);
 }
 
-const std::vector<double> kAnnotationColumns = {0.05, 0.1, 0.22, 0.18, 0.45};
+// The measurement column holds a slice's plane too ("87.5° · sagittal -123.4 mm" on one line).
+const std::vector<double> kAnnotationColumns = {0.05, 0.1, 0.18, 0.32, 0.35};
 
 // The kind in the table: the annotation file's name for it, in the interface's language.
 QString kindLabel(annotation::AnnotationKind kind) {

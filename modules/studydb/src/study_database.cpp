@@ -1,5 +1,6 @@
 #include "lw/studydb/study_database.h"
 
+#include "lw/annotation/annotation_json.h"
 #include "lw/core/error.h"
 
 #include <QDir>
@@ -223,6 +224,8 @@ void StudyDatabase::migrate() {
         createSchemaV1();
     if (version < 2)
         migrateToV2();
+    if (version < 3)
+        migrateToV3();
     QSqlQuery query(db);
     exec(query, QStringLiteral("PRAGMA user_version = %1").arg(kSchemaVersion), m_path,
          "cannot set the schema version");
@@ -239,6 +242,39 @@ void StudyDatabase::migrateToV2() {
     QSqlQuery query(QSqlDatabase::database(m_connectionName));
     for (const char* statement : kSchemaV2Additions)
         exec(query, QString::fromLatin1(statement), m_path, "cannot add the annotations table");
+}
+
+// Version 3: annotations may lie on slices (annotation file version 2). Each stored document is
+// read and written again as version 2, so the file holds one format; the annotations themselves
+// are unchanged (a version-1 document holds 3D annotations only, and the writer's ten
+// significant digits read back as written). A document that does not read is left as it is:
+// the review names its problem when the series is opened, as before, and nothing is lost. The
+// time of the user's last save (updated_at) is kept.
+void StudyDatabase::migrateToV3() {
+    QSqlDatabase db = QSqlDatabase::database(m_connectionName);
+    QSqlQuery rows(db);
+    exec(rows, QStringLiteral("SELECT series_uid, json FROM series_annotations"), m_path,
+         "cannot read the annotations to migrate");
+    QList<std::pair<QString, QString>> rewritten;
+    while (rows.next()) {
+        const QString uid = rows.value(0).toString();
+        try {
+            const std::vector<annotation::Annotation> annotations =
+                annotation::parseAnnotationsJson(rows.value(1).toString().toStdString(),
+                                                 "the annotations of series " + str(uid));
+            rewritten.append(
+                {uid, QString::fromStdString(annotation::annotationsToJson(annotations))});
+        } catch (const core::Error&) {
+            continue; // kept as it is (see above)
+        }
+    }
+    QSqlQuery update(db);
+    update.prepare(QStringLiteral("UPDATE series_annotations SET json = ? WHERE series_uid = ?"));
+    for (const auto& [uid, json] : rewritten) {
+        update.bindValue(0, json);
+        update.bindValue(1, uid);
+        exec(update, m_path, "cannot migrate the annotations of a series");
+    }
 }
 
 int StudyDatabase::seriesCount() const {

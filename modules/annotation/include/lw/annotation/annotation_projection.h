@@ -1,11 +1,13 @@
 #pragma once
 
 // Where an annotation falls in a panel: its anchors projected through the panel's render
-// Camera, so it can be drawn over (burned into) an image rendered with that camera.
+// Camera, so it can be drawn over (burned into) an image rendered with that camera, or through a
+// slice panel's mapping of patient points to its pixels.
 
 #include "lw/annotation/annotation.h"
 #include "lw/render/camera.h"
 
+#include <functional>
 #include <glm/glm.hpp>
 #include <string>
 #include <vector>
@@ -24,5 +26,13 @@ struct ProjectedAnnotation {
 };
 
 ProjectedAnnotation projectAnnotation(const Annotation& annotation, const render::Camera& camera);
+
+// A panel's pixel (continuous, x right, y down) for a patient point (LPS, mm).
+using PatientToPixel = std::function<glm::dvec2(const glm::dvec3& patient)>;
+
+// The anchors through `toPixel`: a slice panel's lw::volume::SliceGeometry::pixelOf followed by
+// its zoom and pan. Nothing is behind an eye there (inFront is true); which annotations a slice
+// shows is showsOnSlice's to say, before projecting.
+ProjectedAnnotation projectAnnotation(const Annotation& annotation, const PatientToPixel& toPixel);
 
 } // namespace lw::annotation

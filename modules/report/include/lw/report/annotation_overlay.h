@@ -6,6 +6,7 @@
 // so the picture looks the same printed at any resolution).
 
 #include "lw/annotation/annotation.h"
+#include "lw/annotation/annotation_projection.h"
 #include "lw/render/camera.h"
 
 #include <QColor>
@@ -32,6 +33,24 @@ void burnInAnnotations(QImage& panel, const std::vector<annotation::Annotation>&
 // `scale`: the same shapes the burn-in makes, for the workstation's live overlay.
 void drawAnnotation(QPainter& painter, const annotation::Annotation& annotation,
                     const render::Camera& camera, double scale, const OverlayStyle& style = {});
+
+// Draws one annotation already projected into the painter's pixel coordinates (a slice panel's:
+// annotation::projectAnnotation through its patient-to-pixel mapping), as drawAnnotation does.
+void drawProjectedAnnotation(QPainter& painter, const annotation::ProjectedAnnotation& projected,
+                             double scale, const OverlayStyle& style = {});
+
+// The slice a slice panel shows, and where its pixels are in patient coordinates.
+struct SliceView {
+    annotation::SliceOrientation orientation = annotation::SliceOrientation::Axial;
+    double positionMm = 0.0;            // annotation::slicePositionOf of the plane
+    double spacingMm = 1.0;             // between the view's slices
+    annotation::PatientToPixel toPixel; // the panel's pixel for a patient point
+};
+
+// Draws over a slice panel the annotations that show on its slice (annotation::showsOnSlice:
+// those placed on it or within half a spacing of it, and 3D ones lying in that slab).
+void burnInSliceAnnotations(QImage& panel, const std::vector<annotation::Annotation>& annotations,
+                            const SliceView& slice, const OverlayStyle& style = {});
 
 // How many pixels one reference pixel is in an image of `height` (lines and text scale by it).
 double overlayScale(int height, const OverlayStyle& style = {});

@@ -41,7 +41,10 @@ class StudyDatabase {
 public:
     // 1: patients, studies, series, their files and messages, the import log.
     // 2: the annotations of a series (series_annotations).
-    static constexpr int kSchemaVersion = 2;
+    // 3: annotations may lie on slices (annotation file version 2, its "slice" member); the
+    //    stored documents were rewritten as version 2. A Linework of schema 2 refuses the file
+    //    as a whole instead of failing on each series whose annotations it cannot read.
+    static constexpr int kSchemaVersion = 3;
 
     // Opens (creating when missing) and migrates the database at `path`. Throws core::Error
     // naming the file when it cannot be opened, is not a database, or was written by a newer
@@ -77,7 +80,8 @@ public:
     bool removeSeries(const QString& seriesUid);
 
     // The review's annotations of a series, as the annotation JSON (lw/annotation/
-    // annotation_json.h) the GUI wrote; nullopt when none were ever saved. Keyed by the series
+    // annotation_json.h, version 2 from schema 3 on) the GUI wrote; nullopt when none were ever
+    // saved. Keyed by the series
     // UID, not the series row: they outlive removing the series from the index (a re-import
     // finds them again) and a series opened without importing keeps them too.
     std::optional<QString> seriesAnnotations(const QString& seriesUid) const;
@@ -90,6 +94,7 @@ private:
     void migrate();
     void createSchemaV1();
     void migrateToV2();
+    void migrateToV3();
     qint64 upsertPatient(const PatientRecord& patient);
     qint64 upsertStudy(const StudyRecord& study, qint64 patientRef);
     bool upsertSeries(const SeriesImport& import, qint64 studyRef, const QString& sourceRoot);
