@@ -44,36 +44,8 @@ std::optional<AnnotationKind> parseKind(std::string_view name) {
     return std::nullopt;
 }
 
-std::string_view sliceOrientationName(SliceOrientation orientation) {
-    switch (orientation) {
-    case SliceOrientation::Axial:
-        return "axial";
-    case SliceOrientation::Coronal:
-        return "coronal";
-    case SliceOrientation::Sagittal:
-        return "sagittal";
-    }
-    return "?";
-}
-
-std::optional<SliceOrientation> parseSliceOrientation(std::string_view name) {
-    for (SliceOrientation orientation :
-         {SliceOrientation::Axial, SliceOrientation::Coronal, SliceOrientation::Sagittal})
-        if (name == sliceOrientationName(orientation))
-            return orientation;
-    return std::nullopt;
-}
-
 double slicePositionOf(SliceOrientation orientation, const glm::dvec3& patient) {
-    switch (orientation) {
-    case SliceOrientation::Axial:
-        return patient.z;
-    case SliceOrientation::Coronal:
-        return patient.y;
-    case SliceOrientation::Sagittal:
-        return patient.x;
-    }
-    return patient.z;
+    return glm::dot(volume::sliceAxes(orientation).normal, patient);
 }
 
 glm::dvec3 pointOnSlice(const SlicePlacement& slice, glm::dvec3 patient) {

@@ -19,6 +19,8 @@
 // (a ruler from the skull's top to its base) shows on none: drawn on one slice it would look
 // shorter than the length it reports.
 
+#include "lw/volume/slice_plane.h"
+
 #include <glm/glm.hpp>
 #include <optional>
 #include <string>
@@ -34,14 +36,11 @@ enum class AnnotationKind {
     Angle, // three anchors: arm end, vertex, arm end; the angle at the vertex in degrees
 };
 
-// The orthogonal planes of the patient's LPS frame. The same values, order and names as
-// lw::volume::SliceOrientation (lw/volume/slice_plane.h, the slice views' engine); defined here
-// until that header is in the tree, then replaced by `using volume::SliceOrientation;` and
-// using-declarations of its two functions below, which have the same names and signatures.
-enum class SliceOrientation { Axial, Coronal, Sagittal };
-// "axial", "coronal", "sagittal": the names in the JSON files and the report.
-std::string_view sliceOrientationName(SliceOrientation orientation);
-std::optional<SliceOrientation> parseSliceOrientation(std::string_view name);
+// The orthogonal planes of the patient's LPS frame, as the slice views have them
+// (lw/volume/slice_plane.h): "axial", "coronal", "sagittal" in the JSON files and the report.
+using volume::parseSliceOrientation;
+using volume::SliceOrientation;
+using volume::sliceOrientationName;
 
 // A slice position is a patient coordinate along the plane's normal:
 //
