@@ -1,0 +1,160 @@
+#include "review/review_arrangement.h"
+
+#include "review/review_panel.h"
+#include "review/slice_view.h"
+#include "review/slice_views.h"
+
+#include <QAction>
+#include <QComboBox>
+#include <QSplitter>
+
+namespace lw::gui {
+namespace {
+
+using volume::SliceOrientation;
+constexpr SliceOrientation kOrientations[] = {SliceOrientation::Axial, SliceOrientation::Coronal,
+                                              SliceOrientation::Sagittal};
+
+// The chooser's entries, in the order of their keys Alt+1 ... Alt+5.
+constexpr ReviewLayoutChoice kChoices[] = {
+    {ReviewLayout::Surfaces, SliceOrientation::Axial},
+    {ReviewLayout::SurfacesAndSlices, SliceOrientation::Axial},
+    {ReviewLayout::SilhouetteAndSlice, SliceOrientation::Axial},
+    {ReviewLayout::SilhouetteAndSlice, SliceOrientation::Coronal},
+    {ReviewLayout::SilhouetteAndSlice, SliceOrientation::Sagittal}};
+
+QString choiceName(const ReviewLayoutChoice& choice) {
+    switch (choice.layout) {
+    case ReviewLayout::Surfaces:
+        return QObject::tr("3D panels");
+    case ReviewLayout::SurfacesAndSlices:
+        return QObject::tr("3D panels and slices");
+    case ReviewLayout::SilhouetteAndSlice:
+        break;
+    }
+    return QObject::tr("Silhouette and %1 slice")
+        .arg(sliceOrientationTitle(choice.largeSlice).toLower());
+}
+
+int indexOf(const ReviewLayoutChoice& choice) {
+    for (int i = 0; i < int(std::size(kChoices)); ++i)
+        if (kChoices[i].layout == choice.layout &&
+            (choice.layout != ReviewLayout::SilhouetteAndSlice ||
+             kChoices[i].largeSlice == choice.largeSlice))
+            return i;
+    return 0;
+}
+
+void equalSizes(QSplitter& splitter) {
+    splitter.setSizes(QList<int>(splitter.count(), 1000));
+}
+
+} // namespace
+
+ReviewArrangement::ReviewArrangement(ReviewPanel& iso, ReviewPanel& silhouette, SliceViews& slices,
+                                     QObject* parent)
+    : QObject(parent), m_iso(iso), m_silhouette(silhouette), m_slices(slices) {
+    m_top = new QSplitter(Qt::Horizontal);
+    m_top->addWidget(&m_iso);
+    m_top->addWidget(&m_silhouette);
+    m_top->setChildrenCollapsible(false);
+    m_bottom = new QSplitter(Qt::Horizontal);
+    m_bottom->setObjectName("sliceRow");
+    for (SliceOrientation orientation : kOrientations)
+        m_bottom->addWidget(&m_slices.view(orientation));
+    m_bottom->setChildrenCollapsible(false);
+    m_outer = new QSplitter(Qt::Vertical);
+    m_outer->addWidget(m_top);
+    m_outer->addWidget(m_bottom);
+    m_outer->setChildrenCollapsible(false);
+    m_outer->setStretchFactor(0, 3);
+    m_outer->setStretchFactor(1, 2);
+}
+
+QWidget* ReviewArrangement::widget() const {
+    return m_outer;
+}
+
+void ReviewArrangement::apply(ReviewLayoutChoice choice) {
+    if (m_applied && choice == m_choice)
+        return;
+    m_choice = choice;
+    m_applied = true;
+    const bool row = choice.layout == ReviewLayout::SurfacesAndSlices;
+    const bool large = choice.layout == ReviewLayout::SilhouetteAndSlice;
+    // Every view back in the row, then the large one (if any) beside the silhouette.
+    for (int i = 0; i < int(std::size(kOrientations)); ++i) {
+        SliceView& view = m_slices.view(kOrientations[i]);
+        m_bottom->insertWidget(i, &view);
+        view.show();
+    }
+    if (large)
+        m_top->addWidget(&m_slices.view(choice.largeSlice));
+    m_iso.setVisible(!large);
+    m_bottom->setVisible(row);
+    for (SliceOrientation orientation : kOrientations)
+        m_slices.setActive(orientation, row || (large && orientation == choice.largeSlice));
+    equalSizes(*m_top);
+    equalSizes(*m_bottom);
+    emit changed(choice);
+}
+
+QComboBox* ReviewArrangement::makeLayoutChooser() {
+    auto* chooser = new QComboBox;
+    chooser->setObjectName("reviewLayout");
+    for (int i = 0; i < int(std::size(kChoices)); ++i)
+        chooser->addItem(choiceName(kChoices[i]));
+    chooser->setToolTip(tr("Layout of the review (Alt+1 … Alt+5)"));
+    chooser->setCurrentIndex(indexOf(m_choice));
+    connect(chooser, &QComboBox::activated, this, [this](int index) {
+        if (index >= 0 && index < int(std::size(kChoices)))
+            apply(kChoices[index]);
+    });
+    connect(this, &ReviewArrangement::changed, chooser,
+            [chooser](ReviewLayoutChoice choice) { chooser->setCurrentIndex(indexOf(choice)); });
+    return chooser;
+}
+
+QComboBox* ReviewArrangement::makeWindowChooser() {
+    auto* chooser = new QComboBox;
+    chooser->setObjectName("sliceWindow");
+    chooser->setPlaceholderText(tr("Custom window"));
+    for (WindowPreset preset : kWindowPresets) {
+        const WindowLevel window = windowPreset(preset);
+        chooser->addItem(windowPresetName(preset), int(preset));
+        chooser->setItemData(chooser->count() - 1,
+                             tr("Window %1, level %2 HU").arg(window.width).arg(window.level),
+                             Qt::ToolTipRole);
+    }
+    chooser->setToolTip(tr("Window and level of the slices (right drag on a slice to adjust)"));
+    connect(chooser, &QComboBox::activated, this, [this, chooser](int index) {
+        m_slices.applyPreset(WindowPreset(chooser->itemData(index).toInt()));
+    });
+    connect(&m_slices, &SliceViews::windowLevelChanged, chooser,
+            [this, chooser] { showWindowOf(*chooser); });
+    showWindowOf(*chooser);
+    // The presets are CT windows: other series window their own range by dragging.
+    chooser->setEnabled(m_slices.isHounsfield());
+    return chooser;
+}
+
+void ReviewArrangement::showWindowOf(QComboBox& chooser) const {
+    int shown = -1;
+    for (int i = 0; i < chooser.count(); ++i)
+        if (windowPreset(WindowPreset(chooser.itemData(i).toInt())) == m_slices.windowLevel())
+            shown = i;
+    chooser.setCurrentIndex(shown);
+}
+
+void ReviewArrangement::addShortcuts(QWidget& scope) {
+    for (int i = 0; i < int(std::size(kChoices)); ++i) {
+        auto* action = new QAction(choiceName(kChoices[i]), &scope);
+        action->setObjectName(QStringLiteral("reviewLayout%1").arg(i + 1));
+        action->setShortcut(QKeySequence(Qt::ALT | Qt::Key(Qt::Key_1 + i)));
+        action->setShortcutContext(Qt::WidgetWithChildrenShortcut);
+        connect(action, &QAction::triggered, this, [this, i] { apply(kChoices[i]); });
+        scope.addAction(action);
+    }
+}
+
+} // namespace lw::gui
