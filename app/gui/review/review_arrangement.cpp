@@ -32,8 +32,15 @@ QString choiceName(const ReviewLayoutChoice& choice) {
     case ReviewLayout::SilhouetteAndSlice:
         break;
     }
-    return QObject::tr("Silhouette and %1 slice")
-        .arg(sliceOrientationTitle(choice.largeSlice).toLower());
+    switch (choice.largeSlice) {
+    case SliceOrientation::Axial:
+        return QObject::tr("Silhouette and axial slice");
+    case SliceOrientation::Coronal:
+        return QObject::tr("Silhouette and coronal slice");
+    case SliceOrientation::Sagittal:
+        break;
+    }
+    return QObject::tr("Silhouette and sagittal slice");
 }
 
 int indexOf(const ReviewLayoutChoice& choice) {
