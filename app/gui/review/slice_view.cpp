@@ -205,6 +205,7 @@ void SliceView::wheelEvent(QWheelEvent* event) {
         if (steps != 0)
             stepBy(steps);
     }
+    updateReadout(event->position()); // the value under the mouse on the new slice
     event->accept();
 }
 
