@@ -95,6 +95,17 @@ commands:
                               SVG: the visible silhouette as paths, --line-width (default 1)
                               and --line-colour (default #000000) style them, --hidden-lines
                               adds the hidden parts thin, dashed and grey beneath
+  render INPUT [--series UID] --iso HU --panel slice [--plane axial|coronal|sagittal]
+         [--position MM] [--window W/L] [--line-colour #RRGGBB] [--threads N] -o OUT.png
+                              one slice in patient space (default axial) with the iso contour
+                              over it (yellow by default), one pixel the volume's finest
+                              spacing; a tilted or unevenly spaced series is resampled where
+                              its voxels lie, never shown sheared; --position: the plane's
+                              patient coordinate along its normal (axial z, coronal y,
+                              sagittal x; default the middle of the series); --window: grey
+                              from level - width/2 to level + width/2 in real units (default
+                              2000/500, a bone window, for CT; the value range otherwise);
+                              the 3D panels' options (method, camera, size, svg ...) are refused
   bench [--sizes 32,256,512,512x512x1024] [--input FILE --iso HU] [--backend cpu|cuda|auto]
         [--methods mc,1,2,3] [--variants S,L] [--modes a,b] [--repeat N] [--image WxH]
         [--border closed|open] [--min-stroke PX] [--gradient central|smoothed]

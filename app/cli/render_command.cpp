@@ -1,5 +1,6 @@
-// `linework-cli render`: one view of an iso-surface and/or its silhouette as a PNG, or the visible
-// silhouette as SVG lines (--format svg, or an OUT ending in .svg).
+// `linework-cli render`: one view of an iso-surface and/or its silhouette as a PNG, the visible
+// silhouette as SVG lines (--format svg, or an OUT ending in .svg), or a slice with its iso
+// contour (--panel slice: slice_rendering.h).
 #include "arguments.h"
 #include "cli_inputs.h"
 #include "commands.h"
@@ -8,6 +9,7 @@
 #include "lw/render/renderer_factory.h"
 #include "lw/render/svg_lines.h"
 #include "panel_rendering.h"
+#include "slice_rendering.h"
 
 #include <memory>
 #include <ostream>
@@ -18,6 +20,7 @@ int runRender(const std::vector<std::string>& args, std::ostream& out) {
     std::set<std::string> options = panelRenderOptions();
     options.insert({"series", "panel", "repeat", "format", "suggestive-threshold"});
     options.insert(lineStyleOptions().begin(), lineStyleOptions().end());
+    options.insert(sliceOptions().begin(), sliceOptions().end());
     const Arguments arguments(args, {"suggestive", kHiddenLinesFlag}, options);
     if (arguments.positionals().size() != 1)
         throw UsageError("render", "expects exactly one INPUT");
@@ -27,8 +30,13 @@ int runRender(const std::vector<std::string>& args, std::ostream& out) {
     const std::string input = arguments.positionals()[0];
 
     const std::string panel = arguments.option("panel", "silhouette");
+    if (panel == "slice")
+        return renderSliceCommand(arguments, input, *output, out);
     if (panel != "iso" && panel != "silhouette" && panel != "both")
-        throw UsageError("--panel " + panel, "expected iso, silhouette or both");
+        throw UsageError("--panel " + panel, "expected iso, silhouette, both or slice");
+    for (const std::string& name : sliceOptions())
+        if (arguments.option(name))
+            throw UsageError("--" + name, "places a slice (--panel slice)");
     const bool svgName = output->size() > 4 && output->substr(output->size() - 4) == ".svg";
     const std::string format = arguments.option("format", svgName ? "svg" : "png");
     if (format != "png" && format != "svg")

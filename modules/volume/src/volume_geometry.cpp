@@ -105,6 +105,35 @@ glm::dvec3 VolumeGeometry::indexToPatient(glm::dvec3 ijk) const {
            sliceOffset(ijk.z) * m_stackAxis;
 }
 
+double VolumeGeometry::sliceIndexAtOffset(double offset) const {
+    const std::size_t n = m_sliceOffsets.size();
+    if (n < 2)
+        return offset / m_uniformStep;
+    // The gap [k0, k0 + 1] that holds the offset, the first or last gap beyond the ends.
+    const auto above =
+        std::upper_bound(m_sliceOffsets.begin() + 1, m_sliceOffsets.end() - 1, offset);
+    const auto k0 = std::size_t(above - m_sliceOffsets.begin()) - 1;
+    const double gap = m_sliceOffsets[k0 + 1] - m_sliceOffsets[k0];
+    return double(k0) + (offset - m_sliceOffsets[k0]) / gap;
+}
+
+glm::dvec3 VolumeGeometry::patientToIndex(glm::dvec3 patient) const {
+    // The slice planes are parallel, so the distance along the normal gives the offset along
+    // the stack axis (sheared by the tilt); what remains lies in slice 0's plane.
+    const glm::dvec3 normal = sliceNormal();
+    const glm::dvec3 relative = patient - m_origin;
+    const double offset = glm::dot(relative, normal) / glm::dot(m_stackAxis, normal);
+    const glm::dvec3 inPlane = relative - offset * m_stackAxis;
+    // Solved with the axes' Gram matrix, so axes that are not quite orthogonal invert exactly.
+    const double ii = glm::dot(m_axisI, m_axisI), ij = glm::dot(m_axisI, m_axisJ),
+                 jj = glm::dot(m_axisJ, m_axisJ);
+    const double pi = glm::dot(inPlane, m_axisI), pj = glm::dot(inPlane, m_axisJ);
+    const double det = ii * jj - ij * ij;
+    const double a = (jj * pi - ij * pj) / det; // mm along axisI
+    const double b = (ii * pj - ij * pi) / det; // mm along axisJ
+    return {a / m_spacingI, b / m_spacingJ, sliceIndexAtOffset(offset)};
+}
+
 glm::dmat3 VolumeGeometry::jacobian(double k) const {
     double step = m_uniformStep;
     if (m_sliceOffsets.size() >= 2) {

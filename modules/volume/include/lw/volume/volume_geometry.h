@@ -62,6 +62,11 @@ public:
     bool isTilted(double toleranceDegrees = 0.01) const { return tiltDegrees() > toleranceDegrees; }
 
     glm::dvec3 indexToPatient(glm::dvec3 ijk) const;
+    // The inverse: fractional (i, j, k) of a patient point, outside [0, dims - 1] where the point
+    // lies outside the voxel centres (slices extrapolated with the end gaps, as sliceOffset).
+    glm::dvec3 patientToIndex(glm::dvec3 patient) const;
+    // The inverse of sliceOffset: the fractional slice index at `offset` along stackAxis.
+    double sliceIndexAtOffset(double offset) const;
     // Columns: dp/di, dp/dj, dp/dk on the slab between slices floor(k) and floor(k)+1.
     glm::dmat3 jacobian(double k) const;
     // Index -> patient as one affine matrix, with the mean slice step (exact when uniform).
