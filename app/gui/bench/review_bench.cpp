@@ -6,7 +6,7 @@
 // -> its three slices painted; a wheel step -> the slice painted with its contour); the exports.
 //
 //   linework-review-bench PATH [--iso HU] [--repeat N] [--panel-gl ..] [--backend cpu|cuda|auto]
-//                         [--thick-slices smooth|linear]
+//                         [--thick-slices smooth|linear] [--slices-only]
 //
 // Run under a display (xvfb-run -a -s "-screen 0 1920x1080x24"). Prints one line per figure.
 #include "bench/bench_support.h"
@@ -350,9 +350,11 @@ void benchSlices(const ReviewWidget& loaded, const ReviewSettings& settings, int
                           lw::volume::sliceOrientationName(plane).data());
             report(line, median(steps));
             const lw::gui::SliceResult* shown = review.slices().view(plane).slice();
-            std::snprintf(line, sizeof line, "slices: %s sample + contour, last step",
-                          lw::volume::sliceOrientationName(plane).data());
-            report(line, shown->sampleMs + shown->contourMs);
+            const SliceView& view = review.slices().view(plane);
+            std::printf("slices: %s, last step: sample %.1f ms, contour %.1f ms (%zu segments), "
+                        "UI paint %.1f ms\n",
+                        lw::volume::sliceOrientationName(plane).data(), shown->sampleMs,
+                        shown->contourMs, shown->contour.size(), view.lastPaintMs());
         }
     }
 }
@@ -378,12 +380,15 @@ int main(int argc, char* argv[]) {
         "backend", "Back-end: cpu, cuda or auto (settings page).", "BACKEND", "auto");
     const QCommandLineOption thickOption(
         "thick-slices", "Thick slices: smooth or linear (settings page).", "HOW", "smooth");
-    parser.addOptions({isoOption, repeatOption, panelGlOption, backendOption, thickOption});
+    const QCommandLineOption slicesOnlyOption(
+        "slices-only", "Only the slice panels' figures (after opening the series).");
+    parser.addOptions(
+        {isoOption, repeatOption, panelGlOption, backendOption, thickOption, slicesOnlyOption});
     parser.process(app);
     if (parser.positionalArguments().size() != 1) {
         std::fprintf(stderr, "usage: linework-review-bench PATH [--iso HU] [--repeat N] "
                              "[--panel-gl auto|panels|worker] [--backend cpu|cuda|auto] "
-                             "[--thick-slices smooth|linear]\n");
+                             "[--thick-slices smooth|linear] [--slices-only]\n");
         return 2;
     }
     const QString path = parser.positionalArguments().front();
@@ -403,6 +408,10 @@ int main(int argc, char* argv[]) {
         std::fprintf(stderr, "linework-review-bench: %s did not open: %s\n", qPrintable(path),
                      qPrintable(window.lastError()));
         return 1;
+    }
+    if (parser.isSet(slicesOnlyOption)) {
+        benchSlices(*review, window.settings(), repeat);
+        return 0;
     }
     if (!path.startsWith("phantom:"))
         importAndMeasure(window, path, monitor);

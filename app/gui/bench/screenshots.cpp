@@ -131,6 +131,8 @@ bool saveSliceLayouts(ReviewWidget& review, const QDir& out) {
             return true;
         });
     };
+    review.annotations().reset({}); // the slices and the cursors, not the measurements
+    review.window()->resize(1600, 1040); // room for the 3D panels above the slices
     review.setLayoutChoice({ReviewLayout::SurfacesAndSlices, lw::volume::SliceOrientation::Axial});
     bool ok = slicesShown();
     review.slices().applyPreset(WindowPreset::Brain);

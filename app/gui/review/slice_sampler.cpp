@@ -16,10 +16,10 @@ void sampleInto(SliceResult& result, const volume::Volume& volume,
                 std::shared_ptr<const volume::SliceImage> reuse) {
     QElapsedTimer timer;
     timer.start();
-    // One thread a slice: the three views sample side by side on the pool's threads.
+    // The rows on every core: a wheel step asks for one slice, and it is what the user waits for.
     result.image = reuse ? std::move(reuse)
                          : std::make_shared<const volume::SliceImage>(
-                               volume::sampleSlice(volume, geometry, position, 1));
+                               volume::sampleSlice(volume, geometry, position));
     result.sampleMs = millisecondsOf(timer);
     timer.restart();
     result.contour = volume::isoContour(*result.image, result.iso);
