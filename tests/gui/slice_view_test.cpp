@@ -114,6 +114,7 @@ private slots:
     void contourFollowsTheIsoValue();
     void shiftClickOnTheSurfaceMovesTheSlices_data();
     void shiftClickOnTheSurfaceMovesTheSlices();
+    void linkedCursorOnTheTiltedSeriesLiesOnTheContours();
     void shiftDragStillPans();
     void shiftClickOnASliceShowsThe3dCrossHair();
     void layoutIsRememberedByTheNextReview_data();
@@ -300,6 +301,53 @@ void SliceViewTest::shiftClickOnTheSurfaceMovesTheSlices() {
     }
     QVERIFY(waitSlices(*review));
     QVERIFY(review->isoPanel().crossHair());
+}
+
+// The demo is the GE head series with an 18.5° gantry tilt and uneven slice gaps: a surface point
+// Shift+clicked in 3D lies on the iso contour of each slice moved through it, within 1 mm. The
+// surface is drawn with straight lines between the slices (the slices' own trilinear field);
+// shape-based interpolation would move it between thick slices by design.
+void SliceViewTest::linkedCursorOnTheTiltedSeriesLiesOnTheContours() {
+    const QString demo = lw::test::sourcePath() + "/resources/demo/ct_head_ge_tilt";
+    lw::gui::ReviewSettings settings = settingsFor(3, lw::gui::Chunking::Off);
+    settings.thickSlices = lw::render::ThickSlices::Linear;
+    ReviewWidget review(phantomSource(demo, 400.0), settings);
+    review.setLayoutChoice({ReviewLayout::SurfacesAndSlices, SliceOrientation::Axial});
+    review.resize(1200, 900);
+    review.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&review));
+    QVERIFY(lw::test::waitSettled(review));
+    lw::gui::ReviewPanel& panel = review.isoPanel();
+    int clicked = 0;
+    for (int dy = -2; dy <= 2; ++dy)
+        for (int dx = -2; dx <= 2; ++dx) {
+            const QPoint at =
+                panel.rect().center() + QPoint(dx * panel.width() / 14, dy * panel.height() / 10);
+            const std::optional<glm::dvec3> picked = review.pickSurface(panel, at);
+            if (!picked)
+                continue;
+            shiftClick(panel, at);
+            QVERIFY(waitSlices(review));
+            ++clicked;
+            for (SliceOrientation orientation : kOrientations) {
+                const SliceView& view = review.slices().view(orientation);
+                const lw::gui::SliceResult& slice = *view.slice();
+                const glm::dvec2 pixel = slice.image->geometry.pixelOf(*picked);
+                double nearest = 1e9;
+                for (const lw::volume::ContourSegment& segment : slice.contour) {
+                    const glm::dvec2 along = segment.b - segment.a;
+                    const double t = std::clamp(glm::dot(pixel - segment.a, along) /
+                                                    std::max(glm::dot(along, along), 1e-12),
+                                                0.0, 1.0);
+                    nearest = std::min(nearest, glm::distance(pixel, segment.a + t * along));
+                }
+                const double mm = nearest * slice.image->geometry.pixelMm;
+                QVERIFY2(mm <= 1.0, qPrintable(QStringLiteral("%1 slice: %2 mm from the contour")
+                                                   .arg(lw::gui::sliceOrientationTitle(orientation))
+                                                   .arg(mm)));
+            }
+        }
+    QVERIFY2(clicked >= 10, qPrintable(QString::number(clicked)));
 }
 
 void SliceViewTest::shiftDragStillPans() {
