@@ -5,8 +5,11 @@
 #include "review/slice_views.h"
 
 #include <QAction>
+#include <QActionGroup>
 #include <QComboBox>
+#include <QMenu>
 #include <QSplitter>
+#include <QToolButton>
 
 namespace lw::gui {
 namespace {
@@ -50,6 +53,13 @@ int indexOf(const ReviewLayoutChoice& choice) {
              kChoices[i].largeSlice == choice.largeSlice))
             return i;
     return 0;
+}
+
+// The view bar's lists must not widen the review beyond its old minimum: they show the start of
+// a long entry rather than ask for its whole width (the list opens wide enough).
+void shrinkable(QComboBox& chooser) {
+    chooser.setSizeAdjustPolicy(QComboBox::AdjustToMinimumContentsLengthWithIcon);
+    chooser.setMinimumContentsLength(9);
 }
 
 void equalSizes(QSplitter& splitter) {
@@ -106,25 +116,38 @@ void ReviewArrangement::apply(ReviewLayoutChoice choice) {
     emit changed(choice);
 }
 
-QComboBox* ReviewArrangement::makeLayoutChooser() {
-    auto* chooser = new QComboBox;
-    chooser->setObjectName("reviewLayout");
-    for (int i = 0; i < int(std::size(kChoices)); ++i)
-        chooser->addItem(choiceName(kChoices[i]));
-    chooser->setToolTip(tr("Layout of the review (Alt+1 … Alt+5)"));
-    chooser->setCurrentIndex(indexOf(m_choice));
-    connect(chooser, &QComboBox::activated, this, [this](int index) {
-        if (index >= 0 && index < int(std::size(kChoices)))
-            apply(kChoices[index]);
+// A button with the layouts' menu: narrow, so the view bar does not widen the review, and the
+// menu shows each layout's key. The menu's actions are the shortcuts (scope: the review).
+QToolButton* ReviewArrangement::makeLayoutButton(QWidget& scope) {
+    auto* button = new QToolButton;
+    button->setObjectName("reviewLayout");
+    button->setText(tr("Layout"));
+    button->setToolTip(tr("Layout of the review (Alt+1 … Alt+5)"));
+    button->setPopupMode(QToolButton::InstantPopup);
+    auto* menu = new QMenu(button);
+    auto* group = new QActionGroup(menu);
+    for (int i = 0; i < int(std::size(kChoices)); ++i) {
+        auto* action = new QAction(choiceName(kChoices[i]), group);
+        action->setObjectName(QStringLiteral("reviewLayout%1").arg(i + 1));
+        action->setCheckable(true);
+        action->setChecked(i == indexOf(m_choice));
+        action->setShortcut(QKeySequence(Qt::ALT | Qt::Key(Qt::Key_1 + i)));
+        action->setShortcutContext(Qt::WidgetWithChildrenShortcut);
+        connect(action, &QAction::triggered, this, [this, i] { apply(kChoices[i]); });
+        menu->addAction(action);
+        scope.addAction(action);
+    }
+    connect(this, &ReviewArrangement::changed, group, [group](ReviewLayoutChoice choice) {
+        group->actions().at(indexOf(choice))->setChecked(true);
     });
-    connect(this, &ReviewArrangement::changed, chooser,
-            [chooser](ReviewLayoutChoice choice) { chooser->setCurrentIndex(indexOf(choice)); });
-    return chooser;
+    button->setMenu(menu);
+    return button;
 }
 
 QComboBox* ReviewArrangement::makeWindowChooser() {
     auto* chooser = new QComboBox;
     chooser->setObjectName("sliceWindow");
+    shrinkable(*chooser);
     chooser->setPlaceholderText(tr("Custom window"));
     for (WindowPreset preset : kWindowPresets) {
         const WindowLevel window = windowPreset(preset);
@@ -142,6 +165,11 @@ QComboBox* ReviewArrangement::makeWindowChooser() {
     showWindowOf(*chooser);
     // The presets are CT windows: other series window their own range by dragging.
     chooser->setEnabled(m_slices.isHounsfield());
+    // Shown with the slices only.
+    chooser->setVisible(m_choice.layout != ReviewLayout::Surfaces);
+    connect(this, &ReviewArrangement::changed, chooser, [chooser](ReviewLayoutChoice choice) {
+        chooser->setVisible(choice.layout != ReviewLayout::Surfaces);
+    });
     return chooser;
 }
 
@@ -151,17 +179,6 @@ void ReviewArrangement::showWindowOf(QComboBox& chooser) const {
         if (windowPreset(WindowPreset(chooser.itemData(i).toInt())) == m_slices.windowLevel())
             shown = i;
     chooser.setCurrentIndex(shown);
-}
-
-void ReviewArrangement::addShortcuts(QWidget& scope) {
-    for (int i = 0; i < int(std::size(kChoices)); ++i) {
-        auto* action = new QAction(choiceName(kChoices[i]), &scope);
-        action->setObjectName(QStringLiteral("reviewLayout%1").arg(i + 1));
-        action->setShortcut(QKeySequence(Qt::ALT | Qt::Key(Qt::Key_1 + i)));
-        action->setShortcutContext(Qt::WidgetWithChildrenShortcut);
-        connect(action, &QAction::triggered, this, [this, i] { apply(kChoices[i]); });
-        scope.addAction(action);
-    }
 }
 
 } // namespace lw::gui

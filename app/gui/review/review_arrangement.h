@@ -2,7 +2,7 @@
 
 // Where the review's panels sit: the two 3D panels and the three slice views in the layouts of
 // settings/review_layout.h, the view bar's layout and window chooser, and the layouts' keys
-// (Alt+1 ... Alt+5, as the chooser lists them). Only the slices a layout shows are sampled.
+// (Alt+1 ... Alt+5, as its menu lists them). Only the slices a layout shows are sampled.
 
 #include "settings/review_layout.h"
 
@@ -10,6 +10,7 @@
 
 class QComboBox;
 class QSplitter;
+class QToolButton;
 class QWidget;
 
 namespace lw::gui {
@@ -26,11 +27,11 @@ public:
     QWidget* widget() const; // the splitters, for the review's layout
     ReviewLayoutChoice choice() const { return m_choice; }
     void apply(ReviewLayoutChoice choice);
-    // The view bar's controls, kept in step with apply() and the slices' window.
-    QComboBox* makeLayoutChooser();
+    // The view bar's controls, kept in step with apply() and the slices' window: the layouts'
+    // menu, whose actions' keys work while the focus is inside `scope` (the review), and the
+    // window presets (shown with the slices).
+    QToolButton* makeLayoutButton(QWidget& scope);
     QComboBox* makeWindowChooser();
-    // The layouts' shortcuts, active while the focus is inside `scope` (the review).
-    void addShortcuts(QWidget& scope);
 
 signals:
     void changed(lw::gui::ReviewLayoutChoice choice);

@@ -121,7 +121,6 @@ void ReviewWidget::buildSlices() {
         QSettings store;
         choice.save(store);
     });
-    m_arrangement->addShortcuts(*this);
     connect(m_slices, &SliceViews::linkRequested, this, &ReviewWidget::linkCursorTo);
     for (ReviewPanel* panel : {m_isoPanel, m_silhouettePanel})
         panel->installEventFilter(this);
@@ -263,7 +262,7 @@ QWidget* ReviewWidget::makeViewBar() {
     layout->addWidget(reset);
     addToolButtons(*layout);
     layout->addItem(new QSpacerItem(16, 1));
-    layout->addWidget(m_arrangement->makeLayoutChooser());
+    layout->addWidget(m_arrangement->makeLayoutButton(*this));
     layout->addWidget(m_arrangement->makeWindowChooser());
     m_cursorLine = new QLabel;
     m_cursorLine->setObjectName("cursorPosition");
