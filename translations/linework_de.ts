@@ -683,6 +683,10 @@
         <source>Window and level of the slices (right drag on a slice to adjust)</source>
         <translation>Fenster und Zentrum der Schichten (mit der rechten Maustaste auf einer Schicht ziehen, um sie anzupassen)</translation>
     </message>
+    <message>
+        <source>Layout</source>
+        <translation>Anordnung</translation>
+    </message>
 </context>
 <context>
     <name>lw::gui::ReviewPanel</name>

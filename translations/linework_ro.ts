@@ -683,6 +683,10 @@
         <source>Window and level of the slices (right drag on a slice to adjust)</source>
         <translation>Fereastra și nivelul secțiunilor (tragere cu butonul drept pe o secțiune pentru ajustare)</translation>
     </message>
+    <message>
+        <source>Layout</source>
+        <translation>Aranjare</translation>
+    </message>
 </context>
 <context>
     <name>lw::gui::ReviewPanel</name>
