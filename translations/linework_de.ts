@@ -12,10 +12,6 @@
         <translation>interner Fehler: %1</translation>
     </message>
     <message>
-        <source>Surface at %1 · %2 · %3 mm</source>
-        <translation>Oberfläche bei %1 · %2 · %3 mm</translation>
-    </message>
-    <message>
         <source>Bone</source>
         <translation>Knochen</translation>
     </message>
@@ -120,10 +116,6 @@
         <translation>Text:</translation>
     </message>
     <message>
-        <source>Drag: rotate · Shift/middle drag: pan · wheel/right drag: zoom · Ctrl drag: roll</source>
-        <translation>Ziehen: drehen · Umschalt- oder Mitteltaste+Ziehen: verschieben · Mausrad oder rechte Taste+Ziehen: zoomen · Strg+Ziehen: rollen</translation>
-    </message>
-    <message>
         <source>%1 exists. Replace it?</source>
         <translation>%1 existiert bereits. Ersetzen?</translation>
     </message>
@@ -154,6 +146,74 @@
     <message>
         <source>angle</source>
         <translation>Winkel</translation>
+    </message>
+    <message>
+        <source>3D panels</source>
+        <translation>3D-Bereiche</translation>
+    </message>
+    <message>
+        <source>3D panels and slices</source>
+        <translation>3D-Bereiche und Schichten</translation>
+    </message>
+    <message>
+        <source>Surface at %1</source>
+        <translation>Oberfläche bei %1</translation>
+    </message>
+    <message>
+        <source>Drag: rotate · Shift/middle drag: pan · wheel/right drag: zoom · Ctrl drag: roll · Shift+click: linked cursor</source>
+        <translation>Ziehen: drehen · Umschalt- oder Mitteltaste+Ziehen: verschieben · Mausrad oder rechte Taste+Ziehen: zoomen · Strg+Ziehen: rollen · Umschalt+Klick: verknüpfter Cursor</translation>
+    </message>
+    <message>
+        <source>Soft tissue</source>
+        <translation>Weichteil</translation>
+    </message>
+    <message>
+        <source>Lung</source>
+        <translation>Lunge</translation>
+    </message>
+    <message>
+        <source>Brain</source>
+        <translation>Gehirn</translation>
+    </message>
+    <message>
+        <source>%1 · %2 · %3 mm</source>
+        <translation>%1 · %2 · %3 mm</translation>
+    </message>
+    <message>
+        <source>%1 mm</source>
+        <translation>%1 mm</translation>
+    </message>
+    <message>
+        <source>Axial</source>
+        <translation>Axial</translation>
+    </message>
+    <message>
+        <source>Coronal</source>
+        <translation>Koronal</translation>
+    </message>
+    <message>
+        <source>Sagittal</source>
+        <translation>Sagittal</translation>
+    </message>
+    <message>
+        <source>stored units</source>
+        <translation>gespeicherte Einheiten</translation>
+    </message>
+    <message>
+        <source>%1 stored units</source>
+        <translation>%1, gespeicherte Einheiten</translation>
+    </message>
+    <message>
+        <source>Silhouette and axial slice</source>
+        <translation>Silhouette und axiale Schicht</translation>
+    </message>
+    <message>
+        <source>Silhouette and coronal slice</source>
+        <translation>Silhouette und koronale Schicht</translation>
+    </message>
+    <message>
+        <source>Silhouette and sagittal slice</source>
+        <translation>Silhouette und sagittale Schicht</translation>
     </message>
 </context>
 <context>
@@ -606,6 +666,29 @@
     </message>
 </context>
 <context>
+    <name>lw::gui::ReviewArrangement</name>
+    <message>
+        <source>Layout of the review (Alt+1 … Alt+5)</source>
+        <translation>Anordnung der Befundung (Alt+1 … Alt+5)</translation>
+    </message>
+    <message>
+        <source>Custom window</source>
+        <translation>Eigenes Fenster</translation>
+    </message>
+    <message>
+        <source>Window %1, level %2 HU</source>
+        <translation>Fenster %1, Zentrum %2 HU</translation>
+    </message>
+    <message>
+        <source>Window and level of the slices (right drag on a slice to adjust)</source>
+        <translation>Fenster und Zentrum der Schichten (mit der rechten Maustaste auf einer Schicht ziehen, um sie anzupassen)</translation>
+    </message>
+    <message>
+        <source>Layout</source>
+        <translation>Anordnung</translation>
+    </message>
+</context>
+<context>
     <name>lw::gui::ReviewPanel</name>
     <message>
         <source>OpenGL failed: %1</source>
@@ -729,6 +812,14 @@
     <message>
         <source> · iso shaded from the device&apos;s mesh %1 ms</source>
         <translation> · Iso aus dem Netz auf dem Grafikprozessor schattiert %1 ms</translation>
+    </message>
+    <message>
+        <source>Linked cursor at %1</source>
+        <translation>Verknüpfter Cursor bei %1</translation>
+    </message>
+    <message>
+        <source>No surface under the pointer: Shift+click on the surface</source>
+        <translation>Keine Oberfläche unter dem Mauszeiger: mit Umschalt+Klick auf die Oberfläche klicken</translation>
     </message>
 </context>
 <context>
@@ -1008,6 +1099,28 @@
     <message>
         <source>Where the slices are three or more pixels apart, the surface between them joins the outlines of neighbouring slices smoothly (shape-based interpolation) instead of drawing straight lines between their grey values, so a skull drawn from a thick-slice series shows no terraces. Off: straight lines between the slices.</source>
         <translation>Wo die Schichten drei oder mehr Pixel auseinanderliegen, verbindet die Oberfläche zwischen ihnen die Umrisse benachbarter Schichten glatt (formbasierte Interpolation), statt gerade Linien zwischen ihren Grauwerten zu ziehen; so zeigt ein Schädel aus einer Serie mit dicken Schichten keine Terrassen. Aus: gerade Linien zwischen den Schichten.</translation>
+    </message>
+    <message>
+        <source>Iso contour on slices:</source>
+        <translation>Iso-Kontur auf Schichten:</translation>
+    </message>
+</context>
+<context>
+    <name>lw::gui::SliceView</name>
+    <message>
+        <source>%1 %2</source>
+        <translation>%1 %2</translation>
+    </message>
+    <message>
+        <source>W %1 · L %2</source>
+        <translation>F %1 · Z %2</translation>
+    </message>
+</context>
+<context>
+    <name>lw::gui::SliceViews</name>
+    <message>
+        <source>%1 %2 · %3</source>
+        <translation>%1 %2 · %3</translation>
     </message>
 </context>
 <context>

@@ -12,10 +12,6 @@
         <translation>eroare internă: %1</translation>
     </message>
     <message>
-        <source>Surface at %1 · %2 · %3 mm</source>
-        <translation>Suprafața la %1 · %2 · %3 mm</translation>
-    </message>
-    <message>
         <source>Bone</source>
         <translation>Os</translation>
     </message>
@@ -120,10 +116,6 @@
         <translation>Text:</translation>
     </message>
     <message>
-        <source>Drag: rotate · Shift/middle drag: pan · wheel/right drag: zoom · Ctrl drag: roll</source>
-        <translation>Tragere: rotire · Shift sau butonul din mijloc + tragere: deplasare · rotiță sau butonul drept + tragere: zoom · Ctrl + tragere: ruliu</translation>
-    </message>
-    <message>
         <source>%1 exists. Replace it?</source>
         <translation>%1 există deja. O înlocuiți?</translation>
     </message>
@@ -154,6 +146,74 @@
     <message>
         <source>angle</source>
         <translation>unghi</translation>
+    </message>
+    <message>
+        <source>3D panels</source>
+        <translation>Panouri 3D</translation>
+    </message>
+    <message>
+        <source>3D panels and slices</source>
+        <translation>Panouri 3D și secțiuni</translation>
+    </message>
+    <message>
+        <source>Surface at %1</source>
+        <translation>Suprafață la %1</translation>
+    </message>
+    <message>
+        <source>Drag: rotate · Shift/middle drag: pan · wheel/right drag: zoom · Ctrl drag: roll · Shift+click: linked cursor</source>
+        <translation>Tragere: rotire · Shift sau butonul din mijloc + tragere: deplasare · rotiță sau butonul drept + tragere: zoom · Ctrl + tragere: ruliu · Shift+clic: cursor legat</translation>
+    </message>
+    <message>
+        <source>Soft tissue</source>
+        <translation>Țesut moale</translation>
+    </message>
+    <message>
+        <source>Lung</source>
+        <translation>Plămân</translation>
+    </message>
+    <message>
+        <source>Brain</source>
+        <translation>Creier</translation>
+    </message>
+    <message>
+        <source>%1 · %2 · %3 mm</source>
+        <translation>%1 · %2 · %3 mm</translation>
+    </message>
+    <message>
+        <source>%1 mm</source>
+        <translation>%1 mm</translation>
+    </message>
+    <message>
+        <source>Axial</source>
+        <translation>Axial</translation>
+    </message>
+    <message>
+        <source>Coronal</source>
+        <translation>Coronal</translation>
+    </message>
+    <message>
+        <source>Sagittal</source>
+        <translation>Sagital</translation>
+    </message>
+    <message>
+        <source>stored units</source>
+        <translation>unități stocate</translation>
+    </message>
+    <message>
+        <source>%1 stored units</source>
+        <translation>%1, unități stocate</translation>
+    </message>
+    <message>
+        <source>Silhouette and axial slice</source>
+        <translation>Siluetă și secțiune axială</translation>
+    </message>
+    <message>
+        <source>Silhouette and coronal slice</source>
+        <translation>Siluetă și secțiune coronală</translation>
+    </message>
+    <message>
+        <source>Silhouette and sagittal slice</source>
+        <translation>Siluetă și secțiune sagitală</translation>
     </message>
 </context>
 <context>
@@ -606,6 +666,29 @@
     </message>
 </context>
 <context>
+    <name>lw::gui::ReviewArrangement</name>
+    <message>
+        <source>Layout of the review (Alt+1 … Alt+5)</source>
+        <translation>Aranjarea examinării (Alt+1 … Alt+5)</translation>
+    </message>
+    <message>
+        <source>Custom window</source>
+        <translation>Fereastră proprie</translation>
+    </message>
+    <message>
+        <source>Window %1, level %2 HU</source>
+        <translation>Fereastră %1, nivel %2 HU</translation>
+    </message>
+    <message>
+        <source>Window and level of the slices (right drag on a slice to adjust)</source>
+        <translation>Fereastra și nivelul secțiunilor (tragere cu butonul drept pe o secțiune pentru ajustare)</translation>
+    </message>
+    <message>
+        <source>Layout</source>
+        <translation>Aranjare</translation>
+    </message>
+</context>
+<context>
     <name>lw::gui::ReviewPanel</name>
     <message>
         <source>OpenGL failed: %1</source>
@@ -729,6 +812,14 @@
     <message>
         <source> · iso shaded from the device&apos;s mesh %1 ms</source>
         <translation> · izo umbrită din rețeaua de pe GPU %1 ms</translation>
+    </message>
+    <message>
+        <source>Linked cursor at %1</source>
+        <translation>Cursor legat la %1</translation>
+    </message>
+    <message>
+        <source>No surface under the pointer: Shift+click on the surface</source>
+        <translation>Nicio suprafață sub cursor: Shift+clic pe suprafață</translation>
     </message>
 </context>
 <context>
@@ -1008,6 +1099,28 @@
     <message>
         <source>Where the slices are three or more pixels apart, the surface between them joins the outlines of neighbouring slices smoothly (shape-based interpolation) instead of drawing straight lines between their grey values, so a skull drawn from a thick-slice series shows no terraces. Off: straight lines between the slices.</source>
         <translation>Acolo unde secțiunile sunt la trei sau mai mulți pixeli distanță, suprafața dintre ele unește lin contururile secțiunilor vecine (interpolare bazată pe formă), în loc să tragă linii drepte între valorile lor de gri; astfel, un craniu dintr-o serie cu secțiuni groase nu arată terase. Dezactivat: linii drepte între secțiuni.</translation>
+    </message>
+    <message>
+        <source>Iso contour on slices:</source>
+        <translation>Contur izo pe secțiuni:</translation>
+    </message>
+</context>
+<context>
+    <name>lw::gui::SliceView</name>
+    <message>
+        <source>%1 %2</source>
+        <translation>%1 %2</translation>
+    </message>
+    <message>
+        <source>W %1 · L %2</source>
+        <translation>F %1 · N %2</translation>
+    </message>
+</context>
+<context>
+    <name>lw::gui::SliceViews</name>
+    <message>
+        <source>%1 %2 · %3</source>
+        <translation>%1 %2 · %3</translation>
     </message>
 </context>
 <context>

@@ -2,10 +2,11 @@
 // real widgets (docs/BENCHMARKS.md): UI-thread stalls while importing, dragging the iso slider
 // and orbiting; iso release → both panels updated; an iso drag (20 steps of 10 HU at 60 Hz):
 // the panels' updates per second while it lasts; a new view in mode a per method; the time
-// from start to the first review drawn; the exports.
+// from start to the first review drawn; the slice panels (a review made from the loaded series
+// -> its three slices painted; a wheel step -> the slice painted with its contour); the exports.
 //
 //   linework-review-bench PATH [--iso HU] [--repeat N] [--panel-gl ..] [--backend cpu|cuda|auto]
-//                         [--thick-slices smooth|linear]
+//                         [--thick-slices smooth|linear] [--slices-only]
 //
 // Run under a display (xvfb-run -a -s "-screen 0 1920x1080x24"). Prints one line per figure.
 #include "bench/bench_support.h"
@@ -14,6 +15,8 @@
 #include "review/camera_controller.h"
 #include "review/review_panel.h"
 #include "review/review_widget.h"
+#include "review/slice_view.h"
+#include "review/slice_views.h"
 #include "shell/main_window.h"
 #include "shell/review_export.h"
 
@@ -23,6 +26,7 @@
 #include <QSettings>
 #include <QTemporaryDir>
 #include <QTest>
+#include <QWheelEvent>
 #include <algorithm>
 #include <cstdio>
 #include <functional>
@@ -278,6 +282,83 @@ void measureIdleAndRepaint(ReviewWidget& review, StallMonitor& monitor) {
     report("longest UI stall, panels repainting only", monitor.longestStallMs());
 }
 
+// A wheel notch on `view` -> the next slice painted with its contour (ms).
+double timeWheelStep(SliceView& view, int direction) {
+    const double target = view.position() + direction * view.geometry().step;
+    bool painted = false;
+    const QMetaObject::Connection watching =
+        QObject::connect(&view, &SliceView::painted, [&](double) {
+            painted = painted || view.shownPosition() == std::optional(target);
+        });
+    const QPointF centre = QRectF(view.rect()).center();
+    QElapsedTimer timer;
+    timer.start();
+    QWheelEvent wheel(centre, view.mapToGlobal(centre), QPoint(), QPoint(0, 120 * direction),
+                      Qt::NoButton, Qt::NoModifier, Qt::NoScrollPhase, false);
+    QApplication::sendEvent(&view, &wheel);
+    bench::waitFor([&] { return painted; });
+    const double milliseconds = double(timer.nsecsElapsed()) / 1e6;
+    QObject::disconnect(watching);
+    return milliseconds;
+}
+
+// The slice panels on the loaded series: a review made from it in the layout with the three
+// slices (as a remembered layout opens it) until all three are painted, then wheel steps on each.
+void benchSlices(const ReviewWidget& loaded, const ReviewSettings& settings, int repeat) {
+    {
+        QSettings store;
+        ReviewLayoutChoice{ReviewLayout::SurfacesAndSlices, lw::volume::SliceOrientation::Axial}
+            .save(store);
+    }
+    constexpr lw::volume::SliceOrientation kPlanes[] = {lw::volume::SliceOrientation::Axial,
+                                                        lw::volume::SliceOrientation::Coronal,
+                                                        lw::volume::SliceOrientation::Sagittal};
+    std::vector<double> firstShown;
+    for (int i = 0; i < std::max(1, repeat / 3); ++i) {
+        QElapsedTimer timer;
+        timer.start();
+        ReviewWidget review(loaded.source(), settings);
+        int painted = 0;
+        std::vector<QMetaObject::Connection> watching;
+        for (lw::volume::SliceOrientation plane : kPlanes) {
+            SliceView& view = review.slices().view(plane);
+            watching.push_back(QObject::connect(&view, &SliceView::painted, [&painted, &view] {
+                if (view.shownPosition() && !view.property("benchShown").toBool()) {
+                    view.setProperty("benchShown", true);
+                    ++painted;
+                }
+            }));
+        }
+        review.resize(1600, 900);
+        review.show();
+        bench::waitFor([&] { return painted == 3; });
+        firstShown.push_back(double(timer.nsecsElapsed()) / 1e6);
+        for (const QMetaObject::Connection& connection : watching)
+            QObject::disconnect(connection);
+        if (i + 1 < std::max(1, repeat / 3))
+            continue;
+        report("slices: review made from the loaded series -> 3 slices painted (median)",
+               median(firstShown));
+        bench::waitFor([&] { return !review.isBusy() && !review.slices().isBusy(); });
+        for (lw::volume::SliceOrientation plane : kPlanes) {
+            std::vector<double> steps;
+            for (int step = 0; step < repeat; ++step)
+                steps.push_back(timeWheelStep(review.slices().view(plane), step % 2 ? -1 : 1));
+            char line[160];
+            std::snprintf(line, sizeof line,
+                          "slices: wheel step -> %s slice painted with contour (median)",
+                          lw::volume::sliceOrientationName(plane).data());
+            report(line, median(steps));
+            const lw::gui::SliceResult* shown = review.slices().view(plane).slice();
+            const SliceView& view = review.slices().view(plane);
+            std::printf("slices: %s, last step: sample %.1f ms, contour %.1f ms (%zu segments), "
+                        "UI paint %.1f ms\n",
+                        lw::volume::sliceOrientationName(plane).data(), shown->sampleMs,
+                        shown->contourMs, shown->contour.size(), view.lastPaintMs());
+        }
+    }
+}
+
 } // namespace
 
 int main(int argc, char* argv[]) {
@@ -299,12 +380,15 @@ int main(int argc, char* argv[]) {
         "backend", "Back-end: cpu, cuda or auto (settings page).", "BACKEND", "auto");
     const QCommandLineOption thickOption(
         "thick-slices", "Thick slices: smooth or linear (settings page).", "HOW", "smooth");
-    parser.addOptions({isoOption, repeatOption, panelGlOption, backendOption, thickOption});
+    const QCommandLineOption slicesOnlyOption(
+        "slices-only", "Only the slice panels' figures (after opening the series).");
+    parser.addOptions(
+        {isoOption, repeatOption, panelGlOption, backendOption, thickOption, slicesOnlyOption});
     parser.process(app);
     if (parser.positionalArguments().size() != 1) {
         std::fprintf(stderr, "usage: linework-review-bench PATH [--iso HU] [--repeat N] "
                              "[--panel-gl auto|panels|worker] [--backend cpu|cuda|auto] "
-                             "[--thick-slices smooth|linear]\n");
+                             "[--thick-slices smooth|linear] [--slices-only]\n");
         return 2;
     }
     const QString path = parser.positionalArguments().front();
@@ -325,11 +409,16 @@ int main(int argc, char* argv[]) {
                      qPrintable(window.lastError()));
         return 1;
     }
+    if (parser.isSet(slicesOnlyOption)) {
+        benchSlices(*review, window.settings(), repeat);
+        return 0;
+    }
     if (!path.startsWith("phantom:"))
         importAndMeasure(window, path, monitor);
     for (int method : {3, 2, 1})
         benchMethod(*review, window, method, iso, repeat, monitor);
     measureIdleAndRepaint(*review, monitor);
+    benchSlices(*review, window.settings(), repeat);
     // The report issue's export goal: a 4096 x 2048 side-by-side PNG, by every method.
     for (int method : {3, 2, 1}) {
         ReviewSettings settings = window.settings();

@@ -9,6 +9,8 @@
 #include "browser/study_browser.h"
 #include "review/review_panel.h"
 #include "review/review_widget.h"
+#include "review/slice_view.h"
+#include "review/slice_views.h"
 #include "settings/settings_dialog.h"
 #include "shell/main_window.h"
 
@@ -114,6 +116,44 @@ bool saveThickSliceReviews(MainWindow& window, const QString& path, const QDir& 
     return saveWindow(window, out.filePath("thick_slices_linear.png")) && ok;
 }
 
+// The slice panels on the demo (tilted gantry: resampled, never sheared): each layout, with the
+// linked cursor at a surface point so the cross-hairs show on the slices and in 3D.
+bool saveSliceLayouts(ReviewWidget& review, const QDir& out) {
+    const auto slicesShown = [&] {
+        return bench::waitFor([&] {
+            if (review.isBusy() || review.slices().isBusy())
+                return false;
+            for (auto plane :
+                 {lw::volume::SliceOrientation::Axial, lw::volume::SliceOrientation::Coronal,
+                  lw::volume::SliceOrientation::Sagittal})
+                if (review.slices().isActive(plane) && !review.slices().view(plane).slice())
+                    return false;
+            return true;
+        });
+    };
+    review.annotations().reset({}); // the slices and the cursors, not the measurements
+    review.window()->resize(1600, 1040); // room for the 3D panels above the slices
+    review.setLayoutChoice({ReviewLayout::SurfacesAndSlices, lw::volume::SliceOrientation::Axial});
+    bool ok = slicesShown();
+    review.slices().applyPreset(WindowPreset::Brain);
+    ReviewPanel& panel = review.isoPanel();
+    const QPoint wanted(int(0.62 * panel.width()), int(0.38 * panel.height()));
+    if (const auto point = review.pickSurface(panel, onSurface(review, panel, wanted)))
+        review.linkCursorTo(*point);
+    else
+        ok = false;
+    ok = slicesShown() && ok;
+    ok = saveWindow(review, out.filePath("slices_layout_3d_and_slices.png")) && ok;
+    review.slices().applyPreset(WindowPreset::Bone);
+    review.setLayoutChoice(
+        {ReviewLayout::SilhouetteAndSlice, lw::volume::SliceOrientation::Sagittal});
+    ok = slicesShown() && ok;
+    ok = saveWindow(review, out.filePath("slices_layout_silhouette_and_sagittal.png")) && ok;
+    review.setLayoutChoice({ReviewLayout::Surfaces, lw::volume::SliceOrientation::Sagittal});
+    ok = slicesShown() && ok;
+    return saveWindow(review, out.filePath("slices_layout_3d_only.png")) && ok;
+}
+
 } // namespace
 
 int main(int argc, char* argv[]) {
@@ -190,5 +230,7 @@ int main(int argc, char* argv[]) {
     }
     settings->close();
     ok = saveThickSliceReviews(window, args.at(1), out) && ok;
+    window.currentReview()->applySettings(window.settings()); // smooth again
+    ok = saveSliceLayouts(*window.currentReview(), out) && ok;
     return ok ? 0 : 1;
 }

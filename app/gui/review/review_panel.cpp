@@ -338,12 +338,41 @@ void ReviewPanel::setOverlayPainter(OverlayPainter painter) {
 }
 
 void ReviewPanel::drawOverlayPainter(QPainter& painter) {
-    if (!m_overlayPainter)
+    if (!m_overlayPainter && !m_crossHair)
         return;
     painter.save();
     // The overlay draws in device pixels, as the camera projects.
     painter.scale(1.0 / devicePixelRatioF(), 1.0 / devicePixelRatioF());
-    m_overlayPainter(painter, viewCamera());
+    const render::Camera camera = viewCamera();
+    if (m_overlayPainter)
+        m_overlayPainter(painter, camera);
+    drawCrossHair(painter, camera);
+    painter.restore();
+}
+
+void ReviewPanel::setCrossHair(std::optional<glm::dvec3> patient) {
+    m_crossHair = patient;
+    updateView();
+}
+
+// The linked cursor's colour, as on the slices (slice_view.cpp): cyan shows on the grey surface,
+// the white background and black lines alike.
+void ReviewPanel::drawCrossHair(QPainter& painter, const render::Camera& camera) const {
+    if (!m_crossHair)
+        return;
+    const render::ProjectedPoint point = camera.project(*m_crossHair);
+    if (!camera.isOrthographic() && point.depth <= 0.0)
+        return; // behind the eye
+    const QPointF at(point.pixel.x, point.pixel.y);
+    const double scale = devicePixelRatioF();
+    const double gap = 4.0 * scale, arm = 16.0 * scale;
+    painter.save();
+    painter.setRenderHint(QPainter::Antialiasing);
+    painter.setPen(QPen(QColor(0, 200, 255), 2.0 * scale));
+    painter.drawLine(at + QPointF(-arm, 0), at + QPointF(-gap, 0));
+    painter.drawLine(at + QPointF(gap, 0), at + QPointF(arm, 0));
+    painter.drawLine(at + QPointF(0, -arm), at + QPointF(0, -gap));
+    painter.drawLine(at + QPointF(0, gap), at + QPointF(0, arm));
     painter.restore();
 }
 

@@ -111,6 +111,10 @@ public:
     // panel knows nothing of what it draws. An empty function draws nothing.
     using OverlayPainter = std::function<void(QPainter& painter, const render::Camera& camera)>;
     void setOverlayPainter(OverlayPainter painter);
+    // The linked cursor: a cross-hair at a patient point (LPS, mm), drawn over the picture where
+    // the camera projects it; nothing for none.
+    void setCrossHair(std::optional<glm::dvec3> patient);
+    std::optional<glm::dvec3> crossHair() const { return m_crossHair; }
     // The overlay changed (the picture did not): paint again.
     void repaintOverlay() { updateView(); }
 
@@ -141,6 +145,7 @@ private:
     void drawLinesTexture();
     void drawMessage(QPainter& painter);
     void drawOverlayPainter(QPainter& painter);
+    void drawCrossHair(QPainter& painter, const render::Camera& camera) const;
     void releaseGl();
     // The renderer of the view's context (made on first use; the context current).
     render::SilhouetteGlRenderer& glRenderer();
@@ -172,6 +177,7 @@ private:
     QPoint m_lastMouse;
     QTimer* m_hoverTimer = nullptr; // picks once the mouse rests, not on every move
     OverlayPainter m_overlayPainter;
+    std::optional<glm::dvec3> m_crossHair;
     double m_lastPaintMs = 0.0;
     render::SilhouetteGlStats m_lastStats;
 };

@@ -13,15 +13,21 @@
 #include "review/iso_control.h"
 #include "review/panel_render_job.h"
 #include "review/render_scheduler.h"
+#include "review/review_arrangement.h"
 #include "review/review_panel.h"
+#include "review/slice_image.h"
+#include "review/slice_views.h"
 
+#include <QApplication>
+#include <QComboBox>
 #include <QHBoxLayout>
 #include <QLabel>
 #include <QLocale>
+#include <QMouseEvent>
 #include <QOpenGLContext>
 #include <QPainter>
+#include <QSettings>
 #include <QSignalBlocker>
-#include <QSplitter>
 #include <QToolButton>
 #include <QVBoxLayout>
 #include <algorithm>
@@ -31,22 +37,15 @@
 namespace lw::gui {
 namespace {
 
-// LPS millimetres as radiologists read them: R/L, A/P, I/S with the side the value lies on.
 QString patientPositionText(glm::dvec3 p) {
-    auto axis = [](double value, const char* negative, const char* positive) {
-        return QStringLiteral("%1 %2")
-            .arg(value < 0 ? negative : positive)
-            .arg(std::abs(value), 0, 'f', 1);
-    };
-    return QObject::tr("Surface at %1 · %2 · %3 mm")
-        .arg(axis(p.x, "R", "L"), axis(p.y, "A", "P"), axis(p.z, "I", "S"));
+    return QObject::tr("Surface at %1").arg(patientPointText(p));
 }
 
 const char* const kErrorStyle = "QLabel { background: #f8d7da; color: #721c24; padding: 4px; }";
 
 QString navigationHint() {
     return QObject::tr("Drag: rotate · Shift/middle drag: pan · wheel/right drag: zoom · "
-                       "Ctrl drag: roll");
+                       "Ctrl drag: roll · Shift+click: linked cursor");
 }
 
 QString count(std::size_t value) {
@@ -66,6 +65,7 @@ ReviewWidget::ReviewWidget(ReviewSource source, const ReviewSettings& settings, 
     m_camera.setBounds(m_source.bounds);
     m_camera.setProjection(settings.projection);
     setUpAnnotations();
+    buildSlices();
     buildLayout();
     m_scheduler = std::make_unique<RenderScheduler>(m_source.volume);
     connectParts();
@@ -77,6 +77,7 @@ ReviewWidget::ReviewWidget(ReviewSource source, const ReviewSettings& settings, 
         m_isoControl->setIso(m_source.initialIso);
     }
     m_iso = m_isoControl->iso();
+    m_slices->setIso(m_iso);
     applySettings(settings);
 }
 
@@ -106,6 +107,66 @@ std::optional<glm::dvec3> ReviewWidget::pickSurface(ReviewPanel& panel, QPoint p
                                    panel.cameraPixel(QPointF(position) + QPointF(0.5, 0.5)));
 }
 
+void ReviewWidget::buildSlices() {
+    QString unit = m_source.valueUnit;
+    if (unit.isEmpty())
+        unit = valueUnit(
+            m_source.dicom ? QString::fromStdString(m_source.dicom->modality) : QString(), false);
+    m_slices = new SliceViews(m_source.volume, unit, this);
+    m_slices->setIso(m_source.initialIso);
+    m_arrangement = new ReviewArrangement(*m_isoPanel, *m_silhouettePanel, *m_slices, this);
+    QSettings store;
+    m_arrangement->apply(ReviewLayoutChoice::load(store));
+    connect(m_arrangement, &ReviewArrangement::changed, this, [](ReviewLayoutChoice choice) {
+        QSettings store;
+        choice.save(store);
+    });
+    connect(m_slices, &SliceViews::linkRequested, this, &ReviewWidget::linkCursorTo);
+    for (ReviewPanel* panel : {m_isoPanel, m_silhouettePanel})
+        panel->installEventFilter(this);
+}
+
+ReviewLayoutChoice ReviewWidget::layoutChoice() const {
+    return m_arrangement->choice();
+}
+
+void ReviewWidget::setLayoutChoice(ReviewLayoutChoice choice) {
+    m_arrangement->apply(choice);
+}
+
+void ReviewWidget::linkCursorTo(glm::dvec3 patient) {
+    m_slices->linkTo(patient);
+    m_isoPanel->setCrossHair(patient);
+    m_silhouettePanel->setCrossHair(patient);
+    m_cursorLine->setText(tr("Linked cursor at %1").arg(patientPointText(patient)));
+}
+
+// Shift+click (press and release in place) on a 3D panel: the linked cursor at the surface
+// point. The press and the moves still reach the panel, so Shift+drag pans as before.
+bool ReviewWidget::eventFilter(QObject* watched, QEvent* event) {
+    auto* panel = qobject_cast<ReviewPanel*>(watched);
+    if (!panel ||
+        (event->type() != QEvent::MouseButtonPress && event->type() != QEvent::MouseButtonRelease))
+        return QWidget::eventFilter(watched, event);
+    const auto& mouse = static_cast<QMouseEvent&>(*event);
+    const QPoint position = mouse.position().toPoint();
+    if (event->type() == QEvent::MouseButtonPress) {
+        const bool shiftClick =
+            mouse.button() == Qt::LeftButton && mouse.modifiers() == Qt::ShiftModifier;
+        m_shiftPress = shiftClick ? std::optional(position) : std::nullopt;
+        return false;
+    }
+    if (mouse.button() == Qt::LeftButton && m_shiftPress &&
+        (position - *m_shiftPress).manhattanLength() < QApplication::startDragDistance()) {
+        if (const std::optional<glm::dvec3> point = pickSurface(*panel, position))
+            linkCursorTo(*point);
+        else
+            m_hintLine->setText(tr("No surface under the pointer: Shift+click on the surface"));
+    }
+    m_shiftPress.reset();
+    return false;
+}
+
 void ReviewWidget::buildLayout() {
     m_isoControl = new IsoControl;
     m_isoControl->setObjectName("isoControl");
@@ -131,16 +192,12 @@ void ReviewWidget::buildLayout() {
     m_warningLine->setStyleSheet("QLabel { background: #fff3cd; color: #856404; padding: 4px; }");
     m_warningLine->setVisible(!m_source.warnings.isEmpty());
 
-    auto* splitter = new QSplitter(Qt::Horizontal);
-    splitter->addWidget(m_isoPanel);
-    splitter->addWidget(m_silhouettePanel);
-    splitter->setChildrenCollapsible(false);
     auto* layout = new QVBoxLayout(this);
     layout->addWidget(makeViewBar());
     layout->addWidget(m_warningLine);
     layout->addWidget(m_errorLine);
     layout->addWidget(m_storageLine);
-    layout->addWidget(splitter, 1);
+    layout->addWidget(m_arrangement->widget(), 1);
     layout->addWidget(m_isoControl);
     layout->addWidget(m_statusLine);
 }
@@ -204,6 +261,9 @@ QWidget* ReviewWidget::makeViewBar() {
     connect(reset, &QToolButton::clicked, this, &ReviewWidget::resetCamera);
     layout->addWidget(reset);
     addToolButtons(*layout);
+    layout->addItem(new QSpacerItem(16, 1));
+    layout->addWidget(m_arrangement->makeLayoutButton(*this));
+    layout->addWidget(m_arrangement->makeWindowChooser());
     m_cursorLine = new QLabel;
     m_cursorLine->setObjectName("cursorPosition");
     m_cursorLine->setMinimumWidth(260);
@@ -290,6 +350,7 @@ void ReviewWidget::applySettings(const ReviewSettings& settings) {
     m_silhouettePanel->setLinesTexture(nullptr);
     m_isoPanel->setOverlay({});
     m_isoControl->setPresets(settings.presets);
+    m_slices->setContourColour(settings.contourColour);
     m_meshCurrent = false; // the new settings' first frame brings the mesh again
     requestFrame(true);
 }
@@ -301,6 +362,7 @@ void ReviewWidget::setIso(double iso) {
     }
     m_iso = iso;
     m_meshCurrent = false;
+    m_slices->setIso(iso); // every value of a drag: a slice's contour is cheap
     requestFrame(true);
 }
 

@@ -10,6 +10,7 @@
 #include "lw/volume/volume.h"
 #include "review/camera_controller.h"
 #include "review/panel_render_job.h"
+#include "settings/review_layout.h"
 #include "settings/review_settings.h"
 
 #include <QImage>
@@ -28,7 +29,9 @@ class AnnotationDocument;
 class AnnotationToolController;
 class IsoControl;
 class RenderScheduler;
+class ReviewArrangement;
 class ReviewPanel;
+class SliceViews;
 struct FrameResult;
 
 // What a review needs of an opened volume; the loader computes the scans off the UI thread.
@@ -37,6 +40,7 @@ struct ReviewSource {
     QString title;                             // patient / series / dims, for the tab and reports
     QString seriesUid;                         // empty for non-DICOM input
     std::optional<input::DicomIdentity> dicom; // patient / study / series, DICOM only
+    QString valueUnit;    // "HU" for CT, otherwise the stored units named (slice_views.h)
     QStringList warnings; // tilt, uneven gaps, missing slices, files that failed
     render::Aabb bounds;  // the surface at the initial iso-value (camera framing)
     volume::ValueRange range;
@@ -84,6 +88,12 @@ public:
     // The iso-surface point under a widget position of either panel (LPS, mm): the iso panel
     // through its depth buffer, the silhouette panel by a ray against the mesh on screen.
     std::optional<glm::dvec3> pickSurface(ReviewPanel& panel, QPoint position);
+    SliceViews& slices() { return *m_slices; }
+    // The panels' layout (settings/review_layout.h); a new one is remembered in QSettings.
+    ReviewLayoutChoice layoutChoice() const;
+    void setLayoutChoice(ReviewLayoutChoice choice);
+    // The linked cursor at a patient point: the slices move through it and every panel marks it.
+    void linkCursorTo(glm::dvec3 patient);
     // True while the worker has work (tests wait for it to settle).
     bool isBusy() const;
 
@@ -112,8 +122,12 @@ signals:
     void statusChanged();
     void frameShown();
 
+protected:
+    bool eventFilter(QObject* watched, QEvent* event) override;
+
 private:
     void buildLayout();
+    void buildSlices();
     void connectParts();
     QWidget* makeViewBar();
     void requestFrame(bool newIso);
@@ -148,6 +162,9 @@ private:
     QLabel* m_storageLine = nullptr;
     QLabel* m_cursorLine = nullptr; // the surface point under the mouse, in patient terms
     QLabel* m_hintLine = nullptr;   // how to use the mouse, or the annotation tool's next step
+    SliceViews* m_slices = nullptr;
+    ReviewArrangement* m_arrangement = nullptr;
+    std::optional<QPoint> m_shiftPress; // a Shift+left press on a 3D panel: a click if it stays
     AnnotationDocument* m_annotations = nullptr;
     AnnotationToolController* m_annotationTools = nullptr;
     AnnotationActions* m_annotationActions = nullptr;

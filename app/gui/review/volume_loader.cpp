@@ -3,6 +3,7 @@
 #include "lw/core/error.h"
 #include "lw/core/progress.h"
 #include "lw/input/open_input.h"
+#include "review/slice_views.h"
 
 #include <QMetaObject>
 #include <QPointer>
@@ -41,6 +42,9 @@ ReviewSource VolumeLoader::load(const LoadRequest& request, core::Progress* prog
     source.title = QString::fromStdString(opened.description);
     source.seriesUid = QString::fromStdString(opened.seriesUid);
     source.dicom = opened.dicom;
+    source.valueUnit =
+        valueUnit(opened.dicom ? QString::fromStdString(opened.dicom->modality) : QString(),
+                  request.path.startsWith(QLatin1String("phantom:")));
     for (const std::string& warning : opened.warnings)
         source.warnings << QString::fromStdString(warning);
     source.range = opened.volume.realRange();

@@ -80,6 +80,7 @@ ReviewSettings ReviewSettings::load(QSettings& settings) {
     s.lineColour = colourOr(settings.value("lineColour"), s.lineColour);
     s.hiddenLines = settings.value("hiddenLines", s.hiddenLines).toBool();
     s.background = colourOr(settings.value("background"), s.background);
+    s.contourColour = colourOr(settings.value("contourColour"), s.contourColour);
     s.silhouetteOnIso = settings.value("silhouetteOnIso", s.silhouetteOnIso).toBool();
     s.projection = settings.value("projection").toString() == "ortho"
                        ? render::Projection::Orthographic
@@ -119,6 +120,7 @@ void ReviewSettings::save(QSettings& settings) const {
     settings.setValue("lineColour", lineColour.name());
     settings.setValue("hiddenLines", hiddenLines);
     settings.setValue("background", background.name());
+    settings.setValue("contourColour", contourColour.name());
     settings.setValue("silhouetteOnIso", silhouetteOnIso);
     settings.setValue("projection",
                       projection == render::Projection::Orthographic ? "ortho" : "perspective");

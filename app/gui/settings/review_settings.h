@@ -60,6 +60,8 @@ struct ReviewSettings {
     // Exports also draw the silhouette's hidden parts thin, dashed and grey (render/svg_lines.h).
     bool hiddenLines = false;
     QColor background = QColor(255, 255, 255);
+    // The iso contour on the slice panels: yellow shows on every grey of a CT window.
+    QColor contourColour = QColor(255, 255, 0);
     bool silhouetteOnIso = false;
     render::Projection projection = render::Projection::Perspective;
     render::Backend backend = render::Backend::Auto;

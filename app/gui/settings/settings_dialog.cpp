@@ -221,6 +221,9 @@ QWidget* SettingsDialog::makeAppearancePage() {
     form->addRow(QString(), m_hiddenLines);
     m_background = new QPushButton;
     form->addRow(tr("Background:"), m_background);
+    m_contourColour = new QPushButton;
+    m_contourColour->setObjectName("contourColour");
+    form->addRow(tr("Iso contour on slices:"), m_contourColour);
     m_silhouetteOnIso = new QCheckBox(tr("Draw the silhouette over the iso-surface panel too"));
     form->addRow(tr("Overlay:"), m_silhouetteOnIso);
     m_projection = new QComboBox;
@@ -266,6 +269,8 @@ QWidget* SettingsDialog::makeAppearancePage() {
             [this] { pickColour(m_settings.lineColour, m_lineColour); });
     connect(m_background, &QPushButton::clicked, this,
             [this] { pickColour(m_settings.background, m_background); });
+    connect(m_contourColour, &QPushButton::clicked, this,
+            [this] { pickColour(m_settings.contourColour, m_contourColour); });
     return page;
 }
 
@@ -322,6 +327,7 @@ void SettingsDialog::showSettings() {
     showColour(m_lineColour, m_settings.lineColour);
     m_hiddenLines->setChecked(m_settings.hiddenLines);
     showColour(m_background, m_settings.background);
+    showColour(m_contourColour, m_settings.contourColour);
     m_silhouetteOnIso->setChecked(m_settings.silhouetteOnIso);
     m_projection->setCurrentIndex(m_settings.projection == render::Projection::Orthographic);
     m_panelGl->setCurrentIndex(int(m_settings.panelGl));

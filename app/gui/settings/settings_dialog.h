@@ -63,6 +63,7 @@ private:
     QPushButton* m_lineColour = nullptr;
     QCheckBox* m_hiddenLines = nullptr;
     QPushButton* m_background = nullptr;
+    QPushButton* m_contourColour = nullptr;
     QCheckBox* m_silhouetteOnIso = nullptr;
     QComboBox* m_projection = nullptr;
     QComboBox* m_panelGl = nullptr;

@@ -1,0 +1,66 @@
+#pragma once
+
+// Samples one orientation's slices and their iso contour off the UI thread. One request runs at
+// a time and only the newest waiting one is kept: a wheel spun faster than slices are sampled
+// skips the positions in between, and the last one asked for is the one shown. A new iso-value
+// at the position on screen reuses its sampled image (marching squares only).
+//
+//   UI thread   SliceViews::request ──► SliceSampler (one running, one waiting)
+//                    ▲                       │ pool thread: sampleSlice + isoContour
+//                    └──── ready(result) ◄───┘ queued back to the UI thread
+
+#include "lw/volume/slice_contour.h"
+#include "lw/volume/slice_plane.h"
+
+#include <QObject>
+#include <QString>
+#include <chrono>
+#include <memory>
+#include <optional>
+#include <vector>
+
+class QThreadPool;
+
+namespace lw::gui {
+
+struct SliceResult {
+    std::shared_ptr<const volume::SliceImage> image;
+    std::vector<volume::ContourSegment> contour; // image pixel coordinates
+    double iso = 0.0;
+    QString error;         // why there is no image (out of memory), else empty
+    double sampleMs = 0.0; // 0 where the image was reused
+    double contourMs = 0.0;
+    std::chrono::steady_clock::time_point requested;
+};
+
+class SliceSampler : public QObject {
+    Q_OBJECT
+public:
+    SliceSampler(std::shared_ptr<const volume::Volume> volume, volume::SliceGeometry geometry,
+                 QThreadPool& pool, QObject* parent = nullptr);
+
+    const volume::SliceGeometry& geometry() const { return m_geometry; }
+    void request(double position, double iso);
+    bool isBusy() const { return m_running || m_waiting.has_value(); }
+
+signals:
+    void ready(std::shared_ptr<const lw::gui::SliceResult> result);
+
+private:
+    struct Request {
+        double position = 0.0;
+        double iso = 0.0;
+        std::chrono::steady_clock::time_point requested;
+    };
+    void start(const Request& request);
+    void finished(std::shared_ptr<const SliceResult> result);
+
+    std::shared_ptr<const volume::Volume> m_volume;
+    volume::SliceGeometry m_geometry;
+    QThreadPool& m_pool;
+    bool m_running = false;
+    std::optional<Request> m_waiting;
+    std::shared_ptr<const volume::SliceImage> m_lastImage; // reused for a new iso-value
+};
+
+} // namespace lw::gui
