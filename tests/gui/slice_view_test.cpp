@@ -33,6 +33,7 @@ using lw::volume::SliceOrientation;
 Q_DECLARE_METATYPE(SliceOrientation)
 Q_DECLARE_METATYPE(WindowPreset)
 Q_DECLARE_METATYPE(ReviewLayoutChoice)
+Q_DECLARE_METATYPE(lw::render::ThickSlices)
 
 namespace {
 
@@ -114,11 +115,11 @@ bool settleAtView(ReviewWidget& review) {
     return lw::test::waitSettled(review, shown + 1);
 }
 
-// The surface under the pixels beside `at` lies within 5 mm of `picked` (a pixel is ~0.5 mm).
+// The surface under the pixels beside `at` lies within 2 mm of `picked` (a pixel is ~0.5 mm).
 bool smoothPatch(ReviewWidget& review, lw::gui::ReviewPanel& panel, QPoint at, glm::dvec3 picked) {
     for (const QPoint offset : {QPoint(-1, 0), QPoint(1, 0), QPoint(0, -1), QPoint(0, 1)}) {
         const std::optional<glm::dvec3> near = review.pickSurface(panel, at + offset);
-        if (!near || glm::distance(*near, picked) > 5.0)
+        if (!near || glm::distance(*near, picked) > 2.0)
             return false;
     }
     return true;
@@ -147,6 +148,7 @@ private slots:
     void contourFollowsTheIsoValue();
     void shiftClickOnTheSurfaceMovesTheSlices_data();
     void shiftClickOnTheSurfaceMovesTheSlices();
+    void linkedCursorOnTheTiltedSeriesFollowsTheContours_data();
     void linkedCursorOnTheTiltedSeriesFollowsTheContours();
     void shiftDragStillPans();
     void shiftClickOnASliceShowsThe3dCrossHair();
@@ -342,10 +344,27 @@ void SliceViewTest::shiftClickOnTheSurfaceMovesTheSlices() {
 // the surface's flat triangles cross a thick cell (so: the median within 0.5 mm, every point
 // within half the mean slice gap). The surface is drawn with straight lines between the slices
 // (the slices' own trilinear field); shape-based interpolation moves it between thick slices.
+// The demo's 5.6 mm slices drawn both ways: shape-based (the default), where the 3D panels draw
+// a resampled copy and the slices contour that copy, and straight lines between slices, where
+// they contour the grey values. Either way a point picked on the surface lies on every slice's
+// contour through it within 1 mm (the goal; 0.2 mm here).
+void SliceViewTest::linkedCursorOnTheTiltedSeriesFollowsTheContours_data() {
+    QTest::addColumn<lw::render::ThickSlices>("thickSlices");
+    QTest::addColumn<bool>("drawnCopy");
+    QTest::addColumn<double>("worstMm");
+    QTest::addColumn<double>("medianMm");
+    QTest::newRow("shape-based") << lw::render::ThickSlices::Smooth << true << 1.0 << 0.5;
+    QTest::newRow("straight lines") << lw::render::ThickSlices::Linear << false << 1.0 << 0.5;
+}
+
 void SliceViewTest::linkedCursorOnTheTiltedSeriesFollowsTheContours() {
+    QFETCH(lw::render::ThickSlices, thickSlices);
+    QFETCH(bool, drawnCopy);
+    QFETCH(double, worstMm);
+    QFETCH(double, medianMm);
     const QString demo = lw::test::sourcePath() + "/resources/demo/ct_head_ge_tilt";
     lw::gui::ReviewSettings settings = settingsFor(3, lw::gui::Chunking::Off);
-    settings.thickSlices = lw::render::ThickSlices::Linear;
+    settings.thickSlices = thickSlices;
     ReviewWidget review(phantomSource(demo, 400.0), settings);
     review.setLayoutChoice({ReviewLayout::SurfacesAndSlices, SliceOrientation::Axial});
     review.resize(1200, 900);
@@ -362,7 +381,8 @@ void SliceViewTest::linkedCursorOnTheTiltedSeriesFollowsTheContours() {
             const std::optional<glm::dvec3> picked = review.pickSurface(panel, at);
             // On a smooth patch of surface only: at a depth edge (an orbit's rim, a hole in the
             // skull base) the depth buffer's pixel belongs to a neighbouring surface, and the
-            // point lies up to a couple of millimetres off the one under the pointer.
+            // point lies up to a couple of millimetres off the one under the pointer (1.5 mm in
+            // all three planes at one such point here, with neighbours 2-5 mm away).
             if (!picked || !smoothPatch(review, panel, at, *picked))
                 continue;
             shiftClick(panel, at);
@@ -371,6 +391,7 @@ void SliceViewTest::linkedCursorOnTheTiltedSeriesFollowsTheContours() {
             for (SliceOrientation orientation : kOrientations) {
                 const SliceView& view = review.slices().view(orientation);
                 const lw::gui::SliceResult& slice = *view.slice();
+                QCOMPARE(slice.contourOfDrawnCopy, drawnCopy);
                 const glm::dvec2 pixel = slice.image->geometry.pixelOf(*picked);
                 double nearest = 1e9;
                 for (const lw::volume::ContourSegment& segment : slice.contour) {
@@ -382,14 +403,15 @@ void SliceViewTest::linkedCursorOnTheTiltedSeriesFollowsTheContours() {
                 }
                 const double mm = nearest * slice.image->geometry.pixelMm;
                 distances.push_back(mm);
-                QVERIFY2(mm <= 2.8, qPrintable(QStringLiteral("%1 slice: %2 mm from the contour")
-                                                   .arg(lw::gui::sliceOrientationTitle(orientation))
-                                                   .arg(mm)));
+                QVERIFY2(mm <= worstMm,
+                         qPrintable(QStringLiteral("%1 slice: %2 mm from the contour")
+                                        .arg(lw::gui::sliceOrientationTitle(orientation))
+                                        .arg(mm)));
             }
         }
     QVERIFY2(clicked >= 8, qPrintable(QString::number(clicked)));
     std::sort(distances.begin(), distances.end());
-    QVERIFY2(distances[distances.size() / 2] <= 0.5,
+    QVERIFY2(distances[distances.size() / 2] <= medianMm,
              qPrintable(QStringLiteral("median %1 mm").arg(distances[distances.size() / 2])));
 }
 

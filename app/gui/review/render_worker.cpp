@@ -135,6 +135,7 @@ void RenderWorker::takeFrame(render::ReviewFrame&& frame, const ReviewSettings& 
     result.isoRenderMs = frame.isoRenderMs;
     result.isoOnDevice = frame.isoOnDevice;
     result.refinement = frame.refinement;
+    result.drawnVolume = std::move(frame.drawnVolume);
     result.backend = QString::fromStdString(frame.backend);
     result.backendNote = QString::fromStdString(frame.backendNote);
 }

@@ -69,7 +69,8 @@ struct FrameResult {
     render::SilhouetteMethod method = render::SilhouetteMethod::ZBuffer;
     int brickCells = 0;
     glm::ivec3 refinement{1}; // how the drawn volume split the loaded one's cells (oversampling)
-    QString backend;          // the back-end that actually ran
+    std::shared_ptr<const volume::Volume> drawnVolume; // render::ReviewFrame::drawnVolume
+    QString backend;                                   // the back-end that actually ran
     QString backendNote;
     QString error; // empty on success
     bool cancelled = false;

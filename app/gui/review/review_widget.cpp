@@ -434,6 +434,9 @@ void ReviewWidget::takeFrame(const std::shared_ptr<const FrameResult>& result) {
     m_status.backend = result->backend.isEmpty() ? QStringLiteral("gl") : result->backend;
     m_status.brickCells = result->brickCells;
     m_status.refinement = result->refinement;
+    // The slices contour the surface the panels show: the resampled copy where there is one.
+    m_slices->setDrawnSurface(
+        result->drawnVolume == m_source.volume ? nullptr : result->drawnVolume, result->iso);
     ++m_status.framesShown;
     m_status.workerMs = result->workerMs;
     m_status.requestToTakenMs = std::chrono::duration<double, std::milli>(

@@ -11,7 +11,7 @@ double millisecondsOf(const QElapsedTimer& timer) {
     return double(timer.nsecsElapsed()) / 1e6;
 }
 
-void sampleInto(SliceResult& result, const volume::Volume& volume,
+void sampleInto(SliceResult& result, const volume::Volume& volume, const volume::Volume* drawnCopy,
                 const volume::SliceGeometry& geometry, double position,
                 std::shared_ptr<const volume::SliceImage> reuse) {
     QElapsedTimer timer;
@@ -22,7 +22,13 @@ void sampleInto(SliceResult& result, const volume::Volume& volume,
                                volume::sampleSlice(volume, geometry, position));
     result.sampleMs = millisecondsOf(timer);
     timer.restart();
-    result.contour = volume::isoContour(*result.image, result.iso);
+    if (drawnCopy) {
+        result.contour =
+            volume::isoContour(volume::sampleSlice(*drawnCopy, geometry, position), result.iso);
+        result.contourOfDrawnCopy = true;
+    } else {
+        result.contour = volume::isoContour(*result.image, result.iso);
+    }
     result.contourMs = millisecondsOf(timer);
 }
 
@@ -41,17 +47,24 @@ void SliceSampler::request(double position, double iso) {
     start(request);
 }
 
+void SliceSampler::setDrawnSurface(std::shared_ptr<const volume::Volume> copy, double iso) {
+    m_drawnCopy = std::move(copy);
+    m_drawnIso = iso;
+}
+
 void SliceSampler::start(const Request& request) {
     m_running = true;
     std::shared_ptr<const volume::SliceImage> reuse =
         m_lastImage && m_lastImage->position == request.position ? m_lastImage : nullptr;
+    std::shared_ptr<const volume::Volume> drawn =
+        contoursDrawnCopy(request.iso) ? m_drawnCopy : nullptr;
     QPointer<SliceSampler> self(this);
-    m_pool.start([self, volume = m_volume, geometry = m_geometry, request, reuse] {
+    m_pool.start([self, volume = m_volume, drawn, geometry = m_geometry, request, reuse] {
         auto result = std::make_shared<SliceResult>();
         result->iso = request.iso;
         result->requested = request.requested;
         try {
-            sampleInto(*result, *volume, geometry, request.position, reuse);
+            sampleInto(*result, *volume, drawn.get(), geometry, request.position, reuse);
         } catch (const std::exception& error) {
             result->image.reset();
             result->error = QString::fromLocal8Bit(error.what());

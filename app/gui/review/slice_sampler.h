@@ -5,6 +5,12 @@
 // skips the positions in between, and the last one asked for is the one shown. A new iso-value
 // at the position on screen reuses its sampled image (marching squares only).
 //
+// The contour is of the surface the 3D panels draw: where they draw a resampled copy (the
+// shape-based field of thick slices, a finer grid) and it is of the request's iso-value, the
+// copy is sampled on the same pixels and contoured; otherwise the grey image is. Between slices
+// of a thick series the two differ by millimetres, and a point picked on the surface should lie
+// on the slice's contour.
+//
 //   UI thread   SliceViews::request ──► SliceSampler (one running, one waiting)
 //                    ▲                       │ pool thread: sampleSlice + isoContour
 //                    └──── ready(result) ◄───┘ queued back to the UI thread
@@ -27,8 +33,9 @@ struct SliceResult {
     std::shared_ptr<const volume::SliceImage> image;
     std::vector<volume::ContourSegment> contour; // image pixel coordinates
     double iso = 0.0;
-    QString error;         // why there is no image (out of memory), else empty
-    double sampleMs = 0.0; // 0 where the image was reused
+    bool contourOfDrawnCopy = false; // the contour is the drawn copy's (setDrawnSurface)
+    QString error;                   // why there is no image (out of memory), else empty
+    double sampleMs = 0.0;           // 0 where the image was reused
     double contourMs = 0.0;
     std::chrono::steady_clock::time_point requested;
 };
@@ -41,6 +48,9 @@ public:
 
     const volume::SliceGeometry& geometry() const { return m_geometry; }
     void request(double position, double iso);
+    // The copy the 3D panels draw at `iso` (null: they draw the volume as loaded).
+    void setDrawnSurface(std::shared_ptr<const volume::Volume> copy, double iso);
+    bool contoursDrawnCopy(double iso) const { return m_drawnCopy && m_drawnIso == iso; }
     bool isBusy() const { return m_running || m_waiting.has_value(); }
 
 signals:
@@ -61,6 +71,8 @@ private:
     bool m_running = false;
     std::optional<Request> m_waiting;
     std::shared_ptr<const volume::SliceImage> m_lastImage; // reused for a new iso-value
+    std::shared_ptr<const volume::Volume> m_drawnCopy;
+    double m_drawnIso = 0.0;
 };
 
 } // namespace lw::gui

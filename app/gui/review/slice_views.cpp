@@ -89,7 +89,7 @@ void SliceViews::request(Slot& slot) {
         return;
     const SliceResult* shown = slot.view->slice();
     if (shown && shown->image && shown->image->position == slot.view->position() &&
-        shown->iso == m_iso)
+        shown->iso == m_iso && shown->contourOfDrawnCopy == slot.sampler->contoursDrawnCopy(m_iso))
         return; // on screen already
     slot.sampler->request(slot.view->position(), m_iso);
 }
@@ -98,8 +98,21 @@ void SliceViews::setIso(double iso) {
     if (iso == m_iso)
         return;
     m_iso = iso;
-    for (Slot& each : m_slots)
+    for (Slot& each : m_slots) {
+        // The copy of the old iso-value goes: the worker drops it for the new one, and two
+        // copies of a large series should not live at once.
+        if (!each.sampler->contoursDrawnCopy(iso))
+            each.sampler->setDrawnSurface(nullptr, iso);
         request(each);
+    }
+}
+
+void SliceViews::setDrawnSurface(std::shared_ptr<const volume::Volume> copy, double iso) {
+    for (Slot& each : m_slots) {
+        each.sampler->setDrawnSurface(copy, iso);
+        if (iso == m_iso)
+            request(each);
+    }
 }
 
 void SliceViews::setContourColour(const QColor& colour) {

@@ -41,6 +41,9 @@ public:
 
     void setIso(double iso);
     double iso() const { return m_iso; }
+    // The resampled copy the 3D panels drew at `iso` (render::ReviewFrame::drawnVolume), null
+    // where they draw the volume as loaded: the contours follow that surface (SliceSampler).
+    void setDrawnSurface(std::shared_ptr<const volume::Volume> copy, double iso);
     void setContourColour(const QColor& colour);
     void setWindowLevel(WindowLevel window);
     WindowLevel windowLevel() const { return m_window; }

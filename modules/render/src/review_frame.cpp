@@ -200,6 +200,7 @@ ReviewFrame ReviewFrameRenderer::render(const ReviewFrameRequest& request) {
     ReviewFrame frame;
     s.prepareVolume(request);
     frame.refinement = s.volume->geometry().refinement();
+    frame.drawnVolume = s.volume;
     const bool deviceIso =
         request.wantIsoImage && !request.isoOnCpu && reviewIsoOnDevice(request.backend);
     if (request.wantSilhouette)

@@ -98,7 +98,10 @@ struct ReviewFrame {
     std::optional<std::size_t> surfaceTriangles;
     bool isoOnDevice = false; // the iso panel came from the device path
     glm::ivec3 refinement{1}; // how the drawn volume split the loaded one's cells
-    std::string backend;      // the silhouette's back-end that actually ran
+    // The volume the methods drew: the source itself, or its resampled copy (for the slice
+    // views, whose contours then follow the surface drawn, not the grey values between slices).
+    std::shared_ptr<const volume::Volume> drawnVolume;
+    std::string backend; // the silhouette's back-end that actually ran
     std::string backendNote;
 };
 
