@@ -347,6 +347,18 @@
         <source>No surface under the pointer: the point stays where it was</source>
         <translation>Keine Oberfläche unter dem Mauszeiger: der Punkt bleibt, wo er war</translation>
     </message>
+    <message>
+        <source>Click where the first point is: every point of one annotation lies on the same slice, or in 3D (Esc cancels)</source>
+        <translation>Klicken Sie dort, wo der erste Punkt liegt: alle Punkte einer Anmerkung liegen auf derselben Schicht oder in 3D (Esc bricht ab)</translation>
+    </message>
+    <message>
+        <source>Not on the slice: the point stays where it was</source>
+        <translation>Nicht auf der Schicht: der Punkt bleibt, wo er war</translation>
+    </message>
+    <message>
+        <source>Not on the slice: click on the slice&apos;s image</source>
+        <translation>Nicht auf der Schicht: klicken Sie auf das Bild der Schicht</translation>
+    </message>
 </context>
 <context>
     <name>lw::gui::Annotations</name>

@@ -347,6 +347,18 @@
         <source>No surface under the pointer: the point stays where it was</source>
         <translation>Nicio suprafață sub cursor: punctul rămâne unde era</translation>
     </message>
+    <message>
+        <source>Click where the first point is: every point of one annotation lies on the same slice, or in 3D (Esc cancels)</source>
+        <translation>Faceți clic acolo unde este primul punct: toate punctele unei adnotări se află pe aceeași secțiune sau în 3D (Esc anulează)</translation>
+    </message>
+    <message>
+        <source>Not on the slice: the point stays where it was</source>
+        <translation>Nu este pe secțiune: punctul rămâne unde era</translation>
+    </message>
+    <message>
+        <source>Not on the slice: click on the slice&apos;s image</source>
+        <translation>Nu este pe secțiune: faceți clic pe imaginea secțiunii</translation>
+    </message>
 </context>
 <context>
     <name>lw::gui::Annotations</name>

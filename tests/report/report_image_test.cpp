@@ -143,7 +143,7 @@ TEST(ReportImage, SliceAnnotationsBurnIntoTheirSliceOnly) {
     test::ensureGuiApplication();
     const annotation::Annotation ruler = test::sphereSliceRuler();
     const glm::dvec3 centre = test::sphereReview().sphere.centre;
-    report::SliceView view;
+    report::SlicePanelFrame view;
     view.orientation = annotation::SliceOrientation::Axial;
     view.spacingMm = 2.0;
     view.toPixel = [&](const glm::dvec3& p) { // 4 px/mm around the sphere's centre

@@ -28,7 +28,9 @@ void AnnotationDocument::remove(int index) {
 void AnnotationDocument::moveAnchor(int index, int anchor, glm::dvec3 point) {
     const QString what = tr("Move %1 point").arg(annotationKindLabel(at(index).kind));
     annotation::Annotation moved = at(index);
-    moved.anchors.at(std::size_t(anchor)) = point;
+    // An annotation placed on a slice stays on its plane wherever the point is dropped.
+    moved.anchors.at(std::size_t(anchor)) =
+        moved.slice ? annotation::pointOnSlice(*moved.slice, point) : point;
     m_undoStack.push(new AnnotationEdit(*this, index, at(index), std::move(moved), what));
 }
 

@@ -31,7 +31,8 @@ public:
     int selected() const { return m_selected; }
     void select(int index);
 
-    // The edits, each one undoable command. Anchors are patient coordinates (LPS, mm).
+    // The edits, each one undoable command. Anchors are patient coordinates (LPS, mm); a moved
+    // anchor of an annotation placed on a slice goes onto its plane (annotation::pointOnSlice).
     void add(annotation::Annotation annotation);
     void remove(int index);
     void moveAnchor(int index, int anchor, glm::dvec3 point);

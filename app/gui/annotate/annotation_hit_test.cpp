@@ -37,14 +37,32 @@ std::optional<AnnotationHit>
 hitTestAnnotations(const std::vector<annotation::Annotation>& annotations,
                    const render::Camera& camera, glm::dvec2 pixel, double anchorRadius,
                    double lineRadius) {
+    return hitTestAnnotations(annotations, cameraProjector(camera), pixel, anchorRadius,
+                              lineRadius);
+}
+
+PanelProjector cameraProjector(const render::Camera& camera) {
+    return
+        [camera](
+            const annotation::Annotation& item) -> std::optional<annotation::ProjectedAnnotation> {
+            annotation::ProjectedAnnotation projected = annotation::projectAnnotation(item, camera);
+            return projected.inFront ? std::optional(std::move(projected)) : std::nullopt;
+        };
+}
+
+std::optional<AnnotationHit>
+hitTestAnnotations(const std::vector<annotation::Annotation>& annotations,
+                   const PanelProjector& project, glm::dvec2 pixel, double anchorRadius,
+                   double lineRadius) {
     std::optional<AnnotationHit> nearestAnchor, nearestLine;
     double anchorDistance = std::numeric_limits<double>::infinity();
     double lineDistance = std::numeric_limits<double>::infinity();
     for (int i = 0; i < int(annotations.size()); ++i) {
-        const annotation::ProjectedAnnotation projected =
-            annotation::projectAnnotation(annotations[std::size_t(i)], camera);
-        if (!projected.inFront)
+        const std::optional<annotation::ProjectedAnnotation> shown =
+            project(annotations[std::size_t(i)]);
+        if (!shown)
             continue;
+        const annotation::ProjectedAnnotation& projected = *shown;
         const auto& points = projected.points;
         for (int a = 0; a < int(points.size()); ++a) {
             const double distance = glm::distance(pixel, points[std::size_t(a)]);

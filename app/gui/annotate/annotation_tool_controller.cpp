@@ -3,11 +3,13 @@
 #include "annotate/annotation_commands.h"
 #include "annotate/annotation_document.h"
 #include "review/review_panel.h"
+#include "review/slice_view.h"
 
 #include <QApplication>
 #include <QEvent>
 #include <QInputDialog>
 #include <QMouseEvent>
+#include <cmath>
 
 namespace lw::gui {
 namespace {
@@ -33,6 +35,35 @@ AnnotationKind kindOf(AnnotationTool tool) {
     return AnnotationKind::Label;
 }
 
+// The slice a slice panel shows, for drawing and hit testing in its widget's pixels.
+report::SlicePanelFrame sliceFrame(const SliceView& view) {
+    report::SlicePanelFrame frame;
+    frame.orientation = view.orientation();
+    frame.positionMm = view.position();
+    frame.spacingMm = std::abs(view.geometry().step);
+    frame.toPixel = [&view](const glm::dvec3& patient) {
+        const QPointF at = view.widgetPointOf(patient);
+        return glm::dvec2(at.x(), at.y());
+    };
+    return frame;
+}
+
+// Where an annotation started on `panel` goes: the slice it shows, or nothing in 3D.
+std::optional<annotation::SlicePlacement> placementOn(const QWidget& panel) {
+    const auto* view = qobject_cast<const SliceView*>(&panel);
+    if (!view)
+        return std::nullopt;
+    return annotation::SlicePlacement{view->orientation(), view->position(),
+                                      std::abs(view->geometry().step)};
+}
+
+bool samePlane(const std::optional<annotation::SlicePlacement>& a,
+               const std::optional<annotation::SlicePlacement>& b) {
+    if (!a || !b)
+        return !a && !b;
+    return a->orientation == b->orientation && a->positionMm == b->positionMm;
+}
+
 std::optional<QString> askWithDialog(const QString& title, const QString& initial) {
     bool ok = false;
     // Over the window being annotated, not wherever the window manager puts a parentless dialog.
@@ -55,6 +86,15 @@ AnnotationToolController::AnnotationToolController(AnnotationDocument& document,
             &AnnotationToolController::repaint);
 }
 
+void AnnotationToolController::attach(SliceView& view) {
+    m_panels.emplace_back(&view);
+    view.installEventFilter(this);
+    // Widget pixels: the sizes are the 3D overlay's, which draws in device pixels at the ratio.
+    view.setOverlayPainter([this, &view](QPainter& painter) {
+        paintOverlay(painter, sliceFrame(view), scene(), 1.0);
+    });
+}
+
 void AnnotationToolController::attach(ReviewPanel& panel) {
     m_panels.emplace_back(&panel);
     panel.installEventFilter(this);
@@ -65,6 +105,7 @@ void AnnotationToolController::attach(ReviewPanel& panel) {
 
 void AnnotationToolController::setTool(AnnotationTool tool) {
     m_pending.clear();
+    m_pendingSlice.reset();
     m_drag.reset();
     if (tool != m_tool) {
         m_tool = tool;
@@ -77,6 +118,7 @@ void AnnotationToolController::setTool(AnnotationTool tool) {
 void AnnotationToolController::cancel() {
     if (!m_pending.empty() || m_drag) {
         m_pending.clear();
+        m_pendingSlice.reset();
         m_drag.reset();
         announcePrompt();
         repaint();
@@ -135,14 +177,17 @@ void AnnotationToolController::announcePrompt() {
 }
 
 void AnnotationToolController::repaint() {
-    for (const QPointer<ReviewPanel>& panel : m_panels)
-        if (panel)
-            panel->repaintOverlay();
+    for (const QPointer<QWidget>& panel : m_panels) {
+        if (auto* reviewPanel = qobject_cast<ReviewPanel*>(panel.data()))
+            reviewPanel->repaintOverlay();
+        else if (panel)
+            panel->update();
+    }
 }
 
 bool AnnotationToolController::eventFilter(QObject* watched, QEvent* event) {
-    auto* panel = qobject_cast<ReviewPanel*>(watched);
-    if (!panel)
+    auto* panel = qobject_cast<QWidget*>(watched);
+    if (!qobject_cast<ReviewPanel*>(panel) && !qobject_cast<SliceView*>(panel))
         return false;
     switch (event->type()) {
     case QEvent::MouseButtonPress:
@@ -162,7 +207,7 @@ bool AnnotationToolController::eventFilter(QObject* watched, QEvent* event) {
     }
 }
 
-bool AnnotationToolController::mousePress(ReviewPanel& panel, QMouseEvent& event) {
+bool AnnotationToolController::mousePress(QWidget& panel, QMouseEvent& event) {
     if (event.button() != Qt::LeftButton || event.modifiers() != Qt::NoModifier)
         return false; // zoom, pan and roll stay the camera's, whatever the tool
     const QPoint position = event.position().toPoint();
@@ -189,7 +234,7 @@ bool AnnotationToolController::mousePress(ReviewPanel& panel, QMouseEvent& event
     return true;
 }
 
-bool AnnotationToolController::mouseMove(ReviewPanel& panel, QMouseEvent& event) {
+bool AnnotationToolController::mouseMove(QWidget& panel, QMouseEvent& event) {
     m_pointerPanel = &panel;
     m_pointer = event.position().toPoint();
     if (m_drag || !m_pending.empty())
@@ -197,7 +242,7 @@ bool AnnotationToolController::mouseMove(ReviewPanel& panel, QMouseEvent& event)
     return m_swallowDrag && (event.buttons() & Qt::LeftButton);
 }
 
-bool AnnotationToolController::mouseRelease(ReviewPanel& panel, QMouseEvent& event) {
+bool AnnotationToolController::mouseRelease(QWidget& panel, QMouseEvent& event) {
     if (event.button() != Qt::LeftButton || !m_swallowDrag)
         return false;
     m_swallowDrag = false;
@@ -206,7 +251,7 @@ bool AnnotationToolController::mouseRelease(ReviewPanel& panel, QMouseEvent& eve
     return true;
 }
 
-bool AnnotationToolController::doubleClick(ReviewPanel& panel, QMouseEvent& event) {
+bool AnnotationToolController::doubleClick(QWidget& panel, QMouseEvent& event) {
     if (event.button() != Qt::LeftButton)
         return false;
     if (m_tool != AnnotationTool::None) // quick clicks while placing are clicks, not a double
@@ -220,12 +265,20 @@ bool AnnotationToolController::doubleClick(ReviewPanel& panel, QMouseEvent& even
     return true;
 }
 
-void AnnotationToolController::placeAnchor(ReviewPanel& panel, QPoint position) {
-    const std::optional<glm::dvec3> point = m_pick(panel, position);
-    if (!point) {
-        emit refused(tr("No surface under the pointer: click on the surface"));
+void AnnotationToolController::placeAnchor(QWidget& panel, QPoint position) {
+    const std::optional<annotation::SlicePlacement> placement = placementOn(panel);
+    if (!m_pending.empty() && !samePlane(m_pendingSlice, placement)) {
+        emit refused(tr("Click where the first point is: every point of one annotation lies on "
+                        "the same slice, or in 3D (Esc cancels)"));
         return;
     }
+    const std::optional<glm::dvec3> point = anchorAt(panel, position);
+    if (!point) {
+        emit refused(noAnchorReason(panel, false));
+        return;
+    }
+    if (m_pending.empty())
+        m_pendingSlice = placement;
     m_pending.push_back(*point);
     if (int(m_pending.size()) == annotation::anchorCount(kindOf(m_tool)))
         finishPlacement();
@@ -234,8 +287,9 @@ void AnnotationToolController::placeAnchor(ReviewPanel& panel, QPoint position) 
 }
 
 void AnnotationToolController::finishPlacement() {
-    annotation::Annotation made{kindOf(m_tool), std::move(m_pending), {}};
+    annotation::Annotation made{kindOf(m_tool), std::move(m_pending), {}, m_pendingSlice};
     m_pending.clear();
+    m_pendingSlice.reset();
     if (made.kind == AnnotationKind::Label) {
         const std::optional<QString> text = m_prompt(tr("Text label"), QString());
         if (!text || text->trimmed().isEmpty())
@@ -246,37 +300,60 @@ void AnnotationToolController::finishPlacement() {
     m_document.select(m_document.count() - 1);
 }
 
-void AnnotationToolController::finishDrag(ReviewPanel& panel, QPoint position) {
+void AnnotationToolController::finishDrag(QWidget& panel, QPoint position) {
     const Drag drag = *m_drag;
     m_drag.reset();
     if ((position - drag.pressedAt).manhattanLength() < QApplication::startDragDistance()) {
         repaint(); // a click on a handle: selected, not moved
         return;
     }
-    const std::optional<glm::dvec3> point = m_pick(panel, position);
+    const std::optional<glm::dvec3> point = anchorAt(panel, position);
     if (!point) {
-        emit refused(tr("No surface under the pointer: the point stays where it was"));
+        emit refused(noAnchorReason(panel, true));
         repaint();
         return;
     }
     m_document.moveAnchor(drag.annotation, drag.anchor, *point);
 }
 
-std::optional<AnnotationHit> AnnotationToolController::hitAt(ReviewPanel& panel,
+std::optional<glm::dvec3> AnnotationToolController::anchorAt(QWidget& panel,
                                                              QPoint position) const {
-    const double ratio = panel.devicePixelRatioF();
-    return hitTestAnnotations(m_document.annotations(), panel.viewCamera(),
-                              panel.cameraPixel(position), kAnchorGrab * ratio, kLineGrab * ratio);
+    if (auto* view = qobject_cast<SliceView*>(&panel))
+        return view->patientAt(QPointF(position));
+    return m_pick(static_cast<ReviewPanel&>(panel), position);
+}
+
+QString AnnotationToolController::noAnchorReason(QWidget& panel, bool dragging) const {
+    if (qobject_cast<SliceView*>(&panel))
+        return dragging ? tr("Not on the slice: the point stays where it was")
+                        : tr("Not on the slice: click on the slice's image");
+    return dragging ? tr("No surface under the pointer: the point stays where it was")
+                    : tr("No surface under the pointer: click on the surface");
+}
+
+std::optional<AnnotationHit> AnnotationToolController::hitAt(QWidget& panel,
+                                                             QPoint position) const {
+    if (auto* view = qobject_cast<SliceView*>(&panel))
+        return hitTestAnnotations(m_document.annotations(), sliceProjector(sliceFrame(*view)),
+                                  glm::dvec2(position.x(), position.y()), kAnchorGrab, kLineGrab);
+    auto& reviewPanel = static_cast<ReviewPanel&>(panel);
+    const double ratio = reviewPanel.devicePixelRatioF();
+    return hitTestAnnotations(m_document.annotations(), reviewPanel.viewCamera(),
+                              reviewPanel.cameraPixel(position), kAnchorGrab * ratio,
+                              kLineGrab * ratio);
 }
 
 std::optional<glm::dvec3> AnnotationToolController::pointerAtDepthOf(glm::dvec3 reference) const {
-    if (!m_pointerPanel)
+    if (auto* view = qobject_cast<SliceView*>(m_pointerPanel.data()))
+        return view->patientAt(QPointF(m_pointer));
+    auto* panel = qobject_cast<ReviewPanel*>(m_pointerPanel.data());
+    if (!panel)
         return std::nullopt;
-    const render::Camera camera = m_pointerPanel->viewCamera();
+    const render::Camera camera = panel->viewCamera();
     const render::ProjectedPoint projected = camera.project(reference);
     if (!camera.isOrthographic() && projected.depth <= 0.0)
         return std::nullopt;
-    return camera.unproject(m_pointerPanel->cameraPixel(m_pointer), projected.ndcDepth);
+    return camera.unproject(panel->cameraPixel(m_pointer), projected.ndcDepth);
 }
 
 OverlayScene AnnotationToolController::scene() const {
@@ -288,14 +365,15 @@ OverlayScene AnnotationToolController::scene() const {
         const glm::dvec3 anchor = dragged.anchors.at(std::size_t(m_drag->anchor));
         if (const std::optional<glm::dvec3> at = pointerAtDepthOf(anchor)) {
             scene.preview = dragged;
-            scene.preview->anchors[std::size_t(m_drag->anchor)] = *at;
+            scene.preview->anchors[std::size_t(m_drag->anchor)] =
+                dragged.slice ? annotation::pointOnSlice(*dragged.slice, *at) : *at;
             scene.previewReplaces = m_drag->annotation;
         }
     } else if (!m_pending.empty()) {
         if (const std::optional<glm::dvec3> at = pointerAtDepthOf(m_pending.back())) {
             const AnnotationKind kind = kindOf(m_tool);
             if (int(m_pending.size()) + 1 == annotation::anchorCount(kind)) {
-                scene.preview = annotation::Annotation{kind, m_pending, {}};
+                scene.preview = annotation::Annotation{kind, m_pending, {}, m_pendingSlice};
                 scene.preview->anchors.push_back(*at);
             } else {
                 scene.rubberBand = std::pair{m_pending.back(), *at};

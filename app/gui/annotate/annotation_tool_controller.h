@@ -9,8 +9,15 @@
 // is dropped); any other drag turns the camera as before. Esc drops the annotation being placed,
 // then the tool, then the selection.
 //
-// It filters the panels' events and paints through their overlay hook, so ReviewPanel knows
-// nothing of annotations.
+// On a slice panel a click places the anchor on the slice itself (SliceView::patientAt), and the
+// annotation remembers the slice (annotation::SlicePlacement): every anchor of one annotation is
+// clicked on the same slice, and dragging an anchor (on a slice or in 3D) keeps it on that plane
+// (annotation::pointOnSlice). A slice shows the annotations annotation::showsOnSlice keeps; the
+// 3D panels show them all. The slices' other buttons (wheel, right and middle drag, Shift+click)
+// keep their meaning.
+//
+// It filters the panels' events and paints through their overlay hook, so ReviewPanel and
+// SliceView know nothing of annotations.
 
 #include "annotate/annotation_hit_test.h"
 #include "annotate/overlay_painter.h"
@@ -19,6 +26,7 @@
 #include <QPoint>
 #include <QPointer>
 #include <QString>
+#include <QWidget>
 #include <functional>
 #include <glm/glm.hpp>
 #include <optional>
@@ -30,6 +38,7 @@ namespace lw::gui {
 
 class AnnotationDocument;
 class ReviewPanel;
+class SliceView;
 
 enum class AnnotationTool { None, Label, Arrow, Ruler, Angle };
 
@@ -46,6 +55,7 @@ public:
 
     // Filters the panel's mouse events and draws the annotations over it.
     void attach(ReviewPanel& panel);
+    void attach(SliceView& view);
     // The dialog that asks for texts (tests answer it themselves).
     void setTextPrompt(TextPrompt prompt) { m_prompt = std::move(prompt); }
 
@@ -76,16 +86,20 @@ private:
         QPoint pressedAt; // a click without a drag selects and moves nothing
     };
 
-    bool mousePress(ReviewPanel& panel, QMouseEvent& event);
-    bool mouseMove(ReviewPanel& panel, QMouseEvent& event);
-    bool mouseRelease(ReviewPanel& panel, QMouseEvent& event);
-    bool doubleClick(ReviewPanel& panel, QMouseEvent& event);
-    void placeAnchor(ReviewPanel& panel, QPoint position);
+    // `panel`: a ReviewPanel or a SliceView attached.
+    bool mousePress(QWidget& panel, QMouseEvent& event);
+    bool mouseMove(QWidget& panel, QMouseEvent& event);
+    bool mouseRelease(QWidget& panel, QMouseEvent& event);
+    bool doubleClick(QWidget& panel, QMouseEvent& event);
+    void placeAnchor(QWidget& panel, QPoint position);
     void finishPlacement();
-    void finishDrag(ReviewPanel& panel, QPoint position);
-    std::optional<AnnotationHit> hitAt(ReviewPanel& panel, QPoint position) const;
+    void finishDrag(QWidget& panel, QPoint position);
+    // Where a click puts an anchor: the surface under it in 3D, the slice's point on a slice.
+    std::optional<glm::dvec3> anchorAt(QWidget& panel, QPoint position) const;
+    QString noAnchorReason(QWidget& panel, bool dragging) const; // why a click placed nothing
+    std::optional<AnnotationHit> hitAt(QWidget& panel, QPoint position) const;
     // The patient point under the pointer at the depth of `reference`: where an anchor would go
-    // if dropped now, before the surface is picked.
+    // if dropped now, before the surface is picked (on a slice: the slice's point).
     std::optional<glm::dvec3> pointerAtDepthOf(glm::dvec3 reference) const;
     OverlayScene scene() const;
     void repaint();
@@ -94,12 +108,13 @@ private:
     AnnotationDocument& m_document;
     Picker m_pick;
     TextPrompt m_prompt;
-    std::vector<QPointer<ReviewPanel>> m_panels;
+    std::vector<QPointer<QWidget>> m_panels;
     AnnotationTool m_tool = AnnotationTool::None;
     std::vector<glm::dvec3> m_pending; // anchors placed of the annotation being made
+    std::optional<annotation::SlicePlacement> m_pendingSlice; // the slice they were placed on
     std::optional<Drag> m_drag;
     bool m_swallowDrag = false; // a left press we took: its drag must not turn the camera
-    QPointer<ReviewPanel> m_pointerPanel;
+    QPointer<QWidget> m_pointerPanel;
     QPoint m_pointer;
 };
 

@@ -1,6 +1,6 @@
 #include "annotate/overlay_painter.h"
 
-#include "lw/report/annotation_overlay.h"
+#include "lw/annotation/annotation_projection.h"
 
 namespace lw::gui {
 namespace {
@@ -21,54 +21,74 @@ QPointF toPoint(glm::dvec2 pixel) {
     return {pixel.x, pixel.y};
 }
 
-void drawHandles(QPainter& painter, const render::Camera& camera,
-                 const annotation::Annotation& annotation, double scale) {
+void drawHandles(QPainter& painter, const annotation::ProjectedAnnotation& projected,
+                 double scale) {
     painter.save();
     painter.setRenderHint(QPainter::Antialiasing);
     painter.setPen(QPen(selectedStyle().colour, 1.5 * scale));
     painter.setBrush(Qt::white);
     const double radius = 4.5 * scale;
-    for (const glm::dvec3& anchor : annotation.anchors) {
-        const render::ProjectedPoint point = camera.project(anchor);
-        if (camera.isOrthographic() || point.depth > 0.0)
-            painter.drawEllipse(toPoint(point.pixel), radius, radius);
-    }
+    for (const glm::dvec2& point : projected.points)
+        painter.drawEllipse(toPoint(point), radius, radius);
     painter.restore();
 }
 
-void drawRubberBand(QPainter& painter, const render::Camera& camera,
-                    const std::pair<glm::dvec3, glm::dvec3>& band, double scale) {
-    const render::ProjectedPoint a = camera.project(band.first);
-    const render::ProjectedPoint b = camera.project(band.second);
-    if (!camera.isOrthographic() && (a.depth <= 0.0 || b.depth <= 0.0))
-        return;
+void drawRubberBand(QPainter& painter, const annotation::ProjectedAnnotation& band, double scale) {
     painter.save();
     painter.setRenderHint(QPainter::Antialiasing);
     painter.setPen(QPen(selectedStyle().colour, 1.5 * scale, Qt::DashLine));
-    painter.drawLine(toPoint(a.pixel), toPoint(b.pixel));
+    painter.drawLine(toPoint(band.points.at(0)), toPoint(band.points.at(1)));
     painter.restore();
+}
+
+void drawShown(QPainter& painter, const std::optional<annotation::ProjectedAnnotation>& shown,
+               bool selected, double scale) {
+    if (!shown)
+        return;
+    report::drawProjectedAnnotation(painter, *shown, scale,
+                                    selected ? selectedStyle() : normalStyle());
+    if (selected)
+        drawHandles(painter, *shown, scale);
+}
+
+// The scene through any panel's projection: the 3D panels' camera or a slice's pixels.
+void paintScene(QPainter& painter, const PanelProjector& project, const OverlayScene& scene,
+                double scale) {
+    const auto& annotations = *scene.annotations;
+    for (int i = 0; i < int(annotations.size()); ++i)
+        if (i != scene.previewReplaces)
+            drawShown(painter, project(annotations[std::size_t(i)]), i == scene.selected, scale);
+    if (scene.preview)
+        drawShown(painter, project(*scene.preview), true, scale);
+    if (scene.rubberBand) {
+        // Projected as a two-point annotation, so a slice shows it only within its slab.
+        const annotation::Annotation band{annotation::AnnotationKind::Ruler,
+                                          {scene.rubberBand->first, scene.rubberBand->second},
+                                          {}};
+        if (const std::optional<annotation::ProjectedAnnotation> shown = project(band))
+            drawRubberBand(painter, *shown, scale);
+    }
 }
 
 } // namespace
 
 void paintOverlay(QPainter& painter, const render::Camera& camera, const OverlayScene& scene,
                   double scale) {
-    const auto& annotations = *scene.annotations;
-    for (int i = 0; i < int(annotations.size()); ++i) {
-        if (i == scene.previewReplaces)
-            continue;
-        const bool selected = i == scene.selected;
-        report::drawAnnotation(painter, annotations[std::size_t(i)], camera, scale,
-                               selected ? selectedStyle() : normalStyle());
-        if (selected)
-            drawHandles(painter, camera, annotations[std::size_t(i)], scale);
-    }
-    if (scene.preview) {
-        report::drawAnnotation(painter, *scene.preview, camera, scale, selectedStyle());
-        drawHandles(painter, camera, *scene.preview, scale);
-    }
-    if (scene.rubberBand)
-        drawRubberBand(painter, camera, *scene.rubberBand, scale);
+    paintScene(painter, cameraProjector(camera), scene, scale);
+}
+
+PanelProjector sliceProjector(const report::SlicePanelFrame& slice) {
+    return [slice](const annotation::Annotation& item)
+               -> std::optional<annotation::ProjectedAnnotation> {
+        if (!annotation::showsOnSlice(item, slice.orientation, slice.positionMm, slice.spacingMm))
+            return std::nullopt;
+        return annotation::projectAnnotation(item, slice.toPixel);
+    };
+}
+
+void paintOverlay(QPainter& painter, const report::SlicePanelFrame& slice,
+                  const OverlayScene& scene, double scale) {
+    paintScene(painter, sliceProjector(slice), scene, scale);
 }
 
 } // namespace lw::gui

@@ -5,8 +5,10 @@
 // one in the highlight colour with its anchors as handles to drag, and the annotation being
 // placed or dragged as it would come out.
 
+#include "annotate/annotation_hit_test.h"
 #include "lw/annotation/annotation.h"
 #include "lw/render/camera.h"
+#include "lw/report/annotation_overlay.h"
 
 #include <QPainter>
 #include <optional>
@@ -28,5 +30,13 @@ struct OverlayScene {
 // `scale`: device pixels per reference pixel (the screen's pixel ratio).
 void paintOverlay(QPainter& painter, const render::Camera& camera, const OverlayScene& scene,
                   double scale);
+
+// The same over a slice panel, in its widget's pixels: the annotations its slice shows
+// (annotation::showsOnSlice), drawn as the slice export burns them in.
+void paintOverlay(QPainter& painter, const report::SlicePanelFrame& slice,
+                  const OverlayScene& scene, double scale);
+
+// The annotations a slice panel shows, in its pixels (for drawing and hit testing there).
+PanelProjector sliceProjector(const report::SlicePanelFrame& slice);
 
 } // namespace lw::gui

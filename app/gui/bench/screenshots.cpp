@@ -131,7 +131,7 @@ bool saveSliceLayouts(ReviewWidget& review, const QDir& out) {
             return true;
         });
     };
-    review.annotations().reset({}); // the slices and the cursors, not the measurements
+    review.annotations().reset({});      // the slices and the cursors, not the measurements
     review.window()->resize(1600, 1040); // room for the 3D panels above the slices
     review.setLayoutChoice({ReviewLayout::SurfacesAndSlices, lw::volume::SliceOrientation::Axial});
     bool ok = slicesShown();
@@ -152,6 +152,34 @@ bool saveSliceLayouts(ReviewWidget& review, const QDir& out) {
     review.setLayoutChoice({ReviewLayout::Surfaces, lw::volume::SliceOrientation::Sagittal});
     ok = slicesShown() && ok;
     return saveWindow(review, out.filePath("slices_layout_3d_only.png")) && ok;
+}
+
+// Measuring on the slices of the demo: a ruler across the skull on the axial slice and an angle on
+// the sagittal one, placed by clicks on the slice panels as a user places them (fractions of
+// each view, chosen on the demo in its brain window).
+bool saveSliceMeasurements(ReviewWidget& review, const QDir& out) {
+    review.annotations().reset({});
+    review.setLayoutChoice({ReviewLayout::SurfacesAndSlices, lw::volume::SliceOrientation::Axial});
+    review.slices().applyPreset(WindowPreset::Brain);
+    bool ok = bench::waitFor([&] { return !review.isBusy() && !review.slices().isBusy(); });
+    AnnotationToolController& tools = review.annotationTools();
+    const auto clickOn = [&](lw::volume::SliceOrientation plane, double x, double y) {
+        SliceView& view = review.slices().view(plane);
+        QTest::mouseClick(&view, Qt::LeftButton, {},
+                          QPoint(int(x * view.width()), int(y * view.height())));
+    };
+    tools.setTool(AnnotationTool::Ruler);
+    clickOn(lw::volume::SliceOrientation::Axial, 0.33, 0.52);
+    clickOn(lw::volume::SliceOrientation::Axial, 0.67, 0.52);
+    tools.setTool(AnnotationTool::Angle);
+    clickOn(lw::volume::SliceOrientation::Sagittal, 0.35, 0.35);
+    clickOn(lw::volume::SliceOrientation::Sagittal, 0.50, 0.55);
+    clickOn(lw::volume::SliceOrientation::Sagittal, 0.68, 0.38);
+    tools.setTool(AnnotationTool::None);
+    const int made = review.annotations().count();
+    std::printf("slice measurements placed: %d of 2\n", made);
+    ok = made == 2 && ok;
+    return saveWindow(review, out.filePath("slices_measurements.png")) && ok;
 }
 
 } // namespace
@@ -232,5 +260,6 @@ int main(int argc, char* argv[]) {
     ok = saveThickSliceReviews(window, args.at(1), out) && ok;
     window.currentReview()->applySettings(window.settings()); // smooth again
     ok = saveSliceLayouts(*window.currentReview(), out) && ok;
+    ok = saveSliceMeasurements(*window.currentReview(), out) && ok;
     return ok ? 0 : 1;
 }

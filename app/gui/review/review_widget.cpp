@@ -114,6 +114,10 @@ void ReviewWidget::buildSlices() {
             m_source.dicom ? QString::fromStdString(m_source.dicom->modality) : QString(), false);
     m_slices = new SliceViews(m_source.volume, unit, this);
     m_slices->setIso(m_source.initialIso);
+    for (const volume::SliceOrientation orientation :
+         {volume::SliceOrientation::Axial, volume::SliceOrientation::Coronal,
+          volume::SliceOrientation::Sagittal})
+        m_annotationTools->attach(m_slices->view(orientation));
     m_arrangement = new ReviewArrangement(*m_isoPanel, *m_silhouettePanel, *m_slices, this);
     QSettings store;
     m_arrangement->apply(ReviewLayoutChoice::load(store));

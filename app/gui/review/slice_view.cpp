@@ -86,6 +86,11 @@ void SliceView::setMarker(std::optional<glm::dvec3> patient) {
     update();
 }
 
+void SliceView::setOverlayPainter(OverlayPainter painter) {
+    m_overlayPainter = std::move(painter);
+    update();
+}
+
 void SliceView::setValueReader(std::function<QString(glm::dvec3)> reader) {
     m_valueReader = std::move(reader);
 }
@@ -134,6 +139,11 @@ void SliceView::paintEvent(QPaintEvent*) {
     }
     drawContour(painter);
     drawMarker(painter);
+    if (m_overlayPainter) {
+        painter.save();
+        m_overlayPainter(painter);
+        painter.restore();
+    }
     drawLabels(painter);
     painter.end();
     m_lastPaintMs = double(timer.nsecsElapsed()) / 1e6;

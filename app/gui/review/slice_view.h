@@ -14,7 +14,8 @@
 //
 // Mouse and keys: wheel / Page Up / Page Down one slice step; Ctrl+wheel, + and - zoom; middle
 // drag pans; Home resets zoom and pan; right drag sets window (left-right) and level (up-down);
-// Shift+click asks for the linked cursor at the point.
+// Shift+click asks for the linked cursor at the point. The left button without Shift is the
+// annotation tools' (AnnotationToolController filters it, as on the 3D panels).
 
 #include "lw/volume/slice_plane.h"
 #include "review/slice_image.h"
@@ -22,6 +23,7 @@
 
 #include <QColor>
 #include <QImage>
+#include <QPainter>
 #include <QPointF>
 #include <QWidget>
 #include <functional>
@@ -51,11 +53,16 @@ public:
     void setWindowLevel(WindowLevel window);
     WindowLevel windowLevel() const { return m_window; }
     void setContourColour(const QColor& colour);
+    QColor contourColour() const { return m_contourColour; }
     void setMarker(std::optional<glm::dvec3> patient);
     std::optional<glm::dvec3> marker() const { return m_marker; }
     // The text of the value at a patient point (nothing outside the volume), for the readout.
     void setValueReader(std::function<QString(glm::dvec3)> reader);
     QString readout() const { return m_readout; }
+
+    // Drawn over the slice (in widget pixels) after the contour and the cursor: the annotations.
+    using OverlayPainter = std::function<void(QPainter& painter)>;
+    void setOverlayPainter(OverlayPainter painter);
 
     std::optional<glm::dvec3> patientAt(QPointF widgetPoint) const;
     QPointF widgetPointOf(glm::dvec3 patient) const;
@@ -101,6 +108,7 @@ private:
     std::optional<glm::dvec3> m_marker;
     std::function<QString(glm::dvec3)> m_valueReader;
     QString m_readout;
+    OverlayPainter m_overlayPainter;
     double m_zoom = 1.0;
     QPointF m_pan; // widget pixels
     QPointF m_lastMouse;

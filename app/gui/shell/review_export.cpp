@@ -7,6 +7,7 @@
 #include "lw/report/secondary_capture.h"
 #include "review/panel_render_job.h"
 #include "review/review_widget.h"
+#include "shell/slice_export.h"
 
 #include <QEventLoop>
 #include <QFileInfo>
@@ -29,15 +30,18 @@ struct ExportContent {
     std::vector<annotation::Annotation> annotations;
     report::PanelLayout layout = report::PanelLayout::SideBySide;
     QColor background;
+    SlicePanels slices; // made on the UI thread from the views (none without slices shown)
 
     QImage picture() const {
-        return report::composeExportImage(panels, annotations, layout, background);
+        return withSlicePanels(report::composeExportImage(panels, annotations, layout, background),
+                               slices, background);
     }
     // For the PDF: the picture without the silhouette's vector lines, and those lines, which it
     // draws as paths (with no vectors the picture keeps the raster lines and these are none).
     QImage pictureWithoutLines() const {
-        return report::composeExportImage(panels, annotations, layout, background, {},
-                                          report::SilhouetteLines::LeftOut);
+        return withSlicePanels(report::composeExportImage(panels, annotations, layout, background,
+                                                          {}, report::SilhouetteLines::LeftOut),
+                               slices, background);
     }
     report::PictureLines vectorLines() const {
         return {report::pictureLines(panels, layout), panels.silhouetteLineWidth,
@@ -105,8 +109,11 @@ QString runExport(ReviewWidget& review, const ExportPicture& picture, const QStr
     if (QString error = guarded(target, size, precheck); !error.isEmpty())
         return error;
     const PanelRenderJob job = review.renderJob(size);
-    const ExportContent content{
-        {}, review.annotations().annotations(), picture.layout, review.settings().background};
+    ExportContent content{
+        {}, review.annotations().annotations(), picture.layout, review.settings().background, {}};
+    const int panelCount = picture.layout == report::PanelLayout::SideBySide ? 2 : 1;
+    content.slices = slicePanelsOf(review, size, QSize(size.width() * panelCount, size.height()),
+                                   content.annotations);
     if (review.rendersOnUiThread()) // a GPU draws in the panels' contexts: fast, and only here
         return guarded(target, size, [&] {
             PanelVectors vectors;

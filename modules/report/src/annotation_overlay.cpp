@@ -88,7 +88,7 @@ void burnInAnnotations(QImage& panel, const std::vector<annotation::Annotation>&
 }
 
 void burnInSliceAnnotations(QImage& panel, const std::vector<annotation::Annotation>& annotations,
-                            const SliceView& slice, const OverlayStyle& style) {
+                            const SlicePanelFrame& slice, const OverlayStyle& style) {
     if (annotations.empty() || panel.isNull())
         return;
     const double scale = overlayScale(panel.height(), style);

@@ -40,7 +40,7 @@ void drawProjectedAnnotation(QPainter& painter, const annotation::ProjectedAnnot
                              double scale, const OverlayStyle& style = {});
 
 // The slice a slice panel shows, and where its pixels are in patient coordinates.
-struct SliceView {
+struct SlicePanelFrame {
     annotation::SliceOrientation orientation = annotation::SliceOrientation::Axial;
     double positionMm = 0.0;            // annotation::slicePositionOf of the plane
     double spacingMm = 1.0;             // between the view's slices
@@ -50,7 +50,7 @@ struct SliceView {
 // Draws over a slice panel the annotations that show on its slice (annotation::showsOnSlice:
 // those placed on it or within half a spacing of it, and 3D ones lying in that slab).
 void burnInSliceAnnotations(QImage& panel, const std::vector<annotation::Annotation>& annotations,
-                            const SliceView& slice, const OverlayStyle& style = {});
+                            const SlicePanelFrame& slice, const OverlayStyle& style = {});
 
 // How many pixels one reference pixel is in an image of `height` (lines and text scale by it).
 double overlayScale(int height, const OverlayStyle& style = {});
