@@ -1,0 +1,56 @@
+#pragma once
+
+// One DICOM association with a PACS, over DCMTK's ASC/DIMSE layer (private to lw_pacs). Opening
+// it maps every way it can fail to a PacsError in words; the destructor releases it (or aborts
+// it when releasing fails), so no path leaves a socket or DCMTK's network behind.
+#include "lw/pacs/pacs_client.h"
+
+#include <dcmtk/config/osconfig.h>
+#include <dcmtk/dcmnet/assoc.h>
+#include <dcmtk/dcmnet/dimse.h>
+
+#include <string>
+#include <vector>
+
+namespace lw::pacs::detail {
+
+struct PresentationContext {
+    std::string abstractSyntax;
+    std::vector<std::string> transferSyntaxes;
+    T_ASC_SC_ROLE role = ASC_SC_ROLE_DEFAULT; // ASC_SC_ROLE_SCP to receive C-GET's C-STOREs
+};
+
+// The transfer syntaxes proposed for queries and the storage of retrieved instances.
+std::vector<std::string> uncompressedTransferSyntaxes();
+
+// "ORTHANC@127.0.0.1:4242": the subject of every message about the node.
+std::string describe(const PacsNode& node);
+
+class Association {
+public:
+    Association(const PacsNode& node, const CallOptions& options,
+                const std::vector<PresentationContext>& contexts);
+    ~Association();
+    Association(const Association&) = delete;
+    Association& operator=(const Association&) = delete;
+
+    T_ASC_Association* get() const { return m_association; }
+    // The accepted context for `abstractSyntax`; throws PacsError NotSupported when none is.
+    T_ASC_PresentationContextID contextFor(const std::string& abstractSyntax) const;
+    // Seconds each DIMSE message may take (the call's timeout).
+    int timeoutSeconds() const { return m_timeoutSeconds; }
+    DIC_US nextMessageId() { return m_association->nextMsgID++; }
+    const std::string& subject() const { return m_subject; }
+    // A PacsError for a failed DIMSE exchange, mapped from DCMTK's condition.
+    [[noreturn]] void fail(const std::string& what, const OFCondition& condition);
+    // Ends the association abruptly (after a failure the PACS may still be sending).
+    void abort();
+
+private:
+    T_ASC_Network* m_network = nullptr;
+    T_ASC_Association* m_association = nullptr;
+    std::string m_subject;
+    int m_timeoutSeconds;
+};
+
+} // namespace lw::pacs::detail
