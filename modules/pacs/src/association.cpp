@@ -1,7 +1,6 @@
 #include "association.h"
 
 #include <dcmtk/dcmnet/dul.h>
-
 #include <unistd.h>
 
 namespace lw::pacs::detail {
@@ -9,7 +8,9 @@ namespace {
 
 constexpr long kMaxPdu = 65536; // larger PDUs move big slices in fewer pieces
 
-bool contains(const std::string& text, const char* part) { return text.find(part) != std::string::npos; }
+bool contains(const std::string& text, const char* part) {
+    return text.find(part) != std::string::npos;
+}
 
 PacsError rejection(T_ASC_Parameters* params, const std::string& subject) {
     T_ASC_RejectParameters reject{};
@@ -23,11 +24,13 @@ PacsError rejection(T_ASC_Parameters* params, const std::string& subject) {
         return {PacsFailure::CallingAeRejected, subject,
                 "association rejected: the PACS does not know the workstation's AE title \"" +
                     std::string(params->DULparams.callingAPTitle) + "\""};
-    default: break;
+    default:
+        break;
     }
     OFString text;
     ASC_printRejectParameters(text, &reject);
-    return {PacsFailure::AssociationRejected, subject, "association rejected: " + std::string(text.c_str())};
+    return {PacsFailure::AssociationRejected, subject,
+            "association rejected: " + std::string(text.c_str())};
 }
 
 // Connecting fails in DUL with the socket's reason in the text; a timeout on the A-ASSOCIATE
@@ -35,10 +38,12 @@ PacsError rejection(T_ASC_Parameters* params, const std::string& subject) {
 PacsError connectionFailure(const OFCondition& condition, const std::string& subject) {
     const std::string text = condition.text();
     if (contains(text, "Connection refused"))
-        return {PacsFailure::ConnectionRefused, subject,
-                "connection refused: nothing listens there (is the PACS running, is the port right?)"};
+        return {
+            PacsFailure::ConnectionRefused, subject,
+            "connection refused: nothing listens there (is the PACS running, is the port right?)"};
     if (condition == DUL_READTIMEOUT || contains(text, "imed out") || contains(text, "imeout"))
-        return {PacsFailure::TimedOut, subject, "timed out: no answer from the PACS (" + text + ")"};
+        return {PacsFailure::TimedOut, subject,
+                "timed out: no answer from the PACS (" + text + ")"};
     if (condition == DUL_PEERABORTEDASSOCIATION)
         return {PacsFailure::Aborted, subject, "the PACS aborted the association"};
     return {PacsFailure::Network, subject, "cannot connect: " + text};
@@ -83,8 +88,9 @@ Association::Association(const PacsNode& node, const CallOptions& options,
     }
     cond = ASC_requestAssociation(m_network, params, &m_association);
     if (cond.bad()) {
-        const PacsError error = cond == DUL_ASSOCIATIONREJECTED ? rejection(params, m_subject)
-                                                                : connectionFailure(cond, m_subject);
+        const PacsError error = cond == DUL_ASSOCIATIONREJECTED
+                                    ? rejection(params, m_subject)
+                                    : connectionFailure(cond, m_subject);
         if (m_association)
             ASC_destroyAssociation(&m_association);
         else
@@ -121,8 +127,10 @@ T_ASC_PresentationContextID Association::contextFor(const std::string& abstractS
     const T_ASC_PresentationContextID id =
         ASC_findAcceptedPresentationContextID(m_association, abstractSyntax.c_str());
     if (id == 0)
-        throw PacsError(PacsFailure::NotSupported, m_subject,
-                        "the PACS does not offer " + std::string(dcmFindNameOfUID(abstractSyntax.c_str(), abstractSyntax.c_str())));
+        throw PacsError(
+            PacsFailure::NotSupported, m_subject,
+            "the PACS does not offer " +
+                std::string(dcmFindNameOfUID(abstractSyntax.c_str(), abstractSyntax.c_str())));
     return id;
 }
 

@@ -8,7 +8,6 @@
 #include <dcmtk/config/osconfig.h>
 #include <dcmtk/dcmnet/assoc.h>
 #include <dcmtk/dcmnet/dimse.h>
-
 #include <string>
 #include <vector>
 

@@ -86,8 +86,12 @@ const PacsNode* PacsNodeFile::find(const std::string& name) const {
     return nullptr;
 }
 
-std::filesystem::path defaultNodeFilePath() { return appDataFolder() / "pacs-nodes.json"; }
-std::filesystem::path defaultStoreFolder() { return appDataFolder() / "pacs-store"; }
+std::filesystem::path defaultNodeFilePath() {
+    return appDataFolder() / "pacs-nodes.json";
+}
+std::filesystem::path defaultStoreFolder() {
+    return appDataFolder() / "pacs-store";
+}
 
 void validateAeTitle(const std::string& aet, const std::string& subject) {
     if (aet.empty() || aet.size() > 16)
@@ -133,7 +137,8 @@ void writeNodeFile(const std::filesystem::path& path, const PacsNodeFile& conten
     validate(content, path.string());
     core::JsonWriter json;
     json.beginObject().key("workstation").beginObject();
-    json.field("aet", content.workstation.aet).field("storagePort", int(content.workstation.storagePort));
+    json.field("aet", content.workstation.aet)
+        .field("storagePort", int(content.workstation.storagePort));
     json.endObject().key("nodes").beginArray();
     for (const PacsNode& node : content.nodes) {
         json.beginObject().field("name", node.name).field("calledAet", node.calledAet);

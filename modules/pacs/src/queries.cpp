@@ -1,10 +1,9 @@
 // C-ECHO and the C-FIND queries of the public API: one association each.
 #include "query.h"
 
+#include <cctype>
 #include <dcmtk/dcmdata/dcdeftag.h>
 #include <dcmtk/dcmdata/dcuid.h>
-
-#include <cctype>
 
 namespace lw::pacs {
 namespace {
@@ -45,7 +44,8 @@ std::string dateKey(const std::string& from, const std::string& to) {
 void checkDate(const std::string& date, const std::string& subject) {
     if (date.empty())
         return;
-    if (date.size() != 8 || !std::all_of(date.begin(), date.end(), [](unsigned char c) { return std::isdigit(c); }))
+    if (date.size() != 8 ||
+        !std::all_of(date.begin(), date.end(), [](unsigned char c) { return std::isdigit(c); }))
         throw core::Error(subject, "\"" + date + "\" is not a date YYYYMMDD");
 }
 
@@ -53,33 +53,45 @@ void checkDate(const std::string& date, const std::string& subject) {
 
 const char* failureName(PacsFailure failure) {
     switch (failure) {
-    case PacsFailure::ConnectionRefused: return "connection refused";
-    case PacsFailure::TimedOut: return "timed out";
-    case PacsFailure::CalledAeRejected: return "called AE title not recognised";
-    case PacsFailure::CallingAeRejected: return "calling AE title not recognised";
-    case PacsFailure::AssociationRejected: return "association rejected";
-    case PacsFailure::Aborted: return "aborted";
-    case PacsFailure::NotSupported: return "not supported";
-    case PacsFailure::Refused: return "refused";
-    case PacsFailure::DiskFull: return "disk full";
-    case PacsFailure::Network: return "network error";
+    case PacsFailure::ConnectionRefused:
+        return "connection refused";
+    case PacsFailure::TimedOut:
+        return "timed out";
+    case PacsFailure::CalledAeRejected:
+        return "called AE title not recognised";
+    case PacsFailure::CallingAeRejected:
+        return "calling AE title not recognised";
+    case PacsFailure::AssociationRejected:
+        return "association rejected";
+    case PacsFailure::Aborted:
+        return "aborted";
+    case PacsFailure::NotSupported:
+        return "not supported";
+    case PacsFailure::Refused:
+        return "refused";
+    case PacsFailure::DiskFull:
+        return "disk full";
+    case PacsFailure::Network:
+        return "network error";
     }
     return "unknown";
 }
 
 EchoResult echo(const PacsNode& node, const CallOptions& options) {
     try {
-        Association association(node, options, {{UID_VerificationSOPClass, detail::uncompressedTransferSyntaxes()}});
+        Association association(
+            node, options, {{UID_VerificationSOPClass, detail::uncompressedTransferSyntaxes()}});
         DIC_US status = 0;
         DcmDataset* detail = nullptr;
-        const OFCondition cond = DIMSE_echoUser(association.get(), association.nextMessageId(),
-                                                DIMSE_NONBLOCKING, association.timeoutSeconds(),
-                                                &status, &detail);
+        const OFCondition cond =
+            DIMSE_echoUser(association.get(), association.nextMessageId(), DIMSE_NONBLOCKING,
+                           association.timeoutSeconds(), &status, &detail);
         delete detail;
         if (cond.bad())
             association.fail("C-ECHO", cond);
         if (status != STATUS_Success)
-            throw PacsError(PacsFailure::Refused, association.subject(), "C-ECHO answered with a failure status");
+            throw PacsError(PacsFailure::Refused, association.subject(),
+                            "C-ECHO answered with a failure status");
         return {true, std::nullopt, "accepted"};
     } catch (const PacsError& error) {
         return {false, error.kind(), error.reason()};

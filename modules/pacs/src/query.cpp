@@ -1,9 +1,8 @@
 #include "query.h"
 
+#include <cstdio>
 #include <dcmtk/dcmdata/dcdeftag.h>
 #include <dcmtk/dcmdata/dcuid.h>
-
-#include <cstdio>
 
 namespace lw::pacs::detail {
 namespace {
@@ -51,14 +50,15 @@ std::vector<DcmDataset> findOnAssociation(Association& association, DcmDataset& 
     FindState state{&association, association.contextFor(model), cancel};
     T_DIMSE_C_FindRQ request{};
     request.MessageID = association.nextMessageId();
-    OFStandard::strlcpy(request.AffectedSOPClassUID, model.c_str(), sizeof request.AffectedSOPClassUID);
+    OFStandard::strlcpy(request.AffectedSOPClassUID, model.c_str(),
+                        sizeof request.AffectedSOPClassUID);
     request.DataSetType = DIMSE_DATASET_PRESENT;
     request.Priority = DIMSE_PRIORITY_MEDIUM;
     T_DIMSE_C_FindRSP response{};
     DcmDataset* statusDetail = nullptr;
     int count = 0;
-    const OFCondition cond = DIMSE_findUser(association.get(), state.context, &request, &keys, count,
-                                            onFindResponse, &state, DIMSE_NONBLOCKING,
+    const OFCondition cond = DIMSE_findUser(association.get(), state.context, &request, &keys,
+                                            count, onFindResponse, &state, DIMSE_NONBLOCKING,
                                             association.timeoutSeconds(), &response, &statusDetail);
     delete statusDetail;
     if (cond.bad())

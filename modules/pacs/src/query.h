@@ -5,7 +5,6 @@
 #include "association.h"
 
 #include <dcmtk/dcmdata/dcdatset.h>
-
 #include <vector>
 
 namespace lw::pacs::detail {

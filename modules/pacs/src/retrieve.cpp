@@ -3,14 +3,12 @@
 // temporary sibling and renamed, so a file in the store is always whole.
 #include "lw/pacs/retrieve.h"
 
-#include "query.h"
-
 #include "lw/core/file_util.h"
+#include "query.h"
 
 #include <dcmtk/dcmdata/dcdeftag.h>
 #include <dcmtk/dcmdata/dcostrmf.h>
 #include <dcmtk/dcmdata/dcuid.h>
-
 #include <map>
 #include <set>
 #include <unistd.h>
@@ -24,9 +22,12 @@ using detail::Association;
 // The ways a retrieved instance may be sent: as stored, or decoded by the PACS when it cannot
 // send the stored syntax.
 std::vector<std::string> storageTransferSyntaxes() {
-    return {UID_LittleEndianExplicitTransferSyntax, UID_LittleEndianImplicitTransferSyntax,
-            UID_JPEGLSLosslessTransferSyntax,       UID_JPEGProcess14SV1TransferSyntax,
-            UID_JPEG2000LosslessOnlyTransferSyntax, UID_RLELosslessTransferSyntax,
+    return {UID_LittleEndianExplicitTransferSyntax,
+            UID_LittleEndianImplicitTransferSyntax,
+            UID_JPEGLSLosslessTransferSyntax,
+            UID_JPEGProcess14SV1TransferSyntax,
+            UID_JPEG2000LosslessOnlyTransferSyntax,
+            UID_RLELosslessTransferSyntax,
             UID_DeflatedExplicitVRLittleEndianTransferSyntax};
 }
 
@@ -38,7 +39,9 @@ std::vector<detail::PresentationContext> getContexts(const std::vector<InstanceR
         if (!instance.sopClassUid.empty() && classes.insert(instance.sopClassUid).second)
             contexts.push_back({instance.sopClassUid, storageTransferSyntaxes(), ASC_SC_ROLE_SCP});
     if (contexts.size() > 127) // presentation context IDs are the odd numbers 1..255
-        throw core::Error("C-GET", std::to_string(classes.size()) + " SOP classes in one request; at most 126 fit an association");
+        throw core::Error("C-GET",
+                          std::to_string(classes.size()) +
+                              " SOP classes in one request; at most 126 fit an association");
     return contexts;
 }
 
@@ -62,8 +65,9 @@ void removeStaleTemporaries(const fs::path& folder) {
 class GetSession {
 public:
     GetSession(Association& association, const RetrieveRequest& request,
-               const std::map<std::string, InstanceRecord>& wanted, const RetrieveCallback& onInstance,
-               const core::CancelToken* cancel, RetrieveResult& result)
+               const std::map<std::string, InstanceRecord>& wanted,
+               const RetrieveCallback& onInstance, const core::CancelToken* cancel,
+               RetrieveResult& result)
         : m_association(association), m_request(request), m_wanted(wanted),
           m_onInstance(onInstance), m_cancel(cancel), m_result(result) {}
 
@@ -97,8 +101,8 @@ void GetSession::send(DcmDataset& keys) {
                         sizeof get.AffectedSOPClassUID);
     get.Priority = DIMSE_PRIORITY_MEDIUM;
     get.DataSetType = DIMSE_DATASET_PRESENT;
-    const OFCondition cond = DIMSE_sendMessageUsingMemoryData(m_association.get(), m_getContext,
-                                                              &message, nullptr, &keys, nullptr, nullptr);
+    const OFCondition cond = DIMSE_sendMessageUsingMemoryData(
+        m_association.get(), m_getContext, &message, nullptr, &keys, nullptr, nullptr);
     if (cond.bad())
         m_association.fail("C-GET", cond);
 }
@@ -118,9 +122,9 @@ void GetSession::run(DcmDataset& keys) {
         T_DIMSE_Message message{};
         T_ASC_PresentationContextID context = 0;
         DcmDataset* statusDetail = nullptr;
-        const OFCondition cond = DIMSE_receiveCommand(m_association.get(), DIMSE_NONBLOCKING,
-                                                      m_association.timeoutSeconds(), &context,
-                                                      &message, &statusDetail);
+        const OFCondition cond =
+            DIMSE_receiveCommand(m_association.get(), DIMSE_NONBLOCKING,
+                                 m_association.timeoutSeconds(), &context, &message, &statusDetail);
         delete statusDetail;
         if (cond.bad())
             m_association.fail("C-GET", cond);
@@ -137,25 +141,31 @@ void GetSession::run(DcmDataset& keys) {
             m_result.failed += response.NumberOfFailedSubOperations;
         if (response.DimseStatus != STATUS_Success && response.DimseStatus != STATUS_GET_Cancel &&
             m_result.message.empty())
-            m_result.message = "the PACS ended the C-GET with status " + std::to_string(response.DimseStatus);
+            m_result.message =
+                "the PACS ended the C-GET with status " + std::to_string(response.DimseStatus);
         return;
     }
 }
 
-void GetSession::receiveInstance(T_ASC_PresentationContextID context, const T_DIMSE_C_StoreRQ& store) {
+void GetSession::receiveInstance(T_ASC_PresentationContextID context,
+                                 const T_DIMSE_C_StoreRQ& store) {
     const std::string uid = store.AffectedSOPInstanceUID;
     const auto listed = m_wanted.find(uid);
     const InstanceRecord instance =
-        listed != m_wanted.end() ? listed->second : InstanceRecord{uid, "unlisted", store.AffectedSOPClassUID};
+        listed != m_wanted.end() ? listed->second
+                                 : InstanceRecord{uid, "unlisted", store.AffectedSOPClassUID};
     const fs::path target = instancePath(m_request.store, instance, m_request.studyUid);
     T_DIMSE_C_StoreRSP response{};
     response.MessageIDBeingRespondedTo = store.MessageID;
     response.DataSetType = DIMSE_DATASET_NULL;
-    OFStandard::strlcpy(response.AffectedSOPClassUID, store.AffectedSOPClassUID, sizeof response.AffectedSOPClassUID);
-    OFStandard::strlcpy(response.AffectedSOPInstanceUID, store.AffectedSOPInstanceUID, sizeof response.AffectedSOPInstanceUID);
+    OFStandard::strlcpy(response.AffectedSOPClassUID, store.AffectedSOPClassUID,
+                        sizeof response.AffectedSOPClassUID);
+    OFStandard::strlcpy(response.AffectedSOPInstanceUID, store.AffectedSOPInstanceUID,
+                        sizeof response.AffectedSOPInstanceUID);
     response.opts = O_STORE_AFFECTEDSOPCLASSUID | O_STORE_AFFECTEDSOPINSTANCEUID;
     response.DimseStatus = writeInstance(context, store, target);
-    const OFCondition cond = DIMSE_sendStoreResponse(m_association.get(), context, &store, &response, nullptr);
+    const OFCondition cond =
+        DIMSE_sendStoreResponse(m_association.get(), context, &store, &response, nullptr);
     if (cond.bad())
         m_association.fail("C-STORE response", cond);
     if (response.DimseStatus == STATUS_Success) {
@@ -175,16 +185,19 @@ void GetSession::receiveInstance(T_ASC_PresentationContextID context, const T_DI
 // Streams the data set into TARGET.<pid>.part without parsing it (bit-preserving), then renames.
 // A file that cannot be written refuses the instance (out of resources) and stops the transfer;
 // a broken connection throws (PacsError), caught by retrieve().
-Uint16 GetSession::writeInstance(T_ASC_PresentationContextID context, const T_DIMSE_C_StoreRQ& store,
-                                 const fs::path& target) {
+Uint16 GetSession::writeInstance(T_ASC_PresentationContextID context,
+                                 const T_DIMSE_C_StoreRQ& store, const fs::path& target) {
     std::error_code error;
     fs::create_directories(target.parent_path(), error);
     const fs::path temporary = target.string() + "." + std::to_string(getpid()) + ".part";
     DcmOutputFileStream* stream = nullptr;
-    if (error || DIMSE_createFilestream(temporary.c_str(), &store, m_association.get(), context, 1, &stream).bad()) {
-        DIC_UL bytes = 0, pdvs = 0; // the data set still comes: read it to keep the exchange in step
-        const OFCondition drained = DIMSE_ignoreDataSet(m_association.get(), DIMSE_NONBLOCKING,
-                                                        m_association.timeoutSeconds(), &bytes, &pdvs);
+    if (error ||
+        DIMSE_createFilestream(temporary.c_str(), &store, m_association.get(), context, 1, &stream)
+            .bad()) {
+        DIC_UL bytes = 0,
+               pdvs = 0; // the data set still comes: read it to keep the exchange in step
+        const OFCondition drained = DIMSE_ignoreDataSet(
+            m_association.get(), DIMSE_NONBLOCKING, m_association.timeoutSeconds(), &bytes, &pdvs);
         if (drained.bad())
             m_association.fail("C-GET", drained);
         stop("cannot create " + temporary.string() + "; what arrived is kept");
@@ -215,7 +228,8 @@ Uint16 GetSession::writeInstance(T_ASC_PresentationContextID context, const T_DI
 
 // What to ask for, in C-GET requests of one series each at most: a series of which nothing is
 // here whole, else its missing instances by UID (image level needs the series UID).
-std::vector<DcmDataset> getRequests(const std::string& studyUid, const std::vector<InstanceRecord>& listed,
+std::vector<DcmDataset> getRequests(const std::string& studyUid,
+                                    const std::vector<InstanceRecord>& listed,
                                     const std::vector<InstanceRecord>& missing) {
     std::map<std::string, std::size_t> listedPerSeries;
     for (const InstanceRecord& instance : listed)
@@ -248,7 +262,8 @@ void checkFreeSpace(const RetrieveRequest& request, const std::vector<InstanceRe
     std::uint64_t stored = 0, count = 0;
     std::error_code error;
     const fs::path study = request.store / request.studyUid;
-    for (fs::recursive_directory_iterator it(study, error), end; !error && it != end; it.increment(error))
+    for (fs::recursive_directory_iterator it(study, error), end; !error && it != end;
+         it.increment(error))
         if (it->is_regular_file(error) && it->path().extension() == ".dcm")
             stored += it->file_size(error), ++count;
     const std::uint64_t perInstance = count ? stored / count : 512ull * 512 * 2 + 4096;
@@ -257,21 +272,25 @@ void checkFreeSpace(const RetrieveRequest& request, const std::vector<InstanceRe
     if (available < needed)
         throw PacsError(PacsFailure::DiskFull, subject,
                         "not enough disk space in " + request.store.string() + ": " +
-                            std::to_string(available >> 20) + " MiB free, " + std::to_string(needed >> 20) +
-                            " MiB needed for " + std::to_string(missing.size()) + " instances");
+                            std::to_string(available >> 20) + " MiB free, " +
+                            std::to_string(needed >> 20) + " MiB needed for " +
+                            std::to_string(missing.size()) + " instances");
 }
 
 } // namespace
 
-fs::path instancePath(const fs::path& store, const InstanceRecord& instance, const std::string& studyUid) {
+fs::path instancePath(const fs::path& store, const InstanceRecord& instance,
+                      const std::string& studyUid) {
     return store / studyUid / instance.seriesInstanceUid / (instance.sopInstanceUid + ".dcm");
 }
 
-RetrieveResult retrieve(const PacsNode& node, const RetrieveRequest& request, const CallOptions& options,
-                        const RetrieveCallback& onInstance, const core::CancelToken* cancel) {
+RetrieveResult retrieve(const PacsNode& node, const RetrieveRequest& request,
+                        const CallOptions& options, const RetrieveCallback& onInstance,
+                        const core::CancelToken* cancel) {
     if (request.studyUid.empty())
         throw core::Error(detail::describe(node), "retrieve: no study UID");
-    const std::vector<InstanceRecord> listed = findInstances(node, request.studyUid, request.seriesUid, options, cancel);
+    const std::vector<InstanceRecord> listed =
+        findInstances(node, request.studyUid, request.seriesUid, options, cancel);
     RetrieveResult result;
     result.instances = listed.size();
     std::vector<InstanceRecord> missing;
@@ -287,7 +306,8 @@ RetrieveResult retrieve(const PacsNode& node, const RetrieveRequest& request, co
         std::error_code error;
         fs::create_directories(request.store, error);
         if (error)
-            throw core::Error(request.store.string(), "cannot create the store: " + error.message());
+            throw core::Error(request.store.string(),
+                              "cannot create the store: " + error.message());
         checkFreeSpace(request, missing, detail::describe(node));
         Association association(node, options, getContexts(missing));
         try {
@@ -305,10 +325,12 @@ RetrieveResult retrieve(const PacsNode& node, const RetrieveRequest& request, co
         }
     }
     for (const InstanceRecord& instance : listed)
-        if (std::error_code error; fs::is_regular_file(instancePath(request.store, instance, request.studyUid), error))
+        if (std::error_code error;
+            fs::is_regular_file(instancePath(request.store, instance, request.studyUid), error))
             result.files.push_back(instancePath(request.store, instance, request.studyUid));
     if (result.message.empty() && !result.complete())
-        result.message = std::to_string(result.instances - result.files.size()) + " instances did not arrive";
+        result.message =
+            std::to_string(result.instances - result.files.size()) + " instances did not arrive";
     return result;
 }
 

@@ -3,11 +3,10 @@
 
 #include "association.h"
 
+#include <cstdio>
 #include <dcmtk/dcmdata/dcdeftag.h>
 #include <dcmtk/dcmdata/dcfilefo.h>
 #include <dcmtk/dcmdata/dcuid.h>
-
-#include <cstdio>
 #include <memory>
 #include <set>
 
@@ -29,7 +28,8 @@ LoadedFile load(const std::filesystem::path& path) {
     file.content->getDataset()->findAndGetOFString(DCM_SOPClassUID, sopClass);
     file.content->getDataset()->findAndGetOFString(DCM_SOPInstanceUID, sopInstance);
     if (sopClass.empty() || sopInstance.empty())
-        throw core::Error(path.string(), "no SOP Class or SOP Instance UID: not a DICOM object to send");
+        throw core::Error(path.string(),
+                          "no SOP Class or SOP Instance UID: not a DICOM object to send");
     file.sopClass = sopClass.c_str();
     file.sopInstance = sopInstance.c_str();
     file.transferSyntax = DcmXfer(file.content->getDataset()->getOriginalXfer()).getXferID();
@@ -64,36 +64,40 @@ std::string statusWords(Uint16 status) {
 
 StoreOutcome sendOne(detail::Association& association, LoadedFile& file) {
     StoreOutcome outcome{file.path, file.sopInstance};
-    const T_ASC_PresentationContextID context =
-        ASC_findAcceptedPresentationContextID(association.get(), file.sopClass.c_str(), file.transferSyntax.c_str());
+    const T_ASC_PresentationContextID context = ASC_findAcceptedPresentationContextID(
+        association.get(), file.sopClass.c_str(), file.transferSyntax.c_str());
     if (context == 0) {
-        outcome.message = "refused: the PACS accepted no presentation context for its SOP class " + file.sopClass +
-                          " in transfer syntax " + file.transferSyntax;
+        outcome.message = "refused: the PACS accepted no presentation context for its SOP class " +
+                          file.sopClass + " in transfer syntax " + file.transferSyntax;
         return outcome;
     }
     T_DIMSE_C_StoreRQ request{};
     request.MessageID = association.nextMessageId();
-    OFStandard::strlcpy(request.AffectedSOPClassUID, file.sopClass.c_str(), sizeof request.AffectedSOPClassUID);
-    OFStandard::strlcpy(request.AffectedSOPInstanceUID, file.sopInstance.c_str(), sizeof request.AffectedSOPInstanceUID);
+    OFStandard::strlcpy(request.AffectedSOPClassUID, file.sopClass.c_str(),
+                        sizeof request.AffectedSOPClassUID);
+    OFStandard::strlcpy(request.AffectedSOPInstanceUID, file.sopInstance.c_str(),
+                        sizeof request.AffectedSOPInstanceUID);
     request.DataSetType = DIMSE_DATASET_PRESENT;
     request.Priority = DIMSE_PRIORITY_MEDIUM;
     T_DIMSE_C_StoreRSP response{};
     DcmDataset* detail = nullptr;
-    const OFCondition cond = DIMSE_storeUser(association.get(), context, &request, nullptr,
-                                             file.content->getDataset(), nullptr, nullptr, DIMSE_NONBLOCKING,
-                                             association.timeoutSeconds(), &response, &detail);
+    const OFCondition cond = DIMSE_storeUser(
+        association.get(), context, &request, nullptr, file.content->getDataset(), nullptr, nullptr,
+        DIMSE_NONBLOCKING, association.timeoutSeconds(), &response, &detail);
     delete detail;
     if (cond.bad())
         association.fail("C-STORE of " + file.path.string(), cond);
     outcome.status = response.DimseStatus;
-    outcome.accepted = response.DimseStatus == STATUS_Success || (response.DimseStatus & 0xF000) == 0xB000;
+    outcome.accepted =
+        response.DimseStatus == STATUS_Success || (response.DimseStatus & 0xF000) == 0xB000;
     outcome.message = statusWords(response.DimseStatus);
     return outcome;
 }
 
 } // namespace
 
-std::vector<StoreOutcome> storeFiles(const PacsNode& node, const std::vector<std::filesystem::path>& paths,
+std::vector<StoreOutcome> storeFiles(const PacsNode& node,
+                                     const std::vector<std::filesystem::path>& paths,
                                      const CallOptions& options) {
     std::vector<LoadedFile> files;
     for (const std::filesystem::path& path : paths)

@@ -29,9 +29,9 @@ EchoResult echo(const PacsNode& node, const CallOptions& options);
 struct StudyQuery {
     std::string patientName; // "DOE^J*"
     std::string patientId;
-    std::string dateFrom;    // YYYYMMDD, either or both may be empty
+    std::string dateFrom; // YYYYMMDD, either or both may be empty
     std::string dateTo;
-    std::string modality;    // "CT": ModalitiesInStudy
+    std::string modality; // "CT": ModalitiesInStudy
 };
 
 struct StudyRecord {
@@ -41,7 +41,7 @@ struct StudyRecord {
     std::string studyDate;
     std::string studyDescription;
     std::string accessionNumber;
-    std::string modalities; // "CT\\SR"
+    std::string modalities;     // "CT\\SR"
     int numberOfInstances = -1; // -1: the PACS did not say
 };
 

@@ -14,8 +14,8 @@ namespace lw::pacs {
 // A file is there only when it arrived whole (written to a temporary, then renamed), so "the
 // file exists" is "the instance arrived", and a retrieve after a cancel or a killed client asks
 // only for the others.
-std::filesystem::path instancePath(const std::filesystem::path& store, const InstanceRecord& instance,
-                                   const std::string& studyUid);
+std::filesystem::path instancePath(const std::filesystem::path& store,
+                                   const InstanceRecord& instance, const std::string& studyUid);
 
 struct RetrieveRequest {
     std::string studyUid;
@@ -26,18 +26,18 @@ struct RetrieveRequest {
 };
 
 struct RetrieveProgress {
-    std::size_t done = 0;      // instances of this retrieve that arrived so far
+    std::size_t done = 0; // instances of this retrieve that arrived so far
     std::size_t toTransfer = 0;
     std::string sopInstanceUid; // the one that just arrived
 };
 
 struct RetrieveResult {
-    std::size_t instances = 0;   // what the PACS holds for the request
-    std::size_t transferred = 0; // arrived in this retrieve
-    std::size_t skipped = 0;     // already in the store
-    std::size_t failed = 0;      // the PACS reported as failed, or not sent
+    std::size_t instances = 0;                // what the PACS holds for the request
+    std::size_t transferred = 0;              // arrived in this retrieve
+    std::size_t skipped = 0;                  // already in the store
+    std::size_t failed = 0;                   // the PACS reported as failed, or not sent
     std::vector<std::filesystem::path> files; // every instance of the request now in the store
-    std::string message;         // empty when all arrived; otherwise what went wrong
+    std::string message;                      // empty when all arrived; otherwise what went wrong
     bool cancelled = false;
     bool complete() const { return transferred + skipped == instances; }
 };

@@ -13,9 +13,9 @@ namespace lw::pacs {
 struct StoreOutcome {
     std::filesystem::path file;
     std::string sopInstanceUid;
-    bool accepted = false;     // status Success or Warning
-    std::uint16_t status = 0;  // the C-STORE-RSP status (0x0000 success, 0xB0xx warning, ...)
-    std::string message;       // "stored", "warning: ...", "refused: ..."
+    bool accepted = false;    // status Success or Warning
+    std::uint16_t status = 0; // the C-STORE-RSP status (0x0000 success, 0xB0xx warning, ...)
+    std::string message;      // "stored", "warning: ...", "refused: ..."
 };
 
 // Sends each file in one association (a presentation context per SOP class, in the file's own
