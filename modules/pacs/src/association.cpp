@@ -1,6 +1,10 @@
 #include "association.h"
 
+#include <dcmtk/dcmnet/dcmtrans.h>
 #include <dcmtk/dcmnet/dul.h>
+#include <netinet/in.h>
+#include <netinet/tcp.h>
+#include <sys/socket.h>
 #include <unistd.h>
 
 namespace lw::pacs::detail {
@@ -98,12 +102,44 @@ Association::Association(const PacsNode& node, const CallOptions& options,
         ASC_dropNetwork(&m_network);
         throw error;
     }
+    disableNagle();
     if (ASC_countAcceptedPresentationContexts(params) == 0) {
         abort();
         ASC_dropNetwork(&m_network);
         throw PacsError(PacsFailure::NotSupported, m_subject,
                         "the PACS accepted none of the proposed services");
     }
+}
+
+// A C-GET answers each instance with a small C-STORE-RSP. With Nagle's algorithm on (Debian's
+// DCMTK leaves it on unless $TCP_NODELAY says otherwise) that response waits for the PACS's
+// delayed ACK, about 40 ms: 20 instances/s instead of hundreds (measured on loopback).
+// DCMTK has no public accessor for the socket (getSocket() is protected); a member pointer
+// named through a derived class reaches it without a cast or copying DCMTK's layout.
+struct SocketOf : DcmTransportConnection {
+    static DcmNativeSocketType of(DcmTransportConnection& connection) {
+        constexpr auto getter = &SocketOf::getSocket;
+        return (connection.*getter)();
+    }
+};
+
+void Association::setSocketOption(int option) {
+    DcmTransportConnection* connection = DUL_getTransportConnection(m_association->DULassociation);
+    if (!connection)
+        return;
+    const int on = 1;
+    setsockopt(SocketOf::of(*connection), IPPROTO_TCP, option, &on, sizeof on);
+}
+
+void Association::disableNagle() {
+    setSocketOption(TCP_NODELAY);
+}
+
+// Linux leaves quick-ACK mode by itself after a while, so this is asked again per message.
+void Association::acknowledgeQuickly() {
+#ifdef TCP_QUICKACK
+    setSocketOption(TCP_QUICKACK);
+#endif
 }
 
 Association::~Association() {

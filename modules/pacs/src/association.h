@@ -45,7 +45,14 @@ public:
     // Ends the association abruptly (after a failure the PACS may still be sending).
     void abort();
 
+    // ACK what arrived at once: a PACS with Nagle's algorithm on (Orthanc by default) holds
+    // its next small segment until our ACK, which Linux delays by up to 40 ms otherwise.
+    void acknowledgeQuickly();
+
 private:
+    void disableNagle();
+    void setSocketOption(int option);
+
     T_ASC_Network* m_network = nullptr;
     T_ASC_Association* m_association = nullptr;
     std::string m_subject;

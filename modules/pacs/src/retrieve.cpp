@@ -122,6 +122,7 @@ void GetSession::run(DcmDataset& keys) {
         T_DIMSE_Message message{};
         T_ASC_PresentationContextID context = 0;
         DcmDataset* statusDetail = nullptr;
+        m_association.acknowledgeQuickly();
         const OFCondition cond =
             DIMSE_receiveCommand(m_association.get(), DIMSE_NONBLOCKING,
                                  m_association.timeoutSeconds(), &context, &message, &statusDetail);
@@ -203,6 +204,7 @@ Uint16 GetSession::writeInstance(T_ASC_PresentationContextID context,
         stop("cannot create " + temporary.string() + "; what arrived is kept");
         return STATUS_STORE_Refused_OutOfResources;
     }
+    m_association.acknowledgeQuickly();
     const OFCondition cond = DIMSE_receiveDataSetInFile(m_association.get(), DIMSE_NONBLOCKING,
                                                         m_association.timeoutSeconds(), &context,
                                                         stream, nullptr, nullptr);
