@@ -2,6 +2,14 @@
 #include "cli_runner.h"
 #include "orthanc_server.h"
 
+#include <csignal>
+#include <cstdio>
+#include <dcmtk/config/osconfig.h>
+#include <dcmtk/dcmdata/dcfilefo.h>
+#include <sys/wait.h>
+#include <thread>
+#include <unistd.h>
+
 namespace lw::pacs::test {
 namespace {
 
@@ -93,6 +101,63 @@ TEST_F(CliPacs, GetFromAStoppedPacsExitsOne) {
                " --study 1.2.3 --aet " + kWorkstationAet);
     EXPECT_EQ(result.exitCode, 1);
     EXPECT_NE(result.err.find("connection refused"), std::string::npos) << result.err;
+}
+
+std::size_t countDicomFiles(const std::filesystem::path& folder) {
+    std::size_t count = 0;
+    std::error_code error;
+    for (std::filesystem::recursive_directory_iterator it(folder, error), end; !error && it != end;
+         it.increment(error))
+        count += it->path().extension() == ".dcm";
+    return count;
+}
+
+// The client killed (SIGKILL) halfway through a retrieve: every file it left is whole, and the
+// next retrieve transfers only the others.
+TEST_F(CliPacs, KilledClientThenRetrieveAgainFetchesOnlyTheMissing) {
+    lw::test::TempDir dir;
+    const SyntheticSeries big = writeCtSeries(dir / "big", 80, 256);
+    for (const std::filesystem::path& file : big.files)
+        server().upload(file);
+    const std::string store = (dir / "store").string();
+    const pid_t client = ::fork();
+    ASSERT_GE(client, 0);
+    if (client == 0) {
+        ::execl(LINEWORK_CLI_PATH, "linework-cli", "pacs", "get",
+                (std::string(kOrthancAet) + "@127.0.0.1:" + std::to_string(server().dicomPort()))
+                    .c_str(),
+                "--aet", kWorkstationAet, "--study", big.studyUid.c_str(), "--series",
+                big.seriesUid.c_str(), "--store", store.c_str(), static_cast<char*>(nullptr));
+        ::_exit(127);
+    }
+    // Kill it once the first instance has arrived (polling for that event; bounded).
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+    while (countDicomFiles(store) == 0 && std::chrono::steady_clock::now() < deadline &&
+           ::waitpid(client, nullptr, WNOHANG) == 0)
+        std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    ::kill(client, SIGKILL);
+    ::waitpid(client, nullptr, 0);
+    const std::size_t left = countDicomFiles(store);
+    ASSERT_GT(left, 0u) << "no instance arrived before the deadline";
+    std::printf("the killed client left %zu of 80 instances\n", left);
+    for (const auto& entry : std::filesystem::recursive_directory_iterator(store))
+        if (entry.path().extension() == ".dcm") {
+            DcmFileFormat file;
+            EXPECT_TRUE(file.loadFile(entry.path().c_str()).good())
+                << entry.path() << " is not whole";
+        }
+
+    const auto again = runCli("pacs get " + address(server().node()) + " --aet " + kWorkstationAet +
+                              " --study " + big.studyUid + " --series " + big.seriesUid +
+                              " --store " + quoted(store) + " --json");
+    ASSERT_EQ(again.exitCode, 0) << again.err;
+    EXPECT_NE(
+        compact(again.out).find("\"instances\":80,\"transferred\":" + std::to_string(80 - left) +
+                                ",\"skipped\":" + std::to_string(left) + ","),
+        std::string::npos)
+        << "left by the killed client: " << left << "\n"
+        << again.out;
+    EXPECT_EQ(countDicomFiles(store), 80u);
 }
 
 } // namespace
