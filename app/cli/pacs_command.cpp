@@ -24,6 +24,7 @@ std::set<std::string> with(std::set<std::string> options) {
 struct Target {
     pacs::PacsNode node;
     pacs::CallOptions options;
+    std::uint16_t storagePort = 0; // the node file's, for C-MOVE
 };
 
 // The node and how to call it: the node file's workstation AE title unless --aet says.
@@ -33,7 +34,8 @@ Target target(const Arguments& arguments, std::size_t positionalsWanted) {
     const pacs::PacsNodeFile file = pacs::readNodeFileOrDefaults(
         arguments.option("nodes", pacs::defaultNodeFilePath().string()));
     Target result{parseUsage([&] { return pacs::resolveNode(file, arguments.positionals()[0]); }),
-                  {}};
+                  {},
+                  file.workstation.storagePort};
     result.options.callingAet = arguments.option("aet", file.workstation.aet);
     parseUsage([&] {
         pacs::validateAeTitle(result.options.callingAet, "--aet");
@@ -152,7 +154,8 @@ void writeRetrieve(const pacs::RetrieveResult& result, const std::string& store,
 }
 
 int runGet(const std::vector<std::string>& args, std::ostream& out) {
-    const Arguments arguments(args, {"json"}, with({"study", "series", "store"}));
+    const Arguments arguments(args, {"json", "move"},
+                              with({"study", "series", "store", "storage-port"}));
     const Target to = target(arguments, 1);
     pacs::RetrieveRequest request;
     request.studyUid = arguments.option("study", "");
@@ -160,6 +163,13 @@ int runGet(const std::vector<std::string>& args, std::ostream& out) {
         throw UsageError("pacs get", "--study UID is required");
     request.seriesUid = arguments.option("series", "");
     request.store = arguments.option("store", pacs::defaultStoreFolder().string());
+    if (arguments.flag("move")) {
+        request.method = pacs::RetrieveMethod::Move;
+        const double port = arguments.number("storage-port", to.storagePort);
+        if (port < 1 || port > 65535 || port != double(int(port)))
+            throw UsageError("--storage-port", "a port 1..65535");
+        request.storagePort = std::uint16_t(port);
+    }
     const auto start = std::chrono::steady_clock::now();
     const pacs::RetrieveResult result = pacs::retrieve(to.node, request, to.options);
     const double seconds =

@@ -23,9 +23,11 @@ std::string address(const PacsNode& node) {
 }
 
 // The node file the CLI reads: the workstation's AE title and the Orthanc node by name.
-std::string nodeFileOption(const lw::test::TempDir& dir, const PacsNode& node) {
+std::string nodeFileOption(const lw::test::TempDir& dir, const PacsNode& node,
+                           std::uint16_t storagePort = 11112) {
     PacsNodeFile file;
     file.workstation.aet = kWorkstationAet;
+    file.workstation.storagePort = storagePort;
     file.nodes.push_back(node);
     writeNodeFile(dir / "nodes.json", file);
     return " --nodes " + quoted((dir / "nodes.json").string());
@@ -93,6 +95,18 @@ TEST_F(CliPacs, FindAndGetAsJson) {
     EXPECT_NE(compact(again.out).find("\"instances\":6,\"transferred\":0,\"skipped\":6"),
               std::string::npos)
         << again.out;
+}
+
+TEST_F(CliPacs, GetByMoveToTheNodeFilesStoragePort) {
+    lw::test::TempDir dir;
+    const std::string nodes = nodeFileOption(dir, server().node(), storagePort());
+    const auto moved = runCli("pacs get orthanc --move --study " + first().studyUid + " --series " +
+                              second().seriesUid + " --store " + quoted((dir / "store").string()) +
+                              " --json" + nodes);
+    ASSERT_EQ(moved.exitCode, 0) << moved.err;
+    EXPECT_NE(compact(moved.out).find("\"instances\":3,\"transferred\":3,\"skipped\":0"),
+              std::string::npos)
+        << moved.out;
 }
 
 TEST_F(CliPacs, GetFromAStoppedPacsExitsOne) {

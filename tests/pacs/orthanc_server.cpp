@@ -249,7 +249,8 @@ void OrthancSuite::SetUpTestSuite() {
     s_first = std::make_unique<SyntheticSeries>(writeCtSeries(*s_files / "first", 6, 32));
     s_second = std::make_unique<SyntheticSeries>(
         writeCtSeries(*s_files / "second", 3, 32, s_first->studyUid));
-    s_server = std::make_unique<OrthancServer>();
+    s_storagePort = freeLoopbackPort();
+    s_server = std::make_unique<OrthancServer>(s_storagePort);
     for (const SyntheticSeries* series : {s_first.get(), s_second.get()})
         for (const fs::path& file : series->files)
             s_server->upload(file);

@@ -80,7 +80,8 @@ SyntheticSeries writeCtSeries(const std::filesystem::path& folder, int slices, i
                               const std::string& studyUid = {});
 
 // A suite's Orthanc, started once for the suite and seeded with one study of two synthetic CT
-// series (6 and 3 slices of 32x32) through its REST API; stopped after the suite.
+// series (6 and 3 slices of 32x32) through its REST API; stopped after the suite. It lists the
+// workstation's AE title at 127.0.0.1:storagePort() (C-MOVE's destination).
 class OrthancSuite : public testing::Test {
 protected:
     static void SetUpTestSuite();
@@ -89,12 +90,15 @@ protected:
     static const SyntheticSeries& first() { return *s_first; }
     static const SyntheticSeries& second() { return *s_second; }
     static CallOptions options() { return {kWorkstationAet, std::chrono::seconds(10)}; }
+    // Where Orthanc sends C-MOVE's instances: the workstation's storage SCP, free when started.
+    static std::uint16_t storagePort() { return s_storagePort; }
 
 private:
     // Per suite, set up and torn down by gtest on one thread (not shared across suites).
     static inline std::unique_ptr<lw::test::TempDir> s_files;
     static inline std::unique_ptr<OrthancServer> s_server;
     static inline std::unique_ptr<SyntheticSeries> s_first, s_second;
+    static inline std::uint16_t s_storagePort = 0;
 };
 
 } // namespace lw::pacs::test

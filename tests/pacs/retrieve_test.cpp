@@ -12,7 +12,16 @@ namespace lw::pacs::test {
 namespace {
 
 namespace fs = std::filesystem;
-using OrthancRetrieve = OrthancSuite;
+class OrthancRetrieve : public OrthancSuite {
+protected:
+    // C-MOVE of the first series with the storage SCP listening on `port`.
+    static RetrieveRequest moveRequest(const fs::path& store, std::uint16_t port) {
+        RetrieveRequest request{first().studyUid, first().seriesUid, store};
+        request.method = RetrieveMethod::Move;
+        request.storagePort = port;
+        return request;
+    }
+};
 
 std::string sopInstanceUid(const fs::path& file) {
     DcmFileFormat dicom;
@@ -106,6 +115,48 @@ TEST_F(OrthancRetrieve, NotEnoughDiskSpaceRefusesBeforeTransferring) {
         EXPECT_NE(error.reason().find("not enough disk space"), std::string::npos) << error.what();
     }
     EXPECT_EQ(countFiles(store.path(), ".dcm"), 0u);
+}
+
+TEST_F(OrthancRetrieve, MoveDeliversToTheStorageScpAndResumes) {
+    lw::test::TempDir store;
+    const RetrieveRequest request = moveRequest(store.path(), storagePort());
+    std::size_t reported = 0;
+    const RetrieveResult result =
+        retrieve(server().node(), request, options(), [&](const RetrieveProgress&) { ++reported; });
+    EXPECT_TRUE(result.message.empty()) << result.message;
+    EXPECT_EQ(result.transferred, 6u);
+    EXPECT_EQ(reported, 6u);
+    ASSERT_EQ(result.files.size(), 6u);
+    for (const fs::path& file : result.files)
+        EXPECT_EQ(sopInstanceUid(file) + ".dcm", file.filename().string());
+    fs::remove(result.files[2]);
+    const RetrieveResult again = retrieve(server().node(), request, options());
+    EXPECT_EQ(again.transferred, 1u) << again.message;
+    EXPECT_EQ(again.skipped, 5u);
+}
+
+// Orthanc sends to the port it lists for the workstation; nothing listens there.
+TEST_F(OrthancRetrieve, MoveToAStorageScpThePacsCannotReachSaysSo) {
+    lw::test::TempDir store;
+    const RetrieveRequest request = moveRequest(store.path(), freeLoopbackPort()); // not Orthanc's
+    const RetrieveResult result = retrieve(server().node(), request, options());
+    EXPECT_EQ(result.transferred, 0u);
+    EXPECT_FALSE(result.complete());
+    EXPECT_NE(result.message.find("C-MOVE"), std::string::npos) << result.message;
+    EXPECT_EQ(countFiles(store.path(), ".dcm"), 0u);
+}
+
+// The calling AE title is the move destination too; Orthanc does not know this one.
+TEST_F(OrthancRetrieve, MoveWithAnUnknownCallingAeTitleIsRejected) {
+    lw::test::TempDir store;
+    const RetrieveRequest request = moveRequest(store.path(), storagePort());
+    try {
+        retrieve(server().node(), request, {"STRANGER", std::chrono::seconds(10)});
+        FAIL() << "an unknown AE title retrieved";
+    } catch (const PacsError& error) {
+        EXPECT_EQ(error.kind(), PacsFailure::CallingAeRejected) << error.what();
+        EXPECT_NE(error.reason().find("STRANGER"), std::string::npos) << error.what();
+    }
 }
 
 TEST(OrthancStopped, RetrieveSaysConnectionRefused) {

@@ -64,13 +64,18 @@ std::string describe(const PacsNode& node) {
 }
 
 Association::Association(const PacsNode& node, const CallOptions& options,
-                         const std::vector<PresentationContext>& contexts)
+                         const std::vector<PresentationContext>& contexts,
+                         std::uint16_t acceptorPort)
     : m_subject(describe(node)), m_timeoutSeconds(int(options.timeout.count())) {
     validateAeTitle(options.callingAet, m_subject + " (calling AE title)");
     validateAeTitle(node.calledAet, m_subject);
-    OFCondition cond = ASC_initializeNetwork(NET_REQUESTOR, 0, m_timeoutSeconds, &m_network);
+    OFCondition cond = ASC_initializeNetwork(acceptorPort ? NET_ACCEPTORREQUESTOR : NET_REQUESTOR,
+                                             acceptorPort, m_timeoutSeconds, &m_network);
     if (cond.bad())
-        throw PacsError(PacsFailure::Network, m_subject, std::string("network: ") + cond.text());
+        throw PacsError(PacsFailure::Network, m_subject,
+                        acceptorPort ? "cannot listen on port " + std::to_string(acceptorPort) +
+                                           " for the PACS's C-MOVE: " + cond.text()
+                                     : std::string("network: ") + cond.text());
     // DCMTK keeps the TCP connect timeout process-wide (an OFGlobal, set under its own lock):
     // each association sets its own before connecting; without it connect() blocks for minutes.
     dcmConnectionTimeout.set(Sint32(m_timeoutSeconds));
@@ -102,7 +107,7 @@ Association::Association(const PacsNode& node, const CallOptions& options,
         ASC_dropNetwork(&m_network);
         throw error;
     }
-    disableNagle();
+    disableNagle(m_association);
     if (ASC_countAcceptedPresentationContexts(params) == 0) {
         abort();
         ASC_dropNetwork(&m_network);
@@ -111,9 +116,8 @@ Association::Association(const PacsNode& node, const CallOptions& options,
     }
 }
 
-// A C-GET answers each instance with a small C-STORE-RSP. With Nagle's algorithm on (Debian's
-// DCMTK leaves it on unless $TCP_NODELAY says otherwise) that response waits for the PACS's
-// delayed ACK, about 40 ms: 20 instances/s instead of hundreds (measured on loopback).
+namespace {
+
 // DCMTK has no public accessor for the socket (getSocket() is protected); a member pointer
 // named through a derived class reaches it without a cast or copying DCMTK's layout.
 struct SocketOf : DcmTransportConnection {
@@ -123,22 +127,29 @@ struct SocketOf : DcmTransportConnection {
     }
 };
 
-void Association::setSocketOption(int option) {
-    DcmTransportConnection* connection = DUL_getTransportConnection(m_association->DULassociation);
+void setSocketOption(T_ASC_Association* association, int option) {
+    DcmTransportConnection* connection = DUL_getTransportConnection(association->DULassociation);
     if (!connection)
         return;
     const int on = 1;
     setsockopt(SocketOf::of(*connection), IPPROTO_TCP, option, &on, sizeof on);
 }
 
-void Association::disableNagle() {
-    setSocketOption(TCP_NODELAY);
+} // namespace
+
+// A C-GET answers each instance with a small C-STORE-RSP. With Nagle's algorithm on (Debian's
+// DCMTK leaves it on unless $TCP_NODELAY says otherwise) that response waits for the PACS's
+// delayed ACK, about 40 ms: 20 instances/s instead of hundreds (measured on loopback).
+void disableNagle(T_ASC_Association* association) {
+    setSocketOption(association, TCP_NODELAY);
 }
 
 // Linux leaves quick-ACK mode by itself after a while, so this is asked again per message.
-void Association::acknowledgeQuickly() {
+void acknowledgeQuickly(T_ASC_Association* association) {
 #ifdef TCP_QUICKACK
-    setSocketOption(TCP_QUICKACK);
+    setSocketOption(association, TCP_QUICKACK);
+#else
+    (void)association;
 #endif
 }
 

@@ -25,15 +25,24 @@ std::vector<std::string> uncompressedTransferSyntaxes();
 // "ORTHANC@127.0.0.1:4242": the subject of every message about the node.
 std::string describe(const PacsNode& node);
 
+// Nagle's algorithm off on the association's socket: each C-STORE-RSP goes out at once.
+void disableNagle(T_ASC_Association* association);
+// ACK what arrived at once: a PACS with Nagle's algorithm on (Orthanc by default) holds its
+// next small segment until our ACK, which Linux delays by up to 40 ms otherwise.
+void acknowledgeQuickly(T_ASC_Association* association);
+
 class Association {
 public:
+    // With `acceptorPort`, the network also listens there (the workstation's storage SCP, for
+    // the PACS's associations of a C-MOVE); PacsError when the port cannot be bound.
     Association(const PacsNode& node, const CallOptions& options,
-                const std::vector<PresentationContext>& contexts);
+                const std::vector<PresentationContext>& contexts, std::uint16_t acceptorPort = 0);
     ~Association();
     Association(const Association&) = delete;
     Association& operator=(const Association&) = delete;
 
     T_ASC_Association* get() const { return m_association; }
+    T_ASC_Network* network() const { return m_network; }
     // The accepted context for `abstractSyntax`; throws PacsError NotSupported when none is.
     T_ASC_PresentationContextID contextFor(const std::string& abstractSyntax) const;
     // Seconds each DIMSE message may take (the call's timeout).
@@ -45,14 +54,9 @@ public:
     // Ends the association abruptly (after a failure the PACS may still be sending).
     void abort();
 
-    // ACK what arrived at once: a PACS with Nagle's algorithm on (Orthanc by default) holds
-    // its next small segment until our ACK, which Linux delays by up to 40 ms otherwise.
-    void acknowledgeQuickly();
+    void acknowledgeQuickly() { detail::acknowledgeQuickly(m_association); }
 
 private:
-    void disableNagle();
-    void setSocketOption(int option);
-
     T_ASC_Network* m_network = nullptr;
     T_ASC_Association* m_association = nullptr;
     std::string m_subject;

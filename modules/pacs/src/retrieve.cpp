@@ -4,14 +4,14 @@
 #include "lw/pacs/retrieve.h"
 
 #include "lw/core/file_util.h"
+#include "move.h"
 #include "query.h"
+#include "transfer.h"
 
 #include <dcmtk/dcmdata/dcdeftag.h>
-#include <dcmtk/dcmdata/dcostrmf.h>
 #include <dcmtk/dcmdata/dcuid.h>
 #include <map>
 #include <set>
-#include <unistd.h>
 
 namespace lw::pacs {
 namespace {
@@ -45,12 +45,6 @@ std::vector<detail::PresentationContext> getContexts(const std::vector<InstanceR
     return contexts;
 }
 
-std::uint64_t availableBytes(const fs::path& folder) {
-    std::error_code error;
-    const fs::space_info space = fs::space(folder, error);
-    return error ? 0 : space.available;
-}
-
 // The temporaries a killed client left behind (whole files are never named ".part"); only old
 // ones, as another retrieve of the same series may be writing its own right now.
 void removeStaleTemporaries(const fs::path& folder) {
@@ -61,59 +55,52 @@ void removeStaleTemporaries(const fs::path& folder) {
             fs::remove(it->path(), error);
 }
 
-// One C-GET exchange: the request's keys, then C-STORE sub-operations until the final answer.
+// One C-GET exchange: the request's keys, then C-STORE sub-operations on the same association
+// until the final answer.
 class GetSession {
 public:
-    GetSession(Association& association, const RetrieveRequest& request,
-               const std::map<std::string, InstanceRecord>& wanted,
-               const RetrieveCallback& onInstance, const core::CancelToken* cancel,
-               RetrieveResult& result)
-        : m_association(association), m_request(request), m_wanted(wanted),
-          m_onInstance(onInstance), m_cancel(cancel), m_result(result) {}
+    GetSession(Association& association, detail::InstanceTransfer& transfer)
+        : m_association(association), m_transfer(transfer) {}
 
     void run(DcmDataset& keys);
 
 private:
     void send(DcmDataset& keys);
-    void receiveInstance(T_ASC_PresentationContextID context, const T_DIMSE_C_StoreRQ& store);
-    Uint16 writeInstance(T_ASC_PresentationContextID context, const T_DIMSE_C_StoreRQ& store,
-                         const fs::path& target);
-    void stop(std::string why);
+    void finish(const T_DIMSE_C_GetRSP& response);
 
     Association& m_association;
-    const RetrieveRequest& m_request;
-    const std::map<std::string, InstanceRecord>& m_wanted;
-    const RetrieveCallback& m_onInstance;
-    const core::CancelToken* m_cancel;
-    RetrieveResult& m_result;
-    T_ASC_PresentationContextID m_getContext = 0;
-    DIC_US m_messageId = 0;
-    bool m_cancelSent = false;
+    detail::InstanceTransfer& m_transfer;
 };
 
 void GetSession::send(DcmDataset& keys) {
-    m_getContext = m_association.contextFor(UID_GETStudyRootQueryRetrieveInformationModel);
+    const T_ASC_PresentationContextID context =
+        m_association.contextFor(UID_GETStudyRootQueryRetrieveInformationModel);
     T_DIMSE_Message message{};
     message.CommandField = DIMSE_C_GET_RQ;
     T_DIMSE_C_GetRQ& get = message.msg.CGetRQ;
-    get.MessageID = m_messageId = m_association.nextMessageId();
+    get.MessageID = m_association.nextMessageId();
     OFStandard::strlcpy(get.AffectedSOPClassUID, UID_GETStudyRootQueryRetrieveInformationModel,
                         sizeof get.AffectedSOPClassUID);
     get.Priority = DIMSE_PRIORITY_MEDIUM;
     get.DataSetType = DIMSE_DATASET_PRESENT;
     const OFCondition cond = DIMSE_sendMessageUsingMemoryData(
-        m_association.get(), m_getContext, &message, nullptr, &keys, nullptr, nullptr);
+        m_association.get(), context, &message, nullptr, &keys, nullptr, nullptr);
     if (cond.bad())
         m_association.fail("C-GET", cond);
+    T_ASC_Association* association = m_association.get();
+    const DIC_US id = get.MessageID;
+    m_transfer.setCancelRequest(
+        [association, context, id] { DIMSE_sendCancelRequest(association, context, id); });
 }
 
-void GetSession::stop(std::string why) {
-    if (m_result.message.empty())
-        m_result.message = std::move(why);
-    if (!m_cancelSent) {
-        DIMSE_sendCancelRequest(m_association.get(), m_getContext, m_messageId);
-        m_cancelSent = true;
-    }
+void GetSession::finish(const T_DIMSE_C_GetRSP& response) {
+    RetrieveResult& result = m_transfer.result();
+    if (response.opts & O_GET_NUMBEROFFAILEDSUBOPERATIONS)
+        result.failed += response.NumberOfFailedSubOperations;
+    if (response.DimseStatus != STATUS_Success && response.DimseStatus != STATUS_GET_Cancel &&
+        result.message.empty())
+        result.message =
+            "the PACS ended the C-GET with status " + std::to_string(response.DimseStatus);
 }
 
 void GetSession::run(DcmDataset& keys) {
@@ -123,109 +110,21 @@ void GetSession::run(DcmDataset& keys) {
         T_ASC_PresentationContextID context = 0;
         DcmDataset* statusDetail = nullptr;
         m_association.acknowledgeQuickly();
-        const OFCondition cond =
+        OFCondition cond =
             DIMSE_receiveCommand(m_association.get(), DIMSE_NONBLOCKING,
                                  m_association.timeoutSeconds(), &context, &message, &statusDetail);
         delete statusDetail;
+        if (cond.good() && message.CommandField == DIMSE_C_STORE_RQ)
+            cond = m_transfer.receive(m_association.get(), m_association.timeoutSeconds(), context,
+                                      message.msg.CStoreRQ);
+        else if (cond.good() && message.CommandField != DIMSE_C_GET_RSP)
+            cond = DIMSE_BADCOMMANDTYPE;
         if (cond.bad())
             m_association.fail("C-GET", cond);
-        if (message.CommandField == DIMSE_C_STORE_RQ) {
-            receiveInstance(context, message.msg.CStoreRQ);
-            continue;
-        }
-        if (message.CommandField != DIMSE_C_GET_RSP)
-            m_association.fail("C-GET", DIMSE_BADCOMMANDTYPE);
-        const T_DIMSE_C_GetRSP& response = message.msg.CGetRSP;
-        if (response.DimseStatus == STATUS_Pending)
-            continue;
-        if (response.opts & O_GET_NUMBEROFFAILEDSUBOPERATIONS)
-            m_result.failed += response.NumberOfFailedSubOperations;
-        if (response.DimseStatus != STATUS_Success && response.DimseStatus != STATUS_GET_Cancel &&
-            m_result.message.empty())
-            m_result.message =
-                "the PACS ended the C-GET with status " + std::to_string(response.DimseStatus);
-        return;
+        if (message.CommandField == DIMSE_C_GET_RSP &&
+            message.msg.CGetRSP.DimseStatus != STATUS_Pending)
+            return finish(message.msg.CGetRSP);
     }
-}
-
-void GetSession::receiveInstance(T_ASC_PresentationContextID context,
-                                 const T_DIMSE_C_StoreRQ& store) {
-    const std::string uid = store.AffectedSOPInstanceUID;
-    const auto listed = m_wanted.find(uid);
-    const InstanceRecord instance =
-        listed != m_wanted.end() ? listed->second
-                                 : InstanceRecord{uid, "unlisted", store.AffectedSOPClassUID};
-    const fs::path target = instancePath(m_request.store, instance, m_request.studyUid);
-    T_DIMSE_C_StoreRSP response{};
-    response.MessageIDBeingRespondedTo = store.MessageID;
-    response.DataSetType = DIMSE_DATASET_NULL;
-    OFStandard::strlcpy(response.AffectedSOPClassUID, store.AffectedSOPClassUID,
-                        sizeof response.AffectedSOPClassUID);
-    OFStandard::strlcpy(response.AffectedSOPInstanceUID, store.AffectedSOPInstanceUID,
-                        sizeof response.AffectedSOPInstanceUID);
-    response.opts = O_STORE_AFFECTEDSOPCLASSUID | O_STORE_AFFECTEDSOPINSTANCEUID;
-    response.DimseStatus = writeInstance(context, store, target);
-    const OFCondition cond =
-        DIMSE_sendStoreResponse(m_association.get(), context, &store, &response, nullptr);
-    if (cond.bad())
-        m_association.fail("C-STORE response", cond);
-    if (response.DimseStatus == STATUS_Success) {
-        ++m_result.transferred;
-        if (m_onInstance)
-            m_onInstance({m_result.transferred, m_wanted.size(), uid});
-        if (availableBytes(target.parent_path()) < m_request.reserveBytes)
-            stop("disk full: less than " + std::to_string(m_request.reserveBytes >> 20) +
-                 " MiB left in " + m_request.store.string() + "; what arrived is kept");
-    }
-    if (m_cancel && m_cancel->isCancelled()) {
-        m_result.cancelled = true;
-        stop("cancelled; what arrived is kept");
-    }
-}
-
-// Streams the data set into TARGET.<pid>.part without parsing it (bit-preserving), then renames.
-// A file that cannot be written refuses the instance (out of resources) and stops the transfer;
-// a broken connection throws (PacsError), caught by retrieve().
-Uint16 GetSession::writeInstance(T_ASC_PresentationContextID context,
-                                 const T_DIMSE_C_StoreRQ& store, const fs::path& target) {
-    std::error_code error;
-    fs::create_directories(target.parent_path(), error);
-    const fs::path temporary = target.string() + "." + std::to_string(getpid()) + ".part";
-    DcmOutputFileStream* stream = nullptr;
-    if (error ||
-        DIMSE_createFilestream(temporary.c_str(), &store, m_association.get(), context, 1, &stream)
-            .bad()) {
-        DIC_UL bytes = 0,
-               pdvs = 0; // the data set still comes: read it to keep the exchange in step
-        const OFCondition drained = DIMSE_ignoreDataSet(
-            m_association.get(), DIMSE_NONBLOCKING, m_association.timeoutSeconds(), &bytes, &pdvs);
-        if (drained.bad())
-            m_association.fail("C-GET", drained);
-        stop("cannot create " + temporary.string() + "; what arrived is kept");
-        return STATUS_STORE_Refused_OutOfResources;
-    }
-    m_association.acknowledgeQuickly();
-    const OFCondition cond = DIMSE_receiveDataSetInFile(m_association.get(), DIMSE_NONBLOCKING,
-                                                        m_association.timeoutSeconds(), &context,
-                                                        stream, nullptr, nullptr);
-    const bool streamGood = stream->good();
-    delete stream;
-    if (!streamGood || cond.bad())
-        fs::remove(temporary, error);
-    if (!streamGood) {
-        stop("cannot write " + target.string() + " (disk full?); what arrived is kept");
-        if (cond.bad())
-            m_association.fail("C-GET", cond);
-        return STATUS_STORE_Refused_OutOfResources;
-    }
-    if (cond.bad())
-        m_association.fail("C-GET", cond);
-    fs::rename(temporary, target, error);
-    if (!error)
-        return STATUS_Success;
-    fs::remove(temporary, error);
-    stop("cannot rename into " + target.string() + "; what arrived is kept");
-    return STATUS_STORE_Refused_OutOfResources;
 }
 
 // What to ask for, in C-GET requests of one series each at most: a series of which nothing is
@@ -270,13 +169,51 @@ void checkFreeSpace(const RetrieveRequest& request, const std::vector<InstanceRe
             stored += it->file_size(error), ++count;
     const std::uint64_t perInstance = count ? stored / count : 512ull * 512 * 2 + 4096;
     const std::uint64_t needed = perInstance * missing.size() + request.reserveBytes;
-    const std::uint64_t available = availableBytes(request.store);
+    const std::uint64_t available = detail::availableBytes(request.store);
     if (available < needed)
         throw PacsError(PacsFailure::DiskFull, subject,
                         "not enough disk space in " + request.store.string() + ": " +
                             std::to_string(available >> 20) + " MiB free, " +
                             std::to_string(needed >> 20) + " MiB needed for " +
                             std::to_string(missing.size()) + " instances");
+}
+
+struct Wanted {
+    const std::vector<InstanceRecord>& listed;
+    const std::vector<InstanceRecord>& missing;
+    const std::map<std::string, InstanceRecord>& byUid;
+};
+
+// One association for every request (a series each); a request that ends early (cancel, full
+// disk, the PACS gone) ends the retrieve, whose message says why.
+void transferMissing(const PacsNode& node, const RetrieveRequest& request,
+                     const CallOptions& options, const Wanted& wanted,
+                     const RetrieveCallback& onInstance, const core::CancelToken* cancel,
+                     RetrieveResult& result) {
+    const bool move = request.method == RetrieveMethod::Move;
+    if (move && request.storagePort == 0)
+        throw core::Error(detail::describe(node), "C-MOVE needs the workstation's storage port");
+    Association association(node, options,
+                            move ? std::vector<detail::PresentationContext>{detail::moveContext()}
+                                 : getContexts(wanted.missing),
+                            move ? request.storagePort : 0);
+    try {
+        for (DcmDataset& keys : getRequests(request.studyUid, wanted.listed, wanted.missing)) {
+            OFString series;
+            keys.findAndGetOFString(DCM_SeriesInstanceUID, series);
+            removeStaleTemporaries(request.store / request.studyUid / series.c_str());
+            detail::InstanceTransfer transfer(request, wanted.byUid, onInstance, cancel, result);
+            if (move)
+                detail::moveInstances(association, transfer, keys, options.callingAet);
+            else
+                GetSession(association, transfer).run(keys);
+            if (!result.message.empty())
+                break;
+        }
+    } catch (const PacsError& error) {
+        if (result.message.empty())
+            result.message = error.reason();
+    }
 }
 
 } // namespace
@@ -311,20 +248,8 @@ RetrieveResult retrieve(const PacsNode& node, const RetrieveRequest& request,
             throw core::Error(request.store.string(),
                               "cannot create the store: " + error.message());
         checkFreeSpace(request, missing, detail::describe(node));
-        Association association(node, options, getContexts(missing));
-        try {
-            for (DcmDataset& keys : getRequests(request.studyUid, listed, missing)) {
-                OFString series;
-                keys.findAndGetOFString(DCM_SeriesInstanceUID, series);
-                removeStaleTemporaries(request.store / request.studyUid / series.c_str());
-                GetSession(association, request, wanted, onInstance, cancel, result).run(keys);
-                if (!result.message.empty())
-                    break;
-            }
-        } catch (const PacsError& error) {
-            if (result.message.empty())
-                result.message = error.reason();
-        }
+        transferMissing(node, request, options, {listed, missing, wanted}, onInstance, cancel,
+                        result);
     }
     for (const InstanceRecord& instance : listed)
         if (std::error_code error;

@@ -17,12 +17,20 @@ namespace lw::pacs {
 std::filesystem::path instancePath(const std::filesystem::path& store,
                                    const InstanceRecord& instance, const std::string& studyUid);
 
+// C-GET: the instances come back on the retrieve's own association. C-MOVE: the PACS opens
+// associations to the workstation's storage SCP (its AE title is the move destination, so the
+// PACS must list that AE title with this host and `storagePort`); for PACS without C-GET.
+enum class RetrieveMethod { Get, Move };
+
 struct RetrieveRequest {
     std::string studyUid;
     std::string seriesUid; // empty: the whole study
     std::filesystem::path store;
     // Refuse to start unless this much stays free after the estimated size of what is missing.
     std::uint64_t reserveBytes = 256ull << 20;
+    RetrieveMethod method = RetrieveMethod::Get;
+    std::uint16_t storagePort =
+        0; // C-MOVE: where the storage SCP listens (node file's storagePort)
 };
 
 struct RetrieveProgress {
@@ -44,11 +52,11 @@ struct RetrieveResult {
 
 using RetrieveCallback = std::function<void(const RetrieveProgress&)>;
 
-// C-GET of the missing instances of a study or series into `request.store`. Asks the PACS
-// which instances there are (C-FIND, image level) first and skips those already stored.
-// Throws PacsError when nothing can start (refused, timed out, not enough disk space); a
-// transfer that stops halfway (cancel, a full disk, the PACS gone) returns what arrived with
-// `message` saying why, and keeps every whole file.
+// C-GET (or C-MOVE) of the missing instances of a study or series into `request.store`. Asks the
+// PACS which instances there are (C-FIND, image level) first and skips those already stored. Throws
+// PacsError when nothing can start (refused, timed out, not enough disk space); a transfer that
+// stops halfway (cancel, a full disk, the PACS gone) returns what arrived with `message` saying
+// why, and keeps every whole file.
 RetrieveResult retrieve(const PacsNode& node, const RetrieveRequest& request,
                         const CallOptions& options, const RetrieveCallback& onInstance = {},
                         const core::CancelToken* cancel = nullptr);
