@@ -156,14 +156,16 @@ commands:
                 [--study UID] [--json]
                               C-FIND, study level (DICOM wildcards * ?; dates YYYYMMDD, either
                               side may be empty); with --study the series of that study
-  pacs get NODE --study UID [--series UID] [--store DIR] [--move [--storage-port N]] [--json]
+  pacs get NODE --study UID [--series UID] [--store DIR] [--move [--storage-port N]]
+           [--database FILE | --no-database] [--json]
                               C-GET of a study or series into the managed store (default beside
                               the study database); instances already there are skipped, so a
                               retrieve after a cancel or a crash fetches only the missing ones;
                               --move: C-MOVE to the workstation's own storage SCP (listening
                               on the node file's storagePort, or N, while it runs; the PACS
-                              must list the calling AE title there); exit 1 when anything is
-                              missing
+                              must list the calling AE title there); what arrived is
+                              registered in the study database (default the workstation's;
+                              Qt builds); exit 1 when anything is missing
   pacs store NODE FILE... [--json]
                               C-STORE of DICOM files, what the PACS answered for each
                               NODE: a node of the node file (--nodes FILE, default beside the

@@ -6,12 +6,24 @@
 #include "lw/pacs/pacs_client.h"
 #include "lw/pacs/retrieve.h"
 #include "lw/pacs/store_scu.h"
+#include "pacs_database.h"
 
 #include <chrono>
 #include <cstdio>
 #include <ostream>
 
 namespace lw::cli {
+
+#ifndef LINEWORK_HAVE_STUDYDB
+bool canRegisterInDatabase() {
+    return false;
+}
+Registration registerInDatabase(const std::filesystem::path&, const std::string&) {
+    throw core::Error("--database", "this linework-cli was built without the study database (it "
+                                    "needs Qt 6: LINEWORK_GUI)");
+}
+#endif
+
 namespace {
 
 const std::set<std::string> kCommonOptions = {"nodes", "aet", "timeout"};
@@ -129,12 +141,15 @@ int runFind(const std::vector<std::string>& args, std::ostream& out) {
 }
 
 void writeRetrieve(const pacs::RetrieveResult& result, const std::string& store, double seconds,
-                   bool json, std::ostream& out) {
+                   const std::optional<Registration>& registration, bool json, std::ostream& out) {
     const double rate = seconds > 0 ? double(result.transferred) / seconds : 0;
     if (!json) {
         out << result.instances << " instances: " << result.transferred << " transferred, "
             << result.skipped << " already in the store, in " << seconds << " s (" << rate
             << " instances/s), into " << store << "\n";
+        if (registration)
+            out << "registered in " << registration->database << ": " << registration->seriesAdded
+                << " series added, " << registration->seriesUpdated << " updated\n";
         return;
     }
     core::JsonWriter writer;
@@ -148,14 +163,23 @@ void writeRetrieve(const pacs::RetrieveResult& result, const std::string& store,
         .field("seconds", seconds)
         .field("instancesPerSecond", rate)
         .field("store", store)
-        .field("message", result.message)
-        .endObject();
+        .field("message", result.message);
+    writer.key("database");
+    if (registration)
+        writer.beginObject()
+            .field("path", registration->database)
+            .field("seriesAdded", registration->seriesAdded)
+            .field("seriesUpdated", registration->seriesUpdated)
+            .endObject();
+    else
+        writer.null();
+    writer.endObject();
     out << writer.str() << "\n";
 }
 
 int runGet(const std::vector<std::string>& args, std::ostream& out) {
-    const Arguments arguments(args, {"json", "move"},
-                              with({"study", "series", "store", "storage-port"}));
+    const Arguments arguments(args, {"json", "move", "no-database"},
+                              with({"study", "series", "store", "storage-port", "database"}));
     const Target to = target(arguments, 1);
     pacs::RetrieveRequest request;
     request.studyUid = arguments.option("study", "");
@@ -174,7 +198,21 @@ int runGet(const std::vector<std::string>& args, std::ostream& out) {
     const pacs::RetrieveResult result = pacs::retrieve(to.node, request, to.options);
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    writeRetrieve(result, request.store.string(), seconds, arguments.flag("json"), out);
+    // What arrived is registered even when the retrieve stopped early: the database then lists
+    // exactly the files that are there.
+    std::optional<Registration> registration;
+    const bool wanted =
+        !arguments.flag("no-database") && (arguments.option("database") || canRegisterInDatabase());
+    if (wanted && !result.files.empty()) {
+        // Absolute: the database keeps the paths it is given; the GUI opens them from anywhere.
+        const std::filesystem::path study =
+            std::filesystem::absolute(request.store) / request.studyUid;
+        registration =
+            registerInDatabase(request.seriesUid.empty() ? study : study / request.seriesUid,
+                               arguments.option("database", ""));
+    }
+    writeRetrieve(result, request.store.string(), seconds, registration, arguments.flag("json"),
+                  out);
     if (!result.complete() || !result.message.empty()) {
         std::fprintf(stderr, "linework-cli: partial retrieve: %s\n", result.message.c_str());
         return 1;

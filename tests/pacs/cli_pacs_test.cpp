@@ -33,6 +33,16 @@ std::string nodeFileOption(const lw::test::TempDir& dir, const PacsNode& node,
     return " --nodes " + quoted((dir / "nodes.json").string());
 }
 
+// The test's own study database where the build has one; never the user's.
+std::string databaseOption(const lw::test::TempDir& dir) {
+#ifdef LINEWORK_HAVE_STUDYDB
+    return " --database " + quoted((dir / "studies.sqlite").string());
+#else
+    (void)dir;
+    return " --no-database";
+#endif
+}
+
 TEST_F(CliPacs, EchoByNameAndByAddress) {
     lw::test::TempDir dir;
     const std::string nodes = nodeFileOption(dir, server().node());
@@ -84,12 +94,17 @@ TEST_F(CliPacs, FindAndGetAsJson) {
 
     const std::string get = "pacs get orthanc --study " + first().studyUid + " --series " +
                             first().seriesUid + " --store " + quoted((dir / "store").string()) +
-                            " --json" + nodes;
+                            " --json" + nodes + databaseOption(dir);
     const auto retrieved = runCli(get);
     ASSERT_EQ(retrieved.exitCode, 0) << retrieved.err;
     EXPECT_NE(compact(retrieved.out).find("\"instances\":6,\"transferred\":6,\"skipped\":0"),
               std::string::npos)
         << retrieved.out;
+#ifdef LINEWORK_HAVE_STUDYDB
+    // Registered in the study database, in place in the store: the series is new there.
+    EXPECT_NE(compact(retrieved.out).find("\"seriesAdded\":1"), std::string::npos) << retrieved.out;
+    EXPECT_TRUE(std::filesystem::is_regular_file(dir / "studies.sqlite"));
+#endif
     const auto again = runCli(get);
     ASSERT_EQ(again.exitCode, 0) << again.err;
     EXPECT_NE(compact(again.out).find("\"instances\":6,\"transferred\":0,\"skipped\":6"),
@@ -102,7 +117,7 @@ TEST_F(CliPacs, GetByMoveToTheNodeFilesStoragePort) {
     const std::string nodes = nodeFileOption(dir, server().node(), storagePort());
     const auto moved = runCli("pacs get orthanc --move --study " + first().studyUid + " --series " +
                               second().seriesUid + " --store " + quoted((dir / "store").string()) +
-                              " --json" + nodes);
+                              " --json --no-database" + nodes);
     ASSERT_EQ(moved.exitCode, 0) << moved.err;
     EXPECT_NE(compact(moved.out).find("\"instances\":3,\"transferred\":3,\"skipped\":0"),
               std::string::npos)
@@ -112,7 +127,7 @@ TEST_F(CliPacs, GetByMoveToTheNodeFilesStoragePort) {
 TEST_F(CliPacs, GetFromAStoppedPacsExitsOne) {
     const auto result =
         runCli("pacs get " + address({"down", "X", "127.0.0.1", freeLoopbackPort()}) +
-               " --study 1.2.3 --aet " + kWorkstationAet);
+               " --study 1.2.3 --no-database --aet " + kWorkstationAet);
     EXPECT_EQ(result.exitCode, 1);
     EXPECT_NE(result.err.find("connection refused"), std::string::npos) << result.err;
 }
@@ -141,7 +156,8 @@ TEST_F(CliPacs, KilledClientThenRetrieveAgainFetchesOnlyTheMissing) {
                 (std::string(kOrthancAet) + "@127.0.0.1:" + std::to_string(server().dicomPort()))
                     .c_str(),
                 "--aet", kWorkstationAet, "--study", big.studyUid.c_str(), "--series",
-                big.seriesUid.c_str(), "--store", store.c_str(), static_cast<char*>(nullptr));
+                big.seriesUid.c_str(), "--store", store.c_str(), "--no-database",
+                static_cast<char*>(nullptr));
         ::_exit(127);
     }
     // Kill it once the first instance has arrived (polling for that event; bounded).
@@ -163,7 +179,7 @@ TEST_F(CliPacs, KilledClientThenRetrieveAgainFetchesOnlyTheMissing) {
 
     const auto again = runCli("pacs get " + address(server().node()) + " --aet " + kWorkstationAet +
                               " --study " + big.studyUid + " --series " + big.seriesUid +
-                              " --store " + quoted(store) + " --json");
+                              " --store " + quoted(store) + " --json --no-database");
     ASSERT_EQ(again.exitCode, 0) << again.err;
     EXPECT_NE(
         compact(again.out).find("\"instances\":80,\"transferred\":" + std::to_string(80 - left) +
