@@ -13,6 +13,7 @@
 #include <gtest/gtest.h>
 #include <netinet/in.h>
 #include <sstream>
+#include <sys/prctl.h>
 #include <sys/socket.h>
 #include <sys/wait.h>
 #include <thread>
@@ -132,11 +133,16 @@ void OrthancServer::start() {
         throw std::runtime_error("Orthanc is not installed");
     const fs::path logFile = m_folder / "orthanc.log";
     const fs::path config = m_folder / "orthanc.json";
+    const pid_t test = ::getpid();
     m_pid = ::fork();
     if (m_pid < 0)
         throw std::runtime_error("fork failed");
     if (m_pid == 0) {
         ::setpgid(0, 0); // its own group: stopping it stops whatever it started
+        // A test binary that crashes or is killed runs no destructor: Orthanc goes with it.
+        ::prctl(PR_SET_PDEATHSIG, SIGTERM);
+        if (::getppid() != test)
+            ::_exit(1);
         const int out = ::open(logFile.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
         ::dup2(out, STDOUT_FILENO);
         ::dup2(out, STDERR_FILENO);
