@@ -33,6 +33,7 @@ packages=(build-essential cmake ninja-build file pkg-config zlib1g-dev libpng-de
           xvfb xauth python3-numpy desktop-file-utils appstream clang libclang-rt-14-dev
           poppler-utils dicom3tools) # the report tests read the PDF and validate the DICOM SC
 packages+=(lintian) # tests/installer checks the Debian package with it
+packages+=(orthanc) # tests/pacs start their own Orthanc (a real PACS) on free loopback ports
 
 install_packages() {
   local missing=()
@@ -59,7 +60,32 @@ install_packages() {
   rm -f "$log"
 }
 
+# Debian's orthanc package enables and starts a system Orthanc on 4242/8042 (systemd; in a
+# container policy-rc.d usually forbids the start). The tests start their own on free ports and
+# must leave no PACS listening on the machine, so the system one is stopped and disabled; a
+# site that wants it back runs `systemctl enable --now orthanc`.
+stop_system_orthanc() {
+  [ -e /lib/systemd/system/orthanc.service ] || [ -e /etc/init.d/orthanc ] || return 0
+  local sudo=""
+  [ "$(id -u)" -ne 0 ] && sudo="sudo"
+  if [ -d /run/systemd/system ]; then # systemd is the init
+    if systemctl is-enabled --quiet orthanc 2>/dev/null || systemctl is-active --quiet orthanc; then
+      echo "linework: stopping and disabling the system Orthanc (the tests start their own)"
+      $sudo systemctl disable --now --quiet orthanc
+    fi
+  else # sysvinit or a container: the init script, if it runs
+    if [ -e /etc/init.d/orthanc ] && /etc/init.d/orthanc status >/dev/null 2>&1; then
+      echo "linework: stopping the system Orthanc (the tests start their own)"
+      $sudo /etc/init.d/orthanc stop >/dev/null
+    fi
+    if ls /etc/rc[2-5].d/S*orthanc >/dev/null 2>&1; then
+      $sudo update-rc.d orthanc disable >/dev/null 2>&1 || true
+    fi
+  fi
+}
+
 install_packages
+stop_system_orthanc
 
 jobs=${LINEWORK_JOBS:-$(nproc)}
 build_dir=${LINEWORK_BUILD_DIR:-build/linework}

@@ -21,5 +21,7 @@ int runThickSlices(const std::vector<std::string>& args, std::ostream& out);
 int runConvert(const std::vector<std::string>& args, std::ostream& out);
 // In a build without modules/report (no Qt or no DCMTK) it says so and returns 1.
 int runExport(const std::vector<std::string>& args, std::ostream& out);
+// echo, find, get, store against a PACS; in a build without modules/pacs (no DCMTK) it says so.
+int runPacs(const std::vector<std::string>& args, std::ostream& out);
 
 } // namespace lw::cli

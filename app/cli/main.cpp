@@ -20,6 +20,15 @@ int runExport(const std::vector<std::string>&, std::ostream&) {
 } // namespace lw::cli
 #endif
 
+#ifndef LINEWORK_HAVE_PACS
+namespace lw::cli {
+int runPacs(const std::vector<std::string>&, std::ostream&) {
+    throw core::Error("pacs", "this linework-cli was built without PACS support (it needs DCMTK: "
+                              "LINEWORK_DICOM)");
+}
+} // namespace lw::cli
+#endif
+
 namespace {
 
 constexpr const char* kUsage = R"(usage: linework-cli COMMAND [ARGS]
@@ -141,6 +150,27 @@ commands:
                               --line-width pixels (default: 1 per 512 of --size's height) in
                               --line-colour, and with --hidden-lines its hidden parts thin,
                               dashed and grey beneath
+  pacs echo NODE              C-ECHO: "accepted", or why not (connection refused, timed out,
+                              called or calling AE title not recognised)
+  pacs find NODE [--patient NAME] [--patient-id ID] [--study-date FROM-TO] [--modality CT]
+                [--study UID] [--json]
+                              C-FIND, study level (DICOM wildcards * ?; dates YYYYMMDD, either
+                              side may be empty); with --study the series of that study
+  pacs get NODE --study UID [--series UID] [--store DIR] [--move [--storage-port N]]
+           [--database FILE | --no-database] [--json]
+                              C-GET of a study or series into the managed store (default beside
+                              the study database); instances already there are skipped, so a
+                              retrieve after a cancel or a crash fetches only the missing ones;
+                              --move: C-MOVE to the workstation's own storage SCP (listening
+                              on the node file's storagePort, or N, while it runs; the PACS
+                              must list the calling AE title there); what arrived is
+                              registered in the study database (default the workstation's;
+                              Qt builds); exit 1 when anything is missing
+  pacs store NODE FILE... [--json]
+                              C-STORE of DICOM files, what the PACS answered for each
+                              NODE: a node of the node file (--nodes FILE, default beside the
+                              study database) or AET@HOST:PORT; --aet the calling AE title
+                              (default the node file's), --timeout seconds (default 10)
   help                        this text
 
 Exit codes: 0 success, 1 error (the message names the file and the reason), 2 usage error.
@@ -178,7 +208,7 @@ int main(int argc, char** argv) {
         {"bench-mc", lw::cli::runBenchMc}, {"accuracy", lw::cli::runAccuracy},
         {"bench", lw::cli::runBench},      {"export", lw::cli::runExport},
         {"quality", lw::cli::runQuality},  {"thick-slices", lw::cli::runThickSlices},
-        {"convert", lw::cli::runConvert},
+        {"convert", lw::cli::runConvert},  {"pacs", lw::cli::runPacs},
     };
     const auto command = commands.find(args[0]);
     if (command == commands.end()) {

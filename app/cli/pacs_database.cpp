@@ -1,0 +1,37 @@
+#include "pacs_database.h"
+
+#include "lw/core/error.h"
+#include "lw/studydb/study_database.h"
+#include "lw/studydb/study_importer.h"
+
+#include <QCoreApplication>
+
+namespace lw::cli {
+
+bool canRegisterInDatabase() {
+    return true;
+}
+
+Registration registerInDatabase(const std::filesystem::path& folder, const std::string& database) {
+    // Qt SQL loads its SQLite driver as a plugin, through a QCoreApplication; the names are the
+    // workstation's, so the default database is the one it opens (app/gui/main.cpp).
+    int argc = 1;
+    char name[] = "linework-cli";
+    char* argv[] = {name, nullptr};
+    const QCoreApplication application(argc, argv);
+    QCoreApplication::setOrganizationName("Linework");
+    QCoreApplication::setApplicationName("linework");
+    const QString path =
+        database.empty() ? studydb::StudyDatabase::defaultPath() : QString::fromStdString(database);
+    const studydb::ImportSummary summary =
+        studydb::importStudies(path, QString::fromStdString(folder.string()));
+    if (!summary.errors.isEmpty())
+        throw core::Error(
+            folder.string(),
+            "registering in " + path.toStdString() + ": " + std::to_string(summary.errors.size()) +
+                " import errors, the first: " + summary.errors.first().file.toStdString() + ": " +
+                summary.errors.first().reason.toStdString());
+    return {path.toStdString(), summary.seriesAdded, summary.seriesUpdated};
+}
+
+} // namespace lw::cli
