@@ -113,16 +113,13 @@ GreyWindow parseGreyWindow(const std::string& text) {
 
 core::ImageRgba8 windowedSlice(const volume::SliceImage& slice, const GreyWindow& window) {
     const glm::ivec2 size = slice.geometry.size;
+    std::vector<std::uint8_t> grey(std::size_t(size.x) * std::size_t(size.y));
+    volume::windowToGrey(slice, window.width, window.level, grey.data(), std::size_t(size.x));
     core::ImageRgba8 image(size.x, size.y, {0, 0, 0, 255});
-    const double low = window.level - 0.5 * window.width;
     for (int y = 0; y < size.y; ++y)
         for (int x = 0; x < size.x; ++x) {
-            const float value = slice.at(x, y);
-            if (std::isnan(value))
-                continue;
-            const double t = std::clamp((double(value) - low) / window.width, 0.0, 1.0);
-            const auto grey = std::uint8_t(std::lround(255.0 * t));
-            image.at(x, y) = {grey, grey, grey, 255};
+            const std::uint8_t g = grey[std::size_t(y) * std::size_t(size.x) + std::size_t(x)];
+            image.at(x, y) = {g, g, g, 255};
         }
     return image;
 }

@@ -46,16 +46,8 @@ QString windowPresetName(WindowPreset preset) {
 QImage windowedImage(const volume::SliceImage& slice, WindowLevel window) {
     const glm::ivec2 size = slice.geometry.size;
     QImage image(size.x, size.y, QImage::Format_Grayscale8);
-    const float low = float(window.level - 0.5 * window.width);
-    const float scale = float(255.0 / std::max(window.width, 1e-6));
-    for (int y = 0; y < size.y; ++y) {
-        uchar* row = image.scanLine(y);
-        const float* values = slice.values.data() + std::size_t(y) * std::size_t(size.x);
-        for (int x = 0; x < size.x; ++x) {
-            const float grey = (values[x] - low) * scale; // NaN stays NaN: black below
-            row[x] = grey > 0.0f ? uchar(std::min(grey, 255.0f) + 0.5f) : uchar(0);
-        }
-    }
+    volume::windowToGrey(slice, window.width, window.level, image.bits(),
+                         std::size_t(image.bytesPerLine()));
     return image;
 }
 

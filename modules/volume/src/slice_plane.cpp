@@ -246,4 +246,19 @@ std::optional<double> sampleAt(const Volume& volume, glm::dvec3 patient) {
     return trilinearReal(volume, ijk);
 }
 
+void windowToGrey(const SliceImage& slice, double width, double level, std::uint8_t* grey,
+                  std::size_t stride) {
+    const glm::ivec2 size = slice.geometry.size;
+    const float low = float(level - 0.5 * width);
+    const float scale = float(255.0 / std::max(width, 1e-6));
+    for (int y = 0; y < size.y; ++y) {
+        std::uint8_t* row = grey + std::size_t(y) * stride;
+        const float* values = slice.values.data() + std::size_t(y) * std::size_t(size.x);
+        for (int x = 0; x < size.x; ++x) {
+            const float value = (values[x] - low) * scale; // NaN stays NaN: black below
+            row[x] = value > 0.0f ? std::uint8_t(std::min(value, 255.0f) + 0.5f) : 0;
+        }
+    }
+}
+
 } // namespace lw::volume

@@ -23,8 +23,9 @@
 
 #include "lw/volume/volume.h"
 
+#include <cstddef>
+#include <cstdint>
 #include <glm/glm.hpp>
-
 #include <optional>
 #include <string_view>
 #include <vector>
@@ -33,7 +34,8 @@ namespace lw::volume {
 
 enum class SliceOrientation { Axial, Coronal, Sagittal };
 
-std::string_view sliceOrientationName(SliceOrientation orientation); // "axial" | "coronal" | "sagittal"
+std::string_view
+sliceOrientationName(SliceOrientation orientation); // "axial" | "coronal" | "sagittal"
 std::optional<SliceOrientation> parseSliceOrientation(std::string_view name);
 
 // The plane's frame in patient coordinates (unit vectors, right x down == normal or its
@@ -59,9 +61,9 @@ SliceEdgeLabels sliceEdgeLabels(SliceOrientation orientation);
 struct SliceGeometry {
     SliceOrientation orientation = SliceOrientation::Axial;
     SliceAxes axes;
-    glm::dvec2 originMm{0.0}; // (right, down) coordinates of pixel (0, 0)'s centre
-    double pixelMm = 1.0;     // square pixels: the volume's finest spacing
-    glm::ivec2 size{0};       // pixels
+    glm::dvec2 originMm{0.0};   // (right, down) coordinates of pixel (0, 0)'s centre
+    double pixelMm = 1.0;       // square pixels: the volume's finest spacing
+    glm::ivec2 size{0};         // pixels
     double firstPosition = 0.0; // along axes.normal, mm: the voxel centres' extent
     double lastPosition = 0.0;
     double step = 1.0; // mm along the normal from one of the volume's slices to the next
@@ -83,7 +85,9 @@ struct SliceImage {
     double position = 0.0;
     std::vector<float> values;
 
-    float at(int x, int y) const { return values[std::size_t(y) * std::size_t(geometry.size.x) + std::size_t(x)]; }
+    float at(int x, int y) const {
+        return values[std::size_t(y) * std::size_t(geometry.size.x) + std::size_t(x)];
+    }
 };
 
 // `volume` sampled trilinearly on the plane at `position`: within a slice bilinearly, between
@@ -91,6 +95,12 @@ struct SliceImage {
 // another volume over the same patient space (a finer copy samples on its source's pixels).
 SliceImage sampleSlice(const Volume& volume, const SliceGeometry& geometry, double position,
                        unsigned threads = 0);
+
+// `slice` under a window: grey 0 at level - width/2 and below (and outside the volume, NaN), 255
+// at level + width/2 and above, linear between; row y goes to grey + y * stride (the review's
+// panels and the CLI's PNG window the same way).
+void windowToGrey(const SliceImage& slice, double width, double level, std::uint8_t* grey,
+                  std::size_t stride);
 
 // The real value at a patient point (trilinear, as sampleSlice), or nothing outside the voxel
 // centres' box.
