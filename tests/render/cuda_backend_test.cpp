@@ -450,6 +450,56 @@ TEST(CudaBackendStreaming, VolumeLargerThanTheBudgetGivesTheSameImage) {
                 frame.deviceBytes >> 20, expected.deviceBytes >> 20);
 }
 
+// A streamed (L) frame keeps its slabs' meshes on the device while the budget holds them, and a
+// new view of the same surface draws the kept ones and streams only the rest. Every view, and the
+// frame after the iso-value changed (the kept meshes go), is the resident whole volume's image:
+// with every slab kept (no budget) and with the first ones kept (a budget that holds a few).
+TEST(CudaBackendStreaming, KeptSlabMeshesDrawTheResidentImageAtEveryView) {
+    const Volume volume = volume::makePhantom({256, 256, 300}, volume::PhantomKind::Ct);
+    auto whole = createSilhouetteRenderer(SilhouetteMethod::ZBuffer, Backend::Cuda);
+    whole->setVolume(volume);
+    struct Step {
+        double azimuth, elevation, iso;
+        ExtractionMode mode = ExtractionMode::CachedA;
+    };
+    // Mode b extracts every frame and keeps nothing; the mode a frame after it keeps again.
+    const Step steps[] = {{30, 20, 300.5},
+                          {75, -10, 300.5},
+                          {200, 40, 300.5, ExtractionMode::EveryFrameB},
+                          {250, 30, 300.5},
+                          {120, 15, 900.5}};
+    for (const std::size_t budget : {std::size_t(0), std::size_t(24) << 20}) {
+        auto streamed = createSilhouetteRenderer(SilhouetteMethod::ZBuffer, Backend::Cuda);
+        streamed->setVolume(volume);
+        for (const Step& step : steps) {
+            const Camera camera = cameraAt(volumeBounds(volume), step.azimuth, step.elevation,
+                                           Projection::Perspective, 512, 512);
+            SilhouetteSettings settings;
+            settings.isoReal = step.iso;
+            const SilhouetteFrame expected = whole->render(camera, settings);
+            settings.brickCells = 8;
+            settings.gpuSlabLayers = 9;
+            settings.gpuMemoryBudget = budget;
+            settings.mode = step.mode;
+            const SilhouetteFrame frame = streamed->render(camera, settings);
+            const std::string where = "budget " + std::to_string(budget >> 20) + " MiB, view " +
+                                      std::to_string(int(step.azimuth)) + ", iso " +
+                                      std::to_string(int(step.iso));
+            ASSERT_EQ(streamed->backendName(), "cuda") << where;
+            ASSERT_GT(expected.lines.count(), 500u) << where;
+            std::size_t differing = 0;
+            agreement(frame.lines, expected.lines, differing);
+            EXPECT_EQ(differing, 0u) << where;
+            EXPECT_EQ(frame.segments, expected.segments) << where;
+            EXPECT_EQ(frame.triangles, expected.triangles) << where;
+            if (budget > 0)
+                EXPECT_LE(frame.deviceBytes, budget) << where;
+            else if (step.mode == ExtractionMode::CachedA) // the whole surface kept: its indices
+                EXPECT_GT(frame.deviceBytes, frame.triangles * 3 * sizeof(std::uint32_t)) << where;
+        }
+    }
+}
+
 // Method 1 with the CUDA extraction writing the GL buffers (interop) draws exactly what it draws
 // from the CPU's mesh: same triangles, same segments, same pixels.
 TEST(CudaBackendMethod1, CudaExtractionDrawsTheCpuImage) {

@@ -166,6 +166,12 @@ public:
         LW_CUDA_TRY(cudaEventRecord(m_stop, stream), "cudaEventRecord");
         return CudaStatus::success();
     }
+    // Blocks the host until the stage's end has passed on the device.
+    CudaStatus waitForStop() const {
+        if (m_stop)
+            LW_CUDA_TRY(cudaEventSynchronize(m_stop), "cudaEventSynchronize(stage)");
+        return CudaStatus::success();
+    }
     double ms() const {
         float ms = 0.0f;
         if (m_start && m_stop && cudaEventElapsedTime(&ms, m_start, m_stop) == cudaSuccess)

@@ -461,7 +461,7 @@ MarchingCubesCuda::Impl::extractSlabsTyped(double iso, const std::vector<CellSla
         LW_RETURN_IF_FAILED(generate<T>(g));
         notePeak();
         if (mesh.triangleCount > 0)
-            LW_RETURN_IF_FAILED(onSlab(mesh));
+            LW_RETURN_IF_FAILED(onSlab(k, mesh));
     }
     return CudaStatus::success();
 }

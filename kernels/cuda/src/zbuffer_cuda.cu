@@ -26,8 +26,12 @@ struct ZBufferCuda::Impl {
     // drawHost's copy of a host mesh.
     DeviceBuffer<glm::vec3> hostPositions, hostNormals;
     DeviceBuffer<std::uint32_t> hostIndices;
-    DeviceMeshView hostMesh; // in the three buffers above (empty: none kept)
-    dispatch::StageTimer timers[4];
+    DeviceMeshView hostMesh;        // in the three buffers above (empty: none kept)
+    dispatch::StageTimer timers[3]; // project, silhouette (+ coverage), resolve
+    // A draw's times are read once it has finished: at the next draw, waitForDraws or the
+    // resolve, so that a frame's draws and its colour pass queue without a host wait between.
+    bool drawUnread = false;
+    double unreadProjectMs = 0.0, unreadDrawMs = 0.0;
     std::size_t pixels() const {
         return std::size_t(view.width > 0 ? view.width : 0) *
                std::size_t(view.height > 0 ? view.height : 0);
@@ -68,11 +72,41 @@ CudaStatus ZBufferCuda::begin(const ViewTransform& view) {
     return CudaStatus::success();
 }
 
+namespace {
+
+// The last draw's stage times into the unread sums (waits for that draw to finish: its timers are
+// recorded again by the next one).
+CudaStatus readDrawTimes(ZBufferCuda::Impl& s) {
+    if (!s.drawUnread)
+        return CudaStatus::success();
+    LW_RETURN_IF_FAILED(s.timers[1].waitForStop());
+    s.unreadProjectMs += s.timers[0].ms();
+    s.unreadDrawMs += s.timers[1].ms();
+    s.drawUnread = false;
+    return CudaStatus::success();
+}
+
+void moveDrawTimes(ZBufferCuda::Impl& s, ZBufferCudaFrame& frame) {
+    frame.projectMs += std::exchange(s.unreadProjectMs, 0.0);
+    frame.drawMs += std::exchange(s.unreadDrawMs, 0.0);
+}
+
+} // namespace
+
+CudaStatus ZBufferCuda::waitForDraws(ZBufferCudaFrame& frame) {
+    Impl& s = *m_impl;
+    LW_RETURN_IF_FAILED(readDrawTimes(s));
+    moveDrawTimes(s, frame);
+    return CudaStatus::success();
+}
+
 CudaStatus ZBufferCuda::draw(const DeviceMeshView& mesh, const ZBufferCudaSettings& settings,
                              ZBufferCudaFrame& frame) {
     Impl& s = *m_impl;
     if (mesh.triangleCount == 0)
         return CudaStatus::success();
+    LW_RETURN_IF_FAILED(readDrawTimes(s));
+    moveDrawTimes(s, frame);
     cudaStream_t st = s.stream.get();
     LW_RETURN_IF_FAILED(s.screen.reserve(mesh.vertexCount, "cudaMalloc(screenVertices)"));
     const glm::vec3 eyeOrDirection = glm::vec3(s.view.orthographic ? s.view.toViewer : s.view.eye);
@@ -87,24 +121,20 @@ CudaStatus ZBufferCuda::draw(const DeviceMeshView& mesh, const ZBufferCudaSettin
 
     const unsigned triangleBlocks = blocksFor(mesh.triangleCount, tuning::kTriangleBlock);
     LW_RETURN_IF_FAILED(s.timers[1].start(st));
-    zb::drawSilhouettes<<<triangleBlocks, tuning::kTriangleBlock, 0, st>>>(
-        mesh.positions, mesh.indices, std::uint32_t(mesh.triangleCount), s.screen.data(),
-        s.projection, s.lines.data(), s.segmentCount.data());
-    LW_CUDA_LAUNCHED("zb::drawSilhouettes");
-    LW_RETURN_IF_FAILED(s.timers[1].stop(st));
-
-    LW_RETURN_IF_FAILED(s.timers[2].start(st));
     if (settings.visibility) {
-        zb::drawTriangles<<<triangleBlocks, tuning::kTriangleBlock, 0, st>>>(
-            mesh.indices, std::uint32_t(mesh.triangleCount), s.screen.data(), s.view.width,
-            s.view.height, settings.cullBackFaces, s.surface.data());
-        LW_CUDA_LAUNCHED("zb::drawTriangles");
+        zb::drawSilhouettesAndCoverage<<<triangleBlocks, tuning::kTriangleBlock, 0, st>>>(
+            mesh.positions, mesh.indices, std::uint32_t(mesh.triangleCount), s.screen.data(),
+            s.projection, settings.cullBackFaces, s.lines.data(), s.surface.data(),
+            s.segmentCount.data());
+        LW_CUDA_LAUNCHED("zb::drawSilhouettesAndCoverage");
+    } else {
+        zb::drawSilhouettes<<<triangleBlocks, tuning::kTriangleBlock, 0, st>>>(
+            mesh.positions, mesh.indices, std::uint32_t(mesh.triangleCount), s.screen.data(),
+            s.projection, s.lines.data(), s.segmentCount.data());
+        LW_CUDA_LAUNCHED("zb::drawSilhouettes");
     }
-    LW_RETURN_IF_FAILED(s.timers[2].stop(st));
-    LW_CUDA_TRY(cudaStreamSynchronize(st), "zb::draw");
-    frame.projectMs += s.timers[0].ms();
-    frame.silhouetteMs += s.timers[1].ms();
-    frame.depthMs += s.timers[2].ms();
+    LW_RETURN_IF_FAILED(s.timers[1].stop(st));
+    s.drawUnread = true;
     return CudaStatus::success();
 }
 
@@ -148,18 +178,18 @@ CudaStatus ZBufferCuda::drawKeptHostMesh(const ZBufferCudaSettings& settings,
     return draw(m_impl->hostMesh, settings, frame);
 }
 
-namespace {} // namespace
-
 CudaStatus ZBufferCuda::finishResolve(ZBufferCudaFrame& frame) {
     Impl& s = *m_impl;
     cudaStream_t st = s.stream.get();
-    LW_RETURN_IF_FAILED(s.timers[3].stop(st));
+    LW_RETURN_IF_FAILED(s.timers[2].stop(st));
     unsigned long long segments = 0;
     LW_CUDA_TRY(cudaMemcpyAsync(&segments, s.segmentCount.data(), sizeof segments,
                                 cudaMemcpyDeviceToHost, st),
                 "cudaMemcpy(segmentCount)");
     LW_CUDA_TRY(cudaStreamSynchronize(st), "zb::resolve");
-    frame.resolveMs += s.timers[3].ms();
+    LW_RETURN_IF_FAILED(readDrawTimes(s));
+    moveDrawTimes(s, frame);
+    frame.resolveMs += s.timers[2].ms();
     frame.segments = std::size_t(segments);
     return CudaStatus::success();
 }
@@ -170,7 +200,7 @@ CudaStatus ZBufferCuda::resolve(const ZBufferCudaSettings& settings, std::uint8_
     cudaStream_t st = s.stream.get();
     const int width = s.view.width, height = s.view.height;
     const std::size_t pixels = s.pixels();
-    LW_RETURN_IF_FAILED(s.timers[3].start(st));
+    LW_RETURN_IF_FAILED(s.timers[2].start(st));
     if (pixels > 0) {
         const PixelLaunch launch = pixelLaunch(width, height);
         zb::resolve<<<launch.grid, launch.block, 0, st>>>(s.surface.data(), s.lines.data(), width,
@@ -244,7 +274,7 @@ CudaStatus ZBufferCuda::resolveInto(const ZBufferCudaSettings& settings,
                                    "the GL texture is not attached at the frame's size");
     cudaStream_t st = s.stream.get();
     auto resource = static_cast<cudaGraphicsResource_t>(target.resource());
-    LW_RETURN_IF_FAILED(s.timers[3].start(st));
+    LW_RETURN_IF_FAILED(s.timers[2].start(st));
     // Mapped on the frame's stream: GL's earlier use of the texture completes before the kernel.
     CudaStatus status = dispatch::statusOf(cudaGraphicsMapResources(1, &resource, st),
                                            "cudaGraphicsMapResources(mask texture)");

@@ -34,18 +34,12 @@ __global__ void projectVertices(const glm::vec3* positions, const glm::vec3* nor
     out[i] = v;
 }
 
-// Burns' segment of each triangle whose vertices' d differ in sign, projected and stepped into
+// Burns' segment of a triangle whose vertices' d differ in sign, projected and stepped into
 // zbuffer2 right away.
-__global__ void drawSilhouettes(const glm::vec3* positions, const std::uint32_t* indices,
-                                std::uint32_t triangleCount, const ScreenVertex* screen,
-                                ScreenProjection view, std::uint32_t* lines,
-                                unsigned long long* segmentCount) {
-    const std::uint32_t t = blockIdx.x * blockDim.x + threadIdx.x;
-    if (t >= triangleCount)
-        return;
-    const std::uint32_t a = indices[3 * std::size_t(t)], b = indices[3 * std::size_t(t) + 1],
-                        c = indices[3 * std::size_t(t) + 2];
-    const float d[3] = {screen[a].facing, screen[b].facing, screen[c].facing};
+__device__ inline void drawSilhouetteOf(const glm::vec3* positions, std::uint32_t a,
+                                        std::uint32_t b, std::uint32_t c, const float d[3],
+                                        const ScreenProjection& view, std::uint32_t* lines,
+                                        unsigned long long* segmentCount) {
     const int sides = int(d[0] >= 0.0f) + int(d[1] >= 0.0f) + int(d[2] >= 0.0f);
     if (sides == 0 || sides == 3)
         return;
@@ -67,21 +61,49 @@ __global__ void drawSilhouettes(const glm::vec3* positions, const std::uint32_t*
     });
 }
 
-__global__ void drawTriangles(const std::uint32_t* indices, std::uint32_t triangleCount,
-                              const ScreenVertex* screen, int width, int height, bool cullBackFaces,
-                              std::uint32_t* surface) {
-    const std::uint32_t t = blockIdx.x * blockDim.x + threadIdx.x;
-    if (t >= triangleCount)
-        return;
-    const ScreenVertex a = screen[indices[3 * std::size_t(t)]];
-    const ScreenVertex b = screen[indices[3 * std::size_t(t) + 1]];
-    const ScreenVertex c = screen[indices[3 * std::size_t(t) + 2]];
+// A triangle's covered pixels into zbuffer1 (the surface's depth).
+__device__ inline void drawCoverageOf(const ScreenVertex& a, const ScreenVertex& b,
+                                      const ScreenVertex& c, int width, int height,
+                                      bool cullBackFaces, std::uint32_t* surface) {
     forEachCoveredPixel(
         a.xy, b.xy, c.xy, a.key, b.key, c.key, width, height,
         [&](int x, int y, float key) {
             atomicMax(surface + std::size_t(y) * std::size_t(width) + std::size_t(x), keyBits(key));
         },
         cullBackFaces);
+}
+
+// The silhouette alone (visibility off).
+__global__ void drawSilhouettes(const glm::vec3* positions, const std::uint32_t* indices,
+                                std::uint32_t triangleCount, const ScreenVertex* screen,
+                                ScreenProjection view, std::uint32_t* lines,
+                                unsigned long long* segmentCount) {
+    const std::uint32_t t = blockIdx.x * blockDim.x + threadIdx.x;
+    if (t >= triangleCount)
+        return;
+    const std::uint32_t a = indices[3 * std::size_t(t)], b = indices[3 * std::size_t(t) + 1],
+                        c = indices[3 * std::size_t(t) + 2];
+    const float d[3] = {screen[a].facing, screen[b].facing, screen[c].facing};
+    drawSilhouetteOf(positions, a, b, c, d, view, lines, segmentCount);
+}
+
+// Both passes of a triangle in one thread (visibility on): its indices and screen vertices are
+// read once instead of once per pass. The two passes write different z-buffers by atomicMax, so
+// their order does not change the image.
+__global__ void drawSilhouettesAndCoverage(const glm::vec3* positions, const std::uint32_t* indices,
+                                           std::uint32_t triangleCount, const ScreenVertex* screen,
+                                           ScreenProjection view, bool cullBackFaces,
+                                           std::uint32_t* lines, std::uint32_t* surface,
+                                           unsigned long long* segmentCount) {
+    const std::uint32_t t = blockIdx.x * blockDim.x + threadIdx.x;
+    if (t >= triangleCount)
+        return;
+    const std::uint32_t a = indices[3 * std::size_t(t)], b = indices[3 * std::size_t(t) + 1],
+                        c = indices[3 * std::size_t(t) + 2];
+    const ScreenVertex va = screen[a], vb = screen[b], vc = screen[c];
+    const float d[3] = {va.facing, vb.facing, vc.facing};
+    drawSilhouetteOf(positions, a, b, c, d, view, lines, segmentCount);
+    drawCoverageOf(va, vb, vc, view.width, view.height, cullBackFaces, surface);
 }
 
 __global__ void resolve(const std::uint32_t* surface, const std::uint32_t* lines, int width,

@@ -71,13 +71,13 @@ public:
                       settings.gpuSlabLayers);
         const std::vector<kernels::CellSlab> slabs =
             cropSlabsToSurface(layers, *m_rowRanges, storedIso);
-        throwIfCudaFailed(
-            kWhere, m_marchingCubes.extractSlabs(storedIso, slabs,
-                                                 [&](const kernels::cuda::DeviceMeshView& mesh) {
-                                                     writeIntoGl(gl, mesh, nullptr);
-                                                     drawPiece(mesh.triangleCount);
-                                                     return kernels::cuda::CudaStatus::success();
-                                                 }));
+        throwIfCudaFailed(kWhere, m_marchingCubes.extractSlabs(
+                                      storedIso, slabs,
+                                      [&](std::size_t, const kernels::cuda::DeviceMeshView& mesh) {
+                                          writeIntoGl(gl, mesh, nullptr);
+                                          drawPiece(mesh.triangleCount);
+                                          return kernels::cuda::CudaStatus::success();
+                                      }));
         return true;
     }
 

@@ -8,7 +8,10 @@
 //   slabs         the chunked (L) variant, and any volume too large for the budget: slabs of cell
 //                 layers, cropped to the rows that can hold the surface, stream from host memory
 //                 through two device slots, each slab's mesh drawn into the shared z-buffers and
-//                 dropped; re-extracted every frame (as the CPU's L)
+//                 dropped, unless the budget holds it: the slabs' meshes are kept on the device
+//                 while they fit in the half of the budget left to them, so a new view of the
+//                 same surface draws the kept ones and streams only the rest (the CPU's L
+//                 re-extracts every frame; the image is the same)
 // A frame over the budget or out of device memory throws OutOfDeviceMemory: the renderer asks
 // fallBack() (whole volume -> slabs) and then goes to the CPU.
 //
@@ -23,6 +26,7 @@
 #include "lw/kernels/cpu/border_cap_cpu.h"
 #include "lw/kernels/cpu/marching_cubes_cpu.h"
 #include "lw/kernels/cuda/cuda_device.h"
+#include "lw/kernels/cuda/device_mesh_store.h"
 #include "lw/kernels/cuda/marching_cubes_cuda.h"
 #include "lw/kernels/cuda/zbuffer_cuda.h"
 #include "lw/render/gl_frame_target.h"
@@ -32,8 +36,11 @@
 #include "lw/kernels/cuda/gl_texture_interop.h"
 #endif
 
+#include <algorithm>
 #include <chrono>
+#include <limits>
 #include <string>
+#include <vector>
 
 namespace lw::render {
 namespace {
@@ -78,6 +85,7 @@ public:
         m_cap.clear();
         m_capKept = nullptr;
         m_capKeptOnDevice = false;
+        forgetKeptSlabs();
     }
 
     bool keepsWholeSurface(const Camera& camera, const SilhouetteSettings& settings) override {
@@ -98,6 +106,7 @@ public:
         }
         m_capKept = nullptr;
         m_capKeptOnDevice = false;
+        forgetKeptSlabs(); // the cap on the device is the whole surface's from now on
         m_marchingCubes.setGradientStencil(settings.gradientStencil);
         check(m_marchingCubes.extract(storedIso));
         frame.times.extractMs += m_marchingCubes.times().totalMs();
@@ -162,10 +171,11 @@ public:
         }
         frame.strokesPruned = true; // on the device, before the mask left it
         frame.segments = m_timing.segments;
-        frame.times.silhouetteMs += m_timing.projectMs + m_timing.silhouetteMs;
-        frame.times.visibilityMs += m_timing.depthMs;
+        // The silhouette and the surface's depth are one pass on the device (visibilityMs 0).
+        frame.times.silhouetteMs += m_timing.projectMs + m_timing.drawMs;
         frame.times.drawMs += m_timing.resolveMs;
-        frame.deviceBytes = m_marchingCubes.peakDeviceBytes() + m_zbuffer.deviceBytes();
+        frame.deviceBytes =
+            m_marchingCubes.peakDeviceBytes() + m_zbuffer.deviceBytes() + m_keptSlabs.deviceBytes();
         // The budget is a limit, not a hint: a frame that held more (the whole volume's overhead
         // is an estimate) counts as out of memory, and the frame goes the next way down.
         if (frame.deviceBytes > m_budget)
@@ -181,6 +191,7 @@ public:
         m_marchingCubes.release(); // free what the failed attempt holds before slabs allocate
         m_zbuffer.release();
         m_capKeptOnDevice = false;
+        forgetKeptSlabs();
         m_resident = GpuResidency::Cpu;
         return true;
     }
@@ -195,6 +206,14 @@ private:
     }
     const std::vector<kernels::CellSlab>& slabsOf(const std::vector<glm::ivec2>& layers,
                                                   double storedIso);
+    void forgetKeptSlabs() {
+        m_keptSlabs.clear();
+        m_keptSlabEnd = 0;
+        m_keptFor = KeptSlabsKey();
+    }
+    CudaStatus keepSlab(std::size_t slab, const kernels::cuda::DeviceMeshView& mesh,
+                        std::size_t streamingReserve);
+    void drawKeptSlabs(SilhouetteFrame& frame);
 
     const volume::Volume* m_volume = nullptr;
     kernels::cuda::MarchingCubesCuda m_marchingCubes;
@@ -221,6 +240,20 @@ private:
     std::vector<glm::ivec2> m_plannedLayers;
     double m_croppedIso = std::numeric_limits<double>::quiet_NaN();
     std::vector<kernels::CellSlab> m_croppedSlabs;
+    // Slab meshes kept on the device for the next view: those of m_croppedSlabs[0, m_keptSlabEnd)
+    // (in order; slabs without triangles have none), made for m_keptFor.
+    struct KeptSlabsKey {
+        double storedIso = std::numeric_limits<double>::quiet_NaN();
+        std::vector<glm::ivec2> layers;
+        kernels::GradientStencil stencil = kernels::GradientStencil::Central;
+        bool operator==(const KeptSlabsKey& o) const {
+            return storedIso == o.storedIso && layers == o.layers && stencil == o.stencil;
+        }
+    };
+    kernels::cuda::DeviceMeshStore m_keptSlabs;
+    std::size_t m_keptSlabEnd = 0;
+    bool m_keeping = false; // this frame still keeps the slabs it extracts
+    KeptSlabsKey m_keptFor;
 };
 
 // The colour pass into settings.frameTarget where it applies; false: the caller resolves into
@@ -271,35 +304,100 @@ CudaZBufferKernels::slabsOf(const std::vector<glm::ivec2>& layers, double stored
     return m_croppedSlabs;
 }
 
+// Keeps slab `slab`'s mesh when it extends the kept run and fits: the kept meshes, the z-buffers
+// and the streaming's working set (the larger of what it held and what the plan allows it) stay
+// within the budget.
+CudaStatus CudaZBufferKernels::keepSlab(std::size_t slab, const kernels::cuda::DeviceMeshView& mesh,
+                                        std::size_t streamingReserve) {
+    if (!m_keeping)
+        return CudaStatus::success();
+    const std::size_t held = m_keptSlabs.deviceBytes() + m_zbuffer.deviceBytes() +
+                             std::max(streamingReserve, m_marchingCubes.peakDeviceBytes());
+    if (held + kernels::cuda::DeviceMeshStore::bytesOf(mesh) > m_budget) {
+        m_keeping = false; // the kept run ends here: later slabs stream every frame
+        return CudaStatus::success();
+    }
+    const CudaStatus kept = m_keptSlabs.keep(mesh);
+    if (kept.code == CudaStatus::Code::OutOfMemory) { // the device has less than the budget says
+        m_keeping = false;
+        return CudaStatus::success();
+    }
+    if (kept.ok())
+        m_keptSlabEnd = slab + 1;
+    return kept;
+}
+
+void CudaZBufferKernels::drawKeptSlabs(SilhouetteFrame& frame) {
+    for (std::size_t i = 0; i < m_keptSlabs.count(); ++i) {
+        const kernels::cuda::DeviceMeshView& mesh = m_keptSlabs.mesh(i);
+        frame.triangles += mesh.triangleCount;
+        check(m_zbuffer.draw(mesh, m_draw, m_timing));
+    }
+}
+
 void CudaZBufferKernels::drawPieces(const Camera& camera, const SilhouetteSettings& settings,
                                     double storedIso, bool closed, SilhouetteFrame& frame) {
     m_hostMeshValid = false;
     if (m_resident != GpuResidency::Slabs) {
+        forgetKeptSlabs();
         m_resident = GpuResidency::Cpu;
         check(m_marchingCubes.setStreamedVolume(hostVolumeView(*m_volume),
                                                 kernels::cpu::voxelGridSetup(*m_volume)));
         m_resident = GpuResidency::Slabs;
     }
-    const std::vector<glm::ivec2> layers =
-        planSlabs(m_volume->dims(), volume::voxelSize(m_volume->voxelType()), m_budget,
-                  imageBytes(camera, settings), settings.gpuSlabLayers);
+    // Half of the budget beyond the images goes to streaming, half to the kept slab meshes.
+    const std::size_t images = imageBytes(camera, settings);
+    const std::size_t keptShare = m_budget > images ? (m_budget - images) / 2 : 0;
+    const std::size_t voxelBytes = volume::voxelSize(m_volume->voxelType());
+    const std::vector<glm::ivec2> layers = planSlabs(m_volume->dims(), voxelBytes, m_budget,
+                                                     images + keptShare, settings.gpuSlabLayers);
+    const KeptSlabsKey key{storedIso, layers, settings.gradientStencil};
+    const bool everyFrame = settings.mode == ExtractionMode::EveryFrameB;
+    if (everyFrame || !(key == m_keptFor)) {
+        // Mode b extracts every frame as a new iso-value would, and keeps nothing.
+        forgetKeptSlabs();
+        if (!everyFrame)
+            m_keptFor = key;
+        m_capKeptOnDevice = false;
+        m_keeping = !everyFrame;
+    }
+    int thickest = 0;
+    for (const glm::ivec2& range : layers)
+        thickest = std::max(thickest, range.y - range.x);
+    const std::size_t streamingReserve =
+        std::size_t(kSlabOverhead * double(thickest + 3) * double(m_volume->dims().x) *
+                    double(m_volume->dims().y) * double(voxelBytes));
     m_draw.cullBackFaces = closed;
     m_marchingCubes.setGradientStencil(settings.gradientStencil);
     const auto start = std::chrono::steady_clock::now();
-    check(m_marchingCubes.extractSlabs(storedIso, slabsOf(layers, storedIso),
-                                       [&](const kernels::cuda::DeviceMeshView& slab) {
-                                           frame.triangles += slab.triangleCount;
-                                           return m_zbuffer.draw(slab, m_draw, m_timing);
-                                       }));
+    drawKeptSlabs(frame);
+    const std::vector<kernels::CellSlab>& slabs = slabsOf(layers, storedIso);
+    const std::vector<kernels::CellSlab> streamed(slabs.begin() + std::ptrdiff_t(m_keptSlabEnd),
+                                                  slabs.end());
+    const std::size_t first = m_keptSlabEnd;
+    check(m_marchingCubes.extractSlabs(
+        storedIso, streamed, [&](std::size_t k, const kernels::cuda::DeviceMeshView& slab) {
+            frame.triangles += slab.triangleCount;
+            LW_RETURN_IF_FAILED(m_zbuffer.draw(slab, m_draw, m_timing));
+            // The slab's buffers are the next slab's: the draw must be done with them.
+            LW_RETURN_IF_FAILED(m_zbuffer.waitForDraws(m_timing));
+            return keepSlab(first + k, slab, streamingReserve);
+        }));
+    if (m_keeping) // every slab is kept, the empty ones too: a new view streams nothing
+        m_keptSlabEnd = slabs.size();
+    m_keeping = false;
     if (settings.closeAtBorder) {
         const Mesh& cap = m_cap.cap(*m_volume, storedIso, settings.gradientStencil);
-        m_capKeptOnDevice = false; // drawHost replaces the kept copy
-        check(m_zbuffer.drawHost(cap, m_draw, m_timing));
+        if (!m_capKeptOnDevice) // once per kept surface, like the slabs
+            check(m_zbuffer.keepHostMesh(cap));
+        m_capKeptOnDevice = true;
+        check(m_zbuffer.drawKeptHostMesh(m_draw, m_timing));
         frame.triangles += cap.triangleCount();
     }
+    check(m_zbuffer.waitForDraws(m_timing));
     // The slabs' extraction and drawing interleave: extraction is the loop's wall time less the
     // drawing kernels' time.
-    const double drawn = m_timing.projectMs + m_timing.silhouetteMs + m_timing.depthMs;
+    const double drawn = m_timing.projectMs + m_timing.drawMs;
     frame.times.extractMs += std::max(0.0, msSince(start) - drawn);
 }
 

@@ -86,10 +86,11 @@ public:
     // so per-pixel maxima drawn from the slabs equal those of the whole mesh.
     //
     // setStreamedVolume keeps `hostVolume` (it must outlive the calls) and uploads only the grid
-    // tables; extractSlabs calls onSlab(mesh) once per slab with triangles, the mesh valid during
-    // the call; a failed status from onSlab stops the walk and is returned.
+    // tables; extractSlabs calls onSlab(k, mesh) once per slab with triangles (k: its index in
+    // `slabs`), the mesh valid during the call; a failed status from onSlab stops the walk and is
+    // returned.
     CudaStatus setStreamedVolume(const VolumeView& hostVolume, const VoxelGridSetup& setup);
-    using SlabCallback = std::function<CudaStatus(const DeviceMeshView&)>;
+    using SlabCallback = std::function<CudaStatus(std::size_t slab, const DeviceMeshView& mesh)>;
     CudaStatus extractSlabs(double storedIso, const std::vector<CellSlab>& slabs,
                             const SlabCallback& onSlab);
     // Frees every device buffer (after running out of memory, before trying another way); the

@@ -28,7 +28,9 @@ class GlTextureInterop;
 
 struct ZBufferCudaFrame {
     std::size_t segments = 0;
-    double projectMs = 0, silhouetteMs = 0, depthMs = 0, resolveMs = 0; // CUDA events
+    // CUDA events. drawMs: the silhouette and, with visibility on, the surface's depth, drawn in
+    // one pass over the triangles.
+    double projectMs = 0, drawMs = 0, resolveMs = 0;
 };
 
 struct ZBufferCudaSettings {
@@ -50,10 +52,15 @@ public:
 
     // Clears both buffers for a view (call once per frame before drawing).
     CudaStatus begin(const ViewTransform& view);
-    // Draws a mesh's silhouette segments into zbuffer2 and, when `depth`, its triangles into
-    // zbuffer1. Called once per frame (S) or once per brick (L): both buffers keep maxima.
+    // Draws a mesh's silhouette segments into zbuffer2 and, with visibility, its triangles into
+    // zbuffer1. Called once per frame (S) or once per brick (L): both buffers keep maxima. The
+    // draw is queued on the device and may still read `mesh` after the call: a caller that
+    // reuses the mesh's memory calls waitForDraws first. Its times reach the frame passed to the
+    // next draw, waitForDraws or the resolve.
     CudaStatus draw(const DeviceMeshView& mesh, const ZBufferCudaSettings& settings,
                     ZBufferCudaFrame& frame);
+    // Blocks until every queued draw has finished, and adds their times to `frame`.
+    CudaStatus waitForDraws(ZBufferCudaFrame& frame);
     // The same for a mesh in host memory (the border cap: small), copied to the device first.
     CudaStatus drawHost(const TriangleMesh& mesh, const ZBufferCudaSettings& settings,
                         ZBufferCudaFrame& frame);
