@@ -121,18 +121,13 @@ CudaStatus ZBufferCuda::draw(const DeviceMeshView& mesh, const ZBufferCudaSettin
 
     const unsigned triangleBlocks = blocksFor(mesh.triangleCount, tuning::kTriangleBlock);
     LW_RETURN_IF_FAILED(s.timers[1].start(st));
-    if (settings.visibility) {
-        zb::drawSilhouettesAndCoverage<<<triangleBlocks, tuning::kTriangleBlock, 0, st>>>(
-            mesh.positions, mesh.indices, std::uint32_t(mesh.triangleCount), s.screen.data(),
-            s.projection, settings.cullBackFaces, s.lines.data(), s.surface.data(),
-            s.segmentCount.data());
-        LW_CUDA_LAUNCHED("zb::drawSilhouettesAndCoverage");
-    } else {
-        zb::drawSilhouettes<<<triangleBlocks, tuning::kTriangleBlock, 0, st>>>(
-            mesh.positions, mesh.indices, std::uint32_t(mesh.triangleCount), s.screen.data(),
-            s.projection, s.lines.data(), s.segmentCount.data());
-        LW_CUDA_LAUNCHED("zb::drawSilhouettes");
-    }
+    const auto drawTriangles =
+        settings.visibility ? zb::drawTriangles<true> : zb::drawTriangles<false>;
+    drawTriangles<<<triangleBlocks, tuning::kTriangleBlock, 0, st>>>(
+        mesh.positions, mesh.indices, std::uint32_t(mesh.triangleCount), s.screen.data(),
+        s.projection, settings.cullBackFaces, s.lines.data(), s.surface.data(),
+        s.segmentCount.data());
+    LW_CUDA_LAUNCHED("zb::drawTriangles");
     LW_RETURN_IF_FAILED(s.timers[1].stop(st));
     s.drawUnread = true;
     return CudaStatus::success();

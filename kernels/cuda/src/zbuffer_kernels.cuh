@@ -73,37 +73,29 @@ __device__ inline void drawCoverageOf(const ScreenVertex& a, const ScreenVertex&
         cullBackFaces);
 }
 
-// The silhouette alone (visibility off).
-__global__ void drawSilhouettes(const glm::vec3* positions, const std::uint32_t* indices,
-                                std::uint32_t triangleCount, const ScreenVertex* screen,
-                                ScreenProjection view, std::uint32_t* lines,
-                                unsigned long long* segmentCount) {
+// A triangle's silhouette segment and, with Depth (visibility on), its coverage, in one thread:
+// its indices and screen vertices are read once for both passes. The passes write different
+// z-buffers by atomicMax, so their order does not change the image. Without Depth only the
+// vertices' d is read.
+template <bool Depth>
+__global__ void drawTriangles(const glm::vec3* positions, const std::uint32_t* indices,
+                              std::uint32_t triangleCount, const ScreenVertex* screen,
+                              ScreenProjection view, bool cullBackFaces, std::uint32_t* lines,
+                              std::uint32_t* surface, unsigned long long* segmentCount) {
     const std::uint32_t t = blockIdx.x * blockDim.x + threadIdx.x;
     if (t >= triangleCount)
         return;
     const std::uint32_t a = indices[3 * std::size_t(t)], b = indices[3 * std::size_t(t) + 1],
                         c = indices[3 * std::size_t(t) + 2];
-    const float d[3] = {screen[a].facing, screen[b].facing, screen[c].facing};
-    drawSilhouetteOf(positions, a, b, c, d, view, lines, segmentCount);
-}
-
-// Both passes of a triangle in one thread (visibility on): its indices and screen vertices are
-// read once instead of once per pass. The two passes write different z-buffers by atomicMax, so
-// their order does not change the image.
-__global__ void drawSilhouettesAndCoverage(const glm::vec3* positions, const std::uint32_t* indices,
-                                           std::uint32_t triangleCount, const ScreenVertex* screen,
-                                           ScreenProjection view, bool cullBackFaces,
-                                           std::uint32_t* lines, std::uint32_t* surface,
-                                           unsigned long long* segmentCount) {
-    const std::uint32_t t = blockIdx.x * blockDim.x + threadIdx.x;
-    if (t >= triangleCount)
-        return;
-    const std::uint32_t a = indices[3 * std::size_t(t)], b = indices[3 * std::size_t(t) + 1],
-                        c = indices[3 * std::size_t(t) + 2];
-    const ScreenVertex va = screen[a], vb = screen[b], vc = screen[c];
-    const float d[3] = {va.facing, vb.facing, vc.facing};
-    drawSilhouetteOf(positions, a, b, c, d, view, lines, segmentCount);
-    drawCoverageOf(va, vb, vc, view.width, view.height, cullBackFaces, surface);
+    if constexpr (Depth) {
+        const ScreenVertex va = screen[a], vb = screen[b], vc = screen[c];
+        const float d[3] = {va.facing, vb.facing, vc.facing};
+        drawSilhouetteOf(positions, a, b, c, d, view, lines, segmentCount);
+        drawCoverageOf(va, vb, vc, view.width, view.height, cullBackFaces, surface);
+    } else {
+        const float d[3] = {screen[a].facing, screen[b].facing, screen[c].facing};
+        drawSilhouetteOf(positions, a, b, c, d, view, lines, segmentCount);
+    }
 }
 
 __global__ void resolve(const std::uint32_t* surface, const std::uint32_t* lines, int width,
