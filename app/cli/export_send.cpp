@@ -3,6 +3,7 @@
 #include "lw/pacs/pacs_error.h"
 #include "lw/pacs/store_scu.h"
 
+#include <chrono>
 #include <cstdio>
 
 namespace lw::cli {
@@ -11,6 +12,7 @@ int sendExports(const PacsTarget& target, const std::vector<std::filesystem::pat
                 std::ostream& out) {
     const std::string node = describeNode(target.node);
     std::vector<pacs::StoreOutcome> outcomes;
+    const auto start = std::chrono::steady_clock::now();
     try {
         outcomes = pacs::storeFiles(target.node, files, target.options);
     } catch (const pacs::PacsError& error) {
@@ -23,6 +25,11 @@ int sendExports(const PacsTarget& target, const std::vector<std::filesystem::pat
         out << "sent " << outcome.file.string() << " to " << node << ": " << outcome.message
             << "\n";
     }
+    const double ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    char timing[48];
+    std::snprintf(timing, sizeof timing, " in %.0f ms\n", ms);
+    out << node << " stored " << stored << " of " << outcomes.size() << " files" << timing;
     if (stored == outcomes.size())
         return 0;
     std::fprintf(stderr, "linework-cli: --send %s: the PACS stored %zu of %zu files\n",
