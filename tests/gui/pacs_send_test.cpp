@@ -34,16 +34,6 @@ void writeNodeFile(const QTemporaryDir& dir, const OrthancServer& server) {
                             file);
 }
 
-// Orthanc's series of the study with that UID, as its REST API lists them (JSON).
-std::string seriesOfStudy(const OrthancServer& server, const std::string& studyUid) {
-    const std::string found = server.http("POST", "/tools/lookup", studyUid).body;
-    const std::size_t at = found.find("\"/studies/");
-    if (at == std::string::npos)
-        return {};
-    const std::string study = found.substr(at + 1, found.find('"', at + 1) - at - 1);
-    return server.http("GET", study + "/series").body;
-}
-
 int count(const std::string& text, const std::string& what) {
     int n = 0;
     for (std::size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1))
@@ -99,7 +89,7 @@ void PacsSendTest::sendStoresTheCaptureAndTheReportInTheStudy() {
 
     // In Orthanc: the demo's study (which the PACS did not hold) with the two new series.
     const std::string studyUid = window.currentReview()->source().dicom->studyInstanceUid;
-    const std::string series = seriesOfStudy(*m_server, studyUid);
+    const std::string series = m_server->seriesOfStudy(studyUid);
     QCOMPARE(count(series, "\"Type\" : \"Series\""), 2);
     QVERIFY2(series.find("\"Modality\" : \"OT\"") != std::string::npos, series.c_str());
     QVERIFY2(series.find("\"Modality\" : \"DOC\"") != std::string::npos, series.c_str());

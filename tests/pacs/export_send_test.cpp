@@ -54,12 +54,7 @@ std::string sopInstanceUidOf(const fs::path& file) {
 
 // How many series Orthanc holds in the study with that UID.
 int seriesInStudy(const OrthancServer& server, const std::string& studyUid) {
-    const HttpReply found = server.http("POST", "/tools/lookup", studyUid);
-    const std::size_t at = found.body.find("\"/studies/");
-    if (at == std::string::npos)
-        return 0;
-    const std::string study = found.body.substr(at + 1, found.body.find('"', at + 1) - at - 1);
-    const std::string series = server.http("GET", study + "/series").body;
+    const std::string series = server.seriesOfStudy(studyUid);
     int count = 0;
     for (std::size_t from = series.find("\"Type\" : \"Series\""); from != std::string::npos;
          from = series.find("\"Type\" : \"Series\"", from + 1))

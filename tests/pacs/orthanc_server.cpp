@@ -241,6 +241,13 @@ std::string OrthancServer::tag(const std::string& resourcePath, const std::strin
     return tags.status == 200 ? stringAfterKey(tags.body, keyword) : std::string();
 }
 
+std::string OrthancServer::seriesOfStudy(const std::string& studyInstanceUid) const {
+    const HttpReply found = http("POST", "/tools/lookup", studyInstanceUid);
+    if (found.status != 200 || found.body.find("\"Study\"") == std::string::npos)
+        return {};
+    return http("GET", stringAfterKey(found.body, "Path") + "/series").body;
+}
+
 std::string OrthancServer::log() const {
     try {
         return core::readFileText(m_folder / "orthanc.log");
