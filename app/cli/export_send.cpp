@@ -10,7 +10,7 @@ namespace lw::cli {
 
 int sendExports(const PacsTarget& target, const std::vector<std::filesystem::path>& files,
                 std::ostream& out) {
-    const std::string node = describeNode(target.node);
+    const std::string node = pacs::describeNode(target.node);
     std::vector<pacs::StoreOutcome> outcomes;
     const auto start = std::chrono::steady_clock::now();
     try {

@@ -25,9 +25,4 @@ PacsTarget resolvePacsTarget(const Arguments& arguments, const std::string& node
     return result;
 }
 
-std::string describeNode(const pacs::PacsNode& node) {
-    const std::string address = node.calledAet + "@" + node.host + ":" + std::to_string(node.port);
-    return node.name == address ? address : node.name + " (" + address + ")";
-}
-
 } // namespace lw::cli

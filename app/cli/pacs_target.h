@@ -28,7 +28,4 @@ struct PacsTarget {
 // core::Error naming the node file when it cannot be read.
 PacsTarget resolvePacsTarget(const Arguments& arguments, const std::string& nodeText);
 
-// "AET@HOST:PORT" of the node, for messages; with its name in front when it has one of its own.
-std::string describeNode(const pacs::PacsNode& node);
-
 } // namespace lw::cli

@@ -25,7 +25,7 @@ std::filesystem::path fsPath(const QString& path) {
 PacsSendResult storeObjects(const PacsSendRequest& request,
                             const std::vector<std::pair<QString, QString>>& objects) {
     PacsSendResult result;
-    result.node = describeNode(request.node);
+    result.node = QString::fromStdString(pacs::describeNode(request.node));
     std::vector<std::filesystem::path> files;
     for (const auto& object : objects)
         files.push_back(fsPath(object.second));
@@ -61,15 +61,6 @@ QString PacsSendResult::summary() const {
     for (const PacsSendOutcome& outcome : objects)
         lines << QStringLiteral("%1: %2").arg(outcome.object, outcome.answer);
     return lines.join('\n');
-}
-
-QString describeNode(const pacs::PacsNode& node) {
-    const QString address =
-        QStringLiteral("%1@%2:%3")
-            .arg(QString::fromStdString(node.calledAet), QString::fromStdString(node.host))
-            .arg(node.port);
-    const QString name = QString::fromStdString(node.name);
-    return name == address ? address : QStringLiteral("%1 (%2)").arg(name, address);
 }
 
 PacsSender::PacsSender(QObject* parent) : QObject(parent) {

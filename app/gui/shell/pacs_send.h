@@ -46,9 +46,6 @@ struct PacsSendResult {
     QString summary() const;
 };
 
-// "name (AET@HOST:PORT)", or the address alone when it is the node's name.
-QString describeNode(const pacs::PacsNode& node);
-
 class PacsSender : public QObject {
     Q_OBJECT
 public:

@@ -82,8 +82,9 @@ void PacsSendAction::send() {
         return;
     }
     // Busy until finished(): the C-STORE runs on a pool thread and cannot be cancelled.
-    m_busy = new QProgressDialog(tr("Sending to %1…").arg(describeNode(request.node)), QString(), 0,
-                                 0, &m_window);
+    m_busy = new QProgressDialog(
+        tr("Sending to %1…").arg(QString::fromStdString(pacs::describeNode(request.node))),
+        QString(), 0, 0, &m_window);
     m_busy->setObjectName("sendToPacsBusy");
     m_busy->setWindowModality(Qt::WindowModal);
     m_busy->setMinimumDuration(300);
@@ -91,10 +92,8 @@ void PacsSendAction::send() {
 }
 
 void PacsSendAction::showResult(const PacsSendResult& result) {
-    if (m_busy) {
+    if (m_busy)
         m_busy->close();
-        m_busy = nullptr;
-    }
     m_window.statusBar()->showMessage(result.allStored()
                                           ? tr("Sent to %1").arg(result.node)
                                           : tr("Sending to %1 failed").arg(result.node),

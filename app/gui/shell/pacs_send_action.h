@@ -9,6 +9,7 @@
 #include "shell/pacs_send.h"
 
 #include <QObject>
+#include <QPointer>
 #include <QString>
 #include <functional>
 
@@ -42,7 +43,7 @@ private:
     std::function<QString()> m_nodeFile;
     QAction* m_action = nullptr;
     PacsSender* m_sender = nullptr;
-    QProgressDialog* m_busy = nullptr;
+    QPointer<QProgressDialog> m_busy; // deletes itself when closed
 };
 
 } // namespace lw::gui
