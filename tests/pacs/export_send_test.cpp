@@ -78,6 +78,7 @@ TEST_F(CliExportSend, StoresTheCaptureAndThePdfInTheSourceStudy) {
                                                    quoted((fixture.dir / "out/sc").string()) +
                                                    " --send orthanc"));
     ASSERT_EQ(sent.exitCode, 0) << sent.err << sent.out;
+    std::printf("%s", sent.out.c_str());                              // the write and C-STORE times
     const fs::path encapsulated = fixture.dir / "out" / "report.dcm"; // beside the PDF
     const fs::path capture = fixture.dir / "out" / "sc" / "LWSC0001.dcm";
     for (const fs::path& file : {encapsulated, capture})
