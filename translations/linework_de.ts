@@ -215,6 +215,18 @@
         <source>Silhouette and sagittal slice</source>
         <translation>Silhouette und sagittale Schicht</translation>
     </message>
+    <message>
+        <source>Nothing was sent to %1: %2</source>
+        <translation>Nichts wurde an %1 gesendet: %2</translation>
+    </message>
+    <message>
+        <source>%1 answered:</source>
+        <translation>Antwort von %1:</translation>
+    </message>
+    <message>
+        <source>No PACS node is configured: add one in Settings (%1)</source>
+        <translation>Kein PACS-Knoten eingerichtet: einen in den Einstellungen hinzufügen (%1)</translation>
+    </message>
 </context>
 <context>
     <name>lw::gui::AnnotationActions</name>
@@ -628,6 +640,68 @@
     </message>
 </context>
 <context>
+    <name>lw::gui::PacsSendAction</name>
+    <message>
+        <source>Send to &amp;PACS…</source>
+        <translation>An &amp;PACS senden…</translation>
+    </message>
+    <message>
+        <source>Store the Secondary Capture and the report (Encapsulated PDF) in the patient&apos;s study on the PACS</source>
+        <translation>Die Secondary Capture und den Bericht (Encapsulated PDF) in der Studie des Patienten im PACS speichern</translation>
+    </message>
+    <message>
+        <source>Open a review to send it to the PACS</source>
+        <translation>Eine Befundung öffnen, um sie an das PACS zu senden</translation>
+    </message>
+    <message>
+        <source>A send to the PACS is still running</source>
+        <translation>Ein Senden an das PACS läuft noch</translation>
+    </message>
+    <message>
+        <source>Send to PACS</source>
+        <translation>An PACS senden</translation>
+    </message>
+    <message>
+        <source>Sending to %1…</source>
+        <translation>Wird an %1 gesendet…</translation>
+    </message>
+    <message>
+        <source>Sent to %1</source>
+        <translation>An %1 gesendet</translation>
+    </message>
+    <message>
+        <source>Sending to %1 failed</source>
+        <translation>Senden an %1 fehlgeschlagen</translation>
+    </message>
+</context>
+<context>
+    <name>lw::gui::PacsSender</name>
+    <message>
+        <source>Cannot create a temporary folder for the objects to send: %1</source>
+        <translation>Kein temporärer Ordner für die zu sendenden Objekte möglich: %1</translation>
+    </message>
+    <message>
+        <source>Secondary Capture</source>
+        <translation>Secondary Capture</translation>
+    </message>
+    <message>
+        <source>Report (Encapsulated PDF)</source>
+        <translation>Bericht (Encapsulated PDF)</translation>
+    </message>
+    <message>
+        <source>A send to the PACS is still running</source>
+        <translation>Ein Senden an das PACS läuft noch</translation>
+    </message>
+    <message>
+        <source>An anonymised export cannot be sent to the PACS because it would no longer belong to the patient&apos;s study</source>
+        <translation>Ein anonymisierter Export kann nicht an das PACS gesendet werden, weil er nicht mehr zur Studie des Patienten gehören würde</translation>
+    </message>
+    <message>
+        <source>Only a review of a DICOM series can be sent to the PACS: %1 has no study to join</source>
+        <translation>Nur die Befundung einer DICOM-Serie kann an das PACS gesendet werden: %1 gehört zu keiner Studie</translation>
+    </message>
+</context>
+<context>
     <name>lw::gui::PictureExportDialog</name>
     <message>
         <source>Both panels side by side</source>
@@ -832,6 +906,21 @@
     <message>
         <source>No surface under the pointer: Shift+click on the surface</source>
         <translation>Keine Oberfläche unter dem Mauszeiger: mit Umschalt+Klick auf die Oberfläche klicken</translation>
+    </message>
+</context>
+<context>
+    <name>lw::gui::SendToPacsDialog</name>
+    <message>
+        <source>Send to PACS</source>
+        <translation>An PACS senden</translation>
+    </message>
+    <message>
+        <source>PACS:</source>
+        <translation>PACS:</translation>
+    </message>
+    <message>
+        <source>The Secondary Capture and the report (as DICOM Encapsulated PDF) join the patient&apos;s study.</source>
+        <translation>Die Secondary Capture und der Bericht (als DICOM Encapsulated PDF) kommen in die Studie des Patienten.</translation>
     </message>
 </context>
 <context>

@@ -215,6 +215,18 @@
         <source>Silhouette and sagittal slice</source>
         <translation>Siluetă și secțiune sagitală</translation>
     </message>
+    <message>
+        <source>Nothing was sent to %1: %2</source>
+        <translation>Nimic nu a fost trimis la %1: %2</translation>
+    </message>
+    <message>
+        <source>%1 answered:</source>
+        <translation>Răspunsul de la %1:</translation>
+    </message>
+    <message>
+        <source>No PACS node is configured: add one in Settings (%1)</source>
+        <translation>Niciun nod PACS configurat: adăugați unul în Setări (%1)</translation>
+    </message>
 </context>
 <context>
     <name>lw::gui::AnnotationActions</name>
@@ -628,6 +640,68 @@
     </message>
 </context>
 <context>
+    <name>lw::gui::PacsSendAction</name>
+    <message>
+        <source>Send to &amp;PACS…</source>
+        <translation>Trimite la &amp;PACS…</translation>
+    </message>
+    <message>
+        <source>Store the Secondary Capture and the report (Encapsulated PDF) in the patient&apos;s study on the PACS</source>
+        <translation>Salvează Secondary Capture și raportul (Encapsulated PDF) în studiul pacientului din PACS</translation>
+    </message>
+    <message>
+        <source>Open a review to send it to the PACS</source>
+        <translation>Deschideți o examinare pentru a o trimite la PACS</translation>
+    </message>
+    <message>
+        <source>A send to the PACS is still running</source>
+        <translation>O trimitere la PACS este încă în curs</translation>
+    </message>
+    <message>
+        <source>Send to PACS</source>
+        <translation>Trimite la PACS</translation>
+    </message>
+    <message>
+        <source>Sending to %1…</source>
+        <translation>Se trimite la %1…</translation>
+    </message>
+    <message>
+        <source>Sent to %1</source>
+        <translation>Trimis la %1</translation>
+    </message>
+    <message>
+        <source>Sending to %1 failed</source>
+        <translation>Trimiterea la %1 a eșuat</translation>
+    </message>
+</context>
+<context>
+    <name>lw::gui::PacsSender</name>
+    <message>
+        <source>Cannot create a temporary folder for the objects to send: %1</source>
+        <translation>Nu se poate crea un dosar temporar pentru obiectele de trimis: %1</translation>
+    </message>
+    <message>
+        <source>Secondary Capture</source>
+        <translation>Secondary Capture</translation>
+    </message>
+    <message>
+        <source>Report (Encapsulated PDF)</source>
+        <translation>Raport (Encapsulated PDF)</translation>
+    </message>
+    <message>
+        <source>A send to the PACS is still running</source>
+        <translation>O trimitere la PACS este încă în curs</translation>
+    </message>
+    <message>
+        <source>An anonymised export cannot be sent to the PACS because it would no longer belong to the patient&apos;s study</source>
+        <translation>Un export anonimizat nu poate fi trimis la PACS, deoarece nu ar mai aparține studiului pacientului</translation>
+    </message>
+    <message>
+        <source>Only a review of a DICOM series can be sent to the PACS: %1 has no study to join</source>
+        <translation>Doar examinarea unei serii DICOM poate fi trimisă la PACS: %1 nu aparține niciunui studiu</translation>
+    </message>
+</context>
+<context>
     <name>lw::gui::PictureExportDialog</name>
     <message>
         <source>Both panels side by side</source>
@@ -832,6 +906,21 @@
     <message>
         <source>No surface under the pointer: Shift+click on the surface</source>
         <translation>Nicio suprafață sub cursor: Shift+clic pe suprafață</translation>
+    </message>
+</context>
+<context>
+    <name>lw::gui::SendToPacsDialog</name>
+    <message>
+        <source>Send to PACS</source>
+        <translation>Trimite la PACS</translation>
+    </message>
+    <message>
+        <source>PACS:</source>
+        <translation>PACS:</translation>
+    </message>
+    <message>
+        <source>The Secondary Capture and the report (as DICOM Encapsulated PDF) join the patient&apos;s study.</source>
+        <translation>Secondary Capture și raportul (ca DICOM Encapsulated PDF) intră în studiul pacientului.</translation>
     </message>
 </context>
 <context>

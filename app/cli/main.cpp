@@ -136,6 +136,7 @@ commands:
   export INPUT [--series UID] --iso HU [--method 1|2|3] [--view AZ,EL] [--size WxH]
          [--panel both|iso|silhouette] [--annotations FILE.json] [--comment TEXT] [--anonymise]
          [--png OUT.png] [--pdf OUT.pdf] [--svg OUT.svg] [--sc FOLDER] [--force]
+         [--encapsulated-pdf OUT.dcm] [--send NODE [--nodes FILE] [--aet AET] [--timeout S]]
          [--chunks ..] [--mode ..] [--visibility ..] [--camera ..] [--backend ..] [--threads N]
          [--min-stroke PX] [--border ..] [--gradient ..] [--oversample ..] [--thick-slices ..]
          [--suggestive [--suggestive-threshold TAU]]
@@ -145,7 +146,13 @@ commands:
                               of each panel), a 2-page PDF report (header, picture, measurements,
                               comment), SVG (the panels as a raster, annotations as vectors),
                               DICOM Secondary Capture (a new series in the source study, needs
-                              DICOM input); existing files are kept unless --force; the
+                              DICOM input), the PDF as DICOM Encapsulated PDF (another new
+                              series of that study); --send NODE then stores the Secondary
+                              Capture and the Encapsulated PDF (beside the PDF as .dcm unless
+                              --encapsulated-pdf names it) on the PACS by C-STORE and prints its
+                              answer per file: exit 1 when it is down or refused any, 2 with
+                              --anonymise (refused before anything is written); NODE as for
+                              pacs below; existing files are kept unless --force; the
                               silhouette as antialiased strokes (PNG) or paths (PDF, SVG) of
                               --line-width pixels (default: 1 per 512 of --size's height) in
                               --line-colour, and with --hidden-lines its hidden parts thin,

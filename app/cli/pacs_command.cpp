@@ -7,6 +7,7 @@
 #include "lw/pacs/retrieve.h"
 #include "lw/pacs/store_scu.h"
 #include "pacs_database.h"
+#include "pacs_target.h"
 
 #include <chrono>
 #include <cstdio>
@@ -26,42 +27,22 @@ Registration registerInDatabase(const std::filesystem::path&, const std::string&
 
 namespace {
 
-const std::set<std::string> kCommonOptions = {"nodes", "aet", "timeout"};
-
 std::set<std::string> with(std::set<std::string> options) {
-    options.insert(kCommonOptions.begin(), kCommonOptions.end());
+    options.insert(pacsTargetOptions().begin(), pacsTargetOptions().end());
     return options;
 }
 
-struct Target {
-    pacs::PacsNode node;
-    pacs::CallOptions options;
-    std::uint16_t storagePort = 0; // the node file's, for C-MOVE
-};
+using Target = PacsTarget;
 
-// The node and how to call it: the node file's workstation AE title unless --aet says.
+// The node named by the first positional.
 Target target(const Arguments& arguments, std::size_t positionalsWanted) {
     if (arguments.positionals().size() < positionalsWanted)
         throw UsageError("pacs", "NODE is missing (a node's name or AET@HOST:PORT)");
-    const pacs::PacsNodeFile file = pacs::readNodeFileOrDefaults(
-        arguments.option("nodes", pacs::defaultNodeFilePath().string()));
-    Target result{parseUsage([&] { return pacs::resolveNode(file, arguments.positionals()[0]); }),
-                  {},
-                  file.workstation.storagePort};
-    result.options.callingAet = arguments.option("aet", file.workstation.aet);
-    parseUsage([&] {
-        pacs::validateAeTitle(result.options.callingAet, "--aet");
-        return 0;
-    });
-    const double timeout = arguments.number("timeout", 10);
-    if (timeout < 1 || timeout > 3600)
-        throw UsageError("--timeout", "seconds between 1 and 3600");
-    result.options.timeout = std::chrono::seconds(int(timeout));
-    return result;
+    return resolvePacsTarget(arguments, arguments.positionals()[0]);
 }
 
 int runEcho(const std::vector<std::string>& args, std::ostream& out) {
-    const Arguments arguments(args, {}, kCommonOptions);
+    const Arguments arguments(args, {}, pacsTargetOptions());
     const Target to = target(arguments, 1);
     const pacs::EchoResult result = pacs::echo(to.node, to.options);
     if (!result.ok)
@@ -221,7 +202,7 @@ int runGet(const std::vector<std::string>& args, std::ostream& out) {
 }
 
 int runStore(const std::vector<std::string>& args, std::ostream& out) {
-    const Arguments arguments(args, {"json"}, kCommonOptions);
+    const Arguments arguments(args, {"json"}, pacsTargetOptions());
     const Target to = target(arguments, 1);
     if (arguments.positionals().size() < 2)
         throw UsageError("pacs store", "no FILE to send");

@@ -96,5 +96,14 @@ TEST(PacsNodeAddress, NameOrAetAtHostPort) {
     EXPECT_THROW(resolveNode(file, "AE@host:99999"), core::Error);
 }
 
+// Messages name a node of the file by its name and address, an address by itself once.
+TEST(PacsNodeAddress, DescribedForMessages) {
+    PacsNodeFile file;
+    file.nodes = {{"main", "MAIN_AE", "10.1.1.1", 104}};
+    EXPECT_EQ(describeNode(resolveNode(file, "main")), "main (MAIN_AE@10.1.1.1:104)");
+    EXPECT_EQ(describeNode(resolveNode(file, "ORTHANC@127.0.0.1:4242")), "ORTHANC@127.0.0.1:4242");
+    EXPECT_EQ(describeNode(resolveNode(file, "PACS@[::1]:104")), "PACS@[::1]:104");
+}
+
 } // namespace
 } // namespace lw::pacs

@@ -210,14 +210,42 @@ HttpReply OrthancServer::http(const std::string& method, const std::string& path
     return {std::atoi(reply.c_str() + reply.find(' ') + 1), reply.substr(headerEnd + 4)};
 }
 
+namespace {
+
+// The string value after `"key"` in Orthanc's JSON (its REST answers are flat enough for this).
+std::string stringAfterKey(const std::string& body, const std::string& key) {
+    const std::size_t at = body.find("\"" + key + "\"");
+    if (at == std::string::npos)
+        return {};
+    const std::size_t open = body.find('"', body.find(':', at) + 1);
+    return body.substr(open + 1, body.find('"', open + 1) - open - 1);
+}
+
+} // namespace
+
 std::string OrthancServer::upload(const fs::path& file) const {
     const HttpReply reply = http("POST", "/instances", core::readFileText(file));
     EXPECT_EQ(reply.status, 200) << "POST /instances of " << file << ": " << reply.body;
-    const std::size_t id = reply.body.find("\"ID\"");
-    if (id == std::string::npos)
+    return stringAfterKey(reply.body, "ID");
+}
+
+std::string OrthancServer::instancePath(const std::string& sopInstanceUid) const {
+    const HttpReply found = http("POST", "/tools/lookup", sopInstanceUid);
+    if (found.status != 200 || found.body.find("\"Instance\"") == std::string::npos)
         return {};
-    const std::size_t open = reply.body.find('"', reply.body.find(':', id));
-    return reply.body.substr(open + 1, reply.body.find('"', open + 1) - open - 1);
+    return stringAfterKey(found.body, "Path");
+}
+
+std::string OrthancServer::tag(const std::string& resourcePath, const std::string& keyword) const {
+    const HttpReply tags = http("GET", resourcePath + "/simplified-tags");
+    return tags.status == 200 ? stringAfterKey(tags.body, keyword) : std::string();
+}
+
+std::string OrthancServer::seriesOfStudy(const std::string& studyInstanceUid) const {
+    const HttpReply found = http("POST", "/tools/lookup", studyInstanceUid);
+    if (found.status != 200 || found.body.find("\"Study\"") == std::string::npos)
+        return {};
+    return http("GET", stringAfterKey(found.body, "Path") + "/series").body;
 }
 
 std::string OrthancServer::log() const {

@@ -55,6 +55,15 @@ public:
                    const std::string& body = {}) const;
     // POST /instances; returns Orthanc's ID of the instance. Fails the test on refusal.
     std::string upload(const std::filesystem::path& file) const;
+    // Orthanc's REST path of the instance with that SOP Instance UID ("/instances/ID"), or ""
+    // when it has none.
+    std::string instancePath(const std::string& sopInstanceUid) const;
+    // A string attribute of a study, series or instance ("/instances/ID") as Orthanc stored it
+    // (its simplified tags, by keyword: "StudyInstanceUID"), or "" when it has none.
+    std::string tag(const std::string& resourcePath, const std::string& keyword) const;
+    // Orthanc's series of the study with that Study Instance UID, as its REST API lists them
+    // (GET /studies/ID/series: JSON, one object per series with its "MainDicomTags"), or "".
+    std::string seriesOfStudy(const std::string& studyInstanceUid) const;
     // Orthanc's log so far (for a failing test's message).
     std::string log() const;
 

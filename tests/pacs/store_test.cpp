@@ -57,19 +57,12 @@ TEST_F(OrthancStore, SecondaryCaptureAndPdfAreAcceptedAndReadBack) {
         EXPECT_TRUE(outcome.accepted) << outcome.file << ": " << outcome.message;
         EXPECT_EQ(outcome.status, 0) << outcome.message;
         // Orthanc has it: its REST API finds the instance by its UID, with its SOP class.
-        const HttpReply found = server().http("POST", "/tools/lookup", outcome.sopInstanceUid);
-        ASSERT_EQ(found.status, 200);
-        ASSERT_NE(found.body.find("\"Instance\""), std::string::npos) << found.body;
-        const std::size_t path = found.body.find("\"Path\"");
-        const std::size_t open = found.body.find('"', found.body.find(':', path) + 1);
-        const std::string instance =
-            found.body.substr(open + 1, found.body.find('"', open + 1) - open - 1);
-        const HttpReply tags = server().http("GET", instance + "/simplified-tags");
+        const std::string instance = server().instancePath(outcome.sopInstanceUid);
+        ASSERT_FALSE(instance.empty()) << outcome.sopInstanceUid;
         const std::string sopClass = outcome.file.filename() == "sc.dcm"
                                          ? UID_SecondaryCaptureImageStorage
                                          : UID_EncapsulatedPDFStorage;
-        EXPECT_NE(tags.body.find("\"SOPClassUID\" : \"" + sopClass + "\""), std::string::npos)
-            << tags.body;
+        EXPECT_EQ(server().tag(instance, "SOPClassUID"), sopClass);
     }
     EXPECT_EQ(outcomes[1].sopInstanceUid, pdfUid);
 }

@@ -1,12 +1,14 @@
-// DICOM Secondary Capture: a new series in the source's study that Linework's own import reads
-// back as such, and (report_sc_tests, SKIP without dicom3tools) that dciodvfy passes without
-// errors.
+// DICOM Secondary Capture and Encapsulated PDF: new series in the source's study that Linework's
+// own import (or DCMTK) reads back as such, and (report_sc_tests, SKIP without dicom3tools) that
+// dciodvfy passes without errors.
 #include "cli_runner.h"
 #include "dicom_test_writer.h"
 #include "link_trap.h"
 #include "lw/core/error.h"
 #include "lw/dicom/dicom_scanner.h"
 #include "lw/input/open_input.h"
+#include "lw/report/encapsulated_pdf.h"
+#include "lw/report/pdf_report.h"
 #include "lw/report/secondary_capture.h"
 #include "report_test_support.h"
 #include "test_support.h"
@@ -57,7 +59,102 @@ writeCapture(const input::OpenedVolume& source, const std::filesystem::path& fol
     return report::writeSecondaryCapture(folder, {capturedPicture()}, series, overwrite);
 }
 
+// A small but real PDF report of odd length (the pad byte after it is tested).
+QByteArray oddLengthPdf() {
+    report::ReportInfo info;
+    info.method = "Linework silhouette method 3, iso-value 300 HU";
+    QByteArray pdf = report::renderPdfReport(info, capturedPicture(), test::sphereAnnotations());
+    if (pdf.size() % 2 == 0)
+        pdf.append('\n'); // after %%EOF: still the same PDF to a reader
+    return pdf;
+}
+
+std::filesystem::path writeEncapsulated(const input::OpenedVolume& source,
+                                        const std::filesystem::path& path, const QByteArray& pdf) {
+    report::EncapsulatedPdfSeries series;
+    series.source = source.dicom.value();
+    series.softwareVersion = "0.1.0";
+    report::writeEncapsulatedPdf(path, pdf, series, core::Overwrite::Refuse);
+    return path;
+}
+
+std::string stringOf(DcmDataset& dataset, const DcmTagKey& tag) {
+    OFString value;
+    dataset.findAndGetOFString(tag, value);
+    return value.c_str();
+}
+
+// dciodvfy's report on `file` (stderr, which runProgram drops, turned into stdout by a shell).
+std::string dciodvfy(const std::filesystem::path& file) {
+    return test::runProgram("sh", "-c " + test::quoted("dciodvfy \"" + file.string() + "\" 2>&1"))
+        .out;
+}
+
 } // namespace
+
+// The PDF inside is the report byte for byte (its length in EncapsulatedDocumentLength, then a
+// pad byte 0), in a new DOC series of the source's study with the source's patient.
+TEST(EncapsulatedPdf, HoldsThePdfInANewSeriesOfTheSameStudy) {
+    test::ensureGuiApplication();
+    test::TempDir dir;
+    const input::OpenedVolume source = writeAndOpenSourceSeries(dir / "ct");
+    const QByteArray pdf = oddLengthPdf();
+    DcmFileFormat file;
+    ASSERT_TRUE(file.loadFile(writeEncapsulated(source, dir / "report.dcm", pdf).c_str()).good());
+    DcmDataset& dataset = *file.getDataset();
+    EXPECT_EQ(stringOf(dataset, DCM_SOPClassUID), "1.2.840.10008.5.1.4.1.1.104.1");
+    EXPECT_EQ(stringOf(dataset, DCM_StudyInstanceUID), kStudyUid);
+    EXPECT_EQ(stringOf(dataset, DCM_PatientID), "LW-0042");
+    EXPECT_EQ(stringOf(dataset, DCM_PatientName), "Doe^Jane");
+    EXPECT_NE(stringOf(dataset, DCM_SeriesInstanceUID), source.dicom->seriesInstanceUid);
+    EXPECT_EQ(stringOf(dataset, DCM_SeriesNumber), "1005");
+    EXPECT_EQ(stringOf(dataset, DCM_Modality), "DOC");
+    EXPECT_EQ(stringOf(dataset, DCM_MIMETypeOfEncapsulatedDocument), "application/pdf");
+    EXPECT_EQ(stringOf(dataset, DCM_BurnedInAnnotation), "YES");
+    EXPECT_EQ(stringOf(dataset, DCM_DocumentTitle), "Linework report");
+    Uint32 length = 0;
+    ASSERT_TRUE(dataset.findAndGetUint32(DCM_EncapsulatedDocumentLength, length).good());
+    EXPECT_EQ(length, Uint32(pdf.size()));
+    const Uint8* document = nullptr;
+    unsigned long count = 0;
+    ASSERT_TRUE(dataset.findAndGetUint8Array(DCM_EncapsulatedDocument, document, &count).good());
+    ASSERT_EQ(count, std::size_t(pdf.size()) + 1);
+    EXPECT_EQ(QByteArray(reinterpret_cast<const char*>(document), pdf.size()), pdf);
+    EXPECT_EQ(document[pdf.size()], 0);
+}
+
+TEST(EncapsulatedPdf, RefusesWhatItCannotWrapAndKeepsExistingFiles) {
+    test::ensureGuiApplication();
+    test::TempDir dir;
+    const input::OpenedVolume source = writeAndOpenSourceSeries(dir / "ct");
+    const std::filesystem::path path =
+        writeEncapsulated(source, dir / "report.dcm", oddLengthPdf());
+    const auto bytes = core::readFileBytes(path);
+    EXPECT_THROW(writeEncapsulated(source, path, oddLengthPdf()), core::Error); // exists already
+    EXPECT_EQ(core::readFileBytes(path), bytes);
+    try {
+        writeEncapsulated(source, dir / "text.dcm", "not a PDF");
+        ADD_FAILURE() << "wrapped a text";
+    } catch (const core::Error& error) {
+        EXPECT_EQ(error.subject(), (dir / "text.dcm").string());
+        EXPECT_NE(error.reason().find("not a PDF"), std::string::npos) << error.what();
+    }
+    input::OpenedVolume phantom;
+    phantom.dicom = input::DicomIdentity{}; // no study to join
+    EXPECT_THROW(writeEncapsulated(phantom, dir / "phantom.dcm", oddLengthPdf()), core::Error);
+    EXPECT_FALSE(std::filesystem::exists(dir / "text.dcm"));
+    EXPECT_FALSE(std::filesystem::exists(dir / "phantom.dcm"));
+}
+
+TEST(EncapsulatedPdfValidation, DciodvfyReportsNoErrors) {
+    test::ensureGuiApplication();
+    test::TempDir dir;
+    const std::string output = dciodvfy(writeEncapsulated(writeAndOpenSourceSeries(dir / "ct"),
+                                                          dir / "report.dcm", oddLengthPdf()));
+    EXPECT_NE(output.find("EncapsulatedPDF"), std::string::npos) << output; // validated as such
+    EXPECT_EQ(output.find("Error"), std::string::npos) << output;
+    std::printf("dciodvfy:\n%s", output.c_str());
+}
 
 TEST(SecondaryCapture, ReimportsAsANewSeriesOfTheSameStudy) {
     test::ensureGuiApplication();
@@ -179,11 +276,7 @@ TEST(SecondaryCaptureValidation, DciodvfyReportsNoErrors) {
     test::ensureGuiApplication();
     test::TempDir dir;
     const auto files = writeCapture(writeAndOpenSourceSeries(dir / "ct"), dir / "sc");
-    // dciodvfy reports on stderr, which runProgram drops: a shell turns it into stdout.
-    const std::string output =
-        test::runProgram("sh",
-                         "-c " + test::quoted("dciodvfy \"" + files.at(0).string() + "\" 2>&1"))
-            .out;
+    const std::string output = dciodvfy(files.at(0));
     EXPECT_NE(output.find("SCImage"), std::string::npos) << output; // validated as SC
     EXPECT_EQ(output.find("Error"), std::string::npos) << output;
     std::printf("dciodvfy:\n%s", output.c_str());

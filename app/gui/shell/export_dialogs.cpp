@@ -49,8 +49,8 @@ ExportPicture PictureExportDialog::picture() const {
     return {{m_width->value(), m_height->value()}, report::PanelLayout(m_layout->currentIndex())};
 }
 
-ReportExportDialog::ReportExportDialog(QSize screenPanelSize, QWidget* parent)
-    : PictureExportDialog(tr("Export report"), screenPanelSize, parent) {
+ReportExportDialog::ReportExportDialog(QSize screenPanelSize, QWidget* parent, const QString& title)
+    : PictureExportDialog(title.isEmpty() ? tr("Export report") : title, screenPanelSize, parent) {
     setObjectName("reportExportDialog");
     m_comment = new QPlainTextEdit;
     m_comment->setObjectName("reportComment");
@@ -64,6 +64,22 @@ ReportExportDialog::ReportExportDialog(QSize screenPanelSize, QWidget* parent)
 
 ReportOptions ReportExportDialog::options() const {
     return {picture(), m_comment->toPlainText(), m_anonymise->isChecked()};
+}
+
+SendToPacsDialog::SendToPacsDialog(const QStringList& nodeNames, QSize screenPanelSize,
+                                   QWidget* parent)
+    : ReportExportDialog(screenPanelSize, parent, tr("Send to PACS")) {
+    setObjectName("sendToPacsDialog");
+    m_node = new QComboBox;
+    m_node->setObjectName("sendToPacsNode");
+    m_node->addItems(nodeNames);
+    form().insertRow(0, tr("PACS:"), m_node);
+    form().insertRow(1, new QLabel(tr("The Secondary Capture and the report (as DICOM "
+                                      "Encapsulated PDF) join the patient's study.")));
+}
+
+int SendToPacsDialog::nodeIndex() const {
+    return m_node->currentIndex();
 }
 
 } // namespace lw::gui

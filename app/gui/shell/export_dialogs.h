@@ -2,7 +2,7 @@
 
 // What an export shows and at which size (the file or folder is asked for afterwards): the PNG
 // and the Secondary Capture ask for the picture; the PDF report also for a comment and whether
-// to leave the patient out.
+// to leave the patient out; "Send to PACS" also for the node.
 
 #include "shell/review_export.h"
 
@@ -37,12 +37,26 @@ private:
 class ReportExportDialog : public PictureExportDialog {
     Q_OBJECT
 public:
-    explicit ReportExportDialog(QSize screenPanelSize, QWidget* parent = nullptr);
+    explicit ReportExportDialog(QSize screenPanelSize, QWidget* parent = nullptr,
+                                const QString& title = QString());
     ReportOptions options() const;
 
 private:
     QPlainTextEdit* m_comment = nullptr;
     QCheckBox* m_anonymise = nullptr;
+};
+
+// "Send to PACS": which node (by its name in the node file), then the report's picture and
+// comment. Anonymising stays offered so that choosing it is answered with why it is refused.
+class SendToPacsDialog : public ReportExportDialog {
+    Q_OBJECT
+public:
+    SendToPacsDialog(const QStringList& nodeNames, QSize screenPanelSize,
+                     QWidget* parent = nullptr);
+    int nodeIndex() const;
+
+private:
+    QComboBox* m_node = nullptr;
 };
 
 } // namespace lw::gui

@@ -10,6 +10,7 @@
 #include "settings/settings_dialog.h"
 #include "shell/annotation_persistence.h"
 #include "shell/export_actions.h"
+#include "shell/pacs_send_action.h"
 
 #include <QAction>
 #include <QApplication>
@@ -98,6 +99,13 @@ MainWindow::MainWindow(const MainWindowOptions& options, QWidget* parent) : QMai
 
     m_undoGroup = new QUndoGroup(this);
     m_exports = new ExportActions(*this, [this] { return currentReview(); });
+    // The node file beside the study database, as modules/pacs's default is beside the default
+    // database (a test's temporary database gets its own).
+    m_pacsSend = new PacsSendAction(
+        *this, [this] { return currentReview(); },
+        [this] {
+            return QFileInfo(m_browser->databasePath()).absolutePath() + "/pacs-nodes.json";
+        });
     createActions();
     createEditMenu();
     createViewMenu();
@@ -164,11 +172,13 @@ void MainWindow::createActions() {
         tr("&Open path without importing…"), QKeySequence::Open, [this] { chooseAndOpenPath(); },
         true);
     file->addSeparator();
-    for (QAction* action :
-         {m_exports->pngAction(), m_exports->reportAction(), m_exports->secondaryCaptureAction()})
+    for (QAction* action : {m_exports->pngAction(), m_exports->reportAction(),
+                            m_exports->secondaryCaptureAction(), m_pacsSend->action()})
         file->addAction(action);
     toolbar->addAction(m_exports->pngAction());
     toolbar->addAction(m_exports->reportAction());
+    toolbar->addAction(m_pacsSend->action());
+    connect(file, &QMenu::aboutToShow, m_pacsSend, &PacsSendAction::refresh);
     file->addSeparator();
     add(
         tr("&Settings…"), QKeySequence(tr("Ctrl+,")), [this] { showSettings(); }, true);
@@ -216,6 +226,7 @@ void MainWindow::reviewBecameCurrent() {
     ReviewWidget* review = currentReview();
     m_undoGroup->setActiveStack(review ? &review->annotations().undoStack() : nullptr);
     fillAnnotateMenu();
+    m_pacsSend->refresh();
 }
 
 void MainWindow::createViewMenu() {

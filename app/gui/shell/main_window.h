@@ -22,6 +22,7 @@ class QUndoGroup;
 namespace lw::gui {
 
 class ExportActions;
+class PacsSendAction;
 class ReviewWidget;
 class SettingsDialog;
 class StudyBrowser;
@@ -57,6 +58,7 @@ public slots:
     void chooseAndOpenPath();
     // The File menu's exports (PNG, PDF report, Secondary Capture) of the current review.
     ExportActions& exports() { return *m_exports; }
+    PacsSendAction& pacsSend() { return *m_pacsSend; }
     void showSettings();
     void applySettings(const lw::gui::ReviewSettings& settings);
     void cancelLoading();
@@ -94,6 +96,7 @@ private:
     QString m_loadingWhat;
     QString m_lastError;
     ExportActions* m_exports = nullptr;
+    PacsSendAction* m_pacsSend = nullptr;
     QUndoGroup* m_undoGroup = nullptr;
     QMenu* m_annotateMenu = nullptr;
 };

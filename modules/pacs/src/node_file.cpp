@@ -168,6 +168,13 @@ std::optional<PacsNode> parseNodeAddress(const std::string& text) {
     return PacsNode{text, match[1].str(), host, std::uint16_t(port)};
 }
 
+std::string describeNode(const PacsNode& node) {
+    const bool ipv6 = node.host.find(':') != std::string::npos;
+    const std::string address = node.calledAet + "@" + (ipv6 ? "[" + node.host + "]" : node.host) +
+                                ":" + std::to_string(node.port);
+    return node.name == address ? address : node.name + " (" + address + ")";
+}
+
 PacsNode resolveNode(const PacsNodeFile& file, const std::string& text) {
     if (const PacsNode* node = file.find(text))
         return *node;

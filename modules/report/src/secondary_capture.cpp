@@ -1,56 +1,19 @@
 #include "lw/report/secondary_capture.h"
 
+#include "dicom_dataset.h"
 #include "lw/core/error.h"
 
 #include <QDateTime>
 #include <cstdio>
 #include <dcmtk/dcmdata/dcdeftag.h>
-#include <dcmtk/dcmdata/dcfilefo.h>
-#include <dcmtk/dcmdata/dcostrmb.h>
 #include <dcmtk/dcmdata/dcuid.h>
 #include <vector>
 
 namespace lw::report {
 namespace {
 
-std::string newUid(const char* root) {
-    char buffer[100];
-    dcmGenerateUniqueIdentifier(buffer, root);
-    return buffer;
-}
-
-bool isAscii(const std::string& text) {
-    for (const unsigned char c : text)
-        if (c >= 0x80)
-            return false;
-    return true;
-}
-
-// Puts a string attribute; a DCMTK refusal (a value its VR cannot hold) names the attribute.
-void put(DcmDataset& dataset, const DcmTagKey& tag, const std::string& value,
-         const std::string& subject) {
-    const OFCondition status = dataset.putAndInsertString(tag, value.c_str());
-    if (status.bad())
-        throw core::Error(subject, "cannot set " + std::string(DcmTag(tag).getTagName()) + " to '" +
-                                       value + "': " + status.text());
-}
-
-// Patient and General Study modules: repeated from the source so the series joins its study.
-void putPatientAndStudy(DcmDataset& dataset, const input::DicomIdentity& source,
-                        const std::string& subject) {
-    put(dataset, DCM_PatientName, source.patientName, subject);
-    put(dataset, DCM_PatientID, source.patientId, subject);
-    put(dataset, DCM_PatientBirthDate, source.patientBirthDate, subject);
-    put(dataset, DCM_PatientSex, source.patientSex, subject);
-    put(dataset, DCM_StudyInstanceUID, source.studyInstanceUid, subject);
-    put(dataset, DCM_StudyDate, source.studyDate, subject);
-    put(dataset, DCM_StudyTime, source.studyTime, subject);
-    put(dataset, DCM_ReferringPhysicianName, "", subject);
-    put(dataset, DCM_StudyID, source.studyId, subject);
-    put(dataset, DCM_AccessionNumber, source.accessionNumber, subject);
-    if (!source.studyDescription.empty())
-        put(dataset, DCM_StudyDescription, source.studyDescription, subject);
-}
+using detail::newUid;
+using detail::put;
 
 struct InstanceIds {
     std::string seriesUid;
@@ -62,8 +25,8 @@ struct InstanceIds {
 // General Series, SC Equipment, General Image, SC Image and SOP Common modules.
 void putSeriesAndImage(DcmDataset& dataset, const SecondaryCaptureSeries& series,
                        const InstanceIds& ids, const std::string& subject) {
-    const std::string date = ids.created.toString("yyyyMMdd").toStdString();
-    const std::string time = ids.created.toString("HHmmss").toStdString();
+    const std::string date = detail::dicomDate(ids.created);
+    const std::string time = detail::dicomTime(ids.created);
     put(dataset, DCM_SOPClassUID, UID_SecondaryCaptureImageStorage, subject);
     put(dataset, DCM_SOPInstanceUID, newUid(SITE_INSTANCE_UID_ROOT), subject);
     put(dataset, DCM_InstanceCreationDate, date, subject);
@@ -75,9 +38,7 @@ void putSeriesAndImage(DcmDataset& dataset, const SecondaryCaptureSeries& series
     // Type 2C, required for paired body parts; a picture of the review has no side of its own
     // (dciodvfy cannot tell the condition and wants it present, empty is its "unknown").
     put(dataset, DCM_Laterality, "", subject);
-    put(dataset, DCM_ConversionType, "WSD", subject); // workstation
-    put(dataset, DCM_Manufacturer, "Linework", subject);
-    put(dataset, DCM_SoftwareVersions, series.softwareVersion, subject);
+    detail::putEquipment(dataset, series.softwareVersion, subject);
     put(dataset, DCM_InstanceNumber, std::to_string(ids.instanceNumber), subject);
     put(dataset, DCM_PatientOrientation, "", subject);
     put(dataset, DCM_ContentDate, date, subject);
@@ -110,24 +71,6 @@ void putPixels(DcmDataset& dataset, const QImage& picture, const std::string& su
         throw core::Error(subject, std::string("cannot store the pixel data: ") + status.text());
 }
 
-// The Part 10 file's bytes (preamble, meta header, explicit VR little endian data set).
-std::vector<char> encodeFile(DcmFileFormat& file, std::size_t pixelBytes,
-                             const std::string& subject) {
-    std::vector<char> buffer(pixelBytes + (1 << 16));
-    DcmOutputBufferStream stream(buffer.data(), offile_off_t(buffer.size()));
-    file.transferInit();
-    const OFCondition status =
-        file.write(stream, EXS_LittleEndianExplicit, EET_ExplicitLength, nullptr);
-    file.transferEnd();
-    if (status.bad())
-        throw core::Error(subject, std::string("DICOM encoding failed: ") + status.text());
-    void* data = nullptr;
-    offile_off_t length = 0;
-    stream.flushBuffer(data, length);
-    buffer.resize(std::size_t(length));
-    return buffer;
-}
-
 std::vector<char> secondaryCaptureFile(const QImage& picture, const SecondaryCaptureSeries& series,
                                        const InstanceIds& ids, const std::string& subject) {
     if (picture.width() > 65535 || picture.height() > 65535 || picture.isNull())
@@ -135,15 +78,14 @@ std::vector<char> secondaryCaptureFile(const QImage& picture, const SecondaryCap
     DcmFileFormat file;
     DcmDataset& dataset = *file.getDataset();
     const input::DicomIdentity& source = series.source;
-    const bool utf8 = !isAscii(source.patientName) || !isAscii(source.studyDescription) ||
-                      !isAscii(series.derivationDescription);
-    if (utf8)
-        put(dataset, DCM_SpecificCharacterSet, "ISO_IR 192", subject);
-    putPatientAndStudy(dataset, source, subject);
+    detail::putCharacterSet(
+        dataset, {source.patientName, source.studyDescription, series.derivationDescription},
+        subject);
+    detail::putPatientAndStudy(dataset, source, subject);
     putSeriesAndImage(dataset, series, ids, subject);
     putPixels(dataset, picture, subject);
-    return encodeFile(file, std::size_t(picture.width()) * std::size_t(picture.height()) * 3,
-                      subject);
+    return detail::encodeFile(
+        file, std::size_t(picture.width()) * std::size_t(picture.height()) * 3, subject);
 }
 
 } // namespace

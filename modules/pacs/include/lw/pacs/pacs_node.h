@@ -53,6 +53,10 @@ std::optional<PacsNode> parseNodeAddress(const std::string& text);
 // A node's name in `file`, or AET@HOST:PORT; throws core::Error naming `text` otherwise.
 PacsNode resolveNode(const PacsNodeFile& file, const std::string& text);
 
+// For messages: "name (AET@HOST:PORT)", or the address alone for a node named after it
+// (parseNodeAddress's); an IPv6 host in brackets.
+std::string describeNode(const PacsNode& node);
+
 // Throws core::Error(subject, reason) when the AE title is empty, longer than 16 characters,
 // or holds a backslash or a control character.
 void validateAeTitle(const std::string& aet, const std::string& subject);
