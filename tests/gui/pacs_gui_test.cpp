@@ -18,6 +18,7 @@
 #include <QComboBox>
 #include <QLabel>
 #include <QLineEdit>
+#include <QMessageBox>
 #include <QProgressDialog>
 #include <QPushButton>
 #include <QSignalSpy>
@@ -86,6 +87,7 @@ private slots:
     void queryListsTheRemoteStudy();
     void doubleClickRetrievesAndOpens();
     void cancelledRetrieveKeepsWhatArrived();
+    void retrieveFromAPacsThatIsDownSaysSo();
 
 private:
     // A browser on a fresh database in `dir`, with the Orthanc as its only node.
@@ -318,8 +320,6 @@ void PacsGuiTest::queryListsTheRemoteStudy() {
     QVERIFY(seriesRow(remote, m_openSeries.seriesUid).isValid());
     QVERIFY(seriesRow(remote, m_cancelSeries.seriesUid).isValid());
     QCOMPARE(remote.model().rowCount(study), 2);
-    if (patientName.isEmpty() && patientId.isEmpty() && modality.isEmpty())
-        saveScreenshot(*browser, "browser_remote.png");
 }
 
 void PacsGuiTest::doubleClickRetrievesAndOpens() {
@@ -394,6 +394,32 @@ void PacsGuiTest::cancelledRetrieveKeepsWhatArrived() {
     QCOMPARE(second.skipped, first.transferred);
     QCOMPARE(second.transferred, kCancelSeriesSlices - first.transferred);
     QCOMPARE(browser->database().seriesFiles(uid).size(), kCancelSeriesSlices);
+    saveScreenshot(*browser, "browser_remote.png"); // local above, remote below
+}
+
+void PacsGuiTest::retrieveFromAPacsThatIsDownSaysSo() {
+    QTemporaryDir dir;
+    auto browser = makeBrowser(dir);
+    RemotePanel& remote = browser->remote();
+    QCOMPARE(search(remote), 1);
+    const QModelIndex series = seriesRow(remote, m_openSeries.seriesUid);
+    QVERIFY(series.isValid());
+    // The node now points where nothing listens (the PACS went down since the query).
+    pacs::PacsNode down = m_orthanc->node();
+    down.port = pacs::test::freeLoopbackPort();
+    pacs::writeNodeFile(pacsLocationsBeside(browser->databasePath()).nodeFile.toStdString(),
+                        nodeFileFor(down));
+    remote.reloadNodes();
+    QSignalSpy failed(&remote.retrieveJob(), &RetrieveJob::failed);
+    remote.retrieve(series);
+    QVERIFY(failed.wait(kNetworkWaitMs));
+    const QString message = remote.statusText();
+    QVERIFY2(message.contains("orthanc") && message.contains("refused") &&
+                 message.contains(QString::number(down.port)),
+             qPrintable(message));
+    QVERIFY(remote.findChild<QMessageBox*>("retrieveErrorBox"));
+    QVERIFY(
+        browser->database().seriesFiles(QString::fromStdString(m_openSeries.seriesUid)).isEmpty());
 }
 
 int main(int argc, char** argv) {

@@ -64,6 +64,9 @@ RemotePanel::RemotePanel(QString databasePath, QWidget* parent)
 }
 
 RemotePanel::~RemotePanel() {
+    // Their results are queued to this panel: nothing may still be running once it goes.
+    m_retrieve->cancel();
+    m_retrieve->waitForDone();
     cancelQuery();
     for (QFuture<void>& query : m_queries)
         query.waitForFinished();
@@ -84,6 +87,7 @@ QWidget* RemotePanel::buildQueryBar() {
     m_modality->setEditable(true);
     m_modality->addItems({QString(), QStringLiteral("CT"), QStringLiteral("MR"),
                           QStringLiteral("PT"), QStringLiteral("US"), QStringLiteral("CR")});
+    m_modality->setMinimumContentsLength(4);
     m_modality->setToolTip(tr("Modality in the study (empty: any)"));
     m_search = new QPushButton(tr("Search PACS"), bar);
     m_search->setObjectName(QStringLiteral("remoteSearchButton"));
@@ -193,7 +197,7 @@ void RemotePanel::search() {
         [this, nodeName](const std::vector<pacs::StudyRecord>& studies) {
             setQuerying(false);
             m_model->setStudies(nodeName, studies);
-            showStatus(tr("%n studies on %1", "", int(studies.size())).arg(nodeName), false);
+            showStatus(tr("Studies found on %1: %2").arg(nodeName).arg(studies.size()), false);
             emit queryFinished(int(studies.size()));
         },
         [this] {
