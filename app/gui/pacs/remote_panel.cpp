@@ -299,7 +299,7 @@ void RemotePanel::onRetrieveFinished(const RetrieveOutcome& outcome) {
     else if (outcome.complete())
         showStatus(tr("Retrieved from %1: %2").arg(outcome.nodeName, here), false);
     else
-        onRetrieveFailed(tr("%1 (%2)").arg(outcome.message, here));
+        onRetrieveFailed(QStringLiteral("%1 (%2)").arg(outcome.message, here));
     emit retrieved(outcome.seriesUid, m_openAfterRetrieve && outcome.complete());
 }
 

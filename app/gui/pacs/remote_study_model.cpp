@@ -165,7 +165,7 @@ QVariant RemoteStudyModel::roleData(const QModelIndex& index, int role) const {
 QVariant RemoteStudyModel::studyDisplay(const pacs::StudyRecord& study, int column) const {
     switch (column) {
     case NameColumn:
-        return tr("%1 (%2)").arg(displayName(study.patientName), text(study.patientId));
+        return QStringLiteral("%1 (%2)").arg(displayName(study.patientName), text(study.patientId));
     case ModalityColumn:
         return text(study.modalities).replace(QLatin1Char('\\'), QLatin1Char(' '));
     case DateColumn:
@@ -182,7 +182,8 @@ QVariant RemoteStudyModel::studyDisplay(const pacs::StudyRecord& study, int colu
 QVariant RemoteStudyModel::seriesDisplay(const pacs::SeriesRecord& series, int column) const {
     switch (column) {
     case NameColumn:
-        return tr("#%1 %2").arg(text(series.seriesNumber), text(series.seriesDescription));
+        return QStringLiteral("#%1 %2").arg(text(series.seriesNumber),
+                                            text(series.seriesDescription));
     case ModalityColumn:
         return text(series.modality);
     case InstancesColumn:
