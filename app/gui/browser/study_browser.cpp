@@ -1,5 +1,6 @@
 #include "browser/study_browser.h"
 
+#include "browser/background_task.h"
 #include "browser/import_worker.h"
 #include "browser/study_tree_model.h"
 #include "lw/core/error.h"
@@ -32,11 +33,6 @@ namespace {
 // QDateEdit has no empty state: its minimum shows as "any" and means "no bound".
 const QDate kAnyDate(1900, 1, 1);
 constexpr int kDetailsThumbnailSize = 256;
-
-QString errorText(const core::Error& error) {
-    return QStringLiteral("%1: %2").arg(QString::fromStdString(error.subject()),
-                                        QString::fromStdString(error.reason()));
-}
 
 QDateEdit* makeDateEdit(QWidget* parent, const QString& objectName) {
     auto* edit = new QDateEdit(parent);

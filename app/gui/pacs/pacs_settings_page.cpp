@@ -1,8 +1,8 @@
 #include "pacs/pacs_settings_page.h"
 
+#include "browser/background_task.h"
 #include "lw/core/error.h"
 #include "lw/pacs/pacs_client.h"
-#include "pacs/pacs_task.h"
 
 #include <QFormLayout>
 #include <QHBoxLayout>
@@ -35,7 +35,7 @@ PacsSettingsPage::PacsSettingsPage(QString nodeFile, QWidget* parent)
         showFile(pacs::readNodeFileOrDefaults(m_nodeFile.toStdString()));
     } catch (const core::Error& error) {
         showFile({});
-        m_error->setText(pacsErrorText(error));
+        m_error->setText(gui::errorText(error));
     }
     connect(m_aet, &QLineEdit::textEdited, this, &PacsSettingsPage::save);
     connect(m_storagePort, &QSpinBox::valueChanged, this, &PacsSettingsPage::save);
@@ -157,7 +157,7 @@ void PacsSettingsPage::save() {
         m_error->clear();
         emit saved();
     } catch (const core::Error& error) {
-        m_error->setText(tr("Not saved: %1").arg(pacsErrorText(error)));
+        m_error->setText(tr("Not saved: %1").arg(gui::errorText(error)));
     }
 }
 
@@ -188,7 +188,7 @@ void PacsSettingsPage::testSelectedNode() {
                                     pacs::CallOptions{}.timeout};
     m_test->setEnabled(false);
     m_testResult->setText(tr("Testing %1…").arg(QString::fromStdString(node.name)));
-    m_echo = runPacsTask(
+    m_echo = runInBackground(
         this, [node, options] { return pacs::echo(node, options); },
         [this](const pacs::EchoResult& result) {
             showTestResult(result.ok, QString::fromStdString(result.message));

@@ -1,6 +1,6 @@
 #include "pacs/remote_panel.h"
 
-#include "pacs/pacs_task.h"
+#include "browser/background_task.h"
 #include "pacs/remote_study_model.h"
 #include "pacs/retrieve_job.h"
 
@@ -135,7 +135,7 @@ void RemotePanel::reloadNodes() {
         m_nodeFile = pacs::readNodeFileOrDefaults(m_locations.nodeFile.toStdString());
     } catch (const core::Error& error) {
         m_nodeFile = {};
-        showStatus(tr("The PACS nodes cannot be read: %1").arg(pacsErrorText(error)), true);
+        showStatus(tr("The PACS nodes cannot be read: %1").arg(errorText(error)), true);
     }
     m_node->clear();
     for (const pacs::PacsNode& node : m_nodeFile.nodes)
@@ -182,14 +182,14 @@ void RemotePanel::search() {
             std::tie(query.dateFrom, query.dateTo) =
                 pacs::parseDateRange(m_dates->text().trimmed().toStdString());
     } catch (const core::Error& error) {
-        return showStatus(tr("Dates: %1").arg(pacsErrorText(error)), true);
+        return showStatus(tr("Dates: %1").arg(errorText(error)), true);
     }
     const pacs::PacsNode node = *chosen;
     const QString nodeName = QString::fromStdString(node.name);
     m_queryCancel = std::make_shared<core::CancelToken>();
     setQuerying(true);
     showStatus(tr("Searching %1…").arg(nodeName), false);
-    keep(runPacsTask(
+    keep(runInBackground(
         this,
         [node, query, options = callOptions(), cancel = m_queryCancel] {
             return pacs::findStudies(node, query, options, cancel.get());
@@ -224,7 +224,7 @@ void RemotePanel::listSeries(const QModelIndex& studyIndex) {
     const QString studyUid = QString::fromStdString(study->studyInstanceUid);
     if (!m_queryCancel || m_queryCancel->isCancelled())
         m_queryCancel = std::make_shared<core::CancelToken>();
-    keep(runPacsTask(
+    keep(runInBackground(
         this,
         [node = *node, uid = study->studyInstanceUid, options = callOptions(),
          cancel = m_queryCancel] { return pacs::findSeries(node, uid, options, cancel.get()); },

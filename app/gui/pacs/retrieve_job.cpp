@@ -1,7 +1,7 @@
 #include "pacs/retrieve_job.h"
 
+#include "browser/background_task.h"
 #include "lw/studydb/retrieved_files.h"
-#include "pacs/pacs_task.h"
 
 namespace lw::gui {
 
@@ -63,14 +63,14 @@ bool RetrieveJob::start(const pacs::PacsNode& node, const pacs::RetrieveRequest&
         try {
             studydb::registerRetrievedFolder(databasePath, requestFolder(request));
         } catch (const core::Error& error) {
-            const QString registering = pacsErrorText(error);
+            const QString registering = errorText(error);
             outcome.message = outcome.message.isEmpty()
                                   ? registering
                                   : outcome.message + QStringLiteral("; ") + registering;
         }
         return outcome;
     };
-    m_future = runPacsTask(
+    m_future = runInBackground(
         this, work,
         [this](const RetrieveOutcome& outcome) {
             m_running = false;

@@ -1,9 +1,9 @@
 #pragma once
 
-// Runs one blocking modules/pacs call (echo, find, retrieve) on a QtConcurrent pool thread and
-// hands its result, or its failure in words, back to `receiver`'s thread as a queued call. The
-// caller keeps the QFuture and waits for it before `receiver` goes, so the pool thread never
-// outlives what it reports to.
+// Runs one blocking engine call (an import, a PACS echo, find or retrieve) on a QtConcurrent pool
+// thread and hands its result, or its failure in words, back to `receiver`'s thread as a queued
+// call. The caller keeps the QFuture and waits for it before `receiver` goes, so the pool thread
+// never outlives what it reports to.
 
 #include "lw/core/error.h"
 
@@ -18,7 +18,7 @@
 namespace lw::gui {
 
 // "subject: reason" of a core::Error (a PacsError names the node as AET@HOST:PORT).
-inline QString pacsErrorText(const core::Error& error) {
+inline QString errorText(const core::Error& error) {
     return QStringLiteral("%1: %2").arg(QString::fromStdString(error.subject()),
                                         QString::fromStdString(error.reason()));
 }
@@ -26,8 +26,8 @@ inline QString pacsErrorText(const core::Error& error) {
 // `work()` runs on the pool; then exactly one of onDone(result), onCancelled(), onFailed(text)
 // runs on `receiver`'s thread, unless `receiver` is gone by then.
 template <typename Work, typename Done, typename Cancelled, typename Failed>
-QFuture<void> runPacsTask(QObject* receiver, Work work, Done onDone, Cancelled onCancelled,
-                          Failed onFailed) {
+QFuture<void> runInBackground(QObject* receiver, Work work, Done onDone, Cancelled onCancelled,
+                              Failed onFailed) {
     QPointer<QObject> target(receiver);
     const auto post = [target](auto call) {
         QMetaObject::invokeMethod(target.data(), std::move(call), Qt::QueuedConnection);
@@ -39,7 +39,7 @@ QFuture<void> runPacsTask(QObject* receiver, Work work, Done onDone, Cancelled o
         } catch (const core::Cancelled&) {
             post(onCancelled);
         } catch (const core::Error& error) {
-            post([onFailed, text = pacsErrorText(error)] { onFailed(text); });
+            post([onFailed, text = errorText(error)] { onFailed(text); });
         } catch (const std::exception& error) {
             post([onFailed, text = QString::fromStdString(error.what())] { onFailed(text); });
         }
