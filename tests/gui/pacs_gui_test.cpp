@@ -13,6 +13,7 @@
 #include "pacs/remote_panel.h"
 #include "pacs/remote_study_model.h"
 #include "pacs/retrieve_job.h"
+#include "shell/main_window.h"
 #include "window_test_support.h"
 
 #include <QComboBox>
@@ -81,6 +82,7 @@ private slots:
     void settingsPageRoundTripsTheNodeFile();
     void settingsPageNamesWhatIsInvalid_data();
     void settingsPageNamesWhatIsInvalid();
+    void settingsInTheMainWindowFeedTheQueryBar();
     void testButtonSaysWhatHappened_data();
     void testButtonSaysWhatHappened();
     void queryListsTheRemoteStudy_data();
@@ -237,6 +239,27 @@ void PacsGuiTest::settingsPageNamesWhatIsInvalid() {
     // The file keeps its last valid state.
     QCOMPARE(pacs::readNodeFile(path.toStdString()).nodes[1].calledAet, std::string("AE2"));
     QCOMPARE(pacs::readNodeFile(path.toStdString()).nodes[1].name, std::string("second"));
+}
+
+void PacsGuiTest::settingsInTheMainWindowFeedTheQueryBar() {
+    QTemporaryDir dir;
+    MainWindow window(lw::test::isolatedOptions(dir));
+    window.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&window));
+    auto* nodes = window.browser().remote().findChild<QComboBox*>("pacsNodeCombo");
+    QCOMPARE(nodes->count(), 0); // no node file beside the new database yet
+    window.showSettings();
+    auto* page = window.findChild<PacsSettingsPage*>("pacsSettingsPage");
+    QVERIFY(page);
+    QCOMPARE(page->nodeFile(), pacsLocationsBeside(window.browser().databasePath()).nodeFile);
+    QTest::mouseClick(page->findChild<QPushButton*>("addPacsNode"), Qt::LeftButton);
+    auto* table = page->findChild<QTableWidget*>("pacsNodes");
+    setCell(*table, 0, PacsSettingsPage::NameColumn, "radiology");
+    setCell(*table, 0, PacsSettingsPage::CalledAetColumn, "RAD_PACS");
+    setCell(*table, 0, PacsSettingsPage::HostColumn, "127.0.0.1");
+    QVERIFY2(page->errorText().isEmpty(), qPrintable(page->errorText()));
+    QCOMPARE(nodes->count(), 1);
+    QCOMPARE(nodes->currentText(), QString("radiology"));
 }
 
 void PacsGuiTest::testButtonSaysWhatHappened_data() {
