@@ -3,7 +3,8 @@
 // invalid and its Test button says "accepted" or "refused"; the study browser's query lists the
 // Orthanc's study marked remote, with its series; a double-click on a remote series retrieves
 // it (n of N), registers it and opens the review; a cancelled retrieve keeps what arrived
-// registered and the next one fetches only the rest. SKIPs without Orthanc or a display.
+// registered and the next one fetches only the rest; a PACS that is down or does not answer is
+// named with the reason. SKIPs without Orthanc or a display.
 #include "browser/study_tree_model.h"
 #include "gui_test_support.h"
 #include "lw/pacs/pacs_node.h"
@@ -26,7 +27,11 @@
 #include <QTableWidget>
 #include <QTreeView>
 #include <QtTest>
+#include <arpa/inet.h>
 #include <memory>
+#include <netinet/in.h>
+#include <sys/socket.h>
+#include <unistd.h>
 
 using namespace lw::gui;
 namespace pacs = lw::pacs;
@@ -87,6 +92,7 @@ private slots:
     void testButtonSaysWhatHappened();
     void queryListsTheRemoteStudy_data();
     void queryListsTheRemoteStudy();
+    void queryOfAPacsThatDoesNotAnswerTimesOut();
     void doubleClickRetrievesAndOpens();
     void cancelledRetrieveKeepsWhatArrived();
     void retrieveFromAPacsThatIsDownSaysSo();
@@ -343,6 +349,41 @@ void PacsGuiTest::queryListsTheRemoteStudy() {
     QVERIFY(seriesRow(remote, m_openSeries.seriesUid).isValid());
     QVERIFY(seriesRow(remote, m_cancelSeries.seriesUid).isValid());
     QCOMPARE(remote.model().rowCount(study), 2);
+}
+
+void PacsGuiTest::queryOfAPacsThatDoesNotAnswerTimesOut() {
+    // A PACS that takes the connection and never answers (a hung server): the kernel completes
+    // the TCP handshake into the listen backlog, nobody reads.
+    const struct Socket {
+        int fd = ::socket(AF_INET, SOCK_STREAM, 0);
+        ~Socket() { ::close(fd); }
+    } listening;
+    const int hung = listening.fd;
+    QVERIFY(hung >= 0);
+    sockaddr_in address{};
+    address.sin_family = AF_INET;
+    address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+    QVERIFY(::bind(hung, reinterpret_cast<sockaddr*>(&address), sizeof address) == 0);
+    QVERIFY(::listen(hung, 4) == 0);
+    socklen_t length = sizeof address;
+    QVERIFY(::getsockname(hung, reinterpret_cast<sockaddr*>(&address), &length) == 0);
+    pacs::PacsNode node = m_orthanc->node();
+    node.port = ntohs(address.sin_port);
+
+    QTemporaryDir dir;
+    const QString database = dir.filePath("studies.sqlite");
+    pacs::writeNodeFile(pacsLocationsBeside(database).nodeFile.toStdString(), nodeFileFor(node));
+    StudyBrowser browser(database);
+    browser.show();
+    RemotePanel& remote = browser.remote();
+    QSignalSpy failed(&remote, &RemotePanel::queryFailed);
+    QTest::mouseClick(remote.findChild<QPushButton*>("remoteSearchButton"), Qt::LeftButton);
+    QVERIFY(remote.isQuerying());
+    QVERIFY(failed.wait(kNetworkWaitMs)); // the module's timeout, 10 s
+    const QString message = remote.statusText();
+    QVERIFY2(message.contains("timed out") && message.contains("orthanc"), qPrintable(message));
+    QVERIFY(!remote.isQuerying());
+    QVERIFY(remote.findChild<QPushButton*>("remoteSearchButton")->isEnabled());
 }
 
 void PacsGuiTest::doubleClickRetrievesAndOpens() {
