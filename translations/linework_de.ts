@@ -638,6 +638,93 @@
         <source>Annotations will not be saved: %1</source>
         <translation>Anmerkungen werden nicht gespeichert: %1</translation>
     </message>
+    <message>
+        <source>PACS</source>
+        <translation>PACS</translation>
+    </message>
+</context>
+<context>
+    <name>lw::gui::PacsSettingsPage</name>
+    <message>
+        <source>Where the workstation receives a C-MOVE&apos;s images; the PACS must list this AE title with this host and port</source>
+        <translation>Hier empfängt die Workstation die Bilder eines C-MOVE; das PACS muss diesen AE-Titel mit diesem Host und Port kennen</translation>
+    </message>
+    <message>
+        <source>Workstation AE title:</source>
+        <translation>AE-Titel der Workstation:</translation>
+    </message>
+    <message>
+        <source>Storage port (C-MOVE):</source>
+        <translation>Empfangsport (C-MOVE):</translation>
+    </message>
+    <message>
+        <source>Name</source>
+        <translation>Name</translation>
+    </message>
+    <message>
+        <source>Called AE title</source>
+        <translation>Gerufener AE-Titel</translation>
+    </message>
+    <message>
+        <source>Host</source>
+        <translation>Host</translation>
+    </message>
+    <message>
+        <source>Port</source>
+        <translation>Port</translation>
+    </message>
+    <message>
+        <source>PACS nodes:</source>
+        <translation>PACS-Knoten:</translation>
+    </message>
+    <message>
+        <source>Saved in %1</source>
+        <translation>Gespeichert in %1</translation>
+    </message>
+    <message>
+        <source>Add</source>
+        <translation>Hinzufügen</translation>
+    </message>
+    <message>
+        <source>Remove</source>
+        <translation>Entfernen</translation>
+    </message>
+    <message>
+        <source>Test</source>
+        <translation>Testen</translation>
+    </message>
+    <message>
+        <source>Sends a C-ECHO to the selected node</source>
+        <translation>Sendet ein C-ECHO an den gewählten Knoten</translation>
+    </message>
+    <message>
+        <source>Not saved: %1</source>
+        <translation>Nicht gespeichert: %1</translation>
+    </message>
+    <message>
+        <source>node %1</source>
+        <translation>Knoten %1</translation>
+    </message>
+    <message>
+        <source>Select a node to test</source>
+        <translation>Wählen Sie einen Knoten zum Testen</translation>
+    </message>
+    <message>
+        <source>A test runs</source>
+        <translation>Ein Test läuft</translation>
+    </message>
+    <message>
+        <source>Testing %1…</source>
+        <translation>Teste %1…</translation>
+    </message>
+    <message>
+        <source>Test: %1</source>
+        <translation>Test: %1</translation>
+    </message>
+    <message>
+        <source>Test failed: %1</source>
+        <translation>Test fehlgeschlagen: %1</translation>
+    </message>
 </context>
 <context>
     <name>lw::gui::PacsSendAction</name>
@@ -730,6 +817,148 @@
     <message>
         <source>The panels are rendered again at this size; lines, annotations and text grow with it.</source>
         <translation>Die Bereiche werden in dieser Größe neu gerendert; Linien, Anmerkungen und Text wachsen mit.</translation>
+    </message>
+</context>
+<context>
+    <name>lw::gui::RemotePanel</name>
+    <message>
+        <source>Retrieve</source>
+        <translation>Abrufen</translation>
+    </message>
+    <message>
+        <source>The PACS to query (Settings → PACS)</source>
+        <translation>Das abzufragende PACS (Einstellungen → PACS)</translation>
+    </message>
+    <message>
+        <source>Patient name (DOE^J*)</source>
+        <translation>Patientenname (DOE^J*)</translation>
+    </message>
+    <message>
+        <source>Patient ID</source>
+        <translation>Patienten-ID</translation>
+    </message>
+    <message>
+        <source>Dates YYYYMMDD-YYYYMMDD</source>
+        <translation>Daten JJJJMMTT-JJJJMMTT</translation>
+    </message>
+    <message>
+        <source>Modality in the study (empty: any)</source>
+        <translation>Modalität in der Studie (leer: alle)</translation>
+    </message>
+    <message>
+        <source>Search PACS</source>
+        <translation>PACS durchsuchen</translation>
+    </message>
+    <message>
+        <source>Cancel</source>
+        <translation>Abbrechen</translation>
+    </message>
+    <message>
+        <source>The PACS nodes cannot be read: %1</source>
+        <translation>Die PACS-Knoten sind nicht lesbar: %1</translation>
+    </message>
+    <message>
+        <source>no PACS: Settings → PACS</source>
+        <translation>kein PACS: Einstellungen → PACS</translation>
+    </message>
+    <message>
+        <source>Choose a PACS node (Settings → PACS adds one)</source>
+        <translation>Wählen Sie einen PACS-Knoten (Einstellungen → PACS fügt einen hinzu)</translation>
+    </message>
+    <message>
+        <source>Dates: %1</source>
+        <translation>Daten: %1</translation>
+    </message>
+    <message>
+        <source>Searching %1…</source>
+        <translation>Durchsuche %1…</translation>
+    </message>
+    <message>
+        <source>Studies found on %1: %2</source>
+        <translation>Gefundene Studien auf %1: %2</translation>
+    </message>
+    <message>
+        <source>Query cancelled</source>
+        <translation>Abfrage abgebrochen</translation>
+    </message>
+    <message>
+        <source>Query of %1 failed: %2</source>
+        <translation>Abfrage von %1 fehlgeschlagen: %2</translation>
+    </message>
+    <message>
+        <source>Series query failed: %1</source>
+        <translation>Abfrage der Serien fehlgeschlagen: %1</translation>
+    </message>
+    <message>
+        <source>Retrieve series and open</source>
+        <translation>Serie abrufen und öffnen</translation>
+    </message>
+    <message>
+        <source>Retrieve study</source>
+        <translation>Studie abrufen</translation>
+    </message>
+    <message>
+        <source>%1 is no longer a PACS node</source>
+        <translation>%1 ist kein PACS-Knoten mehr</translation>
+    </message>
+    <message>
+        <source>A retrieve is running: wait for it or cancel it</source>
+        <translation>Ein Abruf läuft: warten Sie oder brechen Sie ihn ab</translation>
+    </message>
+    <message>
+        <source>Retrieving from %1…</source>
+        <translation>Abruf von %1…</translation>
+    </message>
+    <message>
+        <source>Retrieving from %1: %2 of %3 images</source>
+        <translation>Abruf von %1: %2 von %3 Bildern</translation>
+    </message>
+    <message>
+        <source>%1 of %2 images are here (%3 were already)</source>
+        <translation>%1 von %2 Bildern sind hier (%3 waren es schon)</translation>
+    </message>
+    <message>
+        <source>Retrieve cancelled: %1; a new retrieve fetches the others</source>
+        <translation>Abruf abgebrochen: %1; ein neuer Abruf holt die übrigen</translation>
+    </message>
+    <message>
+        <source>Retrieved from %1: %2</source>
+        <translation>Abgerufen von %1: %2</translation>
+    </message>
+    <message>
+        <source>Retrieve from %1 failed: %2</source>
+        <translation>Abruf von %1 fehlgeschlagen: %2</translation>
+    </message>
+</context>
+<context>
+    <name>lw::gui::RemoteStudyModel</name>
+    <message>
+        <source>On %1: double-click to retrieve and open</source>
+        <translation>Auf %1: Doppelklick ruft ab und öffnet</translation>
+    </message>
+    <message>
+        <source>On %1: expand for its series, Retrieve in the context menu</source>
+        <translation>Auf %1: aufklappen für die Serien, Abrufen im Kontextmenü</translation>
+    </message>
+    <message>
+        <source>Remote: %1</source>
+        <translation>Entfernt: %1</translation>
+    </message>
+    <message>
+        <source>Modality</source>
+        <translation>Modalität</translation>
+    </message>
+    <message>
+        <source>Date</source>
+        <translation>Datum</translation>
+    </message>
+    <message>
+        <source>Images</source>
+        <translation>Bilder</translation>
+    </message>
+    <message>
+        <source>Description</source>
+        <translation>Beschreibung</translation>
     </message>
 </context>
 <context>

@@ -638,6 +638,93 @@
         <source>Annotations will not be saved: %1</source>
         <translation>Adnotările nu vor fi salvate: %1</translation>
     </message>
+    <message>
+        <source>PACS</source>
+        <translation>PACS</translation>
+    </message>
+</context>
+<context>
+    <name>lw::gui::PacsSettingsPage</name>
+    <message>
+        <source>Where the workstation receives a C-MOVE&apos;s images; the PACS must list this AE title with this host and port</source>
+        <translation>Aici primește stația imaginile unui C-MOVE; PACS-ul trebuie să cunoască acest titlu AE cu această gazdă și port</translation>
+    </message>
+    <message>
+        <source>Workstation AE title:</source>
+        <translation>Titlul AE al stației:</translation>
+    </message>
+    <message>
+        <source>Storage port (C-MOVE):</source>
+        <translation>Port de recepție (C-MOVE):</translation>
+    </message>
+    <message>
+        <source>Name</source>
+        <translation>Nume</translation>
+    </message>
+    <message>
+        <source>Called AE title</source>
+        <translation>Titlu AE apelat</translation>
+    </message>
+    <message>
+        <source>Host</source>
+        <translation>Gazdă</translation>
+    </message>
+    <message>
+        <source>Port</source>
+        <translation>Port</translation>
+    </message>
+    <message>
+        <source>PACS nodes:</source>
+        <translation>Noduri PACS:</translation>
+    </message>
+    <message>
+        <source>Saved in %1</source>
+        <translation>Salvat în %1</translation>
+    </message>
+    <message>
+        <source>Add</source>
+        <translation>Adaugă</translation>
+    </message>
+    <message>
+        <source>Remove</source>
+        <translation>Elimină</translation>
+    </message>
+    <message>
+        <source>Test</source>
+        <translation>Testează</translation>
+    </message>
+    <message>
+        <source>Sends a C-ECHO to the selected node</source>
+        <translation>Trimite un C-ECHO nodului selectat</translation>
+    </message>
+    <message>
+        <source>Not saved: %1</source>
+        <translation>Nesalvat: %1</translation>
+    </message>
+    <message>
+        <source>node %1</source>
+        <translation>nod %1</translation>
+    </message>
+    <message>
+        <source>Select a node to test</source>
+        <translation>Selectați un nod de testat</translation>
+    </message>
+    <message>
+        <source>A test runs</source>
+        <translation>Un test rulează</translation>
+    </message>
+    <message>
+        <source>Testing %1…</source>
+        <translation>Se testează %1…</translation>
+    </message>
+    <message>
+        <source>Test: %1</source>
+        <translation>Test: %1</translation>
+    </message>
+    <message>
+        <source>Test failed: %1</source>
+        <translation>Test eșuat: %1</translation>
+    </message>
 </context>
 <context>
     <name>lw::gui::PacsSendAction</name>
@@ -730,6 +817,148 @@
     <message>
         <source>The panels are rendered again at this size; lines, annotations and text grow with it.</source>
         <translation>Panourile sunt randate din nou la această dimensiune; liniile, adnotările și textul cresc proporțional.</translation>
+    </message>
+</context>
+<context>
+    <name>lw::gui::RemotePanel</name>
+    <message>
+        <source>Retrieve</source>
+        <translation>Preluare</translation>
+    </message>
+    <message>
+        <source>The PACS to query (Settings → PACS)</source>
+        <translation>PACS-ul interogat (Setări → PACS)</translation>
+    </message>
+    <message>
+        <source>Patient name (DOE^J*)</source>
+        <translation>Numele pacientului (DOE^J*)</translation>
+    </message>
+    <message>
+        <source>Patient ID</source>
+        <translation>ID pacient</translation>
+    </message>
+    <message>
+        <source>Dates YYYYMMDD-YYYYMMDD</source>
+        <translation>Date AAAALLZZ-AAAALLZZ</translation>
+    </message>
+    <message>
+        <source>Modality in the study (empty: any)</source>
+        <translation>Modalitate în studiu (gol: oricare)</translation>
+    </message>
+    <message>
+        <source>Search PACS</source>
+        <translation>Caută în PACS</translation>
+    </message>
+    <message>
+        <source>Cancel</source>
+        <translation>Anulează</translation>
+    </message>
+    <message>
+        <source>The PACS nodes cannot be read: %1</source>
+        <translation>Nodurile PACS nu pot fi citite: %1</translation>
+    </message>
+    <message>
+        <source>no PACS: Settings → PACS</source>
+        <translation>niciun PACS: Setări → PACS</translation>
+    </message>
+    <message>
+        <source>Choose a PACS node (Settings → PACS adds one)</source>
+        <translation>Alegeți un nod PACS (Setări → PACS adaugă unul)</translation>
+    </message>
+    <message>
+        <source>Dates: %1</source>
+        <translation>Date: %1</translation>
+    </message>
+    <message>
+        <source>Searching %1…</source>
+        <translation>Se caută în %1…</translation>
+    </message>
+    <message>
+        <source>Studies found on %1: %2</source>
+        <translation>Studii găsite pe %1: %2</translation>
+    </message>
+    <message>
+        <source>Query cancelled</source>
+        <translation>Interogare anulată</translation>
+    </message>
+    <message>
+        <source>Query of %1 failed: %2</source>
+        <translation>Interogarea %1 a eșuat: %2</translation>
+    </message>
+    <message>
+        <source>Series query failed: %1</source>
+        <translation>Interogarea seriilor a eșuat: %1</translation>
+    </message>
+    <message>
+        <source>Retrieve series and open</source>
+        <translation>Preia seria și deschide</translation>
+    </message>
+    <message>
+        <source>Retrieve study</source>
+        <translation>Preia studiul</translation>
+    </message>
+    <message>
+        <source>%1 is no longer a PACS node</source>
+        <translation>%1 nu mai este un nod PACS</translation>
+    </message>
+    <message>
+        <source>A retrieve is running: wait for it or cancel it</source>
+        <translation>O preluare rulează: așteptați-o sau anulați-o</translation>
+    </message>
+    <message>
+        <source>Retrieving from %1…</source>
+        <translation>Preluare de la %1…</translation>
+    </message>
+    <message>
+        <source>Retrieving from %1: %2 of %3 images</source>
+        <translation>Preluare de la %1: %2 din %3 imagini</translation>
+    </message>
+    <message>
+        <source>%1 of %2 images are here (%3 were already)</source>
+        <translation>%1 din %2 imagini sunt aici (%3 erau deja)</translation>
+    </message>
+    <message>
+        <source>Retrieve cancelled: %1; a new retrieve fetches the others</source>
+        <translation>Preluare anulată: %1; o nouă preluare aduce restul</translation>
+    </message>
+    <message>
+        <source>Retrieved from %1: %2</source>
+        <translation>Preluat de la %1: %2</translation>
+    </message>
+    <message>
+        <source>Retrieve from %1 failed: %2</source>
+        <translation>Preluarea de la %1 a eșuat: %2</translation>
+    </message>
+</context>
+<context>
+    <name>lw::gui::RemoteStudyModel</name>
+    <message>
+        <source>On %1: double-click to retrieve and open</source>
+        <translation>Pe %1: dublu clic pentru preluare și deschidere</translation>
+    </message>
+    <message>
+        <source>On %1: expand for its series, Retrieve in the context menu</source>
+        <translation>Pe %1: extindeți pentru serii, Preluare în meniul contextual</translation>
+    </message>
+    <message>
+        <source>Remote: %1</source>
+        <translation>La distanță: %1</translation>
+    </message>
+    <message>
+        <source>Modality</source>
+        <translation>Modalitate</translation>
+    </message>
+    <message>
+        <source>Date</source>
+        <translation>Dată</translation>
+    </message>
+    <message>
+        <source>Images</source>
+        <translation>Imagini</translation>
+    </message>
+    <message>
+        <source>Description</source>
+        <translation>Descriere</translation>
     </message>
 </context>
 <context>

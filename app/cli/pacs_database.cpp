@@ -1,8 +1,7 @@
 #include "pacs_database.h"
 
-#include "lw/core/error.h"
+#include "lw/studydb/retrieved_files.h"
 #include "lw/studydb/study_database.h"
-#include "lw/studydb/study_importer.h"
 
 #include <QCoreApplication>
 
@@ -23,15 +22,9 @@ Registration registerInDatabase(const std::filesystem::path& folder, const std::
     QCoreApplication::setApplicationName("linework");
     const QString path =
         database.empty() ? studydb::StudyDatabase::defaultPath() : QString::fromStdString(database);
-    const studydb::ImportSummary summary =
-        studydb::importStudies(path, QString::fromStdString(folder.string()));
-    if (!summary.errors.isEmpty())
-        throw core::Error(
-            folder.string(),
-            "registering in " + path.toStdString() + ": " + std::to_string(summary.errors.size()) +
-                " import errors, the first: " + summary.errors.first().file.toStdString() + ": " +
-                summary.errors.first().reason.toStdString());
-    return {path.toStdString(), summary.seriesAdded, summary.seriesUpdated};
+    const studydb::Registration registration =
+        studydb::registerRetrievedFolder(path, QString::fromStdString(folder.string()));
+    return {path.toStdString(), registration.seriesAdded, registration.seriesUpdated};
 }
 
 } // namespace lw::cli

@@ -104,10 +104,11 @@ void TranslationTest::germanLabelsInTheMainWindowAndSettingsPage() {
     QCOMPARE(dialog->windowTitle(), QStringLiteral("Linework-Einstellungen"));
     auto* pages = dialog->findChild<QTabWidget*>();
     QVERIFY(pages);
-    QCOMPARE(tabTexts(*pages), (QStringList{"Methode", "Darstellung", "Iso-Vorgaben"}));
+    QCOMPARE(tabTexts(*pages), (QStringList{"Methode", "Darstellung", "Iso-Vorgaben", "PACS"}));
     const QStringList labels = labelTexts(*dialog);
-    for (const char* german : {"Silhouettenmethode:", "Aufteilung in Blöcke:", "Sprache:",
-                               "Eine neue Sprache gilt ab dem nächsten Start von Linework."})
+    for (const char* german :
+         {"Silhouettenmethode:", "Aufteilung in Blöcke:", "Sprache:", "AE-Titel der Workstation:",
+          "PACS-Knoten:", "Eine neue Sprache gilt ab dem nächsten Start von Linework."})
         QVERIFY2(labels.contains(QString::fromUtf8(german)), german);
 }
 

@@ -1,9 +1,11 @@
 #include "browser/study_browser.h"
 
+#include "browser/background_task.h"
 #include "browser/import_worker.h"
 #include "browser/study_tree_model.h"
 #include "lw/core/error.h"
 #include "lw/studydb/study_database.h"
+#include "pacs/remote_panel.h"
 
 #include <QDateEdit>
 #include <QDragEnterEvent>
@@ -31,11 +33,6 @@ namespace {
 // QDateEdit has no empty state: its minimum shows as "any" and means "no bound".
 const QDate kAnyDate(1900, 1, 1);
 constexpr int kDetailsThumbnailSize = 256;
-
-QString errorText(const core::Error& error) {
-    return QStringLiteral("%1: %2").arg(QString::fromStdString(error.subject()),
-                                        QString::fromStdString(error.reason()));
-}
 
 QDateEdit* makeDateEdit(QWidget* parent, const QString& objectName) {
     auto* edit = new QDateEdit(parent);
@@ -105,8 +102,16 @@ void StudyBrowser::buildUi() {
     m_tree->setAllColumnsShowFocus(true);
     m_tree->header()->setSectionResizeMode(QHeaderView::ResizeToContents);
 
+    // The local studies above, a PACS's answer below (marked remote).
+    m_remote = new RemotePanel(m_databasePath, this);
+    auto* localAndRemote = new QSplitter(Qt::Vertical, this);
+    localAndRemote->addWidget(m_tree);
+    localAndRemote->addWidget(m_remote);
+    localAndRemote->setStretchFactor(0, 3);
+    localAndRemote->setStretchFactor(1, 2);
+
     auto* splitter = new QSplitter(Qt::Horizontal, this);
-    splitter->addWidget(m_tree);
+    splitter->addWidget(localAndRemote);
     splitter->addWidget(buildDetailsPane());
     splitter->setStretchFactor(0, 3);
     splitter->setStretchFactor(1, 1);
@@ -192,6 +197,7 @@ void StudyBrowser::connectSignals() {
     connect(m_removeButton, &QPushButton::clicked, this, &StudyBrowser::removeSelectedSeries);
     connect(m_cancelButton, &QPushButton::clicked, this, &StudyBrowser::cancelImport);
     connect(m_tree, &QTreeView::activated, this, &StudyBrowser::onActivated);
+    connect(m_remote, &RemotePanel::retrieved, this, &StudyBrowser::onRetrieved);
     connect(m_tree->selectionModel(), &QItemSelectionModel::selectionChanged, this,
             &StudyBrowser::showDetails);
     connect(m_worker, &ImportWorker::progress, this, &StudyBrowser::onImportProgress);
@@ -419,6 +425,15 @@ void StudyBrowser::removeSeries(const QStringList& seriesUids) {
     reload();
     emit statusMessage(
         tr("Removed %n series from the database (files on disk kept)", nullptr, removed));
+}
+
+void StudyBrowser::onRetrieved(const QString& seriesUid, bool open) {
+    reload();
+    if (seriesUid.isEmpty())
+        return;
+    selectSeries(seriesUid);
+    if (open)
+        emit openSeriesRequested(seriesUid); // as a double-click on the local series
 }
 
 void StudyBrowser::onActivated(const QModelIndex& index) {

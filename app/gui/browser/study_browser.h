@@ -23,6 +23,7 @@ class QTreeView;
 namespace lw::gui {
 
 class ImportWorker;
+class RemotePanel;
 class StudyTreeModel;
 
 class StudyBrowser : public QWidget {
@@ -41,6 +42,8 @@ public:
     const QString& databasePath() const { return m_databasePath; }
 
     StudyTreeModel& model() { return *m_model; }
+    // The PACS query bar and its results (pacs/remote_panel.h).
+    RemotePanel& remote() { return *m_remote; }
     bool isImporting() const;
     // The text in the message bar (errors and import results); empty when hidden.
     QString messageText() const;
@@ -85,6 +88,7 @@ private:
     void onImportFinished(const studydb::ImportSummary& summary);
     void onImportFailed(const QString& message);
     void onActivated(const QModelIndex& index);
+    void onRetrieved(const QString& seriesUid, bool open);
     void showDetails();
     static QString detailsHtml(const studydb::SeriesRecord& series);
     void showMessage(const QString& text, bool isError);
@@ -111,6 +115,7 @@ private:
     QProgressBar* m_progress = nullptr;
     QPushButton* m_cancelButton = nullptr;
     QTreeView* m_tree = nullptr;
+    RemotePanel* m_remote = nullptr;
     QLabel* m_thumbnail = nullptr;
     QTextBrowser* m_details = nullptr;
 };

@@ -49,10 +49,10 @@ SettingsDialog::SettingsDialog(const ReviewSettings& settings, QWidget* parent)
     : QDialog(parent), m_settings(settings) {
     setWindowTitle(tr("Linework settings"));
     setObjectName("settingsDialog");
-    auto* tabs = new QTabWidget(this);
-    tabs->addTab(makeMethodPage(), tr("Method"));
-    tabs->addTab(makeAppearancePage(), tr("Appearance"));
-    tabs->addTab(makePresetPage(), tr("Iso presets"));
+    m_tabs = new QTabWidget(this);
+    m_tabs->addTab(makeMethodPage(), tr("Method"));
+    m_tabs->addTab(makeAppearancePage(), tr("Appearance"));
+    m_tabs->addTab(makePresetPage(), tr("Iso presets"));
 
     auto* buttons =
         new QDialogButtonBox(QDialogButtonBox::Close | QDialogButtonBox::RestoreDefaults);
@@ -64,9 +64,13 @@ SettingsDialog::SettingsDialog(const ReviewSettings& settings, QWidget* parent)
                 showLanguage(QString()); // follow the system again
             });
     auto* layout = new QVBoxLayout(this);
-    layout->addWidget(tabs);
+    layout->addWidget(m_tabs);
     layout->addWidget(buttons);
     showSettings();
+}
+
+void SettingsDialog::addPage(QWidget* page, const QString& title) {
+    m_tabs->addTab(page, title);
 }
 
 void SettingsDialog::setSettings(const ReviewSettings& settings) {

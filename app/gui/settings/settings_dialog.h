@@ -17,6 +17,7 @@ class QLabel;
 class QPushButton;
 class QSpinBox;
 class QTableWidget;
+class QTabWidget;
 
 namespace lw::gui {
 
@@ -27,6 +28,8 @@ public:
 
     ReviewSettings settings() const { return m_settings; }
     void setSettings(const ReviewSettings& settings);
+    // A page that keeps its own storage (the PACS nodes: pacs/pacs_settings_page.h), as a tab.
+    void addPage(QWidget* page, const QString& title);
 
 signals:
     void settingsChanged(const lw::gui::ReviewSettings& settings);
@@ -45,6 +48,7 @@ private:
 
     ReviewSettings m_settings;
     bool m_updating = false;
+    QTabWidget* m_tabs = nullptr;
     QButtonGroup* m_method = nullptr;
     QComboBox* m_chunking = nullptr;
     QSpinBox* m_brickCells = nullptr;

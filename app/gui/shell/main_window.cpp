@@ -4,6 +4,9 @@
 #include "annotate/annotation_document.h"
 #include "browser/study_browser.h"
 #include "lw/core/error.h"
+#include "pacs/pacs_locations.h"
+#include "pacs/pacs_settings_page.h"
+#include "pacs/remote_panel.h"
 #include "review/review_panel.h"
 #include "review/review_widget.h"
 #include "review/volume_loader.h"
@@ -103,9 +106,7 @@ MainWindow::MainWindow(const MainWindowOptions& options, QWidget* parent) : QMai
     // database (a test's temporary database gets its own).
     m_pacsSend = new PacsSendAction(
         *this, [this] { return currentReview(); },
-        [this] {
-            return QFileInfo(m_browser->databasePath()).absolutePath() + "/pacs-nodes.json";
-        });
+        [this] { return pacsLocationsBeside(m_browser->databasePath()).nodeFile; });
     createActions();
     createEditMenu();
     createViewMenu();
@@ -381,6 +382,14 @@ void MainWindow::showSettings() {
         m_settingsDialog = new SettingsDialog(m_settings, this);
         connect(m_settingsDialog, &SettingsDialog::settingsChanged, this,
                 &MainWindow::applySettings);
+        auto* pacsPage =
+            new PacsSettingsPage(pacsLocationsBeside(m_browser->databasePath()).nodeFile);
+        m_settingsDialog->addPage(pacsPage, tr("PACS"));
+        // The browser's node list follows what Settings saved.
+        connect(pacsPage, &PacsSettingsPage::saved, &m_browser->remote(),
+                &RemotePanel::reloadNodes);
+        // So does "Send to PACS" (disabled while no node is set up).
+        connect(pacsPage, &PacsSettingsPage::saved, m_pacsSend, &PacsSendAction::refresh);
     }
     m_settingsDialog->setSettings(m_settings);
     m_settingsDialog->show();
