@@ -118,6 +118,7 @@ struct Plan {
     // given); auto and smooth time what the review draws on a coarse or thick-slice volume
     // (render/surface_sampling.h).
     render::VolumeSampling sampling = render::kSamplingAsLoaded;
+    core::ImportLimits limits; // --max-volume-gib
 };
 
 int brickCellsFor(const std::string& variant, const volume::Volume& volume) {
@@ -399,7 +400,7 @@ namespace {
 const std::set<std::string> kBenchOptions = {
     "sizes",  "input",      "iso",      "backend",    "methods",        "variants",
     "modes",  "repeat",     "image",    "threads",    "peak-memory-of", "gpu-budget",
-    "border", "min-stroke", "gradient", "oversample", "thick-slices"};
+    "border", "min-stroke", "gradient", "oversample", "thick-slices",   kMaxVolumeOption};
 
 // What to run: methods, variants, modes, repeat, image, threads, budget; --peak-memory-of
 // narrows it to one configuration (returned in `peakMethod`).
@@ -429,6 +430,7 @@ Plan parsePlan(const Arguments& arguments, std::optional<std::string>& peakMetho
     plan.minStrokePixels = lines.minStrokePixels;
     plan.gradientStencil = lines.gradientStencil;
     plan.sampling = parseVolumeSampling(arguments, render::kSamplingAsLoaded);
+    plan.limits = importLimits(arguments);
     if (const auto peak = arguments.option("peak-memory-of")) {
         const std::vector<std::string> parts = splitList(*peak);
         if (parts.size() != 2)
@@ -558,11 +560,12 @@ int runBench(const std::vector<std::string>& args, std::ostream& out) {
         BenchVolume bench{
             .label = {}, .volume = {}, .iso = arguments.number("iso", volume::kPhantomBoneIso)};
         if (input) {
-            bench.volume = volume::readVolumeFile(spec);
+            bench.volume = volume::readVolumeFile(spec, nullptr, plan.limits);
             bench.label = spec;
         } else {
             const glm::ivec3 dims = parseDimsOption("--sizes", spec, 2);
-            bench.volume = volume::makePhantom(dims, volume::PhantomKind::Ct, plan.threads);
+            bench.volume =
+                volume::makePhantom(dims, volume::PhantomKind::Ct, plan.threads, plan.limits);
             bench.label = "phantom " + dimsText(dims);
         }
         if (std::optional<volume::Volume> finer =

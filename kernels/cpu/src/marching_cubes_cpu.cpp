@@ -63,7 +63,7 @@ public:
         m_brickCells = grid.brickCells();
     }
 
-    McResult run(unsigned threads, const core::CancelToken* cancel) {
+    McResult run(unsigned threads, const core::CancelToken* cancel, std::size_t maxOutputBytes) {
         McResult result;
         // Units not started once the token is set are skipped; the phase ends and reports it.
         const auto cancelled = [cancel] { return cancel && cancel->isCancelled(); };
@@ -102,9 +102,14 @@ public:
 
         const std::uint64_t vertices = exclusiveScan(m_vertexOffset);
         const std::uint64_t triangles = exclusiveScan(m_triangleOffset);
+        result.vertices = vertices;
+        result.triangles = triangles;
         if (vertices > std::numeric_limits<std::uint32_t>::max() ||
-            triangles > std::numeric_limits<std::uint32_t>::max() / 3) {
+            triangles > std::numeric_limits<std::uint32_t>::max() / 3)
             result.status = McStatus::TooManyVertices;
+        else if (meshBytes(vertices, triangles) > maxOutputBytes)
+            result.status = McStatus::OverByteLimit;
+        if (result.status != McStatus::Ok) {
             clearOutput();
             return result;
         }
@@ -505,11 +510,12 @@ private:
 
 McResult marchingCubes(const volume::Volume& volume, const volume::BrickGrid& grid,
                        double storedIso, McOutput& out, unsigned threads,
-                       const core::CancelToken* cancel, GradientStencil stencil) {
+                       const core::CancelToken* cancel, GradientStencil stencil,
+                       std::size_t maxOutputBytes) {
     return volume::dispatchVoxelType(volume.voxelType(), [&](auto tag) {
         using T = decltype(tag);
         Extractor<T> extractor(volume, grid, storedIso, out, stencil);
-        return extractor.run(threads, cancel);
+        return extractor.run(threads, cancel, maxOutputBytes);
     });
 }
 

@@ -72,14 +72,20 @@ void IsoSurfaceExtractor::extract(double isoReal, Mesh& mesh, IsoSurfaceStats* s
                                   const core::CancelToken* cancel) const {
     const double storedIso = storedIsoValue(m_volume, isoReal);
 
-    const kernels::cpu::McResult result =
-        kernels::cpu::marchingCubes(m_volume, m_impl->grid, storedIso, mesh, m_options.threads,
-                                    cancel ? cancel : m_options.cancel, m_options.gradientStencil);
+    const kernels::cpu::McResult result = kernels::cpu::marchingCubes(
+        m_volume, m_impl->grid, storedIso, mesh, m_options.threads,
+        cancel ? cancel : m_options.cancel, m_options.gradientStencil, m_options.limits.maxBytes);
     if (result.status == kernels::cpu::McStatus::Cancelled)
         throw core::Cancelled();
     if (result.status == kernels::cpu::McStatus::TooManyVertices)
         throw core::Error("iso-surface at " + std::to_string(isoReal),
                           "the mesh has more than 2^32 vertices; extract a smaller region");
+    if (result.status == kernels::cpu::McStatus::OverByteLimit)
+        m_options.limits.checkAllocation(
+            std::size_t(kernels::meshBytes(result.vertices, result.triangles)),
+            std::to_string(result.vertices) + " vertices, " + std::to_string(result.triangles) +
+                " triangles",
+            "iso-surface at " + std::to_string(isoReal), "the mesh");
     if (stats) {
         stats->totalBricks = result.totalBricks;
         stats->activeBricks = result.activeBricks;

@@ -22,6 +22,7 @@ enum class McStatus {
     Ok,
     TooManyVertices, // more than 2^32 - 1 vertices: the index type cannot address them
     Cancelled,       // the cancel token was set: the output is empty
+    OverByteLimit,   // the mesh would take more than maxOutputBytes: nothing was allocated
 };
 
 struct McResult {
@@ -29,6 +30,9 @@ struct McResult {
     std::size_t totalBricks = 0;
     std::size_t activeBricks = 0; // bricks whose min/max admit the iso-value
     std::size_t workUnits = 0;    // (brick, slab) items handed to the threads
+    // The mesh's size, counted in the first pass before anything is allocated for it.
+    std::uint64_t vertices = 0;
+    std::uint64_t triangles = 0;
 };
 
 // Output buffers (the engine's one mesh type); reused across calls so repeated extraction
@@ -44,11 +48,13 @@ using McOutput = TriangleMesh;
 // give bit-identical meshes.
 // `cancel` (optional) is polled between work units: a newer request in the GUI stops an
 // extraction that is no longer wanted within one unit's time. `stencil`: the normals' gradient
-// (voxel_grid.h).
+// (voxel_grid.h). `maxOutputBytes`: a mesh whose meshBytes() are more is not allocated
+// (McStatus::OverByteLimit, with its counts in the result; the caller words the refusal).
 McResult marchingCubes(const volume::Volume& volume, const volume::BrickGrid& grid,
                        double storedIso, McOutput& out, unsigned threads = 0,
                        const core::CancelToken* cancel = nullptr,
-                       GradientStencil stencil = GradientStencil::Central);
+                       GradientStencil stencil = GradientStencil::Central,
+                       std::size_t maxOutputBytes = std::numeric_limits<std::size_t>::max());
 
 // The grid set-up (derivative spans, patient frame) that marchingCubes() uses for `volume`.
 // Method 2 builds its vertices from the same one, which is what makes them bit-identical.
