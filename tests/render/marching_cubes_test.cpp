@@ -451,5 +451,30 @@ TEST(MarchingCubes, MeshOverTheLimitIsRefusedBeforeAllocating) {
     }
 }
 
+// A ball cut by the volume's corner, closed at the border: the cap is counted with the mesh
+// against the limit, and marching cubes reserves room for it, so appending it does not
+// reallocate (at a 4 GiB volume the old and new positions side by side: hundreds of MiB).
+TEST(MarchingCubes, ClosedSurfaceIsCountedWholeAndAppendedInPlace) {
+    const Volume v = makeFloatVolume({24, 20, 22}, [](int x, int y, int z) {
+        return 14.0f - std::sqrt(float(x * x + y * y + z * z));
+    });
+    IsoSurfaceOptions options;
+    options.closeAtBorder = true;
+    const Mesh closed = extractIsoSurface(v, 0.0, options);
+    const Mesh open = extractIsoSurface(v, 0.0);
+    ASSERT_GT(closed.triangleCount(), open.triangleCount()) << "the corner is capped";
+    EXPECT_EQ(closed.positions.capacity(), closed.positions.size());
+    EXPECT_EQ(closed.normals.capacity(), closed.normals.size());
+    EXPECT_EQ(closed.indices.capacity(), closed.indices.size());
+
+    const std::size_t bytes =
+        std::size_t(kernels::meshBytes(closed.vertexCount(), closed.triangleCount()));
+    options.limits.maxBytes = bytes;
+    expectIdentical(closed, extractIsoSurface(v, 0.0, options), "limit = the closed mesh's bytes");
+    options.limits.maxBytes = bytes - 1; // more than the open mesh needs, less than the closed one
+    ASSERT_LT(std::size_t(kernels::meshBytes(open.vertexCount(), open.triangleCount())), bytes - 1);
+    EXPECT_THROW((void)extractIsoSurface(v, 0.0, options), core::Error);
+}
+
 } // namespace
 } // namespace lw::render
