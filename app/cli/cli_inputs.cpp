@@ -97,15 +97,32 @@ ViewChoice parseViewChoice(const Arguments& arguments, int defaultCount) {
     return choice;
 }
 
+core::ImportLimits importLimits(const Arguments& arguments) {
+    core::ImportLimits limits;
+    limits.raiseHint = std::string("--") + kMaxVolumeOption + " raises it";
+    const double gib = arguments.number(kMaxVolumeOption, 0.0);
+    if (arguments.option(kMaxVolumeOption)) {
+        // 2^24 GiB (16 PiB) bounds it well inside size_t.
+        if (!(gib > 0.0 && gib <= double(1 << 24)))
+            throw UsageError(std::string("--") + kMaxVolumeOption,
+                             "expected a number of GiB above 0");
+        limits.maxBytes = std::size_t(gib * double(std::size_t(1) << 30));
+    }
+    return limits;
+}
+
 input::OpenedVolume openCliInput(const std::string& input,
-                                 const std::optional<std::string>& seriesUid) {
+                                 const std::optional<std::string>& seriesUid,
+                                 const core::ImportLimits& limits) {
     input::OpenOptions options;
     options.seriesUid = seriesUid;
+    options.limits = limits;
     return input::openInput(input, options);
 }
 
-volume::Volume loadInput(const std::string& input, const std::optional<std::string>& seriesUid) {
-    return openCliInput(input, seriesUid).volume;
+volume::Volume loadInput(const std::string& input, const std::optional<std::string>& seriesUid,
+                         const core::ImportLimits& limits) {
+    return openCliInput(input, seriesUid, limits).volume;
 }
 
 } // namespace lw::cli

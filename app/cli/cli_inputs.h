@@ -48,13 +48,22 @@ struct ViewChoice {
 };
 ViewChoice parseViewChoice(const Arguments& arguments, int defaultCount);
 
+// `--max-volume-gib G`: the most one volume may take, in GiB (default: half the physical memory,
+// core::ImportLimits); the refusals then say how to raise it. Throws UsageError for a value
+// that is not a positive number.
+inline constexpr const char* kMaxVolumeOption = "max-volume-gib";
+core::ImportLimits importLimits(const Arguments& arguments);
+
 // The INPUT of `render` (lw::input::openInput, shared with the GUI): phantom:N | phantom:NXxNYxNZ
 // (optionally :ct or :sphere), a volume
 // file (NRRD, NIfTI, PVM, raw), or, in a DICOM build, a DICOM folder / DICOMDIR / file, where
 // `seriesUid` picks the series (default: the one with the most slices).
-volume::Volume loadInput(const std::string& input, const std::optional<std::string>& seriesUid);
+// `limits`: importLimits(arguments) of the command.
+volume::Volume loadInput(const std::string& input, const std::optional<std::string>& seriesUid,
+                         const core::ImportLimits& limits);
 // The same with what the input says about itself (description, DICOM patient/study/series).
 input::OpenedVolume openCliInput(const std::string& input,
-                                 const std::optional<std::string>& seriesUid);
+                                 const std::optional<std::string>& seriesUid,
+                                 const core::ImportLimits& limits);
 
 } // namespace lw::cli

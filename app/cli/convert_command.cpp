@@ -11,7 +11,7 @@
 namespace lw::cli {
 
 int runConvert(const std::vector<std::string>& args, std::ostream& out) {
-    const Arguments arguments(args, {}, {"series"});
+    const Arguments arguments(args, {}, {"series", kMaxVolumeOption});
     const auto output = arguments.option("output");
     if (arguments.positionals().size() != 1 || !output)
         throw UsageError("convert", "expects exactly one INPUT and -o OUT.nrrd");
@@ -20,7 +20,8 @@ int runConvert(const std::vector<std::string>& args, std::ostream& out) {
     if (output->size() <= suffix.size() ||
         output->compare(output->size() - suffix.size(), suffix.size(), suffix) != 0)
         throw UsageError("-o " + *output, "writes NRRD only: expected a name ending in .nrrd");
-    const volume::Volume volume = loadInput(input, arguments.option("series"));
+    const volume::Volume volume =
+        loadInput(input, arguments.option("series"), importLimits(arguments));
     volume::writeNrrd(*output, volume);
     // NRRD holds one slice step: uneven gaps become their mean (a gantry tilt is kept).
     out << "wrote " << *output << " (" << dimsText(volume.dims())

@@ -281,8 +281,8 @@ int runExport(const std::vector<std::string>& args, std::ostream& out) {
     volume::Volume volume; // declared before the renderer, which holds it
     const std::unique_ptr<render::SilhouetteRenderer> renderer =
         render::createSilhouetteRenderer(request.method, request.backend);
-    input::OpenedVolume opened =
-        openCliInput(arguments.positionals()[0], arguments.option("series"));
+    input::OpenedVolume opened = openCliInput(arguments.positionals()[0],
+                                              arguments.option("series"), importLimits(arguments));
     volume = std::move(opened.volume);
     oversampleForRendering(arguments, render::VolumeSampling{}, volume);
     if (targets.sc && !opened.dicom) // before rendering: nothing is written then

@@ -1,8 +1,10 @@
-// `linework-cli bench-import PATH [--repeat N] [--json]`: how fast a DICOM input is scanned and
-// every volume in it decoded, for docs/BENCHMARKS.md. Each run starts from scratch (scan,
-// plan, load) so the number covers what an import in the app costs; the median of N runs is
-// reported because the first run also pays for a cold file cache.
+// `linework-cli bench-import PATH [--repeat N] [--max-volume-gib G] [--json]`: how fast a DICOM
+// input is scanned and every volume in it decoded, for docs/BENCHMARKS.md. Each run starts from
+// scratch (scan, plan, load) so the number covers what an import in the app costs; the median
+// of N runs is reported because the first run also pays for a cold file cache. The process's
+// peak resident memory (getrusage) is reported beside the largest volume.
 #include "arguments.h"
+#include "cli_inputs.h"
 #include "commands.h"
 #include "lw/core/error.h"
 #include "lw/core/json_writer.h"
@@ -17,6 +19,7 @@
 #include <chrono>
 #include <cmath>
 #include <ostream>
+#include <sys/resource.h>
 
 namespace lw::cli {
 
@@ -30,10 +33,18 @@ struct ImportRun {
     std::size_t volumes = 0;
     std::size_t slices = 0;
     std::size_t bytes = 0;
+    std::size_t largestVolumeBytes = 0;
     std::size_t failedVolumes = 0;
 };
 
-ImportRun importOnce(const std::string& path) {
+// The process's peak resident set so far (ru_maxrss is in KiB on Linux).
+std::size_t peakResidentBytes() {
+    rusage usage{};
+    getrusage(RUSAGE_SELF, &usage);
+    return std::size_t(usage.ru_maxrss) * 1024;
+}
+
+ImportRun importOnce(const std::string& path, const core::ImportLimits& limits) {
     using Clock = std::chrono::steady_clock;
     ImportRun run;
     const auto start = Clock::now();
@@ -44,10 +55,11 @@ ImportRun importOnce(const std::string& path) {
         const dicom::SeriesAssembly assembly = dicom::planVolumes(*series);
         for (const auto& plan : assembly.volumes) {
             try {
-                const volume::Volume v = dicom::loadVolume(*series, plan);
+                const volume::Volume v = dicom::loadVolume(*series, plan, nullptr, limits);
                 ++run.volumes;
                 run.slices += std::size_t(v.dims().z);
                 run.bytes += v.byteSize();
+                run.largestVolumeBytes = std::max(run.largestVolumeBytes, v.byteSize());
             } catch (const core::Error&) {
                 // Undecodable volumes are counted, not timed as slices: info reports why.
                 ++run.failedVolumes;
@@ -68,7 +80,7 @@ double median(std::vector<double> values) {
 #endif
 
 int runBenchImport(const std::vector<std::string>& args, std::ostream& out) {
-    const Arguments arguments(args, {"json"}, {"repeat"});
+    const Arguments arguments(args, {"json"}, {"repeat", kMaxVolumeOption});
     if (arguments.positionals().size() != 1)
         throw UsageError("bench-import", "expects exactly one PATH");
     const double repeatValue = arguments.number("repeat", 5);
@@ -77,10 +89,11 @@ int runBenchImport(const std::vector<std::string>& args, std::ostream& out) {
 #ifdef LINEWORK_HAVE_DICOM
     const std::string path = arguments.positionals()[0];
     const int repeat = int(repeatValue);
+    const core::ImportLimits limits = importLimits(arguments);
     std::vector<ImportRun> runs;
     std::vector<double> totals, scans;
     for (int i = 0; i < repeat; ++i) {
-        runs.push_back(importOnce(path));
+        runs.push_back(importOnce(path, limits));
         totals.push_back(runs.back().totalSeconds);
         scans.push_back(runs.back().scanSeconds);
     }
@@ -91,6 +104,8 @@ int runBenchImport(const std::vector<std::string>& args, std::ostream& out) {
     const double medianTotal = median(totals);
     const double medianScan = median(scans);
     const double slicesPerSecond = double(first.slices) / medianTotal;
+    const double peakMiB = double(peakResidentBytes()) / (1024.0 * 1024.0);
+    const double largestMiB = double(first.largestVolumeBytes) / (1024.0 * 1024.0);
     if (arguments.flag("json")) {
         core::JsonWriter w;
         w.beginObject();
@@ -104,6 +119,7 @@ int runBenchImport(const std::vector<std::string>& args, std::ostream& out) {
         w.field("median_s", medianTotal).field("median_scan_s", medianScan);
         w.field("slices_per_s", slicesPerSecond);
         w.field("mib_per_s", double(first.bytes) / (1024.0 * 1024.0) / medianTotal);
+        w.field("peak_rss_mib", peakMiB).field("largest_volume_mib", largestMiB);
         w.endObject();
         out << w.str() << "\n";
     } else {
@@ -114,7 +130,9 @@ int runBenchImport(const std::vector<std::string>& args, std::ostream& out) {
         out << "\n  median of " << repeat << " runs: " << medianTotal * 1000.0 << " ms (scan "
             << medianScan * 1000.0 << " ms) on " << core::workerCount() << " threads\n"
             << "  " << slicesPerSecond << " slices/s, "
-            << double(first.bytes) / (1024.0 * 1024.0) / medianTotal << " MiB/s decoded\n";
+            << double(first.bytes) / (1024.0 * 1024.0) / medianTotal << " MiB/s decoded\n"
+            << "  peak resident memory " << peakMiB << " MiB (largest volume " << largestMiB
+            << " MiB)\n";
     }
     return 0;
 #else

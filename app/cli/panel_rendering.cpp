@@ -157,10 +157,10 @@ RenderedPanels renderPanels(render::SilhouetteRenderer& renderer, const volume::
 }
 
 const std::set<std::string>& panelRenderOptions() {
-    static const std::set<std::string> names = {"iso",        "method",     "chunks",      "mode",
-                                                "visibility", "view",       "camera",      "size",
-                                                "backend",    "threads",    "min-stroke",  "border",
-                                                "gradient",   "oversample", "thick-slices"};
+    static const std::set<std::string> names = {
+        "iso",      "method",     "chunks",       "mode",          "visibility", "view",
+        "camera",   "size",       "backend",      "threads",       "min-stroke", "border",
+        "gradient", "oversample", "thick-slices", kMaxVolumeOption};
     return names;
 }
 

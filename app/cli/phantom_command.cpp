@@ -32,7 +32,7 @@ double secondsSince(std::chrono::steady_clock::time_point start) {
 } // namespace
 
 int runPhantom(const std::vector<std::string>& args, std::ostream& out) {
-    const Arguments arguments(args, {}, {"size", "kind", "threads"});
+    const Arguments arguments(args, {}, {"size", "kind", "threads", kMaxVolumeOption});
     const auto size = arguments.option("size");
     const auto output = arguments.option("output");
     if (!size || !output || !arguments.positionals().empty())
@@ -41,8 +41,8 @@ int runPhantom(const std::vector<std::string>& args, std::ostream& out) {
     const volume::PhantomKind kind =
         parseUsage([&] { return volume::parsePhantomKind(arguments.option("kind", "ct")); });
     const auto start = std::chrono::steady_clock::now();
-    const volume::Volume phantom =
-        volume::makePhantom(dims, kind, unsigned(arguments.number("threads", 0)));
+    const volume::Volume phantom = volume::makePhantom(
+        dims, kind, unsigned(arguments.number("threads", 0)), importLimits(arguments));
     const double seconds = secondsSince(start);
     const volume::PhantomChecksum checksum = volume::phantomChecksum(phantom);
     volume::writeNrrd(*output, phantom);
@@ -56,7 +56,8 @@ int runPhantom(const std::vector<std::string>& args, std::ostream& out) {
 }
 
 int runBenchMc(const std::vector<std::string>& args, std::ostream& out) {
-    const Arguments arguments(args, {}, {"size", "kind", "chunks", "repeat", "iso", "threads"});
+    const Arguments arguments(
+        args, {}, {"size", "kind", "chunks", "repeat", "iso", "threads", kMaxVolumeOption});
     const glm::ivec3 dims = parseDimsOption("--size", arguments.option("size", "256"), 1);
     const volume::PhantomKind kind =
         parseUsage([&] { return volume::parsePhantomKind(arguments.option("kind", "ct")); });
@@ -65,7 +66,7 @@ int runBenchMc(const std::vector<std::string>& args, std::ostream& out) {
     const std::string chunks = arguments.option("chunks", "off");
 
     auto start = std::chrono::steady_clock::now();
-    const volume::Volume phantom = volume::makePhantom(dims, kind);
+    const volume::Volume phantom = volume::makePhantom(dims, kind, 0, importLimits(arguments));
     const double generateSeconds = secondsSince(start);
 
     render::IsoSurfaceOptions options;

@@ -141,7 +141,8 @@ int runQuality(const std::vector<std::string>& args, std::ostream& out) {
     Renderers renderers;
     // Before the input is read, so an unavailable back-end fails at once.
     createRenderers(options.request, renderers, notes);
-    input::OpenedVolume opened = openCliInput(options.input, options.series);
+    input::OpenedVolume opened =
+        openCliInput(options.input, options.series, importLimits(arguments));
     volume = std::move(opened.volume);
     // --noise SIGMA: scanner-like noise (real units) before anything else, as a sharp kernel's.
     const double noise = arguments.number("noise", 0.0);

@@ -64,7 +64,7 @@ int runRender(const std::vector<std::string>& args, std::ostream& out) {
     // Before the input is read, so an unavailable method or back-end fails at once.
     const std::unique_ptr<render::SilhouetteRenderer> renderer =
         render::createSilhouetteRenderer(request.method, request.backend);
-    volume = loadInput(input, arguments.option("series"));
+    volume = loadInput(input, arguments.option("series"), importLimits(arguments));
     oversampleForRendering(arguments, render::VolumeSampling{}, volume);
     fitToVolume(arguments, volume, request, setup);
     const render::Camera camera(setup, size.x, size.y);

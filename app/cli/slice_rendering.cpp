@@ -150,7 +150,8 @@ int renderSliceCommand(const Arguments& arguments, const std::string& input,
     const core::Rgba8 colour = contourColour(arguments);
     const auto threads = unsigned(std::max(0.0, arguments.number("threads", 0.0)));
 
-    const input::OpenedVolume opened = openCliInput(input, arguments.option("series"));
+    const input::OpenedVolume opened =
+        openCliInput(input, arguments.option("series"), importLimits(arguments));
     const volume::SliceGeometry geometry = volume::sliceGeometry(opened.volume, orientation);
     const double position = parsePosition(arguments, geometry);
     const auto start = std::chrono::steady_clock::now();

@@ -250,10 +250,11 @@ int runThickSlices(const std::vector<std::string>& args, std::ostream& out) {
     names.insert({"series", "thick", "thick-series", "average", "views", "images", "save-thick"});
     const Arguments arguments(args, {"json"}, names);
     Options options = parseOptions(arguments);
-    const volume::Volume thinLoaded = loadInput(options.input, options.series);
-    const volume::Volume thickLoaded = options.thickInput
-                                           ? loadInput(*options.thickInput, options.thickSeries)
-                                           : evaluation::thickSlabsOf(thinLoaded, options.average);
+    const core::ImportLimits limits = importLimits(arguments);
+    const volume::Volume thinLoaded = loadInput(options.input, options.series, limits);
+    const volume::Volume thickLoaded =
+        options.thickInput ? loadInput(*options.thickInput, options.thickSeries, limits)
+                           : evaluation::thickSlabsOf(thinLoaded, options.average);
     if (options.saveThick)
         volume::writeNrrd(*options.saveThick, thickLoaded);
 

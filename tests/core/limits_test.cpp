@@ -50,6 +50,37 @@ TEST(ImportLimits, BytesFramesAndDimensionsAreCheckedWithTheReason) {
     EXPECT_NO_THROW(limits.checkDimension(512, "f.nii", "dim[1]"));
 }
 
+TEST(ImportLimits, ByteSizesReadInBinaryUnits) {
+    EXPECT_EQ(byteSizeText(12), "12 bytes");
+    EXPECT_EQ(byteSizeText(3584), "3.5 KiB");
+    EXPECT_EQ(byteSizeText(std::size_t(1) << 20), "1.0 MiB");
+    EXPECT_EQ(byteSizeText(std::size_t(8) << 30), "8.0 GiB");
+    EXPECT_EQ(byteSizeText(std::size_t(1) << 40), "1.0 TiB");
+}
+
+// Issue 30: a refused volume names its shape, its size and the limit with where it comes from.
+TEST(ImportLimits, VolumeRefusalNamesTheSizeAndTheLimit) {
+    ImportLimits limits;
+    EXPECT_EQ(limits.describeLimit(), "the limit of " +
+                                          byteSizeText(ImportLimits::defaultMaxBytes()) +
+                                          " (half this machine's memory)");
+    limits.maxBytes = std::size_t(1) << 20;
+    limits.raiseHint = "--max-volume-gib raises it";
+    EXPECT_EQ(limits.checkedVolumeBytes(512, 512, 2, 2, "int16", "f", "the volume"), std::size_t(1)
+                                                                                         << 20);
+    try {
+        (void)limits.checkedVolumeBytes(1024, 1024, 4096, 2, "int16", "ct.nrrd", "the volume");
+        FAIL() << "limit not enforced";
+    } catch (const Error& error) {
+        EXPECT_EQ(error.subject(), "ct.nrrd");
+        EXPECT_EQ(error.reason(), "the volume (1024×1024×4096 int16) = 8.0 GiB is more than the "
+                                  "limit of 1.0 MiB (as set; --max-volume-gib raises it)");
+    }
+    EXPECT_NO_THROW(limits.checkAllocation(std::size_t(1) << 20, "a mesh", "f", "the mesh"));
+    EXPECT_THROW(limits.checkAllocation((std::size_t(1) << 20) + 1, "a mesh", "f", "the mesh"),
+                 Error);
+}
+
 TEST(ImportLimits, InflateBoundIsTheExpectedSizePlusASmallMargin) {
     EXPECT_EQ(inflateBound(0), std::size_t(1) << 20);
     EXPECT_EQ(inflateBound(std::size_t(1) << 30), (std::size_t(1) << 30) + (std::size_t(1) << 24));

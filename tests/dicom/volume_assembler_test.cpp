@@ -26,7 +26,9 @@ namespace {
 constexpr int kSize = 16;
 
 // Slice k of a synthetic series: values unique per slice, so misordering shows.
-std::vector<int> slicePixels(int k) { return dt::rampPixels(kSize, kSize, -500 + 1000 * k, 3); }
+std::vector<int> slicePixels(int k) {
+    return dt::rampPixels(kSize, kSize, -500 + 1000 * k, 3);
+}
 
 dt::TestSlice baseSlice(const std::string& seriesUid) {
     dt::TestSlice s;
@@ -49,8 +51,9 @@ SeriesInfo readSeries(const std::vector<std::filesystem::path>& files) {
 
 // Writes slices at the given z positions (slice k gets slicePixels(k)) under shuffled names
 // and shuffled InstanceNumbers; returns the files in writing order.
-std::vector<std::filesystem::path> writeStack(const lw::test::TempDir& dir, const std::vector<double>& zs,
-                                              dt::TestSlice base, const std::string& prefix = "s") {
+std::vector<std::filesystem::path> writeStack(const lw::test::TempDir& dir,
+                                              const std::vector<double>& zs, dt::TestSlice base,
+                                              const std::string& prefix = "s") {
     std::vector<int> order(zs.size());
     std::iota(order.begin(), order.end(), 0);
     std::mt19937 rng(42);
@@ -60,7 +63,8 @@ std::vector<std::filesystem::path> writeStack(const lw::test::TempDir& dir, cons
         dt::TestSlice s = base;
         s.position = glm::dvec3(-20.0, 10.0, zs[k]);
         s.pixels = slicePixels(int(k));
-        s.instanceNumber = int(zs.size() - std::size_t(order[k])); // deliberately not the slice order
+        s.instanceNumber =
+            int(zs.size() - std::size_t(order[k])); // deliberately not the slice order
         const auto path = dir / (prefix + std::to_string(order[k]) + ".dcm");
         dt::writeTestSlice(path, s);
         files.push_back(path);
@@ -72,7 +76,8 @@ std::vector<std::filesystem::path> writeStack(const lw::test::TempDir& dir, cons
 void expectSliceValues(const volume::Volume& v, int z, const std::vector<int>& expected) {
     for (int y = 0; y < kSize; ++y)
         for (int x = 0; x < kSize; ++x)
-            ASSERT_EQ(v.storedValue(x, y, z), expected[std::size_t(y * kSize + x)]) << "z " << z << " x " << x << " y " << y;
+            ASSERT_EQ(v.storedValue(x, y, z), expected[std::size_t(y * kSize + x)])
+                << "z " << z << " x " << x << " y " << y;
 }
 
 // Runs `action`, which must throw a core::Error whose message contains `text`.
@@ -207,8 +212,9 @@ TEST(VolumeAssembler, CompressedCopiesArePixelIdentical) {
     const std::vector<double> zs = {0, 2, 4};
     std::vector<std::vector<std::byte>> loaded;
     for (dt::TestTransferSyntax syntax :
-         {dt::TestTransferSyntax::ExplicitLittle, dt::TestTransferSyntax::ExplicitBig, dt::TestTransferSyntax::Deflated,
-          dt::TestTransferSyntax::JpegLossless, dt::TestTransferSyntax::JpegLsLossless, dt::TestTransferSyntax::Rle}) {
+         {dt::TestTransferSyntax::ExplicitLittle, dt::TestTransferSyntax::ExplicitBig,
+          dt::TestTransferSyntax::Deflated, dt::TestTransferSyntax::JpegLossless,
+          dt::TestTransferSyntax::JpegLsLossless, dt::TestTransferSyntax::Rle}) {
         lw::test::TempDir dir;
         dt::TestSlice base = baseSlice(dt::makeTestUid());
         base.transferSyntax = syntax;
@@ -220,7 +226,8 @@ TEST(VolumeAssembler, CompressedCopiesArePixelIdentical) {
         loaded.emplace_back(v.data(), v.data() + v.byteSize());
     }
     for (std::size_t i = 1; i < loaded.size(); ++i)
-        EXPECT_TRUE(loaded[i] == loaded[0]) << "encoding " << i << " differs from explicit little endian";
+        EXPECT_TRUE(loaded[i] == loaded[0])
+            << "encoding " << i << " differs from explicit little endian";
 }
 
 TEST(FrameDecoder, MasksToBitsStoredAndSignExtends) {
@@ -264,7 +271,8 @@ TEST(FrameDecoder, MasksToBitsStoredAndSignExtends) {
     for (std::size_t i = 0; i < values.size(); ++i)
         s.pixels.push_back(((std::abs(values[i]) & 0x0FFF) << 4) | 0x000F);
     dt::writeTestSlice(dir / "shifted.dcm", s);
-    FrameDecoder(readInstanceHeader(dir / "shifted.dcm")).decodeFrame(0, volume::VoxelType::UInt16, u.data());
+    FrameDecoder(readInstanceHeader(dir / "shifted.dcm"))
+        .decodeFrame(0, volume::VoxelType::UInt16, u.data());
     for (std::size_t i = 0; i < values.size(); ++i)
         EXPECT_EQ(u[i], std::abs(values[i]) & 0x0FFF) << i;
 }
@@ -281,7 +289,8 @@ TEST(FrameDecoder, Monochrome1IsInverted) {
     s.pixels = {0, 1, 1000, 4095};
     dt::writeTestSlice(dir / "m1.dcm", s);
     std::vector<std::uint16_t> out(4);
-    FrameDecoder(readInstanceHeader(dir / "m1.dcm")).decodeFrame(0, volume::VoxelType::UInt16, out.data());
+    FrameDecoder(readInstanceHeader(dir / "m1.dcm"))
+        .decodeFrame(0, volume::VoxelType::UInt16, out.data());
     EXPECT_EQ(out, (std::vector<std::uint16_t>{4095, 4094, 3095, 0}));
 }
 
@@ -307,14 +316,16 @@ TEST(FrameDecoder, EightBitAndTruncatedAndMissingPixels) {
     InstanceInfo lying = info;
     lying.rows = 30;
     std::vector<std::uint8_t> big(90);
-    EXPECT_THROW(FrameDecoder(lying).decodeFrame(0, volume::VoxelType::UInt8, big.data()), core::Error);
+    EXPECT_THROW(FrameDecoder(lying).decodeFrame(0, volume::VoxelType::UInt8, big.data()),
+                 core::Error);
 
     s.writePixelData = false;
     dt::writeTestSlice(dir / "nopixels.dcm", s);
     const InstanceInfo none = readInstanceHeader(dir / "nopixels.dcm");
     EXPECT_FALSE(none.hasPixelData);
     EXPECT_THROW(storedVoxelType(none), core::Error);
-    EXPECT_THROW(FrameDecoder(none).decodeFrame(0, volume::VoxelType::UInt8, out.data()), core::Error);
+    EXPECT_THROW(FrameDecoder(none).decodeFrame(0, volume::VoxelType::UInt8, out.data()),
+                 core::Error);
 }
 
 TEST(VolumeAssembler, DuplicatePositionsSplitByAcquisition) {
@@ -344,7 +355,8 @@ TEST(VolumeAssembler, DuplicatePositionsSplitByAcquisition) {
     ASSERT_FALSE(c.volumes[0].warnings.empty());
     bool mentionsDuplicates = false;
     for (const auto& w : c.volumes[0].warnings)
-        mentionsDuplicates = mentionsDuplicates || w.find("duplicate positions") != std::string::npos;
+        mentionsDuplicates =
+            mentionsDuplicates || w.find("duplicate positions") != std::string::npos;
     EXPECT_TRUE(mentionsDuplicates);
 }
 
@@ -394,7 +406,8 @@ TEST(VolumeAssembler, SeparateFilesWithoutPositionAreNotStacked) {
     ASSERT_EQ(assembly.volumes.size(), 2u);
     for (int k = 0; k < 2; ++k) {
         EXPECT_EQ(assembly.volumes[k].dims, glm::ivec3(kSize, kSize, 1));
-        EXPECT_NE(assembly.volumes[k].label.find("image"), std::string::npos) << assembly.volumes[k].label;
+        EXPECT_NE(assembly.volumes[k].label.find("image"), std::string::npos)
+            << assembly.volumes[k].label;
     }
 }
 
@@ -620,5 +633,5 @@ TEST(ImportLimits, HugeImageWithoutItsPixelsFailsBeforeAllocating) {
     // And with the default limit of a small machine, the volume itself is refused.
     limits.maxBytes = std::size_t(1) << 30;
     expectReason([&] { (void)loadVolume(series, assembly.volumes[0], nullptr, limits); },
-                 "the volume needs 8191 MB, more than the import limit of 1024 MB");
+                 "the volume (65535×65535×1 int16) = 8.0 GiB is more than the limit of 1.0 GiB");
 }

@@ -53,6 +53,18 @@ TEST(OpenInput, BadPhantomSpecsNameTheSpec) {
     EXPECT_THROW(input::openInput("phantom:16:cube"), core::Error);
 }
 
+// Issue 30: the caller's limit reaches the phantom; a 128 GiB one (more than a workstation could
+// allocate) is refused before allocating, with its size and the limit in the message.
+TEST(OpenInput, PhantomOverTheLimitIsRefusedWithBothSizes) {
+    input::OpenOptions options;
+    options.limits.maxBytes = std::size_t(1) << 20;
+    options.limits.raiseHint = "--max-volume-gib raises it";
+    expectErrorMentions([&] { input::openInput("phantom:4096", options); },
+                        "(4096×4096×4096 int16) = 128.0 GiB is more than the limit of 1.0 MiB "
+                        "(as set; --max-volume-gib raises it)");
+    EXPECT_EQ(input::openInput("phantom:64", options).volume.dims(), glm::ivec3(64));
+}
+
 TEST(OpenInput, NrrdWrittenByTheVolumeModule) {
     test::TempDir dir;
     const volume::Volume phantom = input::openInput("phantom:16").volume;

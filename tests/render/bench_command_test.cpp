@@ -135,6 +135,22 @@ TEST(BenchCommand, MarchingCubesRowAndPeakMemoryOfOneConfiguration) {
     EXPECT_EQ(memory.at("configuration").string, "3,L");
     EXPECT_NEAR(memory.at("volume_mib").number, 32.0 * 32 * 32 * 2 / (1024 * 1024), 1e-9);
     EXPECT_GE(memory.at("peak_rss_mib").number, memory.at("baseline_rss_mib").number);
+    // L keeps no whole mesh: the peak is not compared with one.
+    EXPECT_EQ(memory.object.count("mesh_mib"), 0u);
+
+    // S in mode a keeps it on the host: its size and the peak against volume + mesh (issue 30).
+    const CliResult kept = runCli(
+        "bench --backend cpu --sizes 32 --repeat 1 --peak-memory-of 3,S --modes a --image 64x64 "
+        "--json");
+    ASSERT_EQ(kept.exitCode, 0) << kept.out;
+    const Json keptDocument = parseJson(kept.out);
+    const Json& keptMemory = keptDocument.at("memory");
+    const double meshMib = keptMemory.at("mesh_mib").number;
+    EXPECT_GT(meshMib, 0.0);
+    const double ratio =
+        keptMemory.at("peak_rss_mib").number / (keptMemory.at("volume_mib").number + meshMib);
+    // The JSON numbers carry 10 significant digits.
+    EXPECT_NEAR(keptMemory.at("peak_over_volume_and_mesh").number, ratio, 1e-8 * ratio);
 }
 
 TEST(BenchCommand, MethodWithoutGlIsReportedAsSkipped) {

@@ -1,4 +1,6 @@
 #include "float_volume.h"
+#include "lw/core/error.h"
+#include "lw/core/limits.h"
 #include "lw/kernels/marching_cubes_tables.h"
 #include "lw/render/iso_surface.h"
 #include "lw/volume/phantom.h"
@@ -418,6 +420,60 @@ TEST(MarchingCubes, IsoIsGivenInRealUnits) {
     const Mesh atReal = extractIsoSurface(stored, 350.0 * 2.0 - 1024.0);
     ASSERT_GT(atStored.triangleCount(), 10u);
     expectIdentical(atStored, atReal, "value mapping");
+}
+
+// Issue 30: the mesh is counted before it is allocated; over the limit, extraction throws with
+// the mesh's size and the limit, and the kernel leaves its output empty.
+TEST(MarchingCubes, MeshOverTheLimitIsRefusedBeforeAllocating) {
+    const Volume v = spherePhantom({45, 38, 41});
+    const Mesh whole = extractIsoSurface(v, 0.0);
+    const std::size_t bytes =
+        std::size_t(kernels::meshBytes(whole.vertexCount(), whole.triangleCount()));
+    IsoSurfaceOptions options;
+    options.limits.maxBytes = bytes; // exactly the mesh: made
+    expectIdentical(whole, extractIsoSurface(v, 0.0, options), "limit = the mesh's bytes");
+    options.limits.maxBytes = bytes - 1;
+    for (int cells : {0, 8}) {
+        options.brickCells = cells;
+        Mesh mesh = whole; // a reused buffer: emptied, not grown
+        try {
+            extractIsoSurface(v, 0.0, options, mesh);
+            ADD_FAILURE() << "a mesh over the limit was made (bricks of " << cells << ")";
+        } catch (const core::Error& e) {
+            const std::string expected = "the mesh (" + std::to_string(whole.vertexCount()) +
+                                         " vertices, " + std::to_string(whole.triangleCount()) +
+                                         " triangles) = " + core::byteSizeText(bytes) +
+                                         " is more than the limit of " +
+                                         core::byteSizeText(bytes - 1) + " (as set)";
+            EXPECT_EQ(e.reason(), expected);
+        }
+        EXPECT_TRUE(mesh.positions.empty() && mesh.indices.empty());
+    }
+}
+
+// A ball cut by the volume's corner, closed at the border: the cap is counted with the mesh
+// against the limit, and marching cubes reserves room for it, so appending it does not
+// reallocate (at a 4 GiB volume the old and new positions side by side: hundreds of MiB).
+TEST(MarchingCubes, ClosedSurfaceIsCountedWholeAndAppendedInPlace) {
+    const Volume v = makeFloatVolume({24, 20, 22}, [](int x, int y, int z) {
+        return 14.0f - std::sqrt(float(x * x + y * y + z * z));
+    });
+    IsoSurfaceOptions options;
+    options.closeAtBorder = true;
+    const Mesh closed = extractIsoSurface(v, 0.0, options);
+    const Mesh open = extractIsoSurface(v, 0.0);
+    ASSERT_GT(closed.triangleCount(), open.triangleCount()) << "the corner is capped";
+    EXPECT_EQ(closed.positions.capacity(), closed.positions.size());
+    EXPECT_EQ(closed.normals.capacity(), closed.normals.size());
+    EXPECT_EQ(closed.indices.capacity(), closed.indices.size());
+
+    const std::size_t bytes =
+        std::size_t(kernels::meshBytes(closed.vertexCount(), closed.triangleCount()));
+    options.limits.maxBytes = bytes;
+    expectIdentical(closed, extractIsoSurface(v, 0.0, options), "limit = the closed mesh's bytes");
+    options.limits.maxBytes = bytes - 1; // more than the open mesh needs, less than the closed one
+    ASSERT_LT(std::size_t(kernels::meshBytes(open.vertexCount(), open.triangleCount())), bytes - 1);
+    EXPECT_THROW((void)extractIsoSurface(v, 0.0, options), core::Error);
 }
 
 } // namespace

@@ -143,6 +143,25 @@ lw::test::CliResult runCliWithStderr(const std::string& arguments) {
     return lw::test::runProgram("/bin/sh", "-c '\"" LINEWORK_CLI_PATH "\" " + arguments + " 2>&1'");
 }
 
+// Issue 30: --max-volume-gib is the limit every volume path asks; over it the input is refused
+// before it is made, with both sizes and the option named; a limit that is not a number above 0
+// is a usage error.
+TEST(RenderCommand, MaxVolumeGibRefusesBeforeAllocating) {
+    const auto out = outputPath("never.png");
+    const lw::test::CliResult refused = runCliWithStderr(
+        "render phantom:64 --iso 300.5 --max-volume-gib 0.0001 -o '" + out.string() + "'");
+    EXPECT_EQ(refused.exitCode, 1) << refused.out;
+    EXPECT_NE(refused.out.find("the phantom (64×64×64 int16) = 512.0 KiB is more than the limit of "
+                               "104.9 KiB (as set; --max-volume-gib raises it)"),
+              std::string::npos)
+        << refused.out;
+    EXPECT_FALSE(std::filesystem::exists(out));
+    EXPECT_EQ(runCli("render phantom:64 --iso 300.5 --max-volume-gib 0 -o '" + out.string() + "'"),
+              2);
+    EXPECT_EQ(runCli("render phantom:32 --iso 300.5 --max-volume-gib 1 -o '" + out.string() + "'"),
+              0);
+}
+
 // README and `help`: 0 success, 1 an input that cannot be read, 2 a usage error (with the usage).
 TEST(CliUsage, UsageErrorsExitTwoWithTheCommandsUsage) {
     const struct {

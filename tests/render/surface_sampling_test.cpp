@@ -54,14 +54,19 @@ TEST_P(SurfaceSamplingAuto, SplitsTheCoarseAxesOnly) {
 // unit cells 109 (0.85).
 INSTANTIATE_TEST_SUITE_P(
     Series, SurfaceSamplingAuto,
-    ::testing::Values(SeriesCase{"head 5 mm", {512, 512, 28}, {0.4512, 0.4512, 5.0}, {1, 1, 2}},
-                      SeriesCase{"head 4 mm", {256, 256, 26}, {1.25, 1.25, 4.0}, {1, 1, 2}},
-                      SeriesCase{"head 1 mm", {512, 512, 140}, {0.4512, 0.4512, 1.0}, {1, 1, 1}},
-                      SeriesCase{"quarter head", {64, 64, 93}, {3.2, 3.2, 1.5}, {2, 2, 1}},
-                      SeriesCase{"unit 64^3", {64, 64, 64}, {1.0, 1.0, 1.0}, {2, 2, 2}},
-                      SeriesCase{"unit 256^3", {256, 256, 256}, {1.0, 1.0, 1.0}, {1, 1, 1}},
-                      SeriesCase{"one slice", {512, 512, 1}, {0.5, 0.5, 5.0}, {1, 1, 1}},
-                      SeriesCase{"a needle", {2, 2, 400}, {50.0, 50.0, 1.0}, {8, 8, 1}}),
+    ::testing::Values(
+        SeriesCase{"head 5 mm", {512, 512, 28}, {0.4512, 0.4512, 5.0}, {1, 1, 2}},
+        SeriesCase{"head 4 mm", {256, 256, 26}, {1.25, 1.25, 4.0}, {1, 1, 2}},
+        SeriesCase{"head 1 mm", {512, 512, 140}, {0.4512, 0.4512, 1.0}, {1, 1, 1}},
+        SeriesCase{"quarter head", {64, 64, 93}, {3.2, 3.2, 1.5}, {2, 2, 1}},
+        SeriesCase{"unit 64^3", {64, 64, 64}, {1.0, 1.0, 1.0}, {2, 2, 2}},
+        SeriesCase{"unit 256^3", {256, 256, 256}, {1.0, 1.0, 1.0}, {1, 1, 1}},
+        SeriesCase{"one slice", {512, 512, 1}, {0.5, 0.5, 5.0}, {1, 1, 1}},
+        SeriesCase{"a needle", {2, 2, 400}, {50.0, 50.0, 1.0}, {8, 8, 1}},
+        // Issue 30: no 4 GiB or 16 GiB copy of a volume whose cells are small.
+        SeriesCase{"phantom 1024x1024x2048", {1024, 1024, 2048}, {1.0, 1.0, 1.0}, {1, 1, 1}},
+        SeriesCase{"photon-counting 0.2 mm", {1024, 1024, 2048}, {0.2, 0.2, 0.2}, {1, 1, 1}},
+        SeriesCase{"micro-CT 2048^3", {2048, 2048, 2048}, {0.05, 0.05, 0.05}, {1, 1, 1}}),
     [](const auto& info) { return testNameOf(info.param.name); });
 
 TEST(SurfaceSampling, VolumeToRenderCopiesOnlyWhenItMust) {
@@ -138,7 +143,9 @@ INSTANTIATE_TEST_SUITE_P(
         ThickCase{"CThead 1x1x2", {256, 256, 113}, {1.0, 1.0, 2.0}, 0.0, {1, 1, 1}, false},
         ThickCase{"quarter head", {64, 64, 93}, {3.2, 3.2, 1.5}, 0.0, {2, 2, 1}, false},
         ThickCase{"two thick slices", {512, 512, 2}, {0.5, 0.5, 5.0}, 0.0, {1, 1, 2}, false},
-        ThickCase{"unit 256^3", {256, 256, 256}, {1.0, 1.0, 1.0}, 0.0, {1, 1, 1}, false}),
+        ThickCase{"unit 256^3", {256, 256, 256}, {1.0, 1.0, 1.0}, 0.0, {1, 1, 1}, false},
+        ThickCase{
+            "phantom 1024x1024x2048", {1024, 1024, 2048}, {1.0, 1.0, 1.0}, 0.0, {1, 1, 1}, false}),
     [](const auto& info) { return testNameOf(info.param.name); });
 
 // The copy the methods draw on thick slices is the shape-based field at the iso-value: a wall

@@ -63,7 +63,7 @@ public:
         m_brickCells = grid.brickCells();
     }
 
-    McResult run(unsigned threads, const core::CancelToken* cancel) {
+    McResult run(unsigned threads, const core::CancelToken* cancel, const McOutputBudget& budget) {
         McResult result;
         // Units not started once the token is set are skipped; the phase ends and reports it.
         const auto cancelled = [cancel] { return cancel && cancel->isCancelled(); };
@@ -102,13 +102,22 @@ public:
 
         const std::uint64_t vertices = exclusiveScan(m_vertexOffset);
         const std::uint64_t triangles = exclusiveScan(m_triangleOffset);
+        result.vertices = vertices;
+        result.triangles = triangles;
         if (vertices > std::numeric_limits<std::uint32_t>::max() ||
-            triangles > std::numeric_limits<std::uint32_t>::max() / 3) {
+            triangles > std::numeric_limits<std::uint32_t>::max() / 3)
             result.status = McStatus::TooManyVertices;
+        else if (meshBytes(vertices + budget.spareVertices, triangles + budget.spareTriangles) >
+                 budget.maxBytes)
+            result.status = McStatus::OverByteLimit;
+        if (result.status != McStatus::Ok) {
             clearOutput();
             return result;
         }
         // resize() keeps existing elements: a reused buffer of the right size is not rewritten.
+        m_out.positions.reserve(std::size_t(vertices) + budget.spareVertices);
+        m_out.normals.reserve(std::size_t(vertices) + budget.spareVertices);
+        m_out.indices.reserve((std::size_t(triangles) + budget.spareTriangles) * 3);
         m_out.positions.resize(std::size_t(vertices));
         m_out.normals.resize(std::size_t(vertices));
         m_out.indices.resize(std::size_t(triangles) * 3);
@@ -505,11 +514,12 @@ private:
 
 McResult marchingCubes(const volume::Volume& volume, const volume::BrickGrid& grid,
                        double storedIso, McOutput& out, unsigned threads,
-                       const core::CancelToken* cancel, GradientStencil stencil) {
+                       const core::CancelToken* cancel, GradientStencil stencil,
+                       const McOutputBudget& budget) {
     return volume::dispatchVoxelType(volume.voxelType(), [&](auto tag) {
         using T = decltype(tag);
         Extractor<T> extractor(volume, grid, storedIso, out, stencil);
-        return extractor.run(threads, cancel);
+        return extractor.run(threads, cancel, budget);
     });
 }
 

@@ -311,6 +311,13 @@ void findSilhouetteSegments(const glm::vec3* positions, const ScreenVertices& ve
             }
         },
         threads);
+    // Reserved once at the total: appended chunk by chunk, the output would grow by doubling,
+    // and at a 4 GiB volume's millions of segments the old and the new buffer side by side
+    // raised the frame's peak memory by tens of MiB.
+    std::size_t total = out.size();
+    for (std::size_t chunk = 0; chunk < chunks; ++chunk)
+        total += scratch.chunks[chunk].size();
+    out.reserve(total);
     for (std::size_t chunk = 0; chunk < chunks; ++chunk)
         out.insert(out.end(), scratch.chunks[chunk].begin(), scratch.chunks[chunk].end());
 }

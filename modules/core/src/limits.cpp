@@ -3,6 +3,8 @@
 #include "lw/core/error.h"
 
 #include <algorithm>
+#include <cstdio>
+#include <iterator>
 #include <limits>
 #include <unistd.h>
 
@@ -50,6 +52,31 @@ std::size_t ImportLimits::checkedBytes(std::initializer_list<std::size_t> factor
     return bytes;
 }
 
+std::string ImportLimits::describeLimit() const {
+    std::string origin = maxBytes == defaultMaxBytes() ? "half this machine's memory" : "as set";
+    if (!raiseHint.empty())
+        origin += "; " + raiseHint;
+    return "the limit of " + byteSizeText(maxBytes) + " (" + origin + ")";
+}
+
+void ImportLimits::checkAllocation(std::size_t bytes, std::string_view shape,
+                                   const std::string& subject, std::string_view what) const {
+    if (bytes > maxBytes)
+        throw Error(subject, std::string(what) + " (" + std::string(shape) +
+                                 ") = " + byteSizeText(bytes) + " is more than " + describeLimit());
+}
+
+std::size_t ImportLimits::checkedVolumeBytes(std::size_t nx, std::size_t ny, std::size_t nz,
+                                             std::size_t elementBytes, std::string_view elementName,
+                                             const std::string& subject,
+                                             std::string_view what) const {
+    const std::size_t bytes = checkedProduct({nx, ny, nz, elementBytes}, subject, what);
+    const std::string shape = std::to_string(nx) + "×" + std::to_string(ny) + "×" +
+                              std::to_string(nz) + " " + std::string(elementName);
+    checkAllocation(bytes, shape, subject, what);
+    return bytes;
+}
+
 void ImportLimits::checkFrames(long long frames, const std::string& subject) const {
     if (frames < 1 || static_cast<unsigned long long>(frames) > maxFrames)
         throw Error(subject, "implausible number of frames " + std::to_string(frames) + " (1 to " +
@@ -75,6 +102,21 @@ std::size_t checkedProduct(std::initializer_list<std::size_t> factors, const std
     for (std::size_t factor : factors)
         shape += (shape.empty() ? "" : " x ") + std::to_string(factor);
     throw Error(subject, std::string(what) + " overflows: " + shape);
+}
+
+std::string byteSizeText(std::size_t bytes) {
+    static constexpr const char* kUnits[] = {"KiB", "MiB", "GiB", "TiB", "PiB", "EiB"};
+    if (bytes < 1024)
+        return std::to_string(bytes) + " bytes";
+    double value = double(bytes) / 1024.0;
+    std::size_t unit = 0;
+    while (value >= 1024.0 && unit + 1 < std::size(kUnits)) {
+        value /= 1024.0;
+        ++unit;
+    }
+    char text[32];
+    std::snprintf(text, sizeof text, "%.1f %s", value, kUnits[unit]);
+    return text;
 }
 
 std::size_t inflateBound(std::size_t expected) {

@@ -592,10 +592,7 @@ void checkBeforeLoading(const SeriesInfo& series, const VolumePlan& plan,
                         const core::ImportLimits& limits) {
     if (plan.slices.empty() || plan.dims.z != int(plan.slices.size()))
         throw core::Error(series.seriesInstanceUid, "the volume plan has no slices");
-    limits.checkedBytes({std::size_t(std::max(plan.dims.x, 0)),
-                         std::size_t(std::max(plan.dims.y, 0)), std::size_t(plan.dims.z),
-                         volume::voxelSize(plan.voxelType)},
-                        series.seriesInstanceUid, "the volume");
+    volume::checkVolumeAllocation(plan.dims, plan.voxelType, limits, series.seriesInstanceUid);
     std::map<std::size_t, int> lastFrame; // per instance: the highest frame the plan uses
     for (const SliceRef& slice : plan.slices) {
         if (slice.instance >= series.instances.size())

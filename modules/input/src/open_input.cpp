@@ -19,7 +19,8 @@ namespace {
 
 constexpr core::LogCategory kLog("lw.input");
 
-OpenedVolume openPhantom(const std::string& spec, core::Progress* progress) {
+OpenedVolume openPhantom(const std::string& spec, const core::ImportLimits& limits,
+                         core::Progress* progress) {
     const std::string body = spec.substr(std::string("phantom:").size());
     const auto colon = body.find(':');
     const volume::PhantomKind kind =
@@ -32,7 +33,7 @@ OpenedVolume openPhantom(const std::string& spec, core::Progress* progress) {
     if (progress)
         progress->report(0.0, "Generating the phantom");
     OpenedVolume opened;
-    opened.volume = volume::makePhantom(*dims, kind);
+    opened.volume = volume::makePhantom(*dims, kind, 0, limits);
     opened.source = spec;
     opened.description =
         "phantom " + std::string(volume::phantomKindName(kind)) + " " + dimsText(*dims);
@@ -125,7 +126,8 @@ OpenedVolume assemble(const dicom::DicomIndex& index, const std::string& path,
               std::to_string(plan->slices.size()) + " slices)");
     core::Progress decoding = subProgress(progress, 0.2, 1.0);
     OpenedVolume opened;
-    opened.volume = dicom::loadVolume(series, *plan, progress ? &decoding : nullptr);
+    opened.volume =
+        dicom::loadVolume(series, *plan, progress ? &decoding : nullptr, options.limits);
     opened.source = path;
     opened.seriesUid = series.seriesInstanceUid;
     const dicom::InstanceInfo& first = series.instances.front();
@@ -192,7 +194,7 @@ OpenedVolume openInput(const std::string& path, const OpenOptions& options,
     if (progress)
         progress->throwIfCancelled();
     if (path.rfind("phantom:", 0) == 0)
-        return openPhantom(path, progress);
+        return openPhantom(path, options.limits, progress);
 #ifdef LINEWORK_HAVE_DICOM
     if (dicom::looksLikeDicomInput(path) ||
         volume::detectVolumeFormat(path) == volume::VolumeFormat::Unknown)
@@ -205,7 +207,7 @@ OpenedVolume openInput(const std::string& path, const OpenOptions& options,
     if (progress)
         progress->report(0.0, "Reading " + path);
     OpenedVolume opened;
-    opened.volume = volume::readVolumeFile(path, progress);
+    opened.volume = volume::readVolumeFile(path, progress, options.limits);
     if (progress)
         progress->throwIfCancelled();
     opened.source = path;

@@ -71,22 +71,34 @@ double storedIsoValue(const volume::Volume& volume, double isoReal) {
 void IsoSurfaceExtractor::extract(double isoReal, Mesh& mesh, IsoSurfaceStats* stats,
                                   const core::CancelToken* cancel) const {
     const double storedIso = storedIsoValue(m_volume, isoReal);
-
-    const kernels::cpu::McResult result =
-        kernels::cpu::marchingCubes(m_volume, m_impl->grid, storedIso, mesh, m_options.threads,
-                                    cancel ? cancel : m_options.cancel, m_options.gradientStencil);
+    // The cap first (six faces: cheap), so marching cubes reserves room for it behind the mesh
+    // and the whole closed surface is counted against the limit before anything is allocated.
+    const Mesh cap = m_options.closeAtBorder
+                         ? kernels::cpu::borderCap(m_volume, storedIso, m_options.gradientStencil)
+                         : Mesh();
+    const kernels::cpu::McOutputBudget budget{m_options.limits.maxBytes, cap.vertexCount(),
+                                              cap.triangleCount()};
+    const kernels::cpu::McResult result = kernels::cpu::marchingCubes(
+        m_volume, m_impl->grid, storedIso, mesh, m_options.threads,
+        cancel ? cancel : m_options.cancel, m_options.gradientStencil, budget);
     if (result.status == kernels::cpu::McStatus::Cancelled)
         throw core::Cancelled();
     if (result.status == kernels::cpu::McStatus::TooManyVertices)
         throw core::Error("iso-surface at " + std::to_string(isoReal),
                           "the mesh has more than 2^32 vertices; extract a smaller region");
+    if (result.status == kernels::cpu::McStatus::OverByteLimit) {
+        const std::uint64_t vertices = result.vertices + cap.vertexCount();
+        const std::uint64_t triangles = result.triangles + cap.triangleCount();
+        m_options.limits.checkAllocation(std::size_t(kernels::meshBytes(vertices, triangles)),
+                                         std::to_string(vertices) + " vertices, " +
+                                             std::to_string(triangles) + " triangles",
+                                         "iso-surface at " + std::to_string(isoReal), "the mesh");
+    }
     if (stats) {
         stats->totalBricks = result.totalBricks;
         stats->activeBricks = result.activeBricks;
     }
-    if (m_options.closeAtBorder)
-        kernels::cpu::appendMesh(
-            mesh, kernels::cpu::borderCap(m_volume, storedIso, m_options.gradientStencil));
+    kernels::cpu::appendMesh(mesh, cap);
 }
 
 Mesh IsoSurfaceExtractor::extract(double isoReal, IsoSurfaceStats* stats) const {

@@ -198,7 +198,7 @@ NiftiHeader parseHeader(const std::filesystem::path& path, const std::vector<std
     header.sourceType = sourceTypeOf(path, h.i16(70));
     header.dataBytes =
         detail::checkVolumeSize(path, header.dims, detail::sourceTypeSize(header.sourceType),
-                                voxelSize(detail::targetVoxelType(header.sourceType)), limits);
+                                detail::targetVoxelType(header.sourceType), limits);
     header.voxOffset = h.f32(108);
     return header;
 }

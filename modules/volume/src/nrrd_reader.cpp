@@ -421,9 +421,8 @@ DataLayout parseLayout(const std::filesystem::path& path, const NrrdHeader& head
     layout.dims = parseSizes(path, header, layout.dimension);
     layout.sourceType = parseType(path, header);
     const std::size_t elementSize = detail::sourceTypeSize(layout.sourceType);
-    layout.totalBytes =
-        detail::checkVolumeSize(path, layout.dims, elementSize,
-                                voxelSize(detail::targetVoxelType(layout.sourceType)), limits);
+    layout.totalBytes = detail::checkVolumeSize(path, layout.dims, elementSize,
+                                                detail::targetVoxelType(layout.sourceType), limits);
     layout.gzip = parseGzipEncoding(path, header);
     layout.bigEndian = parseBigEndian(path, header, elementSize);
     parseSkips(path, header, layout);

@@ -156,13 +156,12 @@ glm::ivec3 oversampledDims(glm::ivec3 dims, glm::ivec3 factors) {
 }
 
 Volume oversampled(const Volume& volume, glm::ivec3 factors, unsigned threads,
-                   SliceInterpolation alongSlices) {
+                   SliceInterpolation alongSlices, const core::ImportLimits& limits) {
     if (factors.x < 1 || factors.y < 1 || factors.z < 1)
         throw core::Error("oversampling", "factors must be at least 1");
     const glm::ivec3 dims = oversampledDims(volume.dims(), factors);
-    core::ImportLimits().checkedBytes({std::size_t(dims.x), std::size_t(dims.y),
-                                       std::size_t(dims.z), voxelSize(volume.voxelType())},
-                                      "oversampling", "the oversampled volume");
+    checkVolumeAllocation(dims, volume.voxelType(), limits, "oversampling",
+                          "the oversampled volume");
     Volume result(dims, volume.voxelType(), volume.geometry().refined(factors, volume.dims().z));
     result.setValueMapping(volume.valueMapping());
     result.setDescription(volume.description());

@@ -170,9 +170,11 @@ std::string_view phantomKindName(PhantomKind kind) {
     return kind == PhantomKind::Ct ? "ct" : "sphere";
 }
 
-volume::Volume makePhantom(glm::ivec3 dims, PhantomKind kind, unsigned threads) {
+volume::Volume makePhantom(glm::ivec3 dims, PhantomKind kind, unsigned threads,
+                           const core::ImportLimits& limits) {
     if (dims.x < 1 || dims.y < 1 || dims.z < 1)
         throw core::Error("phantom size", "every dimension must be at least 1");
+    volume::checkVolumeAllocation(dims, volume::VoxelType::Int16, limits, "phantom", "the phantom");
     const int nx = dims.x, ny = dims.y, nz = dims.z;
     const glm::dvec3 spacing(1.0);
     const glm::dvec3 origin = -0.5 * glm::dvec3(dims - 1) * spacing;

@@ -248,8 +248,8 @@ Volume readPvmUnguarded(const std::filesystem::path& path, const core::ImportLim
         bytes = decodeDds(path, bytes.data() + 8, bytes.size() - 8, blocked, limits);
     }
     const PvmHeader header = parsePvmHeader(path, bytes);
-    const std::size_t expected = detail::checkVolumeSize(path, header.dims, voxelSize(header.type),
-                                                         voxelSize(header.type), limits);
+    const std::size_t expected =
+        detail::checkVolumeSize(path, header.dims, voxelSize(header.type), header.type, limits);
     if (bytes.size() - header.dataStart < expected)
         fail(path, "truncated volume data: " + std::to_string(bytes.size() - header.dataStart) +
                        " bytes, expected " + std::to_string(expected) + " for " +

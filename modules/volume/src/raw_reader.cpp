@@ -12,7 +12,7 @@ Volume readRawUnguarded(const std::filesystem::path& path, const RawOptions& opt
     using detail::fail;
     const std::size_t size = voxelSize(options.type);
     const auto expected =
-        std::optional(detail::checkVolumeSize(path, options.dims, size, size, limits));
+        std::optional(detail::checkVolumeSize(path, options.dims, size, options.type, limits));
     if (!(options.spacing.x > 0.0 && options.spacing.y > 0.0 && options.spacing.z > 0.0))
         fail(path, "raw spacing must be positive");
     if (options.headerBytes > std::numeric_limits<std::size_t>::max() - *expected)

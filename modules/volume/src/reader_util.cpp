@@ -20,13 +20,13 @@ std::string describeShape(glm::ivec3 dims, VoxelType type) {
 }
 
 std::size_t checkVolumeSize(const std::filesystem::path& path, glm::ivec3 dims,
-                            std::size_t sourceElementSize, std::size_t targetVoxelSize,
+                            std::size_t sourceElementSize, VoxelType target,
                             const core::ImportLimits& limits) {
     static constexpr const char* kAxes[3] = {"size along x", "size along y", "size along z"};
     for (int axis = 0; axis < 3; ++axis)
         limits.checkDimension(dims[axis], path.string(), kAxes[axis]);
     const std::size_t x = std::size_t(dims.x), y = std::size_t(dims.y), z = std::size_t(dims.z);
-    limits.checkedBytes({x, y, z, targetVoxelSize}, path.string(), "the volume");
+    checkVolumeAllocation(dims, target, limits, path.string());
     return limits.checkedBytes({x, y, z, sourceElementSize}, path.string(), "the image data");
 }
 

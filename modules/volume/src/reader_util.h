@@ -25,10 +25,10 @@ std::string describeShape(glm::ivec3 dims, VoxelType type);
 
 // The one size check of every volume reader, made from the header before anything is read or
 // allocated: each axis within limits.maxDimension, and both the data as stored (dims x
-// sourceElementSize) and the volume made from it (dims x targetVoxelSize) within
+// sourceElementSize) and the volume made from it (dims x the target type's size) within
 // limits.maxBytes, the products checked for overflow. Returns the stored data's byte count.
 std::size_t checkVolumeSize(const std::filesystem::path& path, glm::ivec3 dims,
-                            std::size_t sourceElementSize, std::size_t targetVoxelSize,
+                            std::size_t sourceElementSize, VoxelType target,
                             const core::ImportLimits& limits);
 
 bool hostIsLittleEndian();

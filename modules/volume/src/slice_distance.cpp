@@ -142,12 +142,15 @@ void aboveIso(const Volume& volume, int k, double iso, std::vector<float>& above
 
 } // namespace
 
-Volume signedSliceDistance(const Volume& volume, double iso, double limitMm, unsigned threads) {
+Volume signedSliceDistance(const Volume& volume, double iso, double limitMm, unsigned threads,
+                           const core::ImportLimits& limits) {
     if (!(limitMm > 0.0) || limitMm * kSliceDistanceStepsPerMm > 32767.0)
         throw core::Error("shape-based interpolation",
                           "the distance limit must lie in (0, " +
                               std::to_string(int(32767.0 / kSliceDistanceStepsPerMm)) + "] mm");
     const glm::ivec3 dims = volume.dims();
+    checkVolumeAllocation(dims, VoxelType::Int16, limits, "shape-based interpolation",
+                          "the signed-distance copy");
     Volume result(dims, VoxelType::Int16, volume.geometry());
     result.setValueMapping({1.0 / kSliceDistanceStepsPerMm, iso});
     result.setDescription(volume.description());

@@ -22,11 +22,22 @@ VoxelType parseVoxelType(std::string_view name) {
                       "unknown; expected uint8, int16, uint16 or float32");
 }
 
+std::size_t checkVolumeAllocation(glm::ivec3 dims, VoxelType type, const core::ImportLimits& limits,
+                                  const std::string& subject, std::string_view what) {
+    if (dims.x <= 0 || dims.y <= 0 || dims.z <= 0)
+        throw core::Error(subject, std::string(what) + ": dimensions must be positive, got " +
+                                       std::to_string(dims.x) + "x" + std::to_string(dims.y) + "x" +
+                                       std::to_string(dims.z));
+    return limits.checkedVolumeBytes(std::size_t(dims.x), std::size_t(dims.y), std::size_t(dims.z),
+                                     voxelSize(type), voxelTypeName(type), subject, what);
+}
+
 Volume::Volume(glm::ivec3 dims, VoxelType type, VolumeGeometry geometry)
     : m_dims(dims), m_type(type), m_geometry(std::move(geometry)) {
     if (dims.x <= 0 || dims.y <= 0 || dims.z <= 0)
         throw core::Error("volume", "dimensions must be positive, got " + std::to_string(dims.x) +
-                                        "x" + std::to_string(dims.y) + "x" + std::to_string(dims.z));
+                                        "x" + std::to_string(dims.y) + "x" +
+                                        std::to_string(dims.z));
     m_voxelCount = std::size_t(dims.x) * std::size_t(dims.y) * std::size_t(dims.z);
     // Not zero-initialised: every reader overwrites all voxels, and zeroing 512 MB costs time.
     m_data = std::make_unique_for_overwrite<std::byte[]>(byteSize());
@@ -49,8 +60,8 @@ Volume Volume::clone() const {
 
 void Volume::checkType(VoxelType requested) const {
     if (requested != m_type)
-        throw core::Error("volume", "voxels are " + std::string(voxelTypeName(m_type)) +
-                                        ", not " + std::string(voxelTypeName(requested)));
+        throw core::Error("volume", "voxels are " + std::string(voxelTypeName(m_type)) + ", not " +
+                                        std::string(voxelTypeName(requested)));
 }
 
 double Volume::storedValue(int x, int y, int z) const {

@@ -4,6 +4,7 @@
 // the host volume as the kernels see it.
 
 #include "lw/core/error.h"
+#include "lw/core/limits.h"
 #include "lw/kernels/cpu/border_cap_cpu.h"
 #include "lw/kernels/cuda/cuda_status.h"
 #include "lw/kernels/cuda/marching_cubes_cuda.h"
@@ -25,8 +26,23 @@ inline void throwIfCudaFailed(std::string_view where, const kernels::cuda::CudaS
 
 // The device mesh of the last extraction in host memory, with the border cap (host memory, or
 // null when the surface is left open) appended after it: the closed surface every back-end draws.
+// The host copy is counted first (the device knows its size) and refused over the host's
+// ImportLimits, before anything is allocated for it.
 inline void downloadSurface(std::string_view where, const kernels::cuda::MarchingCubesCuda& mc,
                             const Mesh* cap, Mesh& mesh) {
+    const kernels::cuda::DeviceMeshView device = mc.mesh();
+    const std::size_t capVertices = cap ? cap->vertexCount() : 0;
+    const std::size_t capTriangles = cap ? cap->triangleCount() : 0;
+    const std::size_t vertices = device.vertexCount + capVertices;
+    const std::size_t triangles = device.triangleCount + capTriangles;
+    core::ImportLimits().checkAllocation(std::size_t(kernels::meshBytes(vertices, triangles)),
+                                         std::to_string(vertices) + " vertices, " +
+                                             std::to_string(triangles) + " triangles",
+                                         std::string(where), "the mesh's host copy");
+    // Room for the cap first: download() resizes within it, and appending does not reallocate.
+    mesh.positions.reserve(vertices);
+    mesh.normals.reserve(vertices);
+    mesh.indices.reserve(3 * triangles);
     throwIfCudaFailed(where, mc.download(mesh.positions, mesh.normals, mesh.indices));
     if (cap)
         kernels::cpu::appendMesh(mesh, *cap);

@@ -25,4 +25,16 @@ struct TriangleMesh {
     bool isEmpty() const { return indices.empty(); }
 };
 
+// The host bytes of a mesh of `vertices` vertices (position and normal) and `triangles`
+// triangles (three 32-bit indices): what marching cubes checks against its budget before it
+// allocates. Saturates instead of wrapping.
+constexpr std::uint64_t meshBytes(std::uint64_t vertices, std::uint64_t triangles) {
+    constexpr std::uint64_t kPerVertex = 2 * sizeof(glm::vec3);
+    constexpr std::uint64_t kPerTriangle = 3 * sizeof(std::uint32_t);
+    constexpr std::uint64_t kMax = ~std::uint64_t(0);
+    if (vertices > kMax / (2 * kPerVertex) || triangles > kMax / (2 * kPerTriangle))
+        return kMax;
+    return vertices * kPerVertex + triangles * kPerTriangle;
+}
+
 } // namespace lw::kernels

@@ -25,8 +25,24 @@ struct ImportLimits {
     // Most voxels along one axis of a volume (NRRD, NIfTI, PVM, raw, DICOM rows and columns).
     std::size_t maxDimension = std::size_t(1) << 20;
 
+    // How a user raises maxBytes, said with every refusal of a volume or mesh (the CLI:
+    // "--max-volume-gib raises it"); empty: nothing is said.
+    std::string raiseHint;
+
     // Half the physical memory (sysconf), computed once; 4 GiB where it cannot be determined.
     static std::size_t defaultMaxBytes();
+
+    // "the limit of 11.7 GiB (half this machine's memory; --max-volume-gib raises it)".
+    std::string describeLimit() const;
+    // Throws Error(subject, "<what> (<shape>) = 8.0 GiB is more than the limit of ...") when
+    // `bytes` is over maxBytes: what the volume and mesh paths call before they allocate.
+    void checkAllocation(std::size_t bytes, std::string_view shape, const std::string& subject,
+                         std::string_view what) const;
+    // The bytes of an nx x ny x nz grid of `elementBytes`-byte `elementName` values, checked for
+    // overflow and with checkAllocation ("the volume (1024×1024×4096 int16) = 8.0 GiB ...").
+    std::size_t checkedVolumeBytes(std::size_t nx, std::size_t ny, std::size_t nz,
+                                   std::size_t elementBytes, std::string_view elementName,
+                                   const std::string& subject, std::string_view what) const;
 
     // Throws Error(subject, "<what> needs N MB, more than the import limit of M MB").
     void checkBytes(std::size_t bytes, const std::string& subject, std::string_view what) const;
@@ -44,6 +60,9 @@ struct ImportLimits {
 // fit in size_t (hostile headers multiply huge dimensions).
 std::size_t checkedProduct(std::initializer_list<std::size_t> factors, const std::string& subject,
                            std::string_view what);
+
+// "8.0 GiB", "512.0 MiB", "3.5 KiB" or "12 bytes" (binary units, one decimal).
+std::string byteSizeText(std::size_t bytes);
 
 // How much a stream may inflate to when its header says `expected` bytes: a little more, so a
 // trailing pad or a rounding in the header is accepted but a bomb is stopped right after it.

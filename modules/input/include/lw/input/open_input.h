@@ -19,6 +19,9 @@ struct OpenOptions {
     // DICOM: the series to open; default the one with the most slices (in a CT study the
     // diagnostic volume, not a scout or a dose report).
     std::optional<std::string> seriesUid;
+    // What one volume may take (default: half the physical memory): every path below checks it
+    // before it allocates the volume.
+    core::ImportLimits limits;
 };
 
 // Whom and which study and series a DICOM volume shows, from the first instance of its series:

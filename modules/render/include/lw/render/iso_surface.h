@@ -1,5 +1,6 @@
 #pragma once
 
+#include "lw/core/limits.h"
 #include "lw/core/progress.h"
 #include "lw/kernels/triangle_mesh.h"
 #include "lw/kernels/voxel_grid.h"
@@ -42,6 +43,9 @@ struct IsoSurfaceOptions {
     // which is on by default.
     bool closeAtBorder = false;
     GradientStencil gradientStencil = GradientStencil::Central;
+    // What the mesh may take on the host (default: half the physical memory). Counted before
+    // it is allocated; a larger one throws core::Error naming its size and the limit.
+    core::ImportLimits limits;
 };
 
 struct IsoSurfaceStats {

@@ -41,8 +41,9 @@ glm::ivec3 oversampledDims(glm::ivec3 dims, glm::ivec3 factors);
 // types rounded to the nearest value: the field then differs from the original by at most half
 // a stored unit), with the geometry of VolumeGeometry::refined and the same value mapping and
 // description. Factors of (1, 1, 1) give a clone (Linear). Throws core::Error for a factor below 1
-// or a result larger than core::ImportLimits allows a volume.
+// or, before allocating, a result larger than `limits` allows a volume.
 Volume oversampled(const Volume& volume, glm::ivec3 factors, unsigned threads = 0,
-                   SliceInterpolation alongSlices = SliceInterpolation::Linear);
+                   SliceInterpolation alongSlices = SliceInterpolation::Linear,
+                   const core::ImportLimits& limits = {});
 
 } // namespace lw::volume

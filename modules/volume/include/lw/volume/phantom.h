@@ -17,7 +17,9 @@ std::string_view phantomKindName(PhantomKind kind);
 // int16 HU volume of nx x ny x nz voxels. Each axis spans [-1, 1] in phantom units; the
 // geometry gives it 1 mm voxels centred on the patient origin, identity value mapping.
 // Generated slice-parallel on all cores (`threads` = 0) or the given number of threads.
-volume::Volume makePhantom(glm::ivec3 dims, PhantomKind kind, unsigned threads = 0);
+// Throws core::Error before allocating when the volume is larger than `limits` allows.
+volume::Volume makePhantom(glm::ivec3 dims, PhantomKind kind, unsigned threads = 0,
+                           const core::ImportLimits& limits = {});
 
 // phantom.py's checksums: the sum of all voxels and the number of voxels above 300.5 HU.
 struct PhantomChecksum {

@@ -44,7 +44,9 @@ inline constexpr double kSliceDistanceStepsPerMm = 128.0;
 // least `iso`, within +-limitMm) to the iso contour, as an int16 volume of the same dims and
 // geometry whose value mapping gives iso + distance: drawn at `iso`, its surface is the
 // contours' in every slice, and between slices it follows the shape-based interpolation.
-// Description kept. Throws core::Error for a limit outside (0, 255] mm.
-Volume signedSliceDistance(const Volume& volume, double iso, double limitMm, unsigned threads = 0);
+// Description kept. Throws core::Error for a limit outside (0, 255] mm, or, before allocating,
+// for a copy larger than `limits` allows.
+Volume signedSliceDistance(const Volume& volume, double iso, double limitMm, unsigned threads = 0,
+                           const core::ImportLimits& limits = {});
 
 } // namespace lw::volume

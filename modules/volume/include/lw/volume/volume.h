@@ -1,11 +1,11 @@
 #pragma once
 
+#include "lw/core/limits.h"
 #include "lw/volume/volume_geometry.h"
 #include "lw/volume/voxel_type.h"
 
-#include <glm/glm.hpp>
-
 #include <cstddef>
+#include <glm/glm.hpp>
 #include <memory>
 #include <string>
 #include <vector>
@@ -33,6 +33,13 @@ struct Histogram {
     std::vector<std::uint64_t> counts;
 };
 
+// The bytes of a volume of `dims` voxels of `type`, asked by every path that makes one (readers,
+// DICOM assembly, the phantom, finer and shape-based copies) BEFORE it allocates: throws
+// core::Error(subject, "<what> (1024×1024×4096 int16) = 8.0 GiB is more than the limit of ...")
+// over limits.maxBytes, and for dimensions below 1.
+std::size_t checkVolumeAllocation(glm::ivec3 dims, VoxelType type, const core::ImportLimits& limits,
+                                  const std::string& subject, std::string_view what = "the volume");
+
 // A 3D scalar grid in its loaded voxel type, x fastest then y then z (index = x + nx*(y + ny*z)).
 // Move-only: copying a CT volume by accident would be expensive, clone() says it on purpose.
 class Volume {
@@ -52,7 +59,8 @@ public:
     std::size_t voxelCount() const { return m_voxelCount; }
     std::size_t byteSize() const { return m_voxelCount * voxelSize(m_type); }
     std::size_t index(int x, int y, int z) const {
-        return std::size_t(x) + std::size_t(m_dims.x) * (std::size_t(y) + std::size_t(m_dims.y) * std::size_t(z));
+        return std::size_t(x) +
+               std::size_t(m_dims.x) * (std::size_t(y) + std::size_t(m_dims.y) * std::size_t(z));
     }
 
     std::byte* data() { return m_data.get(); }
@@ -67,7 +75,9 @@ public:
         return reinterpret_cast<const T*>(m_data.get());
     }
     std::byte* sliceData(int z) { return m_data.get() + index(0, 0, z) * voxelSize(m_type); }
-    const std::byte* sliceData(int z) const { return m_data.get() + index(0, 0, z) * voxelSize(m_type); }
+    const std::byte* sliceData(int z) const {
+        return m_data.get() + index(0, 0, z) * voxelSize(m_type);
+    }
 
     // Stored value at a voxel as double (slow path: tests and tools, not kernels).
     double storedValue(int x, int y, int z) const;

@@ -22,6 +22,7 @@ enum class McStatus {
     Ok,
     TooManyVertices, // more than 2^32 - 1 vertices: the index type cannot address them
     Cancelled,       // the cancel token was set: the output is empty
+    OverByteLimit,   // the mesh would take more than McOutputBudget::maxBytes: nothing allocated
 };
 
 struct McResult {
@@ -29,11 +30,24 @@ struct McResult {
     std::size_t totalBricks = 0;
     std::size_t activeBricks = 0; // bricks whose min/max admit the iso-value
     std::size_t workUnits = 0;    // (brick, slab) items handed to the threads
+    // The mesh's size, counted in the first pass before anything is allocated for it.
+    std::uint64_t vertices = 0;
+    std::uint64_t triangles = 0;
 };
 
 // Output buffers (the engine's one mesh type); reused across calls so repeated extraction
 // (mode b) does not pay for fresh pages every frame.
 using McOutput = TriangleMesh;
+
+// What the output may take, decided once the first pass has counted the mesh and before its
+// buffers are allocated. `spare*`: room reserved behind the mesh for what the caller appends
+// (the border cap), so appending does not reallocate -- at a 4 GiB volume a reallocation holds
+// the old and the new positions side by side, hundreds of MiB. maxBytes covers the spare too.
+struct McOutputBudget {
+    std::size_t maxBytes = std::numeric_limits<std::size_t>::max();
+    std::size_t spareVertices = 0;
+    std::size_t spareTriangles = 0;
+};
 
 // Marching cubes with per-vertex gradient normals over the active bricks of `grid`, on
 // `threads` threads (0 = all cores). `storedIso` is in stored units; inside = value >= iso.
@@ -44,11 +58,14 @@ using McOutput = TriangleMesh;
 // give bit-identical meshes.
 // `cancel` (optional) is polled between work units: a newer request in the GUI stops an
 // extraction that is no longer wanted within one unit's time. `stencil`: the normals' gradient
-// (voxel_grid.h).
+// (voxel_grid.h). `budget`: a mesh whose meshBytes() (spare included) are more than maxBytes is
+// not allocated (McStatus::OverByteLimit, with its counts in the result; the caller words the
+// refusal).
 McResult marchingCubes(const volume::Volume& volume, const volume::BrickGrid& grid,
                        double storedIso, McOutput& out, unsigned threads = 0,
                        const core::CancelToken* cancel = nullptr,
-                       GradientStencil stencil = GradientStencil::Central);
+                       GradientStencil stencil = GradientStencil::Central,
+                       const McOutputBudget& budget = {});
 
 // The grid set-up (derivative spans, patient frame) that marchingCubes() uses for `volume`.
 // Method 2 builds its vertices from the same one, which is what makes them bit-identical.
