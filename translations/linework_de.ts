@@ -644,6 +644,68 @@
     </message>
 </context>
 <context>
+    <name>lw::gui::PacsSendAction</name>
+    <message>
+        <source>Send to &amp;PACS…</source>
+        <translation>An &amp;PACS senden…</translation>
+    </message>
+    <message>
+        <source>Store the Secondary Capture and the report (Encapsulated PDF) in the patient&apos;s study on the PACS</source>
+        <translation>Die Secondary Capture und den Bericht (Encapsulated PDF) in der Studie des Patienten im PACS speichern</translation>
+    </message>
+    <message>
+        <source>Open a review to send it to the PACS</source>
+        <translation>Eine Befundung öffnen, um sie an das PACS zu senden</translation>
+    </message>
+    <message>
+        <source>A send to the PACS is still running</source>
+        <translation>Ein Senden an das PACS läuft noch</translation>
+    </message>
+    <message>
+        <source>Send to PACS</source>
+        <translation>An PACS senden</translation>
+    </message>
+    <message>
+        <source>Sending to %1…</source>
+        <translation>Wird an %1 gesendet…</translation>
+    </message>
+    <message>
+        <source>Sent to %1</source>
+        <translation>An %1 gesendet</translation>
+    </message>
+    <message>
+        <source>Sending to %1 failed</source>
+        <translation>Senden an %1 fehlgeschlagen</translation>
+    </message>
+</context>
+<context>
+    <name>lw::gui::PacsSender</name>
+    <message>
+        <source>Cannot create a temporary folder for the objects to send: %1</source>
+        <translation>Kein temporärer Ordner für die zu sendenden Objekte möglich: %1</translation>
+    </message>
+    <message>
+        <source>Secondary Capture</source>
+        <translation>Secondary Capture</translation>
+    </message>
+    <message>
+        <source>Report (Encapsulated PDF)</source>
+        <translation>Bericht (Encapsulated PDF)</translation>
+    </message>
+    <message>
+        <source>A send to the PACS is still running</source>
+        <translation>Ein Senden an das PACS läuft noch</translation>
+    </message>
+    <message>
+        <source>An anonymised export cannot be sent to the PACS because it would no longer belong to the patient&apos;s study</source>
+        <translation>Ein anonymisierter Export kann nicht an das PACS gesendet werden, weil er nicht mehr zur Studie des Patienten gehören würde</translation>
+    </message>
+    <message>
+        <source>Only a review of a DICOM series can be sent to the PACS: %1 has no study to join</source>
+        <translation>Nur die Befundung einer DICOM-Serie kann an das PACS gesendet werden: %1 gehört zu keiner Studie</translation>
+    </message>
+</context>
+<context>
     <name>lw::gui::PacsSettingsPage</name>
     <message>
         <source>Where the workstation receives a C-MOVE&apos;s images; the PACS must list this AE title with this host and port</source>
@@ -725,67 +787,21 @@
         <source>Test failed: %1</source>
         <translation>Test fehlgeschlagen: %1</translation>
     </message>
-</context>
-<context>
-    <name>lw::gui::PacsSendAction</name>
     <message>
-        <source>Send to &amp;PACS…</source>
-        <translation>An &amp;PACS senden…</translation>
+        <source>Retrieve by</source>
+        <translation>Abrufen per</translation>
     </message>
     <message>
-        <source>Store the Secondary Capture and the report (Encapsulated PDF) in the patient&apos;s study on the PACS</source>
-        <translation>Die Secondary Capture und den Bericht (Encapsulated PDF) in der Studie des Patienten im PACS speichern</translation>
+        <source>C-GET</source>
+        <translation>C-GET</translation>
     </message>
     <message>
-        <source>Open a review to send it to the PACS</source>
-        <translation>Eine Befundung öffnen, um sie an das PACS zu senden</translation>
+        <source>C-MOVE</source>
+        <translation>C-MOVE</translation>
     </message>
     <message>
-        <source>A send to the PACS is still running</source>
-        <translation>Ein Senden an das PACS läuft noch</translation>
-    </message>
-    <message>
-        <source>Send to PACS</source>
-        <translation>An PACS senden</translation>
-    </message>
-    <message>
-        <source>Sending to %1…</source>
-        <translation>Wird an %1 gesendet…</translation>
-    </message>
-    <message>
-        <source>Sent to %1</source>
-        <translation>An %1 gesendet</translation>
-    </message>
-    <message>
-        <source>Sending to %1 failed</source>
-        <translation>Senden an %1 fehlgeschlagen</translation>
-    </message>
-</context>
-<context>
-    <name>lw::gui::PacsSender</name>
-    <message>
-        <source>Cannot create a temporary folder for the objects to send: %1</source>
-        <translation>Kein temporärer Ordner für die zu sendenden Objekte möglich: %1</translation>
-    </message>
-    <message>
-        <source>Secondary Capture</source>
-        <translation>Secondary Capture</translation>
-    </message>
-    <message>
-        <source>Report (Encapsulated PDF)</source>
-        <translation>Bericht (Encapsulated PDF)</translation>
-    </message>
-    <message>
-        <source>A send to the PACS is still running</source>
-        <translation>Ein Senden an das PACS läuft noch</translation>
-    </message>
-    <message>
-        <source>An anonymised export cannot be sent to the PACS because it would no longer belong to the patient&apos;s study</source>
-        <translation>Ein anonymisierter Export kann nicht an das PACS gesendet werden, weil er nicht mehr zur Studie des Patienten gehören würde</translation>
-    </message>
-    <message>
-        <source>Only a review of a DICOM series can be sent to the PACS: %1 has no study to join</source>
-        <translation>Nur die Befundung einer DICOM-Serie kann an das PACS gesendet werden: %1 gehört zu keiner Studie</translation>
+        <source>C-MOVE sends the images to the storage port above: the PACS must list this workstation&apos;s AE title with its host and that port</source>
+        <translation>C-MOVE sendet die Bilder an den Speicherport oben: Das PACS muss den AE-Titel dieser Workstation mit ihrem Host und diesem Port kennen</translation>
     </message>
 </context>
 <context>

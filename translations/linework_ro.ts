@@ -644,6 +644,68 @@
     </message>
 </context>
 <context>
+    <name>lw::gui::PacsSendAction</name>
+    <message>
+        <source>Send to &amp;PACS…</source>
+        <translation>Trimite la &amp;PACS…</translation>
+    </message>
+    <message>
+        <source>Store the Secondary Capture and the report (Encapsulated PDF) in the patient&apos;s study on the PACS</source>
+        <translation>Salvează Secondary Capture și raportul (Encapsulated PDF) în studiul pacientului din PACS</translation>
+    </message>
+    <message>
+        <source>Open a review to send it to the PACS</source>
+        <translation>Deschideți o examinare pentru a o trimite la PACS</translation>
+    </message>
+    <message>
+        <source>A send to the PACS is still running</source>
+        <translation>O trimitere la PACS este încă în curs</translation>
+    </message>
+    <message>
+        <source>Send to PACS</source>
+        <translation>Trimite la PACS</translation>
+    </message>
+    <message>
+        <source>Sending to %1…</source>
+        <translation>Se trimite la %1…</translation>
+    </message>
+    <message>
+        <source>Sent to %1</source>
+        <translation>Trimis la %1</translation>
+    </message>
+    <message>
+        <source>Sending to %1 failed</source>
+        <translation>Trimiterea la %1 a eșuat</translation>
+    </message>
+</context>
+<context>
+    <name>lw::gui::PacsSender</name>
+    <message>
+        <source>Cannot create a temporary folder for the objects to send: %1</source>
+        <translation>Nu se poate crea un dosar temporar pentru obiectele de trimis: %1</translation>
+    </message>
+    <message>
+        <source>Secondary Capture</source>
+        <translation>Secondary Capture</translation>
+    </message>
+    <message>
+        <source>Report (Encapsulated PDF)</source>
+        <translation>Raport (Encapsulated PDF)</translation>
+    </message>
+    <message>
+        <source>A send to the PACS is still running</source>
+        <translation>O trimitere la PACS este încă în curs</translation>
+    </message>
+    <message>
+        <source>An anonymised export cannot be sent to the PACS because it would no longer belong to the patient&apos;s study</source>
+        <translation>Un export anonimizat nu poate fi trimis la PACS, deoarece nu ar mai aparține studiului pacientului</translation>
+    </message>
+    <message>
+        <source>Only a review of a DICOM series can be sent to the PACS: %1 has no study to join</source>
+        <translation>Doar examinarea unei serii DICOM poate fi trimisă la PACS: %1 nu aparține niciunui studiu</translation>
+    </message>
+</context>
+<context>
     <name>lw::gui::PacsSettingsPage</name>
     <message>
         <source>Where the workstation receives a C-MOVE&apos;s images; the PACS must list this AE title with this host and port</source>
@@ -725,67 +787,21 @@
         <source>Test failed: %1</source>
         <translation>Test eșuat: %1</translation>
     </message>
-</context>
-<context>
-    <name>lw::gui::PacsSendAction</name>
     <message>
-        <source>Send to &amp;PACS…</source>
-        <translation>Trimite la &amp;PACS…</translation>
+        <source>Retrieve by</source>
+        <translation>Preluare prin</translation>
     </message>
     <message>
-        <source>Store the Secondary Capture and the report (Encapsulated PDF) in the patient&apos;s study on the PACS</source>
-        <translation>Salvează Secondary Capture și raportul (Encapsulated PDF) în studiul pacientului din PACS</translation>
+        <source>C-GET</source>
+        <translation>C-GET</translation>
     </message>
     <message>
-        <source>Open a review to send it to the PACS</source>
-        <translation>Deschideți o examinare pentru a o trimite la PACS</translation>
+        <source>C-MOVE</source>
+        <translation>C-MOVE</translation>
     </message>
     <message>
-        <source>A send to the PACS is still running</source>
-        <translation>O trimitere la PACS este încă în curs</translation>
-    </message>
-    <message>
-        <source>Send to PACS</source>
-        <translation>Trimite la PACS</translation>
-    </message>
-    <message>
-        <source>Sending to %1…</source>
-        <translation>Se trimite la %1…</translation>
-    </message>
-    <message>
-        <source>Sent to %1</source>
-        <translation>Trimis la %1</translation>
-    </message>
-    <message>
-        <source>Sending to %1 failed</source>
-        <translation>Trimiterea la %1 a eșuat</translation>
-    </message>
-</context>
-<context>
-    <name>lw::gui::PacsSender</name>
-    <message>
-        <source>Cannot create a temporary folder for the objects to send: %1</source>
-        <translation>Nu se poate crea un dosar temporar pentru obiectele de trimis: %1</translation>
-    </message>
-    <message>
-        <source>Secondary Capture</source>
-        <translation>Secondary Capture</translation>
-    </message>
-    <message>
-        <source>Report (Encapsulated PDF)</source>
-        <translation>Raport (Encapsulated PDF)</translation>
-    </message>
-    <message>
-        <source>A send to the PACS is still running</source>
-        <translation>O trimitere la PACS este încă în curs</translation>
-    </message>
-    <message>
-        <source>An anonymised export cannot be sent to the PACS because it would no longer belong to the patient&apos;s study</source>
-        <translation>Un export anonimizat nu poate fi trimis la PACS, deoarece nu ar mai aparține studiului pacientului</translation>
-    </message>
-    <message>
-        <source>Only a review of a DICOM series can be sent to the PACS: %1 has no study to join</source>
-        <translation>Doar examinarea unei serii DICOM poate fi trimisă la PACS: %1 nu aparține niciunui studiu</translation>
+        <source>C-MOVE sends the images to the storage port above: the PACS must list this workstation&apos;s AE title with its host and that port</source>
+        <translation>C-MOVE trimite imaginile la portul de stocare de mai sus: PACS-ul trebuie să cunoască titlul AE al acestei stații de lucru, cu gazda și portul ei</translation>
     </message>
 </context>
 <context>

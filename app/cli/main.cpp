@@ -168,7 +168,8 @@ commands:
                               C-GET of a study or series into the managed store (default beside
                               the study database); instances already there are skipped, so a
                               retrieve after a cancel or a crash fetches only the missing ones;
-                              --move: C-MOVE to the workstation's own storage SCP (listening
+                              --move (or the node's "retrieve": "move" in the node file):
+                              C-MOVE to the workstation's own storage SCP (listening
                               on the node file's storagePort, or N, while it runs; the PACS
                               must list the calling AE title there); what arrived is
                               registered in the study database (default the workstation's;

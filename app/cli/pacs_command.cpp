@@ -168,7 +168,8 @@ int runGet(const std::vector<std::string>& args, std::ostream& out) {
         throw UsageError("pacs get", "--study UID is required");
     request.seriesUid = arguments.option("series", "");
     request.store = arguments.option("store", pacs::defaultStoreFolder().string());
-    if (arguments.flag("move")) {
+    // --move, or a node set up for C-MOVE in the node file ("retrieve": "move").
+    if (arguments.flag("move") || to.node.retrieve == pacs::RetrieveMethod::Move) {
         request.method = pacs::RetrieveMethod::Move;
         const double port = arguments.number("storage-port", to.storagePort);
         if (port < 1 || port > 65535 || port != double(int(port)))

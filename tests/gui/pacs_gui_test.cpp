@@ -50,9 +50,11 @@ void saveScreenshot(QWidget& widget, const QString& name) {
         QVERIFY(widget.grab().save(folder + "/" + name));
 }
 
-pacs::PacsNodeFile nodeFileFor(const pacs::PacsNode& node) {
+// The workstation as the test Orthanc lists it (AE title, C-MOVE's storage port), and `node`.
+pacs::PacsNodeFile nodeFileFor(const pacs::PacsNode& node, std::uint16_t storagePort) {
     pacs::PacsNodeFile file;
     file.workstation.aet = pacs::test::kWorkstationAet;
+    file.workstation.storagePort = storagePort;
     file.nodes.push_back(node);
     return file;
 }
@@ -93,6 +95,7 @@ private slots:
     void queryListsTheRemoteStudy_data();
     void queryListsTheRemoteStudy();
     void queryOfAPacsThatDoesNotAnswerTimesOut();
+    void doubleClickRetrievesAndOpens_data();
     void doubleClickRetrievesAndOpens();
     void cancelledRetrieveKeepsWhatArrived();
     void retrieveFromAPacsThatIsDownSaysSo();
@@ -108,6 +111,7 @@ private:
     std::unique_ptr<lw::test::TempDir> m_files;
     std::unique_ptr<pacs::test::OrthancServer> m_orthanc;
     pacs::test::SyntheticSeries m_openSeries, m_cancelSeries;
+    std::uint16_t m_storagePort = 0; // the workstation's C-MOVE port, as Orthanc lists it
 };
 
 void PacsGuiTest::initTestCase() {
@@ -115,7 +119,8 @@ void PacsGuiTest::initTestCase() {
     m_openSeries = pacs::test::writeCtSeries(*m_files / "open", kOpenSeriesSlices, 32);
     m_cancelSeries = pacs::test::writeCtSeries(*m_files / "cancel", kCancelSeriesSlices, 32,
                                                m_openSeries.studyUid);
-    m_orthanc = std::make_unique<pacs::test::OrthancServer>(pacs::test::freeLoopbackPort());
+    m_storagePort = pacs::test::freeLoopbackPort();
+    m_orthanc = std::make_unique<pacs::test::OrthancServer>(m_storagePort);
     for (const auto* series : {&m_openSeries, &m_cancelSeries})
         for (const fs::path& file : series->files)
             QVERIFY(!m_orthanc->upload(file).empty());
@@ -129,7 +134,7 @@ void PacsGuiTest::cleanupTestCase() {
 std::unique_ptr<StudyBrowser> PacsGuiTest::makeBrowser(const QTemporaryDir& dir) {
     const QString database = dir.filePath("studies.sqlite");
     pacs::writeNodeFile(pacsLocationsBeside(database).nodeFile.toStdString(),
-                        nodeFileFor(m_orthanc->node()));
+                        nodeFileFor(m_orthanc->node(), m_storagePort));
     auto browser = std::make_unique<StudyBrowser>(database);
     browser->resize(1200, 800);
     browser->show();
@@ -198,6 +203,10 @@ void PacsGuiTest::settingsPageRoundTripsTheNodeFile() {
     setCell(*table, nodes, PacsSettingsPage::CalledAetColumn, "NEW_AE");
     setCell(*table, nodes, PacsSettingsPage::HostColumn, "pacs.example");
     setCell(*table, nodes, PacsSettingsPage::PortColumn, "11113");
+    auto* method =
+        qobject_cast<QComboBox*>(table->cellWidget(nodes, PacsSettingsPage::RetrieveColumn));
+    QVERIFY(method);
+    method->setCurrentIndex(method->findText("C-MOVE")); // currentIndexChanged: the page saves
     QVERIFY2(page.errorText().isEmpty(), qPrintable(page.errorText()));
     QVERIFY(saved.count() > 0);
 
@@ -206,6 +215,7 @@ void PacsGuiTest::settingsPageRoundTripsTheNodeFile() {
     QCOMPARE(int(reread.nodes.size()), nodes + 1);
     QCOMPARE(reread.nodes.back().calledAet, std::string("NEW_AE"));
     QCOMPARE(int(reread.nodes.back().port), 11113);
+    QVERIFY(reread.nodes.back().retrieve == pacs::RetrieveMethod::Move);
     PacsSettingsPage again(path); // and a new page shows what was written
     QCOMPARE(again.findChild<QTableWidget*>("pacsNodes")->rowCount(), nodes + 1);
     QCOMPARE(again.editedFile().nodes.back().host, std::string("pacs.example"));
@@ -285,7 +295,7 @@ void PacsGuiTest::testButtonSaysWhatHappened() {
     pacs::PacsNode node = m_orthanc->node();
     if (!toOrthanc)
         node.port = pacs::test::freeLoopbackPort();
-    pacs::writeNodeFile(path.toStdString(), nodeFileFor(node));
+    pacs::writeNodeFile(path.toStdString(), nodeFileFor(node, m_storagePort));
 
     PacsSettingsPage page(path);
     page.resize(640, 420);
@@ -372,7 +382,8 @@ void PacsGuiTest::queryOfAPacsThatDoesNotAnswerTimesOut() {
 
     QTemporaryDir dir;
     const QString database = dir.filePath("studies.sqlite");
-    pacs::writeNodeFile(pacsLocationsBeside(database).nodeFile.toStdString(), nodeFileFor(node));
+    pacs::writeNodeFile(pacsLocationsBeside(database).nodeFile.toStdString(),
+                        nodeFileFor(node, m_storagePort));
     StudyBrowser browser(database);
     browser.show();
     RemotePanel& remote = browser.remote();
@@ -386,11 +397,21 @@ void PacsGuiTest::queryOfAPacsThatDoesNotAnswerTimesOut() {
     QVERIFY(remote.findChild<QPushButton*>("remoteSearchButton")->isEnabled());
 }
 
+void PacsGuiTest::doubleClickRetrievesAndOpens_data() {
+    QTest::addColumn<int>("method");
+    QTest::newRow("C-GET") << int(pacs::RetrieveMethod::Get);
+    // Settings → PACS set to C-MOVE: Orthanc sends the images to the workstation's storage SCP.
+    QTest::newRow("C-MOVE") << int(pacs::RetrieveMethod::Move);
+}
+
 void PacsGuiTest::doubleClickRetrievesAndOpens() {
+    QFETCH(int, method);
     QTemporaryDir dir;
     const QString database = dir.filePath("studies.sqlite");
+    pacs::PacsNode node = m_orthanc->node();
+    node.retrieve = pacs::RetrieveMethod(method);
     pacs::writeNodeFile(pacsLocationsBeside(database).nodeFile.toStdString(),
-                        nodeFileFor(m_orthanc->node()));
+                        nodeFileFor(node, m_storagePort));
     MainWindow window(lw::test::isolatedOptions(dir));
     window.resize(1200, 800);
     window.show();
@@ -472,7 +493,7 @@ void PacsGuiTest::retrieveFromAPacsThatIsDownSaysSo() {
     pacs::PacsNode down = m_orthanc->node();
     down.port = pacs::test::freeLoopbackPort();
     pacs::writeNodeFile(pacsLocationsBeside(browser->databasePath()).nodeFile.toStdString(),
-                        nodeFileFor(down));
+                        nodeFileFor(down, m_storagePort));
     remote.reloadNodes();
     QSignalSpy failed(&remote.retrieveJob(), &RetrieveJob::failed);
     remote.retrieve(series);

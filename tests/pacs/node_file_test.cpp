@@ -27,7 +27,7 @@ TEST(PacsNodeFile, WritesAndReadsBackEveryField) {
     PacsNodeFile file;
     file.workstation = {"MY_WS", 11113};
     file.nodes = {{"radiology", "ORTHANC", "10.0.0.5", 4242},
-                  {"backup", "BKP", "pacs.example", 104}};
+                  {"backup", "BKP", "pacs.example", 104, RetrieveMethod::Move}};
     const auto path = dir / "sub" / "pacs-nodes.json";
     writeNodeFile(path, file);
     const PacsNodeFile read = readNodeFile(path);
@@ -38,6 +38,8 @@ TEST(PacsNodeFile, WritesAndReadsBackEveryField) {
     EXPECT_EQ(read.nodes[1].calledAet, "BKP");
     EXPECT_EQ(read.nodes[1].host, "pacs.example");
     EXPECT_EQ(read.nodes[1].port, 104);
+    EXPECT_EQ(read.nodes[0].retrieve, RetrieveMethod::Get);
+    EXPECT_EQ(read.nodes[1].retrieve, RetrieveMethod::Move);
     // Atomic: nothing but the file itself is left in its folder.
     EXPECT_EQ(std::distance(std::filesystem::directory_iterator(path.parent_path()), {}), 1);
 }
@@ -68,6 +70,9 @@ TEST_P(PacsNodeFileErrors, NameTheFileAndTheValue) {
 INSTANTIATE_TEST_SUITE_P(
     PacsNodeFile, PacsNodeFileErrors,
     testing::Values(
+        BadFile{R"({"nodes": [{"name": "a", "calledAet": "X", "host": "h", "port": 1,
+                              "retrieve": "fetch"}]})",
+                "nodes[0].retrieve is not \"get\" or \"move\""},
         BadFile{R"({"nodes": [{"name": "a", "calledAet": "X", "host": "h", "port": 70000}]})",
                 "nodes[0].port"},
         BadFile{R"({"nodes": [{"name": "a", "calledAet": "X", "host": "h"}]})",

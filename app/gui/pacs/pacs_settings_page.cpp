@@ -4,6 +4,7 @@
 #include "lw/core/error.h"
 #include "lw/pacs/pacs_client.h"
 
+#include <QComboBox>
 #include <QFormLayout>
 #include <QHBoxLayout>
 #include <QHeaderView>
@@ -62,7 +63,8 @@ void PacsSettingsPage::buildUi() {
 
     m_nodes = new QTableWidget(0, NodeColumnCount, this);
     m_nodes->setObjectName(QStringLiteral("pacsNodes"));
-    m_nodes->setHorizontalHeaderLabels({tr("Name"), tr("Called AE title"), tr("Host"), tr("Port")});
+    m_nodes->setHorizontalHeaderLabels(
+        {tr("Name"), tr("Called AE title"), tr("Host"), tr("Port"), tr("Retrieve by")});
     m_nodes->horizontalHeader()->setSectionResizeMode(QHeaderView::Stretch);
     m_nodes->setSelectionBehavior(QAbstractItemView::SelectRows);
     m_nodes->setSelectionMode(QAbstractItemView::SingleSelection);
@@ -126,6 +128,16 @@ void PacsSettingsPage::setNodeRow(int row, const pacs::PacsNode& node) {
                      new QTableWidgetItem(QString::fromStdString(node.calledAet)));
     m_nodes->setItem(row, HostColumn, new QTableWidgetItem(QString::fromStdString(node.host)));
     m_nodes->setItem(row, PortColumn, new QTableWidgetItem(QString::number(node.port)));
+    // C-GET or C-MOVE: a choice, not text, so that the file never holds anything else.
+    auto* method = new QComboBox(m_nodes);
+    method->setObjectName(QStringLiteral("retrieveMethod"));
+    method->addItem(tr("C-GET"), int(pacs::RetrieveMethod::Get));
+    method->addItem(tr("C-MOVE"), int(pacs::RetrieveMethod::Move));
+    method->setToolTip(tr("C-MOVE sends the images to the storage port above: the PACS must "
+                          "list this workstation's AE title with its host and that port"));
+    method->setCurrentIndex(method->findData(int(node.retrieve)));
+    connect(method, &QComboBox::currentIndexChanged, this, &PacsSettingsPage::save);
+    m_nodes->setCellWidget(row, RetrieveColumn, method);
 }
 
 pacs::PacsNodeFile PacsSettingsPage::editedFile() const {
@@ -140,6 +152,8 @@ pacs::PacsNodeFile PacsSettingsPage::editedFile() const {
         // Not a number, or out of range: 0, which the module's validation names as not a port.
         const uint port = cellText(*m_nodes, row, PortColumn).toUInt();
         node.port = port <= kMaxPort ? std::uint16_t(port) : 0;
+        if (const auto* method = qobject_cast<QComboBox*>(m_nodes->cellWidget(row, RetrieveColumn)))
+            node.retrieve = pacs::RetrieveMethod(method->currentData().toInt());
         file.nodes.push_back(node);
     }
     return file;

@@ -24,7 +24,14 @@ namespace lw::gui {
 class PacsSettingsPage : public QWidget {
     Q_OBJECT
 public:
-    enum NodeColumn { NameColumn, CalledAetColumn, HostColumn, PortColumn, NodeColumnCount };
+    enum NodeColumn {
+        NameColumn,
+        CalledAetColumn,
+        HostColumn,
+        PortColumn,
+        RetrieveColumn,
+        NodeColumnCount
+    };
 
     // Reads `nodeFile` (missing: no nodes, the AE title LINEWORK); a file that does not read is
     // shown as an error and the page starts empty (nothing is written until the user edits).

@@ -270,6 +270,7 @@ void RemotePanel::retrieve(const QModelIndex& index) {
     request.seriesUid = series ? series->seriesInstanceUid : std::string();
     request.store = m_locations.store.toStdString();
     request.storagePort = m_nodeFile.workstation.storagePort;
+    request.method = node->retrieve; // C-MOVE where Settings → PACS says so
     m_openAfterRetrieve = series != nullptr;
     m_retrieve->start(*node, request, callOptions());
     m_progress->setLabelText(tr("Retrieving from %1…").arg(m_model->nodeName()));

@@ -58,6 +58,12 @@ PacsNode readNode(const core::JsonValue& value, const std::string& where, const 
     node.calledAet = member(value, "calledAet", T::String, where, file).string();
     node.host = member(value, "host", T::String, where, file).string();
     node.port = portValue(value, "port", where, file);
+    if (const core::JsonValue* retrieve = value.find("retrieve")) {
+        const std::string method = retrieve->isString() ? retrieve->string() : std::string();
+        if (method != "get" && method != "move")
+            throw core::Error(file, where + ".retrieve is not \"get\" or \"move\"");
+        node.retrieve = method == "move" ? RetrieveMethod::Move : RetrieveMethod::Get;
+    }
     return node;
 }
 
@@ -142,7 +148,8 @@ void writeNodeFile(const std::filesystem::path& path, const PacsNodeFile& conten
     json.endObject().key("nodes").beginArray();
     for (const PacsNode& node : content.nodes) {
         json.beginObject().field("name", node.name).field("calledAet", node.calledAet);
-        json.field("host", node.host).field("port", int(node.port)).endObject();
+        json.field("host", node.host).field("port", int(node.port));
+        json.field("retrieve", node.retrieve == RetrieveMethod::Move ? "move" : "get").endObject();
     }
     json.endArray().endObject();
     const std::string text = json.str() + "\n";

@@ -8,12 +8,19 @@
 
 namespace lw::pacs {
 
-// A PACS the workstation talks to: its AE title (the "called" AE title) and where it listens.
+// C-GET: the instances come back on the retrieve's own association. C-MOVE: the PACS opens
+// associations to the workstation's storage SCP (its AE title is the move destination, so the
+// PACS must list that AE title with this host and `storagePort`); for PACS without C-GET.
+enum class RetrieveMethod { Get, Move };
+
+// A PACS the workstation talks to: its AE title (the "called" AE title), where it listens, and
+// how it is asked for images.
 struct PacsNode {
     std::string name;      // what the user calls it ("Radiology PACS"); unique in the file
     std::string calledAet; // 1..16 characters, no backslash
     std::string host;
     std::uint16_t port = 104;
+    RetrieveMethod retrieve = RetrieveMethod::Get;
 };
 
 // The workstation's own identity: the AE title it calls with, and the port its storage SCP
@@ -25,7 +32,9 @@ struct WorkstationIdentity {
 
 // The node file, shared by the GUI (Settings edits it) and the CLI. Format (JSON):
 //   { "workstation": {"aet": "LINEWORK", "storagePort": 11112},
-//     "nodes": [ {"name": "pacs", "calledAet": "ORTHANC", "host": "10.0.0.5", "port": 4242} ] }
+//     "nodes": [ {"name": "pacs", "calledAet": "ORTHANC", "host": "10.0.0.5", "port": 4242,
+//                 "retrieve": "get"} ] }
+// "retrieve" is "get" (C-GET, the default when it is missing) or "move" (C-MOVE).
 struct PacsNodeFile {
     WorkstationIdentity workstation;
     std::vector<PacsNode> nodes;

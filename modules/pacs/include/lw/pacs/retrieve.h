@@ -17,11 +17,6 @@ namespace lw::pacs {
 std::filesystem::path instancePath(const std::filesystem::path& store,
                                    const InstanceRecord& instance, const std::string& studyUid);
 
-// C-GET: the instances come back on the retrieve's own association. C-MOVE: the PACS opens
-// associations to the workstation's storage SCP (its AE title is the move destination, so the
-// PACS must list that AE title with this host and `storagePort`); for PACS without C-GET.
-enum class RetrieveMethod { Get, Move };
-
 struct RetrieveRequest {
     std::string studyUid;
     std::string seriesUid; // empty: the whole study
