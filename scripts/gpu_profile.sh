@@ -3,7 +3,8 @@
 # bench frame per method, and the accuracy sweep with the CUDA back-end at sizes 32 and 256.
 # Run on the GPU machine after scripts/gpu_run.sh has built build-gpu (same device call):
 #   scripts/gpu_run.sh test && scripts/gpu_profile.sh "$OUT" [mc m1a m2a m3b accuracy]
-# (default: all of them). ncu runs with --clock-control none (the clocks the bench sees), one
+# (default: all of them). PROFILE_SIZE (default 512, e.g. 1024x1024x2048) and PROFILE_ARGS (more
+# bench arguments, e.g. "--gpu-budget 2048") profile other volumes. ncu runs with --clock-control none (the clocks the bench sees), one
 # warm-up frame and two measured ones (--repeat 2); its report (CSV, after the bench's own output)
 # goes to ncu_<what>.csv, a summary per kernel to stdout.
 set -uo pipefail
@@ -21,8 +22,8 @@ profile() { # NAME METHOD MODE [more bench arguments]
     wanted "$name" || return 0
     if [ -z "$ncu" ]; then echo "ncu not found: no kernel profile"; return; fi
     "$ncu" --clock-control none --metrics gpu__time_duration.sum --csv \
-        "$cli" bench --backend cuda --sizes 512 --methods "$method" --variants S --modes "$mode" \
-        --repeat 2 --image 1024x1024 "$@" > "$out/ncu_$name.csv" 2> "$out/ncu_$name.log" || rc=1
+        "$cli" bench --backend cuda --sizes "${PROFILE_SIZE:-512}" --methods "$method" --variants S --modes "$mode" \
+        --repeat 2 --image 1024x1024 ${PROFILE_ARGS:-} "$@" > "$out/ncu_$name.csv" 2> "$out/ncu_$name.log" || rc=1
     python3 - "$out/ncu_$name.csv" "$name" <<'PY'
 import csv, sys, collections
 path, name = sys.argv[1], sys.argv[2]

@@ -19,11 +19,13 @@ using mc::c_edgeTable;
 using mc::c_triCount;
 using mc::c_triTable;
 
-// Per macro cell of RayVisibilityRule::kMacroCells^3 cells: does any of its corner voxels lie
-// inside (float(value) >= isoF, as the CPU engine tests)?
+// Per macro cell of RayVisibilityRule::kMacroCells^3 cells: the largest of its corner voxels
+// (as float, the CPU engine's comparison type), once per volume. Whether a macro cell holds an
+// inside voxel (float(value) >= isoF) is then `maximum >= isoF` for any iso-value, without a
+// pass over the voxels: on a volume mapped from host memory that pass crossed PCIe at every new
+// iso-value (105 ms at 1024x1024x2048 on the H200). fmaxf skips NaN, as `>=` does.
 template <typename T>
-__global__ void macroOccupancy(const T* voxels, GridDims dims, glm::ivec3 macroDims, float isoF,
-                               std::uint8_t* occupied) {
+__global__ void macroMaximum(const T* voxels, GridDims dims, glm::ivec3 macroDims, float* maxima) {
     const std::uint32_t m = blockIdx.x * blockDim.x + threadIdx.x;
     const std::uint32_t total = std::uint32_t(macroDims.x) * macroDims.y * macroDims.z;
     if (m >= total)
@@ -33,14 +35,22 @@ __global__ void macroOccupancy(const T* voxels, GridDims dims, glm::ivec3 macroD
               mz = int(m / (std::uint32_t(macroDims.x) * macroDims.y));
     const int x0 = mx * n, y0 = my * n, z0 = mz * n;
     const int x1 = min(x0 + n, dims.cx), y1 = min(y0 + n, dims.cy), z1 = min(z0 + n, dims.cz);
-    std::uint8_t any = 0;
-    for (int z = z0; z <= z1 && !any; ++z)
-        for (int y = y0; y <= y1 && !any; ++y) {
+    float largest = -HUGE_VALF;
+    for (int z = z0; z <= z1; ++z)
+        for (int y = y0; y <= y1; ++y) {
             const T* row = voxels + std::size_t(y) * dims.sy + std::size_t(z) * dims.sz;
             for (int x = x0; x <= x1; ++x)
-                any |= float(row[x]) >= isoF;
+                largest = fmaxf(largest, float(row[x]));
         }
-    occupied[m] = any;
+    maxima[m] = largest;
+}
+
+// Per macro cell at one iso-value: does it hold an inside voxel?
+__global__ void macroOccupancy(const float* maxima, std::uint32_t count, float isoF,
+                               std::uint8_t* occupied) {
+    const std::uint32_t m = blockIdx.x * blockDim.x + threadIdx.x;
+    if (m < count)
+        occupied[m] = maxima[m] >= isoF ? 1 : 0;
 }
 
 // Per coarse block: does any of its macro cells hold an inside voxel (kernels/common's rule)?

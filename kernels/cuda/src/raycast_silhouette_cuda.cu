@@ -18,6 +18,7 @@ struct RayCastSilhouetteCuda::Impl {
     MarchingCubesCuda marchingCubes;
     RayGridSetup rayGrid;
     DeviceBuffer<double> rayOffsets;
+    DeviceBuffer<float> macroMaxima; // per macro cell, per volume (rc::macroMaximum)
     DeviceBuffer<std::uint8_t> macroOccupied, coarseOccupied;
     glm::ivec3 macroDims{0}, coarseDims{0};
     DeviceBuffer<std::uint8_t> mask;
@@ -43,6 +44,7 @@ struct RayCastSilhouetteCuda::Impl {
 
     MarchingCubesCuda::Impl& mc() { return marchingCubes.implementation(); }
 
+    template <typename T> CudaStatus findMacroMaxima();
     template <typename T> CudaStatus prepareTyped(double storedIso, RayCastCudaFrame& frame);
     template <typename T>
     CudaStatus renderTyped(const rc::View& view, const RayCastCudaSettings& settings,
@@ -72,13 +74,13 @@ double RayCastSilhouetteCuda::uploadMs() const {
 
 std::size_t RayCastSilhouetteCuda::deviceBytes() const {
     const Impl& s = *m_impl;
-    return s.marchingCubes.deviceBytes() + s.rayOffsets.bytes() + s.macroOccupied.bytes() +
-           s.coarseOccupied.bytes() + s.mask.bytes() + s.counters.bytes() + s.segments.bytes() +
-           s.segmentCells.bytes() + s.sortedSegments.bytes() + s.sortedCells.bytes() +
-           s.sortTemp.bytes() + s.visible.bytes() + s.pruning.deviceBytes() +
-           s.endpointTable.bytes() + s.representative.bytes() + s.representatives.bytes() +
-           s.representativeCount.bytes() + s.isRepresentative.bytes() + s.neighbourList.bytes() +
-           s.neighbourCount.bytes();
+    return s.marchingCubes.deviceBytes() + s.rayOffsets.bytes() + s.macroMaxima.bytes() +
+           s.macroOccupied.bytes() + s.coarseOccupied.bytes() + s.mask.bytes() +
+           s.counters.bytes() + s.segments.bytes() + s.segmentCells.bytes() +
+           s.sortedSegments.bytes() + s.sortedCells.bytes() + s.sortTemp.bytes() +
+           s.visible.bytes() + s.pruning.deviceBytes() + s.endpointTable.bytes() +
+           s.representative.bytes() + s.representatives.bytes() + s.representativeCount.bytes() +
+           s.isRepresentative.bytes() + s.neighbourList.bytes() + s.neighbourCount.bytes();
 }
 
 CudaStatus RayCastSilhouetteCuda::setVolume(const VolumeView& hostVolume,
@@ -102,12 +104,25 @@ CudaStatus RayCastSilhouetteCuda::setVolume(const VolumeView& hostVolume,
     s.macroDims = (cells + n - 1) / n;
     const std::size_t macroCount =
         std::size_t(s.macroDims.x) * std::size_t(s.macroDims.y) * std::size_t(s.macroDims.z);
+    LW_RETURN_IF_FAILED(s.macroMaxima.reserve(macroCount, "cudaMalloc(macroMaxima)"));
     LW_RETURN_IF_FAILED(s.macroOccupied.reserve(macroCount, "cudaMalloc(macroOccupied)"));
     s.coarseDims = coarseDimsOf(s.macroDims);
     const std::size_t coarseCount =
         std::size_t(s.coarseDims.x) * std::size_t(s.coarseDims.y) * std::size_t(s.coarseDims.z);
     LW_RETURN_IF_FAILED(s.coarseOccupied.reserve(coarseCount, "cudaMalloc(coarseOccupied)"));
     LW_RETURN_IF_FAILED(s.counters.reserve(1, "cudaMalloc(counters)"));
+    return dispatchVoxelKind(s.mc().volume.kind,
+                             [&](auto zero) { return s.findMacroMaxima<decltype(zero)>(); });
+}
+
+template <typename T> CudaStatus RayCastSilhouetteCuda::Impl::findMacroMaxima() {
+    MarchingCubesCuda::Impl& m = mc();
+    const std::size_t macroCount =
+        std::size_t(macroDims.x) * std::size_t(macroDims.y) * std::size_t(macroDims.z);
+    rc::macroMaximum<T><<<blocksFor(macroCount, 128), 128, 0, m.stream.get()>>>(
+        static_cast<const T*>(m.volume.voxels), m.spans.dims, macroDims, macroMaxima.data());
+    LW_CUDA_LAUNCHED("rc::macroMaximum");
+    LW_CUDA_TRY(cudaStreamSynchronize(m.stream.get()), "rc::macroMaximum");
     return CudaStatus::success();
 }
 
@@ -119,8 +134,8 @@ CudaStatus RayCastSilhouetteCuda::Impl::prepareTyped(double storedIso, RayCastCu
     LW_RETURN_IF_FAILED(m.classifyTyped<T>(storedIso, MarchingCubesCuda::Impl::CountWait::Now));
     const std::size_t macroCount =
         std::size_t(macroDims.x) * std::size_t(macroDims.y) * std::size_t(macroDims.z);
-    rc::macroOccupancy<T><<<blocksFor(macroCount, 128), 128, 0, st>>>(
-        static_cast<const T*>(m.volume.voxels), m.spans.dims, macroDims, insideThreshold(storedIso),
+    rc::macroOccupancy<<<blocksFor(macroCount, 128), 128, 0, st>>>(
+        macroMaxima.data(), std::uint32_t(macroCount), insideThreshold(storedIso),
         macroOccupied.data());
     LW_CUDA_LAUNCHED("rc::macroOccupancy");
     const std::size_t coarseCount =
