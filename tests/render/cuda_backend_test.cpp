@@ -8,7 +8,9 @@
 #include "lw/core/error.h"
 #include "lw/evaluation/analytic_shapes.h"
 #include "lw/kernels/cpu/marching_cubes_cpu.h"
+#include "lw/kernels/cpu/voxel_ray.h"
 #include "lw/kernels/cuda/marching_cubes_cuda.h"
+#include "lw/kernels/cuda/raycast_silhouette_cuda.h"
 #include "lw/kernels/cuda/stroke_pruning_cuda.h"
 #include "lw/render/gpu_memory_plan.h"
 #include "lw/render/iso_surface.h"
@@ -17,6 +19,7 @@
 #include "lw/render/zbuffer_silhouette_renderer.h"
 #include "lw/volume/phantom.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -348,6 +351,59 @@ TEST_P(CudaBackend, Method2GivesTheCpuImage) {
     const SilhouetteFrame mapped = cuda->render(camera, settings);
     EXPECT_EQ(cuda->backendName(), "cuda");
     expectSameFrame(mapped, expected, "L, the volume mapped from host memory");
+}
+
+// Method 2's phase 1 from the cells' mesh kept on the device (the default) and from the voxels
+// (what a device without room for the mesh does): the same segments, the same image, for the
+// resident and the mapped volume, at two iso-values.
+TEST_P(CudaBackend, Method2SegmentsFromTheKeptMeshAreTheVoxelsOnes) {
+    const Volume volume = GetParam().make();
+    kernels::VolumeView view;
+    view.voxels = volume.data();
+    view.kind = kernels::VoxelKind(volume.voxelType());
+    view.dims = volume.dims();
+    const kernels::cpu::VoxelRayGrid grid(volume);
+    kernels::cuda::RayGridSetup rays;
+    rays.offsets = grid.offsets();
+    rays.view = grid.view();
+    rays.cellScale = grid.cellScale();
+    rays.neighbourReach = grid.neighbourReach();
+    const Camera camera = cameraAt(volumeBounds(volume), 40, 25, Projection::Perspective, 200, 180);
+    kernels::PixelCamera pixels;
+    pixels.eye = camera.eye();
+    pixels.right = camera.right();
+    pixels.up = camera.up();
+    pixels.forward = camera.forward();
+    pixels.halfWidth = camera.halfWidth();
+    pixels.halfHeight = camera.halfHeight();
+    pixels.width = camera.width();
+    pixels.height = camera.height();
+    const volume::ValueRange range = volume.realRange();
+    for (const bool mapped : {false, true})
+        for (const double iso : {GetParam().iso, range.min + 0.6 * (range.max - range.min)}) {
+            std::vector<std::uint8_t> masks[2];
+            std::size_t segments[2] = {0, 0};
+            for (const bool keepMesh : {true, false}) {
+                kernels::cuda::RayCastSilhouetteCuda cuda;
+                ASSERT_TRUE(
+                    cuda.setVolume(view, kernels::cpu::voxelGridSetup(volume), rays, mapped).ok());
+                cuda.setKeepCellMesh(keepMesh);
+                kernels::cuda::RayCastCudaFrame frame;
+                ASSERT_TRUE(cuda.prepare(storedIsoValue(volume, iso), frame).ok());
+                std::vector<std::uint8_t>& mask = masks[keepMesh ? 0 : 1];
+                mask.assign(std::size_t(camera.width()) * camera.height(), 0);
+                const auto status =
+                    cuda.render(pixels, camera.eye(), false, kernels::cuda::RayCastCudaSettings{},
+                                mask.data(), frame);
+                ASSERT_TRUE(status.ok()) << status.describe();
+                segments[keepMesh ? 0 : 1] = frame.segments;
+            }
+            const std::string where =
+                std::string(mapped ? "mapped" : "resident") + ", iso " + std::to_string(iso);
+            EXPECT_EQ(segments[0], segments[1]) << where;
+            EXPECT_EQ(masks[0], masks[1]) << where;
+            EXPECT_GT(std::count(masks[0].begin(), masks[0].end(), std::uint8_t(1)), 0) << where;
+        }
 }
 
 // The smoothed gradient stencil (voxel_grid.h) on the device: the CPU's normals bit for bit, for

@@ -291,23 +291,15 @@ __device__ void cellSegments(const mc::Grid<T>& g, std::uint32_t v, const View& 
     }
 }
 
-// Phase 1: one thread per active cell builds its vertices and appends the Burns segment of each
-// of its triangles to `segments` (slots past `capacity` are only counted: the caller grows the
-// buffer and runs again). The counters are shared by every thread: each warp adds its sums with
-// one atomic (one atomic per cell on one address serialised the kernel: 2 ms at 512^3), and the
-// warp's segments go to consecutive slots, lane by lane.
-template <typename T>
-__global__ void findSegments(mc::Grid<T> g, const std::uint32_t* activeVoxels,
-                             const std::uint16_t* codes, std::uint32_t count, View view,
-                             SegmentEndpoints* segments, std::uint32_t* segmentCells,
-                             std::uint32_t capacity, Counters* counters) {
-    const std::uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
-    CellSegments cell;
-    std::uint32_t v = 0;
-    if (i < count && (codes[i] & 0xff) != 0) { // every lane stays for the warp's sums below
-        v = activeVoxels[i];
-        cellSegments(g, v, view, cell);
-    }
+// Appends one cell's segments (every lane of the warp calls it, cells without segments too). The
+// counters are shared by every thread: each warp adds its sums with one atomic (one atomic per
+// cell on one address serialised the kernel: 2 ms at 512^3), and the warp's segments go to
+// consecutive slots, lane by lane; slots past `capacity` are only counted (the caller grows the
+// buffer and runs again).
+__device__ __forceinline__ void appendCellSegments(const CellSegments& cell, std::uint32_t v,
+                                                   SegmentEndpoints* segments,
+                                                   std::uint32_t* segmentCells,
+                                                   std::uint32_t capacity, Counters* counters) {
     constexpr unsigned kWarp = 0xffffffffu;
     const unsigned lane = threadIdx.x & 31u;
     const unsigned triangles = __reduce_add_sync(kWarp, cell.triangles);
@@ -330,6 +322,56 @@ __global__ void findSegments(mc::Grid<T> g, const std::uint32_t* activeVoxels,
             segments[first + k] = cell.segment[k];
             segmentCells[first + k] = v; // the sort key that brings neighbouring rays together
         }
+}
+
+// Phase 1 from the voxels: one thread per active cell builds its vertices and appends the Burns
+// segment of each of its triangles.
+template <typename T>
+__global__ void findSegments(mc::Grid<T> g, const std::uint32_t* activeVoxels,
+                             const std::uint16_t* codes, std::uint32_t count, View view,
+                             SegmentEndpoints* segments, std::uint32_t* segmentCells,
+                             std::uint32_t capacity, Counters* counters) {
+    const std::uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
+    CellSegments cell;
+    std::uint32_t v = 0;
+    if (i < count && (codes[i] & 0xff) != 0) { // every lane stays for the warp's sums
+        v = activeVoxels[i];
+        cellSegments(g, v, view, cell);
+    }
+    appendCellSegments(cell, v, segments, segmentCells, capacity, counters);
+}
+
+// Phase 1 from the cells' mesh (marching cubes of the same iso-value, kept on the device): the
+// same vertices (generateVertices and cellSegments both call the shared edge-vertex function on
+// the same corners), the same triangles in the same order (triTable's, at the cell's offset), so
+// the same segments as findSegments -- without reading a voxel: a volume mapped from host memory
+// is not read over the bus at every view.
+__global__ void findMeshSegments(const std::uint32_t* activeVoxels, const std::uint16_t* codes,
+                                 const std::uint32_t* triangleOffsets, std::uint32_t count,
+                                 DeviceMeshView mesh, View view, SegmentEndpoints* segments,
+                                 std::uint32_t* segmentCells, std::uint32_t capacity,
+                                 Counters* counters) {
+    const std::uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
+    CellSegments cell;
+    std::uint32_t v = 0;
+    const std::uint32_t cubeCase = i < count ? (codes[i] & 0xff) : 0;
+    if (cubeCase != 0) {
+        v = activeVoxels[i];
+        cell.triangles = c_triCount[cubeCase];
+        const std::uint32_t* corner = mesh.indices + std::size_t(triangleOffsets[i]) * 3;
+        for (std::uint32_t t = 0; t < cell.triangles; ++t, corner += 3) {
+            glm::vec3 q[3];
+            float d[3];
+            for (int k = 0; k < 3; ++k) {
+                q[k] = mesh.positions[corner[k]];
+                d[k] = silhouetteDistance(q[k], mesh.normals[corner[k]], view.eyeOrDirectionF,
+                                          view.orthographic);
+            }
+            if (silhouetteSegment(q, d, cell.segment[cell.segments]))
+                ++cell.segments;
+        }
+    }
+    appendCellSegments(cell, v, segments, segmentCells, capacity, counters);
 }
 
 } // namespace lw::kernels::cuda::rc

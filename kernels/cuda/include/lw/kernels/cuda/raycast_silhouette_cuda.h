@@ -66,6 +66,10 @@ public:
     double uploadMs() const;
     // The normals' gradient from the next prepare() on (MarchingCubesCuda::setGradientStencil).
     void setGradientStencil(GradientStencil stencil);
+    // Whether prepare() keeps the active cells' mesh on the device for the views' segments (the
+    // default; without room for it, or when off, each view builds them from the voxels). Both
+    // give the same segments; off exists for the test that says so.
+    void setKeepCellMesh(bool keep);
     CudaStatus prepare(double storedIso, RayCastCudaFrame& frame);
     // `extraSegments` (host memory, may be null): segments found elsewhere (the border cap's),
     // tested and drawn after the cells' own with the same rule.
