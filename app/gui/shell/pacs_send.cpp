@@ -1,10 +1,8 @@
 #include "shell/pacs_send.h"
 
 #include "lw/core/error.h"
-#include "lw/core/file_util.h"
 #include "lw/pacs/pacs_error.h"
 #include "lw/pacs/store_scu.h"
-#include "lw/report/encapsulated_pdf.h"
 #include "lw/report/secondary_capture.h"
 #include "review/review_widget.h"
 
@@ -75,8 +73,8 @@ PacsSender::~PacsSender() {
     m_watcher.waitForFinished();
 }
 
-// The Secondary Capture, the PDF report and the PDF as Encapsulated PDF, into a new temporary
-// folder; m_objects lists the two DICOM files to send.
+// The Secondary Capture and the PDF report as Encapsulated PDF (one rendering of the panels for
+// both), into a new temporary folder; m_objects lists the two DICOM files to send.
 QString PacsSender::writeObjects(ReviewWidget& review, const ReportOptions& options,
                                  QWidget* progressParent) {
     m_folder = std::make_unique<QTemporaryDir>();
@@ -84,26 +82,10 @@ QString PacsSender::writeObjects(ReviewWidget& review, const ReportOptions& opti
         return tr("Cannot create a temporary folder for the objects to send: %1")
             .arg(m_folder->errorString());
     const QString sc = m_folder->filePath(QStringLiteral("sc"));
-    const QString pdf = m_folder->filePath(QStringLiteral("report.pdf"));
     const QString encapsulated = m_folder->filePath(QStringLiteral("report.dcm"));
-    QString error = exportReviewSecondaryCapture(review, sc, options.picture,
-                                                 core::Overwrite::Refuse, progressParent);
-    if (error.isEmpty())
-        error = exportReviewReport(review, pdf, options, core::Overwrite::Refuse, progressParent);
-    if (!error.isEmpty())
+    if (QString error = exportReviewForPacs(review, sc, encapsulated, options, progressParent);
+        !error.isEmpty())
         return error;
-    try {
-        report::EncapsulatedPdfSeries series;
-        series.source = *review.source().dicom;
-        series.softwareVersion = LINEWORK_VERSION;
-        const std::vector<std::byte> bytes = core::readFileBytes(fsPath(pdf));
-        report::writeEncapsulatedPdf(
-            fsPath(encapsulated),
-            QByteArray(reinterpret_cast<const char*>(bytes.data()), qsizetype(bytes.size())),
-            series, core::Overwrite::Refuse);
-    } catch (const core::Error& failure) {
-        return QString::fromStdString(failure.what());
-    }
     const QString first = sc + '/' + QString::fromStdString(report::secondaryCaptureFileName(1));
     m_objects = {{tr("Secondary Capture"), first}, {tr("Report (Encapsulated PDF)"), encapsulated}};
     return {};

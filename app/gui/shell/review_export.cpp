@@ -2,6 +2,7 @@
 
 #include "annotate/annotation_document.h"
 #include "lw/core/error.h"
+#include "lw/report/encapsulated_pdf.h"
 #include "lw/report/export_files.h"
 #include "lw/report/pdf_report.h"
 #include "lw/report/secondary_capture.h"
@@ -153,8 +154,9 @@ QString exportReviewPng(ReviewWidget& review, const QString& path, const ExportP
         progressParent);
 }
 
-QString exportReviewReport(ReviewWidget& review, const QString& path, const ReportOptions& options,
-                           core::Overwrite overwrite, QWidget* progressParent) {
+namespace {
+
+report::ReportInfo reportInfoOf(ReviewWidget& review, const ReportOptions& options) {
     report::ReportInfo info;
     info.identity = review.source().dicom;
     info.sourceDescription = review.source().title.toStdString();
@@ -162,14 +164,37 @@ QString exportReviewReport(ReviewWidget& review, const QString& path, const Repo
     info.comment = options.comment.toStdString();
     info.anonymise = options.anonymise;
     info.softwareVersion = LINEWORK_VERSION;
+    return info;
+}
+
+QByteArray pdfOf(const report::ReportInfo& info, const ExportContent& content) {
+    return report::renderPdfReport(info, content.pictureWithoutLines(), content.annotations,
+                                   content.vectorLines());
+}
+
+QString notDicom(ReviewWidget& review, const QString& target) {
+    return QObject::tr("%1: a Secondary Capture joins the source's study, and %2 is not a "
+                       "DICOM series")
+        .arg(target, review.source().title);
+}
+
+report::SecondaryCaptureSeries secondaryCaptureSeriesOf(ReviewWidget& review) {
+    report::SecondaryCaptureSeries series;
+    series.source = *review.source().dicom;
+    series.derivationDescription = renderingOf(review);
+    series.softwareVersion = LINEWORK_VERSION;
+    return series;
+}
+
+} // namespace
+
+QString exportReviewReport(ReviewWidget& review, const QString& path, const ReportOptions& options,
+                           core::Overwrite overwrite, QWidget* progressParent) {
+    const report::ReportInfo info = reportInfoOf(review, options);
     return runExport(
         review, options.picture, path, [&] { core::checkWritableTarget(fsPath(path), overwrite); },
         [path, overwrite, info](const ExportContent& content) {
-            report::writeExportFile(fsPath(path),
-                                    report::renderPdfReport(info, content.pictureWithoutLines(),
-                                                            content.annotations,
-                                                            content.vectorLines()),
-                                    overwrite);
+            report::writeExportFile(fsPath(path), pdfOf(info, content), overwrite);
         },
         progressParent);
 }
@@ -178,18 +203,40 @@ QString exportReviewSecondaryCapture(ReviewWidget& review, const QString& folder
                                      const ExportPicture& picture, core::Overwrite overwrite,
                                      QWidget* progressParent) {
     if (!review.source().dicom)
-        return QObject::tr("%1: a Secondary Capture joins the source's study, and %2 is not a "
-                           "DICOM series")
-            .arg(folder, review.source().title);
-    report::SecondaryCaptureSeries series;
-    series.source = *review.source().dicom;
-    series.derivationDescription = renderingOf(review);
-    series.softwareVersion = LINEWORK_VERSION;
+        return notDicom(review, folder);
+    const report::SecondaryCaptureSeries series = secondaryCaptureSeriesOf(review);
     return runExport(
         review, picture, folder,
         [&] { report::checkSecondaryCaptureTarget(fsPath(folder), overwrite); },
         [folder, overwrite, series](const ExportContent& content) {
             report::writeSecondaryCapture(fsPath(folder), {content.picture()}, series, overwrite);
+        },
+        progressParent);
+}
+
+QString exportReviewForPacs(ReviewWidget& review, const QString& secondaryCaptureFolder,
+                            const QString& encapsulatedPdfPath, const ReportOptions& options,
+                            QWidget* progressParent) {
+    if (!review.source().dicom)
+        return notDicom(review, secondaryCaptureFolder);
+    const report::ReportInfo info = reportInfoOf(review, options);
+    const report::SecondaryCaptureSeries series = secondaryCaptureSeriesOf(review);
+    report::EncapsulatedPdfSeries pdfSeries;
+    pdfSeries.source = *review.source().dicom;
+    pdfSeries.softwareVersion = LINEWORK_VERSION;
+    constexpr core::Overwrite kNew = core::Overwrite::Refuse;
+    return runExport(
+        review, options.picture, secondaryCaptureFolder,
+        [&] {
+            report::checkSecondaryCaptureTarget(fsPath(secondaryCaptureFolder), kNew);
+            core::checkWritableTarget(fsPath(encapsulatedPdfPath), kNew);
+        },
+        [secondaryCaptureFolder, encapsulatedPdfPath, info, series,
+         pdfSeries](const ExportContent& content) {
+            report::writeSecondaryCapture(fsPath(secondaryCaptureFolder), {content.picture()},
+                                          series, kNew);
+            report::writeEncapsulatedPdf(fsPath(encapsulatedPdfPath), pdfOf(info, content),
+                                         pdfSeries, kNew);
         },
         progressParent);
 }

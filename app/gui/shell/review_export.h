@@ -49,4 +49,11 @@ QString exportReviewSecondaryCapture(ReviewWidget& review, const QString& folder
                                      core::Overwrite overwrite = core::Overwrite::Refuse,
                                      QWidget* progressParent = nullptr);
 
+// What Send to PACS stores, from one rendering of the panels: the picture as a Secondary
+// Capture in `secondaryCaptureFolder` and the A4 report as DICOM Encapsulated PDF at
+// `encapsulatedPdfPath`, both new series of the source's study (neither target may exist).
+QString exportReviewForPacs(ReviewWidget& review, const QString& secondaryCaptureFolder,
+                            const QString& encapsulatedPdfPath, const ReportOptions& options,
+                            QWidget* progressParent = nullptr);
+
 } // namespace lw::gui
