@@ -353,10 +353,11 @@ TEST_P(CudaBackend, Method2GivesTheCpuImage) {
     expectSameFrame(mapped, expected, "L, the volume mapped from host memory");
 }
 
-// Method 2's phase 1 from the cells' mesh kept on the device (the default) and from the voxels
-// (what a device without room for the mesh does): the same segments, the same image, for the
-// resident and the mapped volume, at two iso-values.
-TEST_P(CudaBackend, Method2SegmentsFromTheKeptMeshAreTheVoxelsOnes) {
+// Method 2's phase 1 from the cells' mesh kept on the device (the default), from the voxels
+// (what a device without room for the mesh does) and from slabs of 7 cell layers (how a volume of
+// more than 2^32 voxels goes, its rays reading host memory): the same segments, the same image,
+// for the resident and the mapped volume, at two iso-values.
+TEST_P(CudaBackend, Method2SegmentsFromMeshVoxelsAndSlabsAgree) {
     const Volume volume = GetParam().make();
     kernels::VolumeView view;
     view.voxels = volume.data();
@@ -379,29 +380,33 @@ TEST_P(CudaBackend, Method2SegmentsFromTheKeptMeshAreTheVoxelsOnes) {
     pixels.width = camera.width();
     pixels.height = camera.height();
     const volume::ValueRange range = volume.realRange();
+    enum Way { KeptMesh, Voxels, Slabs };
+    const char* names[] = {"kept mesh", "voxels", "slabs"};
     for (const bool mapped : {false, true})
         for (const double iso : {GetParam().iso, range.min + 0.6 * (range.max - range.min)}) {
-            std::vector<std::uint8_t> masks[2];
-            std::size_t segments[2] = {0, 0};
-            for (const bool keepMesh : {true, false}) {
+            std::vector<std::uint8_t> masks[3];
+            std::size_t segments[3] = {0, 0, 0};
+            for (const Way way : {KeptMesh, Voxels, Slabs}) {
                 kernels::cuda::RayCastSilhouetteCuda cuda;
+                cuda.setSlabLayers(way == Slabs ? 7 : 0);
                 ASSERT_TRUE(
                     cuda.setVolume(view, kernels::cpu::voxelGridSetup(volume), rays, mapped).ok());
-                cuda.setKeepCellMesh(keepMesh);
+                cuda.setKeepCellMesh(way == KeptMesh);
                 kernels::cuda::RayCastCudaFrame frame;
                 ASSERT_TRUE(cuda.prepare(storedIsoValue(volume, iso), frame).ok());
-                std::vector<std::uint8_t>& mask = masks[keepMesh ? 0 : 1];
-                mask.assign(std::size_t(camera.width()) * camera.height(), 0);
+                masks[way].assign(std::size_t(camera.width()) * camera.height(), 0);
                 const auto status =
                     cuda.render(pixels, camera.eye(), false, kernels::cuda::RayCastCudaSettings{},
-                                mask.data(), frame);
-                ASSERT_TRUE(status.ok()) << status.describe();
-                segments[keepMesh ? 0 : 1] = frame.segments;
+                                masks[way].data(), frame);
+                ASSERT_TRUE(status.ok()) << names[way] << ": " << status.describe();
+                segments[way] = frame.segments;
             }
             const std::string where =
                 std::string(mapped ? "mapped" : "resident") + ", iso " + std::to_string(iso);
-            EXPECT_EQ(segments[0], segments[1]) << where;
-            EXPECT_EQ(masks[0], masks[1]) << where;
+            for (const Way way : {Voxels, Slabs}) {
+                EXPECT_EQ(segments[way], segments[KeptMesh]) << names[way] << ", " << where;
+                EXPECT_EQ(masks[way], masks[KeptMesh]) << names[way] << ", " << where;
+            }
             EXPECT_GT(std::count(masks[0].begin(), masks[0].end(), std::uint8_t(1)), 0) << where;
         }
 }

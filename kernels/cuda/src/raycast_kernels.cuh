@@ -374,4 +374,27 @@ __global__ void findMeshSegments(const std::uint32_t* activeVoxels, const std::u
     appendCellSegments(cell, v, segments, segmentCells, capacity, counters);
 }
 
+// Phase 1 of a slabbed volume: one thread per triangle of a kept slab mesh, its Burns segment
+// keyed by the triangle's number over all slabs (`firstTriangle` is this slab's first).
+__global__ void findTriangleSegments(DeviceMeshView mesh, std::uint32_t firstTriangle, View view,
+                                     SegmentEndpoints* segments, std::uint32_t* segmentCells,
+                                     std::uint32_t capacity, Counters* counters) {
+    const std::uint32_t t = blockIdx.x * blockDim.x + threadIdx.x;
+    CellSegments cell;
+    if (t < mesh.triangleCount) {
+        cell.triangles = 1;
+        const std::uint32_t* corner = mesh.indices + std::size_t(t) * 3;
+        glm::vec3 q[3];
+        float d[3];
+        for (int k = 0; k < 3; ++k) {
+            q[k] = mesh.positions[corner[k]];
+            d[k] = silhouetteDistance(q[k], mesh.normals[corner[k]], view.eyeOrDirectionF,
+                                      view.orthographic);
+        }
+        if (silhouetteSegment(q, d, cell.segment[0]))
+            cell.segments = 1;
+    }
+    appendCellSegments(cell, firstTriangle + t, segments, segmentCells, capacity, counters);
+}
+
 } // namespace lw::kernels::cuda::rc

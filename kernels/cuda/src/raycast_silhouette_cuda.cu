@@ -1,5 +1,6 @@
 // Host dispatch of method 2 on the GPU (kernels in raycast_kernels.cuh).
 
+#include "lw/kernels/cuda/device_mesh_store.h"
 #include "lw/kernels/cuda/raycast_silhouette_cuda.h"
 #include "marching_cubes_impl.cuh"
 #include "raycast_kernels.cuh"
@@ -14,8 +15,33 @@
 
 namespace lw::kernels::cuda {
 
+namespace {
+
+// Marching cubes over the whole volume indexes voxels with 32 bits; a larger volume (2048^3:
+// 8.6 G voxels) goes through it in slabs instead (see RayCastSilhouetteCuda::Impl::slabbed).
+constexpr std::size_t kWholeVolumeVoxelLimit = std::numeric_limits<std::uint32_t>::max() - 1024;
+// A slab's box on the device, at most (two of them: one extracting, one uploading).
+constexpr std::size_t kSlabBoxBytes = std::size_t(512) << 20;
+
+} // namespace
+
 struct RayCastSilhouetteCuda::Impl {
     MarchingCubesCuda marchingCubes;
+    // What the rays read: the voxels (on the device, or host memory mapped into its address
+    // space) and their grid; the whole volume in every mode.
+    const void* rayVoxels = nullptr;
+    GridDims rayDims;
+    VoxelKind kind = VoxelKind::Int16;
+    // Slabbed: a volume of more voxels than whole-volume marching cubes indexes. Its slabs are
+    // extracted one by one from host memory (MarchingCubesCuda::extractSlabs) and their meshes
+    // kept here; each view takes its segments from every triangle of them, keyed by the
+    // triangle's number over all slabs (cell order, as the cells' keys are). The rays read the
+    // volume mapped from host memory.
+    bool slabbed = false;
+    int slabLayers = 0; // setSlabLayers: cell layers per slab (0: from kSlabBoxBytes)
+    DeviceMeshStore slabMeshes;
+    std::vector<std::size_t> slabFirstTriangle;
+    std::size_t slabTriangles = 0;
     RayGridSetup rayGrid;
     DeviceBuffer<double> rayOffsets;
     DeviceBuffer<float> macroMaxima; // per macro cell, per volume (rc::macroMaximum)
@@ -47,6 +73,11 @@ struct RayCastSilhouetteCuda::Impl {
     MarchingCubesCuda::Impl& mc() { return marchingCubes.implementation(); }
 
     template <typename T> CudaStatus findMacroMaxima();
+    CudaStatus placeVolume(const VolumeView& host, const VoxelGridSetup& setup, bool mapped);
+    std::vector<CellSlab> slabPlan() const;
+    CudaStatus extractSlabs(double storedIso);
+    CudaStatus findSlabSegments(const rc::View& view, std::uint32_t capacity);
+    bool hasSurface() { return slabbed ? slabTriangles > 0 : mc().activeCount > 0; }
     template <typename T> CudaStatus findActiveCells(double storedIso);
     template <typename T> CudaStatus prepareTyped(double storedIso, RayCastCudaFrame& frame);
     template <typename T>
@@ -82,9 +113,9 @@ double RayCastSilhouetteCuda::uploadMs() const {
 
 std::size_t RayCastSilhouetteCuda::deviceBytes() const {
     const Impl& s = *m_impl;
-    return s.marchingCubes.deviceBytes() + s.rayOffsets.bytes() + s.macroMaxima.bytes() +
-           s.macroOccupied.bytes() + s.coarseOccupied.bytes() + s.mask.bytes() +
-           s.counters.bytes() + s.segments.bytes() + s.segmentCells.bytes() +
+    return s.marchingCubes.deviceBytes() + s.slabMeshes.deviceBytes() + s.rayOffsets.bytes() +
+           s.macroMaxima.bytes() + s.macroOccupied.bytes() + s.coarseOccupied.bytes() +
+           s.mask.bytes() + s.counters.bytes() + s.segments.bytes() + s.segmentCells.bytes() +
            s.sortedSegments.bytes() + s.sortedCells.bytes() + s.sortTemp.bytes() +
            s.visible.bytes() + s.pruning.deviceBytes() + s.endpointTable.bytes() +
            s.representative.bytes() + s.representatives.bytes() + s.representativeCount.bytes() +
@@ -98,8 +129,7 @@ CudaStatus RayCastSilhouetteCuda::setVolume(const VolumeView& hostVolume,
     s.prepared = false;
     // This translation unit's copy of the constant tables (see marching_cubes_kernels.cuh).
     LW_RETURN_IF_FAILED(mc::uploadTables());
-    LW_RETURN_IF_FAILED(mapped ? s.marchingCubes.setMappedVolume(hostVolume, setup)
-                               : s.marchingCubes.setVolume(hostVolume, setup));
+    LW_RETURN_IF_FAILED(s.placeVolume(hostVolume, setup, mapped));
     s.rayGrid = rayGrid;
     LW_RETURN_IF_FAILED(s.rayOffsets.reserve(rayGrid.offsets.size(), "cudaMalloc(rayOffsets)"));
     LW_CUDA_TRY(cudaMemcpy(s.rayOffsets.data(), rayGrid.offsets.data(),
@@ -119,8 +149,39 @@ CudaStatus RayCastSilhouetteCuda::setVolume(const VolumeView& hostVolume,
         std::size_t(s.coarseDims.x) * std::size_t(s.coarseDims.y) * std::size_t(s.coarseDims.z);
     LW_RETURN_IF_FAILED(s.coarseOccupied.reserve(coarseCount, "cudaMalloc(coarseOccupied)"));
     LW_RETURN_IF_FAILED(s.counters.reserve(1, "cudaMalloc(counters)"));
-    return dispatchVoxelKind(s.mc().volume.kind,
+    return dispatchVoxelKind(s.kind,
                              [&](auto zero) { return s.findMacroMaxima<decltype(zero)>(); });
+}
+
+// The voxels where marching cubes and the rays read them: on the device, mapped from host
+// memory, or (slabbed) streamed to marching cubes by slab and mapped for the rays.
+CudaStatus RayCastSilhouetteCuda::Impl::placeVolume(const VolumeView& host,
+                                                    const VoxelGridSetup& setup, bool mapped) {
+    slabMeshes.clear();
+    slabFirstTriangle.clear();
+    slabTriangles = 0;
+    kind = host.kind;
+    rayDims = makeGridDims(host.dims);
+    slabbed = slabLayers > 0 || host.voxelCount() >= kWholeVolumeVoxelLimit;
+    if (!slabbed) {
+        LW_RETURN_IF_FAILED(mapped ? marchingCubes.setMappedVolume(host, setup)
+                                   : marchingCubes.setVolume(host, setup));
+        rayVoxels = mc().volume.voxels;
+        return CudaStatus::success();
+    }
+    LW_RETURN_IF_FAILED(marchingCubes.setStreamedVolume(host, setup));
+    // setStreamedVolume page-locked the volume; with unified addressing that maps it too.
+    void* device = nullptr;
+    const cudaError_t found = cudaHostGetDevicePointer(&device, const_cast<void*>(host.voxels), 0);
+    if (found != cudaSuccess) {
+        cudaGetLastError();
+        return CudaStatus::failure(CudaStatus::Code::Failed, "method 2 (CUDA)",
+                                   "a volume of more than 2^32 voxels is read from host memory, "
+                                   "and this device cannot map it: " +
+                                       std::string(cudaGetErrorString(found)));
+    }
+    rayVoxels = device;
+    return CudaStatus::success();
 }
 
 template <typename T> CudaStatus RayCastSilhouetteCuda::Impl::findMacroMaxima() {
@@ -128,7 +189,7 @@ template <typename T> CudaStatus RayCastSilhouetteCuda::Impl::findMacroMaxima() 
     const std::size_t macroCount =
         std::size_t(macroDims.x) * std::size_t(macroDims.y) * std::size_t(macroDims.z);
     rc::macroMaximum<T><<<blocksFor(macroCount, 128), 128, 0, m.stream.get()>>>(
-        static_cast<const T*>(m.volume.voxels), m.spans.dims, macroDims, macroMaxima.data());
+        static_cast<const T*>(rayVoxels), rayDims, macroDims, macroMaxima.data());
     LW_CUDA_LAUNCHED("rc::macroMaximum");
     LW_CUDA_TRY(cudaStreamSynchronize(m.stream.get()), "rc::macroMaximum");
     return CudaStatus::success();
@@ -163,7 +224,7 @@ CudaStatus RayCastSilhouetteCuda::Impl::prepareTyped(double storedIso, RayCastCu
     MarchingCubesCuda::Impl& m = mc();
     cudaStream_t st = m.stream.get();
     LW_RETURN_IF_FAILED(prepareTimer.start(st));
-    LW_RETURN_IF_FAILED(findActiveCells<T>(storedIso));
+    LW_RETURN_IF_FAILED(slabbed ? extractSlabs(storedIso) : findActiveCells<T>(storedIso));
     const std::size_t macroCount =
         std::size_t(macroDims.x) * std::size_t(macroDims.y) * std::size_t(macroDims.z);
     rc::macroOccupancy<<<blocksFor(macroCount, 128), 128, 0, st>>>(
@@ -186,12 +247,11 @@ CudaStatus RayCastSilhouetteCuda::Impl::prepareTyped(double storedIso, RayCastCu
 CudaStatus RayCastSilhouetteCuda::prepare(double storedIso, RayCastCudaFrame& frame) {
     Impl& s = *m_impl;
     s.prepared = false;
-    if (!s.mc().volume.voxels)
+    if (!s.rayVoxels)
         return CudaStatus::failure(CudaStatus::Code::Failed, "method 2 (CUDA)",
                                    "no volume: call setVolume first");
-    return dispatchVoxelKind(s.mc().volume.kind, [&](auto zero) {
-        return s.prepareTyped<decltype(zero)>(storedIso, frame);
-    });
+    return dispatchVoxelKind(
+        s.kind, [&](auto zero) { return s.prepareTyped<decltype(zero)>(storedIso, frame); });
 }
 
 // Phase 1: the segments of the active cells into `segments` (sorted by cell for the rays).
@@ -199,7 +259,6 @@ template <typename T>
 CudaStatus RayCastSilhouetteCuda::Impl::findSegments(const rc::View& view, rc::Counters& counts) {
     MarchingCubesCuda::Impl& m = mc();
     cudaStream_t st = m.stream.get();
-    const mc::Grid<T> g = m.grid<T>(iso);
     // Run again with a larger buffer when the segments did not fit.
     for (int attempt = 0; attempt < 2; ++attempt) {
         LW_CUDA_TRY(cudaMemsetAsync(counters.data(), 0, sizeof(rc::Counters), st),
@@ -207,7 +266,9 @@ CudaStatus RayCastSilhouetteCuda::Impl::findSegments(const rc::View& view, rc::C
         const std::uint32_t capacity =
             std::uint32_t(std::min(segments.capacity(), segmentCells.capacity()));
         const std::uint32_t blocks = blocksFor(m.activeCount, tuning::kRayCastBlock);
-        if (meshKept) {
+        if (slabbed) {
+            LW_RETURN_IF_FAILED(findSlabSegments(view, capacity));
+        } else if (meshKept) {
             rc::findMeshSegments<<<blocks, tuning::kRayCastBlock, 0, st>>>(
                 m.activeVoxels.data(), m.activeCodes.data(), m.triangleOffsets.data(),
                 m.activeCount, m.mesh, view, segments.data(), segmentCells.data(), capacity,
@@ -215,7 +276,7 @@ CudaStatus RayCastSilhouetteCuda::Impl::findSegments(const rc::View& view, rc::C
             LW_CUDA_LAUNCHED("rc::findMeshSegments");
         } else {
             rc::findSegments<T><<<blocks, tuning::kRayCastBlock, 0, st>>>(
-                g, m.activeVoxels.data(), m.activeCodes.data(), m.activeCount, view,
+                m.grid<T>(iso), m.activeVoxels.data(), m.activeCodes.data(), m.activeCount, view,
                 segments.data(), segmentCells.data(), capacity, counters.data());
             LW_CUDA_LAUNCHED("rc::findSegments");
         }
@@ -236,7 +297,9 @@ CudaStatus RayCastSilhouetteCuda::Impl::findSegments(const rc::View& view, rc::C
         LW_RETURN_IF_FAILED(sortedSegments.reserve(found, "cudaMalloc(sortedSegments)"));
         LW_RETURN_IF_FAILED(sortedCells.reserve(found, "cudaMalloc(sortedCells)"));
         std::size_t bytes = 0;
-        const int keyBits = 32 - __builtin_clz(std::max(m.activeVoxelLimit(), 1u));
+        const std::uint32_t keyLimit =
+            slabbed ? std::uint32_t(slabTriangles) : m.activeVoxelLimit();
+        const int keyBits = 32 - __builtin_clz(std::max(keyLimit, 1u));
         LW_CUDA_TRY(cub::DeviceRadixSort::SortPairs(nullptr, bytes, segmentCells.data(),
                                                     sortedCells.data(), segments.data(),
                                                     sortedSegments.data(), found, 0, keyBits, st),
@@ -254,12 +317,10 @@ CudaStatus RayCastSilhouetteCuda::Impl::findSegments(const rc::View& view, rc::C
 // Phase 2: the first `count` segments tested (per endpoint or along the segment) and drawn.
 template <typename T>
 CudaStatus RayCastSilhouetteCuda::Impl::testAndDraw(const rc::View& view, std::uint32_t count) {
-    MarchingCubesCuda::Impl& m = mc();
-    cudaStream_t st = m.stream.get();
-    const mc::Grid<T> g = m.grid<T>(iso);
+    cudaStream_t st = mc().stream.get();
     RayVisibility<T> rule;
-    rule.voxels = g.box;
-    rule.dims = m.spans.dims;
+    rule.voxels = static_cast<const T*>(rayVoxels);
+    rule.dims = rayDims;
     rule.grid = rayGrid.view;
     rule.macroOccupied = macroOccupied.data();
     rule.macroDims = macroDims;
@@ -357,7 +418,7 @@ RayCastSilhouetteCuda::Impl::renderTyped(const rc::View& view, const RayCastCuda
     LW_RETURN_IF_FAILED(renderTimer.start(st));
     LW_CUDA_TRY(cudaMemsetAsync(mask.data(), 0, pixels, st), "cudaMemset(mask)");
     rc::Counters counts{};
-    if (m.activeCount > 0)
+    if (hasSurface())
         LW_RETURN_IF_FAILED(findSegments<T>(view, counts));
     const std::size_t found = std::size_t(counts.segments);
     if (extra && extraCount > 0) {
@@ -407,10 +468,64 @@ CudaStatus RayCastSilhouetteCuda::render(const PixelCamera& camera, glm::dvec3 e
     view.visibility = settings.visibility;
     view.alongSegment = settings.alongSegment;
     view.pixelSpan = rayPixelSpan(camera.halfHeight, camera.height);
-    return dispatchVoxelKind(s.mc().volume.kind, [&](auto zero) {
+    return dispatchVoxelKind(s.kind, [&](auto zero) {
         return s.renderTyped<decltype(zero)>(view, settings, hostMask, frame, extraSegments,
                                              extraCount);
     });
+}
+
+// Slabs of whole cell layers whose box (layers plus the gradient apron) stays under
+// kSlabBoxBytes, or setSlabLayers' count.
+std::vector<CellSlab> RayCastSilhouetteCuda::Impl::slabPlan() const {
+    const int cellsZ = rayDims.cz, cellsY = rayDims.cy;
+    const std::size_t sliceBytes = rayDims.sz * voxelKindSize(kind);
+    int layers = slabLayers;
+    if (layers <= 0)
+        layers =
+            int(std::max<std::size_t>(kSlabBoxBytes / std::max<std::size_t>(sliceBytes, 1), 4) - 3);
+    std::vector<CellSlab> slabs;
+    for (int first = 0; first < cellsZ; first += layers)
+        slabs.push_back(
+            CellSlab{glm::ivec2(first, std::min(first + layers, cellsZ)), glm::ivec2(0, cellsY)});
+    return slabs;
+}
+
+CudaStatus RayCastSilhouetteCuda::Impl::extractSlabs(double storedIso) {
+    slabMeshes.clear();
+    slabFirstTriangle.clear();
+    slabTriangles = 0;
+    if (rayDims.cx < 1 || rayDims.cy < 1 || rayDims.cz < 1)
+        return CudaStatus::success();
+    return marchingCubes.extractSlabs(
+        storedIso, slabPlan(), [&](std::size_t, const DeviceMeshView& mesh) {
+            if (slabTriangles + mesh.triangleCount >= std::numeric_limits<std::uint32_t>::max())
+                return CudaStatus::failure(CudaStatus::Code::TooLarge, "method 2 (CUDA)",
+                                           "more than 2^32 triangles");
+            LW_RETURN_IF_FAILED(slabMeshes.keep(mesh));
+            slabFirstTriangle.push_back(slabTriangles);
+            slabTriangles += mesh.triangleCount;
+            return CudaStatus::success();
+        });
+}
+
+// Phase 1 of a slabbed volume: every kept slab's triangles, into the shared counters.
+CudaStatus RayCastSilhouetteCuda::Impl::findSlabSegments(const rc::View& view,
+                                                         std::uint32_t capacity) {
+    cudaStream_t st = mc().stream.get();
+    for (std::size_t k = 0; k < slabMeshes.count(); ++k) {
+        const DeviceMeshView& mesh = slabMeshes.mesh(k);
+        rc::findTriangleSegments<<<blocksFor(mesh.triangleCount, tuning::kRayCastBlock),
+                                   tuning::kRayCastBlock, 0, st>>>(
+            mesh, std::uint32_t(slabFirstTriangle[k]), view, segments.data(), segmentCells.data(),
+            capacity, counters.data());
+        LW_CUDA_LAUNCHED("rc::findTriangleSegments");
+    }
+    return CudaStatus::success();
+}
+
+void RayCastSilhouetteCuda::setSlabLayers(int layers) {
+    m_impl->slabLayers = layers > 0 ? layers : 0;
+    m_impl->prepared = false;
 }
 
 } // namespace lw::kernels::cuda

@@ -70,6 +70,11 @@ public:
     // default; without room for it, or when off, each view builds them from the voxels). Both
     // give the same segments; off exists for the test that says so.
     void setKeepCellMesh(bool keep);
+    // Volumes of 2^32 voxels or more are extracted in slabs of cell layers (whole-volume marching
+    // cubes indexes voxels with 32 bits) and their rays read the volume from host memory; `layers`
+    // > 0 makes every volume go that way with slabs of that many layers (from the next
+    // setVolume), so that tests can compare it with the whole volume at small sizes.
+    void setSlabLayers(int layers);
     CudaStatus prepare(double storedIso, RayCastCudaFrame& frame);
     // `extraSegments` (host memory, may be null): segments found elsewhere (the border cap's),
     // tested and drawn after the cells' own with the same rule.
