@@ -341,6 +341,20 @@ __global__ void findSegments(mc::Grid<T> g, const std::uint32_t* activeVoxels,
     appendCellSegments(cell, v, segments, segmentCells, capacity, counters);
 }
 
+// The Burns segment of the mesh triangle whose corners are `corner[0..2]`, if it has one.
+__device__ __forceinline__ bool meshTriangleSegment(const DeviceMeshView& mesh,
+                                                    const std::uint32_t* corner, const View& view,
+                                                    SegmentEndpoints& segment) {
+    glm::vec3 q[3];
+    float d[3];
+    for (int k = 0; k < 3; ++k) {
+        q[k] = mesh.positions[corner[k]];
+        d[k] = silhouetteDistance(q[k], mesh.normals[corner[k]], view.eyeOrDirectionF,
+                                  view.orthographic);
+    }
+    return silhouetteSegment(q, d, segment);
+}
+
 // Phase 1 from the cells' mesh (marching cubes of the same iso-value, kept on the device): the
 // same vertices (generateVertices and cellSegments both call the shared edge-vertex function on
 // the same corners), the same triangles in the same order (triTable's, at the cell's offset), so
@@ -359,17 +373,9 @@ __global__ void findMeshSegments(const std::uint32_t* activeVoxels, const std::u
         v = activeVoxels[i];
         cell.triangles = c_triCount[cubeCase];
         const std::uint32_t* corner = mesh.indices + std::size_t(triangleOffsets[i]) * 3;
-        for (std::uint32_t t = 0; t < cell.triangles; ++t, corner += 3) {
-            glm::vec3 q[3];
-            float d[3];
-            for (int k = 0; k < 3; ++k) {
-                q[k] = mesh.positions[corner[k]];
-                d[k] = silhouetteDistance(q[k], mesh.normals[corner[k]], view.eyeOrDirectionF,
-                                          view.orthographic);
-            }
-            if (silhouetteSegment(q, d, cell.segment[cell.segments]))
+        for (std::uint32_t t = 0; t < cell.triangles; ++t, corner += 3)
+            if (meshTriangleSegment(mesh, corner, view, cell.segment[cell.segments]))
                 ++cell.segments;
-        }
     }
     appendCellSegments(cell, v, segments, segmentCells, capacity, counters);
 }
@@ -383,15 +389,7 @@ __global__ void findTriangleSegments(DeviceMeshView mesh, std::uint32_t firstTri
     CellSegments cell;
     if (t < mesh.triangleCount) {
         cell.triangles = 1;
-        const std::uint32_t* corner = mesh.indices + std::size_t(t) * 3;
-        glm::vec3 q[3];
-        float d[3];
-        for (int k = 0; k < 3; ++k) {
-            q[k] = mesh.positions[corner[k]];
-            d[k] = silhouetteDistance(q[k], mesh.normals[corner[k]], view.eyeOrDirectionF,
-                                      view.orthographic);
-        }
-        if (silhouetteSegment(q, d, cell.segment[0]))
+        if (meshTriangleSegment(mesh, mesh.indices + std::size_t(t) * 3, view, cell.segment[0]))
             cell.segments = 1;
     }
     appendCellSegments(cell, firstTriangle + t, segments, segmentCells, capacity, counters);
