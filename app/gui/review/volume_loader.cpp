@@ -86,6 +86,10 @@ void VolumeLoader::start(const LoadRequest& request) {
                 if (loader.m_cancel == token) {
                     loader.m_cancel.reset();
                     emit loader.loaded(source);
+                } else if (!loader.m_cancel) {
+                    // Cancelled after the last check: the volume is dropped, and the cancel
+                    // still gets its answer.
+                    emit loader.cancelled();
                 }
             });
         } catch (const core::Cancelled&) {
