@@ -2,6 +2,7 @@
 
 #include "lw/core/error.h"
 #include "lw/core/progress.h"
+#include "lw/core/thread_priority.h"
 #include "lw/input/open_input.h"
 #include "review/slice_views.h"
 
@@ -14,8 +15,12 @@
 
 namespace lw::gui {
 
-VolumeLoader::VolumeLoader(QObject* parent) : QObject(parent) {}
+VolumeLoader::VolumeLoader(QObject* parent)
+    : QObject(parent), m_pool(std::make_unique<QThreadPool>()) {
+    m_pool->setMaxThreadCount(2);
+}
 
+// The pool's destructor waits for a load still running: cancelled, it stops at the next slice.
 VolumeLoader::~VolumeLoader() {
     cancel();
 }
@@ -72,7 +77,8 @@ void VolumeLoader::start(const LoadRequest& request) {
             },
             Qt::QueuedConnection);
     };
-    QThreadPool::globalInstance()->start([request, token, post] {
+    m_pool->start([request, token, post] {
+        core::lowerCurrentThreadToBackground();
         core::Progress progress(
             [post](double fraction, const std::string& message) {
                 post([fraction, text = QString::fromStdString(message)](VolumeLoader& loader) {
