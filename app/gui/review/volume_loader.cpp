@@ -79,8 +79,17 @@ void VolumeLoader::start(const LoadRequest& request) {
     };
     m_pool->start([request, token, post] {
         core::lowerCurrentThreadToBackground();
+        // Whole percents only: every step a repaint of the status bar and the X server's work
+        // besides, a thousand times a load; a progress bar shows no finer steps. Calls of a
+        // Progress's callback never overlap, so the lambda's own state needs no lock.
         core::Progress progress(
-            [post](double fraction, const std::string& message) {
+            [post, shownPercent = -1,
+             shownMessage = std::string()](double fraction, const std::string& message) mutable {
+                const int percent = int(fraction * 100.0);
+                if (percent == shownPercent && message == shownMessage)
+                    return;
+                shownPercent = percent;
+                shownMessage = message;
                 post([fraction, text = QString::fromStdString(message)](VolumeLoader& loader) {
                     emit loader.progress(fraction, text);
                 });
