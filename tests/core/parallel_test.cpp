@@ -2,7 +2,9 @@
 // and no thread started per call.
 #include "lw/core/error.h"
 #include "lw/core/parallel.h"
+#include "lw/core/thread_priority.h"
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <gtest/gtest.h>
@@ -172,6 +174,43 @@ TEST(ParallelFor, ManySmallCallsReuseTheSameThreads) {
 TEST(ParallelFor, WorkerCountIsAtLeastOne) {
     EXPECT_GE(workerCount(), 1u);
 }
+
+#ifdef __linux__
+// Per thread and one way: the lowered thread stays lowered, the test's own thread does not move.
+TEST(ThreadPriority, BackgroundIsPerThreadAndOneWay) {
+    const int mine = currentThreadNice();
+    int lowered = -1, afterRaise = -1;
+    std::thread([&] {
+        lowerCurrentThreadToBackground();
+        lowered = currentThreadNice();
+        lowerCurrentThreadTo(0); // "lower" to a higher priority: nothing happens
+        afterRaise = currentThreadNice();
+    }).join();
+    EXPECT_EQ(lowered, std::max(mine, kBackgroundNice));
+    EXPECT_EQ(afterRaise, lowered);
+    EXPECT_EQ(currentThreadNice(), mine);
+}
+
+// A background caller's items never run at a higher priority on a pool helper.
+TEST(ThreadPriority, HelpersRunABackgroundCallersItemsInTheBackground) {
+    if (workerCount() < 2)
+        GTEST_SKIP() << "one core: parallelFor has no helpers";
+    std::mutex mutex;
+    std::set<std::thread::id> threads;
+    int highestPriority = 100; // the smallest nice value seen running an item
+    std::thread([&] {
+        lowerCurrentThreadToBackground();
+        parallelFor(64, [&](std::size_t) {
+            busyFor(std::chrono::microseconds(500));
+            std::lock_guard lock(mutex);
+            threads.insert(std::this_thread::get_id());
+            highestPriority = std::min(highestPriority, currentThreadNice());
+        });
+    }).join();
+    EXPECT_GT(threads.size(), 1u) << "no helper joined: the check below proved nothing";
+    EXPECT_GE(highestPriority, kBackgroundNice);
+}
+#endif
 
 } // namespace
 } // namespace lw::core

@@ -20,10 +20,12 @@
 #include <QPainter>
 #include <QSlider>
 #include <QtTest>
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <memory>
+#include <set>
 
 using namespace lw::gui;
 
@@ -49,6 +51,9 @@ private slots:
     void hoverShowsThePatientPosition();
     void linesTextureDrawsAsTheHostImage();
     void silhouetteTexturesAreNeverHandedOutTwice();
+    void loaderReportsPhantomProgress_data();
+    void loaderReportsPhantomProgress();
+    void cancelEndsThePhantomLoadWithoutAVolume();
 };
 
 void ReviewTest::panelsDraw_data() {
@@ -470,6 +475,57 @@ void ReviewTest::silhouetteTexturesAreNeverHandedOutTwice() {
     QVERIFY(other.makeCurrent(&surface));
     QVERIFY(!other.functions()->glIsTexture(name));
     other.doneCurrent();
+}
+
+void ReviewTest::loaderReportsPhantomProgress_data() {
+    QTest::addColumn<QString>("path");
+    QTest::addColumn<int>("slices");
+    QTest::addRow("ct, 96 slices") << "phantom:64x64x96" << 96;
+    QTest::addRow("sphere, 300 slices") << "phantom:40x48x300:sphere" << 300;
+}
+
+// The progress bar moves between 0 and 1 while the phantom is generated, never backwards.
+void ReviewTest::loaderReportsPhantomProgress() {
+    QFETCH(QString, path);
+    QFETCH(int, slices);
+    VolumeLoader loader;
+    QList<double> fractions;
+    std::shared_ptr<ReviewSource> source;
+    connect(&loader, &VolumeLoader::progress, &loader,
+            [&](double fraction, const QString&) { fractions.append(fraction); });
+    connect(&loader, &VolumeLoader::loaded, &loader,
+            [&](std::shared_ptr<ReviewSource> loaded) { source = std::move(loaded); });
+    loader.start({path, {}, {}, 300.5});
+    QTRY_VERIFY_WITH_TIMEOUT(source != nullptr, 60000);
+    QVERIFY(!loader.isRunning());
+    QCOMPARE(source->volume->dims().z, slices);
+    QVERIFY(std::is_sorted(fractions.begin(), fractions.end()));
+    // The phantom steps once per slice; the loader passes on each new whole percent.
+    std::set<int> percents;
+    for (int slice = 1; slice < slices; ++slice)
+        percents.insert(int(double(slice) / double(slices) * 100.0));
+    const auto between = std::count_if(fractions.begin(), fractions.end(),
+                                       [](double f) { return f > 0.0 && f < 1.0; });
+    QCOMPARE(int(between), int(percents.size()));
+    QCOMPARE(fractions.last(), 1.0);
+}
+
+// Cancel at the first step: the load ends with `cancelled`, never with a volume or an error.
+void ReviewTest::cancelEndsThePhantomLoadWithoutAVolume() {
+    VolumeLoader loader;
+    int cancelled = 0, loaded = 0, failed = 0;
+    connect(&loader, &VolumeLoader::progress, &loader, [&](double fraction, const QString&) {
+        if (fraction > 0.0 && loader.isRunning())
+            loader.cancel();
+    });
+    connect(&loader, &VolumeLoader::cancelled, &loader, [&] { ++cancelled; });
+    connect(&loader, &VolumeLoader::loaded, &loader, [&] { ++loaded; });
+    connect(&loader, &VolumeLoader::failed, &loader, [&] { ++failed; });
+    loader.start({"phantom:128x128x512", {}, {}, 300.5});
+    QTRY_COMPARE_WITH_TIMEOUT(cancelled, 1, 60000);
+    QCOMPARE(loaded, 0);
+    QCOMPARE(failed, 0);
+    QVERIFY(!loader.isRunning());
 }
 
 LW_GUI_TEST_MAIN(ReviewTest)

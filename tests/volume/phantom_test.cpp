@@ -4,6 +4,9 @@
 #include <cstdlib>
 #include <cstring>
 #include <gtest/gtest.h>
+#include <memory>
+#include <string>
+#include <vector>
 
 namespace lw::volume {
 namespace {
@@ -42,6 +45,49 @@ TEST(Phantom, ThreadCountDoesNotChangeVoxels) {
     const volume::Volume b = makePhantom({33, 29, 31}, PhantomKind::Ct, 0);
     ASSERT_EQ(a.byteSize(), b.byteSize());
     EXPECT_EQ(std::memcmp(a.data(), b.data(), a.byteSize()), 0);
+}
+
+TEST(Phantom, ReportsEverySliceInOrderAndKeepsItsVoxels) {
+    std::vector<double> fractions;
+    std::vector<std::string> messages;
+    core::Progress progress([&](double fraction, const std::string& message) {
+        fractions.push_back(fraction);
+        messages.push_back(message);
+    });
+    const glm::ivec3 dims(24, 20, 40);
+    const volume::Volume reported = makePhantom(dims, PhantomKind::Ct, 0, {}, &progress);
+    const volume::Volume quiet = makePhantom(dims, PhantomKind::Ct);
+    ASSERT_EQ(fractions.size(), std::size_t(dims.z)); // 40 slices: every step a new per-mille
+    for (std::size_t i = 0; i < fractions.size(); ++i) {
+        EXPECT_DOUBLE_EQ(fractions[i], double(i + 1) / dims.z);
+        EXPECT_EQ(messages[i], "Generating the phantom");
+    }
+    EXPECT_EQ(std::memcmp(reported.data(), quiet.data(), quiet.byteSize()), 0);
+}
+
+TEST(Phantom, CancelledTokenGeneratesNoSlice) {
+    auto token = std::make_shared<core::CancelToken>();
+    token->cancel();
+    int steps = 0;
+    core::Progress progress([&](double, const std::string&) { ++steps; }, token);
+    EXPECT_THROW(makePhantom({16, 16, 32}, PhantomKind::Ct, 0, {}, &progress), core::Cancelled);
+    EXPECT_EQ(steps, 0);
+}
+
+// One thread makes the order deterministic: the token is cancelled in the callback of the
+// quarter's slice, and the next slice is the first not generated.
+TEST(Phantom, CancelWhileGeneratingStopsAtTheNextSlice) {
+    auto token = std::make_shared<core::CancelToken>();
+    int steps = 0;
+    core::Progress progress(
+        [&](double fraction, const std::string&) {
+            ++steps;
+            if (fraction >= 0.25)
+                token->cancel();
+        },
+        token);
+    EXPECT_THROW(makePhantom({16, 16, 64}, PhantomKind::Sphere, 1, {}, &progress), core::Cancelled);
+    EXPECT_EQ(steps, 16);
 }
 
 TEST(Phantom, RejectsBadInput) {

@@ -6,11 +6,12 @@
 // -> its three slices painted; a wheel step -> the slice painted with its contour); the exports.
 //
 //   linework-review-bench PATH [--iso HU] [--repeat N] [--panel-gl ..] [--backend cpu|cuda|auto]
-//                         [--thick-slices smooth|linear] [--slices-only]
+//                         [--thick-slices smooth|linear] [--slices-only] [--probe-stalls MS]
 //
 // Run under a display (xvfb-run -a -s "-screen 0 1920x1080x24"). Prints one line per figure.
 #include "bench/bench_support.h"
 #include "bench/stall_monitor.h"
+#include "bench/stall_probe.h"
 #include "browser/study_browser.h"
 #include "review/camera_controller.h"
 #include "review/review_panel.h"
@@ -386,8 +387,10 @@ int main(int argc, char* argv[]) {
         "thick-slices", "Thick slices: smooth or linear (settings page).", "HOW", "smooth");
     const QCommandLineOption slicesOnlyOption(
         "slices-only", "Only the slice panels' figures (after opening the series).");
-    parser.addOptions(
-        {isoOption, repeatOption, panelGlOption, backendOption, thickOption, slicesOnlyOption});
+    const QCommandLineOption probeOption(
+        "probe-stalls", "Report why the UI thread stalls longer than MS (stderr).", "MS");
+    parser.addOptions({isoOption, repeatOption, panelGlOption, backendOption, thickOption,
+                       slicesOnlyOption, probeOption});
     parser.process(app);
     if (parser.positionalArguments().size() != 1) {
         std::fprintf(stderr, "usage: linework-review-bench PATH [--iso HU] [--repeat N] "
@@ -406,6 +409,9 @@ int main(int argc, char* argv[]) {
     MainWindow window(options);
     window.resize(1600, 900);
     window.show();
+    std::unique_ptr<StallProbe> probe;
+    if (parser.isSet(probeOption))
+        probe = std::make_unique<StallProbe>(parser.value(probeOption).toDouble());
     StallMonitor monitor;
     ReviewWidget* review = openAndMeasure(window, path, iso, sinceStart, monitor);
     if (!review) {

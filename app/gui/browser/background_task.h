@@ -12,6 +12,7 @@
 #include <QObject>
 #include <QPointer>
 #include <QString>
+#include <QThreadPool>
 #include <QtConcurrent/QtConcurrentRun>
 #include <exception>
 
@@ -23,16 +24,16 @@ inline QString errorText(const core::Error& error) {
                                         QString::fromStdString(error.reason()));
 }
 
-// `work()` runs on the pool; then exactly one of onDone(result), onCancelled(), onFailed(text)
+// `work()` runs on `pool`; then exactly one of onDone(result), onCancelled(), onFailed(text)
 // runs on `receiver`'s thread, unless `receiver` is gone by then.
 template <typename Work, typename Done, typename Cancelled, typename Failed>
-QFuture<void> runInBackground(QObject* receiver, Work work, Done onDone, Cancelled onCancelled,
-                              Failed onFailed) {
+QFuture<void> runInBackground(QThreadPool* pool, QObject* receiver, Work work, Done onDone,
+                              Cancelled onCancelled, Failed onFailed) {
     QPointer<QObject> target(receiver);
     const auto post = [target](auto call) {
         QMetaObject::invokeMethod(target.data(), std::move(call), Qt::QueuedConnection);
     };
-    return QtConcurrent::run([post, work, onDone, onCancelled, onFailed] {
+    return QtConcurrent::run(pool, [post, work, onDone, onCancelled, onFailed] {
         try {
             auto result = work();
             post([onDone, result] { onDone(result); });
@@ -44,6 +45,15 @@ QFuture<void> runInBackground(QObject* receiver, Work work, Done onDone, Cancell
             post([onFailed, text = QString::fromStdString(error.what())] { onFailed(text); });
         }
     });
+}
+
+// The same on Qt's global pool: for short calls only (an echo, a find). Qt's painting waits on
+// that pool; long work has a pool of its own (BackgroundJob).
+template <typename Work, typename Done, typename Cancelled, typename Failed>
+QFuture<void> runInBackground(QObject* receiver, Work work, Done onDone, Cancelled onCancelled,
+                              Failed onFailed) {
+    return runInBackground(QThreadPool::globalInstance(), receiver, std::move(work),
+                           std::move(onDone), std::move(onCancelled), std::move(onFailed));
 }
 
 } // namespace lw::gui

@@ -1,6 +1,5 @@
 #include "browser/import_worker.h"
 
-#include "browser/background_task.h"
 #include "lw/studydb/study_importer.h"
 
 #include <QMetaObject>
@@ -9,20 +8,13 @@
 namespace lw::gui {
 
 ImportWorker::ImportWorker(QString databasePath, QObject* parent)
-    : QObject(parent), m_databasePath(std::move(databasePath)) {}
+    : BackgroundJob(std::move(databasePath), parent) {}
 
 ImportWorker::~ImportWorker() {
-    cancel();
-    waitForDone();
+    cancelAndWait();
 }
 
 bool ImportWorker::start(const QString& inputPath) {
-    if (m_running)
-        return false;
-    m_running = true;
-    m_cancel = std::make_shared<core::CancelToken>();
-    const QString databasePath = m_databasePath;
-    auto cancel = m_cancel;
     // Progress travels back as queued calls on this object: Qt drops them if it is gone by then,
     // and the destructor waits for the pool thread, so `this` is never used after deletion.
     QPointer<ImportWorker> self(this);
@@ -34,36 +26,19 @@ bool ImportWorker::start(const QString& inputPath) {
             },
             Qt::QueuedConnection);
     };
-    m_future = runInBackground(
-        this,
-        [databasePath, inputPath, onProgress, cancel] {
+    return startRun(
+        [databasePath = databasePath(), inputPath,
+         onProgress](const std::shared_ptr<core::CancelToken>& cancel) {
             return studydb::importStudies(databasePath, inputPath, onProgress, cancel);
         },
-        [this](const studydb::ImportSummary& summary) {
-            m_running = false;
-            emit finished(summary);
-        },
+        [this](const studydb::ImportSummary& summary) { emit finished(summary); },
         [this] {
             // The importer reports a cancel in its summary; should one escape it, the same.
-            m_running = false;
             studydb::ImportSummary summary;
             summary.cancelled = true;
             emit finished(summary);
         },
-        [this](const QString& message) {
-            m_running = false;
-            emit failed(message);
-        });
-    return true;
-}
-
-void ImportWorker::cancel() {
-    if (m_cancel)
-        m_cancel->cancel();
-}
-
-void ImportWorker::waitForDone() {
-    m_future.waitForFinished();
+        [this](const QString& message) { emit failed(message); });
 }
 
 } // namespace lw::gui

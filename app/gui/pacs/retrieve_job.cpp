@@ -1,6 +1,5 @@
 #include "pacs/retrieve_job.h"
 
-#include "browser/background_task.h"
 #include "lw/studydb/retrieved_files.h"
 
 namespace lw::gui {
@@ -33,25 +32,19 @@ QString requestFolder(const pacs::RetrieveRequest& request) {
 } // namespace
 
 RetrieveJob::RetrieveJob(QString databasePath, QObject* parent)
-    : QObject(parent), m_databasePath(std::move(databasePath)) {
+    : BackgroundJob(std::move(databasePath), parent) {
     qRegisterMetaType<RetrieveOutcome>();
 }
 
 RetrieveJob::~RetrieveJob() {
-    cancel();
-    waitForDone();
+    cancelAndWait();
 }
 
 bool RetrieveJob::start(const pacs::PacsNode& node, const pacs::RetrieveRequest& request,
                         const pacs::CallOptions& options) {
-    if (m_running)
-        return false;
-    m_running = true;
-    m_cancel = std::make_shared<core::CancelToken>();
-    auto cancel = m_cancel;
-    const QString databasePath = m_databasePath;
     // `this` outlives the pool thread: the destructor waits for it.
-    const auto work = [this, node, request, options, cancel, databasePath] {
+    const auto work = [this, node, request, options, databasePath = databasePath()](
+                          const std::shared_ptr<core::CancelToken>& cancel) {
         const auto onInstance = [this](const pacs::RetrieveProgress& progress) {
             emit instanceArrived(int(progress.done), int(progress.toTransfer));
         };
@@ -70,33 +63,15 @@ bool RetrieveJob::start(const pacs::PacsNode& node, const pacs::RetrieveRequest&
         }
         return outcome;
     };
-    m_future = runInBackground(
-        this, work,
-        [this](const RetrieveOutcome& outcome) {
-            m_running = false;
-            emit finished(outcome);
-        },
+    return startRun(
+        work, [this](const RetrieveOutcome& outcome) { emit finished(outcome); },
         [this, node, request] {
             // Cancelled while the instances were being listed: nothing arrived.
-            m_running = false;
             RetrieveOutcome outcome = outcomeOf(node, request, {});
             outcome.cancelled = true;
             emit finished(outcome);
         },
-        [this](const QString& message) {
-            m_running = false;
-            emit failed(message);
-        });
-    return true;
-}
-
-void RetrieveJob::cancel() {
-    if (m_cancel)
-        m_cancel->cancel();
-}
-
-void RetrieveJob::waitForDone() {
-    m_future.waitForFinished();
+        [this](const QString& message) { emit failed(message); });
 }
 
 } // namespace lw::gui

@@ -6,13 +6,10 @@
 // after a cancel or a transfer that stopped halfway, so the database lists exactly the files
 // that are there.
 
-#include "lw/core/progress.h"
+#include "browser/background_job.h"
 #include "lw/pacs/retrieve.h"
 
-#include <QFuture>
-#include <QObject>
 #include <QString>
-#include <memory>
 
 namespace lw::gui {
 
@@ -26,20 +23,18 @@ struct RetrieveOutcome {
     bool complete() const { return message.isEmpty() && transferred + skipped == instances; }
 };
 
-class RetrieveJob : public QObject {
+// cancel() is thread-safe: the module checks the token after each arriving instance and sends
+// C-CANCEL.
+class RetrieveJob : public BackgroundJob {
     Q_OBJECT
 public:
     explicit RetrieveJob(QString databasePath, QObject* parent = nullptr);
     // Cancels a running retrieve and waits for it (its database connection must close first).
     ~RetrieveJob() override;
 
-    bool isRunning() const { return m_running; }
     // False (nothing started) while a retrieve runs.
     bool start(const pacs::PacsNode& node, const pacs::RetrieveRequest& request,
                const pacs::CallOptions& options);
-    // Thread-safe: the module checks the token after each arriving instance and sends C-CANCEL.
-    void cancel();
-    void waitForDone();
 
 signals:
     // Emitted on the retrieve's thread after each arriving instance (queued to the UI thread by
@@ -50,12 +45,6 @@ signals:
     // On the UI thread: nothing could start (the PACS is down, refused, no disk space); the node
     // and the reason in words.
     void failed(const QString& message);
-
-private:
-    QString m_databasePath;
-    std::shared_ptr<core::CancelToken> m_cancel;
-    QFuture<void> m_future;
-    bool m_running = false;
 };
 
 } // namespace lw::gui

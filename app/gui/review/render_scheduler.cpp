@@ -1,6 +1,7 @@
 #include "review/render_scheduler.h"
 
 #include "lw/core/error.h"
+#include "lw/core/thread_priority.h"
 
 #include <QMetaObject>
 #include <QOffscreenSurface>
@@ -17,6 +18,9 @@ RenderScheduler::RenderScheduler(std::shared_ptr<const volume::Volume> volume, Q
     m_threadContext->moveToThread(&m_thread);
     connect(&m_thread, &QThread::finished, m_threadContext, &QObject::deleteLater);
     m_thread.start();
+    // Frames are background work: the UI thread and the X server go first (thread_priority.h).
+    QMetaObject::invokeMethod(
+        m_threadContext, [] { core::lowerCurrentThreadToBackground(); }, Qt::QueuedConnection);
 }
 
 RenderScheduler::~RenderScheduler() {

@@ -2,6 +2,7 @@
 
 #include "lw/core/error.h"
 #include "lw/core/progress.h"
+#include "lw/core/thread_priority.h"
 #include "lw/input/open_input.h"
 #include "review/slice_views.h"
 
@@ -14,8 +15,12 @@
 
 namespace lw::gui {
 
-VolumeLoader::VolumeLoader(QObject* parent) : QObject(parent) {}
+VolumeLoader::VolumeLoader(QObject* parent)
+    : QObject(parent), m_pool(std::make_unique<QThreadPool>()) {
+    m_pool->setMaxThreadCount(2);
+}
 
+// The pool's destructor waits for a load still running: cancelled, it stops at the next slice.
 VolumeLoader::~VolumeLoader() {
     cancel();
 }
@@ -72,9 +77,19 @@ void VolumeLoader::start(const LoadRequest& request) {
             },
             Qt::QueuedConnection);
     };
-    QThreadPool::globalInstance()->start([request, token, post] {
+    m_pool->start([request, token, post] {
+        core::lowerCurrentThreadToBackground();
+        // Whole percents only: every step a repaint of the status bar and the X server's work
+        // besides, a thousand times a load; a progress bar shows no finer steps. Calls of a
+        // Progress's callback never overlap, so the lambda's own state needs no lock.
         core::Progress progress(
-            [post](double fraction, const std::string& message) {
+            [post, shownPercent = -1,
+             shownMessage = std::string()](double fraction, const std::string& message) mutable {
+                const int percent = int(fraction * 100.0);
+                if (percent == shownPercent && message == shownMessage)
+                    return;
+                shownPercent = percent;
+                shownMessage = message;
                 post([fraction, text = QString::fromStdString(message)](VolumeLoader& loader) {
                     emit loader.progress(fraction, text);
                 });
@@ -86,6 +101,10 @@ void VolumeLoader::start(const LoadRequest& request) {
                 if (loader.m_cancel == token) {
                     loader.m_cancel.reset();
                     emit loader.loaded(source);
+                } else if (!loader.m_cancel) {
+                    // Cancelled after the last check: the volume is dropped, and the cancel
+                    // still gets its answer.
+                    emit loader.cancelled();
                 }
             });
         } catch (const core::Cancelled&) {

@@ -11,6 +11,8 @@
 #include <QStringList>
 #include <memory>
 
+class QThreadPool;
+
 namespace lw::core {
 class CancelToken;
 class Progress;
@@ -46,6 +48,11 @@ signals:
 
 private:
     std::shared_ptr<core::CancelToken> m_cancel;
+    // Not QThreadPool::globalInstance(): Qt 6.4's raster painting splits fills and image
+    // conversions over the global pool and the UI thread waits for them; a load holding one of
+    // its threads for minutes stalled every paint (README, "The UI thread only draws").
+    // Two threads: a cancelled load may still finish its scans while the next one starts.
+    std::unique_ptr<QThreadPool> m_pool;
 };
 
 } // namespace lw::gui

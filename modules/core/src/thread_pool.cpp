@@ -1,4 +1,5 @@
 #include "lw/core/parallel.h"
+#include "lw/core/thread_priority.h"
 
 #include <algorithm>
 #include <atomic>
@@ -22,6 +23,7 @@ struct Job {
     unsigned helpersWanted = 0; // pool threads that may join besides the caller
     unsigned helpersJoined = 0; // guarded by the pool mutex
     unsigned helpersActive = 0; // guarded by the pool mutex
+    int callerNice = 0;         // helpers never run the items at a higher priority than this
     std::condition_variable helpersLeft;
 
     std::atomic<std::size_t> next{0};
@@ -107,7 +109,12 @@ private:
             if (++job.helpersJoined >= job.helpersWanted || job.exhausted())
                 m_jobs.pop_front();
             ++job.helpersActive;
+            const int callerNice = job.callerNice;
             lock.unlock();
+            // A background caller's items stay background on the helper (thread_priority.h);
+            // the helper cannot rise again, so a later normal caller does most of its items
+            // itself, as it does whenever the helpers are busy.
+            lowerCurrentThreadTo(callerNice);
             job.work();
             lock.lock();
             if (--job.helpersActive == 0)
@@ -145,8 +152,10 @@ void parallelForErased(std::size_t count, unsigned threads, ParallelInvoke invok
     job.invoke = invoke;
     job.body = body;
     const std::size_t participants = std::min<std::size_t>(threads, count);
-    if (participants > 1)
+    if (participants > 1) {
         job.helpersWanted = unsigned(std::min<std::size_t>(participants - 1, pool().size()));
+        job.callerNice = currentThreadNice();
+    }
     if (job.helpersWanted == 0)
         job.work();
     else

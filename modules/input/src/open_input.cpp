@@ -30,10 +30,8 @@ OpenedVolume openPhantom(const std::string& spec, const core::ImportLimits& limi
         throw core::Error(
             spec,
             "expected phantom:N or phantom:NXxNYxNZ (2..4096) with an optional :ct or :sphere");
-    if (progress)
-        progress->report(0.0, "Generating the phantom");
     OpenedVolume opened;
-    opened.volume = volume::makePhantom(*dims, kind, 0, limits);
+    opened.volume = volume::makePhantom(*dims, kind, 0, limits, progress);
     opened.source = spec;
     opened.description =
         "phantom " + std::string(volume::phantomKindName(kind)) + " " + dimsText(*dims);

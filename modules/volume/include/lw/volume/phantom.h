@@ -1,5 +1,6 @@
 #pragma once
 
+#include "lw/core/progress.h"
 #include "lw/volume/volume.h"
 
 #include <cstdint>
@@ -18,8 +19,11 @@ std::string_view phantomKindName(PhantomKind kind);
 // geometry gives it 1 mm voxels centred on the patient origin, identity value mapping.
 // Generated slice-parallel on all cores (`threads` = 0) or the given number of threads.
 // Throws core::Error before allocating when the volume is larger than `limits` allows.
+// `progress` (optional) is stepped once per slice (z), and its cancel token is checked before
+// each slice: a cancelled token stops the slices not yet started and throws core::Cancelled.
 volume::Volume makePhantom(glm::ivec3 dims, PhantomKind kind, unsigned threads = 0,
-                           const core::ImportLimits& limits = {});
+                           const core::ImportLimits& limits = {},
+                           core::Progress* progress = nullptr);
 
 // phantom.py's checksums: the sum of all voxels and the number of voxels above 300.5 HU.
 struct PhantomChecksum {
