@@ -562,10 +562,12 @@ TEST(CudaBackendStreaming, KeptSlabMeshesDrawTheResidentImageAtEveryView) {
             EXPECT_EQ(differing, 0u) << where;
             EXPECT_EQ(frame.segments, expected.segments) << where;
             EXPECT_EQ(frame.triangles, expected.triangles) << where;
-            if (budget > 0)
+            if (budget > 0) {
                 EXPECT_LE(frame.deviceBytes, budget) << where;
-            else if (step.mode == ExtractionMode::CachedA) // the whole surface kept: its indices
+            } else if (step.mode ==
+                       ExtractionMode::CachedA) { // the whole surface kept: its indices
                 EXPECT_GT(frame.deviceBytes, frame.triangles * 3 * sizeof(std::uint32_t)) << where;
+            }
         }
     }
 }

@@ -6,6 +6,7 @@
 
 #include "lw/kernels/cuda/cuda_status.h"
 
+#include <algorithm>
 #include <cstddef>
 #include <cuda_runtime.h>
 #include <string>
@@ -186,6 +187,21 @@ private:
 
 inline unsigned blocksFor(std::size_t items, int blockSize) {
     return unsigned((items + std::size_t(blockSize) - 1) / std::size_t(blockSize));
+}
+
+// How many blocks of `blockSize` threads of `kernel` the current device holds at once: the grid
+// of a kernel whose threads take their work from a counter until it runs out.
+template <typename Kernel>
+CudaStatus residentBlocks(Kernel kernel, int blockSize, unsigned& blocks) {
+    int device = 0, perMultiprocessor = 0, multiprocessors = 0;
+    LW_CUDA_TRY(cudaGetDevice(&device), "cudaGetDevice");
+    LW_CUDA_TRY(cudaDeviceGetAttribute(&multiprocessors, cudaDevAttrMultiProcessorCount, device),
+                "cudaDeviceGetAttribute(multiprocessors)");
+    LW_CUDA_TRY(
+        cudaOccupancyMaxActiveBlocksPerMultiprocessor(&perMultiprocessor, kernel, blockSize, 0),
+        "cudaOccupancyMaxActiveBlocksPerMultiprocessor");
+    blocks = unsigned(std::max(1, perMultiprocessor * multiprocessors));
+    return CudaStatus::success();
 }
 
 } // namespace lw::kernels::cuda::dispatch

@@ -60,8 +60,9 @@ struct RayCastSilhouetteCuda::Impl {
     // list and count (and the flags the list is selected by, from the endpoints' numbers).
     DeviceBuffer<unsigned long long> endpointTable;
     DeviceBuffer<std::uint32_t> representative, representatives, representativeCount;
-    // Phase 2c's: the points whose own ray was blocked close by.
-    DeviceBuffer<std::uint32_t> neighbourList, neighbourCount;
+    // Phase 2b's: the next representative a lane takes (rc::testRepresentatives).
+    DeviceBuffer<std::uint32_t> nextRay;
+    unsigned rayBlocks = 0; // the ray launch's blocks: as many as are resident on the device
     DeviceBuffer<std::uint8_t> isRepresentative;
     StrokePruning pruning;
     double iso = 0.0;
@@ -119,7 +120,7 @@ std::size_t RayCastSilhouetteCuda::deviceBytes() const {
            s.sortedSegments.bytes() + s.sortedCells.bytes() + s.sortTemp.bytes() +
            s.visible.bytes() + s.pruning.deviceBytes() + s.endpointTable.bytes() +
            s.representative.bytes() + s.representatives.bytes() + s.representativeCount.bytes() +
-           s.isRepresentative.bytes() + s.neighbourList.bytes() + s.neighbourCount.bytes();
+           s.isRepresentative.bytes() + s.nextRay.bytes();
 }
 
 CudaStatus RayCastSilhouetteCuda::setVolume(const VolumeView& hostVolume,
@@ -369,8 +370,7 @@ CudaStatus RayCastSilhouetteCuda::Impl::testRepresentativeEndpoints(const RayVis
     LW_RETURN_IF_FAILED(isRepresentative.reserve(endpoints, "cudaMalloc(isRepresentative)"));
     LW_RETURN_IF_FAILED(visible.reserve(endpoints, "cudaMalloc(visible)"));
     LW_RETURN_IF_FAILED(representativeCount.reserve(1, "cudaMalloc(representativeCount)"));
-    LW_RETURN_IF_FAILED(neighbourList.reserve(endpoints, "cudaMalloc(neighbourList)"));
-    LW_RETURN_IF_FAILED(neighbourCount.reserve(1, "cudaMalloc(neighbourCount)"));
+    LW_RETURN_IF_FAILED(nextRay.reserve(1, "cudaMalloc(nextRay)"));
     LW_CUDA_TRY(cudaMemsetAsync(endpointTable.data(), 0xff, slots * sizeof(unsigned long long), st),
                 "cudaMemset(endpointTable)");
     const unsigned blocks = blocksFor(endpoints, tuning::kRayBlock);
@@ -391,17 +391,17 @@ CudaStatus RayCastSilhouetteCuda::Impl::testRepresentativeEndpoints(const RayVis
                                            isRepresentative.data(), representatives.data(),
                                            representativeCount.data(), endpoints, st),
                 "cub::DeviceSelect(representatives)");
-    LW_CUDA_TRY(cudaMemsetAsync(neighbourCount.data(), 0, sizeof(std::uint32_t), st),
-                "cudaMemset(neighbourCount)");
-    // The block size is a multiple of the warp: every lane of a warp reaches the ballot.
+    LW_CUDA_TRY(cudaMemsetAsync(nextRay.data(), 0, sizeof(std::uint32_t), st),
+                "cudaMemset(nextRay)");
+    if (rayBlocks == 0)
+        LW_RETURN_IF_FAILED(
+            dispatch::residentBlocks(rc::testRepresentatives<T>, tuning::kRayBlock, rayBlocks));
+    // The block size is a multiple of the warp: every lane of a warp reaches the ballots.
     static_assert(tuning::kRayBlock % 32 == 0);
-    rc::testRepresentatives<T><<<blocks, tuning::kRayBlock, 0, st>>>(
+    rc::testRepresentatives<T><<<std::min(rayBlocks, blocks), tuning::kRayBlock, 0, st>>>(
         rule, view, segments.data(), representatives.data(), representativeCount.data(),
-        visible.data(), neighbourList.data(), neighbourCount.data());
+        nextRay.data(), visible.data());
     LW_CUDA_LAUNCHED("rc::testRepresentatives");
-    rc::testNeighbourRays<T><<<blocks, tuning::kRayBlock, 0, st>>>(
-        rule, view, segments.data(), neighbourList.data(), neighbourCount.data(), visible.data());
-    LW_CUDA_LAUNCHED("rc::testNeighbourRays");
     return CudaStatus::success();
 }
 

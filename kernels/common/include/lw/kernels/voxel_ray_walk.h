@@ -423,19 +423,28 @@ template <typename T> struct RayVisibility {
         double blockedCells = 0.0;
         if (rayReachesEye(point, eyeOrDirection, orthographic, true, &blockedCells))
             return OwnRay::Visible;
-        if (!(pixelSpan > 0.0) || blockedCells > neighbourReach)
-            return OwnRay::Hidden;
-        return OwnRay::AskNeighbour;
+        return asksNeighbour(blockedCells) ? OwnRay::AskNeighbour : OwnRay::Hidden;
     }
     LW_HOST_DEVICE bool neighbourRay(glm::dvec3 point, glm::dvec3 eyeOrDirection,
                                      bool orthographic) const {
+        glm::dvec3 start;
+        return neighbourRayStart(point, eyeOrDirection, orthographic, start) &&
+               rayReachesEye(start, eyeOrDirection, orthographic, false);
+    }
+    // Where the neighbour ray of `point` starts; false when there is none (hidden).
+    LW_HOST_DEVICE bool neighbourRayStart(glm::dvec3 point, glm::dvec3 eyeOrDirection,
+                                          bool orthographic, glm::dvec3& start) const {
         const glm::dvec3 toward = orthographic ? eyeOrDirection : eyeOrDirection - point;
         const glm::dvec3 out = outwardAcrossView(point, toward);
         if (out == glm::dvec3(0.0))
             return false;
         const double width = pixelSpan * (orthographic ? 1.0 : glm::length(toward));
-        return rayReachesEye(point + Rule::kNeighbourPixels * width * out, eyeOrDirection,
-                             orthographic, false);
+        start = point + Rule::kNeighbourPixels * width * out;
+        return true;
+    }
+    // Whether a point whose own ray was blocked `blockedCells` away asks the neighbour ray.
+    LW_HOST_DEVICE bool asksNeighbour(double blockedCells) const {
+        return pixelSpan > 0.0 && !(blockedCells > neighbourReach);
     }
 
     // A ray that starts outside the grid: a neighbour ray shifted past the border, beside the cap
@@ -463,80 +472,114 @@ template <typename T> struct RayVisibility {
         return occludes(wall) ? kBlockedOnEntry : kEnteredGrid;
     }
 
+    // One ray's walk between two of its steps (see beginRay / advanceRay): everything the walk
+    // carries from one macro cell to the next. A back-end may interleave many rays' steps (CUDA:
+    // a lane takes a new ray when its own ends, so short rays do not idle while a long one
+    // walks); each ray's result is that of walking it in one go, bit for bit.
+    struct RayWalk {
+        glm::dvec3 du{0.0};   // direction in grid coordinates
+        glm::dvec3 from{0.0}; // where the next step starts, always exactly on a wall entered
+        double tFrom = 0.0;
+        double tMax = 0.0;
+        double tSkip = 0.0; // walls before it do not occlude (self-occlusion rule)
+        double cellsPerT = 0.0;
+        glm::ivec3 startCell{0};
+        bool onSurface = false;
+    };
+    enum class RayStep : unsigned char { Walking = 0, ReachesEye = 1, Blocked = 2 };
+
     // The walk of one ray. `onSurface`: the ray starts on the surface, so the self-occlusion rule
-    // applies; otherwise every wall counts from the start.
+    // applies; otherwise every wall counts from the start. `blockedCells` receives how far from
+    // the point (in cells) a blocked ray was blocked.
     LW_HOST_DEVICE bool rayReachesEye(glm::dvec3 point, glm::dvec3 eyeOrDirection,
                                       bool orthographic, bool onSurface,
                                       double* blockedCells = nullptr) const {
+        RayWalk ray;
+        RayStep step = beginRay(point, eyeOrDirection, orthographic, onSurface, ray, blockedCells);
+        while (step == RayStep::Walking)
+            step = advanceRay(ray, blockedCells);
+        return step == RayStep::ReachesEye;
+    }
+
+    // The ray's set-up, and its entry into the grid when it starts outside it: Walking when
+    // advanceRay has to go on.
+    LW_HOST_DEVICE RayStep beginRay(glm::dvec3 point, glm::dvec3 eyeOrDirection, bool orthographic,
+                                    bool onSurface, RayWalk& ray, double* blockedCells) const {
         const glm::dvec3 toward = orthographic ? eyeOrDirection : eyeOrDirection - point;
-        const double tMax = orthographic ? HUGE_VAL : 1.0;
+        ray.tMax = orthographic ? HUGE_VAL : 1.0;
+        ray.onSurface = onSurface;
         const glm::dvec3 u0 = grid.toGridPoint(point);
-        const glm::dvec3 du = grid.directionToGrid(toward);
-        const double cellsPerT = glm::length(du / cellScale);
-        if (!(cellsPerT > 0.0))
-            return true;
-        const double tStart = Rule::kStartOffsetCells / cellsPerT;
-        if (tStart >= tMax)
-            return true;
-        const double tSkip = onSurface ? Rule::kSelfSkipCells / cellsPerT : 0.0;
+        ray.du = grid.directionToGrid(toward);
+        ray.cellsPerT = glm::length(ray.du / cellScale);
+        if (!(ray.cellsPerT > 0.0))
+            return RayStep::ReachesEye;
+        const double tStart = Rule::kStartOffsetCells / ray.cellsPerT;
+        if (tStart >= ray.tMax)
+            return RayStep::ReachesEye;
+        ray.tSkip = onSurface ? Rule::kSelfSkipCells / ray.cellsPerT : 0.0;
         // The walk restarts at every macro cell boundary: an empty macro cell is crossed in one
         // jump, an occupied one cell by cell. `from` always lies exactly on the wall entered.
-        glm::dvec3 from = u0 + tStart * du;
-        double tFrom = tStart;
-        glm::ivec3 startCell;
-        if (!grid.cellOf(from, du, startCell)) {
-            const int entered = enterGrid(u0, du, tMax, from, tFrom, startCell);
+        ray.from = u0 + tStart * ray.du;
+        ray.tFrom = tStart;
+        if (!grid.cellOf(ray.from, ray.du, ray.startCell)) {
+            const int entered = enterGrid(u0, ray.du, ray.tMax, ray.from, ray.tFrom, ray.startCell);
             if (entered == kMissesGrid)
-                return true;
-            if (entered == kBlockedOnEntry && tFrom >= tSkip) {
+                return RayStep::ReachesEye;
+            if (entered == kBlockedOnEntry && ray.tFrom >= ray.tSkip) {
                 if (blockedCells)
-                    *blockedCells = tFrom * cellsPerT;
-                return false;
+                    *blockedCells = ray.tFrom * ray.cellsPerT;
+                return RayStep::Blocked;
             }
         }
-        for (;;) {
-            glm::ivec3 cell;
-            if (!grid.cellOf(from, du, cell))
-                return true;
-            const glm::ivec3 macro = cell / Rule::kMacroCells;
-            int axis = 0, blockCells = 0;
-            glm::ivec3 block;
-            const double tExit = emptyBlockExit(cell, from, du, block, blockCells, axis);
-            if (blockCells > 0) {
-                if (tFrom + tExit >= tMax)
-                    return true;
-                glm::dvec3 next = from + tExit * du;
-                next[axis] = blockWall(block, du, axis, blockCells);
-                from = next;
-                tFrom += tExit;
-                continue;
-            }
-            bool occluded = false, moved = false;
-            CellExit last;
-            grid.walk(from, du, tMax - tFrom, [&](const CellExit& exit) {
-                const double t = tFrom + exit.t;
-                if ((!onSurface || exit.cell != startCell) && t >= tSkip && occludes(exit)) {
-                    occluded = true;
-                    if (blockedCells)
-                        *blockedCells = t * cellsPerT;
-                    return false;
-                }
-                glm::ivec3 next = exit.cell;
-                next[exit.axis] += exit.wall > exit.cell[exit.axis] ? 1 : -1;
-                if (next / Rule::kMacroCells != macro) {
-                    last = exit;
-                    moved = true;
-                    return false;
-                }
-                return true;
-            });
-            if (occluded)
-                return false;
-            if (!moved)
-                return true;
-            from = last.point;
-            tFrom += last.t;
+        return RayStep::Walking;
+    }
+
+    // One step of the walk: an empty block crossed in one jump, or an occupied macro cell walked
+    // cell by cell.
+    LW_HOST_DEVICE RayStep advanceRay(RayWalk& ray, double* blockedCells) const {
+        glm::ivec3 cell;
+        if (!grid.cellOf(ray.from, ray.du, cell))
+            return RayStep::ReachesEye;
+        const glm::ivec3 macro = cell / Rule::kMacroCells;
+        int axis = 0, blockCells = 0;
+        glm::ivec3 block;
+        const double tExit = emptyBlockExit(cell, ray.from, ray.du, block, blockCells, axis);
+        if (blockCells > 0) {
+            if (ray.tFrom + tExit >= ray.tMax)
+                return RayStep::ReachesEye;
+            glm::dvec3 next = ray.from + tExit * ray.du;
+            next[axis] = blockWall(block, ray.du, axis, blockCells);
+            ray.from = next;
+            ray.tFrom += tExit;
+            return RayStep::Walking;
         }
+        bool occluded = false, moved = false;
+        CellExit last;
+        grid.walk(ray.from, ray.du, ray.tMax - ray.tFrom, [&](const CellExit& exit) {
+            const double t = ray.tFrom + exit.t;
+            if ((!ray.onSurface || exit.cell != ray.startCell) && t >= ray.tSkip &&
+                occludes(exit)) {
+                occluded = true;
+                if (blockedCells)
+                    *blockedCells = t * ray.cellsPerT;
+                return false;
+            }
+            glm::ivec3 next = exit.cell;
+            next[exit.axis] += exit.wall > exit.cell[exit.axis] ? 1 : -1;
+            if (next / Rule::kMacroCells != macro) {
+                last = exit;
+                moved = true;
+                return false;
+            }
+            return true;
+        });
+        if (occluded)
+            return RayStep::Blocked;
+        if (!moved)
+            return RayStep::ReachesEye;
+        ray.from = last.point;
+        ray.tFrom += last.t;
+        return RayStep::Walking;
     }
 };
 
