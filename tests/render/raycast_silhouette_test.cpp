@@ -169,6 +169,44 @@ TEST(VoxelRayGrid, UnevenTiltedStackWallsAtSliceOffsets) {
 
 // The neighbour ray's reach follows how thick a slab is against the pixels: the stack's mean
 // slab (uneven gaps 1, 2, 3 mm: 2 mm) over the finer in-plane spacing, clamped to 1..8 cells.
+// cellOf's guessed slab (evenly spaced stacks) must be the binary search's, bit for bit, at and
+// between walls, both ways, on even, nearly even and uneven stacks.
+TEST(VoxelRayGrid, GuessedSlabIsTheSearchedOne) {
+    const std::vector<std::vector<double>> stacks = {
+        {0.0, 1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0},
+        {-3.0, -0.5, 2.0, 4.5, 7.0, 9.5},
+        {0.0, 0.7, 1.4000000000000001, 2.1, 2.8000000000000003, 3.5},
+        {0.0, 1.0, 1.5, 4.0, 4.25, 9.0},
+        {2.0, 2.0, 3.0, 4.0},
+        {5.0},
+    };
+    std::mt19937 random(7);
+    for (const std::vector<double>& offsets : stacks) {
+        kernels::RayGridView guessed;
+        guessed.offsets = offsets.data();
+        guessed.offsetCount = int(offsets.size());
+        if (offsets.size() > 1)
+            guessed.slabGuessScale =
+                double(offsets.size() - 1) / (offsets.back() - offsets.front());
+        kernels::RayGridView searched = guessed;
+        searched.slabGuessScale = 0.0;
+        std::vector<double> samples(offsets);
+        std::uniform_real_distribution<double> anywhere(offsets.front() - 2.0,
+                                                        offsets.back() + 2.0);
+        for (int k = 0; k < 2000; ++k)
+            samples.push_back(anywhere(random));
+        for (double w : offsets) {
+            samples.push_back(std::nextafter(w, -1e9));
+            samples.push_back(std::nextafter(w, 1e9));
+        }
+        for (double s : samples)
+            for (bool down : {false, true})
+                ASSERT_EQ(guessed.slabOf(s, down), searched.slabOf(s, down))
+                    << "s " << s << (down ? " down" : " up") << ", " << offsets.size()
+                    << " offsets from " << offsets.front();
+    }
+}
+
 TEST(VoxelRayGrid, NeighbourReachFollowsTheSlabAgainstThePixels) {
     EXPECT_EQ(kernels::neighbourReachCells(0.25), 1.0) << "slabs thinner than pixels";
     EXPECT_EQ(kernels::neighbourReachCells(1.0), 1.0) << "isotropic";

@@ -384,44 +384,87 @@ __device__ __forceinline__ bool meshTriangleSegment(const DeviceMeshView& mesh,
     return silhouetteSegment(q, d, segment);
 }
 
-// Phase 1 from the cells' mesh (marching cubes of the same iso-value, kept on the device): the
-// same vertices (generateVertices and cellSegments both call the shared edge-vertex function on
-// the same corners), the same triangles in the same order (triTable's, at the cell's offset), so
-// the same segments as findSegments -- without reading a voxel: a volume mapped from host memory
-// is not read over the bus at every view.
-__global__ void findMeshSegments(const std::uint32_t* activeVoxels, const std::uint16_t* codes,
-                                 const std::uint32_t* triangleOffsets, std::uint32_t count,
-                                 DeviceMeshView mesh, View view, SegmentEndpoints* segments,
-                                 std::uint32_t* segmentCells, std::uint32_t capacity,
-                                 Counters* counters) {
-    const std::uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
-    CellSegments cell;
-    std::uint32_t v = 0;
-    const std::uint32_t cubeCase = i < count ? (codes[i] & 0xff) : 0;
-    if (cubeCase != 0) {
-        v = activeVoxels[i];
-        cell.triangles = c_triCount[cubeCase];
-        const std::uint32_t* corner = mesh.indices + std::size_t(triangleOffsets[i]) * 3;
-        for (std::uint32_t t = 0; t < cell.triangles; ++t, corner += 3)
-            if (meshTriangleSegment(mesh, corner, view, cell.segment[cell.segments]))
-                ++cell.segments;
-    }
-    appendCellSegments(cell, v, segments, segmentCells, capacity, counters);
+// Phase 1 on the kept mesh, first step: each vertex's silhouette distance, once per view. A
+// vertex is shared by about six triangles; reading its position and normal for each of them
+// was most of phase 1 (0.20 ms at 512^3 on the H200). The same function of the same floats as
+// meshTriangleSegment's (no fused multiply-adds in this back-end), so the same values.
+__global__ void vertexSilhouetteDistances(DeviceMeshView mesh, View view, float* distance) {
+    const std::size_t i = std::size_t(blockIdx.x) * blockDim.x + threadIdx.x;
+    if (i < mesh.vertexCount)
+        distance[i] = silhouetteDistance(mesh.positions[i], mesh.normals[i], view.eyeOrDirectionF,
+                                         view.orthographic);
 }
 
-// Phase 1 of a slabbed volume: one thread per triangle of a kept slab mesh, its Burns segment
-// keyed by the triangle's number over all slabs (`firstTriangle` is this slab's first).
-__global__ void findTriangleSegments(DeviceMeshView mesh, std::uint32_t firstTriangle, View view,
-                                     SegmentEndpoints* segments, std::uint32_t* segmentCells,
-                                     std::uint32_t capacity, Counters* counters) {
-    const std::uint32_t t = blockIdx.x * blockDim.x + threadIdx.x;
-    CellSegments cell;
+// The Burns segment of the mesh triangle `corner[0..2]` from its vertices' distances
+// (vertexSilhouetteDistances): silhouetteSegment's result, reading the positions only where the
+// distances change sign (about one triangle in twelve at 512^3).
+__device__ __forceinline__ bool distanceTriangleSegment(const DeviceMeshView& mesh,
+                                                        const std::uint32_t* corner,
+                                                        const float* distance,
+                                                        SegmentEndpoints& segment) {
+    const std::uint32_t k[3] = {corner[0], corner[1], corner[2]};
+    const float d[3] = {distance[k[0]], distance[k[1]], distance[k[2]]};
+    const bool s0 = d[0] >= 0.0f;
+    if (s0 == (d[1] >= 0.0f) && s0 == (d[2] >= 0.0f))
+        return false; // isolineCrossing's test: no segment
+    const glm::vec3 q[3] = {mesh.positions[k[0]], mesh.positions[k[1]], mesh.positions[k[2]]};
+    return silhouetteSegment(q, d, segment);
+}
+
+// Phase 1 from a kept mesh (marching cubes of the same iso-value, on the device): one thread per
+// triangle, its Burns segment keyed by the triangle's number (`firstTriangle` is the mesh's
+// first over all slabs). The whole volume's mesh has the vertices the cells would compute
+// (generateVertices and cellSegments call the shared edge-vertex function on the same corners),
+// its triangles in cell order and in triTable's order within a cell, so the segments sorted by
+// triangle are findSegments' sorted by cell -- without reading a voxel: a volume mapped from host
+// memory is not read over the bus at every view. `distance`: the vertices' distances for this
+// view (vertexSilhouetteDistances), or null to compute them per triangle (a slab's mesh).
+// A block reserves its segments' slots with one atomic, and counts its triangles with another:
+// per warp, the atomics on the two counters cost more than the triangles' own work.
+template <int kBlock>
+__global__ void __launch_bounds__(kBlock)
+    findTriangleSegments(DeviceMeshView mesh, std::uint32_t firstTriangle, const float* distance,
+                         View view, SegmentEndpoints* segments, std::uint32_t* segmentCells,
+                         std::uint32_t capacity, Counters* counters) {
+    static_assert(kBlock % 32 == 0 && kBlock <= 1024);
+    __shared__ std::uint32_t warpFirst[kBlock / 32];
+    __shared__ unsigned long long blockFirst;
+    const std::uint32_t t = blockIdx.x * kBlock + threadIdx.x;
+    SegmentEndpoints segment;
+    bool found = false;
     if (t < mesh.triangleCount) {
-        cell.triangles = 1;
-        if (meshTriangleSegment(mesh, mesh.indices + std::size_t(t) * 3, view, cell.segment[0]))
-            cell.segments = 1;
+        const std::uint32_t* corner = mesh.indices + std::size_t(t) * 3;
+        found = distance ? distanceTriangleSegment(mesh, corner, distance, segment)
+                         : meshTriangleSegment(mesh, corner, view, segment);
     }
-    appendCellSegments(cell, firstTriangle + t, segments, segmentCells, capacity, counters);
+    const unsigned lane = threadIdx.x & 31u, warp = threadIdx.x >> 5;
+    const unsigned finders = __ballot_sync(0xffffffffu, found);
+    if (lane == 0)
+        warpFirst[warp] = __popc(finders);
+    __syncthreads();
+    if (threadIdx.x == 0) {
+        std::uint32_t total = 0;
+        for (int w = 0; w < kBlock / 32; ++w) {
+            const std::uint32_t count = warpFirst[w];
+            warpFirst[w] = total;
+            total += count;
+        }
+        const std::size_t first = std::size_t(blockIdx.x) * kBlock;
+        const std::size_t left = first < mesh.triangleCount ? mesh.triangleCount - first : 0;
+        const std::size_t triangles = left < std::size_t(kBlock) ? left : std::size_t(kBlock);
+        atomicAdd(&counters->triangles, (unsigned long long)triangles);
+        blockFirst = total > 0 ? atomicAdd(&counters->segments, (unsigned long long)total) : 0;
+    }
+    __syncthreads();
+    if (!found)
+        return;
+    const unsigned long long slot =
+        blockFirst + warpFirst[warp] + __popc(finders & ((1u << lane) - 1u));
+    if (slot < capacity) {
+        segments[slot] = segment;
+        segmentCells[slot] =
+            firstTriangle + t; // the sort key that brings neighbouring rays together
+    }
 }
 
 } // namespace lw::kernels::cuda::rc

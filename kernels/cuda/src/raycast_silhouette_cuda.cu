@@ -54,6 +54,7 @@ struct RayCastSilhouetteCuda::Impl {
     DeviceBuffer<std::uint32_t> segmentCells; // each segment's cell (voxel index): the sort key
     DeviceBuffer<SegmentEndpoints> sortedSegments;
     DeviceBuffer<std::uint32_t> sortedCells;
+    DeviceBuffer<float> vertexDistance; // per vertex of the kept mesh, per view
     DeviceBuffer<unsigned char> sortTemp;
     DeviceBuffer<std::uint8_t> visible; // phase 2's, a flag per representative endpoint
     // Phase 2's endpoint dedupe: the table, each endpoint's representative, the representatives'
@@ -78,6 +79,7 @@ struct RayCastSilhouetteCuda::Impl {
     std::vector<CellSlab> slabPlan() const;
     CudaStatus extractSlabs(double storedIso);
     CudaStatus findSlabSegments(const rc::View& view, std::uint32_t capacity);
+    CudaStatus vertexDistances(const DeviceMeshView& mesh, const rc::View& view);
     bool hasSurface() { return slabbed ? slabTriangles > 0 : mc().activeCount > 0; }
     template <typename T> CudaStatus findActiveCells(double storedIso);
     template <typename T> CudaStatus prepareTyped(double storedIso, RayCastCudaFrame& frame);
@@ -117,10 +119,10 @@ std::size_t RayCastSilhouetteCuda::deviceBytes() const {
     return s.marchingCubes.deviceBytes() + s.slabMeshes.deviceBytes() + s.rayOffsets.bytes() +
            s.macroMaxima.bytes() + s.macroOccupied.bytes() + s.coarseOccupied.bytes() +
            s.mask.bytes() + s.counters.bytes() + s.segments.bytes() + s.segmentCells.bytes() +
-           s.sortedSegments.bytes() + s.sortedCells.bytes() + s.sortTemp.bytes() +
-           s.visible.bytes() + s.pruning.deviceBytes() + s.endpointTable.bytes() +
-           s.representative.bytes() + s.representatives.bytes() + s.representativeCount.bytes() +
-           s.isRepresentative.bytes() + s.nextRay.bytes();
+           s.sortedSegments.bytes() + s.sortedCells.bytes() + s.vertexDistance.bytes() +
+           s.sortTemp.bytes() + s.visible.bytes() + s.pruning.deviceBytes() +
+           s.endpointTable.bytes() + s.representative.bytes() + s.representatives.bytes() +
+           s.representativeCount.bytes() + s.isRepresentative.bytes() + s.nextRay.bytes();
 }
 
 CudaStatus RayCastSilhouetteCuda::setVolume(const VolumeView& hostVolume,
@@ -197,7 +199,7 @@ template <typename T> CudaStatus RayCastSilhouetteCuda::Impl::findMacroMaxima() 
 }
 
 // The active cells at a new iso-value, and their mesh where the device holds it: every view's
-// segments then come from the mesh (rc::findMeshSegments), which on a volume mapped from host
+// segments then come from the mesh (rc::findTriangleSegments), which on a volume mapped from host
 // memory saves reading the active cells' voxels over the bus at every view (73 of 109 ms at
 // 1024x1024x2048 on the H200) and on a resident one most of phase 1. Without room for the mesh
 // the segments come from the voxels as before.
@@ -260,6 +262,7 @@ template <typename T>
 CudaStatus RayCastSilhouetteCuda::Impl::findSegments(const rc::View& view, rc::Counters& counts) {
     MarchingCubesCuda::Impl& m = mc();
     cudaStream_t st = m.stream.get();
+    bool distancesDone = false; // the kept mesh's vertex distances, for this view
     // Run again with a larger buffer when the segments did not fit.
     for (int attempt = 0; attempt < 2; ++attempt) {
         LW_CUDA_TRY(cudaMemsetAsync(counters.data(), 0, sizeof(rc::Counters), st),
@@ -270,11 +273,15 @@ CudaStatus RayCastSilhouetteCuda::Impl::findSegments(const rc::View& view, rc::C
         if (slabbed) {
             LW_RETURN_IF_FAILED(findSlabSegments(view, capacity));
         } else if (meshKept) {
-            rc::findMeshSegments<<<blocks, tuning::kRayCastBlock, 0, st>>>(
-                m.activeVoxels.data(), m.activeCodes.data(), m.triangleOffsets.data(),
-                m.activeCount, m.mesh, view, segments.data(), segmentCells.data(), capacity,
-                counters.data());
-            LW_CUDA_LAUNCHED("rc::findMeshSegments");
+            if (!distancesDone)
+                LW_RETURN_IF_FAILED(vertexDistances(m.mesh, view));
+            distancesDone = true;
+            rc::findTriangleSegments<tuning::kSegmentTriangleBlock>
+                <<<blocksFor(m.mesh.triangleCount, tuning::kSegmentTriangleBlock),
+                   tuning::kSegmentTriangleBlock, 0, st>>>(m.mesh, 0, vertexDistance.data(), view,
+                                                           segments.data(), segmentCells.data(),
+                                                           capacity, counters.data());
+            LW_CUDA_LAUNCHED("rc::findTriangleSegments");
         } else {
             rc::findSegments<T><<<blocks, tuning::kRayCastBlock, 0, st>>>(
                 m.grid<T>(iso), m.activeVoxels.data(), m.activeCodes.data(), m.activeCount, view,
@@ -298,8 +305,11 @@ CudaStatus RayCastSilhouetteCuda::Impl::findSegments(const rc::View& view, rc::C
         LW_RETURN_IF_FAILED(sortedSegments.reserve(found, "cudaMalloc(sortedSegments)"));
         LW_RETURN_IF_FAILED(sortedCells.reserve(found, "cudaMalloc(sortedCells)"));
         std::size_t bytes = 0;
-        const std::uint32_t keyLimit =
-            slabbed ? std::uint32_t(slabTriangles) : m.activeVoxelLimit();
+        // The key: the triangle's number on a kept mesh (whose triangles are in cell order),
+        // else the cell's voxel index.
+        const std::uint32_t keyLimit = slabbed    ? std::uint32_t(slabTriangles)
+                                       : meshKept ? std::uint32_t(m.mesh.triangleCount)
+                                                  : m.activeVoxelLimit();
         const int keyBits = 32 - __builtin_clz(std::max(keyLimit, 1u));
         LW_CUDA_TRY(cub::DeviceRadixSort::SortPairs(nullptr, bytes, segmentCells.data(),
                                                     sortedCells.data(), segments.data(),
@@ -508,16 +518,30 @@ CudaStatus RayCastSilhouetteCuda::Impl::extractSlabs(double storedIso) {
         });
 }
 
+// Phase 1's first step on a kept mesh: its vertices' distances for `view`, into vertexDistance.
+CudaStatus RayCastSilhouetteCuda::Impl::vertexDistances(const DeviceMeshView& mesh,
+                                                        const rc::View& view) {
+    LW_RETURN_IF_FAILED(vertexDistance.reserve(std::max<std::size_t>(mesh.vertexCount, 1),
+                                               "cudaMalloc(vertexDistance)"));
+    rc::vertexSilhouetteDistances<<<blocksFor(mesh.vertexCount, tuning::kVertexBlock),
+                                    tuning::kVertexBlock, 0, mc().stream.get()>>>(
+        mesh, view, vertexDistance.data());
+    LW_CUDA_LAUNCHED("rc::vertexSilhouetteDistances");
+    return CudaStatus::success();
+}
+
 // Phase 1 of a slabbed volume: every kept slab's triangles, into the shared counters.
 CudaStatus RayCastSilhouetteCuda::Impl::findSlabSegments(const rc::View& view,
                                                          std::uint32_t capacity) {
     cudaStream_t st = mc().stream.get();
     for (std::size_t k = 0; k < slabMeshes.count(); ++k) {
         const DeviceMeshView& mesh = slabMeshes.mesh(k);
-        rc::findTriangleSegments<<<blocksFor(mesh.triangleCount, tuning::kRayCastBlock),
-                                   tuning::kRayCastBlock, 0, st>>>(
-            mesh, std::uint32_t(slabFirstTriangle[k]), view, segments.data(), segmentCells.data(),
-            capacity, counters.data());
+        LW_RETURN_IF_FAILED(vertexDistances(mesh, view));
+        rc::findTriangleSegments<tuning::kSegmentTriangleBlock>
+            <<<blocksFor(mesh.triangleCount, tuning::kSegmentTriangleBlock),
+               tuning::kSegmentTriangleBlock, 0, st>>>(
+                mesh, std::uint32_t(slabFirstTriangle[k]), vertexDistance.data(), view,
+                segments.data(), segmentCells.data(), capacity, counters.data());
         LW_CUDA_LAUNCHED("rc::findTriangleSegments");
     }
     return CudaStatus::success();

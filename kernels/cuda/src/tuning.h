@@ -20,8 +20,10 @@ inline constexpr int kBrickReduceBlock = 256;
 inline constexpr int kActiveBlock = 128;
 // Method 2: one thread per active cell (heavy threads: vertices, segments, visibility rays).
 inline constexpr int kRayCastBlock = 64;
-// Method 2: one visibility ray per thread.
+// Method 2: the visibility rays' lanes (each takes ray after ray).
 inline constexpr int kRayBlock = 128;
+// Method 2: one thread per kept triangle (light threads; one atomic per block).
+inline constexpr int kSegmentTriangleBlock = 512;
 
 // Method 3: per vertex, per triangle, per pixel.
 inline constexpr int kVertexBlock = 256;

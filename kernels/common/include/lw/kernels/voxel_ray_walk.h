@@ -39,6 +39,9 @@ struct RayGridView {
     glm::dmat3 toGrid{1.0};
     const double* offsets = nullptr; // per slice, increasing (s of wall k); at least one entry
     int offsetCount = 1;
+    // (offsetCount - 1) / (last offset - first): the slab a coordinate falls in on an evenly
+    // spaced stack, as a first guess that cellOf checks against the offsets (0: no guess).
+    double slabGuessScale = 0.0;
 
     LW_HOST_DEVICE glm::ivec3 cellCount() const {
         return glm::ivec3(dims.x > 1 ? dims.x - 1 : 0, dims.y > 1 ? dims.y - 1 : 0,
@@ -74,21 +77,38 @@ struct RayGridView {
         }
         if (!(u.z >= offsets[0] && u.z <= offsets[offsetCount - 1]))
             return false;
-        // First wall strictly above s (or at s when walking down): upper/lower bound.
-        int lo = 0, hi = offsetCount;
-        const bool down = direction.z < 0.0;
-        while (lo < hi) {
-            const int mid = lo + (hi - lo) / 2;
-            if (down ? offsets[mid] < u.z : offsets[mid] <= u.z)
-                lo = mid + 1;
-            else
-                hi = mid;
-        }
-        const int k = lo - 1;
+        const int k = slabOf(u.z, direction.z < 0.0);
         if (k < 0 || k >= cells.z)
             return false;
         cell.z = k;
         return true;
+    }
+
+    // The last wall at or below s (strictly below when walking down), -1 for none: the upper
+    // (lower) bound of s in the offsets, less one. The walk asks at every macro cell; on an evenly
+    // spaced stack the guess from slabGuessScale or a neighbour of it is that wall, which the
+    // offsets confirm (the answer is unique, so it is the search's bit for bit); otherwise, or
+    // when the guess misses, a binary search.
+    LW_HOST_DEVICE int slabOf(double s, bool down) const {
+        auto atOrBelow = [&](int m) { return down ? offsets[m] < s : offsets[m] <= s; };
+        if (slabGuessScale > 0.0) {
+            const double guess = (s - offsets[0]) * slabGuessScale;
+            if (guess > -1.0 && guess < double(offsetCount)) {
+                const int g = int(guess);
+                for (int m = g > 0 ? g - 1 : 0; m <= g + 1 && m < offsetCount; ++m)
+                    if (atOrBelow(m) && (m + 1 == offsetCount || !atOrBelow(m + 1)))
+                        return m;
+            }
+        }
+        int lo = 0, hi = offsetCount;
+        while (lo < hi) {
+            const int mid = lo + (hi - lo) / 2;
+            if (atOrBelow(mid))
+                lo = mid + 1;
+            else
+                hi = mid;
+        }
+        return lo - 1;
     }
 
     // Where the ray u(t) = start + t * direction, t in [tMin, tMax], enters the box of the cell
@@ -134,6 +154,12 @@ struct RayGridView {
         glm::ivec3 cell;
         if (!cellOf(start, direction, cell))
             return true;
+        return walkFrom(cell, start, direction, tMax, onExit);
+    }
+    // walk() from `cell`, which is cellOf(start, direction) (a caller that has it already).
+    template <typename OnExit>
+    LW_HOST_DEVICE bool walkFrom(glm::ivec3 cell, glm::dvec3 start, glm::dvec3 direction,
+                                 double tMax, OnExit&& onExit) const {
         const glm::ivec3 cells = cellCount();
         const double kInf = HUGE_VAL;
         int step[3];
@@ -555,7 +581,7 @@ template <typename T> struct RayVisibility {
         }
         bool occluded = false, moved = false;
         CellExit last;
-        grid.walk(ray.from, ray.du, ray.tMax - ray.tFrom, [&](const CellExit& exit) {
+        grid.walkFrom(cell, ray.from, ray.du, ray.tMax - ray.tFrom, [&](const CellExit& exit) {
             const double t = ray.tFrom + exit.t;
             if ((!ray.onSurface || exit.cell != ray.startCell) && t >= ray.tSkip &&
                 occludes(exit)) {

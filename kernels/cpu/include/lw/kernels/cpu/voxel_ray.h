@@ -76,6 +76,9 @@ public:
         v.toGrid = m_toGrid;
         v.offsets = m_offsets.data();
         v.offsetCount = int(m_offsets.size());
+        const double span = m_offsets.back() - m_offsets.front();
+        if (m_offsets.size() > 1 && span > 0.0)
+            v.slabGuessScale = double(m_offsets.size() - 1) / span;
         return v;
     }
     // Slice offsets after the flip described above (increasing).
