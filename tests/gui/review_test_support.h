@@ -3,6 +3,7 @@
 // What the review tests share: a phantom opened as the loader opens it, settings for a method
 // and where its GL runs, waiting for the worker to settle and for the slices to show.
 
+#include "gui_test_support.h"
 #include "review/review_widget.h"
 #include "review/slice_view.h"
 #include "review/slice_views.h"
@@ -23,8 +24,8 @@ inline gui::ReviewSource phantomSource(const QString& spec, double iso) {
 // Waits until the worker is idle and at least `frames` results have been shown.
 inline bool waitSettled(gui::ReviewWidget& review, std::uint64_t frames = 1,
                         int timeoutMs = 60000) {
-    return QTest::qWaitFor(
-        [&] { return !review.isBusy() && review.status().framesShown >= frames; }, timeoutMs);
+    return waitUntil([&] { return !review.isBusy() && review.status().framesShown >= frames; },
+                     timeoutMs);
 }
 
 // Whether the active slice view of `orientation` shows the slice it asks for, at the slices'
@@ -40,7 +41,7 @@ inline bool showsCurrentSlice(gui::ReviewWidget& review, volume::SliceOrientatio
 
 // Waits until no slice is being sampled and every active slice view shows its current slice.
 inline bool waitSlices(gui::ReviewWidget& review, int timeoutMs = 30000) {
-    return QTest::qWaitFor(
+    return waitUntil(
         [&] {
             return !review.slices().isBusy() &&
                    showsCurrentSlice(review, volume::SliceOrientation::Axial) &&

@@ -32,7 +32,7 @@ inline bool waitForReview(gui::MainWindow& window, int timeoutMs = 60000) {
             opened = review;
             arrived = true;
         });
-    const bool shown = QTest::qWaitFor(
+    const bool shown = waitUntil(
         [&] { return arrived && opened && opened->status().framesShown > 0 && !opened->isBusy(); },
         timeoutMs);
     QObject::disconnect(connection);
