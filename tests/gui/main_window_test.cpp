@@ -21,6 +21,31 @@ using lw::report::PanelLayout;
 
 using namespace lw::test;
 
+namespace {
+
+// Imports a copy of the demo study into `window`'s database (in `dir`) and removes the second
+// file of its series: opening that series fails at once, before the loader looks for a cancel.
+// Returns the series' files, the removed one second; empty if the import found no series.
+QStringList importSeriesMissingAFile(MainWindow& window, const QTemporaryDir& dir, QString& uid) {
+    // A copy of the demo study, so a file can go missing without touching the original.
+    const std::filesystem::path copy = dir.filePath("study").toStdString();
+    std::filesystem::copy(demoStudy().toStdString(), copy);
+    uid = importAndFindSeries(window, QString::fromStdString(copy.string()));
+    if (uid.isEmpty())
+        return {};
+    const QStringList files = window.browser().database().seriesFiles(uid);
+    if (files.size() < 3 || !QFile::remove(files[1]))
+        return {};
+    return files;
+}
+
+// What an open that is cancelled or replaced was opening.
+enum class Opening { StudyThatLoads, MissingPath, SeriesMissingAFile };
+
+} // namespace
+
+Q_DECLARE_METATYPE(Opening)
+
 class MainWindowTest : public QObject {
     Q_OBJECT
 private slots:
@@ -98,17 +123,12 @@ void MainWindowTest::openPathDirectly() {
 
 void MainWindowTest::seriesWithMissingFilesSaysSo() {
     QTemporaryDir dir;
-    // A copy of the demo study, so a file can go missing without touching the original.
-    const std::filesystem::path copy = dir.filePath("study").toStdString();
-    std::filesystem::copy(demoStudy().toStdString(), copy);
     MainWindow window(isolatedOptions(dir));
     window.show();
     QVERIFY(QTest::qWaitForWindowExposed(&window));
-    const QString uid = importAndFindSeries(window, QString::fromStdString(copy.string()));
-    QVERIFY(!uid.isEmpty());
-    const QStringList files = window.browser().database().seriesFiles(uid);
-    QVERIFY(files.size() > 2);
-    QVERIFY(QFile::remove(files[1]));
+    QString uid;
+    const QStringList files = importSeriesMissingAFile(window, dir, uid);
+    QVERIFY(!files.isEmpty());
     QSignalSpy failed(&window, &MainWindow::loadFailed);
     window.openSeries(uid);
     QVERIFY(failed.wait(30000));
@@ -120,29 +140,39 @@ void MainWindowTest::seriesWithMissingFilesSaysSo() {
 }
 
 void MainWindowTest::cancelOrReplaceOpening_data() {
-    QTest::addColumn<QString>("path");
+    QTest::addColumn<Opening>("opening");
     QTest::addColumn<bool>("replaced"); // false: Cancel; true: a newer open replaces it
     for (const bool replaced : {false, true}) {
         const char* how = replaced ? "replaced" : "cancelled";
-        QTest::addRow("%s: a study that loads", how) << demoStudy() << replaced;
-        QTest::addRow("%s: a path that fails", how) << "/nonexistent/linework/study" << replaced;
+        QTest::addRow("%s: a study that loads", how) << Opening::StudyThatLoads << replaced;
+        QTest::addRow("%s: a missing path", how) << Opening::MissingPath << replaced;
+        QTest::addRow("%s: a series missing a file", how)
+            << Opening::SeriesMissingAFile << replaced;
     }
 }
 
 // An open that is cancelled, or replaced by a newer one, ends without a review or an error of
-// its own, whatever its worker finishes with: the test waits until that worker has ended and
-// its outcome was dropped (loadDiscarded), then looks.
+// its own, whatever its worker finishes with (a volume, a stop at its first cancel check, a
+// failure that comes before any check): the test waits until that worker has ended and its
+// outcome was dropped (loadDiscarded), then looks.
 void MainWindowTest::cancelOrReplaceOpening() {
-    QFETCH(QString, path);
+    QFETCH(Opening, opening);
     QFETCH(bool, replaced);
     QTemporaryDir dir;
     MainWindow window(isolatedOptions(dir));
     window.show();
     QVERIFY(QTest::qWaitForWindowExposed(&window));
+    QString uid;
+    if (opening == Opening::SeriesMissingAFile)
+        QVERIFY(!importSeriesMissingAFile(window, dir, uid).isEmpty());
     QSignalSpy discarded(&window, &MainWindow::loadDiscarded);
     QSignalSpy opened(&window, &MainWindow::reviewOpened);
     QSignalSpy failed(&window, &MainWindow::loadFailed);
-    window.openPath(path);
+    if (opening == Opening::SeriesMissingAFile)
+        window.openSeries(uid);
+    else
+        window.openPath(opening == Opening::StudyThatLoads ? demoStudy()
+                                                           : "/nonexistent/linework/study");
     QVERIFY(window.isLoading());
     if (replaced) {
         window.openPath("phantom:32");
