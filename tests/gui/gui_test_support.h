@@ -39,7 +39,8 @@ inline QString sourcePath() {
 // Waits until `done()` holds; false if it still does not after `timeoutMs`. Unlike
 // QTest::qWaitFor, which naps 10 ms between looks while what arrives meanwhile waits, it sleeps
 // in the event loop: each event (a worker's result, a paint) is handled when it comes and the
-// condition looked at again; a timer wakes it at the deadline.
+// condition looked at again; a timer wakes it at the deadline. The condition must be one that
+// the UI thread's events change (a result delivered, a signal), not a flag another thread sets.
 template <typename Condition> bool waitUntil(Condition done, int timeoutMs) {
     const QDeadlineTimer deadline(timeoutMs);
     QTimer wakeAtDeadline;
