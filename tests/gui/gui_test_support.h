@@ -7,11 +7,13 @@
 #include "review/review_panel.h"
 
 #include <QApplication>
+#include <QDeadlineTimer>
 #include <QImage>
 #include <QSettings>
 #include <QStandardPaths>
 #include <QTemporaryDir>
 #include <QTest>
+#include <QTimer>
 #include <cstdio>
 #include <cstdlib>
 #include <optional>
@@ -32,6 +34,25 @@ inline QString sharedDataPath() {
 inline QString sourcePath() {
     const char* path = std::getenv("LINEWORK_SOURCE_DIR");
     return path ? QString::fromLocal8Bit(path) : QString();
+}
+
+// Waits until `done()` holds; false if it still does not after `timeoutMs`. Unlike
+// QTest::qWaitFor, which naps 10 ms between looks while what arrives meanwhile waits, it sleeps
+// in the event loop: each event (a worker's result, a paint) is handled when it comes and the
+// condition looked at again; a timer wakes it at the deadline. The condition must be one that
+// the UI thread's events change (a result delivered, a signal), not a flag another thread sets.
+template <typename Condition> bool waitUntil(Condition done, int timeoutMs) {
+    const QDeadlineTimer deadline(timeoutMs);
+    QTimer wakeAtDeadline;
+    wakeAtDeadline.setSingleShot(true);
+    wakeAtDeadline.start(timeoutMs);
+    while (!done()) {
+        if (deadline.hasExpired())
+            return false;
+        QCoreApplication::processEvents(QEventLoop::AllEvents | QEventLoop::WaitForMoreEvents);
+        QCoreApplication::sendPostedEvents(nullptr, QEvent::DeferredDelete);
+    }
+    return true;
 }
 
 // Pixels of `image` whose colour differs from `background` by more than `tolerance` in a channel.

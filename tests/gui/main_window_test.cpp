@@ -1,6 +1,7 @@
 // The workstation's window end to end: import the bundled demo study through the browser and open
-// its series in a review; open paths directly; cancel an open; errors (a series whose files have
-// gone, a path that does not exist) are shown, never a crash; settings apply to open reviews.
+// its series in a review; open paths directly; cancel or replace an open (nothing of it shown);
+// errors (a series whose files have gone, a path that does not exist) are shown, never a crash;
+// settings apply to open reviews.
 #include "browser/study_browser.h"
 #include "gui_test_support.h"
 #include "review/review_panel.h"
@@ -20,6 +21,31 @@ using lw::report::PanelLayout;
 
 using namespace lw::test;
 
+namespace {
+
+// Imports a copy of the demo study into `window`'s database (in `dir`) and removes the second
+// file of its series: opening that series fails at once, before the loader looks for a cancel.
+// Returns the series' files, the removed one second; empty if the import found no series.
+QStringList importSeriesMissingAFile(MainWindow& window, const QTemporaryDir& dir, QString& uid) {
+    // A copy of the demo study, so a file can go missing without touching the original.
+    const std::filesystem::path copy = dir.filePath("study").toStdString();
+    std::filesystem::copy(demoStudy().toStdString(), copy);
+    uid = importAndFindSeries(window, QString::fromStdString(copy.string()));
+    if (uid.isEmpty())
+        return {};
+    const QStringList files = window.browser().database().seriesFiles(uid);
+    if (files.size() < 3 || !QFile::remove(files[1]))
+        return {};
+    return files;
+}
+
+// What an open that is cancelled or replaced was opening.
+enum class Opening { StudyThatLoads, MissingPath, SeriesMissingAFile };
+
+} // namespace
+
+Q_DECLARE_METATYPE(Opening)
+
 class MainWindowTest : public QObject {
     Q_OBJECT
 private slots:
@@ -27,7 +53,8 @@ private slots:
     void openPathDirectly_data();
     void openPathDirectly();
     void seriesWithMissingFilesSaysSo();
-    void cancelOpening();
+    void cancelOrReplaceOpening_data();
+    void cancelOrReplaceOpening();
     void settingsApplyToOpenReviews();
     void droppingAFolderOnAReviewImportsIt();
     void exportPng_data();
@@ -54,7 +81,7 @@ void MainWindowTest::openSeriesFromTheBrowser() {
     QVERIFY(review->source().warnings.join(" ").contains("tilt"));
     QCOMPARE(review->iso(), 400.0); // the bone preset, nothing to click first
     QVERIFY(review->status().triangles > 10000);
-    QTest::qWait(100);
+    // grabImage paints the panels now, with the frame waitForReview saw arrive.
     const QImage iso = review->isoPanel().grabImage();
     QVERIFY(lw::test::pixelsDifferentFrom(iso, Qt::white) > iso.width() * iso.height() / 50);
     QVERIFY(lw::test::pixelsDifferentFrom(review->silhouettePanel().grabImage(), Qt::white, 100) >
@@ -96,17 +123,12 @@ void MainWindowTest::openPathDirectly() {
 
 void MainWindowTest::seriesWithMissingFilesSaysSo() {
     QTemporaryDir dir;
-    // A copy of the demo study, so a file can go missing without touching the original.
-    const std::filesystem::path copy = dir.filePath("study").toStdString();
-    std::filesystem::copy(demoStudy().toStdString(), copy);
     MainWindow window(isolatedOptions(dir));
     window.show();
     QVERIFY(QTest::qWaitForWindowExposed(&window));
-    const QString uid = importAndFindSeries(window, QString::fromStdString(copy.string()));
-    QVERIFY(!uid.isEmpty());
-    const QStringList files = window.browser().database().seriesFiles(uid);
-    QVERIFY(files.size() > 2);
-    QVERIFY(QFile::remove(files[1]));
+    QString uid;
+    const QStringList files = importSeriesMissingAFile(window, dir, uid);
+    QVERIFY(!files.isEmpty());
     QSignalSpy failed(&window, &MainWindow::loadFailed);
     window.openSeries(uid);
     QVERIFY(failed.wait(30000));
@@ -117,20 +139,59 @@ void MainWindowTest::seriesWithMissingFilesSaysSo() {
     QVERIFY(QFile::exists(files[0]) && QFile::exists(files[2]));
 }
 
-void MainWindowTest::cancelOpening() {
+void MainWindowTest::cancelOrReplaceOpening_data() {
+    QTest::addColumn<Opening>("opening");
+    QTest::addColumn<bool>("replaced"); // false: Cancel; true: a newer open replaces it
+    for (const bool replaced : {false, true}) {
+        const char* how = replaced ? "replaced" : "cancelled";
+        QTest::addRow("%s: a study that loads", how) << Opening::StudyThatLoads << replaced;
+        QTest::addRow("%s: a missing path", how) << Opening::MissingPath << replaced;
+        QTest::addRow("%s: a series missing a file", how)
+            << Opening::SeriesMissingAFile << replaced;
+    }
+}
+
+// An open that is cancelled, or replaced by a newer one, ends without a review or an error of
+// its own, whatever its worker finishes with (a volume, a stop at its first cancel check, a
+// failure that comes before any check): the test waits until that worker has ended and its
+// outcome was dropped (loadDiscarded), then looks.
+void MainWindowTest::cancelOrReplaceOpening() {
+    QFETCH(Opening, opening);
+    QFETCH(bool, replaced);
     QTemporaryDir dir;
     MainWindow window(isolatedOptions(dir));
     window.show();
     QVERIFY(QTest::qWaitForWindowExposed(&window));
-    window.openPath(demoStudy());
+    QString uid;
+    if (opening == Opening::SeriesMissingAFile)
+        QVERIFY(!importSeriesMissingAFile(window, dir, uid).isEmpty());
+    QSignalSpy discarded(&window, &MainWindow::loadDiscarded);
+    QSignalSpy opened(&window, &MainWindow::reviewOpened);
+    QSignalSpy failed(&window, &MainWindow::loadFailed);
+    if (opening == Opening::SeriesMissingAFile)
+        window.openSeries(uid);
+    else
+        window.openPath(opening == Opening::StudyThatLoads ? demoStudy()
+                                                           : "/nonexistent/linework/study");
     QVERIFY(window.isLoading());
-    window.cancelLoading();
-    QVERIFY(!window.isLoading());
-    QTest::qWait(1500); // whatever the worker finishes afterwards must not open a review
-    QVERIFY(window.reviews().isEmpty());
-    // And the window still works.
-    window.openPath("phantom:32");
-    QVERIFY(waitForReview(window));
+    if (replaced) {
+        window.openPath("phantom:32");
+        QVERIFY(waitForReview(window));
+    } else {
+        window.cancelLoading();
+        QVERIFY(!window.isLoading());
+    }
+    QVERIFY(discarded.count() == 1 || discarded.wait(60000));
+    QCOMPARE(discarded.count(), 1);
+    QCOMPARE(failed.count(), 0);
+    QCOMPARE(opened.count(), replaced ? 1 : 0);
+    QCOMPARE(window.reviews().size(), replaced ? 1 : 0);
+    if (!replaced) { // and the window still works
+        window.openPath("phantom:32");
+        QVERIFY(waitForReview(window));
+    }
+    QCOMPARE(window.reviews().size(), 1);
+    QVERIFY(window.currentReview()->source().title.startsWith("phantom"));
 }
 
 void MainWindowTest::settingsApplyToOpenReviews() {
@@ -151,7 +212,6 @@ void MainWindowTest::settingsApplyToOpenReviews() {
         },
         30000));
     QVERIFY(window.currentReview()->statusText().startsWith("Method 2"));
-    QTest::qWait(100);
     const QImage silhouette = window.currentReview()->silhouettePanel().grabImage();
     QCOMPARE(silhouette.pixelColor(2, 2).rgb(), QColor(20, 20, 40).rgb());
 }

@@ -27,6 +27,7 @@ using lw::annotation::Annotation;
 using lw::annotation::AnnotationKind;
 using lw::test::phantomSource;
 using lw::test::settingsFor;
+using lw::test::waitSlices;
 using lw::volume::SliceOrientation;
 
 namespace {
@@ -38,22 +39,6 @@ std::unique_ptr<ReviewWidget> slicesReview(const QString& spec, double iso) {
     review->resize(1200, 900);
     review->show();
     return review;
-}
-
-bool waitSlices(ReviewWidget& review) {
-    for (int i = 0; i < 3000; ++i) {
-        bool all = !review.slices().isBusy();
-        for (SliceOrientation orientation :
-             {SliceOrientation::Axial, SliceOrientation::Coronal, SliceOrientation::Sagittal}) {
-            const SliceView& view = review.slices().view(orientation);
-            all = all && view.slice() && view.slice()->image &&
-                  view.slice()->image->position == view.position();
-        }
-        if (all)
-            return true;
-        QTest::qWait(10);
-    }
-    return false;
 }
 
 void sendMouse(QWidget& widget, QEvent::Type type, QPointF at, Qt::MouseButton button,

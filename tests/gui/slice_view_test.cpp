@@ -28,6 +28,7 @@ using lw::gui::SliceView;
 using lw::gui::WindowPreset;
 using lw::test::phantomSource;
 using lw::test::settingsFor;
+using lw::test::waitSlices;
 using lw::volume::SliceOrientation;
 
 Q_DECLARE_METATYPE(SliceOrientation)
@@ -49,27 +50,6 @@ std::unique_ptr<ReviewWidget> slicesReview(const QString& spec, double iso,
     review->resize(1200, 900);
     review->show();
     return review;
-}
-
-// The view shows the slice it asks for, at the review's iso-value.
-bool showsCurrentSlice(ReviewWidget& review, SliceOrientation orientation) {
-    const SliceView& view = review.slices().view(orientation);
-    const lw::gui::SliceResult* slice = view.slice();
-    return slice && slice->image && slice->image->position == view.position() &&
-           slice->iso == review.slices().iso();
-}
-
-bool waitSlices(ReviewWidget& review) {
-    for (int i = 0; i < 3000; ++i) {
-        bool all = !review.slices().isBusy();
-        for (SliceOrientation orientation : kOrientations)
-            all = all && (!review.slices().isActive(orientation) ||
-                          showsCurrentSlice(review, orientation));
-        if (all)
-            return true;
-        QTest::qWait(10);
-    }
-    return false;
 }
 
 void sendMouse(QWidget& widget, QEvent::Type type, QPointF at, Qt::MouseButton button,
@@ -446,7 +426,7 @@ void SliceViewTest::shiftClickOnASliceShowsThe3dCrossHair() {
         QVERIFY(panel->crossHair());
         QVERIFY(glm::distance(*panel->crossHair(), *point) < 1e-9);
         const lw::render::ProjectedPoint projected = panel->viewCamera().project(*point);
-        QTest::qWait(50); // let the panel repaint with the cross-hair
+        // grabImage paints the panel now, cross-hair included: nothing to wait for.
         QVERIFY2(cyanNear(panel->grabImage(), QPointF(projected.pixel.x, projected.pixel.y), 18),
                  "no cross-hair where the camera projects the point");
     }

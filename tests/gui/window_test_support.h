@@ -8,7 +8,6 @@
 #include "review/review_widget.h"
 #include "shell/main_window.h"
 
-#include <QElapsedTimer>
 #include <QPointer>
 #include <QSignalSpy>
 #include <QTemporaryDir>
@@ -33,13 +32,9 @@ inline bool waitForReview(gui::MainWindow& window, int timeoutMs = 60000) {
             opened = review;
             arrived = true;
         });
-    QElapsedTimer timer;
-    timer.start();
-    bool shown = false;
-    while (!shown && timer.elapsed() < timeoutMs) {
-        QTest::qWait(20);
-        shown = arrived && opened && opened->status().framesShown > 0 && !opened->isBusy();
-    }
+    const bool shown = waitUntil(
+        [&] { return arrived && opened && opened->status().framesShown > 0 && !opened->isBusy(); },
+        timeoutMs);
     QObject::disconnect(connection);
     return shown;
 }

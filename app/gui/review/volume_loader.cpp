@@ -98,36 +98,39 @@ void VolumeLoader::start(const LoadRequest& request) {
         try {
             auto source = std::make_shared<ReviewSource>(load(request, &progress));
             post([source, token](VolumeLoader& loader) {
-                if (loader.m_cancel == token) {
-                    loader.m_cancel.reset();
+                if (loader.endCurrent(token))
                     emit loader.loaded(source);
-                } else if (!loader.m_cancel) {
-                    // Cancelled after the last check: the volume is dropped, and the cancel
-                    // still gets its answer.
-                    emit loader.cancelled();
-                }
             });
         } catch (const core::Cancelled&) {
             post([token](VolumeLoader& loader) {
-                if (loader.m_cancel == token)
-                    loader.m_cancel.reset();
-                if (!loader.m_cancel) // a newer load is not running
+                if (loader.endCurrent(token))
                     emit loader.cancelled();
             });
         } catch (const std::bad_alloc&) {
             post([token](VolumeLoader& loader) {
-                if (loader.m_cancel == token)
-                    loader.m_cancel.reset();
-                emit loader.failed(tr("out of memory while loading the volume"));
+                if (loader.endCurrent(token))
+                    emit loader.failed(tr("out of memory while loading the volume"));
             });
         } catch (const std::exception& error) {
             post([token, reason = QString::fromStdString(error.what())](VolumeLoader& loader) {
-                if (loader.m_cancel == token)
-                    loader.m_cancel.reset();
-                emit loader.failed(reason);
+                if (loader.endCurrent(token))
+                    emit loader.failed(reason);
             });
         }
     });
+}
+
+// A cancelled or replaced load's failure is dropped too: it would otherwise report an error for
+// something the user no longer asked for, over the newer load's progress.
+bool VolumeLoader::endCurrent(const std::shared_ptr<core::CancelToken>& token) {
+    if (m_cancel == token) {
+        m_cancel.reset();
+        return true;
+    }
+    if (!m_cancel) // no newer load is running: the cancel gets its answer
+        emit cancelled();
+    emit discarded();
+    return false;
 }
 
 void VolumeLoader::cancel() {

@@ -45,8 +45,16 @@ signals:
     void loaded(std::shared_ptr<lw::gui::ReviewSource> source);
     void failed(const QString& reason);
     void cancelled();
+    // A load that was cancelled, or replaced by a newer start(), has ended (loaded, failed or
+    // stopped at a check) and what it brought was dropped: nothing of it comes after this.
+    void discarded();
 
 private:
+    // On the UI thread, once a load's worker has ended: true if `token`'s load is the current
+    // one (it is no longer running); otherwise its outcome is dropped, with cancelled() when no
+    // newer load runs, then discarded(), and the caller emits nothing.
+    bool endCurrent(const std::shared_ptr<core::CancelToken>& token);
+
     std::shared_ptr<core::CancelToken> m_cancel;
     // Not QThreadPool::globalInstance(): Qt 6.4's raster painting splits fills and image
     // conversions over the global pool and the UI thread waits for them; a load holding one of

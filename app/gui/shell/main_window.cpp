@@ -83,6 +83,7 @@ MainWindow::MainWindow(const MainWindowOptions& options, QWidget* parent) : QMai
         setLoadingVisible(false);
         statusBar()->showMessage(tr("Opening cancelled"), 5000);
     });
+    connect(m_loader, &VolumeLoader::discarded, this, &MainWindow::loadDiscarded);
     connect(m_browser, &StudyBrowser::openSeriesRequested, this, &MainWindow::openSeries);
     connect(m_browser, &StudyBrowser::statusMessage, this,
             [this](const QString& message) { statusBar()->showMessage(message, 8000); });

@@ -66,6 +66,9 @@ public slots:
 signals:
     void reviewOpened(lw::gui::ReviewWidget* review);
     void loadFailed(const QString& reason);
+    // An open that was cancelled, or replaced by a newer one, has ended and nothing of it was
+    // shown (no review, no error).
+    void loadDiscarded();
 
 protected:
     void closeEvent(QCloseEvent* event) override;
