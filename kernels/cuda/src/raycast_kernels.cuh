@@ -179,11 +179,28 @@ template <typename T>
 __global__ void
 testRepresentatives(RayVisibility<T> rule, View view, const SegmentEndpoints* segments,
                     const std::uint32_t* representatives, const std::uint32_t* count,
-                    std::uint32_t* nextRay, std::uint8_t* visible) {
+                    std::uint32_t* nextRay, bool takeMore, std::uint8_t* visible) {
     const std::uint32_t total = *count;
     const unsigned lane = threadIdx.x & 31u;
     LaneRay<T> ray;
     bool exhausted = false;
+    auto start = [&](std::uint32_t i) {
+        if (i >= total) {
+            exhausted = true;
+            return;
+        }
+        ray.endpoint = representatives[i];
+        ray.point = glm::dvec3(endpointOf(segments, ray.endpoint));
+        ray.phase = LaneRay<T>::OwnRay;
+        double blocked = 0.0;
+        const auto step = rule.beginRay(ray.point, view.eyeOrDirection, view.orthographic, true,
+                                        ray.walk, &blocked);
+        ray.settle(rule, view, step, blocked, visible);
+    };
+    if (!takeMore) { // one ray per thread (see the dispatch: a volume in host memory)
+        start(blockIdx.x * blockDim.x + threadIdx.x);
+        exhausted = true;
+    }
     for (;;) {
         const bool wants = ray.phase == LaneRay<T>::Idle && !exhausted;
         const unsigned takers = __ballot_sync(0xffffffffu, wants);
@@ -193,20 +210,8 @@ testRepresentatives(RayVisibility<T> rule, View view, const SegmentEndpoints* se
             if (int(lane) == leader)
                 base = atomicAdd(nextRay, std::uint32_t(__popc(takers)));
             base = __shfl_sync(0xffffffffu, base, leader);
-            if (wants) {
-                const std::uint32_t i = base + __popc(takers & ((1u << lane) - 1u));
-                if (i < total) {
-                    ray.endpoint = representatives[i];
-                    ray.point = glm::dvec3(endpointOf(segments, ray.endpoint));
-                    ray.phase = LaneRay<T>::OwnRay;
-                    double blocked = 0.0;
-                    const auto step = rule.beginRay(ray.point, view.eyeOrDirection,
-                                                    view.orthographic, true, ray.walk, &blocked);
-                    ray.settle(rule, view, step, blocked, visible);
-                } else {
-                    exhausted = true;
-                }
-            }
+            if (wants)
+                start(base + __popc(takers & ((1u << lane) - 1u)));
         }
         if (__all_sync(0xffffffffu, exhausted && ray.phase == LaneRay<T>::Idle))
             return;
