@@ -14,6 +14,7 @@ StallMonitor::StallMonitor(int intervalMs, QObject* parent)
 void StallMonitor::start() {
     m_longestMs = 0.0;
     m_stalls.clear();
+    m_markedStalls = 0;
     m_clock.start();
     m_lastNs = 0;
     m_timer.start();
@@ -26,6 +27,13 @@ void StallMonitor::stop() {
 int StallMonitor::stallsOver(double thresholdMs) const {
     return int(std::count_if(m_stalls.begin(), m_stalls.end(),
                              [thresholdMs](double ms) { return ms > thresholdMs; }));
+}
+
+double StallMonitor::longestSinceMarkMs() const {
+    double longest = 0.0;
+    for (qsizetype i = m_markedStalls; i < m_stalls.size(); ++i)
+        longest = std::max(longest, m_stalls[i]);
+    return longest;
 }
 
 void StallMonitor::tick() {

@@ -20,6 +20,10 @@ public:
     // Longest lateness of a tick since start() (ms), and how many ticks were over `thresholdMs`.
     double longestStallMs() const { return m_longestMs; }
     int stallsOver(double thresholdMs) const;
+    // Splits a measurement in phases: the longest stall since the last mark() (or start()). A
+    // stall under way at the mark counts to the phase after it (its tick arrives then).
+    void mark() { m_markedStalls = m_stalls.size(); }
+    double longestSinceMarkMs() const;
 
 private:
     void tick();
@@ -30,6 +34,7 @@ private:
     qint64 m_lastNs = 0;
     double m_longestMs = 0.0;
     QList<double> m_stalls; // lateness of every tick over one interval
+    qsizetype m_markedStalls = 0;
 };
 
 } // namespace lw::gui

@@ -4,6 +4,8 @@
 #include "annotate/annotation_document.h"
 #include "browser/study_browser.h"
 #include "lw/core/error.h"
+#include "lw/core/thread_priority.h"
+#include "lw/render/renderer_factory.h"
 #include "pacs/pacs_locations.h"
 #include "pacs/pacs_settings_page.h"
 #include "pacs/remote_panel.h"
@@ -49,6 +51,11 @@ MainWindow::MainWindow(const MainWindowOptions& options, QWidget* parent) : QMai
     // Which OpenGL this display gives decides how reviews draw; ask before the window shows,
     // not when the first review opens.
     displayGlInfo();
+    if (m_settings.backend != render::Backend::Cpu)
+        m_cudaProbe = std::async(std::launch::async, [] {
+            core::lowerCurrentThreadToBackground();
+            render::cudaAvailability(); // probed once per process; later calls read the answer
+        });
 
     m_tabs = new QTabWidget;
     m_tabs->setObjectName("mainTabs");
