@@ -375,24 +375,10 @@ __global__ void findSegments(mc::Grid<T> g, const std::uint32_t* activeVoxels,
     appendCellSegments(cell, v, segments, segmentCells, capacity, counters);
 }
 
-// The Burns segment of the mesh triangle whose corners are `corner[0..2]`, if it has one.
-__device__ __forceinline__ bool meshTriangleSegment(const DeviceMeshView& mesh,
-                                                    const std::uint32_t* corner, const View& view,
-                                                    SegmentEndpoints& segment) {
-    glm::vec3 q[3];
-    float d[3];
-    for (int k = 0; k < 3; ++k) {
-        q[k] = mesh.positions[corner[k]];
-        d[k] = silhouetteDistance(q[k], mesh.normals[corner[k]], view.eyeOrDirectionF,
-                                  view.orthographic);
-    }
-    return silhouetteSegment(q, d, segment);
-}
-
 // Phase 1 on the kept mesh, first step: each vertex's silhouette distance, once per view. A
 // vertex is shared by about six triangles; reading its position and normal for each of them
 // was most of phase 1 (0.20 ms at 512^3 on the H200). The same function of the same floats as
-// meshTriangleSegment's (no fused multiply-adds in this back-end), so the same values.
+// cellSegments' (no fused multiply-adds in this back-end), so the same values.
 __global__ void vertexSilhouetteDistances(DeviceMeshView mesh, View view, float* distance) {
     const std::size_t i = std::size_t(blockIdx.x) * blockDim.x + threadIdx.x;
     if (i < mesh.vertexCount)
@@ -423,13 +409,13 @@ __device__ __forceinline__ bool distanceTriangleSegment(const DeviceMeshView& me
 // its triangles in cell order and in triTable's order within a cell, so the segments sorted by
 // triangle are findSegments' sorted by cell -- without reading a voxel: a volume mapped from host
 // memory is not read over the bus at every view. `distance`: the vertices' distances for this
-// view (vertexSilhouetteDistances), or null to compute them per triangle (a slab's mesh).
+// view (vertexSilhouetteDistances).
 // A block reserves its segments' slots with one atomic, and counts its triangles with another:
 // per warp, the atomics on the two counters cost more than the triangles' own work.
 template <int kBlock>
 __global__ void __launch_bounds__(kBlock)
     findTriangleSegments(DeviceMeshView mesh, std::uint32_t firstTriangle, const float* distance,
-                         View view, SegmentEndpoints* segments, std::uint32_t* segmentCells,
+                         SegmentEndpoints* segments, std::uint32_t* segmentCells,
                          std::uint32_t capacity, Counters* counters) {
     static_assert(kBlock % 32 == 0 && kBlock <= 1024);
     __shared__ std::uint32_t warpFirst[kBlock / 32];
@@ -437,11 +423,8 @@ __global__ void __launch_bounds__(kBlock)
     const std::uint32_t t = blockIdx.x * kBlock + threadIdx.x;
     SegmentEndpoints segment;
     bool found = false;
-    if (t < mesh.triangleCount) {
-        const std::uint32_t* corner = mesh.indices + std::size_t(t) * 3;
-        found = distance ? distanceTriangleSegment(mesh, corner, distance, segment)
-                         : meshTriangleSegment(mesh, corner, view, segment);
-    }
+    if (t < mesh.triangleCount)
+        found = distanceTriangleSegment(mesh, mesh.indices + std::size_t(t) * 3, distance, segment);
     const unsigned lane = threadIdx.x & 31u, warp = threadIdx.x >> 5;
     const unsigned finders = __ballot_sync(0xffffffffu, found);
     if (lane == 0)

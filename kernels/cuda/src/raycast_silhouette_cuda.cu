@@ -80,7 +80,8 @@ struct RayCastSilhouetteCuda::Impl {
     std::vector<CellSlab> slabPlan() const;
     CudaStatus extractSlabs(double storedIso);
     CudaStatus findSlabSegments(const rc::View& view, std::uint32_t capacity);
-    CudaStatus vertexDistances(const DeviceMeshView& mesh, const rc::View& view);
+    CudaStatus findMeshSegments(const DeviceMeshView& mesh, std::uint32_t firstTriangle,
+                                const rc::View& view, std::uint32_t capacity);
     bool hasSurface() { return slabbed ? slabTriangles > 0 : mc().activeCount > 0; }
     template <typename T> CudaStatus findActiveCells(double storedIso);
     template <typename T> CudaStatus prepareTyped(double storedIso, RayCastCudaFrame& frame);
@@ -264,7 +265,6 @@ template <typename T>
 CudaStatus RayCastSilhouetteCuda::Impl::findSegments(const rc::View& view, rc::Counters& counts) {
     MarchingCubesCuda::Impl& m = mc();
     cudaStream_t st = m.stream.get();
-    bool distancesDone = false; // the kept mesh's vertex distances, for this view
     // Run again with a larger buffer when the segments did not fit.
     for (int attempt = 0; attempt < 2; ++attempt) {
         LW_CUDA_TRY(cudaMemsetAsync(counters.data(), 0, sizeof(rc::Counters), st),
@@ -275,15 +275,7 @@ CudaStatus RayCastSilhouetteCuda::Impl::findSegments(const rc::View& view, rc::C
         if (slabbed) {
             LW_RETURN_IF_FAILED(findSlabSegments(view, capacity));
         } else if (meshKept) {
-            if (!distancesDone)
-                LW_RETURN_IF_FAILED(vertexDistances(m.mesh, view));
-            distancesDone = true;
-            rc::findTriangleSegments<tuning::kSegmentTriangleBlock>
-                <<<blocksFor(m.mesh.triangleCount, tuning::kSegmentTriangleBlock),
-                   tuning::kSegmentTriangleBlock, 0, st>>>(m.mesh, 0, vertexDistance.data(), view,
-                                                           segments.data(), segmentCells.data(),
-                                                           capacity, counters.data());
-            LW_CUDA_LAUNCHED("rc::findTriangleSegments");
+            LW_RETURN_IF_FAILED(findMeshSegments(m.mesh, 0, view, capacity));
         } else {
             rc::findSegments<T><<<blocks, tuning::kRayCastBlock, 0, st>>>(
                 m.grid<T>(iso), m.activeVoxels.data(), m.activeCodes.data(), m.activeCount, view,
@@ -526,32 +518,34 @@ CudaStatus RayCastSilhouetteCuda::Impl::extractSlabs(double storedIso) {
         });
 }
 
-// Phase 1's first step on a kept mesh: its vertices' distances for `view`, into vertexDistance.
-CudaStatus RayCastSilhouetteCuda::Impl::vertexDistances(const DeviceMeshView& mesh,
-                                                        const rc::View& view) {
+// Phase 1 on a kept mesh: its vertices' distances for `view`, then its triangles' segments
+// (keyed from `firstTriangle`) into the shared counters.
+CudaStatus RayCastSilhouetteCuda::Impl::findMeshSegments(const DeviceMeshView& mesh,
+                                                         std::uint32_t firstTriangle,
+                                                         const rc::View& view,
+                                                         std::uint32_t capacity) {
+    cudaStream_t st = mc().stream.get();
     LW_RETURN_IF_FAILED(vertexDistance.reserve(std::max<std::size_t>(mesh.vertexCount, 1),
                                                "cudaMalloc(vertexDistance)"));
     rc::vertexSilhouetteDistances<<<blocksFor(mesh.vertexCount, tuning::kVertexBlock),
-                                    tuning::kVertexBlock, 0, mc().stream.get()>>>(
-        mesh, view, vertexDistance.data());
+                                    tuning::kVertexBlock, 0, st>>>(mesh, view,
+                                                                   vertexDistance.data());
     LW_CUDA_LAUNCHED("rc::vertexSilhouetteDistances");
+    rc::findTriangleSegments<tuning::kSegmentTriangleBlock>
+        <<<blocksFor(mesh.triangleCount, tuning::kSegmentTriangleBlock),
+           tuning::kSegmentTriangleBlock, 0, st>>>(mesh, firstTriangle, vertexDistance.data(),
+                                                   segments.data(), segmentCells.data(), capacity,
+                                                   counters.data());
+    LW_CUDA_LAUNCHED("rc::findTriangleSegments");
     return CudaStatus::success();
 }
 
 // Phase 1 of a slabbed volume: every kept slab's triangles, into the shared counters.
 CudaStatus RayCastSilhouetteCuda::Impl::findSlabSegments(const rc::View& view,
                                                          std::uint32_t capacity) {
-    cudaStream_t st = mc().stream.get();
-    for (std::size_t k = 0; k < slabMeshes.count(); ++k) {
-        const DeviceMeshView& mesh = slabMeshes.mesh(k);
-        LW_RETURN_IF_FAILED(vertexDistances(mesh, view));
-        rc::findTriangleSegments<tuning::kSegmentTriangleBlock>
-            <<<blocksFor(mesh.triangleCount, tuning::kSegmentTriangleBlock),
-               tuning::kSegmentTriangleBlock, 0, st>>>(
-                mesh, std::uint32_t(slabFirstTriangle[k]), vertexDistance.data(), view,
-                segments.data(), segmentCells.data(), capacity, counters.data());
-        LW_CUDA_LAUNCHED("rc::findTriangleSegments");
-    }
+    for (std::size_t k = 0; k < slabMeshes.count(); ++k)
+        LW_RETURN_IF_FAILED(findMeshSegments(slabMeshes.mesh(k),
+                                             std::uint32_t(slabFirstTriangle[k]), view, capacity));
     return CudaStatus::success();
 }
 
