@@ -1,57 +1,14 @@
 #version 410 core
-// The silhouette segment of each triangle (Burns et al. 2005), the same rule as
-// kernels/common/include/lw/kernels/silhouette_segment.h: d = N . (eye - B) at each vertex
-// (N . toViewer for an orthographic camera); d >= 0 counts as front-facing so both triangles of an
-// edge classify it alike and neighbouring segments meet end to end; the endpoints lie on the two
-// edges of the lone vertex, at t = d_lone / (d_lone - d_other).
-// The segments go into the line depth buffer as one-pixel lines; the resolve pass
-// (silhouette_resolve.frag.glsl) decides which are visible and widens them.
+// Pass 2 of method 1 over triangles (all of them, or the host's candidates): each triangle's
+// silhouette segment (silhouette_segment.glsl, which the renderer inserts after this line).
 layout(triangles) in;
 layout(line_strip, max_vertices = 2) out;
 
 in vec3 vPosition[];
 in vec3 vNormal[];
 
-uniform mat4 uViewProjection;
-uniform vec4 uViewer;         // see surface.frag.glsl
-uniform vec2 uViewportSize;   // pixels
-
-float silhouetteDistance(int i) {
-    return dot(vNormal[i], uViewer.xyz - vPosition[i] * uViewer.w);
-}
-
-vec4 project(vec3 p) {
-    return uViewProjection * vec4(p, 1.0);
-}
-
 void main() {
-    float d[3] = float[3](silhouetteDistance(0), silhouetteDistance(1), silhouetteDistance(2));
-    bool front0 = d[0] >= 0.0, front1 = d[1] >= 0.0, front2 = d[2] >= 0.0;
-    if (front0 == front1 && front1 == front2)
-        return;
-    int lone = (front0 == front1) ? 2 : (front0 == front2 ? 1 : 0);
-    int other1 = (lone + 1) % 3, other2 = (lone + 2) % 3;
-    float t1 = d[lone] / (d[lone] - d[other1]);
-    float t2 = d[lone] / (d[lone] - d[other2]);
-    vec4 a = project(vPosition[lone] + t1 * (vPosition[other1] - vPosition[lone]));
-    vec4 b = project(vPosition[lone] + t2 * (vPosition[other2] - vPosition[lone]));
-    // The fitted cameras keep the volume in front of the eye; a segment reaching behind it
-    // (w <= 0) cannot be handled in screen space and is dropped.
-    if (a.w <= 0.0 || b.w <= 0.0)
-        return;
-    vec2 sa = a.xy / a.w * 0.5 * uViewportSize;
-    vec2 sb = b.xy / b.w * 0.5 * uViewportSize;
-    vec2 along = sb - sa;
-    float len = length(along);
-    along = len > 1e-6 ? along / len : vec2(1.0, 0.0);
-    vec2 toNdc = 2.0 / uViewportSize;
-    // Contour segments are often shorter than a pixel, and the diamond-exit rule draws no pixel
-    // for a line that ends inside the diamond it started in: the contour would come out dotted.
-    // Half a pixel past each end makes neighbouring segments overlap, so every joint is drawn.
-    vec2 past = along * 0.5;
-    gl_Position = a + vec4(-past * toNdc * a.w, 0.0, 0.0);
-    EmitVertex();
-    gl_Position = b + vec4(past * toNdc * b.w, 0.0, 0.0);
-    EmitVertex();
-    EndPrimitive();
+    vec3 position[3] = vec3[3](vPosition[0], vPosition[1], vPosition[2]);
+    vec3 normal[3] = vec3[3](vNormal[0], vNormal[1], vNormal[2]);
+    emitSilhouetteSegment(position, normal);
 }

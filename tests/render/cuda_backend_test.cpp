@@ -619,10 +619,10 @@ TEST(CudaBackendMethod1, CudaExtractionDrawsTheCpuImage) {
     EXPECT_EQ(differing, 0u) << "method 1 L streamed on the GPU";
     EXPECT_EQ(streamed.triangles, expected.triangles);
 
-    // The mask read on the device from GL's colour texture and pruned there (GlMaskReader)
-    // against GL's read-back pruned on the host, at a new size that is no multiple of the
-    // kernels' blocks (GL re-specifies the texture CUDA holds: it lets go first). Noise at a low
-    // iso-value gives many small blobs, so strokes of every length.
+    // The mask thresholded by GL's compute shader, read back and pruned on the CUDA device
+    // against the CPU back-end's, pruned on the host, at a new size that is no multiple of the
+    // kernels' blocks nor of the mask shader's four pixels a word. Noise at a low iso-value
+    // gives many small blobs, so strokes of every length.
     const Volume blobs = noise({48, 40, 36}, VoxelType::UInt8, 5);
     cpu->setVolume(blobs);
     cuda->setVolume(blobs);
@@ -637,7 +637,7 @@ TEST(CudaBackendMethod1, CudaExtractionDrawsTheCpuImage) {
     ASSERT_GT(hostPruned.lines.count(), 0u) << "nothing left tests nothing";
     EXPECT_TRUE(devicePruned.strokesPruned);
     agreement(devicePruned.lines, hostPruned.lines, differing);
-    EXPECT_EQ(differing, 0u) << "pruned on the device from the GL texture";
+    EXPECT_EQ(differing, 0u) << "pruned on the device";
 }
 
 // The device memory budget is a limit: a frame that would hold more falls back (whole volume ->

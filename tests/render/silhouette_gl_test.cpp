@@ -409,8 +409,17 @@ TEST_F(SilhouetteGl, SegmentCountMatchesTheCpuRule) {
     }
 }
 
-// Pass 2 over the line candidates only (mayHoldContour, what method 1 computes on the host for a
-// software rasterizer and the CUDA source on the device) draws every line it draws over all
+// Pixels that are background in one image and not in the other.
+std::size_t differingPixels(const ImageRgba8& a, const ImageRgba8& b) {
+    std::size_t differing = 0;
+    for (int y = 0; y < a.height(); ++y)
+        for (int x = 0; x < a.width(); ++x)
+            differing += isBackground(a.at(x, y)) != isBackground(b.at(x, y));
+    return differing;
+}
+
+// Pass 2 over the line candidates only (mayHoldContour: what method 1 computes on the host for a
+// software rasterizer, and the GPU's cull everywhere else) draws every line it draws over all
 // triangles: the same segments and the same pixels, for both projections, visibility on and off.
 TEST_F(SilhouetteGl, LineCandidatesDrawEveryLine) {
     Mesh scene = icosphere({0, 0, 0}, 1.0f, 4);
@@ -436,28 +445,32 @@ TEST_F(SilhouetteGl, LineCandidatesDrawEveryLine) {
         ASSERT_GT(candidates.size(), 0u);
         EXPECT_LT(candidates.size(), scene.indices.size() / 4) << "candidates should be few";
         m_renderer.reserveLineCandidates(scene.triangleCount());
-        m_renderer.writeLineCandidatesTail(0, candidates);
         for (const bool visibility : {true, false}) {
             SilhouetteGlOptions options;
             options.visibility = visibility;
             options.countSegments = true;
             const SilhouetteGlStats all = m_renderer.render(camera, options);
             const ImageRgba8 allImage = m_renderer.readImage();
+            // Written again each time: the GPU's cull below fills the same buffer.
+            m_renderer.writeLineCandidatesTail(0, candidates);
             options.useLineCandidates = true;
             options.lineCandidateIndices = candidates.size();
             const SilhouetteGlStats some = m_renderer.render(camera, options);
             const ImageRgba8 someImage = m_renderer.readImage();
+            // The GPU's own cull, drawn as a point per candidate (GlLineCompute).
+            options.useLineCandidates = false;
+            options.cullLineCandidatesOnGpu = true;
+            const SilhouetteGlStats culled = m_renderer.render(camera, options);
+            const ImageRgba8 culledImage = m_renderer.readImage();
             const std::string where =
                 std::string(camera.isOrthographic() ? "ortho" : "perspective") +
                 (visibility ? "" : ", no visibility");
             ASSERT_GT(all.segments, 20u) << where;
             EXPECT_EQ(some.segments, all.segments) << where;
-            std::size_t differing = 0;
-            for (int y = 0; y < allImage.height(); ++y)
-                for (int x = 0; x < allImage.width(); ++x)
-                    differing +=
-                        isBackground(allImage.at(x, y)) != isBackground(someImage.at(x, y));
-            EXPECT_EQ(differing, 0u) << where;
+            EXPECT_EQ(differingPixels(allImage, someImage), 0u) << where;
+            ASSERT_TRUE(m_renderer.cullsOnGpu()) << "the test contexts run compute shaders";
+            EXPECT_EQ(culled.segments, all.segments) << where << ", culled on the GPU";
+            EXPECT_EQ(differingPixels(allImage, culledImage), 0u) << where << ", culled on the GPU";
         }
     }
 }

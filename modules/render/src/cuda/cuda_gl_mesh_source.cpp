@@ -7,7 +7,6 @@
 #include "lw/kernels/cpu/border_cap_cpu.h"
 #include "lw/kernels/cpu/marching_cubes_cpu.h"
 #include "lw/kernels/cuda/cuda_device.h"
-#include "lw/kernels/cuda/gl_mask_reader.h"
 #include "lw/kernels/cuda/gl_mesh_interop.h"
 #include "lw/kernels/cuda/marching_cubes_cuda.h"
 #include "lw/kernels/cuda/stroke_pruning_cuda.h"
@@ -34,7 +33,6 @@ public:
         m_rowRanges.reset();
         m_cap.clear();
         m_capInMesh = nullptr;
-        m_capCandidates.clear();
     }
 
     void releaseVolume() override {
@@ -45,7 +43,6 @@ public:
         m_rowRanges.reset();
         m_cap.clear();
         m_capInMesh = nullptr;
-        m_capCandidates.clear();
     }
 
     bool extractPiecesInto(SilhouetteGlRenderer& gl, const SilhouetteSettings& settings,
@@ -93,7 +90,6 @@ public:
         }
         const double storedIso = storedIsoValue(*m_volume, settings.isoReal);
         m_capInMesh = nullptr; // until the new mesh is written
-        m_capCandidates.clear();
         m_marchingCubes.setGradientStencil(settings.gradientStencil);
         throwIfCudaFailed(kWhere, m_marchingCubes.extract(storedIso));
         const Mesh* cap = settings.closeAtBorder
@@ -101,13 +97,6 @@ public:
                               : nullptr;
         writeIntoGl(gl, m_marchingCubes.mesh(), cap);
         m_capInMesh = cap;
-        // The cap's triangles as pass-2 candidates (all of them: a few thousand at most), in
-        // the GL buffers' numbering, for every frame until the next extraction.
-        m_capCandidates.clear();
-        if (cap)
-            for (const std::uint32_t index : cap->indices)
-                m_capCandidates.push_back(
-                    std::uint32_t(m_marchingCubes.mesh().vertexCount + index));
     }
 
     // The device mesh (and the border cap after it, from the host: it is small) into gl's
@@ -143,30 +132,6 @@ public:
         downloadSurface(kWhere, m_marchingCubes, m_capInMesh, mesh);
     }
 
-    bool writeLineCandidates(SilhouetteGlRenderer& gl, const Camera& camera,
-                             std::size_t& indices) override {
-        const kernels::cuda::DeviceMeshView mesh = m_marchingCubes.mesh();
-        if (!m_interopWorks || mesh.triangleCount == 0)
-            return false;
-        if (gl.reserveLineCandidates(mesh.triangleCount + m_capCandidates.size() / 3))
-            ++m_candidateGeneration;
-        const glm::vec4 viewer = camera.viewerHomogeneous();
-        std::size_t triangles = 0;
-        const kernels::cuda::CudaStatus status = m_interop.writeLineCandidates(
-            mesh, viewer, gl.lineCandidateBuffer(), m_candidateGeneration, triangles);
-        if (!status.ok()) {
-            kLog.warning("method 1: line candidates not written (" + status.describe() +
-                         "); pass 2 sends every triangle");
-            return false;
-        }
-        indices = triangles * 3;
-        if (!m_capCandidates.empty()) { // the cap's triangles follow the mesh's candidates
-            gl.writeLineCandidatesTail(indices, m_capCandidates);
-            indices += m_capCandidates.size();
-        }
-        return true;
-    }
-
     bool pruneStrokes(PixelMask& lines, int minPixels, int gapPixels) override {
         if (!m_pruneWorks)
             return false;
@@ -182,36 +147,7 @@ public:
         return false;
     }
 
-    bool readLines(SilhouetteGlRenderer& gl, std::uint8_t backgroundRed, int minPixels,
-                   int gapPixels, PixelMask& lines) override {
-        if (!m_maskReaderWorks || lines.width() != gl.width() || lines.height() != gl.height())
-            return false;
-        if (!m_maskReader.attached()) {
-            // Registered until gl re-specifies or deletes the texture (then it asks us first).
-            gl.setColourTextureObserver([this] { m_maskReader.detach(); });
-            m_observedGl = &gl;
-        }
-        kernels::cuda::CudaStatus status =
-            m_maskReader.attach(gl.colourTexture(), gl.width(), gl.height());
-        if (status.ok())
-            status = m_maskReader.read(backgroundRed, minPixels, gapPixels, lines.pixels().data());
-        if (status.ok())
-            return true;
-        // Once failed, the host read-back for good (the registration would fail again).
-        kLog.warning("method 1: line mask not read on the device (" + status.describe() +
-                     "); it is read back through the host");
-        m_maskReaderWorks = false;
-        m_maskReader.detach();
-        return false;
-    }
-
-    void releaseGl() override {
-        m_interop.unregister();
-        m_maskReader.detach();
-        if (m_observedGl)
-            m_observedGl->setColourTextureObserver({});
-        m_observedGl = nullptr;
-    }
+    void releaseGl() override { m_interop.unregister(); }
 
 private:
     const volume::Volume* m_volume = nullptr;
@@ -219,17 +155,12 @@ private:
     bool m_streamed = false; // setStreamedVolume done (L frames); exclusive with m_uploaded
     std::unique_ptr<VoxelRowRanges> m_rowRanges; // L frames: which rows of a slab can matter
     bool m_interopWorks = true;
-    std::size_t m_candidateGeneration = 0;
     kernels::cuda::MarchingCubesCuda m_marchingCubes;
     kernels::cuda::GlMeshInterop m_interop;
     kernels::cuda::HostMaskPruner m_pruner;
     bool m_pruneWorks = true;
-    kernels::cuda::GlMaskReader m_maskReader; // the colour texture, registered with CUDA
-    bool m_maskReaderWorks = true;
-    SilhouetteGlRenderer* m_observedGl = nullptr; // whose colour texture m_maskReader holds
     BorderCapCache m_cap;
-    const Mesh* m_capInMesh = nullptr;          // the cap written after the last whole mesh, if any
-    std::vector<std::uint32_t> m_capCandidates; // m_capInMesh's indices after the mesh's vertices
+    const Mesh* m_capInMesh = nullptr; // the cap written after the last whole mesh, if any
 };
 
 } // namespace

@@ -116,22 +116,15 @@ struct GeometryShaderSilhouetteRenderer::State {
         drawPiece(piece.triangleCount());
     }
 
-    // The frame's line mask. With the CUDA source it goes from GL's colour texture to the
-    // device, is pruned there and only the result is downloaded (GlMaskReader; glReadPixels
-    // with the host's flip and threshold cost 0.5 ms a 1024^2 frame on the H100 machine, the
-    // pruner's upload and a second transfer 0.45 ms more); else it is read back, and the CUDA
-    // source, where there is one, prunes it on the device (the host's search is
-    // single-threaded).
+    // The frame's line mask (thresholded and flipped on the GPU where GL runs compute shaders:
+    // SilhouetteGlRenderer::readRedMask); strokes under minStrokePixels are pruned on the CUDA
+    // source's device where there is one (the host's search is single-threaded), else by the
+    // caller on the host.
     void readLines(const Camera& camera, const SilhouetteSettings& settings,
                    SilhouetteFrame& frame) {
         frame.lines = PixelMask(camera.width(), camera.height());
-        const int minPixels = settings.minStrokePixels;
-        if (source &&
-            source->readLines(gl, kBackground.r, minPixels, kStrokeGapPixels, frame.lines)) {
-            frame.strokesPruned = minPixels > 1;
-            return;
-        }
         gl.readRedMask(kBackground.r, frame.lines.pixels());
+        const int minPixels = settings.minStrokePixels;
         frame.strokesPruned = minPixels > 1 && source &&
                               source->pruneStrokes(frame.lines, minPixels, kStrokeGapPixels);
     }
@@ -322,16 +315,18 @@ SilhouetteFrame GeometryShaderSilhouetteRenderer::renderFrame(const Camera& came
     options.timePasses = true;
     options.depthTolerance = windowDepthTolerance(camera, volumeBounds(*s.volume));
     options.cullBackFacesInDepthPass = settings.visibility && s.surfaceClosed(settings);
-    // With the CUDA back-end pass 2 sends only the triangles whose facing can change (a few
-    // percent): the rest would enter the geometry shader only to emit nothing.
+    // Pass 2 sends only the triangles whose facing can change (a few percent): the rest would
+    // enter the geometry shader only to emit nothing. The GPU culls them in the frame's own
+    // context; a software rasterizer (whose shaders run on these same cores) gets them from the
+    // host; a context without compute shaders sends every triangle.
     glFinish();
     const auto start = Clock::now();
-    if (s.source)
-        options.useLineCandidates =
-            s.source->writeLineCandidates(s.gl, camera, options.lineCandidateIndices);
-    else if (s.softwareGl)
+    s.gl.initialize();
+    if (s.softwareGl)
         options.useLineCandidates =
             s.hostLineCandidates(camera, settings.threads, options.lineCandidateIndices);
+    else
+        options.cullLineCandidatesOnGpu = true;
     const SilhouetteGlStats stats = s.gl.render(camera, options);
     glFinish();
     const double passesMs = msSince(start);
@@ -393,6 +388,7 @@ SilhouetteFrame GeometryShaderSilhouetteRenderer::renderBricks(const Camera& cam
     options.clear = false;
     options.resolve = false;
     options.cullBackFacesInDepthPass = settings.visibility && s.surfaceClosed(settings);
+    options.cullLineCandidatesOnGpu = !s.softwareGl; // each piece culls its own triangles
 
     glFinish();
     auto start = Clock::now();

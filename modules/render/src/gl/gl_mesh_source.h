@@ -28,23 +28,10 @@ public:
     virtual void extractInto(SilhouetteGlRenderer& gl, const SilhouetteSettings& settings) = 0;
     // The last extraction, on the host (for the iso panel's callers that want the mesh).
     virtual void download(Mesh& mesh) = 0;
-    // Per frame: the triangles that can hold a silhouette segment for `camera` into gl's
-    // line-candidate buffer (a superset of those the geometry shader emits a segment for);
-    // false when the source cannot (then pass 2 sends every triangle). `indices`: 3 a triangle.
-    virtual bool writeLineCandidates(SilhouetteGlRenderer& gl, const Camera& camera,
-                                     std::size_t& indices) = 0;
     // Drops the strokes under `minPixels` from a mask read back from GL on the source's device,
     // as PixelMask::pruneStrokes(minPixels, gapPixels) would; false when the
     // source has no device or it failed (the host prunes then).
     virtual bool pruneStrokes(PixelMask& /*lines*/, int /*minPixels*/, int /*gapPixels*/) {
-        return false;
-    }
-    // The frame's line mask straight from gl's colour texture on the source's device (pixels
-    // whose red differs from `backgroundRed`, as SilhouetteGlRenderer::readRedMask), strokes
-    // under `minPixels` pruned there (minPixels <= 1: none); false when the source cannot (then
-    // the mask is read back through the host and pruneStrokes() is asked).
-    virtual bool readLines(SilhouetteGlRenderer& /*gl*/, std::uint8_t /*backgroundRed*/,
-                           int /*minPixels*/, int /*gapPixels*/, PixelMask& /*lines*/) {
         return false;
     }
     // GL objects the source registered: released while the context is still current.

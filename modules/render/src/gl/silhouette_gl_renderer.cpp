@@ -1,6 +1,8 @@
 #include "lw/render/silhouette_gl_renderer.h"
 
 #include "gl_api.h"
+#include "gl_line_compute.h"
+#include "gl_program.h"
 #include "lw/core/error.h"
 #include "lw/core/log.h"
 #include "lw_render_shaders.h"
@@ -17,75 +19,44 @@ namespace {
 
 const core::LogCategory kLog("lw.render");
 
+using gl::linkProgram;
+
+// `text` with `inserted` after its #version line, which must stay first.
+std::string afterVersionLine(const char* text, const std::string& inserted) {
+    std::string result(text);
+    const std::size_t lineEnd = result.find('\n');
+    result.insert(lineEnd == std::string::npos ? result.size() : lineEnd + 1, inserted);
+    return result;
+}
+
 // A fragment shader of passes 2 and 3: `defines` and the shared visibility rule
-// (silhouette_visibility.glsl) inserted after the #version line, which must stay first.
+// (silhouette_visibility.glsl).
 std::string withVisibilityRule(const char* source, const std::string& defines) {
-    std::string text(source);
-    const std::size_t lineEnd = text.find('\n');
-    text.insert(lineEnd == std::string::npos ? text.size() : lineEnd + 1,
-                defines + gl::shaders::silhouette_visibility);
-    return text;
+    return afterVersionLine(source, defines + gl::shaders::silhouette_visibility);
 }
 
-GlShader compileShader(GLenum type, const std::string& source, const char* name) {
-    GlShader shader = GlShader::create(type);
-    const char* text = source.c_str();
-    glShaderSource(shader.get(), 1, &text, nullptr);
-    glCompileShader(shader.get());
-    GLint ok = GL_FALSE;
-    glGetShaderiv(shader.get(), GL_COMPILE_STATUS, &ok);
-    if (!ok) {
-        GLint length = 0;
-        glGetShaderiv(shader.get(), GL_INFO_LOG_LENGTH, &length);
-        std::string log(std::size_t(std::max(length, 1)), '\0');
-        glGetShaderInfoLog(shader.get(), GLsizei(log.size()), nullptr, log.data());
-        throw core::Error(std::string("shader ") + name,
-                          "compile failed: " + std::string(log.c_str()));
-    }
-    return shader;
-}
+// Method 1's pass-2 program: the silhouette segments, their fragments tested for visibility or
+// not. Over triangles (the vertex shader passes them through), or over points that stand for the
+// GPU's candidate triangles (GlLineCompute).
+enum class LineInput { Triangles, CandidatePoints };
 
-struct ShaderSource {
-    GLenum type;
-    std::string text;
-    const char* name;
-};
-
-GlProgram linkProgram(const std::vector<ShaderSource>& sources, const char* name) {
-    std::vector<GlShader> shaders;
-    for (const ShaderSource& source : sources)
-        shaders.push_back(compileShader(source.type, source.text, source.name));
-    GlProgram program = GlProgram::create();
-    for (const GlShader& shader : shaders)
-        glAttachShader(program.get(), shader.get());
-    glLinkProgram(program.get());
-    // The program keeps the compiled code; the shader objects go when `shaders` does.
-    for (const GlShader& shader : shaders)
-        glDetachShader(program.get(), shader.get());
-    GLint ok = GL_FALSE;
-    glGetProgramiv(program.get(), GL_LINK_STATUS, &ok);
-    if (!ok) {
-        GLint length = 0;
-        glGetProgramiv(program.get(), GL_INFO_LOG_LENGTH, &length);
-        std::string log(std::size_t(std::max(length, 1)), '\0');
-        glGetProgramInfoLog(program.get(), GLsizei(log.size()), nullptr, log.data());
-        throw core::Error(std::string("GL program ") + name,
-                          "link failed: " + std::string(log.c_str()));
-    }
-    gl::checkGlError(name);
-    return program;
-}
-
-// Method 1's pass-2 program: the silhouette segments, their fragments tested for visibility or not.
-GlProgram linkLineProgram(bool testVisibility) {
-    return linkProgram({{GL_VERTEX_SHADER, gl::shaders::silhouette_vert, "silhouette.vert.glsl"},
-                        {GL_GEOMETRY_SHADER, gl::shaders::silhouette_geom, "silhouette.geom.glsl"},
-                        {GL_FRAGMENT_SHADER,
-                         withVisibilityRule(gl::shaders::silhouette_frag,
-                                            std::string("#define LW_TEST_VISIBILITY ") +
-                                                (testVisibility ? "1\n" : "0\n")),
-                         "silhouette.frag.glsl"}},
-                       "silhouette lines");
+GlProgram linkLineProgram(LineInput input, bool testVisibility) {
+    const bool points = input == LineInput::CandidatePoints;
+    const std::string segment = gl::shaders::silhouette_segment;
+    return linkProgram(
+        {{GL_VERTEX_SHADER,
+          points ? gl::shaders::silhouette_points_vert : gl::shaders::silhouette_vert,
+          points ? "silhouette_points.vert.glsl" : "silhouette.vert.glsl"},
+         {GL_GEOMETRY_SHADER,
+          afterVersionLine(
+              points ? gl::shaders::silhouette_points_geom : gl::shaders::silhouette_geom, segment),
+          points ? "silhouette_points.geom.glsl" : "silhouette.geom.glsl"},
+         {GL_FRAGMENT_SHADER,
+          withVisibilityRule(gl::shaders::silhouette_frag,
+                             std::string("#define LW_TEST_VISIBILITY ") +
+                                 (testVisibility ? "1\n" : "0\n")),
+          "silhouette.frag.glsl"}},
+        points ? "silhouette lines from candidate points" : "silhouette lines");
 }
 
 GLint uniform(GLuint program, const char* name) {
@@ -144,12 +115,10 @@ double queryResultMs(GLuint query) {
 
 } // namespace
 
-SilhouetteGlRenderer::~SilhouetteGlRenderer() {
-    // A CUDA registration of the colour texture must go before the texture does; the GlObject
-    // members then delete every GL object.
-    if (m_colourTexture && m_beforeColourChange)
-        m_beforeColourChange();
-}
+// Out of line: GlLineCompute is complete only here. The GlObject members delete every GL object.
+SilhouetteGlRenderer::SilhouetteGlRenderer() = default;
+
+SilhouetteGlRenderer::~SilhouetteGlRenderer() = default;
 
 void SilhouetteGlRenderer::initialize() {
     if (isInitialized())
@@ -161,7 +130,15 @@ void SilhouetteGlRenderer::initialize() {
         linkProgram({{GL_VERTEX_SHADER, gl::shaders::surface_vert, "surface.vert.glsl"},
                      {GL_FRAGMENT_SHADER, gl::shaders::surface_frag, "surface.frag.glsl"}},
                     "surface");
-    GlProgram linePrograms[2] = {linkLineProgram(false), linkLineProgram(true)};
+    GlProgram linePrograms[2] = {linkLineProgram(LineInput::Triangles, false),
+                                 linkLineProgram(LineInput::Triangles, true)};
+    std::unique_ptr<gl::GlLineCompute> compute;
+    GlProgram pointLinePrograms[2];
+    if (gl::GlLineCompute::available()) {
+        compute = std::make_unique<gl::GlLineCompute>();
+        pointLinePrograms[0] = linkLineProgram(LineInput::CandidatePoints, false);
+        pointLinePrograms[1] = linkLineProgram(LineInput::CandidatePoints, true);
+    }
     resolveProgram(0, true); // a resolve variant, so that a compile error shows here
     GlVertexArray vertexArray = GlVertexArray::create();
     GlBuffer positionBuffer = GlBuffer::create(), normalBuffer = GlBuffer::create();
@@ -193,6 +170,9 @@ void SilhouetteGlRenderer::initialize() {
     m_segmentQuery = std::move(segmentQuery);
     m_timerQueries[0] = std::move(timerQueries[0]);
     m_timerQueries[1] = std::move(timerQueries[1]);
+    m_pointLinePrograms[0] = std::move(pointLinePrograms[0]);
+    m_pointLinePrograms[1] = std::move(pointLinePrograms[1]);
+    m_compute = std::move(compute);
     m_surfaceProgram = std::move(surfaceProgram); // last: isInitialized() from here on
 }
 
@@ -418,8 +398,6 @@ void SilhouetteGlRenderer::ensureFramebuffer(int width, int height) {
         throw core::Error("GL render target", std::to_string(width) + "x" + std::to_string(height) +
                                                   " exceeds the driver's limit of " +
                                                   std::to_string(maxSize));
-    if (m_colourTexture.get() && m_beforeColourChange)
-        m_beforeColourChange();
     ensureFramebufferObjects();
     allocateTexture(m_colourTexture.get(), GL_RGBA8, GL_RGBA, GL_UNSIGNED_BYTE, width, height);
     // 32-bit float depth: CT surfaces span hundreds of mm, the tolerance is 0.1 % of that.
@@ -476,6 +454,12 @@ SilhouetteGlStats SilhouetteGlRenderer::render(const glm::mat4& viewProjection, 
     const bool iso = options.panel == GlPanel::Iso;
     const bool drawLines = !iso || options.linesOnIso;
     const bool drawSurface = m_indexCount > 0 && (iso || options.visibility);
+    const bool cullOnGpu = drawLines && options.cullLineCandidatesOnGpu && m_compute;
+    if (cullOnGpu && m_indexCount > 0) {
+        reserveLineCandidates(triangleCount());
+        m_compute->cullCandidates(m_positionBuffer.get(), m_normalBuffer.get(), m_indexBuffer.get(),
+                                  triangleCount(), viewer, m_candidateBuffer.get());
+    }
     if (drawSurface) {
         if (options.timePasses)
             glBeginQuery(GL_TIME_ELAPSED, m_timerQueries[0].get());
@@ -556,7 +540,9 @@ void SilhouetteGlRenderer::drawLinePass(const glm::mat4& viewProjection, glm::ve
                                         const SilhouetteGlOptions& options, bool writeColour) {
     glBindFramebuffer(GL_FRAMEBUFFER, m_lineFramebuffer.get());
     const bool testVisibility = options.visibility && options.resolve;
-    const GLuint program = m_linePrograms[testVisibility].get();
+    const bool points = options.cullLineCandidatesOnGpu && m_compute;
+    const GLuint program =
+        points ? m_pointLinePrograms[testVisibility].get() : m_linePrograms[testVisibility].get();
     glUseProgram(program);
     glUniformMatrix4fv(uniform(program, "uViewProjection"), 1, GL_FALSE,
                        glm::value_ptr(viewProjection));
@@ -572,7 +558,11 @@ void SilhouetteGlRenderer::drawLinePass(const glm::mat4& viewProjection, glm::ve
     glDepthFunc(GL_LESS);
     glDepthMask(GL_TRUE);
     glBindVertexArray(m_vertexArray.get());
-    if (options.useLineCandidates) {
+    if (points) {
+        glBindVertexArray(m_emptyVertexArray.get()); // the points have no attributes
+        m_compute->drawCandidates(m_positionBuffer.get(), m_normalBuffer.get(), m_indexBuffer.get(),
+                                  m_candidateBuffer.get());
+    } else if (options.useLineCandidates) {
         glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, m_candidateBuffer.get());
         glDrawElements(GL_TRIANGLES,
                        GLsizei(std::min(options.lineCandidateIndices, m_candidateCapacity)),
@@ -671,9 +661,13 @@ core::ImageRgba8 SilhouetteGlRenderer::readImage() const {
 }
 
 void SilhouetteGlRenderer::readRedMask(std::uint8_t backgroundRed,
-                                       std::vector<std::uint8_t>& mask) const {
+                                       std::vector<std::uint8_t>& mask) {
     if (!m_framebuffer.get())
         throw core::Error("GL read-back", "nothing has been rendered yet");
+    if (m_compute) {
+        m_compute->readMask(m_colourTexture.get(), m_width, m_height, backgroundRed, mask);
+        return;
+    }
     // Read straight into the mask (no second buffer per frame), then turn GL's bottom-up rows
     // around and threshold in place.
     const std::size_t width = std::size_t(m_width);

@@ -39,13 +39,17 @@
 
 #include <cstddef>
 #include <cstdint>
-#include <functional>
 #include <glm/glm.hpp>
+#include <memory>
 #include <span>
 #include <utility>
 #include <vector>
 
 namespace lw::render {
+
+namespace gl {
+class GlLineCompute;
+}
 
 enum class GlPanel {
     Iso,        // shaded iso-surface (silhouette lines optionally on top)
@@ -80,6 +84,11 @@ struct SilhouetteGlOptions {
     // can hold a silhouette (the CUDA back-end's facing test). Off: pass 2 sends every triangle.
     bool useLineCandidates = false;
     std::size_t lineCandidateIndices = 0;
+    // Pass 2 over the candidates the GPU culls this frame, before pass 1, with the same facing
+    // test, drawn as a point each (SilhouetteGlRenderer::cullsOnGpu()); ignored where the
+    // context cannot. Overrides useLineCandidates, and leaves the candidate buffer holding the
+    // GPU's candidates, not the indices written there before.
+    bool cullLineCandidatesOnGpu = false;
     // Drawing a mesh in pieces (method 1's L variant: one brick uploaded at a time): the caller
     // starts the frame with clear(), draws each piece with clear = false and resolve = false
     // (passes 1 and 2 only), and ends it with resolve() (pass 3). The size must stay the same.
@@ -98,7 +107,7 @@ struct SilhouetteGlStats {
 
 class SilhouetteGlRenderer {
 public:
-    SilhouetteGlRenderer() = default;
+    SilhouetteGlRenderer();
     // Deletes the GL objects: the context they were made in must be current.
     ~SilhouetteGlRenderer();
     SilhouetteGlRenderer(const SilhouetteGlRenderer&) = delete;
@@ -140,8 +149,13 @@ public:
     bool reserveLineCandidates(std::size_t triangleCount);
     // The last frame's red channel as a mask, top row first: 1 where it differs from
     // `backgroundRed` (lines drawn in another red than the background). A quarter of readImage's
-    // bytes, and no image in between.
-    void readRedMask(std::uint8_t backgroundRed, std::vector<std::uint8_t>& mask) const;
+    // bytes, and no image in between; with compute shaders the threshold and the flip run on
+    // the GPU and only the mask's bytes come back.
+    void readRedMask(std::uint8_t backgroundRed, std::vector<std::uint8_t>& mask);
+    // Whether the context runs method 1's compute stages (gl/gl_line_compute.h):
+    // cullLineCandidatesOnGpu works, and readRedMask thresholds on the GPU. Known after
+    // initialize().
+    bool cullsOnGpu() const { return m_compute != nullptr; }
     // Changes whenever the mesh buffers' storage is reallocated (by any upload, reserve or clear):
     // a CUDA registration made at another generation is stale.
     std::size_t storageGeneration() const { return m_storageGeneration; }
@@ -179,12 +193,6 @@ public:
     // them into its own framebuffer.
     unsigned framebuffer() const { return m_framebuffer.get(); }
     unsigned colourTexture() const { return m_colourTexture.get(); }
-    // Called before the colour texture's storage is re-specified (a frame of another size) or
-    // the texture deleted: a CUDA registration of it (GlMaskReader) must go first, GL refuses
-    // to re-specify a registered texture. One observer; an empty function clears it.
-    void setColourTextureObserver(std::function<void()> beforeChange) {
-        m_beforeColourChange = std::move(beforeChange);
-    }
     int width() const { return m_width; }
     int height() const { return m_height; }
 
@@ -202,7 +210,8 @@ private:
     unsigned resolveProgram(int radius, bool visibility);
 
     GlProgram m_surfaceProgram;
-    GlProgram m_linePrograms[2]; // geometry shader emitting GL lines; [test visibility]
+    GlProgram m_linePrograms[2];      // geometry shader emitting GL lines; [test visibility]
+    GlProgram m_pointLinePrograms[2]; // the same over the GPU's candidate points (with m_compute)
     GlVertexArray m_vertexArray;
     std::vector<std::pair<int, GlProgram>> m_resolvePrograms; // (radius * 2 + visibility, program)
     GlVertexArray m_emptyVertexArray; // the resolve's full-screen triangle has no attributes
@@ -216,13 +225,13 @@ private:
     std::size_t m_indexCount = 0;
     std::size_t m_storageGeneration = 0;
     GlBuffer m_candidateBuffer;
-    std::size_t m_candidateCapacity = 0; // indices
+    std::size_t m_candidateCapacity = 0;          // indices
+    std::unique_ptr<gl::GlLineCompute> m_compute; // null: the context has no compute shaders
 
     GlFramebuffer m_framebuffer;        // colour + surface depth (passes 1 and the read-backs)
     GlFramebuffer m_lineFramebuffer;    // line depth (pass 2)
     GlFramebuffer m_resolveFramebuffer; // colour only (pass 3 samples both depth textures)
     GlTexture m_colourTexture;
-    std::function<void()> m_beforeColourChange; // setColourTextureObserver
     GlTexture m_surfaceDepthTexture;
     GlTexture m_lineDepthTexture;
     int m_width = 0;

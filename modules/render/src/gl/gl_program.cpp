@@ -1,0 +1,57 @@
+#include "gl_program.h"
+
+#include "gl_api.h"
+#include "lw/core/error.h"
+
+#include <algorithm>
+
+namespace lw::render::gl {
+
+namespace {
+
+GlShader compileShader(GLenum type, const std::string& source, const char* name) {
+    GlShader shader = GlShader::create(type);
+    const char* text = source.c_str();
+    glShaderSource(shader.get(), 1, &text, nullptr);
+    glCompileShader(shader.get());
+    GLint ok = GL_FALSE;
+    glGetShaderiv(shader.get(), GL_COMPILE_STATUS, &ok);
+    if (!ok) {
+        GLint length = 0;
+        glGetShaderiv(shader.get(), GL_INFO_LOG_LENGTH, &length);
+        std::string log(std::size_t(std::max(length, 1)), '\0');
+        glGetShaderInfoLog(shader.get(), GLsizei(log.size()), nullptr, log.data());
+        throw core::Error(std::string("shader ") + name,
+                          "compile failed: " + std::string(log.c_str()));
+    }
+    return shader;
+}
+
+} // namespace
+
+GlProgram linkProgram(const std::vector<ShaderSource>& sources, const char* name) {
+    std::vector<GlShader> shaders;
+    for (const ShaderSource& source : sources)
+        shaders.push_back(compileShader(source.type, source.text, source.name));
+    GlProgram program = GlProgram::create();
+    for (const GlShader& shader : shaders)
+        glAttachShader(program.get(), shader.get());
+    glLinkProgram(program.get());
+    // The program keeps the compiled code; the shader objects go when `shaders` does.
+    for (const GlShader& shader : shaders)
+        glDetachShader(program.get(), shader.get());
+    GLint ok = GL_FALSE;
+    glGetProgramiv(program.get(), GL_LINK_STATUS, &ok);
+    if (!ok) {
+        GLint length = 0;
+        glGetProgramiv(program.get(), GL_INFO_LOG_LENGTH, &length);
+        std::string log(std::size_t(std::max(length, 1)), '\0');
+        glGetProgramInfoLog(program.get(), GLsizei(log.size()), nullptr, log.data());
+        throw core::Error(std::string("GL program ") + name,
+                          "link failed: " + std::string(log.c_str()));
+    }
+    gl::checkGlError(name);
+    return program;
+}
+
+} // namespace lw::render::gl

@@ -1,0 +1,31 @@
+#version 430 core
+// Method 1's line mask for the host, made where the frame is: byte i of the output (pixels in
+// rows, the top row first, as PixelMask holds them) is 1 where the colour texture's red differs
+// from the background's, else 0. GL's rows run bottom-up, hence the flip. Each invocation packs
+// four bytes into one uint, which the host reads back as bytes (little-endian).
+layout(local_size_x = 256) in;
+
+layout(binding = 0) uniform sampler2D uColour;
+layout(std430, binding = 0) writeonly buffer Mask { uint words[]; };
+
+uniform ivec2 uSize;
+uniform uint uBackgroundRed;
+
+void main() {
+    uint group = gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x;
+    uint word = group * gl_WorkGroupSize.x + gl_LocalInvocationIndex;
+    uint pixels = uint(uSize.x) * uint(uSize.y);
+    if (4u * word >= pixels)
+        return;
+    uint bits = 0u;
+    for (uint k = 0u; k < 4u; ++k) {
+        uint i = 4u * word + k;
+        if (i >= pixels)
+            break;
+        int x = int(i % uint(uSize.x));
+        int y = int(i / uint(uSize.x));
+        float red = texelFetch(uColour, ivec2(x, uSize.y - 1 - y), 0).r;
+        bits |= (uint(round(red * 255.0)) != uBackgroundRed ? 1u : 0u) << (8u * k);
+    }
+    words[word] = bits;
+}
