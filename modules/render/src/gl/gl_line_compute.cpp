@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cstring>
 #include <initializer_list>
 #include <string>
 
@@ -36,6 +37,24 @@ void bindStorage(std::initializer_list<GLuint> buffers) {
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding++, buffer);
 }
 
+// Waits until the GPU has run every command issued so far (a fence; flushed, so it cannot wait
+// on commands still in the driver's queue).
+void waitForGpu(const char* what) {
+    GLsync fence = glFenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
+    if (!fence)
+        throw core::Error(what, "no GL fence");
+    constexpr GLuint64 kSecond = 1'000'000'000;
+    constexpr int kPatienceSeconds = 60;
+    GLenum result = GL_TIMEOUT_EXPIRED;
+    for (int waited = 0; waited < kPatienceSeconds && result == GL_TIMEOUT_EXPIRED; ++waited)
+        result = glClientWaitSync(fence, GL_SYNC_FLUSH_COMMANDS_BIT, kSecond);
+    glDeleteSync(fence);
+    if (result != GL_ALREADY_SIGNALED && result != GL_CONDITION_SATISFIED)
+        throw core::Error(what, result == GL_TIMEOUT_EXPIRED
+                                    ? "the GPU did not finish the frame within a minute"
+                                    : "waiting for the GPU failed");
+}
+
 } // namespace
 
 bool GlLineCompute::available() {
@@ -52,6 +71,10 @@ bool GlLineCompute::available() {
 void GlLineCompute::initialize() {
     if (m_cullProgram)
         return;
+    GLint major = 0, minor = 0;
+    glGetIntegerv(GL_MAJOR_VERSION, &major);
+    glGetIntegerv(GL_MINOR_VERSION, &minor);
+    m_persistentMapping = (major > 4 || (major == 4 && minor >= 4));
     GlProgram cull = linkProgram(
         {{GL_COMPUTE_SHADER, shaders::line_candidates_comp, "line_candidates.comp.glsl"}},
         "line candidates");
@@ -98,16 +121,37 @@ void GlLineCompute::drawCandidates(unsigned positions, unsigned normals, unsigne
     bindStorage({0, 0, 0, 0});
 }
 
+void GlLineCompute::reserveMask(std::size_t bytes) {
+    if (bytes <= m_maskBytes)
+        return;
+    GlBuffer buffer = GlBuffer::create();
+    glBindBuffer(GL_SHADER_STORAGE_BUFFER, buffer.get());
+    m_maskMapped = nullptr;
+    if (m_persistentMapping) {
+        // In client memory, mapped for good: the shader's bytes cross the bus as it writes them,
+        // and the host copies them out without a driver read-back.
+        constexpr GLbitfield kAccess =
+            GL_MAP_READ_BIT | GL_MAP_PERSISTENT_BIT | GL_MAP_COHERENT_BIT;
+        glBufferStorage(GL_SHADER_STORAGE_BUFFER, GLsizeiptr(bytes), nullptr,
+                        kAccess | GL_CLIENT_STORAGE_BIT);
+        m_maskMapped = glMapBufferRange(GL_SHADER_STORAGE_BUFFER, 0, GLsizeiptr(bytes), kAccess);
+        if (!m_maskMapped)
+            throw core::Error("GL line mask", "the read-back buffer could not be mapped");
+    } else {
+        glBufferData(GL_SHADER_STORAGE_BUFFER, GLsizeiptr(bytes), nullptr, GL_STREAM_READ);
+    }
+    glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
+    checkGlError("GlLineCompute::reserveMask");
+    m_mask = std::move(buffer); // the old buffer (unmapped as it goes) is deleted
+    m_maskBytes = bytes;
+}
+
 void GlLineCompute::readMask(unsigned colourTexture, int width, int height,
                              std::uint8_t backgroundRed, std::vector<std::uint8_t>& mask) {
     initialize();
     const std::size_t pixels = std::size_t(width) * std::size_t(height);
     const std::size_t words = (pixels + 3) / 4;
-    if (words * 4 > m_maskBytes) {
-        glBindBuffer(GL_SHADER_STORAGE_BUFFER, m_mask.get());
-        glBufferData(GL_SHADER_STORAGE_BUFFER, GLsizeiptr(words * 4), nullptr, GL_STREAM_READ);
-        m_maskBytes = words * 4;
-    }
+    reserveMask(words * 4);
     const GLuint program = m_maskProgram.get();
     glUseProgram(program);
     glUniform2i(glGetUniformLocation(program, "uSize"), width, height);
@@ -120,11 +164,17 @@ void GlLineCompute::readMask(unsigned colourTexture, int width, int height,
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, 0);
     glBindTexture(GL_TEXTURE_2D, 0);
     glUseProgram(0);
-    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
     mask.resize(pixels);
-    glBindBuffer(GL_SHADER_STORAGE_BUFFER, m_mask.get());
-    glGetBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, GLsizeiptr(pixels), mask.data());
-    glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
+    if (m_maskMapped) {
+        glMemoryBarrier(GL_CLIENT_MAPPED_BUFFER_BARRIER_BIT);
+        waitForGpu("GL line mask");
+        std::memcpy(mask.data(), m_maskMapped, pixels);
+    } else {
+        glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+        glBindBuffer(GL_SHADER_STORAGE_BUFFER, m_mask.get());
+        glGetBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, GLsizeiptr(pixels), mask.data());
+        glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
+    }
     checkGlError("GlLineCompute::readMask");
 }
 

@@ -45,12 +45,15 @@ public:
 
 private:
     void initialize();
+    void reserveMask(std::size_t bytes);
 
     GlProgram m_cullProgram;
     GlProgram m_maskProgram;
     GlBuffer m_command; // DrawArraysIndirectCommand
     GlBuffer m_mask;
     std::size_t m_maskBytes = 0;
+    bool m_persistentMapping = false; // GL 4.4: m_mask lives in client memory, mapped for good
+    void* m_maskMapped = nullptr;
 };
 
 } // namespace lw::render::gl

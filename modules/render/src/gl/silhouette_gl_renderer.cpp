@@ -107,10 +107,15 @@ int dilationRadius(float lineWidth) {
 }
 
 // A GL_TIME_ELAPSED query's result in ms (waits for it).
-double queryResultMs(GLuint query) {
-    GLuint64 ns = 0;
-    glGetQueryObjectui64v(query, GL_QUERY_RESULT, &ns);
-    return double(ns) * 1e-6;
+// A query's result (waits for it); timestamps in nanoseconds.
+GLuint64 queryResult(GLuint query) {
+    GLuint64 value = 0;
+    glGetQueryObjectui64v(query, GL_QUERY_RESULT, &value);
+    return value;
+}
+
+double nanosecondsToMs(GLuint64 from, GLuint64 to) {
+    return to > from ? double(to - from) * 1e-6 : 0.0;
 }
 
 } // namespace
@@ -156,7 +161,7 @@ void SilhouetteGlRenderer::initialize() {
     GlVertexArray emptyVertexArray = GlVertexArray::create();
     GlBuffer indexBuffer = GlBuffer::create(), candidateBuffer = GlBuffer::create();
     GlQuery segmentQuery = GlQuery::create();
-    GlQuery timerQueries[2] = {GlQuery::create(), GlQuery::create()};
+    GlQuery timerQueries[3] = {GlQuery::create(), GlQuery::create(), GlQuery::create()};
     gl::checkGlError("SilhouetteGlRenderer::initialize");
 
     m_linePrograms[0] = std::move(linePrograms[0]);
@@ -170,6 +175,7 @@ void SilhouetteGlRenderer::initialize() {
     m_segmentQuery = std::move(segmentQuery);
     m_timerQueries[0] = std::move(timerQueries[0]);
     m_timerQueries[1] = std::move(timerQueries[1]);
+    m_timerQueries[2] = std::move(timerQueries[2]);
     m_pointLinePrograms[0] = std::move(pointLinePrograms[0]);
     m_pointLinePrograms[1] = std::move(pointLinePrograms[1]);
     m_compute = std::move(compute);
@@ -460,16 +466,17 @@ SilhouetteGlStats SilhouetteGlRenderer::render(const glm::mat4& viewProjection, 
         m_compute->cullCandidates(m_positionBuffer.get(), m_normalBuffer.get(), m_indexBuffer.get(),
                                   triangleCount(), viewer, m_candidateBuffer.get());
     }
-    if (drawSurface) {
+    // GPU timestamps before pass 1, between the passes and after the last (a GL_TIME_ELAPSED
+    // pair around each pass cost the H200 up to 0.1 ms a frame more).
+    const auto mark = [&](int i) {
         if (options.timePasses)
-            glBeginQuery(GL_TIME_ELAPSED, m_timerQueries[0].get());
+            glQueryCounter(m_timerQueries[i].get(), GL_TIMESTAMP);
+    };
+    mark(0);
+    if (drawSurface)
         drawSurfacePass(viewProjection, viewer, lightDirection, options);
-        if (options.timePasses)
-            glEndQuery(GL_TIME_ELAPSED);
-    }
+    mark(1);
     if (drawLines) {
-        if (options.timePasses)
-            glBeginQuery(GL_TIME_ELAPSED, m_timerQueries[1].get());
         if (options.countSegments)
             glBeginQuery(GL_PRIMITIVES_GENERATED, m_segmentQuery.get());
         // One-pixel lines of a complete frame need no pass 3: pass 2 colours them itself.
@@ -480,15 +487,17 @@ SilhouetteGlStats SilhouetteGlRenderer::render(const glm::mat4& viewProjection, 
             glEndQuery(GL_PRIMITIVES_GENERATED);
         if (options.resolve && !direct)
             drawResolvePass(options, false); // pass 2 has tested visibility
-        if (options.timePasses)
-            glEndQuery(GL_TIME_ELAPSED);
     }
+    mark(2);
     // The queries are read once every pass is queued: reading one right after its pass would
     // stall the CPU until the GPU had drained, with the next pass not yet sent.
-    if (drawSurface && options.timePasses)
-        stats.surfacePassMs = queryResultMs(m_timerQueries[0].get());
-    if (drawLines && options.timePasses)
-        stats.linePassMs = queryResultMs(m_timerQueries[1].get());
+    if (options.timePasses) {
+        const GLuint64 between = queryResult(m_timerQueries[1].get());
+        if (drawSurface)
+            stats.surfacePassMs = nanosecondsToMs(queryResult(m_timerQueries[0].get()), between);
+        if (drawLines)
+            stats.linePassMs = nanosecondsToMs(between, queryResult(m_timerQueries[2].get()));
+    }
     if (drawLines && options.countSegments) {
         GLuint primitives = 0;
         glGetQueryObjectuiv(m_segmentQuery.get(), GL_QUERY_RESULT, &primitives);

@@ -78,7 +78,7 @@ struct SilhouetteGlOptions {
     // always hold the nearest depth there; back faces would only cost fixed-function time.
     bool cullBackFacesInDepthPass = false;
     bool countSegments = false; // query how many segments the geometry shader emitted
-    bool timePasses = false;    // GPU time of pass 1 and of passes 2 + 3 (GL_TIME_ELAPSED queries)
+    bool timePasses = false;    // GPU time of pass 1 and of passes 2 + 3 (GL_TIMESTAMP queries)
     // Pass 2 over a subset of the triangles: the candidate buffer (reserveLineCandidates) holding
     // `lineCandidateIndices` indices, three a triangle, filled by whoever knows which triangles
     // can hold a silhouette (the CUDA back-end's facing test). Off: pass 2 sends every triangle.
@@ -219,7 +219,7 @@ private:
     GlBuffer m_normalBuffer;
     GlBuffer m_indexBuffer;
     GlQuery m_segmentQuery;
-    GlQuery m_timerQueries[2];
+    GlQuery m_timerQueries[3];        // GL_TIMESTAMP: before pass 1, between the passes, after them
     std::size_t m_vertexCapacity = 0; // vertices the position/normal buffers can hold
     std::size_t m_indexCapacity = 0;
     std::size_t m_indexCount = 0;
