@@ -12,10 +12,8 @@ GlTextureInterop::~GlTextureInterop() {
     detach();
 }
 
-CudaStatus GlTextureInterop::attach(unsigned texture, int width, int height,
-                                    GlTextureAccess access) {
-    if (m_resource && texture == m_texture && width == m_width && height == m_height &&
-        access == m_access)
+CudaStatus GlTextureInterop::attach(unsigned texture, int width, int height) {
+    if (m_resource && texture == m_texture && width == m_width && height == m_height)
         return CudaStatus::success();
     detach();
     if (texture == 0 || width <= 0 || height <= 0)
@@ -23,11 +21,8 @@ CudaStatus GlTextureInterop::attach(unsigned texture, int width, int height,
                                    "no texture or an empty one");
     cudaGraphicsResource_t resource = nullptr;
     // Surface load/store: the compose kernel writes texels through a surface object.
-    const unsigned flags = access == GlTextureAccess::SurfaceWrite
-                               ? cudaGraphicsRegisterFlagsSurfaceLoadStore
-                               : cudaGraphicsRegisterFlagsReadOnly;
-    const cudaError_t error =
-        cudaGraphicsGLRegisterImage(&resource, GLuint(texture), GL_TEXTURE_2D, flags);
+    const cudaError_t error = cudaGraphicsGLRegisterImage(
+        &resource, GLuint(texture), GL_TEXTURE_2D, cudaGraphicsRegisterFlagsSurfaceLoadStore);
     if (error != cudaSuccess) {
         // Not sticky, but left as the runtime's last error: the caller's host path would find it
         // at its next launch check (seen on the GPU without a GL context current).
@@ -38,7 +33,6 @@ CudaStatus GlTextureInterop::attach(unsigned texture, int width, int height,
     m_texture = texture;
     m_width = width;
     m_height = height;
-    m_access = access;
     return CudaStatus::success();
 }
 

@@ -2,7 +2,7 @@
 
 // The 2D launch over a width x height image, one thread a pixel: tuning's pixel blocks
 // (32 x 8, a warp along a row), as many as cover the image. Method 3's resolve and compose, the
-// stroke pruning's unions and bridges, GlMaskReader's threshold.
+// stroke pruning's unions and bridges.
 // Internal: CUDA types allowed.
 
 #include "dispatch.h"

@@ -14,10 +14,6 @@
 
 namespace lw::kernels::cuda {
 
-// What CUDA does with a registered texture: write texels through a surface object (method 3's
-// mask into GL_R8), or only read them (method 1's GL_RGBA8 colour texture, GlMaskReader).
-enum class GlTextureAccess { SurfaceWrite, ReadOnly };
-
 class GlTextureInterop {
 public:
     GlTextureInterop() = default;
@@ -25,10 +21,9 @@ public:
     GlTextureInterop(const GlTextureInterop&) = delete;
     GlTextureInterop& operator=(const GlTextureInterop&) = delete;
 
-    // Registers GL texture `texture` (width x height) for `access`; nothing to do when it is
-    // registered already so.
-    CudaStatus attach(unsigned texture, int width, int height,
-                      GlTextureAccess access = GlTextureAccess::SurfaceWrite);
+    // Registers GL texture `texture` (width x height) for writes through a surface object;
+    // nothing to do when it is registered already.
+    CudaStatus attach(unsigned texture, int width, int height);
     // Drops the registration (needs the owning GL context current).
     void detach();
 
@@ -43,7 +38,6 @@ private:
     void* m_resource = nullptr;
     unsigned m_texture = 0;
     int m_width = 0, m_height = 0;
-    GlTextureAccess m_access = GlTextureAccess::SurfaceWrite;
 };
 
 } // namespace lw::kernels::cuda
