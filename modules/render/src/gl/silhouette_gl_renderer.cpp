@@ -137,13 +137,11 @@ void SilhouetteGlRenderer::initialize() {
                     "surface");
     GlProgram linePrograms[2] = {linkLineProgram(LineInput::Triangles, false),
                                  linkLineProgram(LineInput::Triangles, true)};
+    // The compute stages and the candidate points' programs are built on first use: the iso
+    // panel, which shares this class, never needs them, and every link adds to the first frame.
     std::unique_ptr<gl::GlLineCompute> compute;
-    GlProgram pointLinePrograms[2];
-    if (gl::GlLineCompute::available()) {
+    if (gl::GlLineCompute::available())
         compute = std::make_unique<gl::GlLineCompute>();
-        pointLinePrograms[0] = linkLineProgram(LineInput::CandidatePoints, false);
-        pointLinePrograms[1] = linkLineProgram(LineInput::CandidatePoints, true);
-    }
     resolveProgram(0, true); // a resolve variant, so that a compile error shows here
     GlVertexArray vertexArray = GlVertexArray::create();
     GlBuffer positionBuffer = GlBuffer::create(), normalBuffer = GlBuffer::create();
@@ -176,8 +174,6 @@ void SilhouetteGlRenderer::initialize() {
     m_timerQueries[0] = std::move(timerQueries[0]);
     m_timerQueries[1] = std::move(timerQueries[1]);
     m_timerQueries[2] = std::move(timerQueries[2]);
-    m_pointLinePrograms[0] = std::move(pointLinePrograms[0]);
-    m_pointLinePrograms[1] = std::move(pointLinePrograms[1]);
     m_compute = std::move(compute);
     m_surfaceProgram = std::move(surfaceProgram); // last: isInitialized() from here on
 }
@@ -550,6 +546,9 @@ void SilhouetteGlRenderer::drawLinePass(const glm::mat4& viewProjection, glm::ve
     glBindFramebuffer(GL_FRAMEBUFFER, m_lineFramebuffer.get());
     const bool testVisibility = options.visibility && options.resolve;
     const bool points = options.cullLineCandidatesOnGpu && m_compute;
+    if (points && !m_pointLinePrograms[testVisibility])
+        m_pointLinePrograms[testVisibility] =
+            linkLineProgram(LineInput::CandidatePoints, testVisibility);
     const GLuint program =
         points ? m_pointLinePrograms[testVisibility].get() : m_linePrograms[testVisibility].get();
     glUseProgram(program);

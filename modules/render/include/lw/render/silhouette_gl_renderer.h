@@ -211,7 +211,7 @@ private:
 
     GlProgram m_surfaceProgram;
     GlProgram m_linePrograms[2];      // geometry shader emitting GL lines; [test visibility]
-    GlProgram m_pointLinePrograms[2]; // the same over the GPU's candidate points (with m_compute)
+    GlProgram m_pointLinePrograms[2]; // the same over the GPU's candidate points: on first use
     GlVertexArray m_vertexArray;
     std::vector<std::pair<int, GlProgram>> m_resolvePrograms; // (radius * 2 + visibility, program)
     GlVertexArray m_emptyVertexArray; // the resolve's full-screen triangle has no attributes
