@@ -4,8 +4,9 @@
 // the user's), and waiting on the event loop for a condition.
 
 #include <QCoreApplication>
-#include <QElapsedTimer>
+#include <QDeadlineTimer>
 #include <QTemporaryDir>
+#include <QTimer>
 #include <functional>
 
 namespace lw::gui::bench {
@@ -16,14 +17,22 @@ inline void isolateUserFolders(const QTemporaryDir& home) {
     qputenv("XDG_DATA_HOME", (home.path() + "/data").toLocal8Bit());
 }
 
-// Runs the event loop until `done` or `timeoutMs`; false on timeout.
+// Runs the event loop until `done` or `timeoutMs`; false on timeout. It sleeps in the event loop
+// and looks at `done` after each event (a result delivered, a paint, a timer), as the GUI tests'
+// waitUntil: a loop that polled instead kept the UI thread busy on one of dev-2c's two cores,
+// leaving the render worker and its helper (background priority) one core between them for the
+// frames it measures, unlike a user's idle UI thread. `done` must be changed by the UI thread's
+// events.
 inline bool waitFor(const std::function<bool()>& done, int timeoutMs = 120000) {
-    QElapsedTimer timer;
-    timer.start();
+    const QDeadlineTimer deadline(timeoutMs);
+    QTimer wakeAtDeadline;
+    wakeAtDeadline.setSingleShot(true);
+    wakeAtDeadline.start(timeoutMs);
     while (!done()) {
-        if (timer.elapsed() > timeoutMs)
+        if (deadline.hasExpired())
             return false;
-        QCoreApplication::processEvents(QEventLoop::AllEvents, 5);
+        QCoreApplication::processEvents(QEventLoop::AllEvents | QEventLoop::WaitForMoreEvents);
+        QCoreApplication::sendPostedEvents(nullptr, QEvent::DeferredDelete);
     }
     return true;
 }
