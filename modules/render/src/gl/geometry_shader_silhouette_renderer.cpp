@@ -321,7 +321,6 @@ SilhouetteFrame GeometryShaderSilhouetteRenderer::renderFrame(const Camera& came
     // host; a context without compute shaders sends every triangle.
     glFinish();
     const auto start = Clock::now();
-    s.gl.initialize();
     if (s.softwareGl)
         options.useLineCandidates =
             s.hostLineCandidates(camera, settings.threads, options.lineCandidateIndices);

@@ -55,13 +55,18 @@ void waitForGpu(const char* what) {
                                     : "waiting for the GPU failed");
 }
 
+// Whether the current context's OpenGL version is at least major.minor.
+bool versionAtLeast(GLint major, GLint minor) {
+    GLint have[2] = {0, 0};
+    glGetIntegerv(GL_MAJOR_VERSION, &have[0]);
+    glGetIntegerv(GL_MINOR_VERSION, &have[1]);
+    return have[0] > major || (have[0] == major && have[1] >= minor);
+}
+
 } // namespace
 
 bool GlLineCompute::available() {
-    GLint major = 0, minor = 0;
-    glGetIntegerv(GL_MAJOR_VERSION, &major);
-    glGetIntegerv(GL_MINOR_VERSION, &minor);
-    if (major < 4 || (major == 4 && minor < 3))
+    if (!versionAtLeast(4, 3))
         return false;
     GLint geometryBuffers = 0;
     glGetIntegerv(GL_MAX_GEOMETRY_SHADER_STORAGE_BLOCKS, &geometryBuffers);
@@ -71,10 +76,7 @@ bool GlLineCompute::available() {
 void GlLineCompute::initialize() {
     if (m_cullProgram)
         return;
-    GLint major = 0, minor = 0;
-    glGetIntegerv(GL_MAJOR_VERSION, &major);
-    glGetIntegerv(GL_MINOR_VERSION, &minor);
-    m_persistentMapping = (major > 4 || (major == 4 && minor >= 4));
+    m_persistentMapping = versionAtLeast(4, 4); // glBufferStorage
     GlProgram cull = linkProgram(
         {{GL_COMPUTE_SHADER, shaders::line_candidates_comp, "line_candidates.comp.glsl"}},
         "line candidates");

@@ -9,6 +9,17 @@ namespace lw::render::gl {
 
 namespace {
 
+// A shader's or program's info log: getParameter is glGetShaderiv or glGetProgramiv, getLog the
+// matching glGet*InfoLog.
+template <typename GetParameter, typename GetLog>
+std::string infoLog(GLuint object, GetParameter getParameter, GetLog getLog) {
+    GLint length = 0;
+    getParameter(object, GL_INFO_LOG_LENGTH, &length);
+    std::string log(std::size_t(std::max(length, 1)), '\0');
+    getLog(object, GLsizei(log.size()), nullptr, log.data());
+    return log.c_str();
+}
+
 GlShader compileShader(GLenum type, const std::string& source, const char* name) {
     GlShader shader = GlShader::create(type);
     const char* text = source.c_str();
@@ -16,14 +27,10 @@ GlShader compileShader(GLenum type, const std::string& source, const char* name)
     glCompileShader(shader.get());
     GLint ok = GL_FALSE;
     glGetShaderiv(shader.get(), GL_COMPILE_STATUS, &ok);
-    if (!ok) {
-        GLint length = 0;
-        glGetShaderiv(shader.get(), GL_INFO_LOG_LENGTH, &length);
-        std::string log(std::size_t(std::max(length, 1)), '\0');
-        glGetShaderInfoLog(shader.get(), GLsizei(log.size()), nullptr, log.data());
+    if (!ok)
         throw core::Error(std::string("shader ") + name,
-                          "compile failed: " + std::string(log.c_str()));
-    }
+                          "compile failed: " +
+                              infoLog(shader.get(), glGetShaderiv, glGetShaderInfoLog));
     return shader;
 }
 
@@ -42,14 +49,10 @@ GlProgram linkProgram(const std::vector<ShaderSource>& sources, const char* name
         glDetachShader(program.get(), shader.get());
     GLint ok = GL_FALSE;
     glGetProgramiv(program.get(), GL_LINK_STATUS, &ok);
-    if (!ok) {
-        GLint length = 0;
-        glGetProgramiv(program.get(), GL_INFO_LOG_LENGTH, &length);
-        std::string log(std::size_t(std::max(length, 1)), '\0');
-        glGetProgramInfoLog(program.get(), GLsizei(log.size()), nullptr, log.data());
+    if (!ok)
         throw core::Error(std::string("GL program ") + name,
-                          "link failed: " + std::string(log.c_str()));
-    }
+                          "link failed: " +
+                              infoLog(program.get(), glGetProgramiv, glGetProgramInfoLog));
     gl::checkGlError(name);
     return program;
 }

@@ -106,7 +106,6 @@ int dilationRadius(float lineWidth) {
     return std::clamp(int((double(lineWidth) - 1.0) / 2.0 + 0.5), 0, 16);
 }
 
-// A GL_TIME_ELAPSED query's result in ms (waits for it).
 // A query's result (waits for it); timestamps in nanoseconds.
 GLuint64 queryResult(GLuint query) {
     GLuint64 value = 0;
@@ -565,9 +564,9 @@ void SilhouetteGlRenderer::drawLinePass(const glm::mat4& viewProjection, glm::ve
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);
     glDepthMask(GL_TRUE);
-    glBindVertexArray(m_vertexArray.get());
+    // The candidate points have no attributes; the triangles read the mesh's.
+    glBindVertexArray(points ? m_emptyVertexArray.get() : m_vertexArray.get());
     if (points) {
-        glBindVertexArray(m_emptyVertexArray.get()); // the points have no attributes
         m_compute->drawCandidates(m_positionBuffer.get(), m_normalBuffer.get(), m_indexBuffer.get(),
                                   m_candidateBuffer.get());
     } else if (options.useLineCandidates) {

@@ -81,7 +81,8 @@ struct SilhouetteGlOptions {
     bool timePasses = false;    // GPU time of pass 1 and of passes 2 + 3 (GL_TIMESTAMP queries)
     // Pass 2 over a subset of the triangles: the candidate buffer (reserveLineCandidates) holding
     // `lineCandidateIndices` indices, three a triangle, filled by whoever knows which triangles
-    // can hold a silhouette (the CUDA back-end's facing test). Off: pass 2 sends every triangle.
+    // can hold a silhouette (method 1's host test on a software rasterizer). Off: pass 2 sends
+    // every triangle.
     bool useLineCandidates = false;
     std::size_t lineCandidateIndices = 0;
     // Pass 2 over the candidates the GPU culls this frame, before pass 1, with the same facing

@@ -3,7 +3,7 @@
 // Method 1 on the GPU without a host round trip: the CUDA marching-cubes mesh copied device to
 // device into the OpenGL buffers the geometry-shader pass draws (CUDA-GL interop). The buffers
 // are registered with CUDA once and again only when GL reallocates their storage (registration
-// costs tens of milliseconds; mapping per frame microseconds). The GL context that owns the
+// costs tens of milliseconds; mapping per extraction microseconds). The GL context that owns the
 // buffers must be current on the calling thread. Public header: no CUDA or GL types.
 
 #include "lw/kernels/cuda/cuda_status.h"
