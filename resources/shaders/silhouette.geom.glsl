@@ -10,5 +10,12 @@ in vec3 vNormal[];
 void main() {
     vec3 position[3] = vec3[3](vPosition[0], vPosition[1], vPosition[2]);
     vec3 normal[3] = vec3[3](vNormal[0], vNormal[1], vNormal[2]);
-    emitSilhouetteSegment(position, normal);
+    vec4 lineStart, lineEnd;
+    if (!silhouetteSegment(position, normal, lineStart, lineEnd))
+        return;
+    gl_Position = lineStart;
+    EmitVertex();
+    gl_Position = lineEnd;
+    EmitVertex();
+    EndPrimitive();
 }

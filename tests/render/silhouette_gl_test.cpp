@@ -116,6 +116,16 @@ std::filesystem::path outputDir() {
 class SilhouetteGl : public testing::Test {
 protected:
     void SetUp() override { lw::test::glContext().makeCurrent(); }
+
+    struct Drawn {
+        SilhouetteGlStats stats;
+        ImageRgba8 image;
+    };
+    Drawn draw(const Camera& camera, const SilhouetteGlOptions& options) {
+        const SilhouetteGlStats stats = m_renderer.render(camera, options);
+        return {stats, m_renderer.readImage()};
+    }
+
     SilhouetteGlRenderer m_renderer;
 };
 
@@ -445,33 +455,52 @@ TEST_F(SilhouetteGl, LineCandidatesDrawEveryLine) {
         ASSERT_GT(candidates.size(), 0u);
         EXPECT_LT(candidates.size(), scene.indices.size() / 4) << "candidates should be few";
         m_renderer.reserveLineCandidates(scene.triangleCount());
+        m_renderer.writeLineCandidatesTail(0, candidates);
         for (const bool visibility : {true, false}) {
             SilhouetteGlOptions options;
             options.visibility = visibility;
             options.countSegments = true;
-            const SilhouetteGlStats all = m_renderer.render(camera, options);
-            const ImageRgba8 allImage = m_renderer.readImage();
-            // Written again each time: the GPU's cull below fills the same buffer.
-            m_renderer.writeLineCandidatesTail(0, candidates);
+            const Drawn all = draw(camera, options);
             options.useLineCandidates = true;
             options.lineCandidateIndices = candidates.size();
-            const SilhouetteGlStats some = m_renderer.render(camera, options);
-            const ImageRgba8 someImage = m_renderer.readImage();
-            // The GPU's own cull, drawn as a point per candidate (GlLineCompute).
+            const Drawn some = draw(camera, options);
+            // The GPU's own segments, drawn as lines (GlLineCompute).
             options.useLineCandidates = false;
             options.cullLineCandidatesOnGpu = true;
-            const SilhouetteGlStats culled = m_renderer.render(camera, options);
-            const ImageRgba8 culledImage = m_renderer.readImage();
+            const Drawn gpu = draw(camera, options);
             const std::string where =
                 std::string(camera.isOrthographic() ? "ortho" : "perspective") +
                 (visibility ? "" : ", no visibility");
-            ASSERT_GT(all.segments, 20u) << where;
-            EXPECT_EQ(some.segments, all.segments) << where;
-            EXPECT_EQ(differingPixels(allImage, someImage), 0u) << where;
+            ASSERT_GT(all.stats.segments, 20u) << where;
+            EXPECT_EQ(some.stats.segments, all.stats.segments) << where;
+            EXPECT_EQ(differingPixels(all.image, some.image), 0u) << where;
             ASSERT_TRUE(m_renderer.cullsOnGpu()) << "the test contexts run compute shaders";
-            EXPECT_EQ(culled.segments, all.segments) << where << ", culled on the GPU";
-            EXPECT_EQ(differingPixels(allImage, culledImage), 0u) << where << ", culled on the GPU";
+            EXPECT_EQ(gpu.stats.segments, all.stats.segments) << where << ", on the GPU";
+            EXPECT_EQ(differingPixels(all.image, gpu.image), 0u) << where << ", on the GPU";
         }
+    }
+}
+
+// The GPU's segment buffer starts at a quarter of the triangles' count. A mesh whose normals flip
+// from vertex to vertex holds a segment in most triangles: the first frame finds more than the
+// buffer holds, grows it and draws again, and gives what pass 2 over all triangles gives.
+TEST_F(SilhouetteGl, GpuSegmentsBeyondTheFirstBufferAreAllDrawn) {
+    Mesh scene = icosphere({0, 0, 0}, 1.0f, 4);
+    for (std::size_t v = 0; v < scene.normals.size(); v += 2)
+        scene.normals[v] = -scene.normals[v];
+    m_renderer.uploadMesh(scene);
+    const Camera camera = orthoCamera({{-1, -1, -1}, {1, 1, 1}}, 160, 30.0, 20.0);
+    for (const bool visibility : {true, false}) {
+        SilhouetteGlOptions options;
+        options.visibility = visibility;
+        options.countSegments = true;
+        const Drawn all = draw(camera, options);
+        options.cullLineCandidatesOnGpu = true;
+        const Drawn gpu = draw(camera, options);
+        EXPECT_GT(all.stats.segments, scene.triangleCount() / 2) << "most triangles hold one";
+        EXPECT_FALSE(gpu.stats.incomplete) << "render() draws again until every segment fitted";
+        EXPECT_EQ(gpu.stats.segments, all.stats.segments) << "visibility " << visibility;
+        EXPECT_EQ(differingPixels(all.image, gpu.image), 0u) << "visibility " << visibility;
     }
 }
 

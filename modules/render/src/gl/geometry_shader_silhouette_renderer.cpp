@@ -326,20 +326,22 @@ SilhouetteFrame GeometryShaderSilhouetteRenderer::renderFrame(const Camera& came
             s.hostLineCandidates(camera, settings.threads, options.lineCandidateIndices);
     else
         options.cullLineCandidatesOnGpu = true;
-    const SilhouetteGlStats stats = s.gl.render(camera, options);
-    glFinish();
-    const double passesMs = msSince(start);
-    const auto readStart = Clock::now();
+    // The mask's stage is queued behind the passes before the host waits for any of them: one
+    // wait a frame, and the GPU never idles between the passes and the mask.
+    s.gl.queueRender(camera, options);
     s.readLines(camera, settings, frame);
+    SilhouetteGlStats stats = s.gl.queuedStats();
+    if (stats.incomplete) { // more segments than the GPU's buffer held, which has grown since
+        stats = s.gl.render(camera, options);
+        s.readLines(camera, settings, frame);
+    }
     // The passes' GPU times (timer queries) as visibility (pass 1: the depth to test against) and
-    // silhouette (passes 2 and 3); draw is the rest: setup, and the read-back (with CUDA also the
-    // pruning) of the mask, timed on its own (a software rasterizer's timer queries may bill a
-    // deferred pass to the wrong query, so the rest of the passes' wall time can come out
-    // negative).
+    // silhouette (passes 2 and 3); draw is the rest of the frame's wall time: setup, and the
+    // read-back (with CUDA also the pruning) of the mask (a software rasterizer's timer queries
+    // may bill a deferred pass to the wrong query, so the rest can come out negative).
     frame.times.visibilityMs = stats.surfacePassMs;
     frame.times.silhouetteMs = stats.linePassMs;
-    frame.times.drawMs =
-        std::max(0.0, passesMs - stats.surfacePassMs - stats.linePassMs) + msSince(readStart);
+    frame.times.drawMs = std::max(0.0, msSince(start) - stats.surfacePassMs - stats.linePassMs);
     frame.triangles = stats.triangles;
     frame.segments = stats.segments;
     s.stats = {};

@@ -17,6 +17,9 @@ namespace {
 
 constexpr std::size_t kGroupSize = 256; // local_size_x of both compute shaders
 constexpr std::size_t kMaxGroupsPerDimension = 65535;
+// The command buffer: a DrawArraysIndirectCommand (vertex count, instances, first vertex, base
+// instance), then the count of segments found (line_segments.comp.glsl).
+constexpr std::size_t kCommandWords = 5;
 
 // Enough groups of kGroupSize for `items`, laid out in two dimensions (the shaders number
 // them row by row and skip what lies past the end).
@@ -68,59 +71,99 @@ bool versionAtLeast(GLint major, GLint minor) {
 bool GlLineCompute::available() {
     if (!versionAtLeast(4, 3))
         return false;
-    GLint geometryBuffers = 0;
-    glGetIntegerv(GL_MAX_GEOMETRY_SHADER_STORAGE_BLOCKS, &geometryBuffers);
-    return geometryBuffers >= 4;
+    GLint vertexBuffers = 0;
+    glGetIntegerv(GL_MAX_VERTEX_SHADER_STORAGE_BLOCKS, &vertexBuffers);
+    return vertexBuffers >= 1;
 }
 
 void GlLineCompute::initialize() {
-    if (m_cullProgram)
+    if (m_segmentProgram)
         return;
     m_persistentMapping = versionAtLeast(4, 4); // glBufferStorage
-    GlProgram cull = linkProgram(
-        {{GL_COMPUTE_SHADER, shaders::line_candidates_comp, "line_candidates.comp.glsl"}},
-        "line candidates");
+    GlProgram segments =
+        linkProgram({{GL_COMPUTE_SHADER,
+                      afterVersionLine(shaders::line_segments_comp, shaders::silhouette_segment),
+                      "line_segments.comp.glsl"}},
+                    "line segments");
     GlProgram mask = linkProgram(
         {{GL_COMPUTE_SHADER, shaders::line_mask_comp, "line_mask.comp.glsl"}}, "line mask");
-    GlBuffer command = GlBuffer::create(), maskBuffer = GlBuffer::create();
+    GlBuffer command = GlBuffer::create(), maskBuffer = GlBuffer::create(),
+             segmentBuffer = GlBuffer::create();
     glBindBuffer(GL_DRAW_INDIRECT_BUFFER, command.get());
-    glBufferData(GL_DRAW_INDIRECT_BUFFER, 4 * sizeof(GLuint), nullptr, GL_DYNAMIC_DRAW);
+    glBufferData(GL_DRAW_INDIRECT_BUFFER, kCommandWords * sizeof(GLuint), nullptr, GL_DYNAMIC_DRAW);
     glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
     checkGlError("GlLineCompute::initialize");
     m_maskProgram = std::move(mask);
     m_command = std::move(command);
     m_mask = std::move(maskBuffer);
-    m_cullProgram = std::move(cull); // last: initialised from here on
+    m_segments = std::move(segmentBuffer);
+    m_segmentProgram = std::move(segments); // last: initialised from here on
 }
 
-void GlLineCompute::cullCandidates(unsigned positions, unsigned normals, unsigned indices,
-                                   std::size_t triangleCount, glm::vec4 viewer,
-                                   unsigned candidates) {
+void GlLineCompute::reserveSegments(std::size_t segments) {
     initialize();
-    const std::array<GLuint, 4> command{0, 1, 0, 0}; // count, instanceCount, first, baseInstance
+    segments = std::max<std::size_t>(segments, 1024);
+    if (segments <= m_segmentCapacity)
+        return;
+    const std::size_t capacity = segments + segments / 8;
+    glBindBuffer(GL_SHADER_STORAGE_BUFFER, m_segments.get());
+    glBufferData(GL_SHADER_STORAGE_BUFFER, GLsizeiptr(capacity * 2 * sizeof(glm::vec4)), nullptr,
+                 GL_DYNAMIC_COPY);
+    glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
+    checkGlError("GlLineCompute::reserveSegments");
+    m_segmentCapacity = capacity;
+}
+
+void GlLineCompute::computeSegments(unsigned positions, unsigned normals, unsigned indices,
+                                    std::size_t triangleCount, const glm::mat4& viewProjection,
+                                    glm::vec4 viewer, glm::vec2 viewportSize,
+                                    HiddenLineTest hidden) {
+    initialize();
+    if (m_segmentCapacity == 0)
+        reserveSegments(triangleCount / 4);
+    const std::array<GLuint, kCommandWords> command{0, 1, 0, 0, 0};
     glBindBuffer(GL_DRAW_INDIRECT_BUFFER, m_command.get());
     glBufferSubData(GL_DRAW_INDIRECT_BUFFER, 0, sizeof command, command.data());
     glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
-    const GLuint program = m_cullProgram.get();
+    const GLuint program = m_segmentProgram.get();
     glUseProgram(program);
+    glUniformMatrix4fv(glGetUniformLocation(program, "uViewProjection"), 1, GL_FALSE,
+                       &viewProjection[0][0]);
     glUniform4f(glGetUniformLocation(program, "uViewer"), viewer.x, viewer.y, viewer.z, viewer.w);
+    glUniform2f(glGetUniformLocation(program, "uViewportSize"), viewportSize.x, viewportSize.y);
     glUniform1ui(glGetUniformLocation(program, "uTriangleCount"), GLuint(triangleCount));
-    bindStorage({positions, normals, indices, candidates, m_command.get()});
+    glUniform1ui(glGetUniformLocation(program, "uSegmentCapacity"), GLuint(m_segmentCapacity));
+    glUniform1i(glGetUniformLocation(program, "uCullHidden"), hidden.surfaceDepthTexture != 0);
+    glUniform1f(glGetUniformLocation(program, "uTolerance"), hidden.tolerance);
+    glUniform1i(glGetUniformLocation(program, "uSurfaceDepth"), 0);
+    glActiveTexture(GL_TEXTURE0);
+    glBindTexture(GL_TEXTURE_2D, hidden.surfaceDepthTexture);
+    bindStorage({positions, normals, indices, m_segments.get(), m_command.get()});
     dispatchFor(triangleCount);
     bindStorage({0, 0, 0, 0, 0});
-    // Pass 2 reads the candidates in its geometry shader and the count as a draw command.
+    glBindTexture(GL_TEXTURE_2D, 0);
+    // Pass 2 reads the segments in its vertex shader and the count as a draw command.
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
     glUseProgram(0);
-    checkGlError("GlLineCompute::cullCandidates");
+    checkGlError("GlLineCompute::computeSegments");
 }
 
-void GlLineCompute::drawCandidates(unsigned positions, unsigned normals, unsigned indices,
-                                   unsigned candidates) const {
-    bindStorage({positions, normals, indices, candidates});
+GlLineCompute::SegmentCounts GlLineCompute::segmentCounts() const {
+    std::array<GLuint, kCommandWords> command{};
     glBindBuffer(GL_DRAW_INDIRECT_BUFFER, m_command.get());
-    glDrawArraysIndirect(GL_POINTS, nullptr);
+    glGetBufferSubData(GL_DRAW_INDIRECT_BUFFER, 0, sizeof command, command.data());
     glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
-    bindStorage({0, 0, 0, 0});
+    checkGlError("GlLineCompute::segmentCounts");
+    return {command[4], command[0] / 2};
+}
+
+void GlLineCompute::drawSegments(unsigned program) const {
+    glUniform1ui(glGetUniformLocation(program, "uVertexCapacity"), GLuint(2 * m_segmentCapacity));
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, m_segments.get());
+    glBindBuffer(GL_DRAW_INDIRECT_BUFFER, m_command.get());
+    glDrawArraysIndirect(GL_LINES, nullptr);
+    glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, 0);
 }
 
 void GlLineCompute::reserveMask(std::size_t bytes) {

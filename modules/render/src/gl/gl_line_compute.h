@@ -1,17 +1,17 @@
 #pragma once
 
 // Method 1's per-frame GPU stages besides the two draws, in the GL context that draws the frame
-// (compute shaders: OpenGL 4.3, and storage buffers in the geometry shader):
-//  - pass 2's candidates (line_candidates.comp.glsl): the triangles whose facing can change for
-//    the viewer, as triangle numbers, their count written into an indirect draw command on the
-//    GPU; pass 2 then draws a point per candidate (silhouette_points.geom.glsl), and the host
-//    never waits for the count;
+// (compute shaders: OpenGL 4.3, and a storage buffer in the vertex shader):
+//  - pass 2's segments (line_segments.comp.glsl): each triangle's silhouette segment, computed
+//    by the geometry shader's rule and arithmetic, as two clip-space line ends, their count
+//    written into an indirect draw command on the GPU; pass 2 then draws them as plain lines
+//    (silhouette_segments.vert.glsl), and the host never waits for the count;
 //  - the frame's line mask for the host (line_mask.comp.glsl), thresholded and flipped where
 //    the frame is: only a byte a pixel comes back.
 // Why not CUDA, which extracts the mesh: on the H200 machine each switch between the CUDA and
 // the GL context left the GPU idle for 0.2-0.3 ms, more than the work on either side (the
-// candidates take 0.08 ms in CUDA, the mask 0.005 ms), and a frame that culled and read back
-// through CUDA switched three times.
+// contour's candidates took 0.08 ms in CUDA, the mask 0.005 ms), and a frame that culled and
+// read back through CUDA switched three times.
 
 #include "lw/render/gl_object.h"
 
@@ -24,20 +24,39 @@ namespace lw::render::gl {
 
 class GlLineCompute {
 public:
-    // Whether the current context runs these stages: OpenGL 4.3 or later, with the four storage
-    // buffers the points' geometry shader reads (the minimum GL requires there is none).
+    // Whether the current context runs these stages: OpenGL 4.3 or later, with a storage buffer
+    // in the vertex shader (the minimum GL requires there is none).
     static bool available();
 
-    // The triangles (triangleCount of them: three uint32 indices each into the position and
-    // normal buffers, three floats a vertex) that may hold a contour for `viewer`, as triangle
-    // numbers into `candidates` (room for triangleCount), their count into the draw command.
-    // The programs are built on first use (throws core::Error with the compiler's log).
-    void cullCandidates(unsigned positions, unsigned normals, unsigned indices,
-                        std::size_t triangleCount, glm::vec4 viewer, unsigned candidates);
-    // Draws the last cull's candidates, a point each, with the bound program and a vertex array
-    // without attributes; the points' geometry shader reads the same buffers the cull did.
-    void drawCandidates(unsigned positions, unsigned normals, unsigned indices,
-                        unsigned candidates) const;
+    // Pass 1's depth, where pass 2 will discard hidden fragments: segments hidden wherever they
+    // could draw are then dropped before they are drawn (silhouette_visibility.glsl's rule).
+    struct HiddenLineTest {
+        unsigned surfaceDepthTexture = 0; // 0: keep every segment
+        float tolerance = 0.0f;           // window depth
+    };
+    // The silhouette segments of the triangles (triangleCount of them: three uint32 indices each
+    // into the position and normal buffers, three floats a vertex) for the camera, into the
+    // segment buffer, their vertex count into the draw command. Segments past the buffer's
+    // capacity are counted but not kept (see segmentCounts). The programs are built on first
+    // use (throws core::Error with the compiler's log).
+    void computeSegments(unsigned positions, unsigned normals, unsigned indices,
+                         std::size_t triangleCount, const glm::mat4& viewProjection,
+                         glm::vec4 viewer, glm::vec2 viewportSize, HiddenLineTest hidden);
+    // Draws the last computeSegments' segments as lines with the bound program (a vertex array
+    // without attributes; silhouette_segments.vert.glsl, whose uVertexCapacity it sets).
+    void drawSegments(unsigned program) const;
+    // The last computeSegments' counts, once the GPU has run it (reading them earlier waits):
+    // segments found, and segments to draw (hidden ones dropped). More to draw than
+    // segmentCapacity() means the caller should reserveSegments and draw again.
+    struct SegmentCounts {
+        std::size_t found = 0;
+        std::size_t toDraw = 0;
+    };
+    SegmentCounts segmentCounts() const;
+    std::size_t segmentCapacity() const { return m_segmentCapacity; }
+    // Room for at least `segments` segments (32 bytes each). The first computeSegments reserves
+    // a quarter of its triangles' count, far more than a contour holds.
+    void reserveSegments(std::size_t segments);
     // `colourTexture` (width x height RGBA8, GL's rows bottom-up) as a mask, top row first: 1
     // where the red channel differs from `backgroundRed`.
     void readMask(unsigned colourTexture, int width, int height, std::uint8_t backgroundRed,
@@ -47,9 +66,11 @@ private:
     void initialize();
     void reserveMask(std::size_t bytes);
 
-    GlProgram m_cullProgram;
+    GlProgram m_segmentProgram;
     GlProgram m_maskProgram;
-    GlBuffer m_command; // DrawArraysIndirectCommand
+    GlBuffer m_command;  // DrawArraysIndirectCommand, then the count of segments found
+    GlBuffer m_segments; // two clip-space vec4 a segment
+    std::size_t m_segmentCapacity = 0;
     GlBuffer m_mask;
     std::size_t m_maskBytes = 0;
     bool m_persistentMapping = false; // GL 4.4: m_mask lives in client memory, mapped for good

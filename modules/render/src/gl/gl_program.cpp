@@ -57,4 +57,11 @@ GlProgram linkProgram(const std::vector<ShaderSource>& sources, const char* name
     return program;
 }
 
+std::string afterVersionLine(const char* text, const std::string& inserted) {
+    std::string result(text);
+    const std::size_t lineEnd = result.find('\n');
+    result.insert(lineEnd == std::string::npos ? result.size() : lineEnd + 1, inserted);
+    return result;
+}
+
 } // namespace lw::render::gl

@@ -19,4 +19,8 @@ struct ShaderSource {
 // (with the compiler's log) or the program (with the linker's), having made nothing.
 GlProgram linkProgram(const std::vector<ShaderSource>& sources, const char* name);
 
+// `text` with `inserted` after its #version line, which must stay first (how the shared GLSL
+// pieces, e.g. silhouette_segment.glsl, go into the shaders that use them).
+std::string afterVersionLine(const char* text, const std::string& inserted);
+
 } // namespace lw::render::gl

@@ -19,15 +19,8 @@ namespace {
 
 const core::LogCategory kLog("lw.render");
 
+using gl::afterVersionLine;
 using gl::linkProgram;
-
-// `text` with `inserted` after its #version line, which must stay first.
-std::string afterVersionLine(const char* text, const std::string& inserted) {
-    std::string result(text);
-    const std::size_t lineEnd = result.find('\n');
-    result.insert(lineEnd == std::string::npos ? result.size() : lineEnd + 1, inserted);
-    return result;
-}
 
 // A fragment shader of passes 2 and 3: `defines` and the shared visibility rule
 // (silhouette_visibility.glsl).
@@ -36,27 +29,28 @@ std::string withVisibilityRule(const char* source, const std::string& defines) {
 }
 
 // Method 1's pass-2 program: the silhouette segments, their fragments tested for visibility or
-// not. Over triangles (the vertex shader passes them through), or over points that stand for the
-// GPU's candidate triangles (GlLineCompute).
-enum class LineInput { Triangles, CandidatePoints };
+// not. Over triangles (the geometry shader computes each one's segment), or over the segments
+// the GPU computed this frame (GlLineCompute), drawn as plain lines.
+enum class LineInput { Triangles, ComputedSegments };
 
 GlProgram linkLineProgram(LineInput input, bool testVisibility) {
-    const bool points = input == LineInput::CandidatePoints;
-    const std::string segment = gl::shaders::silhouette_segment;
+    const gl::ShaderSource fragment{GL_FRAGMENT_SHADER,
+                                    withVisibilityRule(gl::shaders::silhouette_frag,
+                                                       std::string("#define LW_TEST_VISIBILITY ") +
+                                                           (testVisibility ? "1\n" : "0\n")),
+                                    "silhouette.frag.glsl"};
+    if (input == LineInput::ComputedSegments)
+        return linkProgram({{GL_VERTEX_SHADER, gl::shaders::silhouette_segments_vert,
+                             "silhouette_segments.vert.glsl"},
+                            fragment},
+                           "silhouette lines from computed segments");
     return linkProgram(
-        {{GL_VERTEX_SHADER,
-          points ? gl::shaders::silhouette_points_vert : gl::shaders::silhouette_vert,
-          points ? "silhouette_points.vert.glsl" : "silhouette.vert.glsl"},
+        {{GL_VERTEX_SHADER, gl::shaders::silhouette_vert, "silhouette.vert.glsl"},
          {GL_GEOMETRY_SHADER,
-          afterVersionLine(
-              points ? gl::shaders::silhouette_points_geom : gl::shaders::silhouette_geom, segment),
-          points ? "silhouette_points.geom.glsl" : "silhouette.geom.glsl"},
-         {GL_FRAGMENT_SHADER,
-          withVisibilityRule(gl::shaders::silhouette_frag,
-                             std::string("#define LW_TEST_VISIBILITY ") +
-                                 (testVisibility ? "1\n" : "0\n")),
-          "silhouette.frag.glsl"}},
-        points ? "silhouette lines from candidate points" : "silhouette lines");
+          afterVersionLine(gl::shaders::silhouette_geom, gl::shaders::silhouette_segment),
+          "silhouette.geom.glsl"},
+         fragment},
+        "silhouette lines");
 }
 
 GLint uniform(GLuint program, const char* name) {
@@ -136,7 +130,7 @@ void SilhouetteGlRenderer::initialize() {
                     "surface");
     GlProgram linePrograms[2] = {linkLineProgram(LineInput::Triangles, false),
                                  linkLineProgram(LineInput::Triangles, true)};
-    // The compute stages and the candidate points' programs are built on first use: the iso
+    // The compute stages and the computed segments' programs are built on first use: the iso
     // panel, which shares this class, never needs them, and every link adds to the first frame.
     std::unique_ptr<gl::GlLineCompute> compute;
     if (gl::GlLineCompute::available())
@@ -438,6 +432,22 @@ SilhouetteGlStats SilhouetteGlRenderer::render(const Camera& camera,
 SilhouetteGlStats SilhouetteGlRenderer::render(const glm::mat4& viewProjection, glm::vec4 viewer,
                                                glm::vec3 lightDirection, int width, int height,
                                                const SilhouetteGlOptions& options) {
+    queueRender(viewProjection, viewer, lightDirection, width, height, options);
+    const SilhouetteGlStats stats = queuedStats();
+    if (stats.incomplete) // queuedStats made room for every segment
+        return render(viewProjection, viewer, lightDirection, width, height, options);
+    return stats;
+}
+
+void SilhouetteGlRenderer::queueRender(const Camera& camera, const SilhouetteGlOptions& options) {
+    const glm::vec3 light(camera.panelLightDirection());
+    queueRender(camera.viewProjectionMatrixF(), camera.viewerHomogeneous(), light, camera.width(),
+                camera.height(), options);
+}
+
+void SilhouetteGlRenderer::queueRender(const glm::mat4& viewProjection, glm::vec4 viewer,
+                                       glm::vec3 lightDirection, int width, int height,
+                                       const SilhouetteGlOptions& options) {
     if (options.lineWidth <= 0.0f)
         throw core::Error("silhouette line width",
                           std::to_string(options.lineWidth) + " is not positive");
@@ -450,17 +460,14 @@ SilhouetteGlStats SilhouetteGlRenderer::render(const glm::mat4& viewProjection, 
     if (options.clear)
         clearBuffers(options.background);
 
-    SilhouetteGlStats stats;
-    stats.triangles = triangleCount();
+    QueuedFrame frame;
+    frame.triangles = triangleCount();
     const bool iso = options.panel == GlPanel::Iso;
-    const bool drawLines = !iso || options.linesOnIso;
-    const bool drawSurface = m_indexCount > 0 && (iso || options.visibility);
-    const bool cullOnGpu = drawLines && options.cullLineCandidatesOnGpu && m_compute;
-    if (cullOnGpu && m_indexCount > 0) {
-        reserveLineCandidates(triangleCount());
-        m_compute->cullCandidates(m_positionBuffer.get(), m_normalBuffer.get(), m_indexBuffer.get(),
-                                  triangleCount(), viewer, m_candidateBuffer.get());
-    }
+    frame.drawLines = !iso || options.linesOnIso;
+    frame.drawSurface = m_indexCount > 0 && (iso || options.visibility);
+    frame.segmentsOnGpu = frame.drawLines && options.cullLineCandidatesOnGpu && m_compute;
+    frame.countSegments = options.countSegments;
+    frame.timePasses = options.timePasses;
     // GPU timestamps before pass 1, between the passes and after the last (a GL_TIME_ELAPSED
     // pair around each pass cost the H200 up to 0.1 ms a frame more).
     const auto mark = [&](int i) {
@@ -468,40 +475,82 @@ SilhouetteGlStats SilhouetteGlRenderer::render(const glm::mat4& viewProjection, 
             glQueryCounter(m_timerQueries[i].get(), GL_TIMESTAMP);
     };
     mark(0);
-    if (drawSurface)
+    if (frame.drawSurface) {
         drawSurfacePass(viewProjection, viewer, lightDirection, options);
+        // Sent now, so that the GPU draws while the rest is queued (the driver would hold the
+        // commands until the host first waits).
+        glFlush();
+    }
     mark(1);
-    if (drawLines) {
-        if (options.countSegments)
-            glBeginQuery(GL_PRIMITIVES_GENERATED, m_segmentQuery.get());
+    if (frame.drawLines) {
         // One-pixel lines of a complete frame need no pass 3: pass 2 colours them itself.
         const bool direct = options.resolve && dilationRadius(options.lineWidth) == 0;
+        if (frame.segmentsOnGpu && m_indexCount > 0)
+            computeSegments(viewProjection, viewer, width, height, options, frame.drawSurface);
+        const bool query = frame.countSegments && !frame.segmentsOnGpu;
+        if (query)
+            glBeginQuery(GL_PRIMITIVES_GENERATED, m_segmentQuery.get());
         if (m_indexCount > 0)
             drawLinePass(viewProjection, viewer, options, direct);
-        if (options.countSegments)
+        if (query)
             glEndQuery(GL_PRIMITIVES_GENERATED);
         if (options.resolve && !direct)
             drawResolvePass(options, false); // pass 2 has tested visibility
     }
     mark(2);
+    glBindVertexArray(0);
+    glUseProgram(0);
+    gl::checkGlError("SilhouetteGlRenderer::queueRender");
+    m_queued = frame;
+}
+
+SilhouetteGlStats SilhouetteGlRenderer::queuedStats() {
+    if (!m_queued)
+        throw core::Error("SilhouetteGlRenderer::queuedStats", "no frame is queued");
+    const QueuedFrame frame = *m_queued;
+    m_queued.reset();
+    SilhouetteGlStats stats;
+    stats.triangles = frame.triangles;
     // The queries are read once every pass is queued: reading one right after its pass would
     // stall the CPU until the GPU had drained, with the next pass not yet sent.
-    if (options.timePasses) {
+    if (frame.timePasses) {
         const GLuint64 between = queryResult(m_timerQueries[1].get());
-        if (drawSurface)
+        if (frame.drawSurface)
             stats.surfacePassMs = nanosecondsToMs(queryResult(m_timerQueries[0].get()), between);
-        if (drawLines)
+        if (frame.drawLines)
             stats.linePassMs = nanosecondsToMs(between, queryResult(m_timerQueries[2].get()));
     }
-    if (drawLines && options.countSegments) {
+    if (frame.segmentsOnGpu) {
+        const gl::GlLineCompute::SegmentCounts counts = m_compute->segmentCounts();
+        stats.segments = counts.found;
+        if (counts.toDraw > m_compute->segmentCapacity()) {
+            // Rare: the buffer holds a quarter of the triangles' count from the start, and keeps
+            // what it grew to.
+            kLog.info("method 1: " + std::to_string(counts.toDraw) +
+                      " silhouette segments, more than the buffer held; the frame is drawn again");
+            m_compute->reserveSegments(counts.toDraw);
+            stats.incomplete = true;
+        }
+    } else if (frame.drawLines && frame.countSegments) {
         GLuint primitives = 0;
         glGetQueryObjectuiv(m_segmentQuery.get(), GL_QUERY_RESULT, &primitives);
         stats.segments = primitives;
     }
-    glBindVertexArray(0);
-    glUseProgram(0);
-    gl::checkGlError("SilhouetteGlRenderer::render");
+    gl::checkGlError("SilhouetteGlRenderer::queuedStats");
     return stats;
+}
+
+// Pass 2's segments by a compute shader (GlLineCompute), after pass 1: where pass 2 will discard
+// hidden fragments against a complete surface depth, hidden segments are dropped before drawing.
+void SilhouetteGlRenderer::computeSegments(const glm::mat4& viewProjection, glm::vec4 viewer,
+                                           int width, int height,
+                                           const SilhouetteGlOptions& options, bool surfaceDrawn) {
+    gl::GlLineCompute::HiddenLineTest hidden;
+    if (surfaceDrawn && options.visibility && options.resolve)
+        hidden = {m_surfaceDepthTexture.get(), options.depthTolerance};
+    m_compute->computeSegments(m_positionBuffer.get(), m_normalBuffer.get(), m_indexBuffer.get(),
+                               triangleCount(), viewProjection, viewer,
+                               glm::vec2(float(width), float(height)), hidden);
 }
 
 // Pass 1: the surface. The silhouette panel needs it only as the depth to test against.
@@ -544,12 +593,12 @@ void SilhouetteGlRenderer::drawLinePass(const glm::mat4& viewProjection, glm::ve
                                         const SilhouetteGlOptions& options, bool writeColour) {
     glBindFramebuffer(GL_FRAMEBUFFER, m_lineFramebuffer.get());
     const bool testVisibility = options.visibility && options.resolve;
-    const bool points = options.cullLineCandidatesOnGpu && m_compute;
-    if (points && !m_pointLinePrograms[testVisibility])
-        m_pointLinePrograms[testVisibility] =
-            linkLineProgram(LineInput::CandidatePoints, testVisibility);
-    const GLuint program =
-        points ? m_pointLinePrograms[testVisibility].get() : m_linePrograms[testVisibility].get();
+    const bool computed = options.cullLineCandidatesOnGpu && m_compute;
+    if (computed && !m_segmentLinePrograms[testVisibility])
+        m_segmentLinePrograms[testVisibility] =
+            linkLineProgram(LineInput::ComputedSegments, testVisibility);
+    const GLuint program = computed ? m_segmentLinePrograms[testVisibility].get()
+                                    : m_linePrograms[testVisibility].get();
     glUseProgram(program);
     glUniformMatrix4fv(uniform(program, "uViewProjection"), 1, GL_FALSE,
                        glm::value_ptr(viewProjection));
@@ -564,11 +613,10 @@ void SilhouetteGlRenderer::drawLinePass(const glm::mat4& viewProjection, glm::ve
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);
     glDepthMask(GL_TRUE);
-    // The candidate points have no attributes; the triangles read the mesh's.
-    glBindVertexArray(points ? m_emptyVertexArray.get() : m_vertexArray.get());
-    if (points) {
-        m_compute->drawCandidates(m_positionBuffer.get(), m_normalBuffer.get(), m_indexBuffer.get(),
-                                  m_candidateBuffer.get());
+    // The computed segments have no attributes; the triangles read the mesh's.
+    glBindVertexArray(computed ? m_emptyVertexArray.get() : m_vertexArray.get());
+    if (computed) {
+        m_compute->drawSegments(program);
     } else if (options.useLineCandidates) {
         glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, m_candidateBuffer.get());
         glDrawElements(GL_TRIANGLES,

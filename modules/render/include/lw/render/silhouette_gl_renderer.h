@@ -41,6 +41,7 @@
 #include <cstdint>
 #include <glm/glm.hpp>
 #include <memory>
+#include <optional>
 #include <span>
 #include <utility>
 #include <vector>
@@ -77,7 +78,7 @@ struct SilhouetteGlOptions {
     // front faces (counter-clockwise, as marching cubes winds them seen from outside), which
     // always hold the nearest depth there; back faces would only cost fixed-function time.
     bool cullBackFacesInDepthPass = false;
-    bool countSegments = false; // query how many segments the geometry shader emitted
+    bool countSegments = false; // query how many segments pass 2 drew (on with the GPU's own)
     bool timePasses = false;    // GPU time of pass 1 and of passes 2 + 3 (GL_TIMESTAMP queries)
     // Pass 2 over a subset of the triangles: the candidate buffer (reserveLineCandidates) holding
     // `lineCandidateIndices` indices, three a triangle, filled by whoever knows which triangles
@@ -85,10 +86,10 @@ struct SilhouetteGlOptions {
     // every triangle.
     bool useLineCandidates = false;
     std::size_t lineCandidateIndices = 0;
-    // Pass 2 over the candidates the GPU culls this frame, before pass 1, with the same facing
-    // test, drawn as a point each (SilhouetteGlRenderer::cullsOnGpu()); ignored where the
-    // context cannot. Overrides useLineCandidates, and leaves the candidate buffer holding the
-    // GPU's candidates, not the indices written there before.
+    // Pass 2 over the segments a compute shader finds this frame, before pass 1, with the
+    // geometry shader's rule and arithmetic, drawn as plain lines
+    // (SilhouetteGlRenderer::cullsOnGpu()); ignored where the context cannot. Overrides
+    // useLineCandidates.
     bool cullLineCandidatesOnGpu = false;
     // Drawing a mesh in pieces (method 1's L variant: one brick uploaded at a time): the caller
     // starts the frame with clear(), draws each piece with clear = false and resolve = false
@@ -104,6 +105,9 @@ struct SilhouetteGlStats {
     std::size_t segments = 0;   // only with countSegments (GL_PRIMITIVES_GENERATED)
     double surfacePassMs = 0.0; // only with timePasses: pass 1 (surface), GPU time
     double linePassMs = 0.0;    // pass 2 (geometry-shader silhouette)
+    // The GPU found more segments than its buffer held, and the frame lacks those beyond: draw it
+    // again (render() does; the buffer has grown).
+    bool incomplete = false;
 };
 
 class SilhouetteGlRenderer {
@@ -178,6 +182,13 @@ public:
     SilhouetteGlStats render(const glm::mat4& viewProjection, glm::vec4 viewer,
                              glm::vec3 lightDirection, int width, int height,
                              const SilhouetteGlOptions& options = {});
+    // render() in two halves, for a caller that queues more GPU work on the frame before it
+    // waits (method 1's mask read-back): queueRender sends the passes and returns at once;
+    // queuedStats waits for their queries. Where it says `incomplete`, queue the frame again.
+    void queueRender(const Camera& camera, const SilhouetteGlOptions& options = {});
+    void queueRender(const glm::mat4& viewProjection, glm::vec4 viewer, glm::vec3 lightDirection,
+                     int width, int height, const SilhouetteGlOptions& options = {});
+    SilhouetteGlStats queuedStats();
 
     // The last frame as RGBA8, top row first.
     core::ImageRgba8 readImage() const;
@@ -211,8 +222,17 @@ private:
     unsigned resolveProgram(int radius, bool visibility);
 
     GlProgram m_surfaceProgram;
-    GlProgram m_linePrograms[2];      // geometry shader emitting GL lines; [test visibility]
-    GlProgram m_pointLinePrograms[2]; // the same over the GPU's candidate points: on first use
+    GlProgram m_linePrograms[2]; // geometry shader emitting GL lines; [test visibility]
+    void computeSegments(const glm::mat4& viewProjection, glm::vec4 viewer, int width, int height,
+                         const SilhouetteGlOptions& options, bool surfaceDrawn);
+    // What queuedStats needs of the frame queueRender sent.
+    struct QueuedFrame {
+        std::size_t triangles = 0;
+        bool drawSurface = false, drawLines = false, segmentsOnGpu = false;
+        bool countSegments = false, timePasses = false;
+    };
+    std::optional<QueuedFrame> m_queued;
+    GlProgram m_segmentLinePrograms[2]; // the same over the GPU's segments: on first use
     GlVertexArray m_vertexArray;
     std::vector<std::pair<int, GlProgram>> m_resolvePrograms; // (radius * 2 + visibility, program)
     GlVertexArray m_emptyVertexArray; // the resolve's full-screen triangle has no attributes
