@@ -9,6 +9,7 @@
 #include "lw/volume/volume.h"
 
 #include <algorithm>
+#include <cmath>
 #include <gtest/gtest.h>
 #include <numeric>
 #include <random>
@@ -411,3 +412,60 @@ INSTANTIATE_TEST_SUITE_P(Methods, StrokePruning, testing::ValuesIn(methodsOnBack
                          });
 
 } // namespace
+
+// PixelMask::strokeCoverage, the live panels' antialiased strokes through the line pixels.
+namespace {
+
+std::uint8_t coverageAt(const std::vector<std::uint8_t>& coverage, const PixelMask& mask, int x,
+                        int y) {
+    return coverage[std::size_t(y) * std::size_t(mask.width()) + std::size_t(x)];
+}
+
+} // namespace
+
+TEST(StrokeCoverage, OnePixelWideIsTheMaskItself) {
+    PixelMask mask(37, 23);
+    std::mt19937 random(7);
+    for (int i = 0; i < 120; ++i)
+        mask.set(int(random() % 37), int(random() % 23));
+    const std::vector<std::uint8_t> coverage = mask.strokeCoverage(1.0);
+    for (int y = 0; y < mask.height(); ++y)
+        for (int x = 0; x < mask.width(); ++x)
+            EXPECT_EQ(coverageAt(coverage, mask, x, y), mask.get(x, y) ? 255 : 0) << x << "," << y;
+}
+
+// A row of line pixels is a band `width` wide: each row beside it gets the share of the band it
+// lies in (0.5 of a row is 128).
+TEST(StrokeCoverage, AStraightLineGetsTheBandsCoverage) {
+    struct Expected {
+        double width;
+        std::vector<std::uint8_t> rowsAway; // coverage 0, 1, 2, 3 rows from the line
+    };
+    for (const Expected& expected :
+         {Expected{2.0, {255, 128, 0, 0}}, Expected{3.0, {255, 255, 0, 0}},
+          Expected{4.0, {255, 255, 128, 0}}}) {
+        PixelMask mask(20, 11);
+        for (int x = 0; x < 20; ++x)
+            mask.set(x, 5);
+        const std::vector<std::uint8_t> coverage = mask.strokeCoverage(expected.width);
+        for (int away = 0; away < 4; ++away)
+            for (const int y : {5 - away, 5 + away})
+                for (int x = 0; x < 20; ++x)
+                    EXPECT_EQ(coverageAt(coverage, mask, x, y), expected.rowsAway[away])
+                        << "width " << expected.width << ", pixel " << x << "," << y;
+    }
+}
+
+// A lone pixel is a disc; one in a corner is cut by the border, not read past it.
+TEST(StrokeCoverage, ALonePixelIsADiscCutAtTheBorder) {
+    PixelMask mask(6, 6);
+    mask.set(0, 0);
+    const std::vector<std::uint8_t> coverage = mask.strokeCoverage(3.0); // reach 2 pixels
+    EXPECT_EQ(coverageAt(coverage, mask, 0, 0), 255);
+    EXPECT_EQ(coverageAt(coverage, mask, 1, 0), 255);
+    EXPECT_EQ(coverageAt(coverage, mask, 1, 1), std::lround((2.0 - std::sqrt(2.0)) * 255.0));
+    EXPECT_EQ(coverageAt(coverage, mask, 2, 0), 0);
+    EXPECT_EQ(coverageAt(coverage, mask, 2, 1), 0);
+    EXPECT_EQ(std::count_if(coverage.begin(), coverage.end(), [](std::uint8_t c) { return c > 0; }),
+              4);
+}

@@ -17,23 +17,31 @@ QImage shadeIsoOnCpu(const render::Mesh* mesh, const render::Camera& camera,
     return toQImage(render::shadeSurfaceCpu(mesh ? *mesh : render::Mesh(), camera, shading, depth));
 }
 
-int lineDilationRadius(double lineWidth) {
-    return int((lineWidth - 1.0) / 2.0 + 0.5);
-}
-
 QImage linesToImage(const render::PixelMask& lines, const ReviewSettings& appearance,
                     bool transparent, double lineWidth) {
-    const int radius = lineDilationRadius(lineWidth);
-    const render::PixelMask mask = radius > 0 ? lines.dilated(radius) : lines;
-    QImage image(mask.width(), mask.height(), QImage::Format_ARGB32);
-    const QRgb line = appearance.lineColour.rgb();
-    const QRgb background = transparent ? qRgba(0, 0, 0, 0) : appearance.background.rgb();
-    const auto& pixels = mask.pixels();
-    for (int y = 0; y < mask.height(); ++y) {
+    // Antialiased strokes of the line width through the line pixels (PixelMask::strokeCoverage),
+    // the line colour blended over the background, or over nothing with the coverage as alpha.
+    const std::vector<std::uint8_t> coverage = lines.strokeCoverage(lineWidth);
+    QImage image(lines.width(), lines.height(), QImage::Format_ARGB32);
+    const QColor line = appearance.lineColour, background = appearance.background;
+    const QRgb empty = transparent ? qRgba(0, 0, 0, 0) : background.rgb();
+    const auto blend = [](int from, int to, int weight) {
+        return (from * (255 - weight) + to * weight + 127) / 255;
+    };
+    for (int y = 0; y < lines.height(); ++y) {
         auto* row = reinterpret_cast<QRgb*>(image.scanLine(y));
-        const std::uint8_t* source = pixels.data() + std::size_t(y) * std::size_t(mask.width());
-        for (int x = 0; x < mask.width(); ++x)
-            row[x] = source[x] ? line : background;
+        const std::uint8_t* source = coverage.data() + std::size_t(y) * std::size_t(lines.width());
+        for (int x = 0; x < lines.width(); ++x) {
+            const int c = source[x];
+            if (c == 0)
+                row[x] = empty;
+            else if (transparent)
+                row[x] = qRgba(line.red(), line.green(), line.blue(), c);
+            else
+                row[x] = qRgb(blend(background.red(), line.red(), c),
+                              blend(background.green(), line.green(), c),
+                              blend(background.blue(), line.blue(), c));
+        }
     }
     return image;
 }

@@ -66,10 +66,9 @@ QImage shadeIsoOnCpu(const render::Mesh* mesh, const render::Camera& camera,
                      std::vector<float>* depth = nullptr);
 // Iso left, silhouette right, on the background colour.
 QImage sideBySide(const QImage& iso, const QImage& silhouette, QColor background);
-// The square dilation radius (pixels) that widens a one-pixel line to `lineWidth`.
-int lineDilationRadius(double lineWidth);
-// A silhouette mask as the panels show it: lines in `lineColour` widened to `lineWidth` pixels by
-// a square dilation, on the background or (transparent) on nothing.
+// A silhouette mask as the panels show it: antialiased strokes `lineWidth` pixels wide in
+// `lineColour` through the line pixels (render::PixelMask::strokeCoverage), on the background or
+// (transparent, the coverage as alpha) on nothing.
 QImage linesToImage(const render::PixelMask& lines, const ReviewSettings& appearance,
                     bool transparent, double lineWidth);
 

@@ -300,8 +300,8 @@ void ReviewPanel::drawLinesTexture() {
     try {
         if (!m_linesView)
             m_linesView = std::make_unique<LinesTextureView>();
-        m_linesView->draw(*m_linesTexture, lineDilationRadius(m_appearance.lineWidth),
-                          m_appearance.lineColour, m_appearance.background);
+        m_linesView->draw(*m_linesTexture, m_appearance.lineWidth, m_appearance.lineColour,
+                          m_appearance.background);
     } catch (const core::Error& error) {
         m_linesTexture.reset();
         m_message = tr("OpenGL failed: %1").arg(error.what());

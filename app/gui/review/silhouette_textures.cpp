@@ -24,11 +24,13 @@ void main() {
 )";
 
 // The texel under the fragment (the mask stretched over the viewport, its row 0 at the top, GL's
-// window rows counting from the bottom); on where any texel within `radius` is on: the square
-// dilation linesToImage() applies to the host mask.
+// window rows counting from the bottom), coloured by the antialiased stroke of `lineWidth`
+// through the line texels' centres that linesToImage() draws from the host mask
+// (render::PixelMask::strokeCoverage): coverage = clamp(lineWidth / 2 + 0.5 - d, 0, 1), d the
+// distance to the nearest line texel's centre.
 constexpr const char* kFragmentShader = R"(#version 330 core
 uniform sampler2D mask;
-uniform int radius;
+uniform float lineWidth;
 uniform vec4 lineColour;
 uniform vec4 background;
 uniform vec4 viewport; // x, y, width, height
@@ -39,14 +41,17 @@ void main() {
     ivec2 texel = ivec2(int(position.x * float(size.x) / viewport.z),
                         int((viewport.w - position.y) * float(size.y) / viewport.w));
     texel = clamp(texel, ivec2(0), size - 1);
-    bool on = false;
-    for (int dy = -radius; dy <= radius && !on; ++dy)
-        for (int dx = -radius; dx <= radius && !on; ++dx) {
+    float reach = max(lineWidth, 1.0) / 2.0 + 0.5;
+    int radius = int(ceil(reach)) - 1;
+    float coverage = 0.0;
+    for (int dy = -radius; dy <= radius; ++dy)
+        for (int dx = -radius; dx <= radius; ++dx) {
             ivec2 q = texel + ivec2(dx, dy);
-            if (all(greaterThanEqual(q, ivec2(0))) && all(lessThan(q, size)))
-                on = texelFetch(mask, q, 0).r > 0.0;
+            if (all(greaterThanEqual(q, ivec2(0))) && all(lessThan(q, size)) &&
+                texelFetch(mask, q, 0).r > 0.0)
+                coverage = max(coverage, clamp(reach - length(vec2(dx, dy)), 0.0, 1.0));
         }
-    colour = on ? lineColour : background;
+    colour = mix(background, lineColour, coverage);
 }
 )";
 
@@ -146,13 +151,14 @@ LinesTextureView::LinesTextureView()
 
 LinesTextureView::~LinesTextureView() = default;
 
-void LinesTextureView::draw(const LinesTexture& lines, int radius, QColor line, QColor background) {
+void LinesTextureView::draw(const LinesTexture& lines, double lineWidth, QColor line,
+                            QColor background) {
     QOpenGLFunctions* f = QOpenGLContext::currentContext()->functions();
     GLint viewport[4] = {0, 0, 1, 1};
     f->glGetIntegerv(GL_VIEWPORT, viewport);
     m_program->bind();
     m_program->setUniformValue("mask", 0);
-    m_program->setUniformValue("radius", radius);
+    m_program->setUniformValue("lineWidth", float(lineWidth));
     m_program->setUniformValue("lineColour", line);
     m_program->setUniformValue("background", background);
     m_program->setUniformValue("viewport", float(viewport[0]), float(viewport[1]),

@@ -11,7 +11,7 @@
 //            written again only once the result and the panel have let go of it, so the panel
 //            never shows a texture CUDA is writing
 //   panel    LinesTextureView: draws a LinesTexture in the GL view as linesToImage() draws the
-//            host mask (the line colour widened to the line width, on the background)
+//            host mask (antialiased strokes of the line width, on the background)
 //
 // Where any of it is missing (no shared context, a software OpenGL, another back-end, interop
 // refused) the frame takes the host mask as before; the reason is logged once.
@@ -80,9 +80,9 @@ public:
     LinesTextureView(const LinesTextureView&) = delete;
     LinesTextureView& operator=(const LinesTextureView&) = delete;
 
-    // Fills the current viewport: `lines` stretched over it, each line pixel widened by
-    // `radius` pixels of the texture (as PixelMask::dilated) in `line`, elsewhere `background`.
-    void draw(const LinesTexture& lines, int radius, QColor line, QColor background);
+    // Fills the current viewport: `lines` stretched over it, drawn as antialiased strokes
+    // `lineWidth` texels wide in `line` over `background` (as render::PixelMask::strokeCoverage).
+    void draw(const LinesTexture& lines, double lineWidth, QColor line, QColor background);
 
 private:
     std::unique_ptr<QOpenGLShaderProgram> m_program;

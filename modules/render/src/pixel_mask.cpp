@@ -4,6 +4,7 @@
 #include "lw/kernels/stroke_components.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
@@ -46,6 +47,34 @@ PixelMask PixelMask::dilated(int radius) const {
                 continue;
             for (int dy = std::max(0, y - radius); dy <= std::min(m_height - 1, y + radius); ++dy)
                 out.set(x, dy);
+        }
+    return out;
+}
+
+std::vector<std::uint8_t> PixelMask::strokeCoverage(double lineWidth) const {
+    const double reach = std::max(lineWidth, 1.0) / 2.0 + 0.5; // coverage 0 from here on
+    const int radius = int(std::ceil(reach)) - 1;
+    // The coverage an on pixel gives each offset within the radius, as a byte.
+    std::vector<std::uint8_t> stamp(std::size_t(2 * radius + 1) * std::size_t(2 * radius + 1));
+    for (int dy = -radius; dy <= radius; ++dy)
+        for (int dx = -radius; dx <= radius; ++dx) {
+            const double coverage =
+                std::clamp(reach - std::hypot(double(dx), double(dy)), 0.0, 1.0);
+            stamp[std::size_t(dy + radius) * std::size_t(2 * radius + 1) +
+                  std::size_t(dx + radius)] = std::uint8_t(std::lround(coverage * 255.0));
+        }
+    std::vector<std::uint8_t> out(m_pixels.size(), 0);
+    for (int y = 0; y < m_height; ++y)
+        for (int x = 0; x < m_width; ++x) {
+            if (!get(x, y))
+                continue;
+            for (int dy = std::max(-radius, -y); dy <= std::min(radius, m_height - 1 - y); ++dy) {
+                const std::uint8_t* stampRow =
+                    stamp.data() + std::size_t(dy + radius) * std::size_t(2 * radius + 1);
+                std::uint8_t* row = out.data() + index(0, y + dy);
+                for (int dx = std::max(-radius, -x); dx <= std::min(radius, m_width - 1 - x); ++dx)
+                    row[x + dx] = std::max(row[x + dx], stampRow[dx + radius]);
+            }
         }
     return out;
 }

@@ -26,6 +26,14 @@ public:
 
     // Every pixel within Chebyshev distance `radius` of an on pixel (a (2r+1)^2 square).
     PixelMask dilated(int radius) const;
+    // The on pixels drawn as an antialiased stroke `lineWidth` pixels wide through their centres:
+    // a byte a pixel, 255 = covered,
+    //     coverage(p) = clamp(lineWidth / 2 + 0.5 - d(p), 0, 1),
+    // d(p) = the distance from p's centre to the nearest on pixel's centre. The pixel-wide box
+    // filter of a band lineWidth wide: a straight line of pixels gets its exact coverage, and a
+    // one-pixel width gives the mask itself. The rule the live panels draw lines with (their GL
+    // view applies it to a mask texture the same way).
+    std::vector<std::uint8_t> strokeCoverage(double lineWidth) const;
     // Turns off every group of on pixels smaller than `minPixels`; returns how many pixels went.
     // A group is 8-connected, and with gapPixels = g pixels up to g apart (Chebyshev distance
     // g + 1) join it too. A stroke of a line drawing is such a group: this drops the speckle that
