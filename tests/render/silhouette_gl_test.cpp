@@ -17,6 +17,7 @@
 
 #define GL_GLEXT_PROTOTYPES 1
 #include <GL/glcorearb.h>
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdio>
@@ -502,6 +503,41 @@ TEST_F(SilhouetteGl, GpuSegmentsBeyondTheFirstBufferAreAllDrawn) {
         EXPECT_EQ(gpu.stats.segments, all.stats.segments) << "visibility " << visibility;
         EXPECT_EQ(differingPixels(all.image, gpu.image), 0u) << "visibility " << visibility;
     }
+}
+
+// A frame read only as a mask (method 1's engine frame) writes no colour: its mask comes from the
+// line depth and is the colour's mask, for both projections, visibility on and off; the image is
+// not there to read.
+TEST_F(SilhouetteGl, MaskOnlyFramesGiveTheColoursMask) {
+    Mesh scene = icosphere({0, 0, 0}, 1.0f, 3);
+    append(scene, icosphere({0.6f, 2.5f, 0.3f}, 0.7f, 3));
+    m_renderer.uploadMesh(scene);
+    CameraSetup setup;
+    setup.bounds = {{-1, -1, -1}, {1.5, 3.2, 1.2}};
+    setup.azimuthDeg = 35.0;
+    setup.elevationDeg = 20.0;
+    for (auto projection : {Projection::Orthographic, Projection::Perspective})
+        for (const bool visibility : {true, false}) {
+            setup.projection = projection;
+            const Camera camera(setup, 190, 150);
+            SilhouetteGlOptions options;
+            options.visibility = visibility;
+            options.cullLineCandidatesOnGpu = true;
+            m_renderer.render(camera, options);
+            std::vector<std::uint8_t> fromColour, fromDepth;
+            m_renderer.readRedMask(255, fromColour);
+            // Another view's colour stays behind: the mask must not come from it.
+            CameraSetup other = setup;
+            other.azimuthDeg = 100.0;
+            m_renderer.render(Camera(other, 190, 150), options);
+            options.maskOnly = true;
+            m_renderer.render(camera, options);
+            m_renderer.readRedMask(255, fromDepth);
+            EXPECT_THROW((void)m_renderer.readImage(), lw::core::Error);
+            const auto lines = std::count(fromColour.begin(), fromColour.end(), 1);
+            EXPECT_GT(lines, 50) << "visibility " << visibility;
+            EXPECT_TRUE(fromDepth == fromColour) << "visibility " << visibility;
+        }
 }
 
 TEST_F(SilhouetteGl, ReuploadReusesBuffersAndGivesTheSameImage) {

@@ -326,6 +326,7 @@ SilhouetteFrame GeometryShaderSilhouetteRenderer::renderFrame(const Camera& came
             s.hostLineCandidates(camera, settings.threads, options.lineCandidateIndices);
     else
         options.cullLineCandidatesOnGpu = true;
+    options.maskOnly = true; // readLines reads the mask alone
     // The mask's stage is queued behind the passes before the host waits for any of them: one
     // wait a frame, and the GPU never idles between the passes and the mask.
     s.gl.queueRender(camera, options);

@@ -57,10 +57,11 @@ public:
     // Room for at least `segments` segments (32 bytes each). The first computeSegments reserves
     // a quarter of its triangles' count, far more than a contour holds.
     void reserveSegments(std::size_t segments);
-    // `colourTexture` (width x height RGBA8, GL's rows bottom-up) as a mask, top row first: 1
-    // where the red channel differs from `backgroundRed`.
-    void readMask(unsigned colourTexture, int width, int height, std::uint8_t backgroundRed,
-                  std::vector<std::uint8_t>& mask);
+    // `texture` (width x height, GL's rows bottom-up) as a mask, top row first: 1 where the red
+    // channel of an RGBA8 colour texture differs from `backgroundRed`, or (fromLineDepth) where
+    // a depth texture is below 1.
+    void readMask(unsigned texture, bool fromLineDepth, int width, int height,
+                  std::uint8_t backgroundRed, std::vector<std::uint8_t>& mask);
 
 private:
     void initialize();

@@ -327,20 +327,21 @@ void SilhouetteGlRenderer::clearMesh() {
 
 void SilhouetteGlRenderer::clear(int width, int height, glm::vec4 background) {
     initialize();
+    m_lastFrameMaskOnly = false;
     const FramebufferBindingGuard bindingGuard;
     ensureFramebuffer(width, height);
     clearBuffers(background);
     gl::checkGlError("SilhouetteGlRenderer::clear");
 }
 
-void SilhouetteGlRenderer::clearBuffers(glm::vec4 background) {
+void SilhouetteGlRenderer::clearBuffers(glm::vec4 background, bool colour) {
     glDisable(GL_SCISSOR_TEST);
     glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
     glDepthMask(GL_TRUE);
     glBindFramebuffer(GL_FRAMEBUFFER, m_framebuffer.get());
     glClearColor(background.r, background.g, background.b, background.a);
     glClearDepth(1.0);
-    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    glClear(colour ? GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT : GL_DEPTH_BUFFER_BIT);
     glBindFramebuffer(GL_FRAMEBUFFER, m_lineFramebuffer.get());
     glClear(GL_DEPTH_BUFFER_BIT);
 }
@@ -457,15 +458,18 @@ void SilhouetteGlRenderer::queueRender(const glm::mat4& viewProjection, glm::vec
     glViewport(0, 0, width, height);
     glDisable(GL_BLEND);
     glDisable(GL_CULL_FACE);
-    if (options.clear)
-        clearBuffers(options.background);
-
     QueuedFrame frame;
     frame.triangles = triangleCount();
     const bool iso = options.panel == GlPanel::Iso;
     frame.drawLines = !iso || options.linesOnIso;
     frame.drawSurface = m_indexCount > 0 && (iso || options.visibility);
     frame.segmentsOnGpu = frame.drawLines && options.cullLineCandidatesOnGpu && m_compute;
+    // One-pixel lines of a complete frame need no pass 3: pass 2 colours them itself.
+    const bool direct = options.resolve && dilationRadius(options.lineWidth) == 0;
+    const bool maskOnly = options.maskOnly && !iso && frame.segmentsOnGpu && direct;
+    if (options.clear)
+        clearBuffers(options.background, !maskOnly);
+    m_lastFrameMaskOnly = maskOnly;
     frame.countSegments = options.countSegments;
     frame.timePasses = options.timePasses;
     // GPU timestamps before pass 1, between the passes and after the last (a GL_TIME_ELAPSED
@@ -483,15 +487,13 @@ void SilhouetteGlRenderer::queueRender(const glm::mat4& viewProjection, glm::vec
     }
     mark(1);
     if (frame.drawLines) {
-        // One-pixel lines of a complete frame need no pass 3: pass 2 colours them itself.
-        const bool direct = options.resolve && dilationRadius(options.lineWidth) == 0;
         if (frame.segmentsOnGpu && m_indexCount > 0)
             computeSegments(viewProjection, viewer, width, height, options, frame.drawSurface);
         const bool query = frame.countSegments && !frame.segmentsOnGpu;
         if (query)
             glBeginQuery(GL_PRIMITIVES_GENERATED, m_segmentQuery.get());
         if (m_indexCount > 0)
-            drawLinePass(viewProjection, viewer, options, direct);
+            drawLinePass(viewProjection, viewer, options, direct && !maskOnly);
         if (query)
             glEndQuery(GL_PRIMITIVES_GENERATED);
         if (options.resolve && !direct)
@@ -708,6 +710,8 @@ void readFramebuffer(unsigned framebuffer, int x, int y, int width, int height, 
 core::ImageRgba8 SilhouetteGlRenderer::readImage() const {
     if (!m_framebuffer.get())
         throw core::Error("GL read-back", "nothing has been rendered yet");
+    if (m_lastFrameMaskOnly)
+        throw core::Error("GL read-back", "the last frame was drawn as a line mask only");
     core::ImageRgba8 image(m_width, m_height);
     readFramebuffer(m_framebuffer.get(), 0, 0, m_width, m_height, GL_RGBA, GL_UNSIGNED_BYTE,
                     image.bytes(), "SilhouetteGlRenderer::readImage");
@@ -720,7 +724,12 @@ void SilhouetteGlRenderer::readRedMask(std::uint8_t backgroundRed,
     if (!m_framebuffer.get())
         throw core::Error("GL read-back", "nothing has been rendered yet");
     if (m_compute) {
-        m_compute->readMask(m_colourTexture.get(), m_width, m_height, backgroundRed, mask);
+        if (m_lastFrameMaskOnly)
+            m_compute->readMask(m_lineDepthTexture.get(), true, m_width, m_height, backgroundRed,
+                                mask);
+        else
+            m_compute->readMask(m_colourTexture.get(), false, m_width, m_height, backgroundRed,
+                                mask);
         return;
     }
     // Read straight into the mask (no second buffer per frame), then turn GL's bottom-up rows

@@ -91,6 +91,11 @@ struct SilhouetteGlOptions {
     // (SilhouetteGlRenderer::cullsOnGpu()); ignored where the context cannot. Overrides
     // useLineCandidates.
     bool cullLineCandidatesOnGpu = false;
+    // The frame is read only as a line mask (readRedMask), never as an image: with the GPU's
+    // segments (above) and one-pixel lines drawn in one call, pass 2 writes no colour and the
+    // colour buffer is not cleared, and readRedMask reads the line depth instead (a pixel holds
+    // a line's depth exactly where pass 2 would have coloured it). Ignored otherwise.
+    bool maskOnly = false;
     // Drawing a mesh in pieces (method 1's L variant: one brick uploaded at a time): the caller
     // starts the frame with clear(), draws each piece with clear = false and resolve = false
     // (passes 1 and 2 only), and ends it with resolve() (pass 3). The size must stay the same.
@@ -211,7 +216,7 @@ public:
 private:
     void ensureFramebuffer(int width, int height);
     void ensureFramebufferObjects();
-    void clearBuffers(glm::vec4 background);
+    void clearBuffers(glm::vec4 background, bool colour = true);
     void drawSurfacePass(const glm::mat4& viewProjection, glm::vec4 viewer,
                          glm::vec3 lightDirection, const SilhouetteGlOptions& options);
     void drawLinePass(const glm::mat4& viewProjection, glm::vec4 viewer,
@@ -255,6 +260,7 @@ private:
     GlTexture m_colourTexture;
     GlTexture m_surfaceDepthTexture;
     GlTexture m_lineDepthTexture;
+    bool m_lastFrameMaskOnly = false; // readImage has nothing to read
     int m_width = 0;
     int m_height = 0;
 };
