@@ -429,17 +429,32 @@ std::size_t differingPixels(const ImageRgba8& a, const ImageRgba8& b) {
     return differing;
 }
 
-// Pass 2 over the line candidates only (mayHoldContour: what method 1 computes on the host for a
-// software rasterizer, and the GPU's cull everywhere else) draws every line it draws over all
-// triangles: the same segments and the same pixels, for both projections, visibility on and off.
-TEST_F(SilhouetteGl, LineCandidatesDrawEveryLine) {
-    Mesh scene = icosphere({0, 0, 0}, 1.0f, 4);
-    append(scene, icosphere({0.6f, 3.0f, 0.3f}, 0.7f, 4));
-    m_renderer.uploadMesh(scene);
+namespace {
+
+// Two spheres, one partly behind the other from the angled camera of twoSpheresSetup().
+Mesh twoSpheres(int subdivisions) {
+    Mesh scene = icosphere({0, 0, 0}, 1.0f, subdivisions);
+    append(scene, icosphere({0.6f, 3.0f, 0.3f}, 0.7f, subdivisions));
+    return scene;
+}
+
+CameraSetup twoSpheresSetup() {
     CameraSetup setup;
     setup.bounds = {{-1, -1, -1}, {1.5, 3.7, 1.2}};
     setup.azimuthDeg = 35.0;
     setup.elevationDeg = 20.0;
+    return setup;
+}
+
+} // namespace
+
+// Pass 2 over the line candidates only (mayHoldContour: what method 1 computes on the host for a
+// software rasterizer, and the GPU's cull everywhere else) draws every line it draws over all
+// triangles: the same segments and the same pixels, for both projections, visibility on and off.
+TEST_F(SilhouetteGl, LineCandidatesDrawEveryLine) {
+    const Mesh scene = twoSpheres(4);
+    m_renderer.uploadMesh(scene);
+    CameraSetup setup = twoSpheresSetup();
     for (auto projection : {Projection::Orthographic, Projection::Perspective}) {
         setup.projection = projection;
         const Camera camera(setup, 211, 173);
@@ -509,13 +524,8 @@ TEST_F(SilhouetteGl, GpuSegmentsBeyondTheFirstBufferAreAllDrawn) {
 // line depth and is the colour's mask, for both projections, visibility on and off; the image is
 // not there to read.
 TEST_F(SilhouetteGl, MaskOnlyFramesGiveTheColoursMask) {
-    Mesh scene = icosphere({0, 0, 0}, 1.0f, 3);
-    append(scene, icosphere({0.6f, 2.5f, 0.3f}, 0.7f, 3));
-    m_renderer.uploadMesh(scene);
-    CameraSetup setup;
-    setup.bounds = {{-1, -1, -1}, {1.5, 3.2, 1.2}};
-    setup.azimuthDeg = 35.0;
-    setup.elevationDeg = 20.0;
+    m_renderer.uploadMesh(twoSpheres(3));
+    CameraSetup setup = twoSpheresSetup();
     for (auto projection : {Projection::Orthographic, Projection::Perspective})
         for (const bool visibility : {true, false}) {
             setup.projection = projection;
