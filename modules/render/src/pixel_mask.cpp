@@ -51,34 +51,6 @@ PixelMask PixelMask::dilated(int radius) const {
     return out;
 }
 
-std::vector<std::uint8_t> PixelMask::strokeCoverage(double lineWidth) const {
-    const double reach = std::max(lineWidth, 1.0) / 2.0 + 0.5; // coverage 0 from here on
-    const int radius = int(std::ceil(reach)) - 1;
-    // The coverage an on pixel gives each offset within the radius, as a byte.
-    std::vector<std::uint8_t> stamp(std::size_t(2 * radius + 1) * std::size_t(2 * radius + 1));
-    for (int dy = -radius; dy <= radius; ++dy)
-        for (int dx = -radius; dx <= radius; ++dx) {
-            const double coverage =
-                std::clamp(reach - std::hypot(double(dx), double(dy)), 0.0, 1.0);
-            stamp[std::size_t(dy + radius) * std::size_t(2 * radius + 1) +
-                  std::size_t(dx + radius)] = std::uint8_t(std::lround(coverage * 255.0));
-        }
-    std::vector<std::uint8_t> out(m_pixels.size(), 0);
-    for (int y = 0; y < m_height; ++y)
-        for (int x = 0; x < m_width; ++x) {
-            if (!get(x, y))
-                continue;
-            for (int dy = std::max(-radius, -y); dy <= std::min(radius, m_height - 1 - y); ++dy) {
-                const std::uint8_t* stampRow =
-                    stamp.data() + std::size_t(dy + radius) * std::size_t(2 * radius + 1);
-                std::uint8_t* row = out.data() + index(0, y + dy);
-                for (int dx = std::max(-radius, -x); dx <= std::min(radius, m_width - 1 - x); ++dx)
-                    row[x + dx] = std::max(row[x + dx], stampRow[dx + radius]);
-            }
-        }
-    return out;
-}
-
 namespace {
 
 // fn(first, last) for each run of consecutive line pixels of a row, skipping eight off pixels
@@ -369,6 +341,37 @@ std::vector<std::uint32_t> piecesWithBridges(StrokeGroups& groups,
 }
 
 } // namespace
+
+std::vector<std::uint8_t> PixelMask::strokeCoverage(double lineWidth) const {
+    const double reach = std::max(lineWidth, 1.0) / 2.0 + 0.5; // coverage 0 from here on
+    const int radius = int(std::ceil(reach)) - 1;
+    std::vector<std::uint8_t> out(m_pixels.size(), 0);
+    if (radius == 0) { // one pixel wide (or less): the mask itself
+        std::transform(m_pixels.begin(), m_pixels.end(), out.begin(),
+                       [](std::uint8_t on) { return std::uint8_t(on ? 255 : 0); });
+        return out;
+    }
+    // The coverage an on pixel gives each offset within the radius, as a byte.
+    const int side = 2 * radius + 1;
+    std::vector<std::uint8_t> stamp(std::size_t(side) * std::size_t(side));
+    for (int dy = -radius; dy <= radius; ++dy)
+        for (int dx = -radius; dx <= radius; ++dx) {
+            const double coverage =
+                std::clamp(reach - std::hypot(double(dx), double(dy)), 0.0, 1.0);
+            stamp[std::size_t(dy + radius) * std::size_t(side) + std::size_t(dx + radius)] =
+                std::uint8_t(std::lround(coverage * 255.0));
+        }
+    forEachLinePixel(m_pixels, m_width, m_height, [&](int x, int y) {
+        for (int dy = std::max(-radius, -y); dy <= std::min(radius, m_height - 1 - y); ++dy) {
+            const std::uint8_t* stampRow =
+                stamp.data() + std::size_t(dy + radius) * std::size_t(side);
+            std::uint8_t* row = out.data() + index(0, y + dy);
+            for (int dx = std::max(-radius, -x); dx <= std::min(radius, m_width - 1 - x); ++dx)
+                row[x + dx] = std::max(row[x + dx], stampRow[dx + radius]);
+        }
+    });
+    return out;
+}
 
 std::size_t PixelMask::removeComponentsSmallerThan(int minPixels, int gapPixels) {
     if (minPixels <= 1 || m_pixels.empty())
