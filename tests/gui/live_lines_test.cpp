@@ -49,19 +49,25 @@ void LiveLinesTest::panelAgreesWithTheExport_data() {
     QTest::addColumn<int>("method");
     QTest::addColumn<double>("lineWidth");
     QTest::addColumn<bool>("suggestive");
-    QTest::newRow("method 3, 2 px") << 3 << 2.0 << false;
-    QTest::newRow("method 3, 1 px") << 3 << 1.0 << false;
-    QTest::newRow("method 3, 3 px") << 3 << 3.0 << false;
-    QTest::newRow("method 2, 2 px") << 2 << 2.0 << false;
-    QTest::newRow("method 1, 2 px") << 1 << 2.0 << false;
-    QTest::newRow("method 3, 2 px, suggestive") << 3 << 2.0 << true;
+    QTest::addColumn<PanelGl>("panelGl");
+    const PanelGl worker = PanelGl::OnWorker, panels = PanelGl::InPanels;
+    QTest::newRow("method 3, 2 px") << 3 << 2.0 << false << worker;
+    QTest::newRow("method 3, 1 px") << 3 << 1.0 << false << worker;
+    QTest::newRow("method 3, 3 px") << 3 << 3.0 << false << worker;
+    QTest::newRow("method 2, 2 px") << 2 << 2.0 << false << worker;
+    QTest::newRow("method 1, 2 px") << 1 << 2.0 << false << worker;
+    QTest::newRow("method 3, 2 px, suggestive") << 3 << 2.0 << true << worker;
+    // Method 1 drawn by the panel's own GL (a GPU without CUDA): its resolve pass strokes.
+    QTest::newRow("method 1 in the panel GL, 2 px") << 1 << 2.0 << false << panels;
+    QTest::newRow("method 1 in the panel GL, 3 px") << 1 << 3.0 << false << panels;
 }
 
 void LiveLinesTest::panelAgreesWithTheExport() {
     QFETCH(int, method);
     QFETCH(double, lineWidth);
     QFETCH(bool, suggestive);
-    ReviewSettings settings = settingsFor(method, Chunking::Off);
+    QFETCH(PanelGl, panelGl);
+    ReviewSettings settings = settingsFor(method, Chunking::Off, panelGl);
     settings.lineWidth = lineWidth;
     settings.suggestiveContours = suggestive;
     ReviewWidget review(phantomSource("phantom:64", 300.5), settings);
@@ -69,17 +75,17 @@ void LiveLinesTest::panelAgreesWithTheExport() {
     review.show();
     QVERIFY(QTest::qWaitForWindowExposed(&review));
     QVERIFY(waitSettled(review));
-    review.setStandardView(StandardView::Anterior);
-    QVERIFY(waitSettled(review, review.status().framesShown + 1));
 
     ReviewPanel& panel = review.silhouettePanel();
     const QImage shown = panel.grabImage();
     const QSize size = panel.renderSize();
     QCOMPARE(shown.size(), size);
-    // The export of the silhouette panel alone at the panel's own size: the same camera.
+    // The export of the silhouette panel alone at the panel's own size: the same camera, drawn
+    // where File > Export draws it (the panels' own GL contexts, or a job off the UI thread).
     const PanelRenderJob job = review.renderJob(size);
     PanelVectors vectors;
-    const auto [iso, silhouette] = renderPanelJob(job, &vectors);
+    const auto [iso, silhouette] = review.rendersOnUiThread() ? review.renderPanels(size, &vectors)
+                                                              : renderPanelJob(job, &vectors);
     lw::report::RenderedPanels panels{iso, silhouette, job.camera};
     panels.silhouetteLines = std::move(vectors.lines);
     panels.silhouetteLineWidth = job.appearance.lineWidth;

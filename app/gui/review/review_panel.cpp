@@ -419,6 +419,34 @@ QImage ReviewPanel::renderImage(QSize size, const ReviewSettings* appearance) {
     return image;
 }
 
+render::PolylineSplit ReviewPanel::renderPolylines(QSize size, const ReviewSettings& appearance,
+                                                   const render::PolylineOptions& options,
+                                                   bool withHidden) {
+    if (!drawsGl() || size.isEmpty())
+        return {};
+    m_glView->makeCurrent();
+    const render::Camera camera = m_camera.camera(size.width(), size.height());
+    render::PixelMask lines(size.width(), size.height());
+    try {
+        uploadPendingMesh();
+        // One-pixel black lines on white: the mask the polylines are cut by, whatever the colours.
+        render::SilhouetteGlOptions gl =
+            panelGlOptions(m_kind, appearance, camera, m_camera.bounds());
+        gl.lineWidth = 1.0f;
+        gl.lineColour = {0.0f, 0.0f, 0.0f, 1.0f};
+        gl.background = {1.0f, 1.0f, 1.0f, 1.0f};
+        glRenderer().render(camera, gl);
+        glRenderer().readRedMask(255, lines.pixels());
+    } catch (const core::Error& error) {
+        m_message = tr("OpenGL failed: %1").arg(error.what());
+    }
+    m_glView->doneCurrent();
+    updateView(); // as renderImage: the next paint restores the panel's own size
+    if (!m_mesh)
+        return {};
+    return render::splitPolylines(*m_mesh, camera, lines, options, withHidden);
+}
+
 std::optional<glm::dvec3> ReviewPanel::pickFromDepthImage(QPoint position) const {
     // The worker's depth buffer of the image on screen (stretched to the widget, as drawn).
     const int w = m_depthCamera.width(), h = m_depthCamera.height();

@@ -17,6 +17,7 @@
 
 #include "lw/render/iso_surface.h"
 #include "lw/render/silhouette_gl_renderer.h"
+#include "lw/render/visible_polylines.h"
 #include "review/silhouette_textures.h"
 #include "settings/review_settings.h"
 
@@ -96,6 +97,11 @@ public:
     // otherwise (the caller renders it elsewhere).
     // `appearance` (optional) replaces the panel's own, e.g. with lines widened for an export.
     QImage renderImage(QSize size, const ReviewSettings* appearance = nullptr);
+    // The silhouette this panel's own GL draws (method 1 in the panel) as the exports' vector
+    // lines at `size`: its one-pixel mask cut into the host mesh's polylines
+    // (render::splitPolylines), with the hidden runs when `withHidden`. Empty without a mesh.
+    render::PolylineSplit renderPolylines(QSize size, const ReviewSettings& appearance,
+                                          const render::PolylineOptions& options, bool withHidden);
     // The surface point under widget pixel `position`, or nullopt where there is none.
     std::optional<glm::dvec3> pickPatientPoint(QPoint position);
     double lastPaintMs() const { return m_lastPaintMs; }

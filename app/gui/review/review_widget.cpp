@@ -591,10 +591,19 @@ std::pair<QImage, QImage> ReviewWidget::renderPanels(QSize size, PanelVectors* v
         return renderPanelJob(job, vectors);
     }
     // A GPU: the panels' own contexts draw the GL parts; a CPU method renders its lines here.
-    // Method 1 in the panel's context gives the raster only (no vectors: the exports use it).
+    // Method 1 in the panel's context: its raster, and its lines as vectors cut by its mask.
     QImage iso = m_isoPanel->renderImage(size, &job.appearance);
-    if (methodOneInPanel())
+    if (methodOneInPanel()) {
+        if (vectors) {
+            const render::ReviewFrameRequest request = panelFrameRequest(job, true);
+            render::PolylineSplit lines = m_silhouettePanel->renderPolylines(
+                size, job.appearance, request.polylineOptions,
+                request.hiddenLines && request.settings.visibility);
+            vectors->lines = std::move(lines.visible);
+            vectors->hidden = std::move(lines.hidden);
+        }
         return {iso, m_silhouettePanel->renderImage(size, &job.appearance)};
+    }
     releaseQtContext();
     auto [unused, silhouette] = renderPanelJob(job, vectors);
     return {iso, silhouette};

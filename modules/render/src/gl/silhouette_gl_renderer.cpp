@@ -94,10 +94,15 @@ private:
     GLint m_viewport[4] = {0, 0, 0, 0};
 };
 
-// The square dilation radius that widens a one-pixel line to `lineWidth` (as the panels widen
-// methods 2 and 3), bounded: a 33-pixel line is far wider than any drawing needs.
-int dilationRadius(float lineWidth) {
-    return std::clamp(int((double(lineWidth) - 1.0) / 2.0 + 0.5), 0, 16);
+// How far from a line pixel its stroke of `lineWidth` covers anything (PixelMask::strokeCoverage:
+// coverage = clamp(reach - distance, 0, 1)), and that as whole pixels, bounded: a 33-pixel line
+// is far wider than any drawing needs. 0: the one-pixel lines themselves.
+float strokeReach(float lineWidth) {
+    return std::max(lineWidth, 1.0f) / 2.0f + 0.5f;
+}
+
+int strokeRadius(float lineWidth) {
+    return std::clamp(int(std::ceil(strokeReach(lineWidth))) - 1, 0, 16);
 }
 
 // A query's result (waits for it); timestamps in nanoseconds.
@@ -465,7 +470,7 @@ void SilhouetteGlRenderer::queueRender(const glm::mat4& viewProjection, glm::vec
     frame.drawSurface = m_indexCount > 0 && (iso || options.visibility);
     frame.segmentsOnGpu = frame.drawLines && options.cullLineCandidatesOnGpu && m_compute;
     // One-pixel lines of a complete frame need no pass 3: pass 2 colours them itself.
-    const bool direct = options.resolve && dilationRadius(options.lineWidth) == 0;
+    const bool direct = options.resolve && strokeRadius(options.lineWidth) == 0;
     const bool maskOnly = options.maskOnly && !iso && frame.segmentsOnGpu && direct;
     if (options.clear)
         clearBuffers(options.background, !maskOnly);
@@ -659,14 +664,18 @@ void SilhouetteGlRenderer::resolve(const SilhouetteGlOptions& options) {
     gl::checkGlError("SilhouetteGlRenderer::resolve");
 }
 
-// Pass 3: the visible line pixels, widened, in the line colour over what pass 1 left; with
+// Pass 3: the visible line pixels as antialiased strokes of the line width, in the line colour
+// over what pass 1 left; with
 // `testVisibility` the nearest line of each pixel is tested here (a frame drawn in pieces).
 void SilhouetteGlRenderer::drawResolvePass(const SilhouetteGlOptions& options,
                                            bool testVisibility) {
     glBindFramebuffer(GL_FRAMEBUFFER, m_resolveFramebuffer.get());
     glDisable(GL_DEPTH_TEST);
-    glDisable(GL_BLEND);
-    const GLuint program = resolveProgram(dilationRadius(options.lineWidth), testVisibility);
+    // The strokes' coverage blends the line colour over what pass 1 left (the background, or the
+    // iso panel's surface); the alpha stays the background's.
+    glEnable(GL_BLEND);
+    glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ZERO, GL_ONE);
+    const GLuint program = resolveProgram(strokeRadius(options.lineWidth), testVisibility);
     glUseProgram(program);
     glActiveTexture(GL_TEXTURE0);
     glBindTexture(GL_TEXTURE_2D, m_surfaceDepthTexture.get());
@@ -676,8 +685,10 @@ void SilhouetteGlRenderer::drawResolvePass(const SilhouetteGlOptions& options,
     glUniform1i(uniform(program, "uLineDepth"), 1);
     glUniform1f(uniform(program, "uTolerance"), options.depthTolerance);
     glUniform4fv(uniform(program, "uLineColour"), 1, glm::value_ptr(options.lineColour));
+    glUniform1f(uniform(program, "uReach"), strokeReach(options.lineWidth));
     glBindVertexArray(m_emptyVertexArray.get());
     glDrawArrays(GL_TRIANGLES, 0, 3);
+    glDisable(GL_BLEND);
     glBindTexture(GL_TEXTURE_2D, 0);
     glActiveTexture(GL_TEXTURE0);
     glBindTexture(GL_TEXTURE_2D, 0);

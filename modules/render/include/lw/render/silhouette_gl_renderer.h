@@ -63,8 +63,8 @@ struct SilhouetteGlOptions {
     // segment and skips pass 1 on the silhouette panel (the paper's "visibility off" rows).
     bool visibility = true;
     bool linesOnIso = false; // also draw the silhouette on the iso panel
-    // Pixels; the visible one-pixel lines are widened by a square dilation of radius
-    // round((lineWidth - 1) / 2), as the panels widen methods 2 and 3.
+    // Pixels; the visible one-pixel lines are drawn as antialiased strokes of this width through
+    // their pixels, as the panels draw methods 2 and 3 (PixelMask::strokeCoverage).
     float lineWidth = 1.0f;
     glm::vec4 lineColour{0.0f, 0.0f, 0.0f, 1.0f};
     glm::vec4 background{1.0f, 1.0f, 1.0f, 1.0f};
