@@ -531,8 +531,8 @@ TEST_F(SilhouetteGl, GpuSegmentsBeyondTheFirstBufferAreAllDrawn) {
 }
 
 // A frame read only as a mask (method 1's engine frame) writes no colour: its mask comes from the
-// line depth and is the colour's mask, for both projections, visibility on and off; the image is
-// not there to read.
+// frame's stamps and is the colour's mask, for both projections, visibility on and off; the image
+// is not there to read.
 TEST_F(SilhouetteGl, MaskOnlyFramesGiveTheColoursMask) {
     m_renderer.uploadMesh(twoSpheres(3));
     CameraSetup setup = twoSpheresSetup();
@@ -546,11 +546,13 @@ TEST_F(SilhouetteGl, MaskOnlyFramesGiveTheColoursMask) {
             m_renderer.render(camera, options);
             std::vector<std::uint8_t> fromColour, fromDepth;
             m_renderer.readRedMask(255, fromColour);
-            // Another view's colour stays behind: the mask must not come from it.
+            // Another view's colour and another frame's stamps stay behind: the mask must not
+            // come from them.
             CameraSetup other = setup;
             other.azimuthDeg = 100.0;
             m_renderer.render(Camera(other, 190, 150), options);
             options.maskOnly = true;
+            m_renderer.render(Camera(other, 190, 150), options);
             m_renderer.render(camera, options);
             m_renderer.readRedMask(255, fromDepth);
             EXPECT_THROW((void)m_renderer.readImage(), lw::core::Error);

@@ -191,7 +191,7 @@ void GlLineCompute::reserveMask(std::size_t bytes) {
     m_maskBytes = bytes;
 }
 
-void GlLineCompute::readMask(unsigned texture, bool fromLineDepth, int width, int height,
+void GlLineCompute::readMask(unsigned texture, std::uint32_t stamp, int width, int height,
                              std::uint8_t backgroundRed, std::vector<std::uint8_t>& mask) {
     initialize();
     const std::size_t pixels = std::size_t(width) * std::size_t(height);
@@ -201,14 +201,15 @@ void GlLineCompute::readMask(unsigned texture, bool fromLineDepth, int width, in
     glUseProgram(program);
     glUniform2i(glGetUniformLocation(program, "uSize"), width, height);
     glUniform1ui(glGetUniformLocation(program, "uBackgroundRed"), backgroundRed);
-    glUniform1i(glGetUniformLocation(program, "uFromLineDepth"), fromLineDepth);
-    glActiveTexture(GL_TEXTURE0);
+    glUniform1ui(glGetUniformLocation(program, "uStamp"), stamp);
+    const GLenum unit = stamp != 0 ? GL_TEXTURE1 : GL_TEXTURE0; // the shaders' bindings
+    glActiveTexture(unit);
     glBindTexture(GL_TEXTURE_2D, texture);
-    glUniform1i(glGetUniformLocation(program, "uColour"), 0);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, m_mask.get());
     dispatchFor(words);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, 0);
     glBindTexture(GL_TEXTURE_2D, 0);
+    glActiveTexture(GL_TEXTURE0);
     glUseProgram(0);
     mask.resize(pixels);
     if (m_maskMapped) {

@@ -57,10 +57,10 @@ public:
     // Room for at least `segments` segments (32 bytes each). The first computeSegments reserves
     // a quarter of its triangles' count, far more than a contour holds.
     void reserveSegments(std::size_t segments);
-    // `texture` (width x height, GL's rows bottom-up) as a mask, top row first: 1 where the red
-    // channel of an RGBA8 colour texture differs from `backgroundRed`, or (fromLineDepth) where
-    // a depth texture is below 1.
-    void readMask(unsigned texture, bool fromLineDepth, int width, int height,
+    // A frame's lines as a mask, top row first: 1 where the red channel of `texture` (RGBA8,
+    // width x height, GL's rows bottom-up) differs from `backgroundRed`, or, with a nonzero
+    // `stamp`, where `texture` (R32UI) holds that stamp (silhouette.frag.glsl, LW_STAMP).
+    void readMask(unsigned texture, std::uint32_t stamp, int width, int height,
                   std::uint8_t backgroundRed, std::vector<std::uint8_t>& mask);
 
 private:

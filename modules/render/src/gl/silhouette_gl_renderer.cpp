@@ -33,11 +33,13 @@ std::string withVisibilityRule(const char* source, const std::string& defines) {
 // the GPU computed this frame (GlLineCompute), drawn as plain lines.
 enum class LineInput { Triangles, ComputedSegments };
 
-GlProgram linkLineProgram(LineInput input, bool testVisibility) {
+GlProgram linkLineProgram(LineInput input, bool testVisibility, bool stamp = false) {
     const gl::ShaderSource fragment{GL_FRAGMENT_SHADER,
                                     withVisibilityRule(gl::shaders::silhouette_frag,
                                                        std::string("#define LW_TEST_VISIBILITY ") +
-                                                           (testVisibility ? "1\n" : "0\n")),
+                                                           (testVisibility ? "1\n" : "0\n") +
+                                                           "#define LW_STAMP " +
+                                                           (stamp ? "1\n" : "0\n")),
                                     "silhouette.frag.glsl"};
     if (input == LineInput::ComputedSegments)
         return linkProgram({{GL_VERTEX_SHADER, gl::shaders::silhouette_segments_vert,
@@ -339,7 +341,7 @@ void SilhouetteGlRenderer::clear(int width, int height, glm::vec4 background) {
     gl::checkGlError("SilhouetteGlRenderer::clear");
 }
 
-void SilhouetteGlRenderer::clearBuffers(glm::vec4 background, bool colour) {
+void SilhouetteGlRenderer::clearBuffers(glm::vec4 background, bool colour, bool lineDepth) {
     glDisable(GL_SCISSOR_TEST);
     glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
     glDepthMask(GL_TRUE);
@@ -347,6 +349,8 @@ void SilhouetteGlRenderer::clearBuffers(glm::vec4 background, bool colour) {
     glClearColor(background.r, background.g, background.b, background.a);
     glClearDepth(1.0);
     glClear(colour ? GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT : GL_DEPTH_BUFFER_BIT);
+    if (!lineDepth)
+        return;
     glBindFramebuffer(GL_FRAMEBUFFER, m_lineFramebuffer.get());
     glClear(GL_DEPTH_BUFFER_BIT);
 }
@@ -428,6 +432,30 @@ void SilhouetteGlRenderer::ensureFramebuffer(int width, int height) {
     m_height = height;
 }
 
+// The next frame's stamp (silhouette.frag.glsl, LW_STAMP) in a stamp texture of the frame's size;
+// the texture is cleared only when it is made and when the 32-bit stamp wraps.
+void SilhouetteGlRenderer::nextStamp(int width, int height) {
+    if (!m_stampFramebuffer)
+        m_stampFramebuffer = GlFramebuffer::create();
+    if (!m_stampTexture || m_stampSize != glm::ivec2(width, height)) {
+        m_stampTexture = GlTexture::create();
+        allocateTexture(m_stampTexture.get(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, width,
+                        height);
+        glBindFramebuffer(GL_FRAMEBUFFER, m_stampFramebuffer.get());
+        glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D,
+                               m_stampTexture.get(), 0);
+        checkFramebufferComplete("line stamps");
+        m_stampSize = {width, height};
+        m_stamp = 0;
+    }
+    if (++m_stamp == 1) { // new, or wrapped: no pixel may hold an old frame's stamp 1
+        const GLuint zero[4] = {0, 0, 0, 0};
+        glBindFramebuffer(GL_FRAMEBUFFER, m_stampFramebuffer.get());
+        glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+        glClearBufferuiv(GL_COLOR, 0, zero);
+    }
+}
+
 SilhouetteGlStats SilhouetteGlRenderer::render(const Camera& camera,
                                                const SilhouetteGlOptions& options) {
     const glm::vec3 light(camera.panelLightDirection());
@@ -473,7 +501,9 @@ void SilhouetteGlRenderer::queueRender(const glm::mat4& viewProjection, glm::vec
     const bool direct = options.resolve && strokeRadius(options.lineWidth) == 0;
     const bool maskOnly = options.maskOnly && !iso && frame.segmentsOnGpu && direct;
     if (options.clear)
-        clearBuffers(options.background, !maskOnly);
+        clearBuffers(options.background, !maskOnly, !maskOnly);
+    if (maskOnly)
+        nextStamp(width, height);
     m_lastFrameMaskOnly = maskOnly;
     frame.countSegments = options.countSegments;
     frame.timePasses = options.timePasses;
@@ -498,7 +528,7 @@ void SilhouetteGlRenderer::queueRender(const glm::mat4& viewProjection, glm::vec
         if (query)
             glBeginQuery(GL_PRIMITIVES_GENERATED, m_segmentQuery.get());
         if (m_indexCount > 0)
-            drawLinePass(viewProjection, viewer, options, direct && !maskOnly);
+            drawLinePass(viewProjection, viewer, options, direct && !maskOnly, maskOnly);
         if (query)
             glEndQuery(GL_PRIMITIVES_GENERATED);
         if (options.resolve && !direct)
@@ -597,15 +627,15 @@ void SilhouetteGlRenderer::drawSurfacePass(const glm::mat4& viewProjection, glm:
 // test is against the other lines only). A frame drawn in one call has its whole surface depth
 // by now, so the fragments test visibility here; pieces leave it to the resolve.
 void SilhouetteGlRenderer::drawLinePass(const glm::mat4& viewProjection, glm::vec4 viewer,
-                                        const SilhouetteGlOptions& options, bool writeColour) {
-    glBindFramebuffer(GL_FRAMEBUFFER, m_lineFramebuffer.get());
+                                        const SilhouetteGlOptions& options, bool writeColour,
+                                        bool stamp) {
+    glBindFramebuffer(GL_FRAMEBUFFER, stamp ? m_stampFramebuffer.get() : m_lineFramebuffer.get());
     const bool testVisibility = options.visibility && options.resolve;
     const bool computed = options.cullLineCandidatesOnGpu && m_compute;
-    if (computed && !m_segmentLinePrograms[testVisibility])
-        m_segmentLinePrograms[testVisibility] =
-            linkLineProgram(LineInput::ComputedSegments, testVisibility);
-    const GLuint program = computed ? m_segmentLinePrograms[testVisibility].get()
-                                    : m_linePrograms[testVisibility].get();
+    GlProgram& segmentProgram = m_segmentLinePrograms[int(testVisibility) + 2 * int(stamp)];
+    if (computed && !segmentProgram)
+        segmentProgram = linkLineProgram(LineInput::ComputedSegments, testVisibility, stamp);
+    const GLuint program = computed ? segmentProgram.get() : m_linePrograms[testVisibility].get();
     glUseProgram(program);
     glUniformMatrix4fv(uniform(program, "uViewProjection"), 1, GL_FALSE,
                        glm::value_ptr(viewProjection));
@@ -615,11 +645,18 @@ void SilhouetteGlRenderer::drawLinePass(const glm::mat4& viewProjection, glm::ve
     glBindTexture(GL_TEXTURE_2D, testVisibility ? m_surfaceDepthTexture.get() : 0);
     glUniform1i(uniform(program, "uSurfaceDepth"), 0);
     glUniform1f(uniform(program, "uTolerance"), options.depthTolerance);
+    glUniform1ui(uniform(program, "uStamp"), m_stamp);
     glUniform4fv(uniform(program, "uLineColour"), 1, glm::value_ptr(options.lineColour));
-    glColorMask(writeColour, writeColour, writeColour, writeColour);
-    glEnable(GL_DEPTH_TEST);
-    glDepthFunc(GL_LESS);
-    glDepthMask(GL_TRUE);
+    // A stamp marks the pixel whichever line is nearest: no depth there.
+    const bool colour = writeColour || stamp;
+    glColorMask(colour, colour, colour, colour);
+    if (stamp) {
+        glDisable(GL_DEPTH_TEST);
+    } else {
+        glEnable(GL_DEPTH_TEST);
+        glDepthFunc(GL_LESS);
+        glDepthMask(GL_TRUE);
+    }
     // The computed segments have no attributes; the triangles read the mesh's.
     glBindVertexArray(computed ? m_emptyVertexArray.get() : m_vertexArray.get());
     if (computed) {
@@ -736,11 +773,10 @@ void SilhouetteGlRenderer::readRedMask(std::uint8_t backgroundRed,
         throw core::Error("GL read-back", "nothing has been rendered yet");
     if (m_compute) {
         if (m_lastFrameMaskOnly)
-            m_compute->readMask(m_lineDepthTexture.get(), true, m_width, m_height, backgroundRed,
+            m_compute->readMask(m_stampTexture.get(), m_stamp, m_width, m_height, backgroundRed,
                                 mask);
         else
-            m_compute->readMask(m_colourTexture.get(), false, m_width, m_height, backgroundRed,
-                                mask);
+            m_compute->readMask(m_colourTexture.get(), 0, m_width, m_height, backgroundRed, mask);
         return;
     }
     // Read straight into the mask (no second buffer per frame), then turn GL's bottom-up rows

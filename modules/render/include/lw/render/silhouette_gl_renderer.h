@@ -92,9 +92,9 @@ struct SilhouetteGlOptions {
     // useLineCandidates.
     bool cullLineCandidatesOnGpu = false;
     // The frame is read only as a line mask (readRedMask), never as an image: with the GPU's
-    // segments (above) and one-pixel lines drawn in one call, pass 2 writes no colour and the
-    // colour buffer is not cleared, and readRedMask reads the line depth instead (a pixel holds
-    // a line's depth exactly where pass 2 would have coloured it). Ignored otherwise.
+    // segments (above) and one-pixel lines drawn in one call, pass 2 writes only the frame's
+    // stamp where a visible line falls (no colour, no line depth, neither cleared), and
+    // readRedMask reads the stamps. Ignored otherwise.
     bool maskOnly = false;
     // Drawing a mesh in pieces (method 1's L variant: one brick uploaded at a time): the caller
     // starts the frame with clear(), draws each piece with clear = false and resolve = false
@@ -216,11 +216,12 @@ public:
 private:
     void ensureFramebuffer(int width, int height);
     void ensureFramebufferObjects();
-    void clearBuffers(glm::vec4 background, bool colour = true);
+    void clearBuffers(glm::vec4 background, bool colour = true, bool lineDepth = true);
+    void nextStamp(int width, int height);
     void drawSurfacePass(const glm::mat4& viewProjection, glm::vec4 viewer,
                          glm::vec3 lightDirection, const SilhouetteGlOptions& options);
     void drawLinePass(const glm::mat4& viewProjection, glm::vec4 viewer,
-                      const SilhouetteGlOptions& options, bool writeColour);
+                      const SilhouetteGlOptions& options, bool writeColour, bool stamp = false);
     void drawResolvePass(const SilhouetteGlOptions& options, bool testVisibility);
     // The resolve program for a dilation radius and visibility on or off, compiled on first use
     // (constant loop bounds: see silhouette_resolve.frag.glsl).
@@ -237,7 +238,8 @@ private:
         bool countSegments = false, timePasses = false;
     };
     std::optional<QueuedFrame> m_queued;
-    GlProgram m_segmentLinePrograms[2]; // the same over the GPU's segments: on first use
+    // The same over the GPU's segments, on first use: [test visibility + 2 * stamp].
+    GlProgram m_segmentLinePrograms[4];
     GlVertexArray m_vertexArray;
     std::vector<std::pair<int, GlProgram>> m_resolvePrograms; // (radius * 2 + visibility, program)
     GlVertexArray m_emptyVertexArray; // the resolve's full-screen triangle has no attributes
@@ -260,6 +262,12 @@ private:
     GlTexture m_colourTexture;
     GlTexture m_surfaceDepthTexture;
     GlTexture m_lineDepthTexture;
+    // Mask-only frames (SilhouetteGlOptions::maskOnly): pass 2 writes the frame's stamp into an
+    // R32UI texture that is never cleared between frames (nextStamp).
+    GlFramebuffer m_stampFramebuffer;
+    GlTexture m_stampTexture;
+    glm::ivec2 m_stampSize{0, 0};
+    std::uint32_t m_stamp = 0;
     bool m_lastFrameMaskOnly = false; // readImage has nothing to read
     int m_width = 0;
     int m_height = 0;
