@@ -400,22 +400,28 @@ QImage ReviewPanel::grabImage() {
     return m_imageView->grab().toImage();
 }
 
-QImage ReviewPanel::renderImage(QSize size, const ReviewSettings* appearance) {
-    if (!drawsGl() || size.isEmpty())
-        return {};
+void ReviewPanel::drawOffscreen(const std::function<void()>& draw) {
     m_glView->makeCurrent();
-    QImage image;
     try {
         uploadPendingMesh();
-        const render::Camera camera = m_camera.camera(size.width(), size.height());
-        image = toQImage(glRenderer().renderImage(
-            camera, panelGlOptions(m_kind, appearance ? *appearance : m_appearance, camera,
-                                   m_camera.bounds())));
+        draw();
     } catch (const core::Error& error) {
         m_message = tr("OpenGL failed: %1").arg(error.what());
     }
     m_glView->doneCurrent();
     updateView(); // the framebuffer object now has the export's size; the next paint restores it
+}
+
+QImage ReviewPanel::renderImage(QSize size, const ReviewSettings* appearance) {
+    if (!drawsGl() || size.isEmpty())
+        return {};
+    const render::Camera camera = m_camera.camera(size.width(), size.height());
+    QImage image;
+    drawOffscreen([&] {
+        image = toQImage(glRenderer().renderImage(
+            camera, panelGlOptions(m_kind, appearance ? *appearance : m_appearance, camera,
+                                   m_camera.bounds())));
+    });
     return image;
 }
 
@@ -424,11 +430,9 @@ render::PolylineSplit ReviewPanel::renderPolylines(QSize size, const ReviewSetti
                                                    bool withHidden) {
     if (!drawsGl() || size.isEmpty())
         return {};
-    m_glView->makeCurrent();
     const render::Camera camera = m_camera.camera(size.width(), size.height());
     render::PixelMask lines(size.width(), size.height());
-    try {
-        uploadPendingMesh();
+    drawOffscreen([&] {
         // One-pixel black lines on white: the mask the polylines are cut by, whatever the colours.
         render::SilhouetteGlOptions gl =
             panelGlOptions(m_kind, appearance, camera, m_camera.bounds());
@@ -437,11 +441,7 @@ render::PolylineSplit ReviewPanel::renderPolylines(QSize size, const ReviewSetti
         gl.background = {1.0f, 1.0f, 1.0f, 1.0f};
         glRenderer().render(camera, gl);
         glRenderer().readRedMask(255, lines.pixels());
-    } catch (const core::Error& error) {
-        m_message = tr("OpenGL failed: %1").arg(error.what());
-    }
-    m_glView->doneCurrent();
-    updateView(); // as renderImage: the next paint restores the panel's own size
+    });
     if (!m_mesh)
         return {};
     return render::splitPolylines(*m_mesh, camera, lines, options, withHidden);

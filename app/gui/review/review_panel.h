@@ -146,6 +146,10 @@ protected:
 private:
     bool drawsGl() const;
     void uploadPendingMesh();
+    // Runs `draw` with the GL view's context current and its pending mesh uploaded, for a frame at
+    // another size than the panel's (an export); a GL error goes to the panel's message. The
+    // next paint restores the panel's own size.
+    void drawOffscreen(const std::function<void()>& draw);
     void drawGl(const render::Camera& camera);
     void drawImages(QPainter& painter);
     void drawLinesTexture();

@@ -343,8 +343,8 @@ std::vector<std::uint32_t> piecesWithBridges(StrokeGroups& groups,
 } // namespace
 
 std::vector<std::uint8_t> PixelMask::strokeCoverage(double lineWidth) const {
-    const double reach = std::max(lineWidth, 1.0) / 2.0 + 0.5; // coverage 0 from here on
-    const int radius = int(std::ceil(reach)) - 1;
+    const double reach = strokeReach(lineWidth);
+    const int radius = strokeRadius(lineWidth);
     std::vector<std::uint8_t> out(m_pixels.size(), 0);
     if (radius == 0) { // one pixel wide (or less): the mask itself
         std::transform(m_pixels.begin(), m_pixels.end(), out.begin(),

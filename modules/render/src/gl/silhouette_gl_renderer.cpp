@@ -5,6 +5,7 @@
 #include "gl_program.h"
 #include "lw/core/error.h"
 #include "lw/core/log.h"
+#include "lw/render/pixel_mask.h"
 #include "lw_render_shaders.h"
 
 #include <algorithm>
@@ -96,15 +97,10 @@ private:
     GLint m_viewport[4] = {0, 0, 0, 0};
 };
 
-// How far from a line pixel its stroke of `lineWidth` covers anything (PixelMask::strokeCoverage:
-// coverage = clamp(reach - distance, 0, 1)), and that as whole pixels, bounded: a 33-pixel line
-// is far wider than any drawing needs. 0: the one-pixel lines themselves.
-float strokeReach(float lineWidth) {
-    return std::max(lineWidth, 1.0f) / 2.0f + 0.5f;
-}
-
-int strokeRadius(float lineWidth) {
-    return std::clamp(int(std::ceil(strokeReach(lineWidth))) - 1, 0, 16);
+// The strokes' footprint (PixelMask::strokeReach / strokeRadius) for pass 3, its radius bounded:
+// a 33-pixel line is far wider than any drawing needs.
+int resolveRadius(float lineWidth) {
+    return std::min(PixelMask::strokeRadius(lineWidth), 16);
 }
 
 // A query's result (waits for it); timestamps in nanoseconds.
@@ -498,7 +494,7 @@ void SilhouetteGlRenderer::queueRender(const glm::mat4& viewProjection, glm::vec
     frame.drawSurface = m_indexCount > 0 && (iso || options.visibility);
     frame.segmentsOnGpu = frame.drawLines && options.cullLineCandidatesOnGpu && m_compute;
     // One-pixel lines of a complete frame need no pass 3: pass 2 colours them itself.
-    const bool direct = options.resolve && strokeRadius(options.lineWidth) == 0;
+    const bool direct = options.resolve && resolveRadius(options.lineWidth) == 0;
     const bool maskOnly = options.maskOnly && !iso && frame.segmentsOnGpu && direct;
     if (options.clear)
         clearBuffers(options.background, !maskOnly, !maskOnly);
@@ -702,8 +698,8 @@ void SilhouetteGlRenderer::resolve(const SilhouetteGlOptions& options) {
 }
 
 // Pass 3: the visible line pixels as antialiased strokes of the line width, in the line colour
-// over what pass 1 left; with
-// `testVisibility` the nearest line of each pixel is tested here (a frame drawn in pieces).
+// over what pass 1 left; with `testVisibility` the nearest line of each pixel is tested here (a
+// frame drawn in pieces).
 void SilhouetteGlRenderer::drawResolvePass(const SilhouetteGlOptions& options,
                                            bool testVisibility) {
     glBindFramebuffer(GL_FRAMEBUFFER, m_resolveFramebuffer.get());
@@ -712,7 +708,7 @@ void SilhouetteGlRenderer::drawResolvePass(const SilhouetteGlOptions& options,
     // iso panel's surface); the alpha stays the background's.
     glEnable(GL_BLEND);
     glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ZERO, GL_ONE);
-    const GLuint program = resolveProgram(strokeRadius(options.lineWidth), testVisibility);
+    const GLuint program = resolveProgram(resolveRadius(options.lineWidth), testVisibility);
     glUseProgram(program);
     glActiveTexture(GL_TEXTURE0);
     glBindTexture(GL_TEXTURE_2D, m_surfaceDepthTexture.get());
@@ -722,7 +718,7 @@ void SilhouetteGlRenderer::drawResolvePass(const SilhouetteGlOptions& options,
     glUniform1i(uniform(program, "uLineDepth"), 1);
     glUniform1f(uniform(program, "uTolerance"), options.depthTolerance);
     glUniform4fv(uniform(program, "uLineColour"), 1, glm::value_ptr(options.lineColour));
-    glUniform1f(uniform(program, "uReach"), strokeReach(options.lineWidth));
+    glUniform1f(uniform(program, "uReach"), float(PixelMask::strokeReach(options.lineWidth)));
     glBindVertexArray(m_emptyVertexArray.get());
     glDrawArrays(GL_TRIANGLES, 0, 3);
     glDisable(GL_BLEND);

@@ -2,6 +2,8 @@
 
 #include "lw/core/image.h"
 
+#include <algorithm>
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -34,6 +36,11 @@ public:
     // one-pixel width gives the mask itself. The rule the live panels draw lines with (their GL
     // view applies it to a mask texture the same way).
     std::vector<std::uint8_t> strokeCoverage(double lineWidth) const;
+    // That stroke's footprint: coverage is 0 from strokeReach pixels on, so strokeRadius whole
+    // pixels around a line pixel hold all of it (0 for one-pixel lines: the mask itself). Shared
+    // with the GL passes that draw the same strokes.
+    static double strokeReach(double lineWidth) { return std::max(lineWidth, 1.0) / 2.0 + 0.5; }
+    static int strokeRadius(double lineWidth) { return int(std::ceil(strokeReach(lineWidth))) - 1; }
     // Turns off every group of on pixels smaller than `minPixels`; returns how many pixels went.
     // A group is 8-connected, and with gapPixels = g pixels up to g apart (Chebyshev distance
     // g + 1) join it too. A stroke of a line drawing is such a group: this drops the speckle that

@@ -78,18 +78,19 @@ struct SilhouetteGlOptions {
     // front faces (counter-clockwise, as marching cubes winds them seen from outside), which
     // always hold the nearest depth there; back faces would only cost fixed-function time.
     bool cullBackFacesInDepthPass = false;
-    bool countSegments = false; // query how many segments pass 2 drew (on with the GPU's own)
-    bool timePasses = false;    // GPU time of pass 1 and of passes 2 + 3 (GL_TIMESTAMP queries)
+    // Count the segments pass 2 draws (a primitive query); the GPU's own segments
+    // (cullLineCandidatesOnGpu) are always counted, by the stage that finds them.
+    bool countSegments = false;
+    bool timePasses = false; // GPU time of pass 1 and of passes 2 + 3 (GL_TIMESTAMP queries)
     // Pass 2 over a subset of the triangles: the candidate buffer (reserveLineCandidates) holding
     // `lineCandidateIndices` indices, three a triangle, filled by whoever knows which triangles
     // can hold a silhouette (method 1's host test on a software rasterizer). Off: pass 2 sends
     // every triangle.
     bool useLineCandidates = false;
     std::size_t lineCandidateIndices = 0;
-    // Pass 2 over the segments a compute shader finds this frame, before pass 1, with the
-    // geometry shader's rule and arithmetic, drawn as plain lines
-    // (SilhouetteGlRenderer::cullsOnGpu()); ignored where the context cannot. Overrides
-    // useLineCandidates.
+    // Pass 2 over the segments a compute shader finds this frame after pass 1, with the geometry
+    // shader's rule and arithmetic, drawn as plain lines (SilhouetteGlRenderer::cullsOnGpu());
+    // ignored where the context cannot. Overrides useLineCandidates.
     bool cullLineCandidatesOnGpu = false;
     // The frame is read only as a line mask (readRedMask), never as an image: with the GPU's
     // segments (above) and one-pixel lines drawn in one call, pass 2 writes only the frame's
@@ -107,9 +108,9 @@ struct SilhouetteGlOptions {
 
 struct SilhouetteGlStats {
     std::size_t triangles = 0;
-    std::size_t segments = 0;   // only with countSegments (GL_PRIMITIVES_GENERATED)
+    std::size_t segments = 0;   // with countSegments, or the GPU's own segments
     double surfacePassMs = 0.0; // only with timePasses: pass 1 (surface), GPU time
-    double linePassMs = 0.0;    // pass 2 (geometry-shader silhouette)
+    double linePassMs = 0.0;    // the segment stage, passes 2 and 3
     // The GPU found more segments than its buffer held, and the frame lacks those beyond: draw it
     // again (render() does; the buffer has grown).
     bool incomplete = false;
@@ -222,15 +223,15 @@ private:
                          glm::vec3 lightDirection, const SilhouetteGlOptions& options);
     void drawLinePass(const glm::mat4& viewProjection, glm::vec4 viewer,
                       const SilhouetteGlOptions& options, bool writeColour, bool stamp = false);
+    void computeSegments(const glm::mat4& viewProjection, glm::vec4 viewer, int width, int height,
+                         const SilhouetteGlOptions& options, bool surfaceDrawn);
     void drawResolvePass(const SilhouetteGlOptions& options, bool testVisibility);
-    // The resolve program for a dilation radius and visibility on or off, compiled on first use
+    // The resolve program for a stroke radius and visibility on or off, compiled on first use
     // (constant loop bounds: see silhouette_resolve.frag.glsl).
     unsigned resolveProgram(int radius, bool visibility);
 
     GlProgram m_surfaceProgram;
     GlProgram m_linePrograms[2]; // geometry shader emitting GL lines; [test visibility]
-    void computeSegments(const glm::mat4& viewProjection, glm::vec4 viewer, int width, int height,
-                         const SilhouetteGlOptions& options, bool surfaceDrawn);
     // What queuedStats needs of the frame queueRender sent.
     struct QueuedFrame {
         std::size_t triangles = 0;
