@@ -6,7 +6,8 @@
 // -> its three slices painted; a wheel step -> the slice painted with its contour); the exports.
 //
 //   linework-review-bench PATH [--iso HU] [--repeat N] [--panel-gl ..] [--backend cpu|cuda|auto]
-//                         [--thick-slices smooth|linear] [--slices-only] [--probe-stalls MS]
+//                         [--thick-slices smooth|linear] [--iso-shading cuda|gl] [--slices-only]
+//                         [--probe-stalls MS]
 //
 // Run under a display (xvfb-run -a -s "-screen 0 1920x1080x24"). Prints one line per figure.
 #include "bench/bench_support.h"
@@ -194,7 +195,8 @@ void benchMethod(ReviewWidget& review, MainWindow& window, int method, double is
 
 // The GL placement and back-end the main window starts with (QSettings lives in the temporary
 // folder).
-void storeStartSettings(const QString& where, const QString& backend, const QString& thick) {
+void storeStartSettings(const QString& where, const QString& backend, const QString& thick,
+                        const QString& isoShading) {
     QSettings store;
     ReviewSettings settings = ReviewSettings::load(store);
     settings.panelGl = where == "panels"   ? PanelGl::InPanels
@@ -205,6 +207,7 @@ void storeStartSettings(const QString& where, const QString& backend, const QStr
                                            : lw::render::Backend::Auto;
     settings.thickSlices =
         lw::render::parseThickSlices(thick.toStdString()).value_or(lw::render::ThickSlices::Smooth);
+    settings.cudaShadesIsoPanel = isoShading != "gl";
     settings.save(store);
 }
 
@@ -392,24 +395,30 @@ int main(int argc, char* argv[]) {
         "backend", "Back-end: cpu, cuda or auto (settings page).", "BACKEND", "auto");
     const QCommandLineOption thickOption(
         "thick-slices", "Thick slices: smooth or linear (settings page).", "HOW", "smooth");
+    const QCommandLineOption isoShadingOption(
+        "iso-shading",
+        "Who shades the iso panel where the silhouette runs on CUDA: cuda or gl "
+        "(ReviewSettings::cudaShadesIsoPanel).",
+        "WHO", "cuda");
     const QCommandLineOption slicesOnlyOption(
         "slices-only", "Only the slice panels' figures (after opening the series).");
     const QCommandLineOption probeOption(
         "probe-stalls", "Report why the UI thread stalls longer than MS (stderr).", "MS");
     parser.addOptions({isoOption, repeatOption, panelGlOption, backendOption, thickOption,
-                       slicesOnlyOption, probeOption});
+                       isoShadingOption, slicesOnlyOption, probeOption});
     parser.process(app);
     if (parser.positionalArguments().size() != 1) {
         std::fprintf(stderr, "usage: linework-review-bench PATH [--iso HU] [--repeat N] "
                              "[--panel-gl auto|panels|worker] [--backend cpu|cuda|auto] "
-                             "[--thick-slices smooth|linear] [--slices-only]\n");
+                             "[--thick-slices smooth|linear] [--iso-shading cuda|gl] "
+                             "[--slices-only]\n");
         return 2;
     }
     const QString path = parser.positionalArguments().front();
     const double iso = parser.value(isoOption).toDouble();
     const int repeat = std::max(1, parser.value(repeatOption).toInt());
     storeStartSettings(parser.value(panelGlOption), parser.value(backendOption),
-                       parser.value(thickOption));
+                       parser.value(thickOption), parser.value(isoShadingOption));
 
     MainWindowOptions options;
     options.databasePath = home.path() + "/studies.sqlite";

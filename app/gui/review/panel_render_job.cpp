@@ -60,6 +60,7 @@ render::ReviewFrameRequest panelFrameRequest(const PanelRenderJob& job, bool pol
     request.suggestive = appearance.suggestiveContours;
     request.wantIsoImage = true;
     request.isoOnCpu = job.isoOnCpu;
+    request.isoShadedByCuda = appearance.cudaShadesIsoPanel;
     request.isoCamera = job.camera;
     request.isoOptions = panelGlOptions(PanelKind::Iso, appearance, job.camera, job.bounds);
     request.wantPolylines = polylines;

@@ -412,6 +412,7 @@ void ReviewWidget::requestFrame(bool newIso) {
         frame.isoOptions =
             panelGlOptions(PanelKind::Iso, m_settings, frame.isoCamera, m_camera.bounds());
         frame.isoOnCpu = displayGlInfo().prefersCpu();
+        frame.isoShadedByCuda = m_settings.cudaShadesIsoPanel;
     }
     if (!frame.wantMesh && !frame.wantSilhouette && !frame.wantIsoImage)
         return; // method 1 S in mode a: the panels redraw the cached mesh themselves

@@ -90,6 +90,7 @@ ReviewSettings ReviewSettings::load(QSettings& settings) {
                 : backend == "cuda" ? render::Backend::Cuda
                                     : render::Backend::Auto;
     s.panelGl = PanelGl(clampInt(settings.value("panelGl"), 0, 2, int(s.panelGl)));
+    s.cudaShadesIsoPanel = settings.value("cudaShadesIsoPanel", s.cudaShadesIsoPanel).toBool();
     s.presets = readPresets(settings);
     settings.endGroup();
     return s;
@@ -126,6 +127,7 @@ void ReviewSettings::save(QSettings& settings) const {
                       projection == render::Projection::Orthographic ? "ortho" : "perspective");
     settings.setValue("backend", QString::fromUtf8(render::backendName(backend).data()));
     settings.setValue("panelGl", int(panelGl));
+    settings.setValue("cudaShadesIsoPanel", cudaShadesIsoPanel);
     settings.beginWriteArray("presets", int(presets.size()));
     for (int i = 0; i < presets.size(); ++i) {
         settings.setArrayIndex(i);

@@ -4,6 +4,7 @@
 #include "lw/core/log.h"
 #include "lw/render/shaded_surface_cpu.h"
 #include "lw/render/suggestive_contours.h"
+#include "lw/render/zbuffer_silhouette_renderer.h"
 
 #if LINEWORK_GL
 #include "lw/render/geometry_shader_silhouette_renderer.h"
@@ -107,7 +108,11 @@ struct ReviewFrameRenderer::State {
     // for the iso panel alone when the silhouette is another method's or chunked.
     std::unique_ptr<GeometryShaderSilhouetteRenderer> deviceIso;
 #endif
-    std::string deviceUnavailable; // why the device path could not start (once per volume)
+    // The device path's CUDA shading for a silhouette that keeps no whole surface on the device
+    // (method 2, method 3's L): method 3's whole-volume renderer of its own, for the panel alone.
+    std::unique_ptr<ZBufferSilhouetteRenderer> cudaIso;
+    bool cudaShadingUnavailable = false; // this build or machine has no CUDA back-end
+    std::string deviceUnavailable;       // why the device path could not start (once per volume)
     std::size_t hostMeshes = 0;
 
     void dropVolumeCaches() {
@@ -124,6 +129,7 @@ struct ReviewFrameRenderer::State {
         uploadedMeshOwner.reset();
         deviceIso.reset();
 #endif
+        cudaIso.reset();
         deviceUnavailable.clear();
     }
 
@@ -137,6 +143,7 @@ struct ReviewFrameRenderer::State {
     void extractMesh(const ReviewFrameRequest& request, ReviewFrame& frame);
     void renderIsoOnHost(const ReviewFrameRequest& request, ReviewFrame& frame);
     bool renderIsoOnDevice(const ReviewFrameRequest& request, ReviewFrame& frame);
+    bool shadeIsoWithCuda(const ReviewFrameRequest& request, ReviewFrame& frame);
 #if LINEWORK_GL
     GeometryShaderSilhouetteRenderer* deviceIsoRenderer(const ReviewFrameRequest& request);
     GlContext& contextFor(const ReviewFrameRequest& request) {
@@ -428,8 +435,59 @@ ReviewFrameRenderer::State::createRenderer(const ReviewFrameRequest& request) {
 }
 #endif
 
+// The iso panel shaded by CUDA where the surface is on the device already or can be: method 3's
+// whole-volume renderer on CUDA shades the surface its silhouette frame kept (one extraction for
+// both panels); method 2 and method 3's L get such a renderer for the panel alone. Method 1 draws
+// the panel with GL from its own buffers (renderIsoOnDevice). False where CUDA cannot shade it.
+bool ReviewFrameRenderer::State::shadeIsoWithCuda(const ReviewFrameRequest& request,
+                                                  ReviewFrame& frame) {
+    if ((request.method == SilhouetteMethod::GeometryShader && request.wantSilhouette) ||
+        request.isoOptions.linesOnIso || !request.isoShadedByCuda || cudaShadingUnavailable)
+        return false;
+    SilhouetteSettings settings = request.settings;
+    settings.isoReal = request.iso;
+    settings.cancel = request.cancel;
+    auto* method3 = dynamic_cast<ZBufferSilhouetteRenderer*>(renderer.get());
+    ZBufferSilhouetteRenderer* shading = nullptr;
+    if (method3 && request.wantSilhouette && request.settings.brickCells == 0 &&
+        method3->drawsToFrameTargets()) {
+        shading = method3;
+        settings.mode = ExtractionMode::CachedA; // its silhouette frame extracted for mode b
+        cudaIso.reset();
+    } else {
+        if (!cudaIso) {
+            try {
+                cudaIso = std::make_unique<ZBufferSilhouetteRenderer>(Backend::Cuda);
+                cudaIso->setVolume(*volume);
+            } catch (const core::Error& error) {
+                kLog.info(std::string("iso panel: no CUDA shading (") + error.what() + ")");
+                cudaShadingUnavailable = true;
+                return false;
+            }
+        }
+        shading = cudaIso.get();
+        settings.brickCells = 0;
+        settings.mode =
+            request.forceExtract ? ExtractionMode::EveryFrameB : ExtractionMode::CachedA;
+    }
+    std::optional<ZBufferSilhouetteRenderer::DeviceShadedSurface> shaded = shading->shadeOnDevice(
+        request.isoCamera, settings, glPanelShading(request.isoCamera, request.isoOptions), true);
+    if (!shaded)
+        return false;
+    frame.isoImage = std::move(shaded->image);
+    frame.isoDepth = std::move(shaded->depth);
+    frame.isoRenderMs = shaded->shadeMs;
+    const bool extractedBySilhouette = shading == method3 && frame.silhouette;
+    frame.meshMs = extractedBySilhouette ? frame.silhouette->times.extractMs : shaded->extractMs;
+    frame.surfaceTriangles = shaded->triangles;
+    frame.isoOnDevice = true;
+    return true;
+}
+
 bool ReviewFrameRenderer::State::renderIsoOnDevice(const ReviewFrameRequest& request,
                                                    ReviewFrame& frame) {
+    if (shadeIsoWithCuda(request, frame))
+        return true;
 #if LINEWORK_GL
     GeometryShaderSilhouetteRenderer* device = deviceIsoRenderer(request);
     if (!device)

@@ -11,14 +11,18 @@
 // A frame:  beginFrame -> [extractWhole when the cache is stale] -> drawWhole
 //                       or drawPieces                              -> resolve
 
+#include "lw/core/image.h"
 #include "lw/render/camera.h"
 #include "lw/render/iso_surface.h"
+#include "lw/render/shaded_surface_cpu.h"
 #include "lw/render/silhouette_renderer.h"
 #include "lw/volume/volume.h"
 #include "out_of_device_memory.h"
 
+#include <cstddef>
 #include <memory>
 #include <string_view>
+#include <vector>
 
 namespace lw::render {
 
@@ -57,6 +61,17 @@ public:
     // The colour pass: frame.lines from the two z-buffers.
     virtual void resolve(const SilhouetteSettings& settings, float epsilon,
                          SilhouetteFrame& frame) = 0;
+
+    // The shaded iso panel of the kept whole surface (with its cap), drawn where the surface is:
+    // only back-ends that keep it on a device do (shadesOnDevice); the others leave the panel to
+    // the host mesh. `image` is sized to the camera; `depth` (optional) as shadeSurfaceCpu's.
+    struct DeviceShading {
+        std::size_t triangles = 0;
+        double rasterMs = 0.0, shadeMs = 0.0;
+    };
+    virtual bool shadesOnDevice() const { return false; }
+    virtual DeviceShading shadeWhole(const Camera& camera, const SurfaceShading& shading,
+                                     core::ImageRgba8& image, std::vector<float>* depth);
 
     // After OutOfDeviceMemory: whether this back-end has a leaner way to try (CUDA: slabs after
     // the whole volume); false sends the frame to the CPU.

@@ -49,10 +49,36 @@ struct ZBufferSilhouetteRenderer::State {
         lateMeshIso = kNoIso;
         lateMesh = Mesh();
     }
+    void keepWhole(ZBufferKernelSet& set, const SilhouetteSettings& settings,
+                   SilhouetteFrame& frame);
     void frameOn(ZBufferKernelSet& set, const Camera& camera, const SilhouetteSettings& settings,
                  SilhouetteFrame& frame);
     void fallBack(const OutOfDeviceMemory& error);
 };
+
+ZBufferKernelSet::DeviceShading ZBufferKernelSet::shadeWhole(const Camera&, const SurfaceShading&,
+                                                             core::ImageRgba8&,
+                                                             std::vector<float>*) {
+    throw core::Error(std::string("method 3 (") + std::string(backendName()) + ")",
+                      "this back-end shades the iso panel from the host mesh");
+}
+
+// Extracts the whole surface of settings' iso-value unless the kept one is it (mode a).
+void ZBufferSilhouetteRenderer::State::keepWhole(ZBufferKernelSet& set,
+                                                 const SilhouetteSettings& settings,
+                                                 SilhouetteFrame& frame) {
+    const bool reuse = settings.mode == ExtractionMode::CachedA && keptIso == settings.isoReal &&
+                       keptClosing == settings.closeAtBorder &&
+                       keptStencil == settings.gradientStencil;
+    if (reuse)
+        return;
+    keptIso = kNoIso;
+    touches = set.extractWhole(storedIsoValue(*volume, settings.isoReal), settings, frame);
+    touchIso = settings.isoReal;
+    keptIso = settings.isoReal;
+    keptClosing = settings.closeAtBorder;
+    keptStencil = settings.gradientStencil;
+}
 
 void ZBufferSilhouetteRenderer::State::frameOn(ZBufferKernelSet& set, const Camera& camera,
                                                const SilhouetteSettings& settings,
@@ -61,17 +87,7 @@ void ZBufferSilhouetteRenderer::State::frameOn(ZBufferKernelSet& set, const Came
     set.beginFrame(camera, settings, frame);
     const bool whole = settings.brickCells == 0 && set.keepsWholeSurface(camera, settings);
     if (whole) {
-        const bool reuse = settings.mode == ExtractionMode::CachedA &&
-                           keptIso == settings.isoReal && keptClosing == settings.closeAtBorder &&
-                           keptStencil == settings.gradientStencil;
-        if (!reuse) {
-            keptIso = kNoIso;
-            touches = set.extractWhole(storedIso, settings, frame);
-            touchIso = settings.isoReal;
-            keptIso = settings.isoReal;
-            keptClosing = settings.closeAtBorder;
-            keptStencil = settings.gradientStencil;
-        }
+        keepWhole(set, settings, frame);
         set.drawWhole(camera, settings, settings.closeAtBorder || !touches, frame);
     } else {
         keptIso = kNoIso;
@@ -191,6 +207,44 @@ SilhouetteFrame ZBufferSilhouetteRenderer::renderFrame(const Camera& camera,
             s.fallBack(error);
         }
     }
+}
+
+std::optional<ZBufferSilhouetteRenderer::DeviceShadedSurface>
+ZBufferSilhouetteRenderer::shadeOnDevice(const Camera& camera, const SilhouetteSettings& settings,
+                                         const SurfaceShading& shading, bool wantDepth) {
+    State& s = *m_state;
+    if (!s.volume || s.onFallback || !s.kernels->shadesOnDevice() || settings.brickCells != 0)
+        return std::nullopt;
+    if (settings.cancel && settings.cancel->isCancelled())
+        throw core::Cancelled();
+    DeviceShadedSurface out;
+    try {
+        SilhouetteFrame frame;
+        // The budget is the frame's (beginFrame sets it); a surface kept by the last silhouette
+        // frame is whole (pieces forget it).
+        s.kernels->beginFrame(camera, settings, frame);
+        if (!s.kernels->keepsWholeSurface(camera, settings))
+            return std::nullopt;
+        s.keepWhole(*s.kernels, settings, frame);
+        s.lastIso = settings.isoReal;
+        s.lastThreads = settings.threads;
+        s.lastClosing = settings.closeAtBorder;
+        s.lastStencil = settings.gradientStencil;
+        s.lastKept = true;
+        out.extractMs = frame.times.extractMs;
+        const ZBufferKernelSet::DeviceShading shaded =
+            s.kernels->shadeWhole(camera, shading, out.image, wantDepth ? &out.depth : nullptr);
+        out.triangles = shaded.triangles;
+        out.shadeMs = shaded.rasterMs + shaded.shadeMs;
+    } catch (const OutOfDeviceMemory& error) {
+        kLog.warning(std::string("iso panel on the device: ") + error.what() +
+                     "; shaded from the host mesh");
+        s.kernels->bind(s.volume); // frees what the attempt holds
+        s.forgetSurface();
+        s.lastKept = false;
+        return std::nullopt;
+    }
+    return out;
 }
 
 float ZBufferSilhouetteRenderer::depthEpsilon(const Camera& camera, const volume::Volume& volume) {

@@ -15,6 +15,9 @@
 // A frame over the budget or out of device memory throws OutOfDeviceMemory: the renderer asks
 // fallBack() (whole volume -> slabs) and then goes to the CPU.
 //
+// The shaded iso panel (shadeWhole) rasterizes the same kept surface at the panel's camera and
+// lights it on the device; only the image and its depth come to the host.
+//
 // The colour pass writes the host mask, or, given a frame target (the GUI's silhouette panel),
 // the GL texture straight through CUDA-GL interop. Where interop fails (no GL context current, a
 // context on another device, a build without interop) the mask goes through host memory from
@@ -28,6 +31,7 @@
 #include "lw/kernels/cuda/cuda_device.h"
 #include "lw/kernels/cuda/device_mesh_store.h"
 #include "lw/kernels/cuda/marching_cubes_cuda.h"
+#include "lw/kernels/cuda/surface_shading_cuda.h"
 #include "lw/kernels/cuda/zbuffer_cuda.h"
 #include "lw/render/gl_frame_target.h"
 #include "lw/render/gpu_memory_plan.h"
@@ -76,6 +80,8 @@ public:
     void bind(const volume::Volume* volume) override {
         m_marchingCubes.release(); // device buffers and a streamed volume's host registration
         m_zbuffer.release();
+        m_shading.release();
+        m_capOnShading = false;
         m_volume = volume;
         m_resident = GpuResidency::Cpu;
         m_floor = GpuResidency::WholeVolume;
@@ -106,6 +112,7 @@ public:
         }
         m_capKept = nullptr;
         m_capKeptOnDevice = false;
+        m_capOnShading = false;
         forgetKeptSlabs(); // the cap on the device is the whole surface's from now on
         m_marchingCubes.setGradientStencil(settings.gradientStencil);
         check(m_marchingCubes.extract(storedIso));
@@ -174,8 +181,8 @@ public:
         // The silhouette and the surface's depth are one pass on the device (visibilityMs 0).
         frame.times.silhouetteMs += m_timing.projectMs + m_timing.drawMs;
         frame.times.drawMs += m_timing.resolveMs;
-        frame.deviceBytes =
-            m_marchingCubes.peakDeviceBytes() + m_zbuffer.deviceBytes() + m_keptSlabs.deviceBytes();
+        frame.deviceBytes = m_marchingCubes.peakDeviceBytes() + m_zbuffer.deviceBytes() +
+                            m_keptSlabs.deviceBytes() + m_shading.deviceBytes();
         // The budget is a limit, not a hint: a frame that held more (the whole volume's overhead
         // is an estimate) counts as out of memory, and the frame goes the next way down.
         if (frame.deviceBytes > m_budget)
@@ -184,12 +191,18 @@ public:
                                     " MiB");
     }
 
+    bool shadesOnDevice() const override { return true; }
+    DeviceShading shadeWhole(const Camera& camera, const SurfaceShading& shading,
+                             core::ImageRgba8& image, std::vector<float>* depth) override;
+
     bool fallBack() override {
         if (m_floor != GpuResidency::WholeVolume)
             return false;
         m_floor = afterOutOfMemory(m_floor);
         m_marchingCubes.release(); // free what the failed attempt holds before slabs allocate
         m_zbuffer.release();
+        m_shading.release();
+        m_capOnShading = false;
         m_capKeptOnDevice = false;
         forgetKeptSlabs();
         m_resident = GpuResidency::Cpu;
@@ -218,6 +231,8 @@ private:
     const volume::Volume* m_volume = nullptr;
     kernels::cuda::MarchingCubesCuda m_marchingCubes;
     kernels::cuda::ZBufferCuda m_zbuffer;
+    kernels::cuda::SurfaceShadingCuda m_shading;      // the iso panel's rasterizer
+    bool m_capOnShading = false;                      // m_shading holds m_capKept's copy
     GpuResidency m_resident = GpuResidency::Cpu;      // where the voxels are now
     GpuResidency m_floor = GpuResidency::WholeVolume; // raised by fallBack until the next volume
     std::size_t m_budget = 0;
@@ -290,6 +305,45 @@ bool CudaZBufferKernels::resolveIntoTarget(const SilhouetteSettings& settings) {
     kLog.warning("method 3 (CUDA): the silhouette cannot be written into the GL texture (" +
                  reason + "); it goes through host memory");
     return false;
+}
+
+ZBufferKernelSet::DeviceShading CudaZBufferKernels::shadeWhole(const Camera& camera,
+                                                               const SurfaceShading& shading,
+                                                               core::ImageRgba8& image,
+                                                               std::vector<float>* depth) {
+    if (m_resident != GpuResidency::WholeVolume)
+        throw core::Error(std::string(kWhere), "no whole surface is kept on the device to shade");
+    const auto colour = [](core::Rgba8 c) { return glm::dvec3(c.r, c.g, c.b); };
+    kernels::cuda::SurfaceLighting lighting;
+    lighting.background = colour(shading.background);
+    lighting.front = colour(shading.surface);
+    lighting.back = colour(shading.backSurface.value_or(shading.surface));
+    lighting.ambient = shading.ambient;
+    lighting.diffuse = shading.diffuse;
+    lighting.specular = shading.specular;
+    lighting.shininess = shading.shininess;
+    lighting.lightDirection = shading.lightDirection;
+
+    const kernels::cuda::DeviceMeshView mesh = m_marchingCubes.mesh();
+    DeviceShading out;
+    check(m_shading.begin(toViewTransform(camera)));
+    check(m_shading.draw(mesh));
+    out.triangles = mesh.triangleCount;
+    if (m_capKept) {
+        if (!m_capOnShading) // once per kept surface, as the silhouette's copy
+            check(m_shading.keepHostMesh(*m_capKept));
+        m_capOnShading = true;
+        check(m_shading.drawKeptHostMesh());
+        out.triangles += m_capKept->triangleCount();
+    }
+    image = core::ImageRgba8(camera.width(), camera.height(), shading.background);
+    if (depth)
+        depth->assign(std::size_t(camera.width()) * std::size_t(camera.height()), 1.0f);
+    kernels::cuda::SurfaceShadingTimes times;
+    check(m_shading.shade(lighting, image.bytes(), depth ? depth->data() : nullptr, times));
+    out.rasterMs = times.rasterMs;
+    out.shadeMs = times.shadeMs;
+    return out;
 }
 
 const std::vector<kernels::CellSlab>&

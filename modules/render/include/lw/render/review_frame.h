@@ -7,10 +7,14 @@
 // cover it.
 //
 // Two paths for the shaded iso panel:
-//   device  the back-end resolves to CUDA and this build has CUDA-GL interop: marching cubes on
-//           the device writes the mesh into GL buffers on the renderer's own headless context,
-//           and that context shades them. The mesh never reaches host memory; the triangle count
-//           is the device's. Method 1's whole-volume frame draws the same buffers.
+//   device  the back-end resolves to CUDA and this build has CUDA-GL interop. Methods 2 and 3:
+//           CUDA's rasterizer shades the surface on the device -- for method 3 (S) the one its
+//           silhouette frame keeps there, so one marching cubes serves both panels; otherwise a
+//           surface of the panel's own -- and only the image and its depth come to the host.
+//           Method 1: marching cubes on the device writes the mesh into GL buffers on the
+//           renderer's own context, which shades them, and its silhouette frame draws the same
+//           buffers. Either way the mesh never reaches host memory and the triangle count is
+//           the device's.
 //   host    anywhere else: the mesh is extracted (or copied from the silhouette renderer that
 //           drew it) on the host and shaded on the CPU or with GL.
 // When the device path cannot start (no EGL device, interop refused) the frame takes the host
@@ -59,6 +63,9 @@ struct ReviewFrameRequest {
     // choice) or with GL -- on the device where it can.
     bool wantIsoImage = false;
     bool isoOnCpu = false;
+    // On the device path, CUDA's rasterizer shades the panel where the silhouette is not method
+    // 1's (which shades with GL from its own buffers); false: GL shades it for every method.
+    bool isoShadedByCuda = true;
     Camera isoCamera;
     SilhouetteGlOptions isoOptions;
 

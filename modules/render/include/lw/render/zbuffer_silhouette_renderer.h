@@ -18,12 +18,17 @@
 // surface's and both buffers keep per-pixel maxima, so the image is identical to S's. L trades
 // time for memory: it re-extracts every frame, mode a included.
 
+#include "lw/core/image.h"
 #include "lw/render/iso_surface.h"
 #include "lw/render/renderer_factory.h"
+#include "lw/render/shaded_surface_cpu.h"
 #include "lw/render/silhouette_renderer.h"
 #include "lw/render/visibility_tolerance.h"
 
+#include <cstddef>
 #include <memory>
+#include <optional>
+#include <vector>
 
 namespace lw::render {
 
@@ -49,6 +54,23 @@ public:
     // that kept none (L) the whole surface is extracted here, on the first call.
     const Mesh& mesh() const;
     const Mesh* surfaceMesh() const override { return &mesh(); }
+
+    // The shaded iso panel on the device (CUDA): the kept whole surface of settings' iso-value
+    // (extracted here when the kept one is of another, or in mode b) rasterized at `camera` and
+    // lit there, as shadeSurfaceCpu would light the host mesh. Only the image and its depth
+    // leave the device; no host mesh is made. nullopt where this renderer cannot: the CPU
+    // back-end, L (brickCells), a volume over the device budget, after a fall back, or out of
+    // device memory (then logged, and the next frame starts afresh).
+    struct DeviceShadedSurface {
+        core::ImageRgba8 image;
+        std::vector<float> depth; // with wantDepth: shadeSurfaceCpu's depth
+        std::size_t triangles = 0;
+        double extractMs = 0.0; // 0 when the kept surface was shaded
+        double shadeMs = 0.0;   // rasterizing, lighting and the copy to the host (CUDA events)
+    };
+    std::optional<DeviceShadedSurface> shadeOnDevice(const Camera& camera,
+                                                     const SilhouetteSettings& settings,
+                                                     const SurfaceShading& shading, bool wantDepth);
 
     // Depth tolerance of the colour pass: lw/render/visibility_tolerance.h (method 1's resolve
     // uses the same), in depth keys for `camera` and the volume's box (the CPU and CUDA
