@@ -127,7 +127,14 @@ ReviewPanel::ReviewPanel(PanelKind kind, CameraController& camera, QWidget* pare
     m_stack->setContentsMargins(0, 0, 0, 0);
     m_imageView = new PanelImageView(*this);
     m_stack->addWidget(m_imageView);
-    connect(&m_camera, &CameraController::changed, this, &ReviewPanel::updateView);
+    // A panel that draws its mesh itself follows the camera at once. One that shows the render
+    // worker's picture is repainted when the picture of the new camera arrives: repainting the
+    // old one first would cost a composition of the window (through the X server) for nothing,
+    // and the overlay would run ahead of the picture under it.
+    connect(&m_camera, &CameraController::changed, this, [this] {
+        if (drawsGl())
+            updateView();
+    });
     setMouseTracking(true);
     m_hoverTimer = new QTimer(this);
     m_hoverTimer->setSingleShot(true);
