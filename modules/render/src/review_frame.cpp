@@ -442,8 +442,10 @@ ReviewFrameRenderer::State::createRenderer(const ReviewFrameRequest& request) {
 bool ReviewFrameRenderer::State::shadeIsoWithCuda(const ReviewFrameRequest& request,
                                                   ReviewFrame& frame) {
     if ((request.method == SilhouetteMethod::GeometryShader && request.wantSilhouette) ||
-        request.isoOptions.linesOnIso || !request.isoShadedByCuda || cudaShadingUnavailable)
+        request.isoOptions.linesOnIso || !request.isoShadedByCuda || cudaShadingUnavailable) {
+        cudaIso.reset(); // its volume and surface on the device are of no use to GL's panel
         return false;
+    }
     SilhouetteSettings settings = request.settings;
     settings.isoReal = request.iso;
     settings.cancel = request.cancel;
