@@ -1,13 +1,27 @@
 #include "review/panel_render_job.h"
 
+#include "lw/core/log.h"
 #include "lw/render/shaded_surface_cpu.h"
 #include "lw/render/silhouette_gl_renderer.h"
 #include "review/qt_image.h"
 #include "review/review_panel.h"
 
 #include <QPainter>
+#include <cstdio>
+#include <string>
 
 namespace lw::gui {
+namespace {
+
+constexpr core::LogCategory kLog("lw.gui");
+
+std::string milliseconds(double ms) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.1f ms", ms);
+    return text;
+}
+
+} // namespace
 
 QImage shadeIsoOnCpu(const render::Mesh* mesh, const render::Camera& camera,
                      const render::SilhouetteGlOptions& options, unsigned threads,
@@ -71,6 +85,12 @@ render::ReviewFrameRequest panelFrameRequest(const PanelRenderJob& job, bool pol
 
 std::pair<QImage, QImage> panelsOfFrame(render::ReviewFrame&& frame, const PanelRenderJob& job,
                                         PanelVectors* vectors) {
+    // Exports are rare and slow enough to say where their time went.
+    kLog.info("export panels at " + std::to_string(job.camera.width()) + " x " +
+              std::to_string(job.camera.height()) + ": silhouette " +
+              milliseconds(frame.silhouette ? frame.silhouette->times.totalMs() : 0.0) +
+              ", polylines " + milliseconds(frame.polylinesMs) + ", iso panel " +
+              milliseconds(frame.isoRenderMs) + (frame.isoOnDevice ? " (device)" : ""));
     if (vectors) {
         vectors->lines = std::move(frame.polylines.visible);
         vectors->hidden = std::move(frame.polylines.hidden);

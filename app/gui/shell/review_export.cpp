@@ -2,6 +2,7 @@
 
 #include "annotate/annotation_document.h"
 #include "lw/core/error.h"
+#include "lw/core/log.h"
 #include "lw/report/encapsulated_pdf.h"
 #include "lw/report/export_files.h"
 #include "lw/report/pdf_report.h"
@@ -10,6 +11,7 @@
 #include "review/review_widget.h"
 #include "shell/slice_export.h"
 
+#include <QElapsedTimer>
 #include <QEventLoop>
 #include <QFileInfo>
 #include <QFutureWatcher>
@@ -24,6 +26,8 @@
 
 namespace lw::gui {
 namespace {
+
+constexpr core::LogCategory kLog("lw.gui");
 
 // What a writer gets: a copy of everything it needs, so it can run on any thread.
 struct ExportContent {
@@ -86,6 +90,27 @@ void writeRendered(ExportContent content, const std::pair<QImage, QImage>& panel
     write(content);
 }
 
+// Where an export's time goes, logged: the panels rendered, then the picture composed, encoded
+// and written.
+class ExportClock {
+public:
+    ExportClock() { m_timer.start(); }
+    void rendered() { m_renderedMs = double(m_timer.nsecsElapsed()) / 1e6; }
+    void written(const QString& target) const {
+        const double totalMs = double(m_timer.nsecsElapsed()) / 1e6;
+        kLog.info(QString("export %1: panels rendered in %2 ms, composed, encoded and written in "
+                          "%3 ms")
+                      .arg(QFileInfo(target).fileName())
+                      .arg(m_renderedMs, 0, 'f', 1)
+                      .arg(totalMs - m_renderedMs, 0, 'f', 1)
+                      .toStdString());
+    }
+
+private:
+    QElapsedTimer m_timer;
+    double m_renderedMs = 0.0;
+};
+
 // Runs `future` to its end with a progress dialog over `parent` (shown after a moment only).
 QString waitWithProgress(QFuture<QString> future, const QString& what, QWidget* parent) {
     QProgressDialog progress(what, QString(), 0, 0, parent);
@@ -118,14 +143,20 @@ QString runExport(ReviewWidget& review, const ExportPicture& picture, const QStr
     if (review.rendersOnUiThread()) // a GPU draws in the panels' contexts: fast, and only here
         return guarded(target, size, [&] {
             PanelVectors vectors;
+            ExportClock clock;
             const std::pair<QImage, QImage> panels = review.renderPanels(size, &vectors);
+            clock.rendered();
             writeRendered(content, panels, std::move(vectors), job, target, write);
+            clock.written(target);
         });
     QFuture<QString> future = QtConcurrent::run([job, content, target, size, write] {
         return guarded(target, size, [&] {
             PanelVectors vectors;
+            ExportClock clock;
             const std::pair<QImage, QImage> panels = renderPanelJob(job, &vectors);
+            clock.rendered();
             writeRendered(content, panels, std::move(vectors), job, target, write);
+            clock.written(target);
         });
     });
     return waitWithProgress(future,

@@ -256,10 +256,13 @@ void ReviewFrameRenderer::State::renderSilhouette(const ReviewFrameRequest& requ
         frame.silhouette = drawing.render(request.camera, settings);
     }
     keepRendererMesh(request, deviceIso, frame);
-    if (request.wantPolylines && !frame.silhouette->drewToTarget)
+    if (request.wantPolylines && !frame.silhouette->drewToTarget) {
+        const auto start = Clock::now();
         frame.polylines = splitPolylines(*hostSurface(request), request.camera,
                                          frame.silhouette->lines, request.polylineOptions,
                                          request.hiddenLines && request.settings.visibility);
+        frame.polylinesMs = msSince(start);
+    }
     if (request.suggestive && !frame.silhouette->drewToTarget)
         addSuggestive(request, frame);
 }

@@ -91,7 +91,8 @@ struct ReviewFrameRequest {
 
 struct ReviewFrame {
     std::optional<SilhouetteFrame> silhouette;
-    PolylineSplit polylines; // with wantPolylines
+    PolylineSplit polylines;  // with wantPolylines
+    double polylinesMs = 0.0; // the host surface they need (made or kept) and the split
     // A host mesh of the request's iso-value when one was asked for (wantMesh) or made for the
     // host path; null on the device path.
     std::shared_ptr<const Mesh> mesh;
