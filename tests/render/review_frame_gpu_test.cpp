@@ -1,7 +1,8 @@
 // The review's frame on the device path (label gpu: CUDA with NVIDIA's OpenGL): the iso panel
 // shaded from the device's mesh equals the host path's picture, and no host mesh is made.
-// Method 1 shades with GL from its own buffers, compared with GL on the host path; methods 2
-// and 3 shade with CUDA's rasterizer, compared with the CPU's shading, which it repeats.
+// Every method's panel is lit by CUDA's rasterizer from the surface on the device, compared with
+// the CPU's shading, which it repeats; with that switched off, method 1's GL draws it, compared
+// with GL on the host path.
 
 #include "lw/core/error.h"
 #include "review_frame_test_support.h"
@@ -39,7 +40,7 @@ protected:
     }
 };
 
-class Method3OnDevice : public testing::Test {
+class DeviceFrame : public testing::Test {
 protected:
     void SetUp() override {
         if (const std::string missing = deviceMissing(); !missing.empty())
@@ -60,7 +61,7 @@ TEST_P(ReviewFrameOnDevice, DrawsTheHostPathsPictureWithNoHostMesh) {
         ReviewFrameRenderer host(volume);
         ReviewFrameRequest onHostRequest = request;
         onHostRequest.backend = Backend::Cpu;
-        onHostRequest.isoOnCpu = GetParam() != SilhouetteMethod::GeometryShader;
+        onHostRequest.isoOnCpu = true;
         const ReviewFrame onHost = host.render(onHostRequest);
         ASSERT_FALSE(onHost.isoOnDevice);
         EXPECT_GE(host.hostMeshesMade(), 1u);
@@ -88,9 +89,32 @@ TEST_P(ReviewFrameOnDevice, DrawsTheHostPathsPictureWithNoHostMesh) {
     }
 }
 
+// With CUDA's shading switched off the device path shades with GL (method 1's buffers), as GL
+// shades the host's mesh.
+TEST_F(DeviceFrame, GlShadesThePanelWhenCudaShadingIsOff) {
+    const auto volume = phantom();
+    for (const SilhouetteMethod method :
+         {SilhouetteMethod::GeometryShader, SilhouetteMethod::ZBuffer}) {
+        ReviewFrameRenderer device(volume);
+        ReviewFrameRequest request = requestFor(*volume, method, Backend::Cuda, 30.0);
+        request.isoShadedByCuda = false;
+        const ReviewFrame onDevice = device.render(request);
+        ASSERT_TRUE(onDevice.isoOnDevice) << onDevice.backendNote;
+        EXPECT_EQ(device.hostMeshesMade(), 0u);
+        ReviewFrameRenderer host(volume);
+        ReviewFrameRequest onHostRequest = request;
+        onHostRequest.backend = Backend::Cpu;
+        const ReviewFrame onHost = host.render(onHostRequest);
+        ASSERT_TRUE(onDevice.isoImage && onHost.isoImage);
+        EXPECT_GT(drawnPixels(*onDevice.isoImage), 800u);
+        EXPECT_GE(agreement(*onDevice.isoImage, *onHost.isoImage, 2), 0.999)
+            << "method " << int(method);
+    }
+}
+
 // Where the silhouette keeps no whole surface on the device (method 3 chunked, mode b
 // extracting every frame), CUDA still shades the panel, from a surface of its own.
-TEST_F(Method3OnDevice, ShadesWithCudaWhateverTheSilhouettesSchedule) {
+TEST_F(DeviceFrame, ShadesWithCudaWhateverTheSilhouettesSchedule) {
     const auto volume = phantom();
     for (const bool chunked : {true, false}) {
         ReviewFrameRenderer device(volume);

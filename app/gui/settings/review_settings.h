@@ -66,8 +66,8 @@ struct ReviewSettings {
     render::Projection projection = render::Projection::Perspective;
     render::Backend backend = render::Backend::Auto;
     PanelGl panelGl = PanelGl::Auto;
-    // Where the silhouette runs on CUDA, CUDA's rasterizer shades the iso panel from the surface
-    // already on the device (render/review_frame.h); off: OpenGL shades it, as method 1 does.
+    // Where the surface is on the CUDA device, CUDA's rasterizer shades the iso panel from it
+    // (render/review_frame.h); off: OpenGL draws it from the GL buffers CUDA wrote.
     // No page control: a switch for comparing the two and for a driver where one misbehaves.
     bool cudaShadesIsoPanel = true;
     QList<IsoPreset> presets = defaultPresets();

@@ -440,8 +440,9 @@ ReviewFrameRenderer::State::createRenderer(const ReviewFrameRequest& request) {
 
 // The iso panel shaded by CUDA where the surface is on the device already or can be: method 3's
 // whole-volume renderer on CUDA shades the surface its silhouette frame kept (one extraction for
-// both panels); method 2 and method 3's L get such a renderer for the panel alone. Method 1 draws
-// the panel with GL from its own buffers (renderIsoOnDevice). False where CUDA cannot shade it.
+// both panels); method 2 and method 3's L get such a renderer for the panel alone. Method 1's
+// panel comes from its own renderer (renderIsoOnDevice), which shades its CUDA extraction the
+// same way. False where CUDA cannot shade it here.
 bool ReviewFrameRenderer::State::shadeIsoWithCuda(const ReviewFrameRequest& request,
                                                   ReviewFrame& frame) {
     if ((request.method == SilhouetteMethod::GeometryShader && request.wantSilhouette) ||
@@ -503,8 +504,9 @@ bool ReviewFrameRenderer::State::renderIsoOnDevice(const ReviewFrameRequest& req
     const auto start = Clock::now();
     GeometryShaderSilhouetteRenderer::IsoPanelFrame iso;
     try {
-        iso = device->renderIsoPanel(request.isoCamera, settings, request.isoOptions,
-                                     request.forceExtract, &frame.isoDepth);
+        iso =
+            device->renderIsoPanel(request.isoCamera, settings, request.isoOptions,
+                                   request.forceExtract, &frame.isoDepth, request.isoShadedByCuda);
     } catch (const core::Error& error) {
         // The context or the interop failed at draw time: the host path from now on (until the
         // volume changes), said once.

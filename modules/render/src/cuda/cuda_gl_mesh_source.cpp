@@ -2,6 +2,7 @@
 
 #if LINEWORK_CUDA_GL_INTEROP
 #include "cuda_support.h"
+#include "device_surface_shader.h"
 #include "lw/core/error.h"
 #include "lw/core/log.h"
 #include "lw/kernels/cpu/border_cap_cpu.h"
@@ -27,6 +28,7 @@ public:
     std::string_view backendName() const override { return "cuda+gl"; }
 
     void setVolume(const volume::Volume& volume) override {
+        m_wholeCurrent = false;
         m_volume = &volume;
         m_uploaded = false;
         m_streamed = false;
@@ -36,6 +38,8 @@ public:
     }
 
     void releaseVolume() override {
+        m_wholeCurrent = false;
+        m_shading.release();
         m_marchingCubes.release(); // the device copy and a streamed volume's host registration
         m_volume = nullptr;
         m_uploaded = false;
@@ -49,6 +53,7 @@ public:
                            const PieceDrawer& drawPiece) override {
         if (!m_volume)
             throw core::Error("method 1 (CUDA)", "no volume bound");
+        m_wholeCurrent = false; // the device's buffers hold one slab after another from here
         if (!m_streamed) {
             m_uploaded = false; // the streamed state replaces a resident volume
             throwIfCudaFailed(
@@ -90,6 +95,8 @@ public:
         }
         const double storedIso = storedIsoValue(*m_volume, settings.isoReal);
         m_capInMesh = nullptr; // until the new mesh is written
+        m_wholeCurrent = false;
+        m_shading.forgetCap(); // the cache may hold the new cap where the old one was
         m_marchingCubes.setGradientStencil(settings.gradientStencil);
         throwIfCudaFailed(kWhere, m_marchingCubes.extract(storedIso));
         const Mesh* cap = settings.closeAtBorder
@@ -97,6 +104,25 @@ public:
                               : nullptr;
         writeIntoGl(gl, m_marchingCubes.mesh(), cap);
         m_capInMesh = cap;
+        m_wholeCurrent = true;
+    }
+
+    bool shadeWhole(const Camera& camera, const SurfaceShading& shading, core::ImageRgba8& image,
+                    std::vector<float>* depth, std::size_t& triangles) override {
+        if (!m_wholeCurrent || !m_shadingWorks)
+            return false;
+        DeviceSurfaceShader::Shaded shaded;
+        const kernels::cuda::CudaStatus status = m_shading.shade(
+            camera, shading, m_marchingCubes.mesh(), m_capInMesh, image, depth, shaded);
+        if (!status.ok()) {
+            kLog.warning("method 1: the iso panel cannot be shaded on the device (" +
+                         status.describe() + "); GL shades it");
+            m_shading.release();
+            m_shadingWorks = false;
+            return false;
+        }
+        triangles = shaded.triangles;
+        return true;
     }
 
     // The device mesh (and the border cap after it, from the host: it is small) into gl's
@@ -161,6 +187,10 @@ private:
     bool m_pruneWorks = true;
     BorderCapCache m_cap;
     const Mesh* m_capInMesh = nullptr; // the cap written after the last whole mesh, if any
+    // m_marchingCubes holds the whole surface of the last extractInto (not a slab's).
+    bool m_wholeCurrent = false;
+    DeviceSurfaceShader m_shading; // the iso panel from that surface
+    bool m_shadingWorks = true;
 };
 
 } // namespace

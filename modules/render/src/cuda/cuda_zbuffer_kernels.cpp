@@ -25,13 +25,13 @@
 #include "../view_transform.h"
 #include "../zbuffer_kernel_set.h"
 #include "cuda_support.h"
+#include "device_surface_shader.h"
 #include "lw/core/log.h"
 #include "lw/kernels/cpu/border_cap_cpu.h"
 #include "lw/kernels/cpu/marching_cubes_cpu.h"
 #include "lw/kernels/cuda/cuda_device.h"
 #include "lw/kernels/cuda/device_mesh_store.h"
 #include "lw/kernels/cuda/marching_cubes_cuda.h"
-#include "lw/kernels/cuda/surface_shading_cuda.h"
 #include "lw/kernels/cuda/zbuffer_cuda.h"
 #include "lw/render/gl_frame_target.h"
 #include "lw/render/gpu_memory_plan.h"
@@ -81,7 +81,6 @@ public:
         m_marchingCubes.release(); // device buffers and a streamed volume's host registration
         m_zbuffer.release();
         m_shading.release();
-        m_capOnShading = false;
         m_volume = volume;
         m_resident = GpuResidency::Cpu;
         m_floor = GpuResidency::WholeVolume;
@@ -112,7 +111,7 @@ public:
         }
         m_capKept = nullptr;
         m_capKeptOnDevice = false;
-        m_capOnShading = false;
+        m_shading.forgetCap();
         forgetKeptSlabs(); // the cap on the device is the whole surface's from now on
         m_marchingCubes.setGradientStencil(settings.gradientStencil);
         check(m_marchingCubes.extract(storedIso));
@@ -202,7 +201,6 @@ public:
         m_marchingCubes.release(); // free what the failed attempt holds before slabs allocate
         m_zbuffer.release();
         m_shading.release();
-        m_capOnShading = false;
         m_capKeptOnDevice = false;
         forgetKeptSlabs();
         m_resident = GpuResidency::Cpu;
@@ -231,8 +229,7 @@ private:
     const volume::Volume* m_volume = nullptr;
     kernels::cuda::MarchingCubesCuda m_marchingCubes;
     kernels::cuda::ZBufferCuda m_zbuffer;
-    kernels::cuda::SurfaceShadingCuda m_shading;      // the iso panel's rasterizer
-    bool m_capOnShading = false;                      // m_shading holds m_capKept's copy
+    DeviceSurfaceShader m_shading;                    // the iso panel's rasterizer
     GpuResidency m_resident = GpuResidency::Cpu;      // where the voxels are now
     GpuResidency m_floor = GpuResidency::WholeVolume; // raised by fallBack until the next volume
     std::size_t m_budget = 0;
@@ -313,37 +310,10 @@ ZBufferKernelSet::DeviceShading CudaZBufferKernels::shadeWhole(const Camera& cam
                                                                std::vector<float>* depth) {
     if (m_resident != GpuResidency::WholeVolume)
         throw core::Error(std::string(kWhere), "no whole surface is kept on the device to shade");
-    const auto colour = [](core::Rgba8 c) { return glm::dvec3(c.r, c.g, c.b); };
-    kernels::cuda::SurfaceLighting lighting;
-    lighting.background = colour(shading.background);
-    lighting.front = colour(shading.surface);
-    lighting.back = colour(shading.backSurface.value_or(shading.surface));
-    lighting.ambient = shading.ambient;
-    lighting.diffuse = shading.diffuse;
-    lighting.specular = shading.specular;
-    lighting.shininess = shading.shininess;
-    lighting.lightDirection = shading.lightDirection;
-
-    const kernels::cuda::DeviceMeshView mesh = m_marchingCubes.mesh();
-    DeviceShading out;
-    check(m_shading.begin(toViewTransform(camera)));
-    check(m_shading.draw(mesh));
-    out.triangles = mesh.triangleCount;
-    if (m_capKept) {
-        if (!m_capOnShading) // once per kept surface, as the silhouette's copy
-            check(m_shading.keepHostMesh(*m_capKept));
-        m_capOnShading = true;
-        check(m_shading.drawKeptHostMesh());
-        out.triangles += m_capKept->triangleCount();
-    }
-    image = core::ImageRgba8(camera.width(), camera.height(), shading.background);
-    if (depth)
-        depth->assign(std::size_t(camera.width()) * std::size_t(camera.height()), 1.0f);
-    kernels::cuda::SurfaceShadingTimes times;
-    check(m_shading.shade(lighting, image.bytes(), depth ? depth->data() : nullptr, times));
-    out.rasterMs = times.rasterMs;
-    out.shadeMs = times.shadeMs;
-    return out;
+    DeviceSurfaceShader::Shaded shaded;
+    check(
+        m_shading.shade(camera, shading, m_marchingCubes.mesh(), m_capKept, image, depth, shaded));
+    return {shaded.triangles, shaded.rasterMs, shaded.shadeMs};
 }
 
 const std::vector<kernels::CellSlab>&

@@ -9,6 +9,7 @@
 #include "lw/kernels/cpu/marching_cubes_cpu.h"
 #include "lw/kernels/silhouette_segment.h"
 #include "lw/render/gl_context.h"
+#include "lw/render/shaded_surface_cpu.h"
 #include "lw/render/silhouette_gl_renderer.h"
 #include "lw/render/visibility_tolerance.h"
 #include "lw/volume/bricks.h"
@@ -442,7 +443,7 @@ GeometryShaderSilhouetteRenderer::renderIsoPanel(const Camera& camera,
 
 GeometryShaderSilhouetteRenderer::IsoPanelFrame GeometryShaderSilhouetteRenderer::renderIsoPanel(
     const Camera& camera, const SilhouetteSettings& settings, const SilhouetteGlOptions& options,
-    bool forceExtract, std::vector<float>* depth) {
+    bool forceExtract, std::vector<float>* depth, bool cudaShading) {
     State& s = *m_state;
     s.context->makeCurrent();
     SilhouetteSettings whole = settings;
@@ -450,6 +451,12 @@ GeometryShaderSilhouetteRenderer::IsoPanelFrame GeometryShaderSilhouetteRenderer
     IsoPanelFrame frame;
     frame.extractMs = s.ensureMesh(whole, forceExtract);
     const auto start = Clock::now();
+    if (cudaShading && s.source && !options.linesOnIso &&
+        s.source->shadeWhole(camera, glPanelShading(camera, options), frame.image, depth,
+                             frame.triangles)) {
+        frame.drawMs = msSince(start);
+        return frame;
+    }
     SilhouetteGlOptions iso = options;
     iso.panel = GlPanel::Iso;
     iso.useLineCandidates = false;

@@ -4,8 +4,11 @@
 // it through host memory; with the CUDA back-end (cuda/cuda_gl_mesh_source.cpp) marching cubes
 // runs on the GPU and writes the GL buffers directly through CUDA-GL interop, no host round trip.
 
+#include "lw/core/image.h"
+#include "lw/render/camera.h"
 #include "lw/render/iso_surface.h"
 #include "lw/render/pixel_mask.h"
+#include "lw/render/shaded_surface_cpu.h"
 #include "lw/render/silhouette_gl_renderer.h"
 #include "lw/render/silhouette_renderer.h"
 #include "lw/volume/volume.h"
@@ -15,6 +18,7 @@
 #include <functional>
 #include <memory>
 #include <string_view>
+#include <vector>
 
 namespace lw::render {
 
@@ -32,6 +36,15 @@ public:
     // as PixelMask::pruneStrokes(minPixels, gapPixels) would; false when the
     // source has no device or it failed (the host prunes then).
     virtual bool pruneStrokes(PixelMask& /*lines*/, int /*minPixels*/, int /*gapPixels*/) {
+        return false;
+    }
+    // The iso panel of the last whole extraction (and its cap) lit on the source's device as
+    // shadeSurfaceCpu lights the host mesh: `image` sized to the camera, `depth` (optional) as
+    // there, `triangles` the surface's. False where the source has no device, its last
+    // extraction was in pieces, or the device failed (said once; GL shades the panel then).
+    virtual bool shadeWhole(const Camera& /*camera*/, const SurfaceShading& /*shading*/,
+                            core::ImageRgba8& /*image*/, std::vector<float>* /*depth*/,
+                            std::size_t& /*triangles*/) {
         return false;
     }
     // GL objects the source registered: released while the context is still current.

@@ -91,9 +91,12 @@ public:
         double extractMs = 0.0;    // 0 when the cached mesh was drawn
         double drawMs = 0.0;       // draw and read-back
     };
+    // With `cudaShading` and the CUDA extraction, the panel is lit on the device from CUDA's own
+    // copy of the surface (as shadeSurfaceCpu would light it) instead of drawn by GL, unless
+    // options.linesOnIso asks GL's lines over it.
     IsoPanelFrame renderIsoPanel(const Camera& camera, const SilhouetteSettings& settings,
                                  const SilhouetteGlOptions& options, bool forceExtract,
-                                 std::vector<float>* depth);
+                                 std::vector<float>* depth, bool cudaShading = false);
     // Whether whole meshes are extracted on the CUDA device (useCudaExtraction).
     bool extractsOnDevice() const;
 

@@ -3,10 +3,9 @@
 #include "lw/kernels/pixel_camera.h"
 #include "lw/render/pixel_mask.h"
 
-#include <glm/glm.hpp>
-
 #include <algorithm>
 #include <cmath>
+#include <glm/glm.hpp>
 
 namespace lw::render {
 

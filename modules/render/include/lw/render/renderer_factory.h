@@ -31,10 +31,10 @@ struct CudaAvailability {
 CudaAvailability cudaAvailability();
 
 // The back-end a request for `method` runs on. Cpu stays Cpu. Auto is CUDA when the build has it,
-// a device is present and the method has CUDA kernels (methods 2 and 3 today), else CPU; the note says
-// which and why ("auto: CUDA on NVIDIA H100 80GB HBM3", "auto: no CUDA device ..., using CPU").
-// Cuda throws core::Error("--backend cuda", reason) when it cannot be honoured. Commands call it
-// up front to fail before any work. Without a method: as for method 3.
+// a device is present and the method has CUDA kernels (methods 2 and 3 today), else CPU; the note
+// says which and why ("auto: CUDA on NVIDIA H100 80GB HBM3", "auto: no CUDA device ..., using
+// CPU"). Cuda throws core::Error("--backend cuda", reason) when it cannot be honoured. Commands
+// call it up front to fail before any work. Without a method: as for method 3.
 Backend resolveBackend(Backend requested, SilhouetteMethod method,
                        std::string* backendNote = nullptr);
 Backend resolveBackend(Backend requested, std::string* backendNote = nullptr);

@@ -7,14 +7,13 @@
 // cover it.
 //
 // Two paths for the shaded iso panel:
-//   device  the back-end resolves to CUDA and this build has CUDA-GL interop. Methods 2 and 3:
-//           CUDA's rasterizer shades the surface on the device -- for method 3 (S) the one its
-//           silhouette frame keeps there, so one marching cubes serves both panels; otherwise a
-//           surface of the panel's own -- and only the image and its depth come to the host.
-//           Method 1: marching cubes on the device writes the mesh into GL buffers on the
-//           renderer's own context, which shades them, and its silhouette frame draws the same
-//           buffers. Either way the mesh never reaches host memory and the triangle count is
-//           the device's.
+//   device  the back-end resolves to CUDA and this build has CUDA-GL interop. CUDA's rasterizer
+//           lights the surface on the device and only the image and its depth come to the host:
+//           for method 3 (S) the surface its silhouette frame keeps there, for method 1 the one
+//           its CUDA extraction wrote into its GL buffers (one marching cubes serves both
+//           panels); for method 2 and method 3's L a surface of the panel's own. With
+//           isoShadedByCuda off, GL draws the panel from method 1's buffers instead. Either way
+//           the mesh never reaches host memory and the triangle count is the device's.
 //   host    anywhere else: the mesh is extracted (or copied from the silhouette renderer that
 //           drew it) on the host and shaded on the CPU or with GL.
 // When the device path cannot start (no EGL device, interop refused) the frame takes the host
@@ -63,8 +62,8 @@ struct ReviewFrameRequest {
     // choice) or with GL -- on the device where it can.
     bool wantIsoImage = false;
     bool isoOnCpu = false;
-    // On the device path, CUDA's rasterizer shades the panel where the silhouette is not method
-    // 1's (which shades with GL from its own buffers); false: GL shades it for every method.
+    // On the device path CUDA's rasterizer shades the panel; false: GL draws it from the buffers
+    // of method 1's CUDA extraction (the way before CUDA shaded it).
     bool isoShadedByCuda = true;
     Camera isoCamera;
     SilhouetteGlOptions isoOptions;
