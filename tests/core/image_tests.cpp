@@ -124,6 +124,35 @@ TEST(PngIo, RoundTripRgbDropsAlpha) {
         }
 }
 
+// The exports' fast path: B, G, R, X rows with padding between them (a QImage's RGB32 rows)
+// come back as the RGB they hold.
+TEST(PngIo, FastBgrxRowsRoundTripAsRgb) {
+    for (auto [w, h] : {std::pair{1, 1}, std::pair{13, 5}, std::pair{64, 33}}) {
+        const ImageRgba8 image = testImage(w, h, unsigned(w + 7 * h));
+        const std::size_t bytesPerLine = std::size_t(w) * 4 + 12;
+        std::vector<std::uint8_t> rows(bytesPerLine * std::size_t(h), 0xee);
+        for (int y = 0; y < h; ++y)
+            for (int x = 0; x < w; ++x) {
+                std::uint8_t* p = rows.data() + std::size_t(y) * bytesPerLine + 4 * std::size_t(x);
+                const Rgba8 c = image.at(x, y);
+                p[0] = c.b, p[1] = c.g, p[2] = c.r, p[3] = 0x5a; // the X byte is ignored
+            }
+        const auto bytes = encodePngFastFromBgrx(rows.data(), w, h, bytesPerLine);
+        PngFormat stored = PngFormat::Rgba;
+        const ImageRgba8 back = decodePng(bytes.data(), bytes.size(), "memory", &stored);
+        EXPECT_EQ(stored, PngFormat::Rgb);
+        ASSERT_EQ(back.width(), w);
+        ASSERT_EQ(back.height(), h);
+        for (int y = 0; y < h; ++y)
+            for (int x = 0; x < w; ++x) {
+                Rgba8 expected = image.at(x, y);
+                expected.a = 255;
+                ASSERT_EQ(back.at(x, y), expected) << w << "x" << h << " at " << x << "," << y;
+            }
+    }
+    EXPECT_THROW(encodePngFastFromBgrx(nullptr, 4, 4, 16), Error);
+}
+
 TEST(PngIo, RoundTripGray) {
     const ImageRgba8 image = testImage(23, 11, 9, /*grey=*/true);
     const auto bytes = encodePng(image, PngFormat::Gray);

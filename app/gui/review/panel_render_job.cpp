@@ -91,11 +91,18 @@ std::pair<QImage, QImage> panelsOfFrame(render::ReviewFrame&& frame, const Panel
               milliseconds(frame.silhouette ? frame.silhouette->times.totalMs() : 0.0) +
               ", polylines " + milliseconds(frame.polylinesMs) + ", iso panel " +
               milliseconds(frame.isoRenderMs) + (frame.isoOnDevice ? " (device)" : ""));
+    QImage iso = frame.isoImage ? toQImage(*frame.isoImage) : QImage();
     if (vectors) {
         vectors->lines = std::move(frame.polylines.visible);
         vectors->hidden = std::move(frame.polylines.hidden);
+        if (!vectors->lines.empty()) {
+            // The picture strokes them over a blank panel (report::panelsOf): no raster to draw.
+            QImage blank(job.camera.width(), job.camera.height(), QImage::Format_RGB32);
+            blank.fill(job.appearance.background);
+            return {std::move(iso), std::move(blank)};
+        }
     }
-    return {frame.isoImage ? toQImage(*frame.isoImage) : QImage(),
+    return {std::move(iso),
             linesToImage(frame.silhouette->lines, job.appearance, false, job.appearance.lineWidth)};
 }
 

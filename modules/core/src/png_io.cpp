@@ -74,11 +74,21 @@ void appendBytes(png_structp png, png_bytep data, std::size_t size) {
 
 void flushNothing(png_structp) {}
 
-// libpng's classic writer, for the one setting its simplified API lacks: zlib's default strategy
-// (libpng's own, Z_FILTERED, makes our line drawings 10-15% larger). No object with a destructor
-// lives in this frame after setjmp. Returns false with state.message set on failure.
+// How writeRows compresses and what its rows hold.
+struct RowEncoding {
+    int colourType = PNG_COLOR_TYPE_RGBA;
+    int filters = PNG_ALL_FILTERS;
+    int level = 6;
+    int strategy = Z_DEFAULT_STRATEGY;
+    bool bgrx = false; // rows of 4-byte B, G, R, X pixels written as RGB
+};
+
+// libpng's classic writer, for the settings its simplified API lacks: zlib's strategy (libpng's
+// own, Z_FILTERED, makes our line drawings 10-15% larger), the filters and the level. No object
+// with a destructor lives in this frame after setjmp. Returns false with state.message set on
+// failure.
 bool writeRows(WriteState& state, png_bytep* rows, png_uint_32 width, png_uint_32 height,
-               int colourType) {
+               const RowEncoding& encoding) {
     png_structp png =
         png_create_write_struct(PNG_LIBPNG_VER_STRING, &state, onWriteError, onWriteWarning);
     png_infop info = png ? png_create_info_struct(png) : nullptr;
@@ -87,12 +97,16 @@ bool writeRows(WriteState& state, png_bytep* rows, png_uint_32 width, png_uint_3
         return false;
     }
     png_set_write_fn(png, &state, appendBytes, flushNothing);
-    png_set_IHDR(png, info, width, height, 8, colourType, PNG_INTERLACE_NONE,
+    png_set_IHDR(png, info, width, height, 8, encoding.colourType, PNG_INTERLACE_NONE,
                  PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
-    png_set_filter(png, PNG_FILTER_TYPE_BASE, PNG_ALL_FILTERS);
-    png_set_compression_level(png, 6);
-    png_set_compression_strategy(png, Z_DEFAULT_STRATEGY);
+    png_set_filter(png, PNG_FILTER_TYPE_BASE, encoding.filters);
+    png_set_compression_level(png, encoding.level);
+    png_set_compression_strategy(png, encoding.strategy);
     png_write_info(png, info);
+    if (encoding.bgrx) { // after the header: transforms apply to the rows
+        png_set_bgr(png);
+        png_set_filler(png, 0, PNG_FILLER_AFTER);
+    }
     png_write_image(png, rows);
     png_write_end(png, nullptr);
     png_destroy_write_struct(&png, &info);
@@ -126,8 +140,30 @@ std::vector<std::byte> encodePng(const ImageRgba8& image, PngFormat format) {
         rows[y] = samples + y * rowBytes;
     std::vector<std::byte> out;
     WriteState state{&out};
+    RowEncoding encoding;
+    encoding.colourType = colourTypeOf(format);
     if (!writeRows(state, rows.data(), png_uint_32(image.width()), png_uint_32(image.height()),
-                   colourTypeOf(format)))
+                   encoding))
+        throw Error("PNG encoder", state.message[0] ? state.message : "libpng failed");
+    return out;
+}
+
+std::vector<std::byte> encodePngFastFromBgrx(const std::uint8_t* pixels, int width, int height,
+                                             std::size_t bytesPerLine) {
+    if (!pixels || width <= 0 || height <= 0)
+        throw Error("PNG encoder", "cannot encode an empty image");
+    std::vector<png_bytep> rows(static_cast<std::size_t>(height));
+    for (std::size_t y = 0; y < rows.size(); ++y)
+        rows[y] = const_cast<png_bytep>(pixels + y * bytesPerLine); // libpng only reads them
+    RowEncoding encoding;
+    encoding.colourType = PNG_COLOR_TYPE_RGB;
+    encoding.filters = PNG_FILTER_UP;
+    encoding.level = 1;
+    encoding.strategy = Z_RLE;
+    encoding.bgrx = true;
+    std::vector<std::byte> out;
+    WriteState state{&out};
+    if (!writeRows(state, rows.data(), png_uint_32(width), png_uint_32(height), encoding))
         throw Error("PNG encoder", state.message[0] ? state.message : "libpng failed");
     return out;
 }

@@ -1,8 +1,10 @@
 #include "lw/report/export_files.h"
 
 #include "lw/core/error.h"
+#include "lw/core/png_io.h"
 
-#include <QBuffer>
+#include <string>
+#include <vector>
 
 namespace lw::report {
 
@@ -13,14 +15,22 @@ void writeExportFile(const std::filesystem::path& path, const QByteArray& bytes,
 }
 
 QByteArray encodePngBytes(const QImage& image, const std::filesystem::path& path) {
-    QByteArray bytes;
-    QBuffer buffer(&bytes);
-    buffer.open(QIODevice::WriteOnly);
-    // Qt maps quality 80 to zlib level 1: a 4096-pixel-wide export deflates several times faster
-    // than at the default level, the file only slightly larger (flat panels compress well).
-    if (image.isNull() || !image.save(&buffer, "PNG", 80))
-        throw core::Error(path.string(), "the image could not be encoded as PNG");
-    return bytes;
+    if (image.isNull())
+        throw core::Error(path.string(), "the image could not be encoded as PNG: it is empty");
+    // An export is opaque: RGB32 rows go to libpng as they are, with the fast settings (one
+    // filter, zlib level 1, run-length matching; core/png_io.h). Qt's own writer tries every
+    // filter on every row and took 2.3 times as long on a 4096 x 2048 review export.
+    const QImage rgb = image.format() == QImage::Format_RGB32
+                           ? image
+                           : image.convertToFormat(QImage::Format_RGB32);
+    try {
+        const std::vector<std::byte> png = core::encodePngFastFromBgrx(
+            rgb.constBits(), rgb.width(), rgb.height(), std::size_t(rgb.bytesPerLine()));
+        return QByteArray(reinterpret_cast<const char*>(png.data()), qsizetype(png.size()));
+    } catch (const core::Error& error) {
+        throw core::Error(path.string(),
+                          std::string("the image could not be encoded as PNG: ") + error.what());
+    }
 }
 
 } // namespace lw::report
