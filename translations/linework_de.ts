@@ -1431,8 +1431,8 @@
         <translation>Oberfläche:</translation>
     </message>
     <message>
-        <source>Hidden lines in exports, thin, dashed and grey</source>
-        <translation>Verdeckte Linien in Exporten, dünn, gestrichelt und grau</translation>
+        <source>Hidden lines, thin, dashed and grey</source>
+        <translation>Verdeckte Linien, dünn, gestrichelt und grau</translation>
     </message>
     <message>
         <source>The technical-illustration convention: the parts of the silhouette behind the surface, under the visible lines</source>

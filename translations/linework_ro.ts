@@ -1431,8 +1431,8 @@
         <translation>Suprafață:</translation>
     </message>
     <message>
-        <source>Hidden lines in exports, thin, dashed and grey</source>
-        <translation>Linii ascunse în exporturi, subțiri, întrerupte și gri</translation>
+        <source>Hidden lines, thin, dashed and grey</source>
+        <translation>Linii ascunse, subțiri, întrerupte și gri</translation>
     </message>
     <message>
         <source>The technical-illustration convention: the parts of the silhouette behind the surface, under the visible lines</source>

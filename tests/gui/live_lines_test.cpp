@@ -4,6 +4,7 @@
 // of each side's line pixels have one of the other's within 1 px). The panel draws its mask as
 // antialiased strokes of the line width (render::PixelMask::strokeCoverage), the export strokes
 // the visible polylines: for every method, thin and wide lines, and with suggestive contours.
+// With hidden lines both draw the hidden polylines the same way (thin, dashed, grey) under them.
 #include "gui_test_support.h"
 #include "lw/core/png_io.h"
 #include "lw/evaluation/contour_score.h"
@@ -50,16 +51,20 @@ void LiveLinesTest::panelAgreesWithTheExport_data() {
     QTest::addColumn<double>("lineWidth");
     QTest::addColumn<bool>("suggestive");
     QTest::addColumn<PanelGl>("panelGl");
+    QTest::addColumn<bool>("hidden");
     const PanelGl worker = PanelGl::OnWorker, panels = PanelGl::InPanels;
-    QTest::newRow("method 3, 2 px") << 3 << 2.0 << false << worker;
-    QTest::newRow("method 3, 1 px") << 3 << 1.0 << false << worker;
-    QTest::newRow("method 3, 3 px") << 3 << 3.0 << false << worker;
-    QTest::newRow("method 2, 2 px") << 2 << 2.0 << false << worker;
-    QTest::newRow("method 1, 2 px") << 1 << 2.0 << false << worker;
-    QTest::newRow("method 3, 2 px, suggestive") << 3 << 2.0 << true << worker;
+    QTest::newRow("method 3, 2 px") << 3 << 2.0 << false << worker << false;
+    QTest::newRow("method 3, 1 px") << 3 << 1.0 << false << worker << false;
+    QTest::newRow("method 3, 3 px") << 3 << 3.0 << false << worker << false;
+    QTest::newRow("method 2, 2 px") << 2 << 2.0 << false << worker << false;
+    QTest::newRow("method 1, 2 px") << 1 << 2.0 << false << worker << false;
+    QTest::newRow("method 3, 2 px, suggestive") << 3 << 2.0 << true << worker << false;
+    QTest::newRow("method 3, 2 px, hidden lines") << 3 << 2.0 << false << worker << true;
+    QTest::newRow("method 2, 1 px, hidden lines") << 2 << 1.0 << false << worker << true;
+    QTest::newRow("method 1, 3 px, hidden lines") << 1 << 3.0 << false << worker << true;
     // Method 1 drawn by the panel's own GL (a GPU without CUDA): its resolve pass strokes.
-    QTest::newRow("method 1 in the panel GL, 2 px") << 1 << 2.0 << false << panels;
-    QTest::newRow("method 1 in the panel GL, 3 px") << 1 << 3.0 << false << panels;
+    QTest::newRow("method 1 in the panel GL, 2 px") << 1 << 2.0 << false << panels << false;
+    QTest::newRow("method 1 in the panel GL, 3 px") << 1 << 3.0 << false << panels << false;
 }
 
 void LiveLinesTest::panelAgreesWithTheExport() {
@@ -67,9 +72,11 @@ void LiveLinesTest::panelAgreesWithTheExport() {
     QFETCH(double, lineWidth);
     QFETCH(bool, suggestive);
     QFETCH(PanelGl, panelGl);
+    QFETCH(bool, hidden);
     ReviewSettings settings = settingsFor(method, Chunking::Off, panelGl);
     settings.lineWidth = lineWidth;
     settings.suggestiveContours = suggestive;
+    settings.hiddenLines = hidden;
     ReviewWidget review(phantomSource("phantom:64", 300.5), settings);
     review.resize(900, 560);
     review.show();
@@ -88,6 +95,8 @@ void LiveLinesTest::panelAgreesWithTheExport() {
                                                               : renderPanelJob(job, &vectors);
     lw::report::RenderedPanels panels{iso, silhouette, job.camera};
     panels.silhouetteLines = std::move(vectors.lines);
+    panels.hiddenLines = std::move(vectors.hidden);
+    QVERIFY2(panels.hiddenLines.empty() != hidden, "hidden lines exactly where switched on");
     panels.silhouetteLineWidth = job.appearance.lineWidth;
     panels.silhouetteLineColour = job.appearance.lineColour;
     QVERIFY2(!panels.silhouetteLines.empty(), "the export strokes polylines");

@@ -291,7 +291,7 @@ void MainWindowTest::exportIntoAMissingFolderSaysWhy() {
     QVERIFY(!QFileInfo::exists(path));
 }
 
-// Settings -> "Hidden lines in exports": the exported silhouette gains the phantom's hidden
+// Settings -> "Hidden lines": the exported silhouette gains the phantom's hidden
 // contours as grey dashes (mid-grey pixels that are not the visible lines' antialiased edges),
 // and its visible lines stay what they were.
 void MainWindowTest::exportDrawsHiddenLinesWhenAsked() {

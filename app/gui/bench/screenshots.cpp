@@ -88,7 +88,8 @@ bool annotate(ReviewWidget& review) {
 
 // The demo study (`path`, 5.6 mm slices on average) opened in the window, then shown smoothed
 // across its thick slices (the default) and with straight lines between them (Settings:
-// "Smooth across thick slices" off): the user guide's after and before.
+// "Smooth across thick slices" off): the user guide's after and before. Then, smoothed again,
+// with Settings -> "Hidden lines" on: the silhouette's hidden parts dashed under it.
 bool saveThickSliceReviews(MainWindow& window, const QString& path, const QDir& out) {
     // The review of this path, not the one open before it.
     ReviewWidget* opened = nullptr;
@@ -113,7 +114,12 @@ bool saveThickSliceReviews(MainWindow& window, const QString& path, const QDir& 
     ReviewSettings straight = review.settings();
     straight.thickSlices = lw::render::ThickSlices::Linear;
     ok = showAt([&] { review.applySettings(straight); }) && ok;
-    return saveWindow(window, out.filePath("thick_slices_linear.png")) && ok;
+    ok = saveWindow(window, out.filePath("thick_slices_linear.png")) && ok;
+    ReviewSettings hidden = straight;
+    hidden.thickSlices = lw::render::ThickSlices::Smooth;
+    hidden.hiddenLines = true;
+    ok = showAt([&] { review.applySettings(hidden); }) && ok;
+    return saveWindow(window, out.filePath("hidden_lines.png")) && ok;
 }
 
 // The slice panels on the demo (tilted gantry: resampled, never sheared): each layout, with the

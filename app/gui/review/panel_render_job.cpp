@@ -3,6 +3,7 @@
 #include "lw/core/log.h"
 #include "lw/render/shaded_surface_cpu.h"
 #include "lw/render/silhouette_gl_renderer.h"
+#include "lw/report/export_image.h"
 #include "review/qt_image.h"
 #include "review/review_panel.h"
 
@@ -57,6 +58,18 @@ QImage linesToImage(const render::PixelMask& lines, const ReviewSettings& appear
                               blend(background.blue(), line.blue(), c));
         }
     }
+    return image;
+}
+
+QImage linesOverHiddenLines(const render::PixelMask& lines,
+                            const std::vector<render::Polyline>& hidden,
+                            const ReviewSettings& appearance, double lineWidth) {
+    QImage image(lines.width(), lines.height(), QImage::Format_ARGB32_Premultiplied);
+    image.fill(appearance.background);
+    QPainter painter(&image);
+    report::strokeHiddenLines(painter, hidden, lineWidth);
+    painter.drawImage(0, 0, linesToImage(lines, appearance, true, lineWidth));
+    painter.end();
     return image;
 }
 

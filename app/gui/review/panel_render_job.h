@@ -71,5 +71,11 @@ QImage sideBySide(const QImage& iso, const QImage& silhouette, QColor background
 // (transparent, the coverage as alpha) on nothing.
 QImage linesToImage(const render::PixelMask& lines, const ReviewSettings& appearance,
                     bool transparent, double lineWidth);
+// The silhouette panel with its hidden lines under the visible ones, as the exports draw them:
+// the hidden polylines stroked thin, dashed and grey (report::strokeHiddenLines), the visible
+// mask's strokes (linesToImage) over them.
+QImage linesOverHiddenLines(const render::PixelMask& lines,
+                            const std::vector<render::Polyline>& hidden,
+                            const ReviewSettings& appearance, double lineWidth);
 
 } // namespace lw::gui

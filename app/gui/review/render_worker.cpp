@@ -124,7 +124,10 @@ void RenderWorker::takeFrame(render::ReviewFrame&& frame, const ReviewSettings& 
     result.silhouette = std::move(frame.silhouette);
     if (result.silhouette && !result.silhouette->drewToTarget) {
         const render::PixelMask& lines = result.silhouette->lines;
-        result.silhouetteImage = linesToImage(lines, appearance, false, appearance.lineWidth);
+        result.silhouetteImage = frame.polylines.hidden.empty()
+                                     ? linesToImage(lines, appearance, false, appearance.lineWidth)
+                                     : linesOverHiddenLines(lines, frame.polylines.hidden,
+                                                            appearance, appearance.lineWidth);
         if (appearance.silhouetteOnIso)
             result.isoOverlay = linesToImage(lines, appearance, true, appearance.lineWidth);
     }

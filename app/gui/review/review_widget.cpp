@@ -392,10 +392,20 @@ void ReviewWidget::requestFrame(bool newIso) {
     frame.wantSilhouette = !methodOneInPanel();
     // Drawn on the worker with the silhouette (CPU); method 1 in the panel's own GL has none yet.
     frame.suggestive = m_settings.suggestiveContours && frame.wantSilhouette;
-    // The GL panel draws a texture the worker's CUDA writes; the iso panel's overlay and the
-    // suggestive contours (added to the mask on the host) still need the mask on the host.
+    // The hidden lines as the exports draw them: the polylines the mask hides, stroked thin,
+    // dashed and grey under the visible lines (on the worker, from the host surface).
+    const bool hiddenLines =
+        m_settings.hiddenLines && m_settings.visibility && frame.wantSilhouette;
+    if (hiddenLines) {
+        frame.wantPolylines = true;
+        frame.hiddenLines = true;
+        frame.polylineOptions.minLengthPx = double(m_settings.minStrokePixels);
+    }
+    // The GL panel draws a texture the worker's CUDA writes; the iso panel's overlay, the
+    // suggestive contours (added to the mask on the host) and the hidden lines still need the
+    // mask on the host.
     request.silhouetteToTexture = m_drawsInPanels && !m_settings.silhouetteOnIso &&
-                                  !frame.suggestive &&
+                                  !frame.suggestive && !hiddenLines &&
                                   render::silhouetteMethodInfo(m_settings.method).drawsToTexture;
     request.sharedGl = m_drawsInPanels;
     request.appearance = m_settings;

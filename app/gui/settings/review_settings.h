@@ -57,7 +57,8 @@ struct ReviewSettings {
     bool suggestiveContours = false; // drawn with the silhouette (render/suggestive_contours.h)
     double lineWidth = 1.0;          // pixels
     QColor lineColour = QColor(0, 0, 0);
-    // Exports also draw the silhouette's hidden parts thin, dashed and grey (render/svg_lines.h).
+    // The silhouette panel and the exports also draw the silhouette's hidden parts thin, dashed
+    // and grey (render/svg_lines.h).
     bool hiddenLines = false;
     QColor background = QColor(255, 255, 255);
     // The iso contour on the slice panels: yellow shows on every grey of a CT window.

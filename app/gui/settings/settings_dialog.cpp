@@ -218,7 +218,7 @@ QWidget* SettingsDialog::makeAppearancePage() {
     form->addRow(tr("Line width:"), m_lineWidth);
     m_lineColour = new QPushButton;
     form->addRow(tr("Line colour:"), m_lineColour);
-    m_hiddenLines = new QCheckBox(tr("Hidden lines in exports, thin, dashed and grey"));
+    m_hiddenLines = new QCheckBox(tr("Hidden lines, thin, dashed and grey"));
     m_hiddenLines->setObjectName("hiddenLines");
     m_hiddenLines->setToolTip(tr("The technical-illustration convention: the parts of the "
                                  "silhouette behind the surface, under the visible lines"));
