@@ -111,8 +111,9 @@ struct ReviewFrameRenderer::State {
     // The device path's CUDA shading for a silhouette that keeps no whole surface on the device
     // (method 2, method 3's L): method 3's whole-volume renderer of its own, for the panel alone.
     std::unique_ptr<ZBufferSilhouetteRenderer> cudaIso;
-    bool cudaShadingUnavailable = false; // this build or machine has no CUDA back-end
-    std::string deviceUnavailable;       // why the device path could not start (once per volume)
+    // This build or machine has no CUDA back-end, or its shading failed (until the volume changes).
+    bool cudaShadingUnavailable = false;
+    std::string deviceUnavailable; // why the device path could not start (once per volume)
     std::size_t hostMeshes = 0;
 
     void dropVolumeCaches() {
@@ -130,6 +131,7 @@ struct ReviewFrameRenderer::State {
         deviceIso.reset();
 #endif
         cudaIso.reset();
+        cudaShadingUnavailable = false;
         deviceUnavailable.clear();
     }
 
@@ -476,8 +478,20 @@ bool ReviewFrameRenderer::State::shadeIsoWithCuda(const ReviewFrameRequest& requ
         settings.mode =
             request.forceExtract ? ExtractionMode::EveryFrameB : ExtractionMode::CachedA;
     }
-    std::optional<ZBufferSilhouetteRenderer::DeviceShadedSurface> shaded = shading->shadeOnDevice(
-        request.isoCamera, settings, glPanelShading(request.isoCamera, request.isoOptions), true);
+    std::optional<ZBufferSilhouetteRenderer::DeviceShadedSurface> shaded;
+    try {
+        shaded =
+            shading->shadeOnDevice(request.isoCamera, settings,
+                                   glPanelShading(request.isoCamera, request.isoOptions), true);
+    } catch (const core::Error& error) {
+        // A kernel or a copy failed: GL shades the panel from now on (until the volume
+        // changes), said once; the silhouette's own frames go on as they are.
+        kLog.warning(std::string("iso panel: CUDA's shading failed (") + error.what() +
+                     "); GL shades it");
+        cudaShadingUnavailable = true;
+        cudaIso.reset();
+        return false;
+    }
     if (!shaded)
         return false;
     frame.isoImage = std::move(shaded->image);
