@@ -1,6 +1,7 @@
 // Host dispatch of the shaded iso panel on the GPU (kernels in surface_shading_kernels.cuh).
 
 #include "dispatch.h"
+#include "host_mesh_upload.h"
 #include "lw/kernels/cuda/surface_shading_cuda.h"
 #include "pixel_launch.h"
 #include "surface_shading_kernels.cuh"
@@ -22,10 +23,7 @@ struct SurfaceShadingCuda::Impl {
     DeviceBuffer<shade::ScreenPoint> screen[kMaxMeshes];
     shade::Slots slots;
     std::uint64_t triangles = 0; // numbered so far this frame
-    // The kept host mesh's copy.
-    DeviceBuffer<glm::vec3> hostPositions, hostNormals;
-    DeviceBuffer<std::uint32_t> hostIndices;
-    DeviceMeshView hostMesh;
+    HostMeshUpload hostMesh;     // keepHostMesh's copy
     // The image and its depth on the device and their page-locked host copies.
     DeviceBuffer<uchar4> rgba;
     DeviceBuffer<float> depth;
@@ -49,8 +47,7 @@ void SurfaceShadingCuda::release() {
 
 std::size_t SurfaceShadingCuda::deviceBytes() const {
     const Impl& s = *m_impl;
-    std::size_t bytes = s.nearest.bytes() + s.hostPositions.bytes() + s.hostNormals.bytes() +
-                        s.hostIndices.bytes() + s.rgba.bytes() + s.depth.bytes();
+    std::size_t bytes = s.nearest.bytes() + s.hostMesh.bytes() + s.rgba.bytes() + s.depth.bytes();
     for (const auto& screen : s.screen)
         bytes += screen.bytes();
     return bytes;
@@ -104,35 +101,12 @@ CudaStatus SurfaceShadingCuda::draw(const DeviceMeshView& mesh) {
 
 CudaStatus SurfaceShadingCuda::keepHostMesh(const TriangleMesh& mesh) {
     Impl& s = *m_impl;
-    s.hostMesh = DeviceMeshView();
-    if (mesh.isEmpty())
-        return CudaStatus::success();
     LW_RETURN_IF_FAILED(s.stream.create());
-    cudaStream_t st = s.stream.get();
-    const std::size_t vertices = mesh.vertexCount();
-    LW_RETURN_IF_FAILED(s.hostPositions.reserve(vertices, "cudaMalloc(capPositions)"));
-    LW_RETURN_IF_FAILED(s.hostNormals.reserve(vertices, "cudaMalloc(capNormals)"));
-    LW_RETURN_IF_FAILED(s.hostIndices.reserve(mesh.indices.size(), "cudaMalloc(capIndices)"));
-    LW_CUDA_TRY(cudaMemcpyAsync(s.hostPositions.data(), mesh.positions.data(),
-                                vertices * sizeof(glm::vec3), cudaMemcpyHostToDevice, st),
-                "cudaMemcpy(capPositions)");
-    LW_CUDA_TRY(cudaMemcpyAsync(s.hostNormals.data(), mesh.normals.data(),
-                                vertices * sizeof(glm::vec3), cudaMemcpyHostToDevice, st),
-                "cudaMemcpy(capNormals)");
-    LW_CUDA_TRY(cudaMemcpyAsync(s.hostIndices.data(), mesh.indices.data(),
-                                mesh.indices.size() * sizeof(std::uint32_t), cudaMemcpyHostToDevice,
-                                st),
-                "cudaMemcpy(capIndices)");
-    // The host vectors may change after this call: the copies must be done.
-    LW_CUDA_TRY(cudaStreamSynchronize(st), "cudaMemcpy(cap)");
-    s.hostMesh = {s.hostPositions.data(), s.hostNormals.data(),
-                  s.hostIndices.data(),   vertices,
-                  mesh.triangleCount(),   false};
-    return CudaStatus::success();
+    return s.hostMesh.upload(mesh, s.stream.get());
 }
 
 CudaStatus SurfaceShadingCuda::drawKeptHostMesh() {
-    return draw(m_impl->hostMesh);
+    return draw(m_impl->hostMesh.view());
 }
 
 CudaStatus SurfaceShadingCuda::shade(const SurfaceLighting& lighting, std::uint8_t* hostRgba,

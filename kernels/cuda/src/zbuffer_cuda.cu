@@ -1,6 +1,7 @@
 // Host dispatch of method 3 on the GPU (kernels in zbuffer_kernels.cuh).
 
 #include "dispatch.h"
+#include "host_mesh_upload.h"
 #include "lw/kernels/cuda/gl_texture_interop.h"
 #include "lw/kernels/cuda/zbuffer_cuda.h"
 #include "pixel_launch.h"
@@ -23,10 +24,7 @@ struct ZBufferCuda::Impl {
     MaskDownload download;
     DeviceBuffer<unsigned long long> segmentCount;
     StrokePruning pruning;
-    // drawHost's copy of a host mesh.
-    DeviceBuffer<glm::vec3> hostPositions, hostNormals;
-    DeviceBuffer<std::uint32_t> hostIndices;
-    DeviceMeshView hostMesh;        // in the three buffers above (empty: none kept)
+    HostMeshUpload hostMesh;        // drawHost's copy of a host mesh
     dispatch::StageTimer timers[3]; // project, silhouette (+ coverage), resolve
     // A draw's times are read once it has finished: at the next draw, waitForDraws or the
     // resolve, so that a frame's draws and its colour pass queue without a host wait between.
@@ -47,8 +45,7 @@ void ZBufferCuda::release() {
 std::size_t ZBufferCuda::deviceBytes() const {
     const Impl& s = *m_impl;
     return s.screen.bytes() + s.surface.bytes() + s.lines.bytes() + s.mask.bytes() +
-           s.segmentCount.bytes() + s.hostPositions.bytes() + s.hostNormals.bytes() +
-           s.hostIndices.bytes() + s.pruning.deviceBytes();
+           s.segmentCount.bytes() + s.hostMesh.bytes() + s.pruning.deviceBytes();
 }
 ZBufferCuda::~ZBufferCuda() = default;
 
@@ -141,36 +138,13 @@ CudaStatus ZBufferCuda::drawHost(const TriangleMesh& mesh, const ZBufferCudaSett
 
 CudaStatus ZBufferCuda::keepHostMesh(const TriangleMesh& mesh) {
     Impl& s = *m_impl;
-    s.hostMesh = DeviceMeshView();
-    if (mesh.isEmpty())
-        return CudaStatus::success();
     LW_RETURN_IF_FAILED(s.stream.create());
-    cudaStream_t st = s.stream.get();
-    const std::size_t vertices = mesh.vertexCount();
-    LW_RETURN_IF_FAILED(s.hostPositions.reserve(vertices, "cudaMalloc(hostPositions)"));
-    LW_RETURN_IF_FAILED(s.hostNormals.reserve(vertices, "cudaMalloc(hostNormals)"));
-    LW_RETURN_IF_FAILED(s.hostIndices.reserve(mesh.indices.size(), "cudaMalloc(hostIndices)"));
-    LW_CUDA_TRY(cudaMemcpyAsync(s.hostPositions.data(), mesh.positions.data(),
-                                vertices * sizeof(glm::vec3), cudaMemcpyHostToDevice, st),
-                "cudaMemcpy(hostPositions)");
-    LW_CUDA_TRY(cudaMemcpyAsync(s.hostNormals.data(), mesh.normals.data(),
-                                vertices * sizeof(glm::vec3), cudaMemcpyHostToDevice, st),
-                "cudaMemcpy(hostNormals)");
-    LW_CUDA_TRY(cudaMemcpyAsync(s.hostIndices.data(), mesh.indices.data(),
-                                mesh.indices.size() * sizeof(std::uint32_t), cudaMemcpyHostToDevice,
-                                st),
-                "cudaMemcpy(hostIndices)");
-    s.hostMesh.positions = s.hostPositions.data();
-    s.hostMesh.normals = s.hostNormals.data();
-    s.hostMesh.indices = s.hostIndices.data();
-    s.hostMesh.vertexCount = vertices;
-    s.hostMesh.triangleCount = mesh.triangleCount();
-    return CudaStatus::success();
+    return s.hostMesh.upload(mesh, s.stream.get());
 }
 
 CudaStatus ZBufferCuda::drawKeptHostMesh(const ZBufferCudaSettings& settings,
                                          ZBufferCudaFrame& frame) {
-    return draw(m_impl->hostMesh, settings, frame);
+    return draw(m_impl->hostMesh.view(), settings, frame);
 }
 
 CudaStatus ZBufferCuda::finishResolve(ZBufferCudaFrame& frame) {

@@ -49,6 +49,13 @@ struct ZBufferSilhouetteRenderer::State {
         lateMeshIso = kNoIso;
         lateMesh = Mesh();
     }
+    // What mesh() extracts after a frame that kept no whole surface.
+    void rememberFrame(const SilhouetteSettings& settings) {
+        lastIso = settings.isoReal;
+        lastThreads = settings.threads;
+        lastClosing = settings.closeAtBorder;
+        lastStencil = settings.gradientStencil;
+    }
     void keepWhole(ZBufferKernelSet& set, const SilhouetteSettings& settings,
                    SilhouetteFrame& frame);
     void frameOn(ZBufferKernelSet& set, const Camera& camera, const SilhouetteSettings& settings,
@@ -193,10 +200,7 @@ SilhouetteFrame ZBufferSilhouetteRenderer::renderFrame(const Camera& camera,
         throw core::Error("method 3 (z-buffer)", "brickCells must be 0 (whole volume) or positive");
     if (settings.cancel && settings.cancel->isCancelled())
         throw core::Cancelled();
-    s.lastIso = settings.isoReal;
-    s.lastThreads = settings.threads;
-    s.lastClosing = settings.closeAtBorder;
-    s.lastStencil = settings.gradientStencil;
+    s.rememberFrame(settings);
     s.lastKept = false;
     for (;;) {
         SilhouetteFrame frame;
@@ -226,10 +230,7 @@ ZBufferSilhouetteRenderer::shadeOnDevice(const Camera& camera, const SilhouetteS
         if (!s.kernels->keepsWholeSurface(camera, settings))
             return std::nullopt;
         s.keepWhole(*s.kernels, settings, frame);
-        s.lastIso = settings.isoReal;
-        s.lastThreads = settings.threads;
-        s.lastClosing = settings.closeAtBorder;
-        s.lastStencil = settings.gradientStencil;
+        s.rememberFrame(settings);
         s.lastKept = true;
         out.extractMs = frame.times.extractMs;
         const ZBufferKernelSet::DeviceShading shaded =

@@ -42,12 +42,12 @@ struct RowSpan {
     bool meets(const RowSpan& other) const { return top <= other.bottom && other.top <= bottom; }
 };
 
+// Each polyline's rows; a polyline without points meets none (top above bottom).
 std::vector<RowSpan> rowSpansOf(const std::vector<render::Polyline>& lines) {
-    std::vector<RowSpan> spans(lines.size(), RowSpan{0.0f, -1.0f});
+    constexpr float kInfinity = std::numeric_limits<float>::infinity();
+    std::vector<RowSpan> spans(lines.size(), RowSpan{kInfinity, -kInfinity});
     for (std::size_t i = 0; i < lines.size(); ++i)
         for (const glm::vec2& p : lines[i].points) {
-            if (spans[i].top > spans[i].bottom)
-                spans[i] = {p.y, p.y};
             spans[i].top = std::min(spans[i].top, p.y);
             spans[i].bottom = std::max(spans[i].bottom, p.y);
         }
