@@ -4,6 +4,7 @@
 // grey values leave a flat tread.
 #include "filled_volume.h"
 #include "lw/core/error.h"
+#include "lw/kernels/slice_field_rules.h"
 #include "lw/volume/oversampling.h"
 #include "lw/volume/slice_distance.h"
 #include "lw/volume/volume.h"
@@ -12,6 +13,8 @@
 #include <cmath>
 #include <cstdint>
 #include <gtest/gtest.h>
+#include <limits>
+#include <random>
 #include <vector>
 
 namespace lw::volume {
@@ -50,6 +53,66 @@ double crossingAlongRow(const Volume& v, int j, int k) {
             return (double(i - centre) + a / (a - b)) * spacing;
     }
     return -1.0;
+}
+
+// Every pixel's distance by brute force: the smallest over all of the slice's crossings, with
+// the shared arithmetic (kernels/slice_field_rules.h) -- what the separable minimum must equal
+// exactly, since a minimum of the same values does not depend on the order it is taken in.
+std::int16_t bruteForceStored(const std::vector<float>& above, int width, int height, int x, int y,
+                              float scaleI, float scaleJ, double limitMm) {
+    float best = std::numeric_limits<float>::infinity();
+    for (int r = 0; r < height; ++r)
+        for (int c = 0; c < width; ++c) {
+            const float a = above[std::size_t(r * width + c)];
+            if (c + 1 < width && kernels::crossesIso(a, above[std::size_t(r * width + c + 1)])) {
+                const float at =
+                    float(c) + kernels::crossingOffset(a, above[std::size_t(r * width + c + 1)]);
+                const float near = at <= float(x) ? float(x) - at : at - float(x);
+                best = std::min(best,
+                                kernels::nearTerm(scaleI, near) + kernels::stepTerm(scaleJ, r - y));
+            }
+            if (r + 1 < height && kernels::crossesIso(a, above[std::size_t((r + 1) * width + c)])) {
+                const float at =
+                    float(r) + kernels::crossingOffset(a, above[std::size_t((r + 1) * width + c)]);
+                const float near = at <= float(y) ? float(y) - at : at - float(y);
+                best = std::min(best,
+                                kernels::nearTerm(scaleJ, near) + kernels::stepTerm(scaleI, c - x));
+            }
+        }
+    return kernels::storedSliceDistance(best, above[std::size_t(y * width + x)] >= 0.0f, limitMm,
+                                        kSliceDistanceStepsPerMm);
+}
+
+// Smooth blobs with noise on anisotropic pixels, at limits shorter and longer than the slices.
+TEST(SliceDistance, EqualsTheBruteForceMinimumOverAllCrossings) {
+    std::mt19937 random(7);
+    std::normal_distribution<double> noise(0.0, 120.0);
+    const glm::ivec3 dims(37, 29, 3);
+    const Volume blobs = lw::test::makeFilledVolume<std::int16_t>(
+        dims,
+        [&](int i, int j, int k) {
+            const double wave = std::sin(0.3 * i + k) * std::cos(0.23 * j) * 600.0;
+            return std::lround(250.0 + wave + noise(random));
+        },
+        VolumeGeometry::regular({0, 0, 0}, {0.7, 1.1, 4.0}));
+    const float scaleI = float(0.7 * 0.7), scaleJ = float(1.1 * 1.1);
+    for (const double limit : {2.5, 4.0, 30.0}) {
+        const Volume distance = signedSliceDistance(blobs, kIso, limit, 2);
+        std::size_t differing = 0;
+        for (int k = 0; k < dims.z; ++k) {
+            std::vector<float> above(std::size_t(dims.x) * std::size_t(dims.y));
+            for (int j = 0; j < dims.y; ++j)
+                for (int i = 0; i < dims.x; ++i)
+                    above[std::size_t(j * dims.x + i)] =
+                        float(double(blobs.storedValue(i, j, k)) - kIso);
+            for (int j = 0; j < dims.y; ++j)
+                for (int i = 0; i < dims.x; ++i)
+                    differing +=
+                        distance.storedValue(i, j, k) !=
+                        bruteForceStored(above, dims.x, dims.y, i, j, scaleI, scaleJ, limit);
+        }
+        EXPECT_EQ(differing, 0u) << "limit " << limit << " mm";
+    }
 }
 
 TEST(SliceDistance, IsTheSignedDistanceToTheSubPixelContour) {

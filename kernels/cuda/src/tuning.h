@@ -25,6 +25,9 @@ inline constexpr int kRayBlock = 128;
 // Method 2: one thread per kept triangle (light threads; one atomic per block).
 inline constexpr int kSegmentTriangleBlock = 512;
 
+// The thick-slice field: per source voxel (the values less the iso-value).
+inline constexpr int kFieldVoxelBlock = 256;
+
 // Method 3: per vertex, per triangle, per pixel.
 inline constexpr int kVertexBlock = 256;
 inline constexpr int kTriangleBlock = 128;

@@ -83,6 +83,10 @@ struct ReviewFrameRenderer::State {
     std::optional<VolumeSampling> volumeSampling;
     double volumeIso = 0.0;
     bool volumeDependsOnIso = false;
+    // Makes `volume` (on the CUDA device where the shape-based field can be made there).
+    std::unique_ptr<DrawnVolumeMaker> volumeMaker;
+    Backend volumeMakerBackend = Backend::Auto;
+    std::string volumeNote; // why the device stopped making the field: for the next frame
 
     std::unique_ptr<SilhouetteRenderer> renderer;
     Backend rendererBackend = Backend::Auto;
@@ -181,6 +185,7 @@ void ReviewFrameRenderer::release() {
 #endif
     s.volume.reset();
     s.volumeSampling.reset();
+    s.volumeMaker.reset();
 }
 
 std::size_t ReviewFrameRenderer::hostMeshesMade() const {
@@ -195,7 +200,12 @@ void ReviewFrameRenderer::State::prepareVolume(const ReviewFrameRequest& request
         return;
     dropVolumeCaches();
     volume.reset(); // the old copy goes before a new one is made: one at a time in memory
-    volume = volumeToRender(source, request.sampling, request.iso, request.settings.threads);
+    if (!volumeMaker || volumeMakerBackend != request.backend) {
+        volumeMaker = std::make_unique<DrawnVolumeMaker>(source, request.backend);
+        volumeMakerBackend = request.backend;
+    }
+    volume = volumeMaker->make(request.sampling, request.iso, request.settings.threads);
+    volumeNote = volumeMaker->takeNote();
     volumeSampling = request.sampling;
     volumeIso = request.iso;
     volumeDependsOnIso =
@@ -225,6 +235,9 @@ ReviewFrame ReviewFrameRenderer::render(const ReviewFrameRequest& request) {
         s.renderIsoOnHost(request, frame);
     if (!s.deviceUnavailable.empty())
         frame.backendNote += (frame.backendNote.empty() ? "" : "; ") + s.deviceUnavailable;
+    if (!s.volumeNote.empty())
+        frame.backendNote +=
+            (frame.backendNote.empty() ? "" : "; ") + std::exchange(s.volumeNote, {});
     return frame;
 }
 

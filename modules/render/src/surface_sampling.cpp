@@ -1,14 +1,20 @@
 #include "lw/render/surface_sampling.h"
 
+#include "lw/core/error.h"
 #include "lw/core/log.h"
 #include "lw/volume/oversampling.h"
 #include "lw/volume/slice_distance.h"
+
+#if LINEWORK_CUDA
+#include "cuda/device_thick_slices.h"
+#endif
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <string>
+#include <utility>
 
 namespace lw::render {
 namespace {
@@ -92,6 +98,28 @@ glm::ivec3 oversamplingFactors(glm::ivec3 dims, const volume::VolumeGeometry& ge
     return factors;
 }
 
+namespace {
+
+void logResampled(const SamplingPlan& plan, double iso, glm::ivec3 dims, double ms,
+                  const std::string& where) {
+    const glm::ivec3 factors = plan.factors;
+    kLog.info("oversampled " + std::to_string(factors.x) + "x" + std::to_string(factors.y) + "x" +
+              std::to_string(factors.z) + " for rendering (cells at most 1/" +
+              std::to_string(int(kOversamplingCellsPerDiagonal)) + " of the diagonal" +
+              (plan.shapeBased
+                   ? "; thick slices by shape-based interpolation at " + shortNumber(iso)
+                   : std::string()) +
+              "): " + std::to_string(dims.x) + "x" + std::to_string(dims.y) + "x" +
+              std::to_string(dims.z) + " in " + std::to_string(int(ms)) + " ms" + where);
+}
+
+double msSince(std::chrono::steady_clock::time_point start) {
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+        .count();
+}
+
+} // namespace
+
 std::optional<volume::Volume> oversampledToRender(const volume::Volume& volume,
                                                   VolumeSampling sampling, double iso,
                                                   unsigned threads) {
@@ -104,20 +132,7 @@ std::optional<volume::Volume> oversampledToRender(const volume::Volume& volume,
                                                   volume, iso, distanceLimit(volume), threads),
                                               plan.factors, threads, plan.alongSlices)
                         : volume::oversampled(volume, plan.factors, threads, plan.alongSlices);
-    const glm::ivec3 dims = finer.dims();
-    const glm::ivec3 factors = plan.factors;
-    kLog.info(
-        "oversampled " + std::to_string(factors.x) + "x" + std::to_string(factors.y) + "x" +
-        std::to_string(factors.z) + " for rendering (cells at most 1/" +
-        std::to_string(int(kOversamplingCellsPerDiagonal)) + " of the diagonal" +
-        (plan.shapeBased ? "; thick slices by shape-based interpolation at " + shortNumber(iso)
-                         : std::string()) +
-        "): " + std::to_string(dims.x) + "x" + std::to_string(dims.y) + "x" +
-        std::to_string(dims.z) + " in " +
-        std::to_string(
-            int(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
-                    .count())) +
-        " ms");
+    logResampled(plan, iso, finer.dims(), msSince(start), "");
     return finer;
 }
 
@@ -130,6 +145,87 @@ std::shared_ptr<const volume::Volume> volumeToRender(std::shared_ptr<const volum
     if (!finer)
         return volume;
     return std::make_shared<const volume::Volume>(std::move(*finer));
+}
+
+struct DrawnVolumeMaker::Impl {
+    std::shared_ptr<const volume::Volume> source;
+    bool onDevice = false; // the shape-based field is made on the CUDA device
+    bool lastOnDevice = false;
+    std::string note;
+#if LINEWORK_CUDA
+    DeviceThickSlices device;
+#endif
+
+    // The shape-based copy made on the device, or nothing (the device failed: from now on the
+    // host makes it).
+    std::optional<volume::Volume> onTheDevice(const SamplingPlan& plan, double iso,
+                                              unsigned threads) {
+#if LINEWORK_CUDA
+        try {
+            const auto start = std::chrono::steady_clock::now();
+            volume::Volume field = device.make(*source, plan, iso, distanceLimit(*source), threads);
+            const kernels::cuda::ThickSliceFieldTimes& t = device.times();
+            logResampled(plan, iso, field.dims(), msSince(start),
+                         " on the CUDA device (distances " + shortNumber(t.distanceMs) +
+                             " ms, refinement " + shortNumber(t.refineMs) + " ms, download " +
+                             shortNumber(t.downloadMs) + " ms)");
+            return field;
+        } catch (const core::Error& error) {
+            onDevice = false;
+            note = std::string("thick slices on the host: ") + error.what();
+            kLog.warning(note);
+        }
+#else
+        (void)plan;
+        (void)iso;
+        (void)threads;
+#endif
+        return std::nullopt;
+    }
+};
+
+namespace {
+bool fieldOnDevice(Backend backend) {
+    if (backend == Backend::Cpu)
+        return false;
+    try {
+        return resolveBackend(backend) == Backend::Cuda;
+    } catch (const core::Error&) {
+        return false; // --backend cuda where it cannot be: the renderers say so themselves
+    }
+}
+} // namespace
+
+DrawnVolumeMaker::DrawnVolumeMaker(std::shared_ptr<const volume::Volume> source, Backend backend)
+    : m_impl(std::make_unique<Impl>()) {
+    m_impl->source = std::move(source);
+    m_impl->onDevice = LINEWORK_CUDA && fieldOnDevice(backend);
+}
+
+DrawnVolumeMaker::~DrawnVolumeMaker() = default;
+
+std::shared_ptr<const volume::Volume> DrawnVolumeMaker::make(VolumeSampling sampling, double iso,
+                                                             unsigned threads) {
+    Impl& d = *m_impl;
+    d.lastOnDevice = false;
+    if (!d.source)
+        return d.source;
+    const SamplingPlan plan = samplingPlan(d.source->dims(), d.source->geometry(), sampling);
+    if (plan.shapeBased && d.onDevice) {
+        if (std::optional<volume::Volume> field = d.onTheDevice(plan, iso, threads)) {
+            d.lastOnDevice = true;
+            return std::make_shared<const volume::Volume>(std::move(*field));
+        }
+    }
+    return volumeToRender(d.source, sampling, iso, threads);
+}
+
+bool DrawnVolumeMaker::lastMadeOnDevice() const {
+    return m_impl->lastOnDevice;
+}
+
+std::string DrawnVolumeMaker::takeNote() {
+    return std::exchange(m_impl->note, std::string());
 }
 
 } // namespace lw::render

@@ -3,6 +3,7 @@
 #include "lw/core/error.h"
 #include "lw/core/limits.h"
 #include "lw/core/parallel.h"
+#include "lw/kernels/slice_field_rules.h"
 
 #include <algorithm>
 #include <cmath>
@@ -37,31 +38,11 @@ std::vector<Blend> blendsAlong(int originalCount, int factor) {
 // slices k and k + 1 at t, with Fritsch-Butland tangents (the harmonic mean of the two secants
 // where they agree in sign, else 0; one-sided at the ends). Tangents at most twice the smaller
 // secant keep each segment within its two end values (Fritsch & Carlson 1980): no overshoot.
-inline float monotoneTangent(float before, float after) {
-    // Written without a branch so the loop over a plane vectorises; the quotient is only used
-    // where both secants share a sign (their sum is then not zero).
-    const float product = before * after;
-    const float sum = before + after;
-    const float harmonic = 2.0f * product / (sum != 0.0f ? sum : 1.0f);
-    return product > 0.0f ? harmonic : 0.0f;
-}
-
-// The cubic Hermite basis at t: the weights of y(k), m(k), y(k + 1), m(k + 1).
-struct HermiteWeights {
-    float y0, m0, y1, m1;
-    explicit HermiteWeights(float t)
-        : y0(2.0f * t * t * t - 3.0f * t * t + 1.0f), m0(t * t * t - 2.0f * t * t + t),
-          y1(-2.0f * t * t * t + 3.0f * t * t), m1(t * t * t - t * t) {}
-};
-
-// std::lround's rounding (halves away from zero), written out so that it inlines: the integer
-// part by truncation and the fraction compared with one half -- both exact for the 8- and 16-bit
-// ranges of the integer voxel types (a float holds every integer up to 2^24 and its fraction).
-inline int roundHalfAway(float value) {
-    const int whole = int(value);
-    const float fraction = value - float(whole);
-    return whole + int(fraction >= 0.5f) - int(fraction <= -0.5f);
-}
+// The expressions are kernels/slice_field_rules.h's, which the CUDA back-end's thick-slice field
+// shares.
+using kernels::HermiteWeights;
+using kernels::monotoneTangent;
+using kernels::roundHalfAway;
 
 template <typename T> T storedFrom(float value) {
     if constexpr (std::is_floating_point_v<T>)
@@ -97,7 +78,7 @@ template <typename T> struct SliceRefiner {
             const float secant = float(y2[v]) - float(y1[v]);
             const float m1 = first ? secant : monotoneTangent(float(y1[v]) - float(y0[v]), secant);
             const float m2 = last ? secant : monotoneTangent(secant, float(y3[v]) - float(y2[v]));
-            plane[v] = w.y0 * float(y1[v]) + w.m0 * m1 + w.y1 * float(y2[v]) + w.m1 * m2;
+            plane[v] = kernels::hermiteBlend(w, float(y1[v]), m1, float(y2[v]), m2);
         }
     }
 
@@ -111,7 +92,7 @@ template <typename T> struct SliceRefiner {
         const T* lower = source + planeSize * std::size_t(b.lower);
         const T* upper = b.upperWeight > 0.0f ? lower + planeSize : lower;
         for (std::size_t v = 0; v < planeSize; ++v)
-            plane[v] = float(lower[v]) + b.upperWeight * (float(upper[v]) - float(lower[v]));
+            plane[v] = kernels::linearBlend(float(lower[v]), b.upperWeight, float(upper[v]));
     }
 
     void refineRow(const std::vector<float>& plane, int j, std::vector<float>& row, T* out) const {
@@ -119,12 +100,12 @@ template <typename T> struct SliceRefiner {
         const float* lower = plane.data() + std::size_t(sourceDims.x) * std::size_t(b.lower);
         const float* upper = b.upperWeight > 0.0f ? lower + sourceDims.x : lower;
         for (int i = 0; i < sourceDims.x; ++i)
-            row[std::size_t(i)] = lower[i] + b.upperWeight * (upper[i] - lower[i]);
+            row[std::size_t(i)] = kernels::linearBlend(lower[i], b.upperWeight, upper[i]);
         for (int i = 0; i < dims.x; ++i) {
             const Blend c = alongI[std::size_t(i)];
             const float left = row[std::size_t(c.lower)];
             const float right = c.upperWeight > 0.0f ? row[std::size_t(c.lower) + 1] : left;
-            out[i] = storedFrom<T>(left + c.upperWeight * (right - left));
+            out[i] = storedFrom<T>(kernels::linearBlend(left, c.upperWeight, right));
         }
     }
 

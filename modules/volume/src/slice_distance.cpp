@@ -2,6 +2,7 @@
 
 #include "lw/core/error.h"
 #include "lw/core/parallel.h"
+#include "lw/kernels/slice_field_rules.h"
 
 #include <algorithm>
 #include <cmath>
@@ -13,105 +14,135 @@
 namespace lw::volume {
 namespace {
 
-constexpr float kNoSeed = std::numeric_limits<float>::infinity();
+using kernels::crossesIso;
+using kernels::crossingOffset;
+using kernels::nearTerm;
+using kernels::stepTerm;
 
-// One slice's nearest contour points: per pixel the vector (in pixels) from it to the nearest
-// point where the grey values cross the iso-value, and that vector's squared length in mm^2.
+constexpr float kNoCrossing = std::numeric_limits<float>::infinity();
+
+// One slice's squared distances (mm^2) to its crossings, made separably
+// (kernels/slice_field_rules.h): the row crossings' nearest along each row, then the minimum over
+// the rows within reach; the column crossings the same way with the axes swapped. Distances
+// beyond the limit are not needed (they are stored as the limit), so each minimum looks only as
+// many pixels away as the limit reaches -- which is what keeps it linear in the slice's size.
 class SliceDistanceField {
 public:
-    SliceDistanceField(int width, int height, double spacingI, double spacingJ)
+    SliceDistanceField(int width, int height, double spacingI, double spacingJ, double limitMm)
         : m_width(width), m_height(height), m_scaleI(float(spacingI * spacingI)),
           m_scaleJ(float(spacingJ * spacingJ)),
-          m_nearest(std::size_t(width) * std::size_t(height), Nearest{0.0f, 0.0f, kNoSeed}) {}
-
-    // The crossings along rows and columns, where linear interpolation puts the contour: both
-    // pixels of a crossing pair get the vector to it.
-    void seed(const std::vector<float>& above) {
-        for (int y = 0; y < m_height; ++y)
-            for (int x = 0; x < m_width; ++x) {
-                const std::size_t p = at(x, y);
-                if (x + 1 < m_width)
-                    seedPair(above, p, p + 1, 1.0f, 0.0f);
-                if (y + 1 < m_height)
-                    seedPair(above, p, p + std::size_t(m_width), 0.0f, 1.0f);
-            }
+          m_reachI(kernels::sliceDistanceReach(limitMm, spacingI, width)),
+          m_reachJ(kernels::sliceDistanceReach(limitMm, spacingJ, height)), m_rowNear(plane()),
+          m_columnNear(plane()), m_squared(plane()), m_stepI(std::size_t(m_reachI) + 1),
+          m_stepJ(std::size_t(m_reachJ) + 1), m_rowHasCrossing(std::size_t(height)) {
+        for (int n = 0; n <= m_reachI; ++n)
+            m_stepI[std::size_t(n)] = stepTerm(m_scaleI, n);
+        for (int n = 0; n <= m_reachJ; ++n)
+            m_stepJ[std::size_t(n)] = stepTerm(m_scaleJ, n);
     }
 
-    // Danielsson's sequential passes: each pixel takes the nearest point its neighbours carry,
-    // first down the slice (left, up-left, up, up-right; then right), then up it (right,
-    // down-right, down, down-left; then left).
-    void propagate() {
+    // `above` holds the slice's values less the iso-value; afterwards squared(p) is pixel p's
+    // squared distance to the nearest crossing, or more than the limit's square.
+    void compute(const std::vector<float>& above) {
+        nearestAlongRows(above);
+        nearestAlongColumns(above);
         for (int y = 0; y < m_height; ++y)
-            sweepRow(y, -1);
-        for (int y = m_height - 1; y >= 0; --y)
-            sweepRow(y, +1);
+            minimumOverRows(y);
+        for (int y = 0; y < m_height; ++y)
+            minimumOverColumns(y);
     }
 
-    // Forget every contour point, for the next slice.
-    void reset() { std::fill(m_nearest.begin(), m_nearest.end(), Nearest{0.0f, 0.0f, kNoSeed}); }
-
-    // mm to the contour, or infinity where the slice has none.
-    float distance(std::size_t p) const { return std::sqrt(m_nearest[p].squared); }
+    float squared(std::size_t p) const { return m_squared[p]; }
 
 private:
-    struct Nearest {
-        float dx, dy;  // pixels to the nearest contour point
-        float squared; // its distance squared, mm^2
-    };
-
+    std::size_t plane() const { return std::size_t(m_width) * std::size_t(m_height); }
     std::size_t at(int x, int y) const {
         return std::size_t(y) * std::size_t(m_width) + std::size_t(x);
     }
 
-    void offer(Nearest& here, float vx, float vy) const {
-        const float squared = m_scaleI * vx * vx + m_scaleJ * vy * vy;
-        if (squared < here.squared)
-            here = {vx, vy, squared};
-    }
-
-    // `above` holds value - iso; p and q are neighbours, q = p + (stepX, stepY).
-    void seedPair(const std::vector<float>& above, std::size_t p, std::size_t q, float stepX,
-                  float stepY) {
-        const float a = above[p];
-        const float b = above[q];
-        if ((a >= 0.0f) == (b >= 0.0f))
-            return;
-        const float t = a / (a - b); // in [0, 1]: where the straight line from a to b is zero
-        offer(m_nearest[p], t * stepX, t * stepY);
-        offer(m_nearest[q], (t - 1.0f) * stepX, (t - 1.0f) * stepY);
-    }
-
-    void from(Nearest& here, const Nearest& neighbour, float offsetX, float offsetY) const {
-        if (neighbour.squared != kNoSeed)
-            offer(here, neighbour.dx + offsetX, neighbour.dy + offsetY);
-    }
-
-    // One row of a pass: `dy` -1 takes from the row above (the pass down), +1 from the row below.
-    void sweepRow(int y, int dy) {
-        Nearest* row = m_nearest.data() + at(0, y);
-        const int other = y + dy;
-        const Nearest* near =
-            other >= 0 && other < m_height ? m_nearest.data() + at(0, other) : nullptr;
-        const float oy = float(dy);
-        const int last = m_width - 1;
-        for (int x = 0; x <= last; ++x) {
-            Nearest& here = row[dy < 0 ? x : last - x];
-            const int nx = dy < 0 ? x : last - x;
-            const int back = dy < 0 ? -1 : 1; // the neighbour this sweep has done already
-            if (nx + back >= 0 && nx + back <= last)
-                from(here, row[nx + back], float(back), 0.0f);
-            if (near) {
-                from(here, near[nx], 0.0f, oy);
-                if (nx > 0)
-                    from(here, near[nx - 1], -1.0f, oy);
-                if (nx < last)
-                    from(here, near[nx + 1], 1.0f, oy);
+    // Per pixel, scaleI * (pixels along its row to the row's nearest crossing)^2: the crossings
+    // lie in order along the row, so the nearest is the last one before the pixel or the first
+    // one after it.
+    void nearestAlongRows(const std::vector<float>& above) {
+        for (int y = 0; y < m_height; ++y) {
+            const float* values = above.data() + at(0, y);
+            float* near = m_rowNear.data() + at(0, y);
+            float before = -kNoCrossing;
+            bool any = false;
+            for (int x = 0; x < m_width; ++x) {
+                near[x] = float(x) - before;
+                if (x + 1 < m_width && crossesIso(values[x], values[x + 1])) {
+                    before = float(x) + crossingOffset(values[x], values[x + 1]);
+                    any = true;
+                }
             }
+            float after = kNoCrossing;
+            for (int x = m_width - 1; x >= 0; --x) {
+                if (x + 1 < m_width && crossesIso(values[x], values[x + 1]))
+                    after = float(x) + crossingOffset(values[x], values[x + 1]);
+                near[x] = nearTerm(m_scaleI, std::min(near[x], after - float(x)));
+            }
+            m_rowHasCrossing[std::size_t(y)] = any;
         }
-        for (int x = 0; x < last; ++x) { // back the other way: the side not yet taken
-            const int nx = dy < 0 ? last - 1 - x : x + 1;
-            const int ahead = dy < 0 ? 1 : -1;
-            from(row[nx], row[nx + ahead], float(ahead), 0.0f);
+    }
+
+    // The same along the columns, a row at a time (the rows are contiguous): scaleJ * (pixels to
+    // the column's nearest crossing)^2.
+    void nearestAlongColumns(const std::vector<float>& above) {
+        std::vector<float> crossing(std::size_t(m_width), -kNoCrossing);
+        for (int y = 0; y < m_height; ++y) {
+            float* near = m_columnNear.data() + at(0, y);
+            for (int x = 0; x < m_width; ++x)
+                near[x] = float(y) - crossing[std::size_t(x)];
+            if (y + 1 < m_height)
+                recordColumnCrossings(above, y, crossing);
+        }
+        std::fill(crossing.begin(), crossing.end(), kNoCrossing);
+        for (int y = m_height - 1; y >= 0; --y) {
+            if (y + 1 < m_height)
+                recordColumnCrossings(above, y, crossing);
+            float* near = m_columnNear.data() + at(0, y);
+            for (int x = 0; x < m_width; ++x)
+                near[x] =
+                    nearTerm(m_scaleJ, std::min(near[x], crossing[std::size_t(x)] - float(y)));
+        }
+    }
+
+    void recordColumnCrossings(const std::vector<float>& above, int y,
+                               std::vector<float>& crossing) const {
+        const float* upper = above.data() + at(0, y);
+        const float* lower = upper + m_width;
+        for (int x = 0; x < m_width; ++x)
+            if (crossesIso(upper[x], lower[x]))
+                crossing[std::size_t(x)] = float(y) + crossingOffset(upper[x], lower[x]);
+    }
+
+    // Row y's squared distances to the row crossings: the minimum over the rows within reach.
+    void minimumOverRows(int y) {
+        float* out = m_squared.data() + at(0, y);
+        std::fill(out, out + m_width, kNoCrossing);
+        const int first = std::max(0, y - m_reachJ);
+        const int last = std::min(m_height - 1, y + m_reachJ);
+        for (int r = first; r <= last; ++r) {
+            if (!m_rowHasCrossing[std::size_t(r)])
+                continue;
+            const float step = m_stepJ[std::size_t(std::abs(r - y))];
+            const float* near = m_rowNear.data() + at(0, r);
+            for (int x = 0; x < m_width; ++x)
+                out[x] = std::min(out[x], near[x] + step);
+        }
+    }
+
+    // ... and then the column crossings': the minimum over the columns within reach.
+    void minimumOverColumns(int y) {
+        float* out = m_squared.data() + at(0, y);
+        const float* near = m_columnNear.data() + at(0, y);
+        for (int n = -m_reachI; n <= m_reachI; ++n) {
+            const float step = m_stepI[std::size_t(std::abs(n))];
+            const int first = std::max(0, -n);
+            const int end = std::min(m_width, m_width - n);
+            for (int x = first; x < end; ++x)
+                out[x] = std::min(out[x], near[x + n] + step);
         }
     }
 
@@ -119,13 +150,15 @@ private:
     int m_height;
     float m_scaleI;
     float m_scaleJ;
-    std::vector<Nearest> m_nearest;
+    int m_reachI;                    // pixels along i (columns) that the limit reaches
+    int m_reachJ;                    // pixels along j (rows)
+    std::vector<float> m_rowNear;    // scaleI * (pixels to the row's nearest crossing)^2
+    std::vector<float> m_columnNear; // scaleJ * (pixels to the column's nearest crossing)^2
+    std::vector<float> m_squared;
+    std::vector<float> m_stepI; // scaleI * n^2
+    std::vector<float> m_stepJ;
+    std::vector<char> m_rowHasCrossing;
 };
-
-std::int16_t storedDistance(float mm, bool inside, double limitMm) {
-    const double limited = std::min(double(mm), limitMm);
-    return std::int16_t(std::lround((inside ? limited : -limited) * kSliceDistanceStepsPerMm));
-}
 
 // Slice k's real values less the iso-value, as float, into `above` (a plane's size).
 void aboveIso(const Volume& volume, int k, double iso, std::vector<float>& above) {
@@ -164,15 +197,14 @@ Volume signedSliceDistance(const Volume& volume, double iso, double limitMm, uns
         [&](std::size_t begin, std::size_t end) {
             std::vector<float> above(plane);
             SliceDistanceField field(dims.x, dims.y, volume.geometry().spacingI(),
-                                     volume.geometry().spacingJ());
+                                     volume.geometry().spacingJ(), limitMm);
             for (std::size_t k = begin; k < end; ++k) {
                 aboveIso(volume, int(k), iso, above);
-                field.reset();
-                field.seed(above);
-                field.propagate();
+                field.compute(above);
                 std::int16_t* out = target + plane * k;
                 for (std::size_t p = 0; p < plane; ++p)
-                    out[p] = storedDistance(field.distance(p), above[p] >= 0.0f, limitMm);
+                    out[p] = kernels::storedSliceDistance(field.squared(p), above[p] >= 0.0f,
+                                                          limitMm, kSliceDistanceStepsPerMm);
             }
         },
         threads);

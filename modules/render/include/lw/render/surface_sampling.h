@@ -18,6 +18,7 @@
 // every method, S and L, CPU and CUDA, the shaded panel -- so they all draw the same surface.
 // Grids that are not thick (analytic shapes, isotropic CT) are untouched.
 
+#include "lw/render/renderer_factory.h"
 #include "lw/volume/oversampling.h"
 #include "lw/volume/volume.h"
 
@@ -89,5 +90,30 @@ std::optional<volume::Volume> oversampledToRender(const volume::Volume& volume,
 std::shared_ptr<const volume::Volume> volumeToRender(std::shared_ptr<const volume::Volume> volume,
                                                      VolumeSampling sampling, double iso,
                                                      unsigned threads = 0);
+
+// The volume to draw of one source, made again only when the sampling or (for the shape-based
+// field) the iso-value changes. On the CUDA back-end the shape-based field is made on the device
+// (kernels/cuda/thick_slice_field_cuda.h: the same int16 copy, bit for bit): the slices go up
+// once, and a new iso-value costs a few kernels and the copy's download instead of the host's
+// distance transform and refinement. Where the device fails (out of memory, no device after all),
+// the host makes it from then on, and lastNote() says why once.
+class DrawnVolumeMaker {
+public:
+    DrawnVolumeMaker(std::shared_ptr<const volume::Volume> source, Backend backend);
+    ~DrawnVolumeMaker();
+    DrawnVolumeMaker(const DrawnVolumeMaker&) = delete;
+    DrawnVolumeMaker& operator=(const DrawnVolumeMaker&) = delete;
+
+    // volumeToRender's volume for `sampling` at `iso`.
+    std::shared_ptr<const volume::Volume> make(VolumeSampling sampling, double iso,
+                                               unsigned threads = 0);
+    bool lastMadeOnDevice() const;
+    // Why the device stopped making the field ("" while it has not): once, then "".
+    std::string takeNote();
+
+private:
+    struct Impl;
+    std::unique_ptr<Impl> m_impl;
+};
 
 } // namespace lw::render

@@ -18,12 +18,15 @@
 //      slice k+1  ##|######....      the band between the two contours: a tread under linear
 //                                    interpolation, a slope under the distances
 //
-// The distance is exact to the sub-pixel contour: each pixel next to the contour starts from the
-// point where the grey values cross the iso-value along the row or column (where linear
-// interpolation puts it, so within a slice the contour is where it was), and the nearest such
-// point is carried to every other pixel by vector propagation (Danielsson's 8-point sequential
-// EDT), in millimetres (anisotropic pixels count). The result depends on the iso-value: a new
-// iso-value needs a new field.
+// The distance is exact to the sub-pixel contour: the contour points are where the grey values
+// cross the iso-value along the rows and columns (where linear interpolation puts them, so within
+// a slice the contour is where it was), and each pixel takes the nearest of them, in millimetres
+// (anisotropic pixels count). It is found separably -- within a row the nearest row crossing is the
+// one nearest along the row, then the minimum over the rows within the limit's reach, and the
+// same for the columns -- so it costs the slice's size times the reach in pixels, and it is the
+// exact minimum, which a GPU that searches a window instead finds too, bit for bit
+// (kernels/slice_field_rules.h; kernels/cuda/thick_slice_field_cuda.h). The result depends on
+// the iso-value: a new iso-value needs a new field.
 //
 // Distances are limited to +-limitMm, and a slice with no contour at all is at the limit
 // throughout. The limit says how far beyond the last slice that shows a structure it may reach:

@@ -1,0 +1,151 @@
+// The thick-slice field made on the CUDA device against the host's (label gpu: runs only where a
+// CUDA device is present, SKIP elsewhere): the same int16 copy, bit for bit, with the same
+// geometry and value mapping -- over every voxel type, sizes off the 32 x 8 pixel blocks, a
+// gantry-tilted stack with uneven gaps, refinement in-plane as well as along the slices, and
+// iso-values where whole slices have no contour.
+
+#include "filled_volume.h"
+#include "lw/render/renderer_factory.h"
+#include "lw/render/surface_sampling.h"
+#include "lw/volume/phantom.h"
+
+#include <cmath>
+#include <cstring>
+#include <functional>
+#include <gtest/gtest.h>
+#include <random>
+#include <string>
+#include <vector>
+
+namespace lw::render {
+namespace {
+
+using volume::Volume;
+using volume::VolumeGeometry;
+
+struct Case {
+    std::string name;
+    std::function<Volume()> make;
+    std::vector<double> isos;
+};
+
+// The CT phantom's voxels on thick slices (0.5 mm pixels, 3 mm slices).
+Volume thickPhantom() {
+    const Volume thin = volume::makePhantom({100, 67, 45}, volume::PhantomKind::Ct);
+    Volume thick(thin.dims(), thin.voxelType(),
+                 VolumeGeometry::regular({-20.0, 10.0, 5.0}, {0.5, 0.5, 3.0}));
+    std::memcpy(thick.data(), thin.data(), thin.byteSize());
+    thick.setValueMapping(thin.valueMapping());
+    return thick;
+}
+
+// A sphere on a gantry-tilted stack (20 degrees) with gaps of 2 and 3.5 mm, float voxels.
+Volume tiltedUnevenSphere() {
+    const double tilt = 20.0 * 3.14159265358979323846 / 180.0;
+    std::vector<glm::dvec3> slices;
+    double z = 0.0;
+    for (int k = 0; k < 23; ++k) {
+        slices.push_back({0.0, z * std::tan(tilt), z});
+        z += (k % 2 == 0) ? 2.0 : 3.5;
+    }
+    const auto geometry =
+        VolumeGeometry::fromSlicePositions({1, 0, 0}, {0, 1, 0}, 0.45, 0.6, slices);
+    const glm::dvec3 centre = geometry.indexToPatient({41.0, 38.0, 11.0});
+    return lw::test::makeFilledVolume<float>(
+        {83, 71, 23},
+        [&](int x, int y, int k) {
+            return 25.0 -
+                   glm::length(geometry.indexToPatient({double(x), double(y), double(k)}) - centre);
+        },
+        geometry);
+}
+
+// Coarse noise of type T on coarse pixels, so that the refinement splits rows and columns too.
+template <typename T> Volume coarseNoise(glm::ivec3 dims, glm::dvec3 spacing, unsigned seed) {
+    std::mt19937 random(seed);
+    std::uniform_int_distribution<int> value(0, 200);
+    return lw::test::makeFilledVolume<T>(
+        dims, [&](int, int, int) { return value(random); },
+        VolumeGeometry::regular({0.0, 0.0, 0.0}, spacing));
+}
+
+std::vector<Case> cases() {
+    return {
+        {"phantom int16 on 3 mm slices", thickPhantom, {300.5, -500.0, 5000.0}},
+        {"tilted uneven float sphere", tiltedUnevenSphere, {0.0, 12.5}},
+        {"uint8 noise refined in plane",
+         [] {
+             return coarseNoise<std::uint8_t>({40, 23, 19}, {3.0, 3.0, 12.0}, 1);
+         },
+         {100.0, 150.5}},
+        {"uint16 noise 33x9x5",
+         [] {
+             return coarseNoise<std::uint16_t>({33, 9, 5}, {0.8, 0.8, 4.0}, 2);
+         },
+         {120.0}},
+    };
+}
+
+std::string caseName(const testing::TestParamInfo<Case>& info) {
+    std::string name;
+    for (char c : info.param.name)
+        name += std::isalnum(static_cast<unsigned char>(c)) ? c : '_';
+    return name;
+}
+
+class ThickSlicesOnDevice : public testing::TestWithParam<Case> {
+protected:
+    void SetUp() override {
+        if (!cudaAvailability().available)
+            GTEST_SKIP() << "no CUDA device: " << cudaAvailability().reason;
+    }
+};
+
+TEST_P(ThickSlicesOnDevice, MakesTheHostsFieldBitForBit) {
+    const auto source = std::make_shared<const Volume>(GetParam().make());
+    const VolumeSampling sampling{Oversampling::Auto, ThickSlices::Smooth};
+    ASSERT_TRUE(samplingPlan(source->dims(), source->geometry(), sampling).shapeBased)
+        << "the case must have thick slices";
+    DrawnVolumeMaker device(source, Backend::Cuda);
+    for (const double iso : GetParam().isos) {
+        const std::string where = GetParam().name + " at " + std::to_string(iso);
+        const auto onDevice = device.make(sampling, iso, 1);
+        ASSERT_TRUE(device.lastMadeOnDevice()) << where << ": " << device.takeNote();
+        const auto onHost = volumeToRender(source, sampling, iso, 2);
+        ASSERT_EQ(onDevice->dims(), onHost->dims()) << where;
+        ASSERT_EQ(onDevice->voxelType(), onHost->voxelType()) << where;
+        EXPECT_EQ(onDevice->valueMapping().slope, onHost->valueMapping().slope) << where;
+        EXPECT_EQ(onDevice->valueMapping().intercept, onHost->valueMapping().intercept) << where;
+        EXPECT_EQ(onDevice->geometry().indexToPatient({1.0, 2.0, 3.0}),
+                  onHost->geometry().indexToPatient({1.0, 2.0, 3.0}))
+            << where;
+        const std::int16_t* a = onDevice->dataAs<std::int16_t>();
+        const std::int16_t* b = onHost->dataAs<std::int16_t>();
+        std::size_t differing = 0, first = 0;
+        for (std::size_t v = onDevice->voxelCount(); v-- > 0;)
+            if (a[v] != b[v]) {
+                ++differing;
+                first = v;
+            }
+        EXPECT_EQ(differing, 0u) << where << ": first at voxel " << first << " (device "
+                                 << (differing ? a[first] : 0) << ", host "
+                                 << (differing ? b[first] : 0) << ")";
+    }
+}
+
+INSTANTIATE_TEST_SUITE_P(Volumes, ThickSlicesOnDevice, testing::ValuesIn(cases()), caseName);
+
+// On the CPU back-end the maker is the host's volumeToRender.
+TEST(ThickSlicesOnHost, TheCpuBackendMakesTheFieldOnTheHost) {
+    const auto source = std::make_shared<const Volume>(thickPhantom());
+    DrawnVolumeMaker host(source, Backend::Cpu);
+    const VolumeSampling sampling{Oversampling::Auto, ThickSlices::Smooth};
+    const auto made = host.make(sampling, 300.5, 1);
+    EXPECT_FALSE(host.lastMadeOnDevice());
+    const auto reference = volumeToRender(source, sampling, 300.5, 1);
+    ASSERT_EQ(made->dims(), reference->dims());
+    EXPECT_EQ(std::memcmp(made->data(), reference->data(), made->byteSize()), 0);
+}
+
+} // namespace
+} // namespace lw::render
