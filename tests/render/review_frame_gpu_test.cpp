@@ -143,6 +143,29 @@ TEST_F(DeviceFrame, ShadesWithCudaWhateverTheSilhouettesSchedule) {
     }
 }
 
+// Thick slices on the device: the field of a new iso-value is made on the device, and the
+// renderers kept from the last one (method 1's interop buffers, method 3's device surface) are
+// rebound to it. They must draw what renderers made for it draw.
+TEST_P(ReviewFrameOnDevice, ThickSlicesAtANewIsoValueDrawWhatAFreshFrameDraws) {
+    const auto volume = thickPhantom();
+    ReviewFrameRequest request = requestFor(*volume, GetParam(), Backend::Cuda, 40.0);
+    request.sampling = {Oversampling::Auto, ThickSlices::Smooth};
+    ReviewFrameRenderer kept(volume);
+    kept.render(request);
+    for (const double iso : {700.5, -400.0, 300.5}) {
+        request.iso = iso;
+        const ReviewFrame rebound = kept.render(request);
+        ReviewFrameRenderer fresh(volume);
+        const ReviewFrame reference = fresh.render(request);
+        ASSERT_TRUE(rebound.silhouette && reference.silhouette && rebound.isoImage &&
+                    reference.isoImage);
+        EXPECT_TRUE(rebound.isoOnDevice) << rebound.backendNote;
+        EXPECT_GT(reference.silhouette->lines.count(), 100u) << iso << ": lines drawn";
+        EXPECT_TRUE(rebound.silhouette->lines == reference.silhouette->lines) << iso;
+        EXPECT_EQ(agreement(*rebound.isoImage, *reference.isoImage, 0), 1.0) << iso;
+    }
+}
+
 INSTANTIATE_TEST_SUITE_P(Methods, ReviewFrameOnDevice,
                          testing::Values(SilhouetteMethod::GeometryShader,
                                          SilhouetteMethod::RayCastVisibility,

@@ -53,6 +53,38 @@ TEST(ReviewFrame, MethodTwoKeepsNoMeshSoTheIsoPanelExtractsOne) {
     EXPECT_EQ(frames.hostMeshesMade(), 1u);
 }
 
+// Thick slices: a new iso-value makes a new shape-based copy of the same grid, and the renderers
+// kept from the last one are rebound to it. They must draw what renderers made for it draw.
+class ReviewFrameThickSlices : public testing::TestWithParam<SilhouetteMethod> {};
+
+TEST_P(ReviewFrameThickSlices, ANewIsoValueDrawsWhatAFreshFrameDraws) {
+    const auto volume = thickPhantom();
+    ReviewFrameRequest request = requestFor(*volume, GetParam(), Backend::Cpu, 40.0);
+    request.sampling = {Oversampling::Auto, ThickSlices::Smooth};
+    request.isoOnCpu = true;
+    ASSERT_TRUE(samplingPlan(volume->dims(), volume->geometry(), request.sampling).dependsOnIso());
+    ReviewFrameRenderer kept(volume);
+    const ReviewFrame first = kept.render(request);
+    for (const double iso : {700.5, -400.0, 300.5}) {
+        request.iso = iso;
+        const ReviewFrame rebound = kept.render(request);
+        ReviewFrameRenderer fresh(volume);
+        const ReviewFrame reference = fresh.render(request);
+        ASSERT_TRUE(rebound.silhouette && reference.silhouette && rebound.isoImage &&
+                    reference.isoImage);
+        EXPECT_GT(reference.silhouette->lines.count(), 100u) << iso << ": lines drawn";
+        EXPECT_TRUE(rebound.silhouette->lines == reference.silhouette->lines) << iso;
+        EXPECT_EQ(agreement(*rebound.isoImage, *reference.isoImage, 0), 1.0) << iso;
+        EXPECT_EQ(*rebound.surfaceTriangles, *reference.surfaceTriangles) << iso;
+    }
+    EXPECT_TRUE(kept.render(request).silhouette->lines == first.silhouette->lines)
+        << "back at the first iso-value, the first drawing";
+}
+
+INSTANTIATE_TEST_SUITE_P(HostMethods, ReviewFrameThickSlices,
+                         testing::Values(SilhouetteMethod::ZBuffer,
+                                         SilhouetteMethod::RayCastVisibility));
+
 TEST(ReviewFrame, ACancelledRequestThrows) {
     const auto volume = phantom();
     ReviewFrameRenderer frames(volume);

@@ -7,6 +7,7 @@
 #include "lw/volume/phantom.h"
 
 #include <cstdlib>
+#include <cstring>
 #include <memory>
 
 namespace lw::render::test {
@@ -16,6 +17,17 @@ constexpr double kIso = 300.5;
 inline std::shared_ptr<const volume::Volume> phantom() {
     return std::make_shared<const volume::Volume>(
         volume::makePhantom({72, 64, 56}, volume::PhantomKind::Ct));
+}
+
+// The phantom's voxels on thick slices (0.5 mm pixels, 3 mm slices): drawn through the
+// shape-based field, a copy per iso-value.
+inline std::shared_ptr<const volume::Volume> thickPhantom() {
+    const volume::Volume thin = volume::makePhantom({72, 64, 40}, volume::PhantomKind::Ct);
+    volume::Volume thick(thin.dims(), thin.voxelType(),
+                         volume::VolumeGeometry::regular({0.0, 0.0, 0.0}, {0.5, 0.5, 3.0}));
+    std::memcpy(thick.data(), thin.data(), thin.byteSize());
+    thick.setValueMapping(thin.valueMapping());
+    return std::make_shared<const volume::Volume>(std::move(thick));
 }
 
 inline Camera cameraAt(const volume::Volume& volume, double az, double el) {

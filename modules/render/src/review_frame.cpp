@@ -139,6 +139,27 @@ struct ReviewFrameRenderer::State {
         deviceUnavailable.clear();
     }
 
+    // A new copy of the same grid (the shape-based field at a new iso-value): the renderers keep
+    // their GL and device objects -- made again, method 1's interop buffers alone cost tens of
+    // milliseconds -- and take the new voxels (setVolume drops what they kept of the old ones);
+    // what was made on the host of the old surface goes.
+    void rebindVolume() {
+        suggestive.reset();
+        suggestiveSurface = {};
+        extractor.reset();
+        kept = {};
+        if (renderer)
+            renderer->setVolume(*volume);
+        if (cudaIso)
+            cudaIso->setVolume(*volume);
+#if LINEWORK_GL
+        uploadedMesh = nullptr; // the GL panel uploads the new surface at its next frame
+        uploadedMeshOwner.reset();
+        if (deviceIso)
+            deviceIso->setVolume(*volume);
+#endif
+    }
+
     void prepareVolume(const ReviewFrameRequest& request);
     SilhouetteRenderer& rendererFor(const ReviewFrameRequest& request, ReviewFrame& frame);
     // `deviceIso`: the iso panel is to be shaded on the device (where it still can be).
@@ -193,11 +214,23 @@ std::size_t ReviewFrameRenderer::hostMeshesMade() const {
 }
 
 // The volume of the request's sampling: made once -- once per iso-value where it is the
-// shape-based field of thick slices -- and on a change everything made of the old one goes.
+// shape-based field of thick slices -- and on a change everything made of the old one goes,
+// except where only the iso-value of the shape-based field changed: the grid is the same, and
+// the renderers are rebound to the new copy.
 void ReviewFrameRenderer::State::prepareVolume(const ReviewFrameRequest& request) {
-    if (volume && volumeSampling == request.sampling &&
-        (!volumeDependsOnIso || volumeIso == request.iso))
+    const bool sameSampling = volume && volumeSampling == request.sampling;
+    if (sameSampling && (!volumeDependsOnIso || volumeIso == request.iso))
         return;
+    if (sameSampling && volumeMaker && volumeMakerBackend == request.backend) {
+        // The old copy stays until the renderers let go of it: two copies of a bounded grid (the
+        // shape-based copy has at most kMaxOversamplingFactor times the slices) for a moment.
+        const std::shared_ptr<const volume::Volume> previous = volume;
+        volume = volumeMaker->make(request.sampling, request.iso, request.settings.threads);
+        volumeNote = volumeMaker->takeNote();
+        volumeIso = request.iso;
+        rebindVolume();
+        return;
+    }
     dropVolumeCaches();
     volume.reset(); // the old copy goes before a new one is made: one at a time in memory
     if (!volumeMaker || volumeMakerBackend != request.backend) {
