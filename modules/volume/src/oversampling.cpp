@@ -63,36 +63,62 @@ template <typename T> struct SliceRefiner {
     bool monotoneK; // else linear along k
     T* target;
 
-    // Slices lower and lower + 1 on the Hermite curve at t, with their tangents from slices
-    // lower - 1 and lower + 2 (one-sided at the ends: the end segment's own secant).
-    void blendPlaneMonotone(const Blend& b, std::size_t planeSize,
-                            std::vector<float>& plane) const {
-        const T* y1 = source + planeSize * std::size_t(b.lower);
+    // The tangents at slices lower and lower + 1 of one gap, kept for the gap's other refined
+    // slices (they share them: made once a gap, not once a refined slice).
+    struct GapTangents {
+        int gap = -1;
+        std::vector<float> atLower, atUpper;
+    };
+
+    void tangentsOfGap(int lower, std::size_t planeSize, GapTangents& tangents) const {
+        if (tangents.gap == lower)
+            return;
+        const T* y1 = source + planeSize * std::size_t(lower);
         const T* y2 = y1 + planeSize;
-        const T* y0 = b.lower > 0 ? y1 - planeSize : y1;
-        const T* y3 = b.lower + 2 < sourceDims.z ? y2 + planeSize : y2;
-        const bool first = b.lower == 0;
-        const bool last = b.lower + 2 >= sourceDims.z;
-        const HermiteWeights w(b.upperWeight);
+        const T* y0 = lower > 0 ? y1 - planeSize : y1;
+        const T* y3 = lower + 2 < sourceDims.z ? y2 + planeSize : y2;
+        const bool first = lower == 0;
+        const bool last = lower + 2 >= sourceDims.z;
+        tangents.atLower.resize(planeSize);
+        tangents.atUpper.resize(planeSize);
+        float* m1 = tangents.atLower.data();
+        float* m2 = tangents.atUpper.data();
         for (std::size_t v = 0; v < planeSize; ++v) {
             const float secant = float(y2[v]) - float(y1[v]);
-            const float m1 = first ? secant : monotoneTangent(float(y1[v]) - float(y0[v]), secant);
-            const float m2 = last ? secant : monotoneTangent(secant, float(y3[v]) - float(y2[v]));
-            plane[v] = kernels::hermiteBlend(w, float(y1[v]), m1, float(y2[v]), m2);
+            m1[v] = first ? secant : monotoneTangent(float(y1[v]) - float(y0[v]), secant);
+            m2[v] = last ? secant : monotoneTangent(secant, float(y3[v]) - float(y2[v]));
         }
+        tangents.gap = lower;
     }
 
-    void blendPlane(int k, std::vector<float>& plane) const {
+    // Slices lower and lower + 1 on the Hermite curve at t, with their tangents from slices
+    // lower - 1 and lower + 2 (one-sided at the ends: the end segment's own secant).
+    // `out(v, value)` takes each pixel's value (into a plane to refine in-plane, or straight into
+    // the slice).
+    template <typename Out>
+    void blendPlaneMonotone(const Blend& b, std::size_t planeSize, GapTangents& tangents,
+                            Out&& out) const {
+        tangentsOfGap(b.lower, planeSize, tangents);
+        const T* y1 = source + planeSize * std::size_t(b.lower);
+        const T* y2 = y1 + planeSize;
+        const float* m1 = tangents.atLower.data();
+        const float* m2 = tangents.atUpper.data();
+        const HermiteWeights w(b.upperWeight);
+        for (std::size_t v = 0; v < planeSize; ++v)
+            out(v, kernels::hermiteBlend(w, float(y1[v]), m1[v], float(y2[v]), m2[v]));
+    }
+
+    template <typename Out> void blendPlane(int k, GapTangents& tangents, Out&& out) const {
         const std::size_t planeSize = std::size_t(sourceDims.x) * std::size_t(sourceDims.y);
         const Blend b = alongK[std::size_t(k)];
         if (monotoneK && b.upperWeight > 0.0f) {
-            blendPlaneMonotone(b, planeSize, plane);
+            blendPlaneMonotone(b, planeSize, tangents, out);
             return;
         }
         const T* lower = source + planeSize * std::size_t(b.lower);
         const T* upper = b.upperWeight > 0.0f ? lower + planeSize : lower;
         for (std::size_t v = 0; v < planeSize; ++v)
-            plane[v] = kernels::linearBlend(float(lower[v]), b.upperWeight, float(upper[v]));
+            out(v, kernels::linearBlend(float(lower[v]), b.upperWeight, float(upper[v])));
     }
 
     void refineRow(const std::vector<float>& plane, int j, std::vector<float>& row, T* out) const {
@@ -114,15 +140,18 @@ template <typename T> struct SliceRefiner {
     void refineSlices(std::size_t first, std::size_t end) const {
         std::vector<float> plane(std::size_t(sourceDims.x) * std::size_t(sourceDims.y));
         std::vector<float> row(std::size_t(sourceDims.x));
+        GapTangents tangents;
         const bool inPlaneAsIs = dims.x == sourceDims.x && dims.y == sourceDims.y;
         for (std::size_t k = first; k < end; ++k) {
-            blendPlane(int(k), plane);
             T* slice = target + std::size_t(dims.x) * std::size_t(dims.y) * k;
             if (inPlaneAsIs) { // split along k only: the plane is the slice (the same values)
-                for (std::size_t v = 0; v < plane.size(); ++v)
-                    slice[v] = storedFrom<T>(plane[v]);
+                blendPlane(int(k), tangents, [slice](std::size_t v, float value) {
+                    slice[v] = storedFrom<T>(value);
+                });
                 continue;
             }
+            blendPlane(int(k), tangents,
+                       [&plane](std::size_t v, float value) { plane[v] = value; });
             for (int j = 0; j < dims.y; ++j)
                 refineRow(plane, j, row, slice + std::size_t(dims.x) * std::size_t(j));
         }
