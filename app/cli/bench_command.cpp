@@ -568,6 +568,8 @@ void writeTextReport(const Plan& plan, const BenchResult& result, std::ostream& 
 
 } // namespace
 
+namespace {
+
 // The drawn copy of a shape-based (thick-slice) volume, made per iso-value: on the host and, where
 // the back-end is CUDA, on the device (the slices uploaded once, as the review does), each timed
 // over the runs. A note; the rows then draw the host's copy (the same voxels).
@@ -599,6 +601,8 @@ void noteDrawnCopyTimes(const BenchVolume& input, const Plan& plan,
     }
     notes.push_back(note + " (median ms)");
 }
+
+} // namespace
 
 int runBench(const std::vector<std::string>& args, std::ostream& out) {
     const Arguments arguments(args, {"json"}, kBenchOptions);

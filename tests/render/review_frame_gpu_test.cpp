@@ -157,12 +157,10 @@ TEST_P(ReviewFrameOnDevice, ThickSlicesAtANewIsoValueDrawWhatAFreshFrameDraws) {
         const ReviewFrame rebound = kept.render(request);
         ReviewFrameRenderer fresh(volume);
         const ReviewFrame reference = fresh.render(request);
-        ASSERT_TRUE(rebound.silhouette && reference.silhouette && rebound.isoImage &&
-                    reference.isoImage);
+        expectSameDrawing(rebound, reference, iso);
+        if (HasFatalFailure())
+            return;
         EXPECT_TRUE(rebound.isoOnDevice) << rebound.backendNote;
-        EXPECT_GT(reference.silhouette->lines.count(), 100u) << iso << ": lines drawn";
-        EXPECT_TRUE(rebound.silhouette->lines == reference.silhouette->lines) << iso;
-        EXPECT_EQ(agreement(*rebound.isoImage, *reference.isoImage, 0), 1.0) << iso;
     }
 }
 

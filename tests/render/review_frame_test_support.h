@@ -8,6 +8,7 @@
 
 #include <cstdlib>
 #include <cstring>
+#include <gtest/gtest.h>
 #include <memory>
 
 namespace lw::render::test {
@@ -73,6 +74,17 @@ inline double agreement(const core::ImageRgba8& a, const core::ImageRgba8& b, in
                 std::abs(p.b - q.b) <= tolerance;
     }
     return double(same) / double(a.pixels().size());
+}
+
+// A kept frame renderer moved to a new iso-value (`rebound`) against one made for it
+// (`reference`): both drew, lines to compare at all, the same line mask and the same iso image.
+inline void expectSameDrawing(const ReviewFrame& rebound, const ReviewFrame& reference,
+                              double iso) {
+    ASSERT_TRUE(rebound.silhouette && reference.silhouette && rebound.isoImage &&
+                reference.isoImage);
+    EXPECT_GT(reference.silhouette->lines.count(), 100u) << iso << ": lines drawn";
+    EXPECT_TRUE(rebound.silhouette->lines == reference.silhouette->lines) << iso;
+    EXPECT_EQ(agreement(*rebound.isoImage, *reference.isoImage, 0), 1.0) << iso;
 }
 
 } // namespace lw::render::test

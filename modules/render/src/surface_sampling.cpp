@@ -184,22 +184,12 @@ struct DrawnVolumeMaker::Impl {
     }
 };
 
-namespace {
-bool fieldOnDevice(Backend backend) {
-    if (backend == Backend::Cpu)
-        return false;
-    try {
-        return resolveBackend(backend) == Backend::Cuda;
-    } catch (const core::Error&) {
-        return false; // --backend cuda where it cannot be: the renderers say so themselves
-    }
-}
-} // namespace
-
 DrawnVolumeMaker::DrawnVolumeMaker(std::shared_ptr<const volume::Volume> source, Backend backend)
     : m_impl(std::make_unique<Impl>()) {
     m_impl->source = std::move(source);
-    m_impl->onDevice = LINEWORK_CUDA && fieldOnDevice(backend);
+    // Not for the CPU back-end; where Cuda is asked for and no device is there, the renderers
+    // say so themselves, and the host makes the field.
+    m_impl->onDevice = backend != Backend::Cpu && cudaAvailability().available;
 }
 
 DrawnVolumeMaker::~DrawnVolumeMaker() = default;
