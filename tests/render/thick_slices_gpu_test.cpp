@@ -5,6 +5,9 @@
 // iso-values where whole slices have no contour.
 
 #include "filled_volume.h"
+#include "lw/core/error.h"
+#include "lw/render/aabb.h"
+#include "lw/render/camera.h"
 #include "lw/render/renderer_factory.h"
 #include "lw/render/surface_sampling.h"
 #include "lw/volume/phantom.h"
@@ -135,6 +138,67 @@ TEST_P(ThickSlicesOnDevice, MakesTheHostsFieldBitForBit) {
 
 INSTANTIATE_TEST_SUITE_P(Volumes, ThickSlicesOnDevice, testing::ValuesIn(cases()), caseName);
 
+// The renderers of a copy made on the device take its voxels from there, device to device: bound
+// to a host volume that holds no surface at all, with the device copy beside it, each CUDA
+// renderer draws what it draws of the copy's own host voxels -- so it read the device's.
+class RenderersOnTheDeviceCopy : public testing::TestWithParam<SilhouetteMethod> {
+protected:
+    void SetUp() override {
+        if (!cudaAvailability().available)
+            GTEST_SKIP() << "no CUDA device: " << cudaAvailability().reason;
+    }
+};
+
+PixelMask drawnLines(SilhouetteRenderer& renderer, const Volume& volume, double iso) {
+    CameraSetup setup;
+    setup.bounds = volumeBounds(volume);
+    setup.azimuthDeg = 40.0;
+    setup.elevationDeg = 20.0;
+    SilhouetteSettings settings;
+    settings.isoReal = iso;
+    settings.closeAtBorder = false; // the border cap comes from the host's voxels
+    return renderer.render(Camera(setup, 160, 120), settings).lines;
+}
+
+TEST_P(RenderersOnTheDeviceCopy, ReadTheDevicesVoxelsNotTheHosts) {
+    const auto source = std::make_shared<const Volume>(thickPhantom());
+    const VolumeSampling sampling{Oversampling::Auto, ThickSlices::Smooth};
+    DrawnVolumeMaker maker(source, Backend::Cuda);
+    constexpr double kIso = 300.5;
+    const auto field = maker.make(sampling, kIso, 1);
+    ASSERT_TRUE(maker.lastMadeOnDevice()) << maker.takeNote();
+    ASSERT_NE(maker.deviceCopy().voxels, nullptr);
+    // All voxels 0: every point at the iso-value, inside, so no surface is left to draw.
+    Volume blank(field->dims(), field->voxelType(), field->geometry());
+    std::memset(blank.data(), 0, blank.byteSize()); // a new volume's voxels are not initialised
+    blank.setValueMapping(field->valueMapping());
+
+    std::unique_ptr<SilhouetteRenderer> fromDevice, fromHost, ofBlank;
+    try {
+        fromDevice = createSilhouetteRenderer(GetParam(), Backend::Cuda);
+        fromHost = createSilhouetteRenderer(GetParam(), Backend::Cuda);
+        ofBlank = createSilhouetteRenderer(GetParam(), Backend::Cuda);
+    } catch (const core::Error& error) {
+        GTEST_SKIP() << "no CUDA renderer of this method here: " << error.what();
+    }
+    fromDevice->setVolumeWithDeviceCopy(blank, maker.deviceCopy());
+    fromHost->setVolume(*field);
+    ofBlank->setVolume(blank);
+    const PixelMask reference = drawnLines(*fromHost, *field, kIso);
+    EXPECT_GT(reference.count(), 100u) << "the copy's lines";
+    EXPECT_EQ(drawnLines(*ofBlank, blank, kIso).count(), 0u) << "the blank volume draws nothing";
+    EXPECT_TRUE(drawnLines(*fromDevice, blank, kIso) == reference)
+        << "bound with the device copy, the renderer draws the copy";
+}
+
+INSTANTIATE_TEST_SUITE_P(Methods, RenderersOnTheDeviceCopy,
+                         testing::Values(SilhouetteMethod::GeometryShader,
+                                         SilhouetteMethod::RayCastVisibility,
+                                         SilhouetteMethod::ZBuffer),
+                         [](const testing::TestParamInfo<SilhouetteMethod>& info) {
+                             return "Method" + std::to_string(int(info.param));
+                         });
+
 // On the CPU back-end the maker is the host's volumeToRender.
 TEST(ThickSlicesOnHost, TheCpuBackendMakesTheFieldOnTheHost) {
     const auto source = std::make_shared<const Volume>(thickPhantom());
@@ -142,6 +206,7 @@ TEST(ThickSlicesOnHost, TheCpuBackendMakesTheFieldOnTheHost) {
     const VolumeSampling sampling{Oversampling::Auto, ThickSlices::Smooth};
     const auto made = host.make(sampling, 300.5, 1);
     EXPECT_FALSE(host.lastMadeOnDevice());
+    EXPECT_EQ(host.deviceCopy().voxels, nullptr);
     const auto reference = volumeToRender(source, sampling, 300.5, 1);
     ASSERT_EQ(made->dims(), reference->dims());
     EXPECT_EQ(std::memcmp(made->data(), reference->data(), made->byteSize()), 0);

@@ -99,16 +99,28 @@ CudaStatus MarchingCubesCuda::Impl::beginWholeVolume(const VolumeView& host) {
 }
 
 CudaStatus MarchingCubesCuda::setVolume(const VolumeView& host, const VoxelGridSetup& setup) {
-    Impl& s = *m_impl;
-    LW_RETURN_IF_FAILED(s.beginWholeVolume(host));
-    LW_RETURN_IF_FAILED(s.voxels.reserve(host.byteCount(), "cudaMalloc(volume)"));
+    return m_impl->copyWholeVolume(host, setup, cudaMemcpyHostToDevice);
+}
+
+CudaStatus MarchingCubesCuda::setDeviceVolume(const VolumeView& device,
+                                              const VoxelGridSetup& setup) {
+    return m_impl->copyWholeVolume(device, setup, cudaMemcpyDeviceToDevice);
+}
+
+// setVolume and setDeviceVolume: the voxels copied into the device buffer the kernels read.
+CudaStatus MarchingCubesCuda::Impl::copyWholeVolume(const VolumeView& from,
+                                                    const VoxelGridSetup& setup,
+                                                    cudaMemcpyKind direction) {
+    Impl& s = *this;
+    LW_RETURN_IF_FAILED(s.beginWholeVolume(from));
+    LW_RETURN_IF_FAILED(s.voxels.reserve(from.byteCount(), "cudaMalloc(volume)"));
     s.volume.voxels = s.voxels.data();
 
     dispatch::StageTimer upload;
     LW_RETURN_IF_FAILED(upload.start(s.stream.get()));
-    LW_CUDA_TRY(cudaMemcpyAsync(s.voxels.data(), host.voxels, host.byteCount(),
-                                cudaMemcpyHostToDevice, s.stream.get()),
-                "cudaMemcpy(volume)");
+    LW_CUDA_TRY(
+        cudaMemcpyAsync(s.voxels.data(), from.voxels, from.byteCount(), direction, s.stream.get()),
+        "cudaMemcpy(volume)");
     LW_RETURN_IF_FAILED(upload.stop(s.stream.get()));
     LW_RETURN_IF_FAILED(s.finishWholeVolume(setup));
     s.uploadMs = upload.ms();

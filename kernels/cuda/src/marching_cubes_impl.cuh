@@ -98,6 +98,8 @@ struct MarchingCubesCuda::Impl {
     CudaStatus uploadGridTables(const VoxelGridSetup& setup);
     CudaStatus beginWholeVolume(const VolumeView& host);
     CudaStatus finishWholeVolume(const VoxelGridSetup& setup);
+    CudaStatus copyWholeVolume(const VolumeView& from, const VoxelGridSetup& setup,
+                               cudaMemcpyKind direction);
     template <typename T>
     CudaStatus extractSlabsTyped(double iso, const std::vector<CellSlab>& slabs,
                                  const MarchingCubesCuda::SlabCallback& onSlab);

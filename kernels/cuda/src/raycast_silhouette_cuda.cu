@@ -76,7 +76,8 @@ struct RayCastSilhouetteCuda::Impl {
     MarchingCubesCuda::Impl& mc() { return marchingCubes.implementation(); }
 
     template <typename T> CudaStatus findMacroMaxima();
-    CudaStatus placeVolume(const VolumeView& host, const VoxelGridSetup& setup, bool mapped);
+    CudaStatus placeVolume(const VolumeView& host, const VoxelGridSetup& setup, bool mapped,
+                           const void* deviceVoxels);
     std::vector<CellSlab> slabPlan() const;
     CudaStatus extractSlabs(double storedIso);
     CudaStatus findSlabSegments(const rc::View& view, std::uint32_t capacity);
@@ -127,14 +128,19 @@ std::size_t RayCastSilhouetteCuda::deviceBytes() const {
            s.representativeCount.bytes() + s.isRepresentative.bytes() + s.nextRay.bytes();
 }
 
+bool RayCastSilhouetteCuda::readsHostMemory() const {
+    return m_impl->raysReadHostMemory;
+}
+
 CudaStatus RayCastSilhouetteCuda::setVolume(const VolumeView& hostVolume,
                                             const VoxelGridSetup& setup,
-                                            const RayGridSetup& rayGrid, bool mapped) {
+                                            const RayGridSetup& rayGrid, bool mapped,
+                                            const void* deviceVoxels) {
     Impl& s = *m_impl;
     s.prepared = false;
     // This translation unit's copy of the constant tables (see marching_cubes_kernels.cuh).
     LW_RETURN_IF_FAILED(mc::uploadTables());
-    LW_RETURN_IF_FAILED(s.placeVolume(hostVolume, setup, mapped));
+    LW_RETURN_IF_FAILED(s.placeVolume(hostVolume, setup, mapped, deviceVoxels));
     s.rayGrid = rayGrid;
     LW_RETURN_IF_FAILED(s.rayOffsets.reserve(rayGrid.offsets.size(), "cudaMalloc(rayOffsets)"));
     LW_CUDA_TRY(cudaMemcpy(s.rayOffsets.data(), rayGrid.offsets.data(),
@@ -161,7 +167,8 @@ CudaStatus RayCastSilhouetteCuda::setVolume(const VolumeView& hostVolume,
 // The voxels where marching cubes and the rays read them: on the device, mapped from host
 // memory, or (slabbed) streamed to marching cubes by slab and mapped for the rays.
 CudaStatus RayCastSilhouetteCuda::Impl::placeVolume(const VolumeView& host,
-                                                    const VoxelGridSetup& setup, bool mapped) {
+                                                    const VoxelGridSetup& setup, bool mapped,
+                                                    const void* deviceVoxels) {
     slabMeshes.clear();
     slabFirstTriangle.clear();
     slabTriangles = 0;
@@ -170,8 +177,11 @@ CudaStatus RayCastSilhouetteCuda::Impl::placeVolume(const VolumeView& host,
     slabbed = slabLayers > 0 || host.voxelCount() >= kWholeVolumeVoxelLimit;
     raysReadHostMemory = mapped || slabbed;
     if (!slabbed) {
-        LW_RETURN_IF_FAILED(mapped ? marchingCubes.setMappedVolume(host, setup)
-                                   : marchingCubes.setVolume(host, setup));
+        VolumeView onDevice = host;
+        onDevice.voxels = deviceVoxels;
+        LW_RETURN_IF_FAILED(mapped         ? marchingCubes.setMappedVolume(host, setup)
+                            : deviceVoxels ? marchingCubes.setDeviceVolume(onDevice, setup)
+                                           : marchingCubes.setVolume(host, setup));
         rayVoxels = mc().volume.voxels;
         return CudaStatus::success();
     }

@@ -143,6 +143,10 @@ const std::int16_t* ThickSliceFieldCuda::field() const {
     return m_impl->downloaded.data();
 }
 
+const std::int16_t* ThickSliceFieldCuda::deviceField() const {
+    return m_impl->refined.data();
+}
+
 const ThickSliceFieldTimes& ThickSliceFieldCuda::times() const {
     return m_impl->times;
 }

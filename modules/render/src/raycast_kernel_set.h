@@ -24,6 +24,9 @@ public:
     virtual std::string_view backendName() const = 0;
     // A new volume, or none: whatever was kept of the last one goes.
     virtual void bind(const volume::Volume* volume) = 0;
+    // After bind: the bound voxels on the device already (SilhouetteRenderer::
+    // setVolumeWithDeviceCopy), until the next bind. Only the CUDA kernels take it.
+    virtual void useDeviceCopy(DeviceVoxelCopy /*copy*/) {}
     // Whether it can draw the chunked (L) variant itself (the CPU: brick by brick; CUDA: with the
     // volume left in host memory, mapped).
     virtual bool drawsPieces() const = 0;

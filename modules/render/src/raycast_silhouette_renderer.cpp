@@ -119,6 +119,13 @@ void RayCastSilhouetteRenderer::setVolume(const volume::Volume& volume) {
     s.last = nullptr;
 }
 
+void RayCastSilhouetteRenderer::setVolumeWithDeviceCopy(const volume::Volume& volume,
+                                                        DeviceVoxelCopy copy) {
+    setVolume(volume);
+    if (m_state->device)
+        m_state->device->useDeviceCopy(copy);
+}
+
 void RayCastSilhouetteRenderer::releaseVolume() {
     State& s = *m_state;
     if (s.device)

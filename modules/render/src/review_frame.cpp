@@ -149,15 +149,22 @@ struct ReviewFrameRenderer::State {
         extractor.reset();
         kept = {};
         if (renderer)
-            renderer->setVolume(*volume);
+            bindDrawnVolume(*renderer);
         if (cudaIso)
-            cudaIso->setVolume(*volume);
+            bindDrawnVolume(*cudaIso);
 #if LINEWORK_GL
         uploadedMesh = nullptr; // the GL panel uploads the new surface at its next frame
         uploadedMeshOwner.reset();
         if (deviceIso)
-            deviceIso->setVolume(*volume);
+            bindDrawnVolume(*deviceIso);
 #endif
+    }
+
+    // The drawn volume bound to a renderer, with its voxels on the device where the maker made
+    // them there: the CUDA back-ends copy them device to device instead of uploading them.
+    void bindDrawnVolume(SilhouetteRenderer& drawing) const {
+        drawing.setVolumeWithDeviceCopy(*volume, volumeMaker ? volumeMaker->deviceCopy()
+                                                             : DeviceVoxelCopy{});
     }
 
     void prepareVolume(const ReviewFrameRequest& request);
@@ -283,7 +290,7 @@ SilhouetteRenderer& ReviewFrameRenderer::State::rendererFor(const ReviewFrameReq
 #else
         renderer = createSilhouetteRenderer(request.method, request.backend, &backendNote);
 #endif
-        renderer->setVolume(*volume);
+        bindDrawnVolume(*renderer);
         rendererBackend = request.backend;
     }
     frame.backend = std::string(renderer->backendName());
@@ -463,7 +470,7 @@ ReviewFrameRenderer::State::deviceIsoRenderer(const ReviewFrameRequest& request)
     try {
         auto made = std::make_unique<GeometryShaderSilhouetteRenderer>(contextFor(request));
         made->useCudaExtraction();
-        made->setVolume(*volume);
+        bindDrawnVolume(*made);
         deviceIso = std::move(made);
     } catch (const core::Error& error) {
         deviceUnavailable = std::string("iso panel on the host: ") + error.what();
@@ -512,7 +519,7 @@ bool ReviewFrameRenderer::State::shadeIsoWithCuda(const ReviewFrameRequest& requ
         if (!cudaIso) {
             try {
                 cudaIso = std::make_unique<ZBufferSilhouetteRenderer>(Backend::Cuda);
-                cudaIso->setVolume(*volume);
+                bindDrawnVolume(*cudaIso);
             } catch (const core::Error& error) {
                 kLog.info(std::string("iso panel: no CUDA shading (") + error.what() + ")");
                 cudaShadingUnavailable = true;

@@ -214,6 +214,14 @@ bool DrawnVolumeMaker::lastMadeOnDevice() const {
     return m_impl->lastOnDevice;
 }
 
+DeviceVoxelCopy DrawnVolumeMaker::deviceCopy() const {
+#if LINEWORK_CUDA
+    if (m_impl->lastOnDevice)
+        return {m_impl->device.deviceVoxels()};
+#endif
+    return {};
+}
+
 std::string DrawnVolumeMaker::takeNote() {
     return std::exchange(m_impl->note, std::string());
 }

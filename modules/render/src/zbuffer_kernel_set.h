@@ -36,6 +36,9 @@ public:
     // A new volume, or none: whatever was kept of the last one goes (device memory, host
     // registrations, the kept surface).
     virtual void bind(const volume::Volume* volume) = 0;
+    // After bind: the bound voxels on the device already (SilhouetteRenderer::
+    // setVolumeWithDeviceCopy), until the next bind. Only the CUDA kernels take it.
+    virtual void useDeviceCopy(DeviceVoxelCopy /*copy*/) {}
 
     // Whether this frame can keep the whole surface (the CPU: always; CUDA: the volume and its
     // surface within settings.gpuMemoryBudget). When not, the frame draws pieces.

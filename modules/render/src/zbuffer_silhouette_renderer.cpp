@@ -157,6 +157,12 @@ void ZBufferSilhouetteRenderer::setVolume(const volume::Volume& volume) {
     s.forgetSurface();
 }
 
+void ZBufferSilhouetteRenderer::setVolumeWithDeviceCopy(const volume::Volume& volume,
+                                                        DeviceVoxelCopy copy) {
+    setVolume(volume);
+    m_state->kernels->useDeviceCopy(copy);
+}
+
 void ZBufferSilhouetteRenderer::releaseVolume() {
     State& s = *m_state;
     s.kernels->bind(nullptr);

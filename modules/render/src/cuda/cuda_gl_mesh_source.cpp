@@ -30,6 +30,7 @@ public:
     void setVolume(const volume::Volume& volume) override {
         m_wholeCurrent = false;
         m_volume = &volume;
+        m_deviceCopy = {};
         m_uploaded = false;
         m_streamed = false;
         m_rowRanges.reset();
@@ -37,11 +38,14 @@ public:
         m_capInMesh = nullptr;
     }
 
+    void useDeviceCopy(DeviceVoxelCopy copy) override { m_deviceCopy = copy; }
+
     void releaseVolume() override {
         m_wholeCurrent = false;
         m_shading.release();
         m_marchingCubes.release(); // the device copy and a streamed volume's host registration
         m_volume = nullptr;
+        m_deviceCopy = {};
         m_uploaded = false;
         m_streamed = false;
         m_rowRanges.reset();
@@ -88,9 +92,7 @@ public:
             throw core::Error("method 1 (CUDA)", "no volume bound");
         if (!m_uploaded) {
             m_streamed = false; // a resident volume replaces the streamed state
-            throwIfCudaFailed(kWhere,
-                              m_marchingCubes.setVolume(hostVolumeView(*m_volume),
-                                                        kernels::cpu::voxelGridSetup(*m_volume)));
+            throwIfCudaFailed(kWhere, placeWholeVolume(m_marchingCubes, *m_volume, m_deviceCopy));
             m_uploaded = true;
         }
         const double storedIso = storedIsoValue(*m_volume, settings.isoReal);
@@ -177,6 +179,7 @@ public:
 
 private:
     const volume::Volume* m_volume = nullptr;
+    DeviceVoxelCopy m_deviceCopy; // the bound voxels on the device already, or null
     bool m_uploaded = false;
     bool m_streamed = false; // setStreamedVolume done (L frames); exclusive with m_uploaded
     std::unique_ptr<VoxelRowRanges> m_rowRanges; // L frames: which rows of a slab can matter

@@ -60,12 +60,22 @@ public:
     std::string_view backendName() const override { return "cuda"; }
 
     void bind(const volume::Volume* volume) override {
-        m_kernels.release();
+        // A new copy of the same grid (the thick-slice field at a new iso-value) keeps the device's
+        // buffers, which fit it as they are (cuda_zbuffer_kernels.cpp says why); volumes read
+        // from host memory are let go of before that memory goes.
+        const bool sameGrid = volume && m_volume && m_uploaded && !m_kernels.readsHostMemory() &&
+                              volume->dims() == m_volume->dims() &&
+                              volume->voxelType() == m_volume->voxelType();
+        if (!sameGrid)
+            m_kernels.release();
         m_volume = volume;
+        m_deviceCopy = {};
         m_uploaded = false;
         m_mappedFloor = false;
         m_cap.clear();
     }
+
+    void useDeviceCopy(DeviceVoxelCopy copy) override { m_deviceCopy = copy; }
 
     bool fallBack() override {
         if (m_mappedFloor)
@@ -85,7 +95,7 @@ public:
             m_uploaded = false;
             check(m_kernels.setVolume(hostVolumeView(*m_volume),
                                       kernels::cpu::voxelGridSetup(*m_volume),
-                                      rayGridSetup(*m_volume), mapped));
+                                      rayGridSetup(*m_volume), mapped, m_deviceCopy.voxels));
             m_uploaded = true;
             m_mapped = mapped;
         }
@@ -136,6 +146,7 @@ private:
     }
 
     const volume::Volume* m_volume = nullptr;
+    DeviceVoxelCopy m_deviceCopy; // the bound voxels on the device already, or null
     kernels::cuda::RayCastSilhouetteCuda m_kernels;
     bool m_uploaded = false;
     bool m_mapped = false;      // the voxels are read from host memory

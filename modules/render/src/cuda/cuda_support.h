@@ -6,6 +6,7 @@
 #include "lw/core/error.h"
 #include "lw/core/limits.h"
 #include "lw/kernels/cpu/border_cap_cpu.h"
+#include "lw/kernels/cpu/marching_cubes_cpu.h"
 #include "lw/kernels/cuda/cuda_status.h"
 #include "lw/kernels/cuda/marching_cubes_cuda.h"
 #include "lw/kernels/volume_view.h"
@@ -58,6 +59,19 @@ inline kernels::VolumeView hostVolumeView(const volume::Volume& volume) {
     view.kind = kernels::VoxelKind(volume.voxelType());
     view.dims = volume.dims();
     return view;
+}
+
+// The volume onto the device for whole-volume marching cubes: device to device where `copy` holds
+// its voxels there already (SilhouetteRenderer::setVolumeWithDeviceCopy), else from the host.
+inline kernels::cuda::CudaStatus placeWholeVolume(kernels::cuda::MarchingCubesCuda& mc,
+                                                  const volume::Volume& volume,
+                                                  DeviceVoxelCopy copy) {
+    kernels::VolumeView view = hostVolumeView(volume);
+    const kernels::VoxelGridSetup setup = kernels::cpu::voxelGridSetup(volume);
+    if (!copy.voxels)
+        return mc.setVolume(view, setup);
+    view.voxels = copy.voxels;
+    return mc.setDeviceVolume(view, setup);
 }
 
 } // namespace lw::render

@@ -78,10 +78,15 @@ public:
     bool drawsToFrameTargets() const override { return true; }
 
     void bind(const volume::Volume* volume) override {
-        m_marchingCubes.release(); // device buffers and a streamed volume's host registration
-        m_zbuffer.release();
-        m_shading.release();
+        if (keepsBuffersFor(volume)) {
+            m_shading.forgetCap();
+        } else {
+            m_marchingCubes.release(); // device buffers and a streamed volume's host registration
+            m_zbuffer.release();
+            m_shading.release();
+        }
         m_volume = volume;
+        m_deviceCopy = {};
         m_resident = GpuResidency::Cpu;
         m_floor = GpuResidency::WholeVolume;
         m_rowRanges.reset();
@@ -91,6 +96,17 @@ public:
         m_capKept = nullptr;
         m_capKeptOnDevice = false;
         forgetKeptSlabs();
+    }
+
+    void useDeviceCopy(DeviceVoxelCopy copy) override { m_deviceCopy = copy; }
+
+    // A new copy of the same grid (the thick-slice field at a new iso-value) after a resident
+    // whole volume: the device's buffers fit it as they are, and freeing and allocating them
+    // again (cudaFree waits for the device) cost more than its frame. The voxels go up again at
+    // the next extraction; a streamed volume's host registration is released in any case.
+    bool keepsBuffersFor(const volume::Volume* volume) const {
+        return volume && m_volume && m_resident == GpuResidency::WholeVolume &&
+               volume->dims() == m_volume->dims() && volume->voxelType() == m_volume->voxelType();
     }
 
     bool keepsWholeSurface(const Camera& camera, const SilhouetteSettings& settings) override {
@@ -105,8 +121,7 @@ public:
         m_hostMeshValid = false;
         if (m_resident != GpuResidency::WholeVolume) {
             m_resident = GpuResidency::Cpu;
-            check(m_marchingCubes.setVolume(hostVolumeView(*m_volume),
-                                            kernels::cpu::voxelGridSetup(*m_volume)));
+            check(placeWholeVolume(m_marchingCubes, *m_volume, m_deviceCopy));
             m_resident = GpuResidency::WholeVolume;
         }
         m_capKept = nullptr;
@@ -227,6 +242,7 @@ private:
     void drawKeptSlabs(SilhouetteFrame& frame);
 
     const volume::Volume* m_volume = nullptr;
+    DeviceVoxelCopy m_deviceCopy; // the bound voxels on the device already, or null
     kernels::cuda::MarchingCubesCuda m_marchingCubes;
     kernels::cuda::ZBufferCuda m_zbuffer;
     DeviceSurfaceShader m_shading;                    // the iso panel's rasterizer

@@ -18,6 +18,8 @@ public:
     volume::Volume make(const volume::Volume& source, const SamplingPlan& plan, double iso,
                         double limitMm, unsigned threads);
     const kernels::cuda::ThickSliceFieldTimes& times() const { return m_field.times(); }
+    // The last copy in device memory, until the next make().
+    const void* deviceVoxels() const { return m_field.deviceField(); }
 
 private:
     kernels::cuda::ThickSliceFieldCuda m_field;

@@ -276,6 +276,13 @@ void GeometryShaderSilhouetteRenderer::setVolume(const volume::Volume& volume) {
     m_state->bricks.reset();
 }
 
+void GeometryShaderSilhouetteRenderer::setVolumeWithDeviceCopy(const volume::Volume& volume,
+                                                               DeviceVoxelCopy copy) {
+    setVolume(volume);
+    if (m_state->source)
+        m_state->source->useDeviceCopy(copy);
+}
+
 const GeometryShaderFrameStats& GeometryShaderSilhouetteRenderer::lastFrameStats() const {
     return m_state->stats;
 }

@@ -27,6 +27,9 @@ public:
     virtual ~GlMeshSource() = default;
     virtual std::string_view backendName() const = 0;
     virtual void setVolume(const volume::Volume& volume) = 0;
+    // After setVolume: the bound voxels on the device already (SilhouetteRenderer::
+    // setVolumeWithDeviceCopy), until the next setVolume. Only the CUDA source takes it.
+    virtual void useDeviceCopy(DeviceVoxelCopy /*copy*/) {}
     // Extracts the surface at settings.isoReal into gl's mesh buffers (its context current).
     // Throws core::Error naming the failed step.
     virtual void extractInto(SilhouetteGlRenderer& gl, const SilhouetteSettings& settings) = 0;

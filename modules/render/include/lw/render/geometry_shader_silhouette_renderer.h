@@ -64,6 +64,7 @@ public:
     // "gl", or "cuda+gl" after useCudaExtraction().
     std::string_view backendName() const override;
     void setVolume(const volume::Volume& volume) override;
+    void setVolumeWithDeviceCopy(const volume::Volume& volume, DeviceVoxelCopy copy) override;
     void releaseVolume() override;
     SilhouetteFrame renderFrame(const Camera& camera, const SilhouetteSettings& settings) override;
 

@@ -39,6 +39,7 @@ public:
     SilhouetteMethod method() const override { return SilhouetteMethod::RayCastVisibility; }
     std::string_view backendName() const override;
     void setVolume(const volume::Volume& volume) override;
+    void setVolumeWithDeviceCopy(const volume::Volume& volume, DeviceVoxelCopy copy) override;
     void releaseVolume() override;
     SilhouetteFrame renderFrame(const Camera& camera, const SilhouetteSettings& settings) override;
 

@@ -114,6 +114,13 @@ struct SilhouetteFrame {
     StageTimes times;
 };
 
+// A bound volume's voxels where the CUDA device holds them already, in the volume's own layout
+// (the thick-slice field that DrawnVolumeMaker makes there), or null: a CUDA back-end copies
+// them device to device instead of uploading the host's 43 MB at every iso-value of the demo.
+struct DeviceVoxelCopy {
+    const void* voxels = nullptr;
+};
+
 class SilhouetteRenderer {
 public:
     virtual ~SilhouetteRenderer() = default;
@@ -122,6 +129,13 @@ public:
     // Binds a volume; it must outlive the renderer, the next setVolume or releaseVolume. Drops
     // cached results.
     virtual void setVolume(const volume::Volume& volume) = 0;
+    // setVolume where `copy` holds the same voxels on the CUDA device; the copy must stay valid
+    // and unchanged until the next setVolume (the renderer reads it at its next extraction).
+    // Back-ends that upload nothing ignore it.
+    virtual void setVolumeWithDeviceCopy(const volume::Volume& volume, DeviceVoxelCopy copy) {
+        (void)copy;
+        setVolume(volume);
+    }
     // Unbinds the volume, for a renderer that outlives it (a new volume comes later): what was
     // kept of it goes, on the host and on the device. The CUDA back-end page-locks a streamed
     // volume's memory with the driver; left registered, a later allocation at the same address

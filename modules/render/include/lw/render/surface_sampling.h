@@ -108,6 +108,10 @@ public:
     std::shared_ptr<const volume::Volume> make(VolumeSampling sampling, double iso,
                                                unsigned threads = 0);
     bool lastMadeOnDevice() const;
+    // The last copy's voxels in device memory where it was made there (else null), valid until
+    // the next make(): what the renderers of the copy take device to device
+    // (SilhouetteRenderer::setVolumeWithDeviceCopy).
+    DeviceVoxelCopy deviceCopy() const;
     // Why the device stopped making the field ("" while it has not): once, then "".
     std::string takeNote();
 

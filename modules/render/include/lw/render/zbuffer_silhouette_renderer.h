@@ -46,6 +46,7 @@ public:
     std::string_view backendName() const override;
     bool drawsToFrameTargets() const override;
     void setVolume(const volume::Volume& volume) override;
+    void setVolumeWithDeviceCopy(const volume::Volume& volume, DeviceVoxelCopy copy) override;
     void releaseVolume() override;
     SilhouetteFrame renderFrame(const Camera& camera, const SilhouetteSettings& settings) override;
 

@@ -57,13 +57,17 @@ public:
     // Uploads the voxels (host memory) and the grid tables of `setup`, and computes the brick
     // min/max on the device. The host volume is not referenced afterwards.
     CudaStatus setVolume(const VolumeView& hostVolume, const VoxelGridSetup& setup);
+    // The same with voxels that are in this device's memory already (`deviceVolume.voxels`, the
+    // layout of a VolumeView): copied device to device, so the source may change afterwards. A
+    // renderer of a copy made on the device (the thick-slice field) saves the upload over the bus.
+    CudaStatus setDeviceVolume(const VolumeView& deviceVolume, const VoxelGridSetup& setup);
     // The same with the voxels left in host memory: the volume is page-locked and mapped into
     // the device's address space, and the kernels read it over the bus (the device holds only
     // the tables and the per-frame buffers). For a volume over the device memory budget where
     // every kernel needs the whole volume at once (method 2's rays). `hostVolume` must outlive
     // the calls; release() or another set*Volume unmaps it.
     CudaStatus setMappedVolume(const VolumeView& hostVolume, const VoxelGridSetup& setup);
-    double uploadMs() const;         // host -> device copy of the voxels, CUDA events
+    double uploadMs() const;         // the copy of the voxels to the device, CUDA events
     std::size_t deviceBytes() const; // device memory held now
 
     // The normals' gradient of the next extractions (voxel_grid.h); set*Volume takes the

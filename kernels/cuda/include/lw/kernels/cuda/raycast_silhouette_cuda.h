@@ -60,10 +60,17 @@ public:
 
     // `mapped`: the voxels stay in host memory, read over the bus (MarchingCubesCuda::
     // setMappedVolume): the chunked (L) variant, for a volume over the device memory budget.
+    // `deviceVoxels` (or null): the same voxels in this device's memory already; a volume kept
+    // on the device (neither mapped nor slabbed) is copied from there device to device
+    // (MarchingCubesCuda::setDeviceVolume) instead of uploaded from the host.
     CudaStatus setVolume(const VolumeView& hostVolume, const VoxelGridSetup& setup,
-                         const RayGridSetup& rayGrid, bool mapped = false);
+                         const RayGridSetup& rayGrid, bool mapped = false,
+                         const void* deviceVoxels = nullptr);
     std::size_t deviceBytes() const; // device memory held now
     double uploadMs() const;
+    // Whether the kernels read the volume from host memory (mapped or slabbed): page-locked with
+    // the driver until release() or the next setVolume, which must come before that memory goes.
+    bool readsHostMemory() const;
     // The normals' gradient from the next prepare() on (MarchingCubesCuda::setGradientStencil).
     void setGradientStencil(GradientStencil stencil);
     // Whether prepare() keeps the active cells' mesh on the device for the views' segments (the

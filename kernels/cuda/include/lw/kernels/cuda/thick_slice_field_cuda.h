@@ -57,6 +57,10 @@ public:
     // copy on an H200's host, against about 3 ms here; the caller copies it on with its threads.)
     CudaStatus make(double iso, const ThickSliceFieldSetup& setup);
     const std::int16_t* field() const;
+    // The same field in device memory, valid until the next make() or release(): what a renderer
+    // of the copy takes device to device instead of uploading the host's (MarchingCubesCuda::
+    // setDeviceVolume).
+    const std::int16_t* deviceField() const;
     const ThickSliceFieldTimes& times() const;
     std::size_t deviceBytes() const;
     void release();
