@@ -136,6 +136,7 @@ void RenderWorker::takeFrame(render::ReviewFrame&& frame, const ReviewSettings& 
         result.isoDepth = std::move(frame.isoDepth);
     }
     result.isoRenderMs = frame.isoRenderMs;
+    result.stageMs = frame.stageMs;
     result.isoOnDevice = frame.isoOnDevice;
     result.refinement = frame.refinement;
     result.drawnVolume = std::move(frame.drawnVolume);

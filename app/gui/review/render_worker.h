@@ -76,6 +76,7 @@ struct FrameResult {
     bool cancelled = false;
     std::chrono::steady_clock::time_point requested; // the request's
     double workerMs = 0.0;                           // run() from start to end
+    render::ReviewFrame::StageMs stageMs;            // the engine's part of it, by stage
 };
 
 class RenderWorker {

@@ -454,6 +454,7 @@ void ReviewWidget::takeFrame(const std::shared_ptr<const FrameResult>& result) {
         result->drawnVolume == m_source.volume ? nullptr : result->drawnVolume, result->iso);
     ++m_status.framesShown;
     m_status.workerMs = result->workerMs;
+    m_status.workerStageMs = result->stageMs;
     m_status.requestToTakenMs = std::chrono::duration<double, std::milli>(
                                     std::chrono::steady_clock::now() - result->requested)
                                     .count();

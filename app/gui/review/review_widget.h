@@ -7,6 +7,7 @@
 #include "lw/input/open_input.h"
 #include "lw/render/aabb.h"
 #include "lw/render/iso_surface.h"
+#include "lw/render/review_frame.h"
 #include "lw/volume/volume.h"
 #include "review/camera_controller.h"
 #include "review/panel_render_job.h"
@@ -64,6 +65,7 @@ struct ReviewStatus {
     // The last result: its time on the worker, and from its request to the UI thread taking it.
     double workerMs = 0.0;
     double requestToTakenMs = 0.0;
+    render::ReviewFrame::StageMs workerStageMs; // the engine's part of workerMs
 };
 
 class ReviewWidget : public QWidget {

@@ -257,13 +257,21 @@ ReviewFrame ReviewFrameRenderer::render(const ReviewFrameRequest& request) {
     if (request.cancel && request.cancel->isCancelled())
         throw core::Cancelled();
     ReviewFrame frame;
+    auto stage = Clock::now();
+    const auto lap = [&stage] {
+        const double ms = msSince(stage);
+        stage = Clock::now();
+        return ms;
+    };
     s.prepareVolume(request);
+    frame.stageMs.volume = lap();
     frame.refinement = s.volume->geometry().refinement();
     frame.drawnVolume = s.volume;
     const bool deviceIso =
         request.wantIsoImage && !request.isoOnCpu && reviewIsoOnDevice(request.backend);
     if (request.wantSilhouette)
         s.renderSilhouette(request, deviceIso, frame);
+    frame.stageMs.silhouette = lap();
     if (request.cancel && request.cancel->isCancelled())
         throw core::Cancelled();
     const bool isoDone = deviceIso && s.renderIsoOnDevice(request, frame);
@@ -273,6 +281,7 @@ ReviewFrame ReviewFrameRenderer::render(const ReviewFrameRequest& request) {
         throw core::Cancelled();
     if (request.wantIsoImage && !isoDone)
         s.renderIsoOnHost(request, frame);
+    frame.stageMs.isoPanel = lap();
     if (!s.deviceUnavailable.empty())
         frame.backendNote += (frame.backendNote.empty() ? "" : "; ") + s.deviceUnavailable;
     if (!s.volumeNote.empty())

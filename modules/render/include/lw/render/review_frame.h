@@ -110,6 +110,12 @@ struct ReviewFrame {
     std::shared_ptr<const volume::Volume> drawnVolume;
     std::string backend; // the silhouette's back-end that actually ran
     std::string backendNote;
+    // Where the frame's time went, wall clock (ms): the drawn copy made and bound (a new
+    // iso-value of thick slices; 0 when kept), the silhouette with what follows it on the host,
+    // and the iso panel (device or host, with its extraction where it made one).
+    struct StageMs {
+        double volume = 0.0, silhouette = 0.0, isoPanel = 0.0;
+    } stageMs;
 };
 
 class ReviewFrameRenderer {
