@@ -15,6 +15,7 @@
 #include <cstring>
 #include <gtest/gtest.h>
 #include <map>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -161,13 +162,12 @@ std::vector<std::array<float, 9>> triangleSet(const Mesh& mesh) {
     return set;
 }
 
-TEST(BorderCap, IsTheSurfaceOfTheVolumePaddedFarOutside) {
-    const volume::Volume volume =
-        cutBall(volume::VolumeGeometry::regular({-3.0, 2.0, 1.0}, {0.5, 0.5, 0.5}));
-    // The same volume padded by one voxel of -1e30 on every side, its origin one voxel out.
+// The closed surface of `volume` (float, iso 0, regular geometry of `spacing` from `origin`)
+// against marching cubes of the volume padded by one voxel of -1e30 on every side.
+void expectCapIsPaddedSurface(const volume::Volume& volume, glm::dvec3 origin, glm::dvec3 spacing) {
     const glm::ivec3 d = volume.dims();
     volume::Volume padded(d + 2, volume::VoxelType::Float32,
-                          volume::VolumeGeometry::regular({-3.5, 1.5, 0.5}, {0.5, 0.5, 0.5}));
+                          volume::VolumeGeometry::regular(origin - spacing, spacing));
     for (int z = 0; z < d.z + 2; ++z)
         for (int y = 0; y < d.y + 2; ++y)
             for (int x = 0; x < d.x + 2; ++x) {
@@ -183,6 +183,29 @@ TEST(BorderCap, IsTheSurfaceOfTheVolumePaddedFarOutside) {
     for (std::size_t t = 0; t < closed.size(); ++t)
         for (std::size_t c = 0; c < 9; ++c)
             ASSERT_NEAR(closed[t][c], expected[t][c], 1e-4) << "triangle " << t;
+}
+
+TEST(BorderCap, IsTheSurfaceOfTheVolumePaddedFarOutside) {
+    const glm::dvec3 origin(-3.0, 2.0, 1.0), spacing(0.5);
+    expectCapIsPaddedSurface(cutBall(volume::VolumeGeometry::regular(origin, spacing)), origin,
+                             spacing);
+}
+
+// Scattered inside voxels: rows whose only inside voxel is the first or the last, rows with
+// none next to rows with some, and every face and edge of the box (the cap walks each shell row
+// only over the columns its inside voxels reach).
+TEST(BorderCap, IsThePaddedSurfaceOfScatteredVoxels) {
+    const glm::dvec3 origin(1.0, -2.0, 0.5), spacing(0.5, 0.75, 2.0);
+    for (const unsigned seed : {1u, 2u, 3u}) {
+        std::mt19937 random(seed);
+        std::bernoulli_distribution inside(0.15);
+        volume::Volume volume(glm::ivec3(11, 7, 5), volume::VoxelType::Float32,
+                              volume::VolumeGeometry::regular(origin, spacing));
+        for (std::size_t v = 0; v < volume.voxelCount(); ++v)
+            volume.dataAs<float>()[v] = inside(random) ? 1.0f : -1.0f;
+        SCOPED_TRACE("seed " + std::to_string(seed));
+        expectCapIsPaddedSurface(volume, origin, spacing);
+    }
 }
 
 TEST(BorderCap, EmptyWhenTheBorderHoldsNoInsideVoxel) {

@@ -3,9 +3,11 @@
 #include "lw/kernels/cpu/marching_cubes_cpu.h"
 #include "lw/kernels/marching_cubes.h"
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <unordered_map>
+#include <vector>
 
 namespace lw::kernels::cpu {
 namespace {
@@ -37,8 +39,7 @@ public:
                 if (kShell || jShell) {
                     if (!kShell && !faces[j == -1 ? 2 : 3])
                         continue;
-                    for (int i = -1; i <= cx; ++i)
-                        emitCell(i, j, k);
+                    emitCellRow(j, k);
                 } else {
                     if (faces[0])
                         emitCell(-1, j, k);
@@ -61,23 +62,23 @@ private:
         return real(x, y, z) && m_voxels[index(x, y, z)] >= m_threshold;
     }
 
+    // Which faces hold an inside voxel; each face's scan stops at its first.
     FaceFlags facesWithInside() const {
-        FaceFlags faces{};
         const int nx = m_dims.nx, ny = m_dims.ny, nz = m_dims.nz;
-        for (int z = 0; z < nz; ++z)
-            for (int y = 0; y < ny; ++y) {
-                faces[0] = faces[0] || inside(0, y, z);
-                faces[1] = faces[1] || inside(nx - 1, y, z);
-                if (y == 0 || y == ny - 1 || z == 0 || z == nz - 1)
-                    for (int x = 0; x < nx; ++x) {
-                        const bool in = inside(x, y, z);
-                        faces[2] = faces[2] || (in && y == 0);
-                        faces[3] = faces[3] || (in && y == ny - 1);
-                        faces[4] = faces[4] || (in && z == 0);
-                        faces[5] = faces[5] || (in && z == nz - 1);
-                    }
-            }
-        return faces;
+        const auto anyInside = [&](int x0, int x1, int y0, int y1, int z0, int z1) {
+            for (int z = z0; z <= z1; ++z)
+                for (int y = y0; y <= y1; ++y) {
+                    const T* row = m_voxels + index(0, y, z);
+                    for (int x = x0; x <= x1; ++x)
+                        if (row[x] >= m_threshold)
+                            return true;
+                }
+            return false;
+        };
+        return {
+            anyInside(0, 0, 0, ny - 1, 0, nz - 1), anyInside(nx - 1, nx - 1, 0, ny - 1, 0, nz - 1),
+            anyInside(0, nx - 1, 0, 0, 0, nz - 1), anyInside(0, nx - 1, ny - 1, ny - 1, 0, nz - 1),
+            anyInside(0, nx - 1, 0, ny - 1, 0, 0), anyInside(0, nx - 1, 0, ny - 1, nz - 1, nz - 1)};
     }
 
     // Outward unit normal of each face: the padded gradient at a pad -> real edge is the pad
@@ -95,6 +96,51 @@ private:
             m_faceNormal[2 * axis] = mcOutwardNormal(g, none);
             m_faceNormal[2 * axis + 1] = mcOutwardNormal({-g.x, -g.y, -g.z}, none);
         }
+    }
+
+    // The cells (i, j, k) of a whole shell row, i in [-1, cx], in order. Only cells with an
+    // inside corner emit anything, so the walk covers just the columns from one left of the
+    // first inside voxel to the last one, over the real voxel rows the cells' corners lie on:
+    // at a new iso-value of the demo (512 x 512 x 82) the cap took 7.8 ms on dev-2c testing 8
+    // corners of every cell of the first and last slice, and 3.0-3.4 ms so (16 ms in the H200
+    // workstation's worker, most of its frame).
+    void emitCellRow(int j, int k) {
+        int first = m_dims.nx, last = -1;
+        for (int y = std::max(j, 0); y <= std::min(j + 1, m_dims.ny - 1); ++y)
+            for (int z = std::max(k, 0); z <= std::min(k + 1, m_dims.nz - 1); ++z)
+                widenToInside(y, z, first, last);
+        for (int i = std::max(first - 1, -1); i <= std::min(last, m_dims.cx); ++i)
+            emitCell(i, j, k);
+    }
+
+    // [first, last] grown to cover the inside voxels of voxel row (y, z). Each row's range is
+    // found once (neighbouring cell rows share a voxel row).
+    void widenToInside(int y, int z, int& first, int& last) {
+        if (m_rowRanges.empty())
+            m_rowRanges.assign(std::size_t(m_dims.ny) * std::size_t(m_dims.nz), kRowNotScanned);
+        RowRange& range = m_rowRanges[std::size_t(z) * std::size_t(m_dims.ny) + std::size_t(y)];
+        if (range.first == kRowNotScanned.first)
+            range = insideRange(m_voxels + index(0, y, z));
+        first = std::min(first, range.first);
+        last = std::max(last, range.last);
+    }
+
+    struct RowRange {
+        int first, last;
+    };
+    static constexpr RowRange kRowNotScanned{-2, -2};
+
+    // The first and last inside voxel of a row ({nx, -1} when none is).
+    RowRange insideRange(const T* row) const {
+        int x = 0;
+        while (x < m_dims.nx && !(row[x] >= m_threshold))
+            ++x;
+        if (x == m_dims.nx)
+            return {m_dims.nx, -1};
+        int end = m_dims.nx - 1;
+        while (!(row[end] >= m_threshold))
+            --end;
+        return {x, end};
     }
 
     void emitCell(int i, int j, int k) {
@@ -158,6 +204,7 @@ private:
     VoxelGradientSampler<T> m_gradient;
     McVec3 m_faceNormal[6]{};
     std::unordered_map<std::uint64_t, std::uint32_t> m_ids;
+    std::vector<RowRange> m_rowRanges; // per voxel row (z * ny + y), as scanned
     TriangleMesh m_mesh;
 };
 
