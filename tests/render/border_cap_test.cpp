@@ -14,6 +14,7 @@
 #include <array>
 #include <cstring>
 #include <gtest/gtest.h>
+#include <limits>
 #include <map>
 #include <random>
 #include <string>
@@ -205,6 +206,53 @@ TEST(BorderCap, IsThePaddedSurfaceOfScatteredVoxels) {
             volume.dataAs<float>()[v] = inside(random) ? 1.0f : -1.0f;
         SCOPED_TRACE("seed " + std::to_string(seed));
         expectCapIsPaddedSurface(volume, origin, spacing);
+    }
+}
+
+// The faces' maxima, read once per volume, stand in for each iso-value's scan of the border: the
+// same cap, byte for byte, at iso-values below, between and above the faces' values (NaN on a
+// face is never inside).
+TEST(BorderCap, FaceMaximaGiveTheSameCap) {
+    std::mt19937 random(7);
+    std::uniform_real_distribution<float> value(-1.0f, 1.0f);
+    volume::Volume volume(glm::ivec3(9, 7, 5), volume::VoxelType::Float32,
+                          volume::VolumeGeometry::regular({0.0, 0.0, 0.0}, {0.5, 0.6, 1.5}));
+    for (std::size_t v = 0; v < volume.voxelCount(); ++v)
+        volume.dataAs<float>()[v] = value(random);
+    volume.dataAs<float>()[volume.index(0, 3, 2)] = std::numeric_limits<float>::quiet_NaN();
+    const kernels::cpu::BorderFaceMaxima maxima = kernels::cpu::borderFaceMaxima(volume);
+    const glm::ivec3 d = volume.dims();
+    std::array<double, 6> expected;
+    expected.fill(-std::numeric_limits<double>::infinity());
+    for (int z = 0; z < d.z; ++z)
+        for (int y = 0; y < d.y; ++y)
+            for (int x = 0; x < d.x; ++x) {
+                const double v = volume.dataAs<float>()[volume.index(x, y, z)];
+                const bool on[6] = {x == 0,       x == d.x - 1, y == 0,
+                                    y == d.y - 1, z == 0,       z == d.z - 1};
+                for (std::size_t f = 0; f < 6; ++f)
+                    if (on[f] && v > expected[f])
+                        expected[f] = v;
+            }
+    EXPECT_EQ(maxima.value, expected);
+    // Bytes, not values: the NaN's neighbours have NaN normals, equal to nothing.
+    const auto sameBytes = [](const Mesh& a, const Mesh& b) {
+        const auto same = [](const auto& u, const auto& v) {
+            return u.size() == v.size() &&
+                   (u.empty() ||
+                    std::memcmp(u.data(), v.data(), u.size() * sizeof(u.front())) == 0);
+        };
+        return same(a.positions, b.positions) && same(a.normals, b.normals) &&
+               a.indices == b.indices;
+    };
+    for (const double iso :
+         {-2.0, -0.5, 0.0, 0.7, *std::min_element(expected.begin(), expected.end()),
+          *std::max_element(expected.begin(), expected.end()), 2.0}) {
+        const Mesh scanned = kernels::cpu::borderCap(volume, iso);
+        EXPECT_TRUE(sameBytes(
+            kernels::cpu::borderCap(volume, iso, kernels::GradientStencil::Central, &maxima),
+            scanned))
+            << iso;
     }
 }
 

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <array>
 #include <cstdint>
+#include <limits>
 #include <unordered_map>
 #include <vector>
 
@@ -24,8 +25,8 @@ public:
         setFaceNormals();
     }
 
-    TriangleMesh build() {
-        const FaceFlags faces = facesWithInside();
+    TriangleMesh build(const BorderFaceMaxima* maxima) {
+        const FaceFlags faces = maxima ? facesOf(*maxima) : facesWithInside();
         const int cx = m_dims.cx, cy = m_dims.cy, cz = m_dims.cz;
         // Padded cells (i, j, k), i in [-1, cx] (cell i spans voxels i .. i+1), in cell order;
         // the shell is every cell with a padded corner. A shell cell's real corners lie on the
@@ -60,6 +61,13 @@ private:
     }
     bool inside(int x, int y, int z) const {
         return real(x, y, z) && m_voxels[index(x, y, z)] >= m_threshold;
+    }
+
+    FaceFlags facesOf(const BorderFaceMaxima& maxima) const {
+        FaceFlags faces{};
+        for (std::size_t f = 0; f < faces.size(); ++f)
+            faces[f] = maxima.value[f] >= double(m_threshold);
+        return faces;
     }
 
     // Which faces hold an inside voxel; each face's scan stops at its first.
@@ -210,13 +218,47 @@ private:
 
 } // namespace
 
-TriangleMesh borderCap(const volume::Volume& volume, double storedIso, GradientStencil stencil) {
+BorderFaceMaxima borderFaceMaxima(const volume::Volume& volume) {
+    const glm::ivec3 d = volume.dims();
+    BorderFaceMaxima maxima;
+    maxima.value.fill(-std::numeric_limits<double>::infinity());
+    volume::dispatchVoxelType(volume.voxelType(), [&](auto tag) {
+        using T = decltype(tag);
+        const T* voxels = volume.dataAs<T>();
+        const auto at = [&](int x, int y, int z) { return double(voxels[volume.index(x, y, z)]); };
+        const auto widen = [&](std::size_t face, double value) {
+            if (value > maxima.value[face]) // NaN never is
+                maxima.value[face] = value;
+        };
+        for (int z = 0; z < d.z; ++z)
+            for (int y = 0; y < d.y; ++y) {
+                widen(0, at(0, y, z));
+                widen(1, at(d.x - 1, y, z));
+                if (y == 0 || y == d.y - 1 || z == 0 || z == d.z - 1)
+                    for (int x = 0; x < d.x; ++x) {
+                        const double value = at(x, y, z);
+                        if (y == 0)
+                            widen(2, value);
+                        if (y == d.y - 1)
+                            widen(3, value);
+                        if (z == 0)
+                            widen(4, value);
+                        if (z == d.z - 1)
+                            widen(5, value);
+                    }
+            }
+    });
+    return maxima;
+}
+
+TriangleMesh borderCap(const volume::Volume& volume, double storedIso, GradientStencil stencil,
+                       const BorderFaceMaxima* faces) {
     const glm::ivec3 d = volume.dims();
     if (d.x < 1 || d.y < 1 || d.z < 1)
         return {};
     return volume::dispatchVoxelType(volume.voxelType(), [&](auto tag) {
         using T = decltype(tag);
-        return CapBuilder<T>(volume, storedIso, stencil).build();
+        return CapBuilder<T>(volume, storedIso, stencil).build(faces);
     });
 }
 

@@ -152,8 +152,11 @@ bool surfaceIsClosed(const volume::Volume& volume, double storedIso, bool closeA
 
 const Mesh& BorderCapCache::cap(const volume::Volume& volume, double storedIso,
                                 GradientStencil stencil) {
+    if (!m_faceMaxima || m_volume != &volume)
+        m_faceMaxima = kernels::cpu::borderFaceMaxima(volume).value; // once per volume
     if (!m_valid || m_volume != &volume || !(m_iso == storedIso) || m_stencil != stencil) {
-        m_cap = kernels::cpu::borderCap(volume, storedIso, stencil);
+        const kernels::cpu::BorderFaceMaxima faces{*m_faceMaxima};
+        m_cap = kernels::cpu::borderCap(volume, storedIso, stencil, &faces);
         m_volume = &volume;
         m_iso = storedIso;
         m_stencil = stencil;
@@ -165,6 +168,7 @@ const Mesh& BorderCapCache::cap(const volume::Volume& volume, double storedIso,
 void BorderCapCache::clear() {
     m_valid = false;
     m_volume = nullptr;
+    m_faceMaxima.reset();
     m_cap = Mesh();
 }
 

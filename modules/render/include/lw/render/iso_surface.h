@@ -6,6 +6,7 @@
 #include "lw/kernels/voxel_grid.h"
 #include "lw/volume/volume.h"
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <glm/glm.hpp>
@@ -107,6 +108,8 @@ private:
     GradientStencil m_stencil = GradientStencil::Central;
     bool m_valid = false;
     Mesh m_cap;
+    // m_volume's largest value per face (kernels::cpu::BorderFaceMaxima): read once per volume.
+    std::optional<std::array<double, 6>> m_faceMaxima;
 };
 
 // Brick edge length the "auto" chunking picks for a volume.
