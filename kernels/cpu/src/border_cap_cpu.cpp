@@ -110,8 +110,8 @@ private:
     // inside corner emit anything, so the walk covers just the columns from one left of the
     // first inside voxel to the last one, over the real voxel rows the cells' corners lie on:
     // at a new iso-value of the demo (512 x 512 x 82) the cap took 7.8 ms on dev-2c testing 8
-    // corners of every cell of the first and last slice, and 3.0-3.4 ms so (16 ms in the H200
-    // workstation's worker, most of its frame).
+    // corners of every cell of the first and last slice, and 3.0-3.4 ms so; in the H200
+    // workstation's worker, 16-17 ms (most of method 3's frame) and 7-7.5 ms.
     void emitCellRow(int j, int k) {
         int first = m_dims.nx, last = -1;
         for (int y = std::max(j, 0); y <= std::min(j + 1, m_dims.ny - 1); ++y)
