@@ -138,6 +138,36 @@ TEST_P(ThickSlicesOnDevice, MakesTheHostsFieldBitForBit) {
 
 INSTANTIATE_TEST_SUITE_P(Volumes, ThickSlicesOnDevice, testing::ValuesIn(cases()), caseName);
 
+// The device path's host copies are written again once nobody holds them, never while someone
+// does: a copy held across later iso-values keeps its own, and a released one's memory comes
+// back for the next.
+TEST(ThickSlicesOnDeviceCopies, AHeldCopyKeepsItsVoxelsAndAFreeOneIsWrittenAgain) {
+    if (!cudaAvailability().available)
+        GTEST_SKIP() << "no CUDA device: " << cudaAvailability().reason;
+    const auto source = std::make_shared<const Volume>(thickPhantom());
+    const VolumeSampling sampling{Oversampling::Auto, ThickSlices::Smooth};
+    DrawnVolumeMaker maker(source, Backend::Cuda);
+    const auto sameVoxels = [](const Volume& a, const Volume& b) {
+        return a.dims() == b.dims() && std::memcmp(a.data(), b.data(), a.byteSize()) == 0;
+    };
+    const auto held = maker.make(sampling, 300.5, 1);
+    ASSERT_TRUE(maker.lastMadeOnDevice()) << maker.takeNote();
+    const void* heldVoxels = held->data();
+    const void* releasedVoxels = nullptr;
+    for (const double iso : {-400.0, 700.5, 100.0}) {
+        auto next = maker.make(sampling, iso, 1);
+        EXPECT_NE(next->data(), heldVoxels) << iso << ": a held copy was written again";
+        EXPECT_TRUE(sameVoxels(*next, *volumeToRender(source, sampling, iso, 2))) << iso;
+        EXPECT_EQ(next->valueMapping().intercept, iso);
+        releasedVoxels = next->data();
+    } // each `next` is released here: the next iso-value may write it again
+    EXPECT_TRUE(sameVoxels(*held, *volumeToRender(source, sampling, 300.5, 2)));
+    EXPECT_EQ(held->valueMapping().intercept, 300.5);
+    const auto reused = maker.make(sampling, 500.5, 1);
+    EXPECT_EQ(reused->data(), releasedVoxels) << "a released copy's memory is written again";
+    EXPECT_TRUE(sameVoxels(*reused, *volumeToRender(source, sampling, 500.5, 2)));
+}
+
 // The renderers of a copy made on the device take its voxels from there, device to device: bound
 // to a host volume that holds no surface at all, with the device copy beside it, each CUDA
 // renderer draws what it draws of the copy's own host voxels -- so it read the device's.

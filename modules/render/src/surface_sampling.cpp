@@ -13,8 +13,10 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <memory>
 #include <string>
 #include <utility>
+#include <vector>
 
 namespace lw::render {
 namespace {
@@ -154,18 +156,54 @@ struct DrawnVolumeMaker::Impl {
     std::string note;
 #if LINEWORK_CUDA
     DeviceThickSlices device;
+    // The host copies the device path made, kept to be written again once nobody else holds
+    // them: a 43 MB copy into fresh pages costs its page faults at every iso-value, several ms.
+    // During a drag the frame on screen and the one being drawn hold theirs; the one before is
+    // free. At most kKeptCopies.
+    std::vector<std::shared_ptr<volume::Volume>> copies;
+    static constexpr std::size_t kKeptCopies = 3;
+
+    // A kept copy of `dims` nobody else holds (the others nobody holds go), or null.
+    std::shared_ptr<volume::Volume> freeCopy(glm::ivec3 dims) {
+        std::shared_ptr<volume::Volume> found;
+        std::erase_if(copies, [&](const std::shared_ptr<volume::Volume>& copy) {
+            if (copy.use_count() != 1)
+                return false;
+            if (!found && copy->dims() == dims) {
+                found = copy;
+                return false;
+            }
+            return true;
+        });
+        return found;
+    }
+
+    std::shared_ptr<volume::Volume> deviceCopy(const SamplingPlan& plan, double iso,
+                                               unsigned threads) {
+        const glm::ivec3 dims = volume::oversampledDims(source->dims(), plan.factors);
+        if (std::shared_ptr<volume::Volume> copy = freeCopy(dims)) {
+            device.makeInto(*copy, *source, plan, iso, distanceLimit(*source), threads);
+            return copy;
+        }
+        auto copy = std::make_shared<volume::Volume>(
+            device.make(*source, plan, iso, distanceLimit(*source), threads));
+        if (copies.size() >= kKeptCopies)
+            copies.erase(copies.begin()); // the oldest: its holders keep it alive
+        copies.push_back(copy);
+        return copy;
+    }
 #endif
 
-    // The shape-based copy made on the device, or nothing (the device failed: from now on the
+    // The shape-based copy made on the device, or null (the device failed: from now on the
     // host makes it).
-    std::optional<volume::Volume> onTheDevice(const SamplingPlan& plan, double iso,
-                                              unsigned threads) {
+    std::shared_ptr<const volume::Volume> onTheDevice(const SamplingPlan& plan, double iso,
+                                                      unsigned threads) {
 #if LINEWORK_CUDA
         try {
             const auto start = std::chrono::steady_clock::now();
-            volume::Volume field = device.make(*source, plan, iso, distanceLimit(*source), threads);
+            std::shared_ptr<const volume::Volume> field = deviceCopy(plan, iso, threads);
             const kernels::cuda::ThickSliceFieldTimes& t = device.times();
-            logResampled(plan, iso, field.dims(), msSince(start),
+            logResampled(plan, iso, field->dims(), msSince(start),
                          " on the CUDA device (distances " + shortNumber(t.distanceMs) +
                              " ms, refinement " + shortNumber(t.refineMs) + " ms, download " +
                              shortNumber(t.downloadMs) + " ms)");
@@ -180,7 +218,7 @@ struct DrawnVolumeMaker::Impl {
         (void)iso;
         (void)threads;
 #endif
-        return std::nullopt;
+        return nullptr;
     }
 };
 
@@ -202,9 +240,9 @@ std::shared_ptr<const volume::Volume> DrawnVolumeMaker::make(VolumeSampling samp
         return d.source;
     const SamplingPlan plan = samplingPlan(d.source->dims(), d.source->geometry(), sampling);
     if (plan.shapeBased && d.onDevice) {
-        if (std::optional<volume::Volume> field = d.onTheDevice(plan, iso, threads)) {
+        if (std::shared_ptr<const volume::Volume> field = d.onTheDevice(plan, iso, threads)) {
             d.lastOnDevice = true;
-            return std::make_shared<const volume::Volume>(std::move(*field));
+            return field;
         }
     }
     return volumeToRender(d.source, sampling, iso, threads);

@@ -17,6 +17,10 @@ public:
     // Throws core::Error when the device fails. `threads`: for the copy from page-locked memory.
     volume::Volume make(const volume::Volume& source, const SamplingPlan& plan, double iso,
                         double limitMm, unsigned threads);
+    // The same into `field`, a copy made earlier for the same source and plan (its dims and
+    // type): its pages are written again instead of fresh ones faulted in.
+    void makeInto(volume::Volume& field, const volume::Volume& source, const SamplingPlan& plan,
+                  double iso, double limitMm, unsigned threads);
     const kernels::cuda::ThickSliceFieldTimes& times() const { return m_field.times(); }
     // The last copy in device memory, until the next make().
     const void* deviceVoxels() const { return m_field.deviceField(); }

@@ -96,7 +96,9 @@ std::shared_ptr<const volume::Volume> volumeToRender(std::shared_ptr<const volum
 // (kernels/cuda/thick_slice_field_cuda.h: the same int16 copy, bit for bit): the slices go up
 // once, and a new iso-value costs a few kernels and the copy's download instead of the host's
 // distance transform and refinement. Where the device fails (out of memory, no device after all),
-// the host makes it from then on, and lastNote() says why once.
+// the host makes it from then on, and takeNote() says why once. The device path's host copies
+// are written again once nobody else holds them (fresh pages for each iso-value cost their page
+// faults); a copy is never written while anyone holds it.
 class DrawnVolumeMaker {
 public:
     DrawnVolumeMaker(std::shared_ptr<const volume::Volume> source, Backend backend);
