@@ -25,8 +25,8 @@ public:
         setFaceNormals();
     }
 
-    TriangleMesh build(const BorderFaceMaxima* maxima) {
-        const FaceFlags faces = maxima ? facesOf(*maxima) : facesWithInside();
+    TriangleMesh build(const BorderFaceMaxima& maxima) {
+        const FaceFlags faces = facesOf(maxima);
         const int cx = m_dims.cx, cy = m_dims.cy, cz = m_dims.cz;
         // Padded cells (i, j, k), i in [-1, cx] (cell i spans voxels i .. i+1), in cell order;
         // the shell is every cell with a padded corner. A shell cell's real corners lie on the
@@ -70,25 +70,6 @@ private:
         return faces;
     }
 
-    // Which faces hold an inside voxel; each face's scan stops at its first.
-    FaceFlags facesWithInside() const {
-        const int nx = m_dims.nx, ny = m_dims.ny, nz = m_dims.nz;
-        const auto anyInside = [&](int x0, int x1, int y0, int y1, int z0, int z1) {
-            for (int z = z0; z <= z1; ++z)
-                for (int y = y0; y <= y1; ++y) {
-                    const T* row = m_voxels + index(0, y, z);
-                    for (int x = x0; x <= x1; ++x)
-                        if (row[x] >= m_threshold)
-                            return true;
-                }
-            return false;
-        };
-        return {
-            anyInside(0, 0, 0, ny - 1, 0, nz - 1), anyInside(nx - 1, nx - 1, 0, ny - 1, 0, nz - 1),
-            anyInside(0, nx - 1, 0, 0, 0, nz - 1), anyInside(0, nx - 1, ny - 1, ny - 1, 0, nz - 1),
-            anyInside(0, nx - 1, 0, ny - 1, 0, 0), anyInside(0, nx - 1, 0, ny - 1, nz - 1, nz - 1)};
-    }
-
     // Outward unit normal of each face: the padded gradient at a pad -> real edge is the pad
     // step along the axis (oblique frame; along the stack axis its sign follows the slice
     // order), mapped to patient space like every marching-cubes gradient.
@@ -110,8 +91,9 @@ private:
     // inside corner emit anything, so the walk covers just the columns from one left of the
     // first inside voxel to the last one, over the real voxel rows the cells' corners lie on:
     // at a new iso-value of the demo (512 x 512 x 82) the cap took 7.8 ms on dev-2c testing 8
-    // corners of every cell of the first and last slice, and 3.0-3.4 ms so; in the H200
-    // workstation's worker, 16-17 ms (most of method 3's frame) and 7-7.5 ms.
+    // corners of every cell of the first and last slice, and 3.2-3.6 ms so (2.3-2.7 ms with the
+    // faces' maxima kept); in the H200 workstation's worker, 16-17 ms (most of method 3's frame)
+    // and 7-7.5 ms.
     void emitCellRow(int j, int k) {
         int first = m_dims.nx, last = -1;
         for (int y = std::max(j, 0); y <= std::min(j + 1, m_dims.ny - 1); ++y)
@@ -121,12 +103,11 @@ private:
             emitCell(i, j, k);
     }
 
-    // [first, last] grown to cover the inside voxels of voxel row (y, z). Each row's range is
-    // found once (neighbouring cell rows share a voxel row).
+    // [first, last] grown to cover the inside voxels of voxel row (y, z), a row on a face (the
+    // only rows shell cells' corners lie on). Each row's range is found once: neighbouring cell
+    // rows share a voxel row.
     void widenToInside(int y, int z, int& first, int& last) {
-        if (m_rowRanges.empty())
-            m_rowRanges.assign(std::size_t(m_dims.ny) * std::size_t(m_dims.nz), kRowNotScanned);
-        RowRange& range = m_rowRanges[std::size_t(z) * std::size_t(m_dims.ny) + std::size_t(y)];
+        RowRange& range = faceRowRange(y, z);
         if (range.first == kRowNotScanned.first)
             range = insideRange(m_voxels + index(0, y, z));
         first = std::min(first, range.first);
@@ -137,6 +118,21 @@ private:
         int first, last;
     };
     static constexpr RowRange kRowNotScanned{-2, -2};
+
+    // The memo of a face row: the first and last slice's rows by y, the first and last rows of
+    // every slice by z.
+    RowRange& faceRowRange(int y, int z) {
+        const auto slot = [](std::vector<RowRange>& rows, int count, int at) -> RowRange& {
+            if (rows.empty())
+                rows.assign(std::size_t(count), kRowNotScanned);
+            return rows[std::size_t(at)];
+        };
+        if (z == 0)
+            return slot(m_faceRows[0], m_dims.ny, y);
+        if (z == m_dims.nz - 1)
+            return slot(m_faceRows[1], m_dims.ny, y);
+        return slot(m_faceRows[y == 0 ? 2 : 3], m_dims.nz, z); // y is 0 or ny - 1
+    }
 
     // The first and last inside voxel of a row ({nx, -1} when none is).
     RowRange insideRange(const T* row) const {
@@ -212,7 +208,7 @@ private:
     VoxelGradientSampler<T> m_gradient;
     McVec3 m_faceNormal[6]{};
     std::unordered_map<std::uint64_t, std::uint32_t> m_ids;
-    std::vector<RowRange> m_rowRanges; // per voxel row (z * ny + y), as scanned
+    std::array<std::vector<RowRange>, 4> m_faceRows; // faceRowRange's memo
     TriangleMesh m_mesh;
 };
 
@@ -258,7 +254,8 @@ TriangleMesh borderCap(const volume::Volume& volume, double storedIso, GradientS
         return {};
     return volume::dispatchVoxelType(volume.voxelType(), [&](auto tag) {
         using T = decltype(tag);
-        return CapBuilder<T>(volume, storedIso, stencil).build(faces);
+        return CapBuilder<T>(volume, storedIso, stencil)
+            .build(faces ? *faces : borderFaceMaxima(volume));
     });
 }
 
