@@ -54,16 +54,16 @@ LW_HOST_DEVICE inline float stepTerm(float scale, int steps) {
 }
 
 // The stored int16 of a distance: mm limited to `limitMm`, signed (+ inside), in
-// 1/stepsPerMm mm, rounded half away from zero (std::lround's rule).
+// 1/stepsPerMm mm, rounded half away from zero (std::lround's rule). The whole part is taken as
+// an int (limitMm * stepsPerMm is at most 32767, so it is exact), which a CPU vectorises.
 LW_HOST_DEVICE inline std::int16_t storedSliceDistance(float squaredMm, bool inside, double limitMm,
                                                        double stepsPerMm) {
     const double mm = double(sqrtf(squaredMm));
     const double limited = mm < limitMm ? mm : limitMm;
     const double scaled = (inside ? limited : -limited) * stepsPerMm;
-    const double whole = double(static_cast<long long>(scaled));
-    const double fraction = scaled - whole;
-    return std::int16_t(static_cast<long long>(whole) + (fraction >= 0.5 ? 1 : 0) -
-                        (fraction <= -0.5 ? 1 : 0));
+    const int wholeSteps = static_cast<int>(scaled);
+    const double fraction = scaled - double(wholeSteps);
+    return std::int16_t(wholeSteps + (fraction >= 0.5 ? 1 : 0) - (fraction <= -0.5 ? 1 : 0));
 }
 
 // Along the slices, the monotone cubic (volume/oversampling.h): Fritsch-Butland tangents (the

@@ -46,4 +46,12 @@ Volume oversampled(const Volume& volume, glm::ivec3 factors, unsigned threads = 
                    SliceInterpolation alongSlices = SliceInterpolation::Linear,
                    const core::ImportLimits& limits = {});
 
+// Fills the slices of `field` between every factor-th one in place: those hold a volume's slices
+// (slice k of it in slice k * factor), and afterwards `field` is what
+// oversampled(that volume, {1, 1, factor}, threads, alongSlices) would be, bit for bit, with no
+// second volume written or read. Integer voxel types only. Throws core::Error for a field whose
+// slice count is not (n - 1) * factor + 1, or for float voxels.
+void refineBetweenSlices(Volume& field, int factor, unsigned threads = 0,
+                         SliceInterpolation alongSlices = SliceInterpolation::Linear);
+
 } // namespace lw::volume

@@ -52,4 +52,12 @@ inline constexpr double kSliceDistanceStepsPerMm = 128.0;
 Volume signedSliceDistance(const Volume& volume, double iso, double limitMm, unsigned threads = 0,
                            const core::ImportLimits& limits = {});
 
+// The same distances written into an int16 `field` of the volume's in-plane size and
+// (dims.z - 1) * sliceStep + 1 slices: slice k into slice k * sliceStep, the others left as they
+// are (for refineBetweenSlices, volume/oversampling.h, to fill -- the thick-slice field in one
+// volume, without a copy between). The field's value mapping and description are left to the
+// caller. Throws core::Error for a limit outside (0, 255] mm or a field of another size or type.
+void writeSignedSliceDistance(const Volume& volume, double iso, double limitMm, int sliceStep,
+                              Volume& field, unsigned threads = 0);
+
 } // namespace lw::volume
