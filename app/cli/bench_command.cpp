@@ -579,15 +579,24 @@ void noteDrawnCopyTimes(const BenchVolume& input, const Plan& plan,
              .dependsOnIso())
         return;
     const auto source = std::make_shared<const volume::Volume>(input.volume.clone());
-    std::vector<double> host, device;
+    std::vector<double> fresh, kept, device;
     for (int i = 0; i < plan.repeat; ++i) {
         const auto start = Clock::now();
         render::volumeToRender(source, plan.sampling, input.iso, plan.threads);
-        host.push_back(msSince(start));
+        fresh.push_back(msSince(start));
     }
-    std::string note = input.label +
-                       ": the drawn copy (thick slices, each iso-value) on the host " +
-                       std::to_string(median(host)) + " ms";
+    // As the review makes it: into a copy kept from the iso-value before.
+    render::DrawnVolumeMaker hostMaker(source, render::Backend::Cpu);
+    hostMaker.make(plan.sampling, input.iso, plan.threads);
+    for (int i = 0; i < plan.repeat; ++i) {
+        const auto start = Clock::now();
+        hostMaker.make(plan.sampling, input.iso, plan.threads);
+        kept.push_back(msSince(start));
+    }
+    std::string note =
+        input.label + ": the drawn copy (thick slices, each iso-value) on the host " +
+        std::to_string(median(kept)) + " ms into a kept copy, as the review makes it (" +
+        std::to_string(median(fresh)) + " ms into a new volume)";
     render::DrawnVolumeMaker maker(source, plan.backend);
     maker.make(plan.sampling, input.iso, plan.threads); // the slices' upload, once a volume
     if (maker.lastMadeOnDevice()) {

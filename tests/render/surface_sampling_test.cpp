@@ -3,10 +3,13 @@
 #include "lw/kernels/cpu/voxel_ray.h"
 #include "lw/render/surface_sampling.h"
 #include "lw/volume/oversampling.h"
+#include "lw/volume/phantom.h"
+#include "lw/volume/slice_distance.h"
 
 #include <cctype>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <gtest/gtest.h>
 #include <memory>
 #include <string>
@@ -210,6 +213,53 @@ TEST(SurfaceSampling, NeighbourReachFollowsCoarsePixels) {
     const volume::Volume isotropic({6, 6, 6}, volume::VoxelType::Int16,
                                    VolumeGeometry::regular({0, 0, 0}, {0.7, 0.7, 0.7}));
     EXPECT_NEAR(kernels::cpu::VoxelRayGrid(isotropic).neighbourReach(), 1.0, 1e-12);
+}
+
+// On the host the thick-slice field is written in one volume, and the maker keeps its copies:
+// each is the distances oversampled as a second volume would give them, bit for bit; a copy
+// someone holds keeps its voxels across later iso-values, and a released one is written again
+// (fresh pages for each iso-value would cost their page faults).
+TEST(DrawnVolumeMakerOnTheHost, KeepsItsCopiesAndWritesOnlyReleasedOnes) {
+    const auto source = std::make_shared<const volume::Volume>(
+        volume::makePhantom({260, 200, 12}, volume::PhantomKind::Ct));
+    auto thick = std::make_shared<volume::Volume>(
+        source->dims(), source->voxelType(),
+        VolumeGeometry::regular({-20.0, 10.0, 5.0}, {0.5, 0.5, 3.0}));
+    std::memcpy(thick->data(), source->data(), source->byteSize());
+    thick->setValueMapping(source->valueMapping());
+    const VolumeSampling sampling{Oversampling::Auto, ThickSlices::Smooth};
+    const SamplingPlan plan = samplingPlan(thick->dims(), thick->geometry(), sampling);
+    ASSERT_TRUE(plan.shapeBased);
+    ASSERT_EQ(plan.factors.x, 1); // fine pixels: refined along the slices only, in one volume
+    ASSERT_EQ(plan.factors.y, 1);
+    const double limit = kThickSliceDistanceLimitSteps * 3.0;
+    const auto expected = [&](double iso) {
+        return volume::oversampled(volume::signedSliceDistance(*thick, iso, limit, 2), plan.factors,
+                                   2, plan.alongSlices);
+    };
+    const auto sameVoxels = [](const volume::Volume& a, const volume::Volume& b) {
+        return a.dims() == b.dims() && a.geometry().refinement() == b.geometry().refinement() &&
+               std::memcmp(a.data(), b.data(), a.byteSize()) == 0;
+    };
+    DrawnVolumeMaker maker(thick, Backend::Cpu);
+    const auto held = maker.make(sampling, 300.5, 1);
+    EXPECT_FALSE(maker.lastMadeOnDevice());
+    const void* heldVoxels = held->data();
+    const void* releasedVoxels = nullptr;
+    for (const double iso : {-400.0, 700.5, 100.0}) {
+        auto next = maker.make(sampling, iso, 2);
+        EXPECT_NE(next->data(), heldVoxels) << iso << ": a held copy was written again";
+        EXPECT_TRUE(sameVoxels(*next, expected(iso))) << iso;
+        EXPECT_EQ(next->valueMapping().intercept, iso);
+        EXPECT_EQ(next->description(), thick->description());
+        releasedVoxels = next->data();
+    }
+    EXPECT_TRUE(sameVoxels(*held, expected(300.5)));
+    EXPECT_EQ(held->valueMapping().intercept, 300.5);
+    const auto reused = maker.make(sampling, 500.5, 1);
+    EXPECT_EQ(reused->data(), releasedVoxels) << "a released copy's memory is written again";
+    EXPECT_TRUE(sameVoxels(*reused, expected(500.5)));
+    EXPECT_TRUE(sameVoxels(*volumeToRender(thick, sampling, 500.5, 2), expected(500.5)));
 }
 
 } // namespace

@@ -122,6 +122,38 @@ double msSince(std::chrono::steady_clock::time_point start) {
 
 } // namespace
 
+namespace {
+
+// Whether the shape-based field can be written in one volume: refined along the slices only, as
+// thick slices are (their pixels are fine already).
+bool refinesAlongSlicesOnly(const SamplingPlan& plan) {
+    return plan.shapeBased && plan.factors.x == 1 && plan.factors.y == 1;
+}
+
+// The shape-based field of `source` at `iso` into `field` (int16, of the plan's refined size):
+// the distances into every factor-th slice, then the slices between refined in place -- what
+// oversampled(signedSliceDistance(...)) makes, bit for bit, without a second volume written and
+// read (volume/slice_distance.h, volume/oversampling.h).
+void writeShapeBasedField(volume::Volume& field, const volume::Volume& source,
+                          const SamplingPlan& plan, double iso, unsigned threads) {
+    volume::writeSignedSliceDistance(source, iso, distanceLimit(source), plan.factors.z, field,
+                                     threads);
+    volume::refineBetweenSlices(field, plan.factors.z, threads, plan.alongSlices);
+    field.setValueMapping({1.0 / volume::kSliceDistanceStepsPerMm, iso});
+    field.setDescription(source.description());
+}
+
+// A new volume for the shape-based field of `source` under `plan`.
+volume::Volume shapeBasedFieldVolume(const volume::Volume& source, const SamplingPlan& plan) {
+    const glm::ivec3 dims = volume::oversampledDims(source.dims(), plan.factors);
+    volume::checkVolumeAllocation(dims, volume::VoxelType::Int16, {}, "shape-based interpolation",
+                                  "the thick-slice field");
+    return volume::Volume(dims, volume::VoxelType::Int16,
+                          source.geometry().refined(plan.factors, source.dims().z));
+}
+
+} // namespace
+
 std::optional<volume::Volume> oversampledToRender(const volume::Volume& volume,
                                                   VolumeSampling sampling, double iso,
                                                   unsigned threads) {
@@ -129,12 +161,18 @@ std::optional<volume::Volume> oversampledToRender(const volume::Volume& volume,
     if (plan.asLoaded())
         return std::nullopt;
     const auto start = std::chrono::steady_clock::now();
-    volume::Volume finer =
-        plan.shapeBased ? volume::oversampled(volume::signedSliceDistance(
-                                                  volume, iso, distanceLimit(volume), threads),
-                                              plan.factors, threads, plan.alongSlices)
-                        : volume::oversampled(volume, plan.factors, threads, plan.alongSlices);
-    logResampled(plan, iso, finer.dims(), msSince(start), "");
+    std::optional<volume::Volume> finer;
+    if (refinesAlongSlicesOnly(plan)) {
+        finer = shapeBasedFieldVolume(volume, plan);
+        writeShapeBasedField(*finer, volume, plan, iso, threads);
+    } else if (plan.shapeBased) {
+        finer = volume::oversampled(
+            volume::signedSliceDistance(volume, iso, distanceLimit(volume), threads), plan.factors,
+            threads, plan.alongSlices);
+    } else {
+        finer = volume::oversampled(volume, plan.factors, threads, plan.alongSlices);
+    }
+    logResampled(plan, iso, finer->dims(), msSince(start), "");
     return finer;
 }
 
@@ -154,12 +192,10 @@ struct DrawnVolumeMaker::Impl {
     bool onDevice = false; // the shape-based field is made on the CUDA device
     bool lastOnDevice = false;
     std::string note;
-#if LINEWORK_CUDA
-    DeviceThickSlices device;
-    // The host copies the device path made, kept to be written again once nobody else holds
-    // them: a 43 MB copy into fresh pages costs its page faults at every iso-value, several ms.
-    // During a drag the frame on screen and the one being drawn hold theirs; the one before is
-    // free. At most kKeptCopies.
+    // The shape-based copies made, kept to be written again once nobody else holds them: a 43 MB
+    // copy into fresh pages costs its page faults at every iso-value, several ms. During a drag
+    // the frame on screen and the one being drawn hold theirs; the one before is free. At most
+    // kKeptCopies.
     std::vector<std::shared_ptr<volume::Volume>> copies;
     static constexpr std::size_t kKeptCopies = 3;
 
@@ -178,6 +214,30 @@ struct DrawnVolumeMaker::Impl {
         return found;
     }
 
+    void keep(const std::shared_ptr<volume::Volume>& copy) {
+        if (copies.size() >= kKeptCopies)
+            copies.erase(copies.begin()); // the oldest: its holders keep it alive
+        copies.push_back(copy);
+    }
+
+    // The shape-based field made on the host into a kept copy (or a new one, then kept).
+    std::shared_ptr<const volume::Volume> onTheHost(const SamplingPlan& plan, double iso,
+                                                    unsigned threads) {
+        const auto start = std::chrono::steady_clock::now();
+        std::shared_ptr<volume::Volume> copy =
+            freeCopy(volume::oversampledDims(source->dims(), plan.factors));
+        if (!copy) {
+            copy = std::make_shared<volume::Volume>(shapeBasedFieldVolume(*source, plan));
+            keep(copy);
+        }
+        writeShapeBasedField(*copy, *source, plan, iso, threads);
+        logResampled(plan, iso, copy->dims(), msSince(start), "");
+        return copy;
+    }
+
+#if LINEWORK_CUDA
+    DeviceThickSlices device;
+
     std::shared_ptr<volume::Volume> deviceCopy(const SamplingPlan& plan, double iso,
                                                unsigned threads) {
         const glm::ivec3 dims = volume::oversampledDims(source->dims(), plan.factors);
@@ -187,9 +247,7 @@ struct DrawnVolumeMaker::Impl {
         }
         auto copy = std::make_shared<volume::Volume>(
             device.make(*source, plan, iso, distanceLimit(*source), threads));
-        if (copies.size() >= kKeptCopies)
-            copies.erase(copies.begin()); // the oldest: its holders keep it alive
-        copies.push_back(copy);
+        keep(copy);
         return copy;
     }
 #endif
@@ -245,6 +303,8 @@ std::shared_ptr<const volume::Volume> DrawnVolumeMaker::make(VolumeSampling samp
             return field;
         }
     }
+    if (refinesAlongSlicesOnly(plan))
+        return d.onTheHost(plan, iso, threads);
     return volumeToRender(d.source, sampling, iso, threads);
 }
 
