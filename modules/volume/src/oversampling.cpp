@@ -86,13 +86,8 @@ template <typename T> struct SliceRefiner {
         const bool last = lower + 2 >= sourceDims.z;
         tangents.atLower.resize(planeSize);
         tangents.atUpper.resize(planeSize);
-        float* m1 = tangents.atLower.data();
-        float* m2 = tangents.atUpper.data();
-        for (std::size_t v = 0; v < planeSize; ++v) {
-            const float secant = float(y2[v]) - float(y1[v]);
-            m1[v] = first ? secant : monotoneTangent(float(y1[v]) - float(y0[v]), secant);
-            m2[v] = last ? secant : monotoneTangent(secant, float(y3[v]) - float(y2[v]));
-        }
+        tangentsOf(planeSize, y0, y1, y2, y3, first, last, tangents.atLower.data(),
+                   tangents.atUpper.data());
         tangents.gap = lower;
     }
 
@@ -158,13 +153,17 @@ template <typename T> struct SliceRefiner {
         const T* y3 = lower + 2 < sourceDims.z ? y2 + sourceStride : y2;
         const bool firstGap = lower == 0, lastGap = lower + 2 >= sourceDims.z;
         std::vector<HermiteWeights> weights;
-        std::vector<float> upperWeights;
         std::vector<T*> slices;
         for (std::size_t k = first; k < end; ++k) {
             weights.emplace_back(alongK[k].upperWeight);
-            upperWeights.push_back(alongK[k].upperWeight);
             slices.push_back(target + planeSize * k);
         }
+        const auto blend = [&](std::size_t run, std::size_t count, const float* m1,
+                               const float* m2) {
+            for (std::size_t n = 0; n < slices.size(); ++n)
+                blendRun(count, y1 + run, y2 + run, m1, m2, weights[n],
+                         alongK[first + n].upperWeight, slices[n] + run);
+        };
         float m1[kRun], m2[kRun];
         std::size_t run = 0;
         for (; run + kRun <= planeSize; run += kRun) {
@@ -173,41 +172,36 @@ template <typename T> struct SliceRefiner {
                     std::memcpy(slice + run, y1 + run, kRun * sizeof(T));
                 continue;
             }
-            if (monotoneK)
-                tangentsOfRun<kRun>(y0 + run, y1 + run, y2 + run, y3 + run, firstGap, lastGap, m1,
-                                    m2);
-            for (std::size_t n = 0; n < slices.size(); ++n)
-                blendRun<kRun>(y1 + run, y2 + run, m1, m2, weights[n], upperWeights[n],
-                               slices[n] + run);
+            if (monotoneK) // a constant count: the inlined loops vectorise
+                tangentsOf(kRun, y0 + run, y1 + run, y2 + run, y3 + run, firstGap, lastGap, m1, m2);
+            blend(run, kRun, m1, m2);
         }
-        for (; run < planeSize; ++run) { // the plane's last pixels, one at a time
-            if (monotoneK)
-                tangentsOfRun<1>(y0 + run, y1 + run, y2 + run, y3 + run, firstGap, lastGap, m1, m2);
-            for (std::size_t n = 0; n < slices.size(); ++n)
-                blendRun<1>(y1 + run, y2 + run, m1, m2, weights[n], upperWeights[n],
-                            slices[n] + run);
-        }
+        const std::size_t rest = planeSize - run; // the plane's last pixels, fewer than a run
+        if (monotoneK)
+            tangentsOf(rest, y0 + run, y1 + run, y2 + run, y3 + run, firstGap, lastGap, m1, m2);
+        blend(run, rest, m1, m2);
     }
 
-    template <std::size_t Count>
-    static void tangentsOfRun(const T* y0, const T* y1, const T* y2, const T* y3, bool first,
-                              bool last, float* m1, float* m2) {
-        for (std::size_t v = 0; v < Count; ++v) {
+    // The monotone tangents at slices 1 and 2 of `count` voxels, from slices 0 to 3 (`first`,
+    // `last`: the stack's end gaps, one-sided there).
+    static void tangentsOf(std::size_t count, const T* y0, const T* y1, const T* y2, const T* y3,
+                           bool first, bool last, float* m1, float* m2) {
+        for (std::size_t v = 0; v < count; ++v) {
             const float secant = float(y2[v]) - float(y1[v]);
             m1[v] = first ? secant : monotoneTangent(float(y1[v]) - float(y0[v]), secant);
             m2[v] = last ? secant : monotoneTangent(secant, float(y3[v]) - float(y2[v]));
         }
     }
 
-    template <std::size_t Count>
-    void blendRun(const T* y1, const T* y2, const float* m1, const float* m2,
+    // `count` voxels between slices 1 and 2 at one refined slice: blendPlane's arithmetic.
+    void blendRun(std::size_t count, const T* y1, const T* y2, const float* m1, const float* m2,
                   const HermiteWeights& w, float upperWeight, T* out) const {
         if (monotoneK)
-            for (std::size_t v = 0; v < Count; ++v)
+            for (std::size_t v = 0; v < count; ++v)
                 out[v] = storedFrom<T>(
                     kernels::hermiteBlend(w, float(y1[v]), m1[v], float(y2[v]), m2[v]));
         else
-            for (std::size_t v = 0; v < Count; ++v)
+            for (std::size_t v = 0; v < count; ++v)
                 out[v] =
                     storedFrom<T>(kernels::linearBlend(float(y1[v]), upperWeight, float(y2[v])));
     }
