@@ -1327,8 +1327,8 @@
         <translation>Projektion:</translation>
     </message>
     <message>
-        <source>Auto: in the panels, unless OpenGL is software</source>
-        <translation>Automatisch: in den Bereichen, außer bei Software-OpenGL</translation>
+        <source>Auto: on the render thread with CUDA or software OpenGL, else in the panels</source>
+        <translation>Automatisch: im Render-Thread mit CUDA oder Software-OpenGL, sonst in den Bereichen</translation>
     </message>
     <message>
         <source>In the panels&apos; own OpenGL context</source>

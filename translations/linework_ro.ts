@@ -1327,8 +1327,8 @@
         <translation>Proiecție:</translation>
     </message>
     <message>
-        <source>Auto: in the panels, unless OpenGL is software</source>
-        <translation>Automat: în panouri, cu excepția OpenGL software</translation>
+        <source>Auto: on the render thread with CUDA or software OpenGL, else in the panels</source>
+        <translation>Automat: pe firul de randare cu CUDA sau OpenGL software, altfel în panouri</translation>
     </message>
     <message>
         <source>In the panels&apos; own OpenGL context</source>

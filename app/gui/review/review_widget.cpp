@@ -311,6 +311,13 @@ bool ReviewWidget::drawsInPanels() const {
     case PanelGl::Auto:
         break;
     }
+    // Where CUDA draws both panels (the iso panel shaded from the device's surface, the lines
+    // as a host image), the panels need no GL of their own: a window without a QOpenGLWidget
+    // repaints only the panels' rectangles, where one with it composes and flushes the whole
+    // window through GL on every update (7-15 ms a flush through Xvfb or a remote desktop,
+    // 1 ms without). Method 1 then runs on the worker's own headless context.
+    if (m_settings.cudaShadesIsoPanel && render::reviewIsoOnDevice(m_settings.backend))
+        return false;
     return !displayGlInfo().prefersCpu();
 }
 
@@ -342,7 +349,11 @@ void ReviewWidget::applySettings(const ReviewSettings& settings) {
     m_isoPanel->setAppearance(settings);
     m_silhouettePanel->setAppearance(settings);
     m_drawsInPanels = drawsInPanels();
-    m_isoOnDevice = m_drawsInPanels && render::reviewIsoOnDevice(settings.backend);
+    // The worker shades the iso panel from the device's surface where the panels draw with a
+    // real GPU's GL or show the worker's images without a software GL (the worker's iso image
+    // comes from the host otherwise).
+    m_isoOnDevice = render::reviewIsoOnDevice(settings.backend) &&
+                    (m_drawsInPanels || !displayGlInfo().prefersCpu());
     m_isoPanel->setGlView(m_drawsInPanels);
     m_silhouettePanel->setGlView(m_drawsInPanels);
     m_isoPanel->setUseGl(m_drawsInPanels && !m_isoOnDevice);

@@ -150,8 +150,8 @@ private:
     double m_iso = 0.0;
     bool m_meshCurrent = false;   // the panels show the surface at m_iso
     bool m_drawsInPanels = false; // the pipeline the current settings generation was set up for
-    // With it, on CUDA: the worker shades the iso panel from the device's mesh (and method 1
-    // runs there too); the GL panels draw what it made and never hold a mesh.
+    // On CUDA with a real GPU's GL: the worker shades the iso panel from the device's mesh
+    // (and method 1 runs there too); the panels draw what it made and never hold a mesh.
     bool m_isoOnDevice = false;
     std::shared_ptr<const render::Mesh> m_mesh; // the mesh on screen (export)
     CameraController m_camera;

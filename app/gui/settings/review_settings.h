@@ -22,8 +22,10 @@ namespace lw::gui {
 enum class Chunking { Off, Auto, Fixed };
 
 // Where the shaded iso panel and method 1 draw: in the panels' own GL context, or on the render
-// worker's headless context with the image shown in the panel. Auto draws in the panels unless
-// their context is a software rasterizer (llvmpipe), whose vertex work would block the UI thread.
+// worker's headless context with the image shown in the panel. Auto draws on the worker where
+// CUDA shades the iso panel (the panels then show images: no GL composition of the window) or
+// where the panels' context is a software rasterizer (llvmpipe), whose vertex work would block
+// the UI thread; in the panels otherwise (a GPU's GL without CUDA).
 enum class PanelGl { Auto, InPanels, OnWorker };
 
 struct IsoPreset {
