@@ -235,9 +235,10 @@ QWidget* SettingsDialog::makeAppearancePage() {
     form->addRow(tr("Projection:"), m_projection);
     m_panelGl = new QComboBox;
     m_panelGl->setObjectName("panelGl");
-    m_panelGl->addItems({tr("Auto: on the render thread with CUDA or software OpenGL, else in the panels"),
-                         tr("In the panels' own OpenGL context"),
-                         tr("On the render thread (keeps the window responsive)")});
+    m_panelGl->addItems(
+        {tr("Auto: on the render thread with CUDA or software OpenGL, else in the panels"),
+         tr("In the panels' own OpenGL context"),
+         tr("On the render thread (keeps the window responsive)")});
     form->addRow(tr("Draw with OpenGL:"), m_panelGl);
     const GlInfo& gl = displayGlInfo();
     auto* glNote =
