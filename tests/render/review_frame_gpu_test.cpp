@@ -5,6 +5,9 @@
 // with GL on the host path.
 
 #include "lw/core/error.h"
+#include "lw/render/contour_triangles.h"
+#include "lw/render/renderer_factory.h"
+#include "lw/render/visible_polylines.h"
 #include "review_frame_test_support.h"
 
 #include <gtest/gtest.h>
@@ -142,6 +145,71 @@ TEST_F(DeviceFrame, ShadesWithCudaWhateverTheSilhouettesSchedule) {
         }
     }
 }
+
+// The same lines, point for point, in the same order.
+bool sameLines(const std::vector<Polyline>& a, const std::vector<Polyline>& b) {
+    if (a.size() != b.size())
+        return false;
+    for (std::size_t i = 0; i < a.size(); ++i)
+        if (a[i].closed != b[i].closed || a[i].points != b[i].points)
+            return false;
+    return true;
+}
+
+// An export's vector lines on the device come from the triangles that may hold the contour,
+// selected there and downloaded alone: exactly the host's selection from the whole surface, the
+// same lines as from the whole surface, and no host mesh made -- closed at the border (the cap
+// from the host appended) and open; method 3's surface and method 1's (in GL buffers).
+class ExportLinesOnDevice : public ReviewFrameOnDevice {};
+
+TEST_P(ExportLinesOnDevice, ComeFromTheContourTrianglesAlone) {
+    const auto volume = phantom();
+    for (const bool closed : {true, false}) {
+        ReviewFrameRenderer device(volume);
+        ReviewFrameRequest request = requestFor(*volume, GetParam(), Backend::Cuda, 30.0);
+        request.settings.closeAtBorder = closed;
+        request.wantPolylines = true;
+        request.hiddenLines = true;
+        const ReviewFrame onDevice = device.render(request);
+        EXPECT_EQ(device.hostMeshesMade(), 0u) << "closed " << closed;
+        ASSERT_TRUE(onDevice.silhouette);
+        ASSERT_GT(onDevice.polylines.visible.size(), 5u) << "closed " << closed;
+
+        auto renderer = createSilhouetteRenderer(GetParam(), Backend::Cuda);
+        renderer->setVolume(*volume);
+        SilhouetteSettings settings = request.settings;
+        settings.isoReal = kIso;
+        const SilhouetteFrame frame = renderer->render(request.camera, settings);
+        const std::optional<Mesh> part = renderer->contourTriangles(request.camera);
+        ASSERT_TRUE(part) << "the surface is on the device";
+        const Mesh whole = *renderer->surfaceMesh();
+        const Mesh expected = contourTriangles(whole, request.camera);
+        EXPECT_GT(part->triangleCount(), 20u);
+        EXPECT_LT(part->triangleCount(), whole.triangleCount() / 2);
+        EXPECT_TRUE(part->positions == expected.positions) << "closed " << closed;
+        EXPECT_TRUE(part->normals == expected.normals) << "closed " << closed;
+        EXPECT_EQ(part->indices, expected.indices);
+        const PolylineSplit fromPart =
+            splitPolylines(*part, request.camera, frame.lines, request.polylineOptions, true);
+        const PolylineSplit fromWhole =
+            splitPolylines(whole, request.camera, frame.lines, request.polylineOptions, true);
+        ASSERT_FALSE(fromWhole.visible.empty());
+        EXPECT_TRUE(sameLines(fromPart.visible, fromWhole.visible)) << "closed " << closed;
+        EXPECT_TRUE(sameLines(fromPart.hidden, fromWhole.hidden)) << "closed " << closed;
+        const PolylineSplit framesFromWhole = splitPolylines(
+            whole, request.camera, onDevice.silhouette->lines, request.polylineOptions, true);
+        EXPECT_TRUE(sameLines(onDevice.polylines.visible, framesFromWhole.visible))
+            << "the review frame's lines, closed " << closed;
+        EXPECT_TRUE(sameLines(onDevice.polylines.hidden, framesFromWhole.hidden));
+    }
+}
+
+INSTANTIATE_TEST_SUITE_P(Methods, ExportLinesOnDevice,
+                         testing::Values(SilhouetteMethod::ZBuffer,
+                                         SilhouetteMethod::GeometryShader),
+                         [](const testing::TestParamInfo<SilhouetteMethod>& info) {
+                             return "Method" + std::to_string(int(info.param));
+                         });
 
 // Thick slices on the device: the field of a new iso-value is made on the device, and the
 // renderers kept from the last one (method 1's interop buffers, method 3's device surface) are

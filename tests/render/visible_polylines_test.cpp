@@ -3,6 +3,7 @@
 // the SVG holds exactly them.
 #include "lw/evaluation/analytic_shapes.h"
 #include "lw/kernels/silhouette_segment.h"
+#include "lw/render/contour_triangles.h"
 #include "lw/render/renderer_factory.h"
 #include "lw/render/svg_lines.h"
 #include "lw/render/visible_polylines.h"
@@ -443,6 +444,15 @@ TEST_P(PolylinesAsTheReference, ChainsAndPolylinesArePointForPointTheSame) {
     ASSERT_FALSE(serial.visible.empty());
     expectSameLines(split.visible, serial.visible);
     expectSameLines(split.hidden, serial.hidden);
+
+    // From only the triangles that may hold the contour, unshared (what the CUDA back-end
+    // downloads for an export): the same chains and lines, point for point.
+    const Mesh part = contourTriangles(mesh, camera);
+    EXPECT_LT(part.triangleCount(), mesh.triangleCount() / 2) << "the selection selects little";
+    expectSameLines(chainSilhouette(part, camera), expected);
+    const PolylineSplit fromPart = splitPolylines(part, camera, frame.lines, options, true);
+    expectSameLines(fromPart.visible, split.visible);
+    expectSameLines(fromPart.hidden, split.hidden);
 }
 
 INSTANTIATE_TEST_SUITE_P(Phantom, PolylinesAsTheReference,

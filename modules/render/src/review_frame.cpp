@@ -173,6 +173,7 @@ struct ReviewFrameRenderer::State {
     void renderSilhouette(const ReviewFrameRequest& request, bool deviceIso, ReviewFrame& frame);
     void addSuggestive(const ReviewFrameRequest& request, ReviewFrame& frame);
     std::shared_ptr<const Mesh> hostSurface(const ReviewFrameRequest& request);
+    std::shared_ptr<const Mesh> contourSurface(const ReviewFrameRequest& request);
     void keepRendererMesh(const ReviewFrameRequest& request, bool deviceIso, ReviewFrame& frame);
     void extractMesh(const ReviewFrameRequest& request, ReviewFrame& frame);
     void renderIsoOnHost(const ReviewFrameRequest& request, ReviewFrame& frame);
@@ -322,13 +323,26 @@ void ReviewFrameRenderer::State::renderSilhouette(const ReviewFrameRequest& requ
     keepRendererMesh(request, deviceIso, frame);
     if (request.wantPolylines && !frame.silhouette->drewToTarget) {
         const auto start = Clock::now();
-        frame.polylines = splitPolylines(*hostSurface(request), request.camera,
+        frame.polylines = splitPolylines(*contourSurface(request), request.camera,
                                          frame.silhouette->lines, request.polylineOptions,
                                          request.hiddenLines && request.settings.visibility);
         frame.polylinesMs = msSince(start);
     }
     if (request.suggestive && !frame.silhouette->drewToTarget)
         addSuggestive(request, frame);
+}
+
+// What the vector lines are chained from: the host surface where it is kept already; else,
+// where the renderer's surface is on the device, only its triangles that may hold the camera's
+// contour, downloaded for this camera (the same lines from a few in a hundred of the triangles);
+// else the host surface, made and kept.
+std::shared_ptr<const Mesh>
+ReviewFrameRenderer::State::contourSurface(const ReviewFrameRequest& request) {
+    if (!kept.matches(request.iso, SurfaceForm::of(request.settings))) {
+        if (std::optional<Mesh> part = renderer->contourTriangles(request.camera))
+            return std::make_shared<const Mesh>(std::move(*part));
+    }
+    return hostSurface(request);
 }
 
 // The surface the silhouette frame drew, on the host: the kept one of this iso-value, or the

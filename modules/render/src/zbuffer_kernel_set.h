@@ -21,6 +21,7 @@
 
 #include <cstddef>
 #include <memory>
+#include <optional>
 #include <string_view>
 #include <vector>
 
@@ -50,6 +51,9 @@ public:
                               SilhouetteFrame& frame) = 0;
     // The kept surface on the host (downloaded on first use); null when none is kept.
     virtual const Mesh* keptMesh() = 0;
+    // Only the kept surface's triangles that may hold `camera`'s contour (contour_triangles.h),
+    // where it is on the device; nullopt where the host has it (keptMesh) or none is kept.
+    virtual std::optional<Mesh> contourTriangles(const Camera& /*camera*/) { return std::nullopt; }
 
     // Clears both z-buffers at the camera's size.
     virtual void beginFrame(const Camera& camera, const SilhouetteSettings& settings,

@@ -197,6 +197,13 @@ const Mesh& ZBufferSilhouetteRenderer::mesh() const {
     return s.lateMesh;
 }
 
+std::optional<Mesh> ZBufferSilhouetteRenderer::contourTriangles(const Camera& camera) const {
+    State& s = *m_state;
+    if (!s.lastKept)
+        return std::nullopt;
+    return s.active().contourTriangles(camera);
+}
+
 SilhouetteFrame ZBufferSilhouetteRenderer::renderFrame(const Camera& camera,
                                                        const SilhouetteSettings& settings) {
     State& s = *m_state;

@@ -7,10 +7,12 @@
 #include "lw/core/log.h"
 #include "lw/kernels/cpu/border_cap_cpu.h"
 #include "lw/kernels/cpu/marching_cubes_cpu.h"
+#include "lw/kernels/cuda/contour_triangles_cuda.h"
 #include "lw/kernels/cuda/cuda_device.h"
 #include "lw/kernels/cuda/gl_mesh_interop.h"
 #include "lw/kernels/cuda/marching_cubes_cuda.h"
 #include "lw/kernels/cuda/stroke_pruning_cuda.h"
+#include "lw/render/contour_triangles.h"
 #include "lw/render/gpu_memory_plan.h"
 #endif
 
@@ -43,6 +45,7 @@ public:
     void releaseVolume() override {
         m_wholeCurrent = false;
         m_shading.release();
+        m_contour.release();
         m_marchingCubes.release(); // the device copy and a streamed volume's host registration
         m_volume = nullptr;
         m_deviceCopy = {};
@@ -160,6 +163,19 @@ public:
         downloadSurface(kWhere, m_marchingCubes, m_capInMesh, mesh);
     }
 
+    std::optional<Mesh> contourTriangles(const Camera& camera) override {
+        if (!m_wholeCurrent)
+            return std::nullopt;
+        const glm::vec4 viewer = camera.viewerHomogeneous();
+        Mesh part;
+        throwIfCudaFailed(kWhere, m_contour.download(m_marchingCubes.mesh(), viewer, part.positions,
+                                                     part.normals));
+        if (m_capInMesh)
+            appendContourTriangles(*m_capInMesh, viewer, part);
+        numberCorners(part);
+        return part;
+    }
+
     bool pruneStrokes(PixelMask& lines, int minPixels, int gapPixels) override {
         if (!m_pruneWorks)
             return false;
@@ -192,7 +208,8 @@ private:
     const Mesh* m_capInMesh = nullptr; // the cap written after the last whole mesh, if any
     // m_marchingCubes holds the whole surface of the last extractInto (not a slab's).
     bool m_wholeCurrent = false;
-    DeviceSurfaceShader m_shading; // the iso panel from that surface
+    DeviceSurfaceShader m_shading;                 // the iso panel from that surface
+    kernels::cuda::ContourTrianglesCuda m_contour; // the exports' lines' triangles
     bool m_shadingWorks = true;
 };
 

@@ -29,10 +29,12 @@
 #include "lw/core/log.h"
 #include "lw/kernels/cpu/border_cap_cpu.h"
 #include "lw/kernels/cpu/marching_cubes_cpu.h"
+#include "lw/kernels/cuda/contour_triangles_cuda.h"
 #include "lw/kernels/cuda/cuda_device.h"
 #include "lw/kernels/cuda/device_mesh_store.h"
 #include "lw/kernels/cuda/marching_cubes_cuda.h"
 #include "lw/kernels/cuda/zbuffer_cuda.h"
+#include "lw/render/contour_triangles.h"
 #include "lw/render/gl_frame_target.h"
 #include "lw/render/gpu_memory_plan.h"
 
@@ -43,6 +45,7 @@
 #include <algorithm>
 #include <chrono>
 #include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -84,6 +87,7 @@ public:
             m_marchingCubes.release(); // device buffers and a streamed volume's host registration
             m_zbuffer.release();
             m_shading.release();
+            m_contour.release();
         }
         m_volume = volume;
         m_deviceCopy = {};
@@ -146,6 +150,18 @@ public:
             m_hostMeshValid = true;
         }
         return &m_hostMesh;
+    }
+
+    std::optional<Mesh> contourTriangles(const Camera& camera) override {
+        if (m_resident != GpuResidency::WholeVolume)
+            return std::nullopt;
+        const glm::vec4 viewer = camera.viewerHomogeneous();
+        Mesh part;
+        check(m_contour.download(m_marchingCubes.mesh(), viewer, part.positions, part.normals));
+        if (m_capKept)
+            appendContourTriangles(*m_capKept, viewer, part);
+        numberCorners(part);
+        return part;
     }
 
     void beginFrame(const Camera& camera, const SilhouetteSettings& settings,
@@ -216,6 +232,7 @@ public:
         m_marchingCubes.release(); // free what the failed attempt holds before slabs allocate
         m_zbuffer.release();
         m_shading.release();
+        m_contour.release();
         m_capKeptOnDevice = false;
         forgetKeptSlabs();
         m_resident = GpuResidency::Cpu;
@@ -246,6 +263,7 @@ private:
     kernels::cuda::MarchingCubesCuda m_marchingCubes;
     kernels::cuda::ZBufferCuda m_zbuffer;
     DeviceSurfaceShader m_shading;                    // the iso panel's rasterizer
+    kernels::cuda::ContourTrianglesCuda m_contour;    // the exports' lines' triangles
     GpuResidency m_resident = GpuResidency::Cpu;      // where the voxels are now
     GpuResidency m_floor = GpuResidency::WholeVolume; // raised by fallBack until the next volume
     std::size_t m_budget = 0;

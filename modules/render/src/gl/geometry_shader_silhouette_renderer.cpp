@@ -300,6 +300,14 @@ const Mesh* GeometryShaderSilhouetteRenderer::surfaceMesh() const {
     return m_state->meshIso ? &mesh() : nullptr;
 }
 
+// Only while the surface is on the device alone: once downloaded, the host has it whole.
+std::optional<Mesh> GeometryShaderSilhouetteRenderer::contourTriangles(const Camera& camera) const {
+    State& s = *m_state;
+    if (s.meshOnHost || !s.source || !s.meshIso)
+        return std::nullopt;
+    return s.source->contourTriangles(camera);
+}
+
 std::string GeometryShaderSilhouetteRenderer::contextDescription() const {
     return m_state->context->description();
 }

@@ -17,6 +17,7 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string_view>
 #include <vector>
 
@@ -35,6 +36,9 @@ public:
     virtual void extractInto(SilhouetteGlRenderer& gl, const SilhouetteSettings& settings) = 0;
     // The last extraction, on the host (for the iso panel's callers that want the mesh).
     virtual void download(Mesh& mesh) = 0;
+    // Of the last whole extraction, only the triangles that may hold `camera`'s contour
+    // (contour_triangles.h), selected on the source's device; nullopt where it has none.
+    virtual std::optional<Mesh> contourTriangles(const Camera& /*camera*/) { return std::nullopt; }
     // Drops the strokes under `minPixels` from a mask read back from GL on the source's device,
     // as PixelMask::pruneStrokes(minPixels, gapPixels) would; false when the
     // source has no device or it failed (the host prunes then).

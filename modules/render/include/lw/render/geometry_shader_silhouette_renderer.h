@@ -107,6 +107,7 @@ public:
     // mesh(), or null where the renderer keeps none (before the first frame, after an L frame):
     // the caller then extracts the surface itself (surfaceOfFrame).
     const Mesh* surfaceMesh() const override;
+    std::optional<Mesh> contourTriangles(const Camera& camera) const override;
     const GeometryShaderFrameStats& lastFrameStats() const;
     // The triangle count of each brick that may hold the surface, in the order an L frame
     // with `brickCells` draws them (the same per-brick extraction; for checks and tooling).

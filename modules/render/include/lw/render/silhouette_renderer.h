@@ -149,6 +149,13 @@ public:
     // show the same surface); null for a method that keeps no mesh (method 2). May extract or
     // download it on first use after a frame that did not need it on the host.
     virtual const Mesh* surfaceMesh() const { return nullptr; }
+    // Of that surface, where it is on the device: only the triangles that may hold `camera`'s
+    // contour (contour_triangles.h), for the vector lines -- a few in a hundred of what
+    // surfaceMesh() would download. nullopt where the renderer has no such surface on the device.
+    virtual std::optional<Mesh> contourTriangles(const Camera& camera) const {
+        (void)camera;
+        return std::nullopt;
+    }
     // Whether a frame given settings.frameTarget may draw its lines there (method 3 on CUDA
     // with CUDA-GL interop): callers ask the renderer, not its method or back-end name.
     virtual bool drawsToFrameTargets() const { return false; }

@@ -55,6 +55,7 @@ public:
     // that kept none (L) the whole surface is extracted here, on the first call.
     const Mesh& mesh() const;
     const Mesh* surfaceMesh() const override { return &mesh(); }
+    std::optional<Mesh> contourTriangles(const Camera& camera) const override;
 
     // The shaded iso panel on the device (CUDA): the kept whole surface of settings' iso-value
     // (extracted here when the kept one is of another, or in mode b) rasterized at `camera` and
