@@ -159,7 +159,8 @@ bool sameLines(const std::vector<Polyline>& a, const std::vector<Polyline>& b) {
 // An export's vector lines on the device come from the triangles that may hold the contour,
 // selected there and downloaded alone: exactly the host's selection from the whole surface, the
 // same lines as from the whole surface, and no host mesh made -- closed at the border (the cap
-// from the host appended) and open; method 3's surface and method 1's (in GL buffers).
+// from the host appended) and open; method 3's surface, method 1's (in GL buffers) and, for
+// method 2, the iso panel's CUDA renderer's.
 class ExportLinesOnDevice : public ReviewFrameOnDevice {};
 
 TEST_P(ExportLinesOnDevice, ComeFromTheContourTrianglesAlone) {
@@ -175,7 +176,11 @@ TEST_P(ExportLinesOnDevice, ComeFromTheContourTrianglesAlone) {
         ASSERT_TRUE(onDevice.silhouette);
         ASSERT_GT(onDevice.polylines.visible.size(), 5u) << "closed " << closed;
 
-        auto renderer = createSilhouetteRenderer(GetParam(), Backend::Cuda);
+        // Method 2 keeps no surface: its lines come from the iso panel's CUDA renderer's.
+        const SilhouetteMethod surfaceMethod = GetParam() == SilhouetteMethod::RayCastVisibility
+                                                   ? SilhouetteMethod::ZBuffer
+                                                   : GetParam();
+        auto renderer = createSilhouetteRenderer(surfaceMethod, Backend::Cuda);
         renderer->setVolume(*volume);
         SilhouetteSettings settings = request.settings;
         settings.isoReal = kIso;
@@ -206,6 +211,7 @@ TEST_P(ExportLinesOnDevice, ComeFromTheContourTrianglesAlone) {
 
 INSTANTIATE_TEST_SUITE_P(Methods, ExportLinesOnDevice,
                          testing::Values(SilhouetteMethod::ZBuffer,
+                                         SilhouetteMethod::RayCastVisibility,
                                          SilhouetteMethod::GeometryShader),
                          [](const testing::TestParamInfo<SilhouetteMethod>& info) {
                              return "Method" + std::to_string(int(info.param));

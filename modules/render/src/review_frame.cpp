@@ -11,6 +11,7 @@
 #endif
 
 #include <chrono>
+#include <limits>
 
 namespace lw::render {
 namespace {
@@ -115,6 +116,14 @@ struct ReviewFrameRenderer::State {
     // The device path's CUDA shading for a silhouette that keeps no whole surface on the device
     // (method 2, method 3's L): method 3's whole-volume renderer of its own, for the panel alone.
     std::unique_ptr<ZBufferSilhouetteRenderer> cudaIso;
+    // What cudaIso last shaded (its surface on the device, until it is rebound).
+    struct {
+        double iso = std::numeric_limits<double>::quiet_NaN();
+        SurfaceForm form;
+        bool matches(double otherIso, SurfaceForm otherForm) const {
+            return iso == otherIso && form == otherForm;
+        }
+    } cudaIsoSurface;
     // This build or machine has no CUDA back-end, or its shading failed (until the volume changes).
     bool cudaShadingUnavailable = false;
     std::string deviceUnavailable; // why the device path could not start (once per volume)
@@ -171,6 +180,7 @@ struct ReviewFrameRenderer::State {
     SilhouetteRenderer& rendererFor(const ReviewFrameRequest& request, ReviewFrame& frame);
     // `deviceIso`: the iso panel is to be shaded on the device (where it still can be).
     void renderSilhouette(const ReviewFrameRequest& request, bool deviceIso, ReviewFrame& frame);
+    void finishLines(const ReviewFrameRequest& request, ReviewFrame& frame);
     void addSuggestive(const ReviewFrameRequest& request, ReviewFrame& frame);
     std::shared_ptr<const Mesh> hostSurface(const ReviewFrameRequest& request);
     std::shared_ptr<const Mesh> contourSurface(const ReviewFrameRequest& request);
@@ -283,6 +293,8 @@ ReviewFrame ReviewFrameRenderer::render(const ReviewFrameRequest& request) {
     if (request.wantIsoImage && !isoDone)
         s.renderIsoOnHost(request, frame);
     frame.stageMs.isoPanel = lap();
+    s.finishLines(request, frame);
+    frame.stageMs.silhouette += lap();
     if (!s.deviceUnavailable.empty())
         frame.backendNote += (frame.backendNote.empty() ? "" : "; ") + s.deviceUnavailable;
     if (!s.volumeNote.empty())
@@ -321,25 +333,38 @@ void ReviewFrameRenderer::State::renderSilhouette(const ReviewFrameRequest& requ
         frame.silhouette = drawing.render(request.camera, settings);
     }
     keepRendererMesh(request, deviceIso, frame);
-    if (request.wantPolylines && !frame.silhouette->drewToTarget) {
+}
+
+// After the iso panel: its CUDA renderer (method 2's panel) then holds this iso-value's surface
+// on the device, which the vector lines can be chained from (contourSurface).
+void ReviewFrameRenderer::State::finishLines(const ReviewFrameRequest& request,
+                                             ReviewFrame& frame) {
+    if (!frame.silhouette || frame.silhouette->drewToTarget)
+        return;
+    if (request.wantPolylines) {
         const auto start = Clock::now();
         frame.polylines = splitPolylines(*contourSurface(request), request.camera,
                                          frame.silhouette->lines, request.polylineOptions,
                                          request.hiddenLines && request.settings.visibility);
         frame.polylinesMs = msSince(start);
     }
-    if (request.suggestive && !frame.silhouette->drewToTarget)
+    if (request.suggestive)
         addSuggestive(request, frame);
 }
 
 // What the vector lines are chained from: the host surface where it is kept already; else,
-// where the renderer's surface is on the device, only its triangles that may hold the camera's
-// contour, downloaded for this camera (the same lines from a few in a hundred of the triangles);
-// else the host surface, made and kept.
+// where the renderer's surface is on the device -- or, for a method that keeps none (method 2),
+// the iso panel's CUDA renderer's of this iso-value -- only its triangles that may hold the
+// camera's contour, downloaded for this camera (the same lines from a few in a hundred of the
+// triangles); else the host surface, made and kept.
 std::shared_ptr<const Mesh>
 ReviewFrameRenderer::State::contourSurface(const ReviewFrameRequest& request) {
-    if (!kept.matches(request.iso, SurfaceForm::of(request.settings))) {
-        if (std::optional<Mesh> part = renderer->contourTriangles(request.camera))
+    const SurfaceForm form = SurfaceForm::of(request.settings);
+    if (!kept.matches(request.iso, form)) {
+        std::optional<Mesh> part = renderer->contourTriangles(request.camera);
+        if (!part && cudaIso && cudaIsoSurface.matches(request.iso, form))
+            part = cudaIso->contourTriangles(request.camera);
+        if (part)
             return std::make_shared<const Mesh>(std::move(*part));
     }
     return hostSurface(request);
@@ -570,6 +595,8 @@ bool ReviewFrameRenderer::State::shadeIsoWithCuda(const ReviewFrameRequest& requ
     }
     if (!shaded)
         return false;
+    if (shading == cudaIso.get())
+        cudaIsoSurface = {request.iso, SurfaceForm::of(settings)};
     frame.isoImage = std::move(shaded->image);
     frame.isoDepth = std::move(shaded->depth);
     frame.isoRenderMs = shaded->shadeMs;
