@@ -102,7 +102,8 @@ std::pair<QImage, QImage> panelsOfFrame(render::ReviewFrame&& frame, const Panel
     kLog.info("export panels at " + std::to_string(job.camera.width()) + " x " +
               std::to_string(job.camera.height()) + ": silhouette " +
               milliseconds(frame.silhouette ? frame.silhouette->times.totalMs() : 0.0) +
-              ", polylines " + milliseconds(frame.polylinesMs) + ", iso panel " +
+              ", polylines " + milliseconds(frame.polylinesMs) + " (their surface " +
+              milliseconds(frame.polylineSurfaceMs) + "), iso panel " +
               milliseconds(frame.isoRenderMs) + (frame.isoOnDevice ? " (device)" : ""));
     QImage iso = frame.isoImage ? toQImage(*frame.isoImage) : QImage();
     if (vectors) {

@@ -6,10 +6,13 @@
 // follow one CameraController (linked cameras) and turn mouse and keys into camera moves.
 //
 // Where the GL runs decides what the panel is made of (setGlView):
-//   GL view     a QOpenGLWidget: the engine draws in the panel's own context (a real GPU);
+//   GL view     a QOpenGLWidget: the engine draws in the panel's own context (a GPU without
+//               CUDA);
 //   image view  a plain raster QWidget showing the worker's images: with a software OpenGL
 //               (llvmpipe) both the draw calls and Qt's GL composition of a window that holds a
-//               QOpenGLWidget would run on the UI thread, so the window holds none.
+//               QOpenGLWidget would run on the UI thread, so the window holds none; with CUDA
+//               the worker draws both panels, and a window without GL flushes only what
+//               changed.
 //
 // For export and annotation: renderImage() re-renders the GL content at any size (not scaled)
 // and pickPatientPoint() turns a pixel into the surface point under it (LPS, mm) through the

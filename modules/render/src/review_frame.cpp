@@ -343,8 +343,10 @@ void ReviewFrameRenderer::State::finishLines(const ReviewFrameRequest& request,
         return;
     if (request.wantPolylines) {
         const auto start = Clock::now();
-        frame.polylines = splitPolylines(*contourSurface(request), request.camera,
-                                         frame.silhouette->lines, request.polylineOptions,
+        const std::shared_ptr<const Mesh> surface = contourSurface(request);
+        frame.polylineSurfaceMs = msSince(start);
+        frame.polylines = splitPolylines(*surface, request.camera, frame.silhouette->lines,
+                                         request.polylineOptions,
                                          request.hiddenLines && request.settings.visibility);
         frame.polylinesMs = msSince(start);
     }

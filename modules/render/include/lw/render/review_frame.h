@@ -92,6 +92,7 @@ struct ReviewFrame {
     std::optional<SilhouetteFrame> silhouette;
     PolylineSplit polylines;  // with wantPolylines
     double polylinesMs = 0.0; // the host surface they need (made or kept) and the split
+    double polylineSurfaceMs = 0.0; // of it: the surface (downloaded, selected or made)
     // A host mesh of the request's iso-value when one was asked for (wantMesh) or made for the
     // host path; null on the device path.
     std::shared_ptr<const Mesh> mesh;
