@@ -1,14 +1,17 @@
 #include "lw/render/visible_polylines.h"
 
+#include "lw/core/error.h"
 #include "lw/core/parallel.h"
 #include "lw/kernels/silhouette_segment.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <iterator>
 #include <limits>
+#include <memory>
 
 namespace lw::render {
 namespace {
@@ -61,66 +64,118 @@ std::vector<std::uint32_t> crossedTriangles(const Mesh& mesh, const std::vector<
     return triangles;
 }
 
-// Open addressing on the position bits of the vertices inserted, for weldedIds.
+// splitmix64's finaliser: every bit of a key reaches the low bits a slot is taken from
+// (grid-aligned coordinates and vertex numbers have many zero bits).
+std::uint64_t mixBits(std::uint64_t x) {
+    x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ull;
+    x = (x ^ (x >> 27)) * 0x94d049bb133111ebull;
+    return x ^ (x >> 31);
+}
+
+std::size_t tableCapacity(std::size_t most) {
+    std::size_t capacity = 16;
+    while (capacity < 2 * most)
+        capacity *= 2;
+    return capacity;
+}
+
+// A table's slots, shared by threads through std::atomic_ref: allocated without the serial
+// zeroing a vector of atomics would do, and filled in parallel.
+template <typename T> class SharedSlots {
+public:
+    SharedSlots(std::size_t count, T empty) : m_slots(new T[count]), m_count(count) {
+        core::parallelForRanges(count, kTriangleGrain, [&](std::size_t begin, std::size_t end) {
+            std::fill(m_slots.get() + begin, m_slots.get() + end, empty);
+        });
+    }
+    std::atomic_ref<T> operator[](std::size_t i) const { return std::atomic_ref<T>(m_slots[i]); }
+    std::size_t size() const { return m_count; }
+
+private:
+    std::unique_ptr<T[]> m_slots;
+    std::size_t m_count;
+};
+
+// Open addressing on the position bits of vertices, filled by several threads at once: a slot
+// keeps the smallest vertex index of its position (an atomic minimum), so what it holds at the
+// end does not depend on the order the threads inserted in.
 class PositionTable {
 public:
-    PositionTable(const Mesh& mesh, std::size_t most) : m_mesh(mesh) {
-        std::size_t capacity = 16;
-        while (capacity < 2 * most)
-            capacity *= 2;
-        m_slots.assign(capacity, kNoVertex);
-    }
-    // The first vertex inserted with the bits of `v`'s position (v itself when it is the first).
-    std::uint32_t firstWithBits(std::uint32_t v) {
-        std::uint32_t bits[3];
-        std::memcpy(bits, &m_mesh.positions[v], sizeof bits);
-        const std::uint64_t h = mix(mix(std::uint64_t(bits[0]) << 32 | bits[1]) ^ bits[2]);
-        const std::size_t mask = m_slots.size() - 1;
-        for (std::size_t slot = std::size_t(h) & mask;; slot = (slot + 1) & mask) {
-            const std::uint32_t held = m_slots[slot];
-            if (held == kNoVertex) {
-                m_slots[slot] = v;
-                return v;
+    PositionTable(const Mesh& mesh, std::size_t most)
+        : m_mesh(mesh), m_slots(tableCapacity(most), kNoVertex), m_mask(m_slots.size() - 1) {}
+    void insert(std::uint32_t v) {
+        for (std::size_t slot = firstSlot(v);; slot = (slot + 1) & m_mask) {
+            std::uint32_t held = m_slots[slot].load(std::memory_order_relaxed);
+            if (held == kNoVertex &&
+                m_slots[slot].compare_exchange_strong(held, v, std::memory_order_relaxed))
+                return;
+            if (!samePosition(held, v))
+                continue; // another position's slot (a taken slot never changes position)
+            while (v < held &&
+                   !m_slots[slot].compare_exchange_weak(held, v, std::memory_order_relaxed)) {
             }
-            if (std::memcmp(&m_mesh.positions[held], bits, sizeof bits) == 0)
+            return;
+        }
+    }
+    // After every insert: the smallest vertex index inserted with `v`'s position bits.
+    std::uint32_t smallestWithBits(std::uint32_t v) const {
+        for (std::size_t slot = firstSlot(v);; slot = (slot + 1) & m_mask) {
+            const std::uint32_t held = m_slots[slot].load(std::memory_order_relaxed);
+            if (samePosition(held, v))
                 return held;
         }
     }
 
 private:
-    // splitmix64's finaliser: every bit of a position reaches the low bits the slot is taken from
-    // (grid-aligned coordinates have many trailing zero bits).
-    static std::uint64_t mix(std::uint64_t x) {
-        x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ull;
-        x = (x ^ (x >> 27)) * 0x94d049bb133111ebull;
-        return x ^ (x >> 31);
+    std::size_t firstSlot(std::uint32_t v) const {
+        std::uint32_t bits[3];
+        std::memcpy(bits, &m_mesh.positions[v], sizeof bits);
+        return std::size_t(mixBits(mixBits(std::uint64_t(bits[0]) << 32 | bits[1]) ^ bits[2])) &
+               m_mask;
+    }
+    bool samePosition(std::uint32_t a, std::uint32_t b) const {
+        return std::memcmp(&m_mesh.positions[a], &m_mesh.positions[b], sizeof(glm::vec3)) == 0;
     }
 
     const Mesh& m_mesh;
-    std::vector<std::uint32_t> m_slots;
+    SharedSlots<std::uint32_t> m_slots;
+    std::size_t m_mask;
 };
 
-// Each vertex of the `triangles` mapped to the smallest such vertex index with the same
-// position bits (other entries unset). A surface closed at the volume border repeats the
-// border-plane vertices of the open surface in its cap (border_cap_cpu.h): welding them lets a
-// contour run from the side of a cut bone onto its cut face in one chain. Only the crossed
-// triangles' vertices are welded: the chains compare edges for equality only, which the same
-// welding of fewer vertices keeps.
+// Each vertex of the `triangles` mapped to the smallest vertex index with the same position bits
+// (other entries unset). A surface closed at the volume border repeats the border-plane vertices
+// of the open surface in its cap (border_cap_cpu.h): welding them lets a contour run from the
+// side of a cut bone onto its cut face in one chain; the contour triangles of a device's surface
+// (contour_triangles.h) repeat every shared vertex. Only the crossed triangles' vertices are
+// welded: the chains compare edges for equality only, which the same welding of fewer vertices
+// keeps. Marked, inserted and looked up in parallel; the result is the serial one.
 std::vector<std::uint32_t> weldedIds(const Mesh& mesh,
                                      const std::vector<std::uint32_t>& triangles) {
-    // Marked first, then welded in index order: the smallest index of each position comes first.
+    constexpr std::uint32_t kMarked = 0;
     std::vector<std::uint32_t> welded(mesh.vertexCount(), kNoVertex);
-    std::size_t marked = 0;
     for (const std::uint32_t t : triangles)
-        for (int k = 0; k < 3; ++k) {
-            std::uint32_t& mark = welded[mesh.indices[3 * std::size_t(t) + k]];
-            marked += mark == kNoVertex ? 1 : 0;
-            mark = 0;
-        }
+        for (int k = 0; k < 3; ++k)
+            welded[mesh.indices[3 * std::size_t(t) + k]] = kMarked;
+    const std::size_t vertices = welded.size();
+    std::vector<std::size_t> counts((vertices + kTriangleGrain - 1) / kTriangleGrain, 0);
+    core::parallelForRanges(vertices, kTriangleGrain, [&](std::size_t begin, std::size_t end) {
+        counts[begin / kTriangleGrain] =
+            std::size_t(std::count(welded.begin() + begin, welded.begin() + end, kMarked));
+    });
+    std::size_t marked = 0;
+    for (const std::size_t count : counts)
+        marked += count;
     PositionTable table(mesh, marked);
-    for (std::size_t v = 0; v < welded.size(); ++v)
-        if (welded[v] != kNoVertex)
-            welded[v] = table.firstWithBits(std::uint32_t(v));
+    core::parallelForRanges(vertices, kTriangleGrain, [&](std::size_t begin, std::size_t end) {
+        for (std::size_t v = begin; v < end; ++v)
+            if (welded[v] == kMarked)
+                table.insert(std::uint32_t(v));
+    });
+    core::parallelForRanges(vertices, kTriangleGrain, [&](std::size_t begin, std::size_t end) {
+        for (std::size_t v = begin; v < end; ++v)
+            if (welded[v] == kMarked)
+                welded[v] = table.smallestWithBits(std::uint32_t(v));
+    });
     return welded;
 }
 
@@ -148,28 +203,71 @@ std::vector<EdgeSegment> edgeSegments(const Mesh& mesh, const Camera& camera) {
     return segments;
 }
 
+// The ends (2 s + side) on each edge, gathered by several threads at once: open addressing on
+// the edge key, a slot holding the first two ends that arrive and whether more came. Which two
+// arrive first varies; a slot with exactly two ends holds the same pair whatever the order.
+class EdgeEnds {
+public:
+    static constexpr std::uint64_t kNoEdge = std::numeric_limits<std::uint64_t>::max();
+    static constexpr std::uint32_t kNoEnd = std::numeric_limits<std::uint32_t>::max();
+    static constexpr std::uint32_t kMore = kNoEnd - 1;
+
+    explicit EdgeEnds(std::size_t ends)
+        : m_edge(tableCapacity(ends), kNoEdge), m_first(m_edge.size(), kNoEnd),
+          m_second(m_edge.size(), kNoEnd), m_mask(m_edge.size() - 1) {}
+    void add(std::uint64_t edge, std::uint32_t end) {
+        std::size_t slot = std::size_t(mixBits(edge)) & m_mask;
+        for (;; slot = (slot + 1) & m_mask) {
+            std::uint64_t held = m_edge[slot].load(std::memory_order_relaxed);
+            if (held == kNoEdge &&
+                m_edge[slot].compare_exchange_strong(held, edge, std::memory_order_relaxed))
+                break;
+            if (held == edge)
+                break;
+        }
+        std::uint32_t none = kNoEnd;
+        if (m_first[slot].compare_exchange_strong(none, end, std::memory_order_relaxed))
+            return;
+        none = kNoEnd;
+        if (!m_second[slot].compare_exchange_strong(none, end, std::memory_order_relaxed))
+            m_second[slot].store(kMore, std::memory_order_relaxed); // a third end: no link
+    }
+    std::size_t slots() const { return m_edge.size(); }
+    // The two ends of slot i when exactly two arrived; false otherwise.
+    bool pair(std::size_t i, std::uint32_t& a, std::uint32_t& b) const {
+        a = m_first[i].load(std::memory_order_relaxed);
+        b = m_second[i].load(std::memory_order_relaxed);
+        return a != kNoEnd && b != kNoEnd && b != kMore;
+    }
+
+private:
+    SharedSlots<std::uint64_t> m_edge;
+    SharedSlots<std::uint32_t> m_first, m_second;
+    std::size_t m_mask;
+};
+
 // For each segment end (2 s + side), the other segment through its edge when exactly two ends
 // lie on that edge and they belong to different segments; else none (a border edge or a fold
-// ends a chain there). A sort by edge rather than a hash: deterministic, and no node per end.
+// ends a chain there). Gathered in parallel (EdgeEnds); the links do not depend on the order.
 constexpr std::size_t kNoSegment = std::numeric_limits<std::size_t>::max();
 std::vector<std::size_t> segmentLinks(const std::vector<EdgeSegment>& segments) {
-    std::vector<std::pair<std::uint64_t, std::size_t>> ends;
-    ends.reserve(2 * segments.size());
-    for (std::size_t s = 0; s < segments.size(); ++s)
-        for (int side = 0; side < 2; ++side)
-            ends.emplace_back(segments[s].edge[side], 2 * s + side);
-    std::sort(ends.begin(), ends.end());
-    std::vector<std::size_t> links(ends.size(), kNoSegment);
-    for (std::size_t i = 0; i < ends.size();) {
-        std::size_t j = i + 1;
-        while (j < ends.size() && ends[j].first == ends[i].first)
-            ++j;
-        if (j - i == 2 && ends[i].second / 2 != ends[i + 1].second / 2) {
-            links[ends[i].second] = ends[i + 1].second / 2;
-            links[ends[i + 1].second] = ends[i].second / 2;
-        }
-        i = j;
-    }
+    const std::size_t endCount = 2 * segments.size();
+    if (endCount >= EdgeEnds::kMore)
+        throw core::Error("vector lines", "more silhouette segments than 2^31");
+    EdgeEnds ends(endCount);
+    core::parallelForRanges(endCount, kTriangleGrain, [&](std::size_t begin, std::size_t end) {
+        for (std::size_t e = begin; e < end; ++e)
+            ends.add(segments[e / 2].edge[e % 2], std::uint32_t(e));
+    });
+    std::vector<std::size_t> links(endCount, kNoSegment);
+    core::parallelForRanges(ends.slots(), kTriangleGrain, [&](std::size_t begin, std::size_t end) {
+        std::uint32_t a = 0, b = 0;
+        for (std::size_t i = begin; i < end; ++i)
+            if (ends.pair(i, a, b) && a / 2 != b / 2) {
+                links[a] = b / 2;
+                links[b] = a / 2;
+            }
+    });
     return links;
 }
 
