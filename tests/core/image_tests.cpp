@@ -125,9 +125,11 @@ TEST(PngIo, RoundTripRgbDropsAlpha) {
 }
 
 // The exports' fast path: B, G, R, X rows with padding between them (a QImage's RGB32 rows)
-// come back as the RGB they hold.
+// come back as the RGB they hold -- in one band of rows, and across the bands' boundaries (64
+// rows a band: one row more, one less, several bands).
 TEST(PngIo, FastBgrxRowsRoundTripAsRgb) {
-    for (auto [w, h] : {std::pair{1, 1}, std::pair{13, 5}, std::pair{64, 33}}) {
+    for (auto [w, h] : {std::pair{1, 1}, std::pair{13, 5}, std::pair{64, 33}, std::pair{3, 64},
+                        std::pair{5, 65}, std::pair{1, 127}, std::pair{301, 200}}) {
         const ImageRgba8 image = testImage(w, h, unsigned(w + 7 * h));
         const std::size_t bytesPerLine = std::size_t(w) * 4 + 12;
         std::vector<std::uint8_t> rows(bytesPerLine * std::size_t(h), 0xee);

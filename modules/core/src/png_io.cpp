@@ -80,7 +80,6 @@ struct RowEncoding {
     int filters = PNG_ALL_FILTERS;
     int level = 6;
     int strategy = Z_DEFAULT_STRATEGY;
-    bool bgrx = false; // rows of 4-byte B, G, R, X pixels written as RGB
 };
 
 // libpng's classic writer, for the settings its simplified API lacks: zlib's strategy (libpng's
@@ -103,10 +102,6 @@ bool writeRows(WriteState& state, png_bytep* rows, png_uint_32 width, png_uint_3
     png_set_compression_level(png, encoding.level);
     png_set_compression_strategy(png, encoding.strategy);
     png_write_info(png, info);
-    if (encoding.bgrx) { // after the header: transforms apply to the rows
-        png_set_bgr(png);
-        png_set_filler(png, 0, PNG_FILLER_AFTER);
-    }
     png_write_image(png, rows);
     png_write_end(png, nullptr);
     png_destroy_write_struct(&png, &info);
@@ -144,26 +139,6 @@ std::vector<std::byte> encodePng(const ImageRgba8& image, PngFormat format) {
     encoding.colourType = colourTypeOf(format);
     if (!writeRows(state, rows.data(), png_uint_32(image.width()), png_uint_32(image.height()),
                    encoding))
-        throw Error("PNG encoder", state.message[0] ? state.message : "libpng failed");
-    return out;
-}
-
-std::vector<std::byte> encodePngFastFromBgrx(const std::uint8_t* pixels, int width, int height,
-                                             std::size_t bytesPerLine) {
-    if (!pixels || width <= 0 || height <= 0)
-        throw Error("PNG encoder", "cannot encode an empty image");
-    std::vector<png_bytep> rows(static_cast<std::size_t>(height));
-    for (std::size_t y = 0; y < rows.size(); ++y)
-        rows[y] = const_cast<png_bytep>(pixels + y * bytesPerLine); // libpng only reads them
-    RowEncoding encoding;
-    encoding.colourType = PNG_COLOR_TYPE_RGB;
-    encoding.filters = PNG_FILTER_UP;
-    encoding.level = 1;
-    encoding.strategy = Z_RLE;
-    encoding.bgrx = true;
-    std::vector<std::byte> out;
-    WriteState state{&out};
-    if (!writeRows(state, rows.data(), png_uint_32(width), png_uint_32(height), encoding))
         throw Error("PNG encoder", state.message[0] ? state.message : "libpng failed");
     return out;
 }
