@@ -92,6 +92,20 @@ TEST_P(ReviewFrameOnDevice, DrawsTheHostPathsPictureWithNoHostMesh) {
     }
 }
 
+// A display whose OpenGL is software (isoOnCpu: the host would shade on the CPU) still gets the
+// panel shaded by CUDA from the device's surface, which needs no GL: no host mesh either.
+TEST_P(ReviewFrameOnDevice, ASoftwareGlDisplayStillGetsCudasShading) {
+    const auto volume = phantom();
+    ReviewFrameRenderer device(volume);
+    ReviewFrameRequest request = requestFor(*volume, GetParam(), Backend::Cuda, 30.0);
+    request.isoOnCpu = true;
+    const ReviewFrame onDevice = device.render(request);
+    EXPECT_TRUE(onDevice.isoOnDevice) << onDevice.backendNote;
+    EXPECT_EQ(device.hostMeshesMade(), 0u);
+    ASSERT_TRUE(onDevice.isoImage);
+    EXPECT_GT(drawnPixels(*onDevice.isoImage), 800u);
+}
+
 // With CUDA's shading switched off the device path shades with GL (method 1's buffers), as GL
 // shades the host's mesh.
 TEST_F(DeviceFrame, GlShadesThePanelWhenCudaShadingIsOff) {

@@ -349,11 +349,12 @@ void ReviewWidget::applySettings(const ReviewSettings& settings) {
     m_isoPanel->setAppearance(settings);
     m_silhouettePanel->setAppearance(settings);
     m_drawsInPanels = drawsInPanels();
-    // The worker shades the iso panel from the device's surface where the panels draw with a
-    // real GPU's GL or show the worker's images without a software GL (the worker's iso image
-    // comes from the host otherwise).
+    // The worker shades the iso panel from the device's surface on CUDA: by CUDA's rasterizer
+    // whatever the display's GL (a GPU server seen through a software-GL remote desktop too), or
+    // with the worker's GL where that is a real GPU's.
     m_isoOnDevice = render::reviewIsoOnDevice(settings.backend) &&
-                    (m_drawsInPanels || !displayGlInfo().prefersCpu());
+                    (m_drawsInPanels || settings.cudaShadesIsoPanel ||
+                     !displayGlInfo().prefersCpu());
     m_isoPanel->setGlView(m_drawsInPanels);
     m_silhouettePanel->setGlView(m_drawsInPanels);
     m_isoPanel->setUseGl(m_drawsInPanels && !m_isoOnDevice);

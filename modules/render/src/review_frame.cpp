@@ -278,8 +278,9 @@ ReviewFrame ReviewFrameRenderer::render(const ReviewFrameRequest& request) {
     frame.stageMs.volume = lap();
     frame.refinement = s.volume->geometry().refinement();
     frame.drawnVolume = s.volume;
-    const bool deviceIso =
-        request.wantIsoImage && !request.isoOnCpu && reviewIsoOnDevice(request.backend);
+    // CUDA's shading needs no GL: a software-GL display (isoOnCpu) still gets it.
+    const bool deviceIso = request.wantIsoImage && reviewIsoOnDevice(request.backend) &&
+                           (!request.isoOnCpu || request.isoShadedByCuda);
     if (request.wantSilhouette)
         s.renderSilhouette(request, deviceIso, frame);
     frame.stageMs.silhouette = lap();

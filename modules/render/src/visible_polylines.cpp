@@ -148,7 +148,7 @@ private:
 // side of a cut bone onto its cut face in one chain; the contour triangles of a device's surface
 // (contour_triangles.h) repeat every shared vertex. Only the crossed triangles' vertices are
 // welded: the chains compare edges for equality only, which the same welding of fewer vertices
-// keeps. Marked, inserted and looked up in parallel; the result is the serial one.
+// keeps. Counted, inserted and looked up in parallel; the result is the serial one.
 std::vector<std::uint32_t> weldedIds(const Mesh& mesh,
                                      const std::vector<std::uint32_t>& triangles) {
     constexpr std::uint32_t kMarked = 0;

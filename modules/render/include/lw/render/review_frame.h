@@ -58,8 +58,9 @@ struct ReviewFrameRequest {
     // (mode b) extracts again even where the kept one is of this iso-value.
     bool wantMesh = false;
     bool forceExtract = false;
-    // The shaded iso panel, drawn here: on the CPU (`isoOnCpu`: the software-GL display's
-    // choice) or with GL -- on the device where it can.
+    // The shaded iso panel, drawn here: on the device where it can (by CUDA's rasterizer even
+    // for a software-GL display), else on the CPU (`isoOnCpu`: the software-GL display's
+    // choice) or with GL.
     bool wantIsoImage = false;
     bool isoOnCpu = false;
     // On the device path CUDA's rasterizer shades the panel; false: GL draws it from the buffers
