@@ -352,9 +352,9 @@ void ReviewWidget::applySettings(const ReviewSettings& settings) {
     // The worker shades the iso panel from the device's surface on CUDA: by CUDA's rasterizer
     // whatever the display's GL (a GPU server seen through a software-GL remote desktop too), or
     // with the worker's GL where that is a real GPU's.
-    m_isoOnDevice = render::reviewIsoOnDevice(settings.backend) &&
-                    (m_drawsInPanels || settings.cudaShadesIsoPanel ||
-                     !displayGlInfo().prefersCpu());
+    m_isoOnDevice =
+        render::reviewIsoOnDevice(settings.backend) &&
+        (m_drawsInPanels || settings.cudaShadesIsoPanel || !displayGlInfo().prefersCpu());
     m_isoPanel->setGlView(m_drawsInPanels);
     m_silhouettePanel->setGlView(m_drawsInPanels);
     m_isoPanel->setUseGl(m_drawsInPanels && !m_isoOnDevice);
