@@ -124,6 +124,30 @@ TEST(PngIo, RoundTripRgbDropsAlpha) {
         }
 }
 
+// Whether every chunk of `png` (after the signature) carries the CRC-32 of its type and data, as
+// a strict reader (Qt's, which reads through IEND) checks; the simplified libpng reader stops
+// after the image data.
+bool chunkCrcsHold(const std::vector<std::byte>& png) {
+    const auto byteAt = [&](std::size_t i) { return std::uint32_t(std::uint8_t(png[i])); };
+    const auto bigEndian = [&](std::size_t i) {
+        return byteAt(i) << 24 | byteAt(i + 1) << 16 | byteAt(i + 2) << 8 | byteAt(i + 3);
+    };
+    std::size_t at = 8;
+    while (at + 12 <= png.size()) {
+        const std::uint32_t length = bigEndian(at);
+        std::uint32_t crc = 0xffffffffu;
+        for (std::size_t i = at + 4; i < at + 8 + length; ++i) {
+            crc ^= byteAt(i);
+            for (int bit = 0; bit < 8; ++bit)
+                crc = (crc >> 1) ^ (0xedb88320u & (0u - (crc & 1u)));
+        }
+        if ((crc ^ 0xffffffffu) != bigEndian(at + 8 + length))
+            return false;
+        at += 12 + length;
+    }
+    return at == png.size();
+}
+
 // The exports' fast path: B, G, R, X rows with padding between them (a QImage's RGB32 rows)
 // come back as the RGB they hold -- in one band of rows, and across the bands' boundaries (64
 // rows a band: one row more, one less, several bands).
@@ -140,6 +164,7 @@ TEST(PngIo, FastBgrxRowsRoundTripAsRgb) {
                 p[0] = c.b, p[1] = c.g, p[2] = c.r, p[3] = 0x5a; // the X byte is ignored
             }
         const auto bytes = encodePngFastFromBgrx(rows.data(), w, h, bytesPerLine);
+        EXPECT_TRUE(chunkCrcsHold(bytes)) << w << "x" << h;
         PngFormat stored = PngFormat::Rgba;
         const ImageRgba8 back = decodePng(bytes.data(), bytes.size(), "memory", &stored);
         EXPECT_EQ(stored, PngFormat::Rgb);

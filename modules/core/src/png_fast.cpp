@@ -41,7 +41,8 @@ void appendChunk(std::vector<std::byte>& out, const char type[4], const std::byt
         out.push_back(std::byte(type[i]));
     out.insert(out.end(), data, data + size);
     uLong crc = crc32(0L, reinterpret_cast<const Bytef*>(out.data() + typeAt), 4);
-    crc = crc32_z(crc, reinterpret_cast<const Bytef*>(data), size);
+    if (size > 0) // crc32_z of a null buffer returns the initial value, not `crc`
+        crc = crc32_z(crc, reinterpret_cast<const Bytef*>(data), size);
     appendBigEndian(out, std::uint32_t(crc));
 }
 
