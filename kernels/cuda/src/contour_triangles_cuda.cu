@@ -31,12 +31,6 @@ void ContourTrianglesCuda::release() {
     m_impl = std::make_unique<Impl>();
 }
 
-std::size_t ContourTrianglesCuda::deviceBytes() const {
-    const Impl& s = *m_impl;
-    return s.flags.bytes() + s.selected.bytes() + s.selectedCount.bytes() + s.selectTemp.bytes() +
-           s.positions.bytes() + s.normals.bytes();
-}
-
 CudaStatus ContourTrianglesCuda::download(const DeviceMeshView& mesh, glm::vec4 viewer,
                                           std::vector<glm::vec3>& positions,
                                           std::vector<glm::vec3>& normals) {

@@ -74,20 +74,12 @@ void appendBytes(png_structp png, png_bytep data, std::size_t size) {
 
 void flushNothing(png_structp) {}
 
-// How writeRows compresses and what its rows hold.
-struct RowEncoding {
-    int colourType = PNG_COLOR_TYPE_RGBA;
-    int filters = PNG_ALL_FILTERS;
-    int level = 6;
-    int strategy = Z_DEFAULT_STRATEGY;
-};
-
-// libpng's classic writer, for the settings its simplified API lacks: zlib's strategy (libpng's
-// own, Z_FILTERED, makes our line drawings 10-15% larger), the filters and the level. No object
-// with a destructor lives in this frame after setjmp. Returns false with state.message set on
-// failure.
+// libpng's classic writer, for the setting its simplified API lacks: zlib's default strategy
+// (libpng's own, Z_FILTERED, makes our line drawings 10-15% larger), with every filter at level
+// 6. No object with a destructor lives in this frame after setjmp. Returns false with
+// state.message set on failure.
 bool writeRows(WriteState& state, png_bytep* rows, png_uint_32 width, png_uint_32 height,
-               const RowEncoding& encoding) {
+               int colourType) {
     png_structp png =
         png_create_write_struct(PNG_LIBPNG_VER_STRING, &state, onWriteError, onWriteWarning);
     png_infop info = png ? png_create_info_struct(png) : nullptr;
@@ -96,11 +88,11 @@ bool writeRows(WriteState& state, png_bytep* rows, png_uint_32 width, png_uint_3
         return false;
     }
     png_set_write_fn(png, &state, appendBytes, flushNothing);
-    png_set_IHDR(png, info, width, height, 8, encoding.colourType, PNG_INTERLACE_NONE,
+    png_set_IHDR(png, info, width, height, 8, colourType, PNG_INTERLACE_NONE,
                  PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
-    png_set_filter(png, PNG_FILTER_TYPE_BASE, encoding.filters);
-    png_set_compression_level(png, encoding.level);
-    png_set_compression_strategy(png, encoding.strategy);
+    png_set_filter(png, PNG_FILTER_TYPE_BASE, PNG_ALL_FILTERS);
+    png_set_compression_level(png, 6);
+    png_set_compression_strategy(png, Z_DEFAULT_STRATEGY);
     png_write_info(png, info);
     png_write_image(png, rows);
     png_write_end(png, nullptr);
@@ -135,10 +127,8 @@ std::vector<std::byte> encodePng(const ImageRgba8& image, PngFormat format) {
         rows[y] = samples + y * rowBytes;
     std::vector<std::byte> out;
     WriteState state{&out};
-    RowEncoding encoding;
-    encoding.colourType = colourTypeOf(format);
     if (!writeRows(state, rows.data(), png_uint_32(image.width()), png_uint_32(image.height()),
-                   encoding))
+                   colourTypeOf(format)))
         throw Error("PNG encoder", state.message[0] ? state.message : "libpng failed");
     return out;
 }

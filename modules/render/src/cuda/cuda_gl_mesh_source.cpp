@@ -7,12 +7,10 @@
 #include "lw/core/log.h"
 #include "lw/kernels/cpu/border_cap_cpu.h"
 #include "lw/kernels/cpu/marching_cubes_cpu.h"
-#include "lw/kernels/cuda/contour_triangles_cuda.h"
 #include "lw/kernels/cuda/cuda_device.h"
 #include "lw/kernels/cuda/gl_mesh_interop.h"
 #include "lw/kernels/cuda/marching_cubes_cuda.h"
 #include "lw/kernels/cuda/stroke_pruning_cuda.h"
-#include "lw/render/contour_triangles.h"
 #include "lw/render/gpu_memory_plan.h"
 #endif
 
@@ -166,13 +164,9 @@ public:
     std::optional<Mesh> contourTriangles(const Camera& camera) override {
         if (!m_wholeCurrent)
             return std::nullopt;
-        const glm::vec4 viewer = camera.viewerHomogeneous();
         Mesh part;
-        throwIfCudaFailed(kWhere, m_contour.download(m_marchingCubes.mesh(), viewer, part.positions,
-                                                     part.normals));
-        if (m_capInMesh)
-            appendContourTriangles(*m_capInMesh, viewer, part);
-        numberCorners(part);
+        throwIfCudaFailed(kWhere, downloadContourTriangles(m_contour, m_marchingCubes, m_capInMesh,
+                                                           camera, part));
         return part;
     }
 

@@ -7,9 +7,12 @@
 #include "lw/core/limits.h"
 #include "lw/kernels/cpu/border_cap_cpu.h"
 #include "lw/kernels/cpu/marching_cubes_cpu.h"
+#include "lw/kernels/cuda/contour_triangles_cuda.h"
 #include "lw/kernels/cuda/cuda_status.h"
 #include "lw/kernels/cuda/marching_cubes_cuda.h"
 #include "lw/kernels/volume_view.h"
+#include "lw/render/camera.h"
+#include "lw/render/contour_triangles.h"
 #include "lw/render/silhouette_renderer.h"
 #include "lw/volume/volume.h"
 
@@ -47,6 +50,24 @@ inline void downloadSurface(std::string_view where, const kernels::cuda::Marchin
     throwIfCudaFailed(where, mc.download(mesh.positions, mesh.normals, mesh.indices));
     if (cap)
         kernels::cpu::appendMesh(mesh, *cap);
+}
+
+// Of that closed surface, only the triangles that may hold `camera`'s contour
+// (contour_triangles.h): the device mesh's selected and downloaded by `contour`, the cap's
+// selected on the host, in the order downloadSurface joins them.
+inline kernels::cuda::CudaStatus
+downloadContourTriangles(kernels::cuda::ContourTrianglesCuda& contour,
+                         const kernels::cuda::MarchingCubesCuda& mc, const Mesh* cap,
+                         const Camera& camera, Mesh& part) {
+    const glm::vec4 viewer = camera.viewerHomogeneous();
+    const kernels::cuda::CudaStatus status =
+        contour.download(mc.mesh(), viewer, part.positions, part.normals);
+    if (!status.ok())
+        return status;
+    if (cap)
+        appendContourTriangles(*cap, viewer, part);
+    numberCorners(part);
+    return status;
 }
 
 inline kernels::VolumeView hostVolumeView(const volume::Volume& volume) {

@@ -29,12 +29,10 @@
 #include "lw/core/log.h"
 #include "lw/kernels/cpu/border_cap_cpu.h"
 #include "lw/kernels/cpu/marching_cubes_cpu.h"
-#include "lw/kernels/cuda/contour_triangles_cuda.h"
 #include "lw/kernels/cuda/cuda_device.h"
 #include "lw/kernels/cuda/device_mesh_store.h"
 #include "lw/kernels/cuda/marching_cubes_cuda.h"
 #include "lw/kernels/cuda/zbuffer_cuda.h"
-#include "lw/render/contour_triangles.h"
 #include "lw/render/gl_frame_target.h"
 #include "lw/render/gpu_memory_plan.h"
 
@@ -155,12 +153,8 @@ public:
     std::optional<Mesh> contourTriangles(const Camera& camera) override {
         if (m_resident != GpuResidency::WholeVolume)
             return std::nullopt;
-        const glm::vec4 viewer = camera.viewerHomogeneous();
         Mesh part;
-        check(m_contour.download(m_marchingCubes.mesh(), viewer, part.positions, part.normals));
-        if (m_capKept)
-            appendContourTriangles(*m_capKept, viewer, part);
-        numberCorners(part);
+        check(downloadContourTriangles(m_contour, m_marchingCubes, m_capKept, camera, part));
         return part;
     }
 

@@ -38,7 +38,6 @@ public:
     // are on the host.
     CudaStatus download(const DeviceMeshView& mesh, glm::vec4 viewer,
                         std::vector<glm::vec3>& positions, std::vector<glm::vec3>& normals);
-    std::size_t deviceBytes() const;
     void release();
 
 private:
