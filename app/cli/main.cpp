@@ -66,14 +66,17 @@ commands:
                               --noise HU: Gaussian noise of that deviation added first (seeded)
   thick-slices INPUT [--series UID] --iso HU [--average N | --thick PATH [--thick-series UID]]
           [--method 1|2|3] [--views sweep|N | --view AZ,EL] [--size WxH] [--backend ..]
-          [--threads N] [--min-stroke PX] [--images DIR] [--save-thick OUT.nrrd] [--json]
+          [--threads N] [--min-stroke PX] [--images DIR] [--save-thick OUT.nrrd] [--bound]
+          [--json]
                               a thick-slice series drawn against its thin one (INPUT): the thick
                               one is the mean of every N thin slices (default 5, as a scanner
                               integrates) or read from PATH; at each view (default the 32 of
                               the sweep, 768x768, one camera framed on the thin surface) the
                               thick drawing's precision and recall within 2 px and its line
                               pixels over the thin one's, drawn with straight lines between the
-                              thick slices and smoothed across them; medians and worst
+                              thick slices and smoothed across them; medians and worst;
+                              --bound: the slab means at every thin slice drawn as well, the
+                              figures interpolation between the thick slices cannot pass
   render INPUT [--series UID] --iso HU --method 1|2|3 [--chunks off|auto|N] [--mode a|b]
          [--visibility on|off] [--view AZ,EL] [--camera perspective|ortho] [--size WxH]
          [--panel iso|silhouette|both] [--backend cpu|cuda|auto] [--repeat N] [--threads N]

@@ -8,6 +8,9 @@
 //   one near, ratio = thick line pixels / thin line pixels.
 // The thick series is drawn twice, with straight lines between its slices and smoothed across
 // them (--thick-slices linear | smooth, render/surface_sampling.h), so one run compares both.
+// --bound (with --average) draws a third series the same way: the slab means taken at every thin
+// slice (evaluation::slabMeansAtEverySlice), what the thick slices hold sampled densely -- the
+// figures no interpolation between the thick slices is expected to pass.
 #include "arguments.h"
 #include "cli_inputs.h"
 #include "commands.h"
@@ -36,9 +39,10 @@ namespace {
 using evaluation::View;
 
 inline constexpr int kToleranceGoalPx = 2;
-// The two ways the thick series is drawn, in report order.
-constexpr render::ThickSlices kThickModes[2] = {render::ThickSlices::Linear,
-                                                render::ThickSlices::Smooth};
+// What is measured against the thin drawing, in report order: the thick series drawn linear and
+// smooth, and (--bound) the slab means at every thin slice.
+enum Candidate { kLinear, kSmooth, kBound, kCandidates };
+constexpr const char* kCandidateNames[kCandidates] = {"linear", "smooth", "bound"};
 
 struct Options : ViewSweepOptions {
     std::string input;
@@ -47,6 +51,8 @@ struct Options : ViewSweepOptions {
     std::optional<std::string> thickSeries;
     int average = 5;
     std::optional<std::string> saveThick; // the thick series measured, as NRRD
+    bool bound = false;
+    int candidates() const { return bound ? kCandidates : kBound; }
 };
 
 Options parseOptions(const Arguments& arguments) {
@@ -65,6 +71,9 @@ Options parseOptions(const Arguments& arguments) {
     if (options.thickInput && arguments.option("average"))
         throw UsageError("--average", "makes the thick series; --thick reads one: not both");
     options.average = int(average);
+    options.bound = arguments.flag("bound");
+    if (options.bound && options.thickInput)
+        throw UsageError("--bound", "needs the thick series made here (--average), not --thick");
     options.saveThick = arguments.option("save-thick");
     if (options.saveThick && !options.saveThick->ends_with(".nrrd"))
         throw UsageError("--save-thick " + *options.saveThick, "expected a name ending in .nrrd");
@@ -101,7 +110,7 @@ struct ThickMeasure {
 struct ViewRow {
     View view;
     std::size_t thinPixels = 0;
-    ThickMeasure thick[2]; // kThickModes
+    ThickMeasure thick[kCandidates];
 };
 
 render::PixelMask drawView(DrawnSeries& series, const render::Camera& camera,
@@ -120,7 +129,7 @@ void writeDiff(const Options& options, const View& view, const std::string& labe
                    core::PngFormat::Rgb);
 }
 
-ViewRow measureView(DrawnSeries& thin, DrawnSeries (&thick)[2], const Options& options,
+ViewRow measureView(DrawnSeries& thin, DrawnSeries (&thick)[kCandidates], const Options& options,
                     const View& view) {
     render::CameraSetup setup = options.setup;
     setup.azimuthDeg = view.azimuthDeg;
@@ -130,7 +139,7 @@ ViewRow measureView(DrawnSeries& thin, DrawnSeries (&thick)[2], const Options& o
     ViewRow row;
     row.view = view;
     row.thinPixels = reference.count();
-    for (int mode = 0; mode < 2; ++mode) {
+    for (int mode = 0; mode < options.candidates(); ++mode) {
         const render::PixelMask lines = drawView(thick[mode], camera, options);
         const evaluation::LineAgreement agreement =
             evaluation::lineAgreement(lines, reference, kToleranceGoalPx);
@@ -171,7 +180,7 @@ Summary summarise(const std::vector<ViewRow>& rows, int mode) {
 struct RunInfo {
     std::string thin;  // what was drawn as the reference
     std::string thick; // how the thick series was had
-    std::string sampled[2];
+    std::string sampled[kCandidates];
 };
 
 void writeTable(const RunInfo& info, const Options& options, const std::vector<ViewRow>& rows,
@@ -182,30 +191,38 @@ void writeTable(const RunInfo& info, const Options& options, const std::vector<V
                   "method %d, iso %g, %dx%d, within %d px; thick drawn linear (%s) and smooth "
                   "(%s)\n",
                   int(options.request.method), options.request.settings.isoReal, options.size.x,
-                  options.size.y, kToleranceGoalPx, info.sampled[0].c_str(),
-                  info.sampled[1].c_str());
+                  options.size.y, kToleranceGoalPx, info.sampled[kLinear].c_str(),
+                  info.sampled[kSmooth].c_str());
     out << line;
-    std::snprintf(line, sizeof line, "%-16s %8s | %8s %6s %6s %6s | %8s %6s %6s %6s\n", "view",
-                  "thin px", "linear", "prec", "recall", "ratio", "smooth", "prec", "recall",
-                  "ratio");
+    if (options.bound)
+        out << "bound: the slab means at every thin slice (" << info.sampled[kBound] << ")\n";
+    std::snprintf(line, sizeof line, "%-16s %8s", "view", "thin px");
     out << line;
+    for (int mode = 0; mode < options.candidates(); ++mode) {
+        std::snprintf(line, sizeof line, " | %8s %6s %6s %6s", kCandidateNames[mode], "prec",
+                      "recall", "ratio");
+        out << line;
+    }
+    out << "\n";
     for (const ViewRow& row : rows) {
         char view[32];
         std::snprintf(view, sizeof view, "az %g el %g", row.view.azimuthDeg, row.view.elevationDeg);
-        const ThickMeasure& a = row.thick[0];
-        const ThickMeasure& b = row.thick[1];
-        std::snprintf(line, sizeof line,
-                      "%-16s %8zu | %8zu %6.3f %6.3f %6.3f | %8zu %6.3f %6.3f %6.3f\n", view,
-                      row.thinPixels, a.linePixels, a.precision, a.recall, a.ratio, b.linePixels,
-                      b.precision, b.recall, b.ratio);
+        std::snprintf(line, sizeof line, "%-16s %8zu", view, row.thinPixels);
         out << line;
+        for (int mode = 0; mode < options.candidates(); ++mode) {
+            const ThickMeasure& m = row.thick[mode];
+            std::snprintf(line, sizeof line, " | %8zu %6.3f %6.3f %6.3f", m.linePixels, m.precision,
+                          m.recall, m.ratio);
+            out << line;
+        }
+        out << "\n";
     }
-    for (int mode = 0; mode < 2; ++mode) {
+    for (int mode = 0; mode < options.candidates(); ++mode) {
         const Summary s = summarise(rows, mode);
         std::snprintf(line, sizeof line,
                       "%-6s median precision %.3f recall %.3f ratio %.3f; worst %.3f %.3f %.3f\n",
-                      mode == 0 ? "linear" : "smooth", s.precision, s.recall, s.ratio,
-                      s.worstPrecision, s.worstRecall, s.worstRatio);
+                      kCandidateNames[mode], s.precision, s.recall, s.ratio, s.worstPrecision,
+                      s.worstRecall, s.worstRatio);
         out << line;
     }
 }
@@ -219,9 +236,9 @@ void writeJson(const RunInfo& info, const Options& options, const std::vector<Vi
     writer.field("iso", options.request.settings.isoReal);
     writer.field("width", options.size.x).field("height", options.size.y);
     writer.field("tolerance_px", kToleranceGoalPx);
-    for (int mode = 0; mode < 2; ++mode) {
+    for (int mode = 0; mode < options.candidates(); ++mode) {
         const Summary s = summarise(rows, mode);
-        writer.key(render::thickSlicesName(kThickModes[mode])).beginObject();
+        writer.key(kCandidateNames[mode]).beginObject();
         writer.field("sampled", info.sampled[mode]);
         writer.field("median_precision", s.precision).field("median_recall", s.recall);
         writer.field("median_ratio", s.ratio).field("worst_precision", s.worstPrecision);
@@ -248,7 +265,7 @@ int runThickSlices(const std::vector<std::string>& args, std::ostream& out) {
     names.erase("oversample");
     names.erase("thick-slices");
     names.insert({"series", "thick", "thick-series", "average", "views", "images", "save-thick"});
-    const Arguments arguments(args, {"json"}, names);
+    const Arguments arguments(args, {"json", "bound"}, names);
     Options options = parseOptions(arguments);
     const core::ImportLimits limits = importLimits(arguments);
     const volume::Volume thinLoaded = loadInput(options.input, options.series, limits);
@@ -262,11 +279,17 @@ int runThickSlices(const std::vector<std::string>& args, std::ostream& out) {
     DrawnSeries thin{"thin", {}, nullptr, {}};
     prepare(thin, thinLoaded, render::VolumeSampling{}, options);
     fitToVolume(arguments, thin.volume, options.request, options.setup); // the thin surface framed
-    DrawnSeries thick[2] = {{"linear", {}, nullptr, {}}, {"smooth", {}, nullptr, {}}};
-    for (int mode = 0; mode < 2; ++mode) {
-        prepare(thick[mode], thickLoaded, {render::Oversampling::Auto, kThickModes[mode]}, options);
+    DrawnSeries thick[kCandidates] = {
+        {"linear", {}, nullptr, {}}, {"smooth", {}, nullptr, {}}, {"bound", {}, nullptr, {}}};
+    prepare(thick[kLinear], thickLoaded, {render::Oversampling::Auto, render::ThickSlices::Linear},
+            options);
+    prepare(thick[kSmooth], thickLoaded, {render::Oversampling::Auto, render::ThickSlices::Smooth},
+            options);
+    if (options.bound) // at the thin spacing: drawn as the thin series is
+        prepare(thick[kBound], evaluation::slabMeansAtEverySlice(thinLoaded, options.average),
+                render::VolumeSampling{}, options);
+    for (int mode = 0; mode < options.candidates(); ++mode)
         info.sampled[mode] = thick[mode].sampling;
-    }
     info.thin = options.input + " " + dimsText(thinLoaded.dims()) + ", " + thin.sampling;
     info.thick = (options.thickInput
                       ? *options.thickInput

@@ -59,6 +59,21 @@ TEST(ThickSlabs, KeepTiltAndUnevenGaps) {
     EXPECT_NEAR(thick.geometry().sliceGap(1), 3.5, 1e-9); // 2.5 -> 6
 }
 
+// The bound's slabs start at every thin slice: slab s is the mean of slices s .. s + 4 at their
+// mean position, the thin spacing kept.
+TEST(ThickSlabs, AtEverySliceSlideByOneThinSlice) {
+    const Volume thin = lw::test::makeFilledVolume<std::int16_t>(
+        {3, 2, 11}, [](int i, int j, int k) { return 100 * k + 10 * j + i; },
+        VolumeGeometry::regular({1, 2, 3}, {0.5, 0.5, 1.0}));
+    const Volume dense = slabMeansAtEverySlice(thin, 5);
+    ASSERT_EQ(dense.dims(), glm::ivec3(3, 2, 7)); // slabs 0-4 .. 6-10
+    for (int k = 0; k < 7; ++k)
+        EXPECT_EQ(dense.storedValue(1, 1, k), 100.0 * (k + 2) + 11.0) << k;
+    EXPECT_NEAR(dense.geometry().sliceStep(), 1.0, 1e-9);
+    EXPECT_NEAR(dense.geometry().indexToPatient({0, 0, 0}).z, 3.0 + 2.0, 1e-9);
+    EXPECT_THROW(slabMeansAtEverySlice(thin, 11), core::Error); // one slab only
+}
+
 TEST(ThickSlabs, RefusesTooFewSlices) {
     const Volume thin({2, 2, 9}, volume::VoxelType::Int16);
     EXPECT_THROW(thickSlabsOf(thin, 5), core::Error);

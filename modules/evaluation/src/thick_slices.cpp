@@ -21,34 +21,34 @@ template <typename T> T meanValue(double sum, int count) {
         return T(std::lround(mean)); // the mean of T values lies between them: no clamp
 }
 
-volume::VolumeGeometry thickGeometry(const volume::VolumeGeometry& thin, int slabs,
-                                     int slicesPerSlab) {
+// Slab s holds thin slices s * stride .. s * stride + slicesPerSlab - 1.
+volume::VolumeGeometry slabGeometry(const volume::VolumeGeometry& thin, int slabs,
+                                    int slicesPerSlab, int stride) {
     std::vector<glm::dvec3> positions;
     positions.reserve(std::size_t(slabs));
     for (int slab = 0; slab < slabs; ++slab) {
         glm::dvec3 sum(0.0);
         for (int s = 0; s < slicesPerSlab; ++s)
-            sum += thin.indexToPatient({0.0, 0.0, double(slab * slicesPerSlab + s)});
+            sum += thin.indexToPatient({0.0, 0.0, double(slab * stride + s)});
         positions.push_back(sum / double(slicesPerSlab));
     }
     return volume::VolumeGeometry::fromSlicePositions(thin.axisI(), thin.axisJ(), thin.spacingI(),
                                                       thin.spacingJ(), positions);
 }
 
-} // namespace
-
-volume::Volume thickSlabsOf(const volume::Volume& thin, int slicesPerSlab) {
+// The mean of each slab of `slicesPerSlab` thin slices, a slab starting every `stride` slices.
+volume::Volume slabMeans(const volume::Volume& thin, int slicesPerSlab, int stride) {
     if (slicesPerSlab < 1)
         throw core::Error("thick slices", "slices per slab must be at least 1");
     const glm::ivec3 dims = thin.dims();
-    const int slabs = dims.z / slicesPerSlab;
+    const int slabs = dims.z >= slicesPerSlab ? (dims.z - slicesPerSlab) / stride + 1 : 0;
     if (slabs < 2)
         throw core::Error("thick slices", std::to_string(dims.z) +
                                               " slices make fewer than two "
                                               "slabs of " +
                                               std::to_string(slicesPerSlab));
     volume::Volume thick({dims.x, dims.y, slabs}, thin.voxelType(),
-                         thickGeometry(thin.geometry(), slabs, slicesPerSlab));
+                         slabGeometry(thin.geometry(), slabs, slicesPerSlab, stride));
     thick.setValueMapping(thin.valueMapping());
     thick.setDescription(thin.description());
     const std::size_t plane = std::size_t(dims.x) * std::size_t(dims.y);
@@ -60,7 +60,7 @@ volume::Volume thickSlabsOf(const volume::Volume& thin, int slicesPerSlab) {
         for (int slab = 0; slab < slabs; ++slab) {
             std::fill(sum.begin(), sum.end(), 0.0);
             for (int s = 0; s < slicesPerSlab; ++s) {
-                const T* slice = source + plane * std::size_t(slab * slicesPerSlab + s);
+                const T* slice = source + plane * std::size_t(slab * stride + s);
                 for (std::size_t v = 0; v < plane; ++v)
                     sum[v] += double(slice[v]);
             }
@@ -70,6 +70,16 @@ volume::Volume thickSlabsOf(const volume::Volume& thin, int slicesPerSlab) {
         }
     });
     return thick;
+}
+
+} // namespace
+
+volume::Volume thickSlabsOf(const volume::Volume& thin, int slicesPerSlab) {
+    return slabMeans(thin, slicesPerSlab, slicesPerSlab);
+}
+
+volume::Volume slabMeansAtEverySlice(const volume::Volume& thin, int slicesPerSlab) {
+    return slabMeans(thin, slicesPerSlab, 1);
 }
 
 void addVoxelNoise(volume::Volume& volume, double sigma, unsigned seed) {
