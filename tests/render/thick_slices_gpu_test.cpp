@@ -2,10 +2,13 @@
 // CUDA device is present, SKIP elsewhere): the same int16 copy, bit for bit, with the same
 // geometry and value mapping -- over every voxel type, sizes off the 32 x 8 pixel blocks, a
 // gantry-tilted stack with uneven gaps, refinement in-plane as well as along the slices, and
-// iso-values where whole slices have no contour.
+// iso-values where whole slices have no contour; the faces' maxima found on the device are the
+// host's; the page lock of the kept copies.
 
 #include "filled_volume.h"
 #include "lw/core/error.h"
+#include "lw/kernels/cpu/border_cap_cpu.h"
+#include "lw/kernels/cuda/page_locked_host.h"
 #include "lw/render/aabb.h"
 #include "lw/render/camera.h"
 #include "lw/render/renderer_factory.h"
@@ -133,6 +136,9 @@ TEST_P(ThickSlicesOnDevice, MakesTheHostsFieldBitForBit) {
         EXPECT_EQ(differing, 0u) << where << ": first at voxel " << first << " (device "
                                  << (differing ? a[first] : 0) << ", host "
                                  << (differing ? b[first] : 0) << ")";
+        const DeviceVoxelCopy copy = device.deviceCopy();
+        ASSERT_TRUE(copy.faceMaxima.has_value()) << where;
+        EXPECT_EQ(*copy.faceMaxima, kernels::cpu::borderFaceMaxima(*onHost).value) << where;
     }
 }
 
@@ -228,6 +234,27 @@ INSTANTIATE_TEST_SUITE_P(Methods, RenderersOnTheDeviceCopy,
                          [](const testing::TestParamInfo<SilhouetteMethod>& info) {
                              return "Method" + std::to_string(int(info.param));
                          });
+
+// The kept copies' page lock: a range is locked once (a second lock of the same pages is
+// refused and leaves the first alone), the lock moves with its object and ends with it.
+TEST(PageLockedHostRange, LocksOnceMovesAndUnlocks) {
+    if (!cudaAvailability().available)
+        GTEST_SKIP() << "no CUDA device: " << cudaAvailability().reason;
+    std::vector<std::int16_t> memory(std::size_t(1) << 20);
+    kernels::cuda::PageLockedHostRange first;
+    ASSERT_TRUE(first.lock(memory.data(), memory.size() * sizeof(std::int16_t)).ok());
+    EXPECT_TRUE(first.locked());
+    kernels::cuda::PageLockedHostRange second;
+    EXPECT_FALSE(second.lock(memory.data(), memory.size() * sizeof(std::int16_t)).ok());
+    EXPECT_FALSE(second.locked());
+    kernels::cuda::PageLockedHostRange moved = std::move(first);
+    EXPECT_FALSE(first.locked());
+    EXPECT_TRUE(moved.locked());
+    moved.unlock();
+    EXPECT_FALSE(moved.locked());
+    // Unlocked, the pages may be locked again.
+    EXPECT_TRUE(second.lock(memory.data(), memory.size() * sizeof(std::int16_t)).ok());
+}
 
 // On the CPU back-end the maker is the host's volumeToRender.
 TEST(ThickSlicesOnHost, TheCpuBackendMakesTheFieldOnTheHost) {

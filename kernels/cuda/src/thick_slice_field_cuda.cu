@@ -4,6 +4,7 @@
 #include "thick_slice_field_kernels.cuh"
 #include "tuning.h"
 
+#include <array>
 #include <cstring>
 
 namespace lw::kernels::cuda {
@@ -21,6 +22,9 @@ struct ThickSliceFieldCuda::Impl {
     DeviceBuffer<std::int16_t> distance;
     DeviceBuffer<std::int16_t> refined;
     dispatch::PinnedBuffer<std::int16_t> downloaded;
+    DeviceBuffer<unsigned> faceSlots; // faceMaximaKernel's six slots
+    dispatch::PinnedBuffer<unsigned> faceSlotsDownloaded;
+    std::array<double, 6> faceMaxima{};
     dispatch::StageTimer distanceTimer, refineTimer, downloadTimer;
     ThickSliceFieldTimes times;
 
@@ -29,6 +33,7 @@ struct ThickSliceFieldCuda::Impl {
     }
     CudaStatus distanceField(double iso, const ThickSliceFieldSetup& setup);
     CudaStatus refine(const ThickSliceFieldSetup& setup, glm::ivec3 refinedDims);
+    CudaStatus findFaceMaxima(glm::ivec3 refinedDims);
 };
 
 namespace {
@@ -92,6 +97,22 @@ CudaStatus ThickSliceFieldCuda::Impl::refine(const ThickSliceFieldSetup& setup,
     return CudaStatus::success();
 }
 
+// Queues the faces' maxima and their download on the stream (read after it is synchronised).
+CudaStatus ThickSliceFieldCuda::Impl::findFaceMaxima(glm::ivec3 refinedDims) {
+    const cudaStream_t s = stream.get();
+    LW_RETURN_IF_FAILED(faceSlots.reserve(6, "thick slices: face maxima"));
+    LW_RETURN_IF_FAILED(faceSlotsDownloaded.reserve(6, "thick slices: face maxima"));
+    LW_CUDA_TRY(cudaMemsetAsync(faceSlots.data(), 0, 6 * sizeof(unsigned), s),
+                "thick slices: face maxima reset");
+    field::faceMaximaKernel<<<dim3(tuning::kFaceMaximaBlocks, 6), tuning::kFaceMaximaBlock, 0, s>>>(
+        refined.data(), refinedDims.x, refinedDims.y, refinedDims.z, faceSlots.data());
+    LW_CUDA_LAUNCHED("thickSlices::faceMaxima");
+    LW_CUDA_TRY(cudaMemcpyAsync(faceSlotsDownloaded.data(), faceSlots.data(), 6 * sizeof(unsigned),
+                                cudaMemcpyDeviceToHost, s),
+                "thick slices: face maxima download");
+    return CudaStatus::success();
+}
+
 ThickSliceFieldCuda::ThickSliceFieldCuda() : m_impl(std::make_unique<Impl>()) {}
 ThickSliceFieldCuda::~ThickSliceFieldCuda() = default;
 
@@ -109,7 +130,8 @@ CudaStatus ThickSliceFieldCuda::setVolume(const VolumeView& hostVolume) {
     return CudaStatus::success();
 }
 
-CudaStatus ThickSliceFieldCuda::make(double iso, const ThickSliceFieldSetup& setup) {
+CudaStatus ThickSliceFieldCuda::make(double iso, const ThickSliceFieldSetup& setup,
+                                     std::int16_t* lockedTarget) {
     Impl& d = *m_impl;
     if (!d.source.data())
         return CudaStatus::failure(CudaStatus::Code::Failed, "thick slices", "no volume set");
@@ -125,22 +147,33 @@ CudaStatus ThickSliceFieldCuda::make(double iso, const ThickSliceFieldSetup& set
     LW_RETURN_IF_FAILED(d.distanceTimer.stop(s));
     LW_RETURN_IF_FAILED(d.refineTimer.start(s));
     LW_RETURN_IF_FAILED(d.refine(setup, refinedDims));
+    LW_RETURN_IF_FAILED(d.findFaceMaxima(refinedDims));
     LW_RETURN_IF_FAILED(d.refineTimer.stop(s));
     LW_RETURN_IF_FAILED(d.downloadTimer.start(s));
     const std::size_t count =
         std::size_t(refinedDims.x) * std::size_t(refinedDims.y) * std::size_t(refinedDims.z);
-    LW_RETURN_IF_FAILED(d.downloaded.reserve(count, "thick slices: page-locked field"));
-    LW_CUDA_TRY(cudaMemcpyAsync(d.downloaded.data(), d.refined.data(), count * sizeof(std::int16_t),
+    std::int16_t* target = lockedTarget;
+    if (!target) {
+        LW_RETURN_IF_FAILED(d.downloaded.reserve(count, "thick slices: page-locked field"));
+        target = d.downloaded.data();
+    }
+    LW_CUDA_TRY(cudaMemcpyAsync(target, d.refined.data(), count * sizeof(std::int16_t),
                                 cudaMemcpyDeviceToHost, s),
                 "thick slices: field download");
     LW_RETURN_IF_FAILED(d.downloadTimer.stop(s));
     LW_CUDA_TRY(cudaStreamSynchronize(s), "thick slices: cudaStreamSynchronize");
     d.times = {d.distanceTimer.ms(), d.refineTimer.ms(), d.downloadTimer.ms()};
+    for (std::size_t face = 0; face < d.faceMaxima.size(); ++face)
+        d.faceMaxima[face] = double(int(d.faceSlotsDownloaded.data()[face]) - 32768);
     return CudaStatus::success();
 }
 
 const std::int16_t* ThickSliceFieldCuda::field() const {
     return m_impl->downloaded.data();
+}
+
+const std::array<double, 6>& ThickSliceFieldCuda::faceMaxima() const {
+    return m_impl->faceMaxima;
 }
 
 const std::int16_t* ThickSliceFieldCuda::deviceField() const {
@@ -165,6 +198,7 @@ void ThickSliceFieldCuda::release() {
     d.columnNear.release();
     d.distance.release();
     d.refined.release();
+    d.faceSlots.release();
     d.dims = glm::ivec3(0);
 }
 

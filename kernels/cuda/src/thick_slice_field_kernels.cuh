@@ -170,4 +170,33 @@ __global__ void refineKernel(const std::int16_t* field, RefineGrid g, std::int16
             std::size_t(x)] = std::int16_t(roundHalfAway(value));
 }
 
+// Each face's largest value of the refined field (nx x ny x nz, x fastest); blockIdx.y is the
+// face: x low, x high, y low, y high, z low, z high. The maxima are kept as value + 32768 in
+// unsigned slots set to 0 before (no value is below -32768), for atomicMax.
+__global__ void faceMaximaKernel(const std::int16_t* field, int nx, int ny, int nz,
+                                 unsigned* maxima) {
+    const int face = int(blockIdx.y), axis = face / 2;
+    const bool high = (face % 2) != 0;
+    // The face's two free axes, a the faster one in memory.
+    const int extentA = axis == 0 ? ny : nx;
+    const int extentB = axis == 2 ? ny : nz;
+    const std::size_t count = std::size_t(extentA) * std::size_t(extentB);
+    int best = -32768;
+    for (std::size_t v = std::size_t(blockIdx.x) * blockDim.x + threadIdx.x; v < count;
+         v += std::size_t(gridDim.x) * blockDim.x) {
+        const int a = int(v % std::size_t(extentA)), b = int(v / std::size_t(extentA));
+        const int fixed = high ? (axis == 0 ? nx : (axis == 1 ? ny : nz)) - 1 : 0;
+        const int x = axis == 0 ? fixed : a;
+        const int y = axis == 0 ? a : (axis == 1 ? fixed : b);
+        const int z = axis == 2 ? fixed : b;
+        const std::size_t at =
+            (std::size_t(z) * std::size_t(ny) + std::size_t(y)) * std::size_t(nx) + std::size_t(x);
+        best = max(best, int(field[at]));
+    }
+    for (int offset = 16; offset > 0; offset /= 2)
+        best = max(best, __shfl_down_sync(0xffffffffu, best, offset));
+    if ((threadIdx.x & 31u) == 0)
+        atomicMax(&maxima[face], unsigned(best + 32768));
+}
+
 } // namespace lw::kernels::cuda::field

@@ -27,6 +27,10 @@ inline constexpr int kSegmentTriangleBlock = 512;
 
 // The thick-slice field: per source voxel (the values less the iso-value).
 inline constexpr int kFieldVoxelBlock = 256;
+// The field's face maxima: blocks per face (grid-stride; a 512 x 82 face is 168 blocks' worth)
+// and threads per block (whole warps: the kernel reduces by shuffles).
+inline constexpr int kFaceMaximaBlocks = 32;
+inline constexpr int kFaceMaximaBlock = 256;
 
 // Method 3: per vertex, per triangle, per pixel.
 inline constexpr int kVertexBlock = 256;

@@ -165,6 +165,14 @@ const Mesh& BorderCapCache::cap(const volume::Volume& volume, double storedIso,
     return m_cap;
 }
 
+void BorderCapCache::useFaceMaxima(const volume::Volume& volume,
+                                   const std::array<double, 6>& maxima) {
+    if (m_volume != &volume || !m_faceMaxima || *m_faceMaxima != maxima)
+        m_valid = false;
+    m_volume = &volume;
+    m_faceMaxima = maxima;
+}
+
 void BorderCapCache::clear() {
     m_valid = false;
     m_volume = nullptr;

@@ -14,6 +14,7 @@
 #include <cmath>
 #include <cstdio>
 #include <memory>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -195,17 +196,22 @@ struct DrawnVolumeMaker::Impl {
     // The shape-based copies made, kept to be written again once nobody else holds them: a 43 MB
     // copy into fresh pages costs its page faults at every iso-value, several ms. During a drag
     // the frame on screen and the one being drawn hold theirs; the one before is free. At most
-    // kKeptCopies.
-    std::vector<std::shared_ptr<volume::Volume>> copies;
+    // kKeptCopies. The device path's are page-locked where the driver allows, so that its
+    // download goes straight into them.
+    struct KeptCopy {
+        std::shared_ptr<volume::Volume> volume;
+        bool pageLocked = false;
+    };
+    std::vector<KeptCopy> copies;
     static constexpr std::size_t kKeptCopies = 3;
 
-    // A kept copy of `dims` nobody else holds (the others nobody holds go), or null.
-    std::shared_ptr<volume::Volume> freeCopy(glm::ivec3 dims) {
-        std::shared_ptr<volume::Volume> found;
-        std::erase_if(copies, [&](const std::shared_ptr<volume::Volume>& copy) {
-            if (copy.use_count() != 1)
+    // A kept copy of `dims` nobody else holds (the others nobody holds go), or none.
+    std::optional<KeptCopy> freeCopy(glm::ivec3 dims) {
+        std::optional<KeptCopy> found;
+        std::erase_if(copies, [&](const KeptCopy& copy) {
+            if (copy.volume.use_count() != 1)
                 return false;
-            if (!found && copy->dims() == dims) {
+            if (!found && copy.volume->dims() == dims) {
                 found = copy;
                 return false;
             }
@@ -214,7 +220,7 @@ struct DrawnVolumeMaker::Impl {
         return found;
     }
 
-    void keep(const std::shared_ptr<volume::Volume>& copy) {
+    void keep(const KeptCopy& copy) {
         if (copies.size() >= kKeptCopies)
             copies.erase(copies.begin()); // the oldest: its holders keep it alive
         copies.push_back(copy);
@@ -224,15 +230,15 @@ struct DrawnVolumeMaker::Impl {
     std::shared_ptr<const volume::Volume> onTheHost(const SamplingPlan& plan, double iso,
                                                     unsigned threads) {
         const auto start = std::chrono::steady_clock::now();
-        std::shared_ptr<volume::Volume> copy =
+        std::optional<KeptCopy> copy =
             freeCopy(volume::oversampledDims(source->dims(), plan.factors));
         if (!copy) {
-            copy = std::make_shared<volume::Volume>(shapeBasedFieldVolume(*source, plan));
-            keep(copy);
+            copy = KeptCopy{std::make_shared<volume::Volume>(shapeBasedFieldVolume(*source, plan))};
+            keep(*copy);
         }
-        writeShapeBasedField(*copy, *source, plan, iso, threads);
-        logResampled(plan, iso, copy->dims(), msSince(start), "");
-        return copy;
+        writeShapeBasedField(*copy->volume, *source, plan, iso, threads);
+        logResampled(plan, iso, copy->volume->dims(), msSince(start), "");
+        return copy->volume;
     }
 
 #if LINEWORK_CUDA
@@ -240,15 +246,16 @@ struct DrawnVolumeMaker::Impl {
 
     std::shared_ptr<volume::Volume> deviceCopy(const SamplingPlan& plan, double iso,
                                                unsigned threads) {
-        const glm::ivec3 dims = volume::oversampledDims(source->dims(), plan.factors);
-        if (std::shared_ptr<volume::Volume> copy = freeCopy(dims)) {
-            device.makeInto(*copy, *source, plan, iso, distanceLimit(*source), threads);
-            return copy;
+        std::optional<KeptCopy> copy =
+            freeCopy(volume::oversampledDims(source->dims(), plan.factors));
+        if (!copy) {
+            copy.emplace();
+            copy->volume = pageLockedVolume(shapeBasedFieldVolume(*source, plan), copy->pageLocked);
+            keep(*copy);
         }
-        auto copy = std::make_shared<volume::Volume>(
-            device.make(*source, plan, iso, distanceLimit(*source), threads));
-        keep(copy);
-        return copy;
+        device.makeInto(*copy->volume, *source, plan, iso, distanceLimit(*source), threads,
+                        copy->pageLocked);
+        return copy->volume;
     }
 #endif
 
@@ -315,7 +322,7 @@ bool DrawnVolumeMaker::lastMadeOnDevice() const {
 DeviceVoxelCopy DrawnVolumeMaker::deviceCopy() const {
 #if LINEWORK_CUDA
     if (m_impl->lastOnDevice)
-        return {m_impl->device.deviceVoxels()};
+        return {m_impl->device.deviceVoxels(), m_impl->device.faceMaxima()};
 #endif
     return {};
 }

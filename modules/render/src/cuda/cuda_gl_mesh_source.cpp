@@ -38,7 +38,11 @@ public:
         m_capInMesh = nullptr;
     }
 
-    void useDeviceCopy(DeviceVoxelCopy copy) override { m_deviceCopy = copy; }
+    void useDeviceCopy(DeviceVoxelCopy copy) override {
+        m_deviceCopy = copy;
+        if (copy.faceMaxima && m_volume)
+            m_cap.useFaceMaxima(*m_volume, *copy.faceMaxima);
+    }
 
     void releaseVolume() override {
         m_wholeCurrent = false;

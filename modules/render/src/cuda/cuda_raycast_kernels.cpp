@@ -75,7 +75,11 @@ public:
         m_cap.clear();
     }
 
-    void useDeviceCopy(DeviceVoxelCopy copy) override { m_deviceCopy = copy; }
+    void useDeviceCopy(DeviceVoxelCopy copy) override {
+        m_deviceCopy = copy;
+        if (copy.faceMaxima && m_volume)
+            m_cap.useFaceMaxima(*m_volume, *copy.faceMaxima);
+    }
 
     bool fallBack() override {
         if (m_mappedFloor)

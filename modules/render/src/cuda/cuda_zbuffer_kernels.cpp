@@ -100,7 +100,11 @@ public:
         forgetKeptSlabs();
     }
 
-    void useDeviceCopy(DeviceVoxelCopy copy) override { m_deviceCopy = copy; }
+    void useDeviceCopy(DeviceVoxelCopy copy) override {
+        m_deviceCopy = copy;
+        if (copy.faceMaxima && m_volume)
+            m_cap.useFaceMaxima(*m_volume, *copy.faceMaxima);
+    }
 
     // A new copy of the same grid (the thick-slice field at a new iso-value) after a resident
     // whole volume: the device's buffers fit it as they are, and freeing and allocating them

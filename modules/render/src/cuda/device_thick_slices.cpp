@@ -3,28 +3,36 @@
 #include "cuda_support.h"
 #include "lw/core/error.h"
 #include "lw/core/parallel.h"
+#include "lw/kernels/cuda/page_locked_host.h"
 #include "lw/volume/slice_distance.h"
 
 #include <cstring>
 #include <string>
+#include <utility>
 
 namespace lw::render {
 
-volume::Volume DeviceThickSlices::make(const volume::Volume& source, const SamplingPlan& plan,
-                                       double iso, double limitMm, unsigned threads) {
-    const glm::ivec3 dims = volume::oversampledDims(source.dims(), plan.factors);
-    volume::checkVolumeAllocation(dims, volume::VoxelType::Int16, {}, "shape-based interpolation",
-                                  "the signed-distance copy");
-    volume::Volume field(dims, volume::VoxelType::Int16,
-                         source.geometry().refined(plan.factors, source.dims().z));
-    field.setDescription(source.description());
-    makeInto(field, source, plan, iso, limitMm, threads);
-    return field;
+namespace {
+
+// The lock is destroyed first (members in reverse order): the pages are unlocked before the
+// volume frees them.
+struct LockedVolume {
+    volume::Volume volume;
+    kernels::cuda::PageLockedHostRange lock;
+};
+
+} // namespace
+
+std::shared_ptr<volume::Volume> pageLockedVolume(volume::Volume volume, bool& locked) {
+    auto holder = std::make_shared<LockedVolume>(LockedVolume{std::move(volume), {}});
+    locked = holder->volume.byteSize() > 0 &&
+             holder->lock.lock(holder->volume.data(), holder->volume.byteSize()).ok();
+    return std::shared_ptr<volume::Volume>(holder, &holder->volume);
 }
 
 void DeviceThickSlices::makeInto(volume::Volume& field, const volume::Volume& source,
                                  const SamplingPlan& plan, double iso, double limitMm,
-                                 unsigned threads) {
+                                 unsigned threads, bool fieldIsPageLocked) {
     constexpr std::string_view kWhere = "thick slices (CUDA)";
     if (field.dims() != volume::oversampledDims(source.dims(), plan.factors) ||
         field.voxelType() != volume::VoxelType::Int16)
@@ -35,6 +43,7 @@ void DeviceThickSlices::makeInto(volume::Volume& field, const volume::Volume& so
         m_uploaded = &source;
     }
     field.setValueMapping({1.0 / volume::kSliceDistanceStepsPerMm, iso});
+    field.setDescription(source.description());
     kernels::cuda::ThickSliceFieldSetup setup;
     setup.slope = source.valueMapping().slope;
     setup.intercept = source.valueMapping().intercept;
@@ -44,11 +53,13 @@ void DeviceThickSlices::makeInto(volume::Volume& field, const volume::Volume& so
     setup.stepsPerMm = volume::kSliceDistanceStepsPerMm;
     setup.factors = plan.factors;
     setup.monotoneAlongSlices = plan.alongSlices == volume::SliceInterpolation::MonotoneCubic;
-    throwIfCudaFailed(kWhere, m_field.make(iso, setup));
+    std::int16_t* to = field.dataAs<std::int16_t>();
+    throwIfCudaFailed(kWhere, m_field.make(iso, setup, fieldIsPageLocked ? to : nullptr));
+    if (fieldIsPageLocked)
+        return;
     // From page-locked memory into the volume's, in parallel: the copy's first touch of fresh
     // pages is what costs (page faults), and threads take them side by side.
     const std::int16_t* from = m_field.field();
-    std::int16_t* to = field.dataAs<std::int16_t>();
     constexpr std::size_t kRun = std::size_t(1) << 20; // voxels per task: 2 MiB
     core::parallelForRanges(
         field.voxelCount(), kRun,

@@ -8,22 +8,31 @@
 #include "lw/render/surface_sampling.h"
 #include "lw/volume/volume.h"
 
+#include <array>
+#include <memory>
+
 namespace lw::render {
+
+// `volume` moved into shared ownership with its memory page-locked for as long as it lives, where
+// the driver allows (`locked` says whether it did): a copy written again and again then takes
+// the device's download straight in, without a staging buffer and a copy on the host.
+std::shared_ptr<volume::Volume> pageLockedVolume(volume::Volume volume, bool& locked);
 
 class DeviceThickSlices {
 public:
-    // The copy of `plan` (shape-based) at `iso` of `source`, whose slices go to the device at the
-    // first call for it (the caller keeps `source` alive and unchanged while it uses this).
-    // Throws core::Error when the device fails. `threads`: for the copy from page-locked memory.
-    volume::Volume make(const volume::Volume& source, const SamplingPlan& plan, double iso,
-                        double limitMm, unsigned threads);
-    // The same into `field`, a copy made earlier for the same source and plan (its dims and
-    // type): its pages are written again instead of fresh ones faulted in.
+    // The copy of `plan` (shape-based) at `iso` of `source` into `field`, a volume of the plan's
+    // refined dims, int16, and of its geometry (the geometry is not checked). The slices go to
+    // the device at the first call for `source` (the caller keeps it alive and unchanged while
+    // it uses this). `fieldIsPageLocked`: the download goes straight into it (pageLockedVolume),
+    // else through page-locked memory and a copy on `threads` threads. Throws core::Error when
+    // the device fails.
     void makeInto(volume::Volume& field, const volume::Volume& source, const SamplingPlan& plan,
-                  double iso, double limitMm, unsigned threads);
+                  double iso, double limitMm, unsigned threads, bool fieldIsPageLocked);
     const kernels::cuda::ThickSliceFieldTimes& times() const { return m_field.times(); }
-    // The last copy in device memory, until the next make().
+    // The last copy in device memory, until the next makeInto().
     const void* deviceVoxels() const { return m_field.deviceField(); }
+    // The last copy's largest value per face (kernels::cpu::BorderFaceMaxima's order).
+    const std::array<double, 6>& faceMaxima() const { return m_field.faceMaxima(); }
 
 private:
     kernels::cuda::ThickSliceFieldCuda m_field;

@@ -100,6 +100,9 @@ public:
     // `stencil` as the surface's own.
     const Mesh& cap(const volume::Volume& volume, double storedIso,
                     GradientStencil stencil = GradientStencil::Central);
+    // `volume`'s faces' maxima found elsewhere (kernels::cpu::BorderFaceMaxima's order; the
+    // thick-slice copy's, found on the device): cap() of `volume` then does not read its faces.
+    void useFaceMaxima(const volume::Volume& volume, const std::array<double, 6>& maxima);
     void clear();
 
 private:

@@ -17,6 +17,7 @@
 #include "lw/render/pixel_mask.h"
 #include "lw/volume/volume.h"
 
+#include <array>
 #include <cstddef>
 #include <glm/glm.hpp>
 #include <optional>
@@ -119,6 +120,10 @@ struct SilhouetteFrame {
 // them device to device instead of uploading the host's 43 MB at every iso-value of the demo.
 struct DeviceVoxelCopy {
     const void* voxels = nullptr;
+    // The copy's largest stored value per border face (x low, x high, y low, y high, z low,
+    // z high: kernels::cpu::BorderFaceMaxima), where the maker found them on the device: the
+    // renderers' border caps take them instead of reading the faces of the host's voxels.
+    std::optional<std::array<double, 6>> faceMaxima;
 };
 
 class SilhouetteRenderer {

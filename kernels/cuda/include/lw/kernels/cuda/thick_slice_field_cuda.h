@@ -14,11 +14,13 @@
 //              limit on both sides)
 //   distance   per pixel: the minimum over the rows and columns within reach, stored as int16
 //   refine     per refined voxel: the slices blended along k, then j, then i
+//   faces      per voxel of the refined field's six faces: each face's largest value
 // Public header: no CUDA types.
 
 #include "lw/kernels/cuda/cuda_status.h"
 #include "lw/kernels/volume_view.h"
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <glm/glm.hpp>
@@ -35,7 +37,8 @@ struct ThickSliceFieldSetup {
     bool monotoneAlongSlices = true;       // else linear along k (as oversampled's Linear)
 };
 
-// Stage times of the last field and its download (CUDA events, ms).
+// Stage times of the last field and its download (CUDA events, ms; refineMs includes the faces'
+// maxima).
 struct ThickSliceFieldTimes {
     double distanceMs = 0.0, refineMs = 0.0, downloadMs = 0.0;
     double totalMs() const { return distanceMs + refineMs + downloadMs; }
@@ -55,8 +58,15 @@ public:
     // the next make() or release(). Synchronous. (Page-locked, because a download into fresh
     // pageable memory runs at the speed of its page faults: 43 ms for the 43 MB of a 512^2 x 82
     // copy on an H200's host, against about 3 ms here; the caller copies it on with its threads.)
-    CudaStatus make(double iso, const ThickSliceFieldSetup& setup);
+    // `lockedTarget`, where given: page-locked memory of the field's size (PageLockedHostRange)
+    // the field is downloaded into instead, saving the caller that copy; field() is not written.
+    CudaStatus make(double iso, const ThickSliceFieldSetup& setup,
+                    std::int16_t* lockedTarget = nullptr);
     const std::int16_t* field() const;
+    // The last field's largest value on each face (x low, x high, y low, y high, z low, z high:
+    // lw::kernels::cpu::borderFaceMaxima's order and values), found on the device with it: a
+    // renderer's border cap then need not read the faces of the host's copy, a voxel a row.
+    const std::array<double, 6>& faceMaxima() const;
     // The same field in device memory, valid until the next make() or release(): what a renderer
     // of the copy takes device to device instead of uploading the host's (MarchingCubesCuda::
     // setDeviceVolume).
