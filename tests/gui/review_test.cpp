@@ -18,6 +18,7 @@
 #include <QOpenGLFunctions>
 #include <QOpenGLWidget>
 #include <QPainter>
+#include <QScopeGuard>
 #include <QSlider>
 #include <QtTest>
 #include <algorithm>
@@ -25,6 +26,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
+#include <future>
 #include <memory>
 #include <set>
 
@@ -55,6 +57,7 @@ private slots:
     void loaderReportsPhantomProgress_data();
     void loaderReportsPhantomProgress();
     void cancelEndsThePhantomLoadWithoutAVolume();
+    void loaderWaitsForTheGpuProbe();
 };
 
 void ReviewTest::panelsDraw_data() {
@@ -534,6 +537,36 @@ void ReviewTest::cancelEndsThePhantomLoadWithoutAVolume() {
     QCOMPARE(loaded, 0);
     QCOMPARE(failed, 0);
     QVERIFY(!loader.isRunning());
+}
+
+// A load hands its volume over only once the window's GPU probe (LoadRequest::gpuProbe) has
+// ended, and says that it waits: the review asks for the device on the UI thread at once, where
+// the probe's CUDA context would block it.
+void ReviewTest::loaderWaitsForTheGpuProbe() {
+    VolumeLoader loader;
+    std::promise<void> probe;
+    bool probeEnded = false;
+    const auto endProbe = qScopeGuard([&] { // a failed check must not leave the loader waiting
+        if (!probeEnded)
+            probe.set_value();
+    });
+    LoadRequest request{"phantom:24", {}, {}, 300.5};
+    request.gpuProbe = probe.get_future().share();
+    bool waiting = false;
+    std::shared_ptr<ReviewSource> source;
+    connect(&loader, &VolumeLoader::progress, &loader, [&](double, const QString& message) {
+        waiting = waiting || message == QLatin1String(kWaitingForGpu);
+    });
+    connect(&loader, &VolumeLoader::loaded, &loader,
+            [&](std::shared_ptr<ReviewSource> loaded) { source = std::move(loaded); });
+    loader.start(request);
+    QTRY_VERIFY_WITH_TIMEOUT(waiting, 60000);
+    QVERIFY(source == nullptr); // posted only after the wait, which has not ended
+    QVERIFY(loader.isRunning());
+    probe.set_value();
+    probeEnded = true;
+    QTRY_VERIFY_WITH_TIMEOUT(source != nullptr, 60000);
+    QCOMPARE(source->volume->dims().z, 24);
 }
 
 LW_GUI_TEST_MAIN(ReviewTest)

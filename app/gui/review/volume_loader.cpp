@@ -10,6 +10,7 @@
 #include <QPointer>
 #include <QThreadPool>
 #include <algorithm>
+#include <chrono>
 #include <filesystem>
 #include <new>
 
@@ -97,6 +98,11 @@ void VolumeLoader::start(const LoadRequest& request) {
             token);
         try {
             auto source = std::make_shared<ReviewSource>(load(request, &progress));
+            if (request.gpuProbe.valid() &&
+                request.gpuProbe.wait_for(std::chrono::seconds(0)) != std::future_status::ready) {
+                progress.report(1.0, kWaitingForGpu);
+                request.gpuProbe.wait();
+            }
             post([source, token](VolumeLoader& loader) {
                 if (loader.endCurrent(token))
                     emit loader.loaded(source);

@@ -9,6 +9,7 @@
 #include <QObject>
 #include <QString>
 #include <QStringList>
+#include <future>
 #include <memory>
 
 class QThreadPool;
@@ -25,7 +26,15 @@ struct LoadRequest {
     QStringList files;  // or the files of one stored series (lw::input::openDicomFiles)
     QString seriesUid;  // optional: which series
     double iso = 400.0; // the initial iso-value (clamped to the volume's range)
+    // Waited for on the loading thread before the volume is handed over, where valid: the
+    // window's probe of the CUDA device. A new review asks it on the UI thread, and while the
+    // probe makes its CUDA context (0.2-0.35 s) the ask would block there; a study opened at
+    // start (the demo) arrives before the probe ends.
+    std::shared_future<void> gpuProbe;
 };
+
+// The progress message while a loaded volume waits for LoadRequest::gpuProbe.
+inline constexpr const char* kWaitingForGpu = "waiting for the GPU";
 
 class VolumeLoader : public QObject {
     Q_OBJECT

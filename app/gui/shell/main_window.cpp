@@ -51,11 +51,13 @@ MainWindow::MainWindow(const MainWindowOptions& options, QWidget* parent) : QMai
     // Which OpenGL this display gives decides how reviews draw; ask before the window shows,
     // not when the first review opens.
     displayGlInfo();
-    if (m_settings.backend != render::Backend::Cpu)
-        m_cudaProbe = std::async(std::launch::async, [] {
+    if (m_settings.backend != render::Backend::Cpu) {
+        const auto probe = [] {
             core::lowerCurrentThreadToBackground();
             render::cudaAvailability(); // probed once per process; later calls read the answer
-        });
+        };
+        m_cudaProbe = std::async(std::launch::async, probe).share();
+    }
 
     m_tabs = new QTabWidget;
     m_tabs->setObjectName("mainTabs");
@@ -322,11 +324,12 @@ void MainWindow::chooseAndOpenPath() {
         openPath(folder);
 }
 
-void MainWindow::startLoading(const LoadRequest& request, const QString& what) {
+void MainWindow::startLoading(LoadRequest request, const QString& what) {
     m_loadingWhat = what;
     m_loadingLabel->setText(what);
     m_progress->setValue(0);
     setLoadingVisible(true);
+    request.gpuProbe = m_cudaProbe; // the review opened asks for the device at once
     m_loader->start(request);
 }
 

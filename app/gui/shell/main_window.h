@@ -83,7 +83,7 @@ private:
     void createEditMenu();
     void fillAnnotateMenu();
     void reviewBecameCurrent();
-    void startLoading(const LoadRequest& request, const QString& what);
+    void startLoading(LoadRequest request, const QString& what);
     void showReview(std::shared_ptr<ReviewSource> source);
     void keepAnnotations(ReviewWidget& review);
     void showLoadError(const QString& reason);
@@ -105,8 +105,9 @@ private:
     QMenu* m_annotateMenu = nullptr;
     // The CUDA probe, started with the window on a background thread: its first call creates the
     // device's context (0.3-0.5 s on an H200), which otherwise fell on the UI thread when the
-    // first review opened. Waited for on destruction.
-    std::future<void> m_cudaProbe;
+    // first review opened. Loads wait for it before they hand their volume over
+    // (LoadRequest::gpuProbe): a study opened at start arrives sooner. Waited for on destruction.
+    std::shared_future<void> m_cudaProbe;
 };
 
 } // namespace lw::gui
