@@ -57,12 +57,13 @@ commands:
   quality INPUT [--series UID] --iso HU [--views sweep|N | --view AZ,EL] [--size WxH]
           [--min-stroke PX] [--chunks ..] [--mode ..] [--camera ..] [--backend ..] [--threads N]
           [--border ..] [--gradient ..] [--oversample ..] [--thick-slices ..] [--noise HU]
-          [--images DIR] [--json]
+          [--method2-test along|endpoints] [--images DIR] [--json]
                               line quality on a real CT (issue 7's goals): at each view (default
                               the 32 of the accuracy sweep, 1024x1024, strokes pruned as in
                               `render`) the shaded panel's outer outline covered by each method's
                               lines (1 px), line pixels in groups under 10 px, methods 1~3 and
-                              2 (along-segment)~3 agreeing both ways; worst and median;
+                              2~3 agreeing both ways; worst and median; method 2 tested along
+                              each segment (default) or at its endpoints (`render`'s default);
                               --noise HU: Gaussian noise of that deviation added first (seeded)
   thick-slices INPUT [--series UID] --iso HU [--average N | --thick PATH [--thick-series UID]]
           [--method 1|2|3] [--views sweep|N | --view AZ,EL] [--size WxH] [--backend ..]
@@ -78,7 +79,7 @@ commands:
                               --bound: the slab means at every thin slice drawn as well, the
                               figures interpolation between the thick slices cannot pass
   render INPUT [--series UID] --iso HU --method 1|2|3 [--chunks off|auto|N] [--mode a|b]
-         [--visibility on|off] [--view AZ,EL] [--camera perspective|ortho] [--size WxH]
+         [--visibility on|along|off] [--view AZ,EL] [--camera perspective|ortho] [--size WxH]
          [--panel iso|silhouette|both] [--backend cpu|cuda|auto] [--repeat N] [--threads N]
          [--min-stroke PX] [--border closed|open] [--gradient central|smoothed]
          [--oversample auto|off] [--thick-slices smooth|linear] [--format png|svg]

@@ -245,10 +245,14 @@ RenderRequest parseRenderRequest(const Arguments& arguments, const std::string& 
         throw UsageError("--mode " + mode, "expected a or b");
     request.settings.mode =
         mode == "a" ? render::ExtractionMode::CachedA : render::ExtractionMode::EveryFrameB;
+    // on: each method's own test (method 2: a segment's two endpoints, as the review draws by
+    // default); along: method 2 tests the point under every pixel of a segment (the review's
+    // "along each segment" setting); off: every silhouette segment drawn.
     const std::string visibility = arguments.option("visibility", "on");
-    if (visibility != "on" && visibility != "off")
-        throw UsageError("--visibility " + visibility, "expected on or off");
-    request.settings.visibility = visibility == "on";
+    if (visibility != "on" && visibility != "along" && visibility != "off")
+        throw UsageError("--visibility " + visibility, "expected on, along or off");
+    request.settings.visibility = visibility != "off";
+    request.settings.testAlongSegment = visibility == "along";
     request.settings.threads = unsigned(std::max(0.0, arguments.number("threads", 0)));
     parseLineOptions(arguments, render::kDefaultMinStrokePixels, request.settings);
     if (!arguments.option("iso"))

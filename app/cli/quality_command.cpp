@@ -5,7 +5,8 @@
 //   - the shaded panel's outer outline covered by each method's lines (1 px),
 //   - the share of each method's line pixels in 8-connected groups under 10 px (and method 3's
 //     before pruning, the speckle pruning removes),
-//   - methods 1 and 3, and method 2 (along-segment test) and 3, agreeing (1 px, both ways).
+//   - methods 1 and 3, and method 2 and 3, agreeing (1 px, both ways); method 2 with its
+//     along-segment test unless --method2-test endpoints asks for the review's default.
 // Worst and median over the views against the goals; --json rows carry the view [az, el].
 #include "arguments.h"
 #include "cli_inputs.h"
@@ -39,6 +40,7 @@ using evaluation::View;
 struct Options : ViewSweepOptions {
     std::string input;
     std::optional<std::string> series;
+    bool method2AlongSegment = true;
 };
 
 // `render`'s options less the ones this command sets itself (every method is drawn, with
@@ -48,7 +50,7 @@ std::set<std::string> qualityOptions() {
     std::set<std::string> names = panelRenderOptions();
     for (const char* own : {"method", "visibility", "view"})
         names.erase(own);
-    names.insert({"series", "view", "views", "images", "noise"});
+    names.insert({"series", "view", "views", "images", "noise", "method2-test"});
     return names;
 }
 
@@ -60,6 +62,10 @@ Options parseOptions(const Arguments& arguments) {
         parseViewSweepOptions(arguments, "quality", "1024x1024");
     options.input = arguments.positionals()[0];
     options.series = arguments.option("series");
+    const std::string test = arguments.option("method2-test", "along");
+    if (test != "along" && test != "endpoints")
+        throw UsageError("--method2-test " + test, "expected along or endpoints");
+    options.method2AlongSegment = test == "along";
     return options;
 }
 
@@ -119,7 +125,7 @@ ViewQuality measureView(Renderers& renderers, const Options& options, const View
     const render::PixelMask speckled = renderers[3]->render(camera, unpruned).lines;
 
     render::SilhouetteSettings along = settings;
-    along.testAlongSegment = true;
+    along.testAlongSegment = options.method2AlongSegment;
     lines[2] = renderers[2]->render(camera, along).lines;
     if (renderers[1])
         lines[1] = renderers[1]->render(camera, settings).lines;
@@ -166,6 +172,7 @@ int runQuality(const std::vector<std::string>& args, std::ostream& out) {
     run.sampling = samplingDescription(sampling, volume.dims());
     run.iso = options.request.settings.isoReal;
     run.minStrokePixels = options.request.settings.minStrokePixels;
+    run.method2AlongSegment = options.method2AlongSegment;
     run.width = options.size.x;
     run.height = options.size.y;
     run.notes = notes;

@@ -153,9 +153,10 @@ void writeQualityTable(const QualityRun& run, const std::vector<ViewQuality>& ro
     char line[512];
     std::snprintf(line, sizeof line,
                   "line quality of %s (%s; %s): iso %g, %dx%d, %zu views, strokes under %d px "
-                  "pruned, 1 px tolerance\n",
+                  "pruned, 1 px tolerance, method 2 tested %s\n",
                   run.input.c_str(), run.description.c_str(), run.sampling.c_str(), run.iso,
-                  run.width, run.height, rows.size(), run.minStrokePixels);
+                  run.width, run.height, rows.size(), run.minStrokePixels,
+                  run.method2AlongSegment ? "along each segment" : "at the segments' endpoints");
     out << line;
     out << "cov = outer outline of the shaded panel within 1 px of a line; frag = line pixels in "
            "groups under "
@@ -205,6 +206,7 @@ void writeQualityJson(const QualityRun& run, const std::vector<ViewQuality>& row
     writer.field("sampling", run.sampling);
     writer.field("width", run.width).field("height", run.height);
     writer.field("min_stroke_px", run.minStrokePixels).field("tolerance_px", 1);
+    writer.field("method2_test", run.method2AlongSegment ? "along" : "endpoints");
     writer.field("fragment_px", evaluation::kFragmentPixels);
     writer.key("notes").beginArray();
     for (const auto& note : run.notes)

@@ -37,6 +37,7 @@ struct QualityRun {
     std::string sampling; // samplingDescription (panel_rendering.h): the grid drawn
     double iso = 0.0;
     int minStrokePixels = 0;
+    bool method2AlongSegment = true; // method 2's test: along each segment, else its endpoints
     int width = 0;
     int height = 0;
     std::vector<std::string> notes;
