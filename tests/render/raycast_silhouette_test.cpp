@@ -5,6 +5,7 @@
 #include "lw/evaluation/true_contour.h"
 #include "lw/kernels/cpu/raycast_silhouette_cpu.h"
 #include "lw/kernels/cpu/voxel_ray.h"
+#include "lw/kernels/pixel_camera.h"
 #include "lw/kernels/silhouette_segment.h"
 #include "lw/kernels/voxel_ray_walk.h"
 #include "lw/render/camera.h"
@@ -389,6 +390,15 @@ SilhouetteSettings shapeSettings() {
     return s;
 }
 
+// 384 x 384, perspective, framing the cube of +-halfSide mm around the origin.
+Camera cubeCamera(double halfSide, double az, double el) {
+    CameraSetup setup;
+    setup.bounds = {glm::dvec3(-halfSide), glm::dvec3(halfSide)};
+    setup.azimuthDeg = az;
+    setup.elevationDeg = el;
+    return Camera(setup, 384, 384);
+}
+
 TEST(RayCastVisibility, FarSideOfSphereOccludedNearSideVisible) {
     const SphereShape sphere({0, 0, 0}, 40.0);
     const volume::Volume v = sampleShape(sphere, 64);
@@ -528,11 +538,7 @@ protected:
     }
     // The same for a thick-slice ball (below): 384 x 384, iso 150, along-segment test.
     evaluation::ContourScore thickSliceScore(const volume::Volume& v, double az, double el) const {
-        CameraSetup setup;
-        setup.bounds = {glm::dvec3(-30.0), glm::dvec3(30.0)};
-        setup.azimuthDeg = az;
-        setup.elevationDeg = el;
-        const Camera camera(setup, 384, 384);
+        const Camera camera = cubeCamera(30.0, az, el);
         SilhouetteSettings settings;
         settings.isoReal = 150.0;
         settings.testAlongSegment = true;
@@ -564,6 +570,50 @@ TEST_P(RayCastBackend, VisibilityOffIsASupersetOfOn) {
                     ASSERT_TRUE(off.lines.get(x, y)) << x << "," << y;
                 }
         EXPECT_EQ(on.segments, off.segments);
+    }
+}
+
+// The endpoint rule's spans, and the pixels a span draws: a part of the segment's own line.
+TEST(SegmentSpan, EndpointRuleDrawsTheHalfNextToTheSeenEndpoint) {
+    kernels::SegmentSpan span;
+    EXPECT_FALSE(kernels::drawnSpanOfSegment(false, false, span));
+    ASSERT_TRUE(kernels::drawnSpanOfSegment(true, true, span));
+    EXPECT_EQ(span.from, 0.0);
+    EXPECT_EQ(span.to, 1.0);
+    ASSERT_TRUE(kernels::drawnSpanOfSegment(true, false, span));
+    EXPECT_EQ(span.from, 0.0);
+    EXPECT_EQ(span.to, 0.5);
+    ASSERT_TRUE(kernels::drawnSpanOfSegment(false, true, span));
+    EXPECT_EQ(span.from, 0.5);
+    EXPECT_EQ(span.to, 1.0);
+
+    using Pixels = std::vector<std::pair<int, int>>;
+    auto pixelsOf = [](glm::dvec2 a, glm::dvec2 b, kernels::SegmentSpan part) {
+        Pixels pixels;
+        kernels::forEachLinePixel(
+            a, b, 64, 64, [&](int x, int y) { pixels.emplace_back(x, y); }, part);
+        return pixels;
+    };
+    for (const auto& [a, b] : {std::pair{glm::dvec2(3.2, 4.7), glm::dvec2(20.9, 11.1)},
+                               {glm::dvec2(40.5, 2.5), glm::dvec2(33.1, 29.8)},
+                               {glm::dvec2(10.0, 10.0), glm::dvec2(10.4, 10.2)}}) {
+        const Pixels whole = pixelsOf(a, b, {});
+        const Pixels first = pixelsOf(a, b, {0.0, 0.5});
+        const Pixels second = pixelsOf(a, b, {0.5, 1.0});
+        ASSERT_FALSE(first.empty());
+        ASSERT_FALSE(second.empty());
+        EXPECT_EQ(first.front(), whole.front()); // the half next to a holds a's pixel ...
+        EXPECT_EQ(second.back(), whole.back());  // ... the other b's
+        Pixels line = whole;
+        line.erase(std::unique(line.begin(), line.end()), line.end());
+        Pixels joined = first;
+        joined.insert(joined.end(), second.begin(), second.end());
+        joined.erase(std::unique(joined.begin(), joined.end()), joined.end());
+        EXPECT_EQ(joined, line); // the halves' steps are the line's, the middle one in both
+        if (whole.size() > 4) {
+            EXPECT_LT(first.size(), whole.size());
+            EXPECT_LT(second.size(), whole.size());
+        }
     }
 }
 
@@ -739,6 +789,54 @@ TEST_P(RayCastBackend, ThickSliceOutlineAgreesWithMethod3) {
 // closed at the border. Seen from above or below, the far rim of a cap lies behind the ball: the
 // terrace contours next to it must stay hidden, although their neighbour ray, one pixel outward,
 // starts outside the grid (it enters through the cap).
+// A plastic sheet as a stereotactic frame's plates are: 2 mm thick, 40 x 40 mm, edges a voxel
+// soft, seen nearly edge-on. Rays from its rim graze its faces, and some endpoints' rays are
+// blocked where the points beside them are seen. The endpoint test must draw what the test along
+// the segments draws, to within a pixel: with only segments whose two endpoints are seen drawn, it
+// covered 0.95, 0.75 and 0.97 of it at the first three views; with the half next to a seen endpoint
+// drawn (kernels::drawnSpanOfSegment), all of it.
+//
+// Both tests still miss a part of the far rim at grazing views that method 3 draws (recall 0.60
+// at -3,45, 0.85 at 1,30): a ray that runs along the face for many cells is blocked beyond the
+// neighbour ray's reach (RayVisibilityRule). Not checked here.
+volume::Volume thinSheet() {
+    const glm::ivec3 dims(64, 64, 64);
+    volume::Volume v(dims, volume::VoxelType::Float32,
+                     volume::VolumeGeometry::regular(glm::dvec3(-31.5), glm::dvec3(1.0)));
+    float* voxels = v.dataAs<float>();
+    const glm::dvec3 half(1.0, 20.0, 20.0);
+    for (int z = 0; z < dims.z; ++z)
+        for (int y = 0; y < dims.y; ++y)
+            for (int x = 0; x < dims.x; ++x) {
+                const glm::dvec3 outside = glm::abs(glm::dvec3(x, y, z) - 31.5) - half;
+                const double distance = std::max({outside.x, outside.y, outside.z});
+                const double inside = std::clamp(0.5 - distance, 0.0, 1.0);
+                voxels[std::size_t(x) + std::size_t(dims.x) * (y + std::size_t(dims.y) * z)] =
+                    float(1000.0 * inside);
+            }
+    return v;
+}
+
+TEST_P(RayCastBackend, EndpointTestDrawsWhatTheAlongSegmentTestDraws) {
+    const volume::Volume v = thinSheet();
+    const auto owned = make(SilhouetteMethod::RayCastVisibility);
+    SilhouetteRenderer& renderer = *owned;
+    renderer.setVolume(v);
+    for (const auto& [az, el] : {std::pair{-3.0, 45.0}, {1.0, 30.0}, {0.5, 10.0}, {0.0, 0.0}}) {
+        const Camera camera = cubeCamera(32.0, az, el);
+        SilhouetteSettings settings;
+        settings.isoReal = 500.0;
+        settings.testAlongSegment = true;
+        const PixelMask along = renderer.render(camera, settings).lines;
+        settings.testAlongSegment = false;
+        const PixelMask endpoints = renderer.render(camera, settings).lines;
+        const ContourScore score = scoreContours(endpoints, along, 1);
+        EXPECT_GT(score.truePixels, 200u) << az << "," << el;
+        EXPECT_GE(score.recall, 0.99) << az << "," << el;    // along's pixels the endpoints draw
+        EXPECT_GE(score.precision, 0.99) << az << "," << el; // and the other way
+    }
+}
+
 TEST_P(RayCastBackend, CutThickSliceBallHidesTheFarRimOfItsCap) {
     const volume::Volume v = thickSliceBall(6);
     for (const auto& [az, el] :

@@ -223,19 +223,23 @@ testRepresentatives(RayVisibility<T> rule, View view, const SegmentEndpoints* se
     }
 }
 
-// Phase 3: rasterizeLine's pixels of every segment drawn (all, or those with both endpoints
-// visible: each endpoint's flag is its representative's).
+// Phase 3: rasterizeLine's pixels of every segment drawn (all, or the part that its endpoints'
+// visibility gives, drawnSpanOfSegment: each endpoint's flag is its representative's).
 __global__ void drawSegments(View view, const SegmentEndpoints* segments, std::uint32_t count,
                              const std::uint8_t* visible, const std::uint32_t* representative,
                              std::uint8_t* mask) {
     const std::uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
-    if (i >= count ||
-        (visible && !(visible[representative[2 * i]] && visible[representative[2 * i + 1]])))
+    if (i >= count)
+        return;
+    SegmentSpan span;
+    if (visible && !drawnSpanOfSegment(visible[representative[2 * i]] != 0,
+                                       visible[representative[2 * i + 1]] != 0, span))
         return;
     const int width = view.camera.width;
-    forEachLinePixel(pixelOf(view.camera, segments[i].a), pixelOf(view.camera, segments[i].b),
-                     width, view.camera.height,
-                     [&](int x, int y) { mask[std::size_t(y) * std::size_t(width) + x] = 1; });
+    forEachLinePixel(
+        pixelOf(view.camera, segments[i].a), pixelOf(view.camera, segments[i].b), width,
+        view.camera.height,
+        [&](int x, int y) { mask[std::size_t(y) * std::size_t(width) + x] = 1; }, span);
 }
 
 // The along-segment rule instead of phases 2 and 3: one thread per segment tests every pixel step

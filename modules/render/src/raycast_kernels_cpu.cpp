@@ -2,6 +2,7 @@
 
 #include "lw/core/error.h"
 #include "lw/core/parallel.h"
+#include "lw/kernels/pixel_camera.h"
 #include "lw/kernels/voxel_ray_walk.h"
 #include "lw/render/line_raster.h"
 #include "lw/volume/bricks.h"
@@ -96,9 +97,21 @@ void CpuRayCastKernels::testVisibility(const Camera& camera, const SilhouetteSet
                     lines.push_back(pixelOf(a));
                     lines.push_back(pixelOf(b));
                 } else if (!settings.testAlongSegment) {
-                    if (memo.visible(segment.a, visibleOf) && memo.visible(segment.b, visibleOf)) {
+                    kernels::SegmentSpan span;
+                    if (!kernels::drawnSpanOfSegment(memo.visible(segment.a, visibleOf),
+                                                     memo.visible(segment.b, visibleOf), span))
+                        continue;
+                    if (span.from == 0.0 && span.to == 1.0) {
                         lines.push_back(pixelOf(a));
                         lines.push_back(pixelOf(b));
+                    } else {
+                        kernels::forEachLinePixel(
+                            glm::dvec2(pixelOf(a)), glm::dvec2(pixelOf(b)), camera.width(),
+                            camera.height(),
+                            [&](int x, int y) {
+                                dots.push_back({x, y});
+                            },
+                            span);
                     }
                 } else {
                     // One test per step of rasterizeLine (at most a pixel apart), with its own

@@ -18,8 +18,10 @@ namespace lw::render {
 // which ran the last frame).
 //
 // Visibility rules:
-//   endpoint-only (the paper): a segment is drawn when both of its endpoints are visible, so
-//     segments that run behind an occluder drop out whole (the paper's broken lines);
+//   endpoint-only (the default): a segment is drawn whole when both of its endpoints are
+//     visible (the paper's rule), not at all when neither is, and in the half next to the
+//     visible endpoint when one is (kernels::drawnSpanOfSegment): the paper's rule broke a
+//     contour at every endpoint whose ray grazes noise or a sheet's face;
 //   settings.testAlongSegment: the point under every step of the line rasterizer (at most one
 //     pixel apart, endpoints included) is tested and only the pixels of visible steps are drawn,
 //     so the visible pieces are exactly part of the line drawn with visibility off.
