@@ -32,6 +32,7 @@ TEST(QualityCommand, JsonRowOfOneViewOfTheDemo) {
     const std::string json = compact(r.out);
     EXPECT_NE(json.find(R"("rows":[{"view":[30,20],)"), std::string::npos) << json;
     EXPECT_EQ(numberOf(json, "min_stroke_px"), 10.0) << "render's default pruning";
+    EXPECT_NE(json.find(R"("method2_test":"along")"), std::string::npos) << json;
     EXPECT_GT(numberOf(json, "outline_pixels"), 300.0);
     EXPECT_GT(numberOf(json, "line_pixels_m3"), 300.0);
     for (const char* key : {"outline_coverage_m3", "outline_coverage_m2", "agreement_23",
@@ -71,6 +72,21 @@ TEST(QualityCommand, TableOverTwoViewsHasWorstMedianAndGoals) {
     EXPECT_NE(r.out.find("\nmedian "), std::string::npos);
     EXPECT_NE(r.out.find("goal cov3 >= 0.98 at "), std::string::npos);
     EXPECT_NE(r.out.find("goal 2~3 >= 0.95 at "), std::string::npos);
+}
+
+// Method 2 measured as the review draws it by default: its endpoint test, said in the output.
+TEST(QualityCommand, Method2CanBeMeasuredWithItsEndpointTest) {
+    const std::string command = "quality " + demo() + " --iso 400 --view 30,20 --size 256x256 ";
+    const CliResult json = runCli(command + "--method2-test endpoints --json");
+    ASSERT_EQ(json.exitCode, 0) << json.out << json.err;
+    const std::string compacted = compact(json.out);
+    EXPECT_NE(compacted.find(R"("method2_test":"endpoints")"), std::string::npos) << compacted;
+    EXPECT_GT(numberOf(compacted, "agreement_23"), 0.9);
+    const CliResult table = runCli(command + "--method2-test endpoints");
+    ASSERT_EQ(table.exitCode, 0) << table.out << table.err;
+    EXPECT_NE(table.out.find("method 2 tested at the segments' endpoints"), std::string::npos)
+        << table.out;
+    EXPECT_EQ(runCli(command + "--method2-test sometimes").exitCode, 2);
 }
 
 TEST(QualityCommand, NoSurfaceIsAnErrorNotAPass) {

@@ -135,7 +135,29 @@ TEST(RenderCommand, RejectsBadRequests) {
     EXPECT_EQ(runCli("render phantom:32 --method 3 -o '" + out.string() + "'"), 2)
         << "--iso is required";
     EXPECT_EQ(runCli("render /nonexistent/volume.nrrd --iso 300.5 -o '" + out.string() + "'"), 1);
+    EXPECT_EQ(
+        runCli("render phantom:32 --iso 300.5 --visibility sometimes -o '" + out.string() + "'"),
+        2);
     EXPECT_FALSE(std::filesystem::exists(out));
+}
+
+// Method 2's visibility tests: at the ends of each segment (--visibility on, the default) and
+// along it draw nearly the same lines, both fewer than with visibility off.
+TEST(RenderCommand, Method2VisibilityAlongTheSegments) {
+    std::size_t dark[3] = {};
+    const char* const tests[] = {"on", "along", "off"};
+    for (int i = 0; i < 3; ++i) {
+        const auto out = outputPath(std::string("method2_") + tests[i] + ".png");
+        ASSERT_EQ(runCli("render phantom:64 --iso 300.5 --method 2 --size 256x256 --view 30,20 "
+                         "--backend cpu --visibility " +
+                         std::string(tests[i]) + " -o '" + out.string() + "'"),
+                  0)
+            << tests[i];
+        dark[i] = darkPixels(lw::core::readPng(out), 0, 256);
+    }
+    EXPECT_GT(dark[0], 100u);
+    EXPECT_NEAR(double(dark[1]), double(dark[0]), 0.05 * double(dark[0]));
+    EXPECT_LT(dark[1], dark[2]);
 }
 
 // What a command prints on stderr (runCli drops it) and its exit code.
