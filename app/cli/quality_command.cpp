@@ -104,7 +104,7 @@ void writeViewImages(const std::filesystem::path& dir, const View& view,
 }
 
 // One view: method 3 first (its mesh is the one the shaded panel shows, as in the review), the
-// panel's foreground from its depth buffer, then methods 2 (along-segment test) and 1.
+// panel's foreground from its depth buffer, then methods 2 (--method2-test) and 1.
 ViewQuality measureView(Renderers& renderers, const Options& options, const View& view) {
     render::CameraSetup setup = options.setup;
     setup.azimuthDeg = view.azimuthDeg;
@@ -124,9 +124,9 @@ ViewQuality measureView(Renderers& renderers, const Options& options, const View
     unpruned.minStrokePixels = 0;
     const render::PixelMask speckled = renderers[3]->render(camera, unpruned).lines;
 
-    render::SilhouetteSettings along = settings;
-    along.testAlongSegment = options.method2AlongSegment;
-    lines[2] = renderers[2]->render(camera, along).lines;
+    render::SilhouetteSettings method2 = settings;
+    method2.testAlongSegment = options.method2AlongSegment;
+    lines[2] = renderers[2]->render(camera, method2).lines;
     if (renderers[1])
         lines[1] = renderers[1]->render(camera, settings).lines;
 

@@ -13,8 +13,7 @@ namespace lw::kernels {
 
 struct PixelCamera {
     glm::dvec3 eye{0.0}, right{1, 0, 0}, up{0, 1, 0}, forward{0, 0, 1};
-    double halfWidth = 1.0,
-           halfHeight = 1.0; // ortho: half extents; perspective: tan of half angles
+    double halfWidth = 1.0, halfHeight = 1.0; // ortho: half extents; perspective: tan of half angles
     int width = 0, height = 0;
     bool orthographic = false;
 };
