@@ -409,9 +409,10 @@ std::vector<std::string> parseChoiceList(const std::string& text, const std::str
 namespace {
 
 const std::set<std::string> kBenchOptions = {
-    "sizes",  "input",      "iso",      "backend",    "methods",        "variants",
-    "modes",  "repeat",     "image",    "threads",    "peak-memory-of", "gpu-budget",
-    "border", "min-stroke", "gradient", "oversample", "thick-slices",   kMaxVolumeOption};
+    "sizes",          "input",        "iso",        "backend",       "methods",
+    "variants",       "modes",        "repeat",     "image",         "threads",
+    "peak-memory-of", "gpu-budget",   "border",     "min-stroke",    "gradient",
+    "oversample",     "thick-slices", "thin-walls", kMaxVolumeOption};
 
 // What to run: methods, variants, modes, repeat, image, threads, budget; --peak-memory-of
 // narrows it to one configuration (returned in `peakMethod`).
@@ -508,6 +509,7 @@ void writeJsonReport(const Plan& plan, const BenchResult& result, std::ostream& 
     writer.field("gradient", render::gradientStencilName(plan.gradientStencil));
     writer.field("oversample", render::oversamplingName(plan.sampling.oversampling));
     writer.field("thick_slices", render::thickSlicesName(plan.sampling.thickSlices));
+    writer.field("thin_walls_mm", plan.sampling.thinWallMm);
     writer.key("notes").beginArray();
     for (const std::string& note : result.notes)
         writer.value(note);
@@ -536,12 +538,13 @@ void writeTextReport(const Plan& plan, const BenchResult& result, std::ostream& 
     std::snprintf(line, sizeof line,
                   "bench: view az %g el %g perspective (+%g deg per run), image %dx%d, median of "
                   "%d runs after a warm-up; border %s, min stroke %d px, gradient %s, "
-                  "oversample %s, thick slices %s\n",
+                  "oversample %s, thick slices %s, thin walls %g mm\n",
                   kAzimuthDeg, kElevationDeg, kViewStepDeg, plan.image.x, plan.image.y, plan.repeat,
                   plan.closeAtBorder ? "closed" : "open", plan.minStrokePixels,
                   render::gradientStencilName(plan.gradientStencil).data(),
                   render::oversamplingName(plan.sampling.oversampling).data(),
-                  render::thickSlicesName(plan.sampling.thickSlices).data());
+                  render::thickSlicesName(plan.sampling.thickSlices).data(),
+                  plan.sampling.thinWallMm);
     out << line;
     std::snprintf(line, sizeof line,
                   "%-6s %-7s %-4s %-4s %-5s %-14s %9s %9s %10s %9s %8s %8s %8s %8s\n", "method",

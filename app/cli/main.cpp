@@ -68,7 +68,7 @@ commands:
   thick-slices INPUT [--series UID] --iso HU [--average N | --thick PATH [--thick-series UID]]
           [--method 1|2|3] [--views sweep|N | --view AZ,EL] [--size WxH] [--backend ..]
           [--threads N] [--min-stroke PX] [--images DIR] [--save-thick OUT.nrrd] [--bound]
-          [--json]
+          [--thin-walls MM] [--json]
                               a thick-slice series drawn against its thin one (INPUT): the thick
                               one is the mean of every N thin slices (default 5, as a scanner
                               integrates) or read from PATH; at each view (default the 32 of
@@ -82,8 +82,8 @@ commands:
          [--visibility on|along|off] [--view AZ,EL] [--camera perspective|ortho] [--size WxH]
          [--panel iso|silhouette|both] [--backend cpu|cuda|auto] [--repeat N] [--threads N]
          [--min-stroke PX] [--border closed|open] [--gradient central|smoothed]
-         [--oversample auto|off] [--thick-slices smooth|linear] [--format png|svg]
-         [--line-width PX] [--line-colour #RRGGBB] [--hidden-lines]
+         [--oversample auto|off] [--thick-slices smooth|linear] [--thin-walls MM]
+         [--format png|svg] [--line-width PX] [--line-colour #RRGGBB] [--hidden-lines]
          [--suggestive [--suggestive-threshold TAU]] -o OUT.png
                               one view as PNG (default 512x512, silhouette, method 3, view 0,0);
                               INPUT: volume file, DICOM folder/DICOMDIR or phantom:N[xNYxNZ][:sphere];
@@ -103,6 +103,10 @@ commands:
                               slice's signed distance to the iso contour, joined across the
                               slices by a monotone cubic with at least 3 samples a gap, so a
                               smooth wall slanted across the slices draws without terraces);
+                              --thin-walls MM: with smooth, walls up to MM wide (default 10; 0:
+                              none) slide straight from one slice's cut to the next one's where
+                              the cuts lie side by side, so a skull shallow to the slices does
+                              not break into one lip per slice;
                               --suggestive: suggestive contours drawn with the silhouette
                               (PNG or SVG; TAU: their derivative test, default 1);
                               SVG: the visible silhouette as paths, --line-width (default 1)
@@ -122,7 +126,7 @@ commands:
   bench [--sizes 32,256,512,512x512x1024] [--input FILE --iso HU] [--backend cpu|cuda|auto]
         [--methods mc,1,2,3] [--variants S,L] [--modes a,b] [--repeat N] [--image WxH]
         [--border closed|open] [--min-stroke PX] [--gradient central|smoothed]
-        [--oversample off|auto] [--thick-slices linear|smooth] [--peak-memory-of METHOD,VARIANT] [--gpu-budget MIB] [--json]
+        [--oversample off|auto] [--thick-slices linear|smooth] [--thin-walls MM] [--peak-memory-of METHOD,VARIANT] [--gpu-budget MIB] [--json]
                               the paper's Tables 1-4: median ms of marching cubes and of each
                               method x S/L x mode a/b x visibility on/off (default phantom
                               32,256, 1024x1024, 5 runs), stage times, peak memory (VmHWM);

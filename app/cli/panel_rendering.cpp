@@ -158,9 +158,9 @@ RenderedPanels renderPanels(render::SilhouetteRenderer& renderer, const volume::
 
 const std::set<std::string>& panelRenderOptions() {
     static const std::set<std::string> names = {
-        "iso",      "method",     "chunks",       "mode",          "visibility", "view",
-        "camera",   "size",       "backend",      "threads",       "min-stroke", "border",
-        "gradient", "oversample", "thick-slices", kMaxVolumeOption};
+        "iso",      "method",     "chunks",       "mode",       "visibility",    "view",
+        "camera",   "size",       "backend",      "threads",    "min-stroke",    "border",
+        "gradient", "oversample", "thick-slices", "thin-walls", kMaxVolumeOption};
     return names;
 }
 
@@ -189,6 +189,13 @@ render::GradientStencil parseGradientOption(const Arguments& arguments) {
     return *stencil;
 }
 
+double parseThinWalls(const Arguments& arguments, double fallback) {
+    const double thinWallMm = arguments.number("thin-walls", fallback);
+    if (!(thinWallMm >= 0.0 && thinWallMm <= 100.0))
+        throw UsageError("--thin-walls", "expected the widest wall in mm, 0 to 100 (0: none)");
+    return thinWallMm;
+}
+
 render::VolumeSampling parseVolumeSampling(const Arguments& arguments,
                                            render::VolumeSampling fallback) {
     const std::string text = arguments.option(
@@ -201,7 +208,7 @@ render::VolumeSampling parseVolumeSampling(const Arguments& arguments,
     const std::optional<render::ThickSlices> thickSlices = render::parseThickSlices(thick);
     if (!thickSlices)
         throw UsageError("--thick-slices " + thick, "expected smooth or linear");
-    return {*oversampling, *thickSlices};
+    return {*oversampling, *thickSlices, parseThinWalls(arguments, fallback.thinWallMm)};
 }
 
 render::SamplingPlan oversampleForRendering(const Arguments& arguments,

@@ -73,8 +73,11 @@ render::SamplingPlan oversampleForRendering(const Arguments& arguments,
 // What a report says of the grid drawn: "as loaded", "oversampled to WxHxD" or "shape-based
 // across thick slices, WxHxD".
 std::string samplingDescription(const render::SamplingPlan& plan, glm::ivec3 drawnDims);
-// --oversample auto|off and --thick-slices smooth|linear (defaults from `fallback`); throws
-// UsageError for another value.
+// --thin-walls MM: the widest wall slid between thick slices (render/surface_sampling.h), 0 to
+// 100 mm, `fallback` where not given.
+double parseThinWalls(const Arguments& arguments, double fallback);
+// --oversample auto|off, --thick-slices smooth|linear and --thin-walls (defaults from
+// `fallback`); throws UsageError for another value.
 render::VolumeSampling parseVolumeSampling(const Arguments& arguments,
                                            render::VolumeSampling fallback);
 // --view, --camera; the bounds are set once the volume is known (frameSurface).

@@ -20,9 +20,9 @@ namespace {
 // What only the 3D panels read: a slice has no method, camera, size of its own (its pixels are
 // the volume's finest spacing), vector form or line styling beyond the contour's colour.
 const std::vector<std::string> kSurfaceOnlyOptions = {
-    "method",     "chunks",       "mode",       "visibility",          "view",   "camera",
-    "size",       "backend",      "repeat",     "min-stroke",          "border", "gradient",
-    "oversample", "thick-slices", "line-width", "suggestive-threshold"};
+    "method",     "chunks",       "mode",       "visibility",           "view",      "camera",
+    "size",       "backend",      "repeat",     "min-stroke",           "border",    "gradient",
+    "oversample", "thick-slices", "line-width", "suggestive-threshold", "thin-walls"};
 const std::vector<std::string> kSurfaceOnlyFlags = {"suggestive", "hidden-lines"};
 
 void refuseSurfaceOptions(const Arguments& arguments) {

@@ -52,6 +52,7 @@ struct Options : ViewSweepOptions {
     int average = 5;
     std::optional<std::string> saveThick; // the thick series measured, as NRRD
     bool bound = false;
+    double thinWallMm = render::kThickSliceThinWallMm; // the smooth field's (--thin-walls)
     int candidates() const { return bound ? kCandidates : kBound; }
 };
 
@@ -72,6 +73,7 @@ Options parseOptions(const Arguments& arguments) {
         throw UsageError("--average", "makes the thick series; --thick reads one: not both");
     options.average = int(average);
     options.bound = arguments.flag("bound");
+    options.thinWallMm = parseThinWalls(arguments, render::kThickSliceThinWallMm);
     if (options.bound && options.thickInput)
         throw UsageError("--bound", "needs the thick series made here (--average), not --thick");
     options.saveThick = arguments.option("save-thick");
@@ -264,7 +266,8 @@ int runThickSlices(const std::vector<std::string>& args, std::ostream& out) {
     std::set<std::string> names = panelRenderOptions();
     names.erase("oversample");
     names.erase("thick-slices");
-    names.insert({"series", "thick", "thick-series", "average", "views", "images", "save-thick"});
+    names.insert({"series", "thick", "thick-series", "average", "views", "images", "save-thick",
+                  "thin-walls"});
     const Arguments arguments(args, {"json", "bound"}, names);
     Options options = parseOptions(arguments);
     const core::ImportLimits limits = importLimits(arguments);
@@ -277,14 +280,16 @@ int runThickSlices(const std::vector<std::string>& args, std::ostream& out) {
 
     RunInfo info;
     DrawnSeries thin{"thin", {}, nullptr, {}};
-    prepare(thin, thinLoaded, render::VolumeSampling{}, options);
+    // The thin series drawn as the workstation draws it (thick itself where its slices are).
+    prepare(thin, thinLoaded,
+            {render::Oversampling::Auto, render::ThickSlices::Smooth, options.thinWallMm}, options);
     fitToVolume(arguments, thin.volume, options.request, options.setup); // the thin surface framed
     DrawnSeries thick[kCandidates] = {
         {"linear", {}, nullptr, {}}, {"smooth", {}, nullptr, {}}, {"bound", {}, nullptr, {}}};
     prepare(thick[kLinear], thickLoaded, {render::Oversampling::Auto, render::ThickSlices::Linear},
             options);
-    prepare(thick[kSmooth], thickLoaded, {render::Oversampling::Auto, render::ThickSlices::Smooth},
-            options);
+    prepare(thick[kSmooth], thickLoaded,
+            {render::Oversampling::Auto, render::ThickSlices::Smooth, options.thinWallMm}, options);
     if (options.bound) // at the thin spacing: drawn as the thin series is
         prepare(thick[kBound], evaluation::slabMeansAtEverySlice(thinLoaded, options.average),
                 render::VolumeSampling{}, options);

@@ -91,7 +91,8 @@ TEST(ThickSlicesCommand, SavesTheThickSeries) {
 TEST(ThickSlicesCommand, RefusesBadOptions) {
     for (const char* options :
          {"--average 1", "--average 2.5", "--average 4 --thick phantom:32", "--save-thick out.png",
-          "--thick phantom:32 --bound", "--thick-slices linear", "--oversample off"}) {
+          "--thick phantom:32 --bound", "--thick-slices linear", "--oversample off",
+          "--thin-walls -1", "--thin-walls wide"}) {
         const CliResult r =
             runCli(std::string("thick-slices phantom:32:ct --iso 300 --view 0,0 ") + options);
         EXPECT_EQ(r.exitCode, 2) << options << "\n" << r.out << r.err;

@@ -15,6 +15,7 @@
 #include "lw/render/surface_sampling.h"
 #include "lw/volume/phantom.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <functional>
@@ -33,6 +34,7 @@ struct Case {
     std::string name;
     std::function<Volume()> make;
     std::vector<double> isos;
+    bool bridgesThinWalls = false; // the case's thin walls slide between slices (checked)
 };
 
 // The CT phantom's voxels on thick slices (0.5 mm pixels, 3 mm slices).
@@ -66,6 +68,19 @@ Volume tiltedUnevenSphere() {
         geometry);
 }
 
+// A thin spherical shell (2 mm, radius 30 mm) on 4 mm slices: near its poles the cuts of
+// neighbouring slices lie side by side, where the thin-wall pass slides them together.
+Volume thinShellOnThickSlices() {
+    return lw::test::makeFilledVolume<std::int16_t>(
+        {140, 130, 19},
+        [&](int x, int y, int k) {
+            const double r =
+                glm::length(glm::dvec3(x * 0.5 - 35.0, y * 0.5 - 32.0, k * 4.0 - 36.0));
+            return std::lround(1000.0 * std::clamp(1.0 - std::abs(r - 30.0), 0.0, 1.0));
+        },
+        VolumeGeometry::regular({0.0, 0.0, 0.0}, {0.5, 0.5, 4.0}));
+}
+
 // Coarse noise of type T on coarse pixels, so that the refinement splits rows and columns too.
 template <typename T> Volume coarseNoise(glm::ivec3 dims, glm::dvec3 spacing, unsigned seed) {
     std::mt19937 random(seed);
@@ -79,6 +94,7 @@ std::vector<Case> cases() {
     return {
         {"phantom int16 on 3 mm slices", thickPhantom, {300.5, -500.0, 5000.0}},
         {"tilted uneven float sphere", tiltedUnevenSphere, {0.0, 12.5}},
+        {"thin shell on 4 mm slices", thinShellOnThickSlices, {300.0}, true},
         {"uint8 noise refined in plane",
          [] {
              return coarseNoise<std::uint8_t>({40, 23, 19}, {3.0, 3.0, 12.0}, 1);
@@ -118,6 +134,15 @@ TEST_P(ThickSlicesOnDevice, MakesTheHostsFieldBitForBit) {
         const auto onDevice = device.make(sampling, iso, 1);
         ASSERT_TRUE(device.lastMadeOnDevice()) << where << ": " << device.takeNote();
         const auto onHost = volumeToRender(source, sampling, iso, 2);
+        if (GetParam().bridgesThinWalls) {
+            VolumeSampling pointwise = sampling;
+            pointwise.thinWallMm = 0.0;
+            const auto unbridged = volumeToRender(source, pointwise, iso, 2);
+            EXPECT_FALSE(std::equal(onHost->dataAs<std::int16_t>(),
+                                    onHost->dataAs<std::int16_t>() + onHost->voxelCount(),
+                                    unbridged->dataAs<std::int16_t>()))
+                << where << ": the thin walls were not slid";
+        }
         ASSERT_EQ(onDevice->dims(), onHost->dims()) << where;
         ASSERT_EQ(onDevice->voxelType(), onHost->voxelType()) << where;
         EXPECT_EQ(onDevice->valueMapping().slope, onHost->valueMapping().slope) << where;

@@ -33,6 +33,7 @@ struct ThickSliceFieldCuda::Impl {
     }
     CudaStatus distanceField(double iso, const ThickSliceFieldSetup& setup);
     CudaStatus refine(const ThickSliceFieldSetup& setup, glm::ivec3 refinedDims);
+    CudaStatus bridgeThinWalls(const ThickSliceFieldSetup& setup, glm::ivec3 refinedDims);
     CudaStatus findFaceMaxima(glm::ivec3 refinedDims);
 };
 
@@ -97,6 +98,23 @@ CudaStatus ThickSliceFieldCuda::Impl::refine(const ThickSliceFieldSetup& setup,
     return CudaStatus::success();
 }
 
+// The refined slices between each two raised to the thin walls slid between them
+// (volume/slice_bridging.h), on the refined grid as the host does it.
+CudaStatus ThickSliceFieldCuda::Impl::bridgeThinWalls(const ThickSliceFieldSetup& setup,
+                                                      glm::ivec3 refinedDims) {
+    if (setup.factors.z < 2 || !(setup.thinWallMm > 0.0) || refinedDims.x < 3 ||
+        refinedDims.y < 3 || dims.z < 2)
+        return CudaStatus::success();
+    const ThinShellSlices pair = thinShellSlices(
+        refinedDims.x, refinedDims.y, setup.spacingI / setup.factors.x,
+        setup.spacingJ / setup.factors.y, setup.stepsPerMm, setup.limitMm, setup.thinWallMm);
+    field::bridgeKernel<<<planeGrid(refinedDims.x, refinedDims.y, dims.z - 1),
+                          dim3(tuning::kPixelBlockX, tuning::kPixelBlockY), 0, stream.get()>>>(
+        refined.data(), pair, setup.factors.z);
+    LW_CUDA_LAUNCHED("thickSlices::bridge");
+    return CudaStatus::success();
+}
+
 // Queues the faces' maxima and their download on the stream (read after it is synchronised).
 CudaStatus ThickSliceFieldCuda::Impl::findFaceMaxima(glm::ivec3 refinedDims) {
     const cudaStream_t s = stream.get();
@@ -147,6 +165,7 @@ CudaStatus ThickSliceFieldCuda::make(double iso, const ThickSliceFieldSetup& set
     LW_RETURN_IF_FAILED(d.distanceTimer.stop(s));
     LW_RETURN_IF_FAILED(d.refineTimer.start(s));
     LW_RETURN_IF_FAILED(d.refine(setup, refinedDims));
+    LW_RETURN_IF_FAILED(d.bridgeThinWalls(setup, refinedDims));
     LW_RETURN_IF_FAILED(d.findFaceMaxima(refinedDims));
     LW_RETURN_IF_FAILED(d.refineTimer.stop(s));
     LW_RETURN_IF_FAILED(d.downloadTimer.start(s));

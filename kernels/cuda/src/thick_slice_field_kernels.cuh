@@ -6,6 +6,7 @@
 // Internal: CUDA types allowed.
 
 #include "lw/kernels/slice_field_rules.h"
+#include "lw/kernels/thin_shell_bridge.h"
 
 #include <cstdint>
 #include <cuda_runtime.h>
@@ -168,6 +169,32 @@ __global__ void refineKernel(const std::int16_t* field, RefineGrid g, std::int16
     }
     refined[(std::size_t(k) * std::size_t(g.outHeight) + std::size_t(y)) * std::size_t(g.outWidth) +
             std::size_t(x)] = std::int16_t(roundHalfAway(value));
+}
+
+// Per inner pixel of each gap (blockIdx.z): volume/slice_bridging.cpp's bridgeRow -- the slices
+// between the gap's two raised to the thin wall slid from one to the other. The two slices are
+// only read (no thread writes them), and each thread writes its own pixel of the slices between.
+__global__ void bridgeKernel(std::int16_t* refined, ThinShellSlices pair, int factor) {
+    const int x = int(blockIdx.x * blockDim.x + threadIdx.x);
+    const int y = int(blockIdx.y * blockDim.y + threadIdx.y);
+    if (x < 1 || y < 1 || x + 1 >= pair.width || y + 1 >= pair.height)
+        return;
+    const std::size_t plane = std::size_t(pair.width) * std::size_t(pair.height);
+    std::int16_t* lower = refined + plane * std::size_t(blockIdx.z) * std::size_t(factor);
+    ThinShellSlices slices = pair;
+    slices.lower = lower;
+    slices.upper = lower + plane * std::size_t(factor);
+    ThinShellCuts cuts{};
+    if (!thinShellCuts(slices, x, y, cuts))
+        return;
+    const std::size_t at = std::size_t(y) * std::size_t(pair.width) + std::size_t(x);
+    for (int step = 1; step < factor; ++step) {
+        const float t = float(step) / float(factor);
+        const int value = thinShellValue(slices, cuts, t);
+        std::int16_t& voxel = lower[plane * std::size_t(step) + at];
+        if (value > int(voxel))
+            voxel = std::int16_t(value);
+    }
 }
 
 // Each face's largest value of the refined field (nx x ny x nz, x fastest); blockIdx.y is the

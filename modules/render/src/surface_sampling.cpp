@@ -3,6 +3,7 @@
 #include "lw/core/error.h"
 #include "lw/core/log.h"
 #include "lw/volume/oversampling.h"
+#include "lw/volume/slice_bridging.h"
 #include "lw/volume/slice_distance.h"
 
 #if LINEWORK_CUDA
@@ -75,6 +76,7 @@ SamplingPlan samplingPlan(glm::ivec3 dims, const volume::VolumeGeometry& geometr
         plan.factors.z = std::max(plan.factors.z, kThickSliceFactor);
         plan.shapeBased = true;
         plan.alongSlices = volume::SliceInterpolation::MonotoneCubic;
+        plan.thinWallMm = sampling.thinWallMm;
     }
     return plan;
 }
@@ -140,6 +142,7 @@ void writeShapeBasedField(volume::Volume& field, const volume::Volume& source,
     volume::writeSignedSliceDistance(source, iso, distanceLimit(source), plan.factors.z, field,
                                      threads);
     volume::refineBetweenSlices(field, plan.factors.z, threads, plan.alongSlices);
+    volume::bridgeThinWalls(field, plan.factors.z, distanceLimit(source), plan.thinWallMm, threads);
     field.setValueMapping({1.0 / volume::kSliceDistanceStepsPerMm, iso});
     field.setDescription(source.description());
 }
@@ -170,6 +173,8 @@ std::optional<volume::Volume> oversampledToRender(const volume::Volume& volume,
         finer = volume::oversampled(
             volume::signedSliceDistance(volume, iso, distanceLimit(volume), threads), plan.factors,
             threads, plan.alongSlices);
+        volume::bridgeThinWalls(*finer, plan.factors.z, distanceLimit(volume), plan.thinWallMm,
+                                threads);
     } else {
         finer = volume::oversampled(volume, plan.factors, threads, plan.alongSlices);
     }

@@ -53,6 +53,7 @@ void DeviceThickSlices::makeInto(volume::Volume& field, const volume::Volume& so
     setup.stepsPerMm = volume::kSliceDistanceStepsPerMm;
     setup.factors = plan.factors;
     setup.monotoneAlongSlices = plan.alongSlices == volume::SliceInterpolation::MonotoneCubic;
+    setup.thinWallMm = plan.thinWallMm;
     std::int16_t* to = field.dataAs<std::int16_t>();
     throwIfCudaFailed(kWhere, m_field.make(iso, setup, fieldIsPageLocked ? to : nullptr));
     if (fieldIsPageLocked)

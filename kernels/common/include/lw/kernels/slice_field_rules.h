@@ -66,6 +66,14 @@ LW_HOST_DEVICE inline std::int16_t storedSliceDistance(float squaredMm, bool ins
     return std::int16_t(wholeSteps + (fraction >= 0.5 ? 1 : 0) - (fraction <= -0.5 ? 1 : 0));
 }
 
+// The stored value of a distance at the limit (storedSliceDistance's of limitMm, inside): what
+// the field holds wherever a slice has no contour within the limit.
+LW_HOST_DEVICE inline float storedSliceLimit(double limitMm, double stepsPerMm) {
+    const double scaled = limitMm * stepsPerMm;
+    const int wholeSteps = static_cast<int>(scaled);
+    return float(wholeSteps + (scaled - double(wholeSteps) >= 0.5 ? 1 : 0));
+}
+
 // Along the slices, the monotone cubic (volume/oversampling.h): Fritsch-Butland tangents (the
 // harmonic mean of the two secants where they agree in sign, else 0), written without a branch so
 // that the CPU's loop over a plane vectorises; the quotient is only used where both secants share

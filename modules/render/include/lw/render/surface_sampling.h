@@ -39,6 +39,10 @@ inline constexpr double kThickSliceOverPixel = 3.0;
 inline constexpr int kThickSliceFactor = 3;
 // The shape-based field's distance limit in slice steps (volume/slice_distance.h).
 inline constexpr double kThickSliceDistanceLimitSteps = 1.0;
+// The widest wall the shape-based field slides between thick slices (volume/slice_bridging.h):
+// a skull's, with room for the partial volume of thick slices. Measured against 6, 14 and 20 mm
+// on the thick-against-thin series (docs/BENCHMARKS.md).
+inline constexpr double kThickSliceThinWallMm = 10.0;
 
 std::string_view oversamplingName(Oversampling oversampling); // "off" | "auto"
 std::optional<Oversampling> parseOversampling(std::string_view name);
@@ -46,10 +50,12 @@ std::string_view thickSlicesName(ThickSlices thickSlices); // "linear" | "smooth
 std::optional<ThickSlices> parseThickSlices(std::string_view name);
 
 // How the methods sample a volume: the two choices above (Settings and the CLI's --oversample
-// and --thick-slices).
+// and --thick-slices), and the widest wall slid between thick slices (the CLI's --thin-walls; 0:
+// none, the shape-based field point by point).
 struct VolumeSampling {
     Oversampling oversampling = Oversampling::Auto;
     ThickSlices thickSlices = ThickSlices::Smooth;
+    double thinWallMm = kThickSliceThinWallMm;
     bool operator==(const VolumeSampling&) const = default;
 };
 // The grid as loaded: what `bench` and `accuracy` measure by default.
@@ -62,6 +68,7 @@ struct SamplingPlan {
     glm::ivec3 factors{1};
     bool shapeBased = false;
     volume::SliceInterpolation alongSlices = volume::SliceInterpolation::Linear;
+    double thinWallMm = 0.0; // walls up to this wide slide between the slices (shape-based only)
     bool asLoaded() const { return factors == glm::ivec3(1) && !shapeBased; }
     bool dependsOnIso() const { return shapeBased; }
 };

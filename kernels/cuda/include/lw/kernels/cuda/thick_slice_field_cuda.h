@@ -14,6 +14,8 @@
 //              limit on both sides)
 //   distance   per pixel: the minimum over the rows and columns within reach, stored as int16
 //   refine     per refined voxel: the slices blended along k, then j, then i
+//   bridge     per refined pixel of each gap: thin walls slid between the two slices, where
+//              thinWallMm > 0 (volume/slice_bridging.h's pass on the host)
 //   faces      per voxel of the refined field's six faces: each face's largest value
 // Public header: no CUDA types.
 
@@ -35,6 +37,7 @@ struct ThickSliceFieldSetup {
     double stepsPerMm = 128.0;             // the int16's unit: 1/stepsPerMm mm
     glm::ivec3 factors{1};                 // refinement along (i, j, k); (n - 1) * f + 1 samples
     bool monotoneAlongSlices = true;       // else linear along k (as oversampled's Linear)
+    double thinWallMm = 0.0;               // walls this wide slide between slices (0: none)
 };
 
 // Stage times of the last field and its download (CUDA events, ms; refineMs includes the faces'

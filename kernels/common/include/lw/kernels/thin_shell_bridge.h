@@ -1,0 +1,185 @@
+#pragma once
+
+// Thin walls sliding between thick slices: the arithmetic shared by the CPU
+// (volume/slice_bridging.h) and the CUDA back-end (kernels/cuda/thick_slice_field_cuda.h), so that
+// both raise the thick-slice field the same, bit for bit (every expression in the same order and
+// precision; nvcc builds without contraction).
+//
+// Where a thin wall (a skull's top) runs shallow to the slices, its cut in slice k and its cut in
+// slice k + 1 lie side by side in plane, overlapping little or not at all. Interpolating the two
+// slices' signed distances point by point is negative between the cuts at every depth, so the
+// wall breaks into one lip per slice (slits and ridge lines in the drawing). Here the cut is taken
+// to slide straight from one slice's place to the other's:
+//
+//   slice k      .....######.....     u: the line through pixel x across the nearer contour
+//                  x  |<-w0->|        (its distance gradient); each slice's cut on that line is
+//   slice k+1   ##..............      an interval [lo, hi]: the near edge at -d along the
+//               |w1|                  slice's own gradient, the far edge w (the wall's width,
+//                                     read from one sample of the same slice) beyond it.
+//
+// At depth t between the slices the interval is [(1 - t) lo0 + t lo1, (1 - t) hi0 + t hi1], and
+// x (at 0 on u) lies min(-lo, hi) inside it. The field is raised to that where it is larger,
+// never lowered, and only where both cuts are walls at most `widthMm` wide, both slices have a
+// contour within the limit and their gradients are near parallel (the same wall in both).
+
+#include "lw/kernels/host_device.h"
+#include "lw/kernels/slice_field_rules.h"
+
+#include <cstdint>
+
+namespace lw::kernels {
+
+// One pair of neighbouring slices of the thick-slice field (int16, 1/stepsPerMm mm, x fastest)
+// and what the bridge needs to know of them.
+struct ThinShellSlices {
+    const std::int16_t* lower = nullptr; // slice k
+    const std::int16_t* upper = nullptr; // slice k + 1
+    int width = 0, height = 0;
+    float pixelsPerMmI = 1.0f, pixelsPerMmJ = 1.0f;
+    float mmPerStep = 1.0f / 128.0f; // the field's unit
+    float gradientScaleI = 1.0f;     // a central difference (steps) to mm per mm, along i
+    float gradientScaleJ = 1.0f;     // and along j
+    float stepsPerMm = 128.0f;
+    float limitSteps = 0.0f; // the field's value at its distance limit (storedSliceLimit)
+    float widthMm = 0.0f;    // the widest wall bridged
+};
+
+// The slices' constants, made from the same doubles by the host code of either back-end (so the
+// floats are the same): reciprocals, so that the pixels' arithmetic multiplies.
+LW_HOST_DEVICE inline ThinShellSlices thinShellSlices(int width, int height, double spacingI,
+                                                      double spacingJ, double stepsPerMm,
+                                                      double limitMm, double widthMm) {
+    ThinShellSlices s;
+    s.width = width;
+    s.height = height;
+    s.pixelsPerMmI = float(1.0 / spacingI);
+    s.pixelsPerMmJ = float(1.0 / spacingJ);
+    s.mmPerStep = float(1.0 / stepsPerMm);
+    s.gradientScaleI = float(1.0 / (2.0 * spacingI * stepsPerMm));
+    s.gradientScaleJ = float(1.0 / (2.0 * spacingJ * stepsPerMm));
+    s.stepsPerMm = float(stepsPerMm);
+    s.limitSteps = storedSliceLimit(limitMm, stepsPerMm);
+    s.widthMm = float(widthMm);
+    return s;
+}
+
+// The two cuts' intervals on the line u through one pixel (mm along u, the pixel at 0).
+struct ThinShellCuts {
+    float lowerLo, lowerHi, upperLo, upperHi;
+};
+
+// Gradients of a signed distance have length 1; where the central difference is much shorter
+// the pixel sits on a ridge between two contours and the direction means nothing.
+inline constexpr float kThinShellMinGradient = 0.5f;
+// The two slices' gradients must be within about 30 degrees of parallel or antiparallel.
+inline constexpr float kThinShellMinAlignment = 0.866f;
+
+// The unit gradient (in-plane, mm) of one slice's distance at an inner pixel; false on a ridge.
+LW_HOST_DEVICE inline bool thinShellGradient(const std::int16_t* slice, const ThinShellSlices& s,
+                                             int x, int y, float& gx, float& gy) {
+    const int v = y * s.width + x;
+    gx = float(int(slice[v + 1]) - int(slice[v - 1])) * s.gradientScaleI;
+    gy = float(int(slice[v + s.width]) - int(slice[v - s.width])) * s.gradientScaleJ;
+    const float length = sqrtf(gx * gx + gy * gy);
+    if (!(length >= kThinShellMinGradient))
+        return false;
+    const float inverse = 1.0f / length;
+    gx = gx * inverse;
+    gy = gy * inverse;
+    return true;
+}
+
+// A slice's distance (stored units) at (fx, fy) pixels, bilinear; false outside the slice.
+LW_HOST_DEVICE inline bool thinShellSample(const std::int16_t* slice, const ThinShellSlices& s,
+                                           float fx, float fy, float& value) {
+    if (!(fx >= 0.0f && fy >= 0.0f && fx <= float(s.width - 1) && fy <= float(s.height - 1)))
+        return false;
+    const int x0 = int(fx) < s.width - 2 ? int(fx) : s.width - 2;
+    const int y0 = int(fy) < s.height - 2 ? int(fy) : s.height - 2;
+    const float u = fx - float(x0), w = fy - float(y0);
+    const int v = y0 * s.width + x0;
+    const float top = (1.0f - u) * float(slice[v]) + u * float(slice[v + 1]);
+    const float bottom = (1.0f - u) * float(slice[v + s.width]) + u * float(slice[v + s.width + 1]);
+    value = (1.0f - w) * top + w * bottom;
+    return true;
+}
+
+// One slice's cut on its own gradient's line through (x, y): the near edge at -d (mm), the far
+// edge a wall's width beyond, the width read at widthMm past the near edge (there the distance is
+// -(widthMm - wall) when the wall is thinner). False where the wall is wider or unreadable.
+LW_HOST_DEVICE inline bool thinShellCut(const std::int16_t* slice, const ThinShellSlices& s, int x,
+                                        int y, float gx, float gy, float& near, float& far) {
+    near = -float(slice[y * s.width + x]) * s.mmPerStep;
+    const float reach = near + s.widthMm;
+    float beyond;
+    if (!thinShellSample(slice, s, float(x) + reach * gx * s.pixelsPerMmI,
+                         float(y) + reach * gy * s.pixelsPerMmJ, beyond))
+        return false;
+    if (beyond > 0.0f)
+        return false; // still inside: wider than widthMm
+    const float wall = beyond * s.mmPerStep + s.widthMm;
+    far = near + (wall > 0.0f ? wall : 0.0f);
+    return true;
+}
+
+// Whether a pixel whose two slices hold lowerD and upperD (stored units) may lie in a pinch:
+// within the limit of a contour in both, and not inside both (the field is inside at every
+// depth there already).
+LW_HOST_DEVICE inline bool thinShellCandidate(float lowerD, float upperD, float limitSteps) {
+    return !(lowerD >= 0.0f && upperD >= 0.0f) && fabsf(lowerD) < limitSteps &&
+           fabsf(upperD) < limitSteps;
+}
+
+// Both cuts on the nearer slice's gradient line through the inner pixel (x, y): the other
+// slice's interval flips where its gradient points the other way. False where the pixel is not
+// between two thin cuts of one wall within the limit: either slice has no contour near, a
+// gradient is undefined (a ridge) or the two are not near parallel (not one wall), the pixel is
+// outside both cuts on the same side of them (the field already moves the near faces straight
+// there), or a wall is wider than widthMm.
+LW_HOST_DEVICE inline bool thinShellCuts(const ThinShellSlices& s, int x, int y,
+                                         ThinShellCuts& cuts) {
+    const int v = y * s.width + x;
+    const float lowerD = float(s.lower[v]), upperD = float(s.upper[v]);
+    if (!thinShellCandidate(lowerD, upperD, s.limitSteps))
+        return false;
+    float lgx, lgy, ugx, ugy;
+    if (!thinShellGradient(s.lower, s, x, y, lgx, lgy) ||
+        !thinShellGradient(s.upper, s, x, y, ugx, ugy))
+        return false;
+    const float alignment = lgx * ugx + lgy * ugy;
+    if (!(fabsf(alignment) >= kThinShellMinAlignment))
+        return false;
+    const bool flip = alignment < 0.0f;
+    if (!flip && lowerD < 0.0f && upperD < 0.0f)
+        return false;
+    float lowerNear, lowerFar, upperNear, upperFar;
+    if (!thinShellCut(s.lower, s, x, y, lgx, lgy, lowerNear, lowerFar) ||
+        !thinShellCut(s.upper, s, x, y, ugx, ugy, upperNear, upperFar))
+        return false;
+    if (fabsf(lowerD) <= fabsf(upperD)) {
+        cuts.lowerLo = lowerNear;
+        cuts.lowerHi = lowerFar;
+        cuts.upperLo = flip ? -upperFar : upperNear;
+        cuts.upperHi = flip ? -upperNear : upperFar;
+    } else {
+        cuts.upperLo = upperNear;
+        cuts.upperHi = upperFar;
+        cuts.lowerLo = flip ? -lowerFar : lowerNear;
+        cuts.lowerHi = flip ? -lowerNear : lowerFar;
+    }
+    return true;
+}
+
+// The stored value the slid interval gives the pixel at depth t (0 < t < 1), within the limit.
+LW_HOST_DEVICE inline int thinShellValue(const ThinShellSlices& s, const ThinShellCuts& cuts,
+                                         float t) {
+    const float lo = (1.0f - t) * cuts.lowerLo + t * cuts.upperLo;
+    const float hi = (1.0f - t) * cuts.lowerHi + t * cuts.upperHi;
+    const float inside = -lo < hi ? -lo : hi;
+    const float steps = inside * s.stepsPerMm;
+    const float limited =
+        steps < s.limitSteps ? (steps > -s.limitSteps ? steps : -s.limitSteps) : s.limitSteps;
+    return roundHalfAway(limited);
+}
+
+} // namespace lw::kernels

@@ -1,0 +1,121 @@
+// Thin walls sliding between thick slices (volume/slice_bridging.h): where a thin wall's cuts in
+// two slices lie side by side, the shape-based field pinches it to nothing between them; the
+// pass raises the slices between to the wall slid straight from one cut to the other.
+#include "filled_volume.h"
+#include "lw/core/error.h"
+#include "lw/volume/oversampling.h"
+#include "lw/volume/slice_bridging.h"
+#include "lw/volume/slice_distance.h"
+#include "lw/volume/volume.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <gtest/gtest.h>
+
+namespace lw::volume {
+namespace {
+
+constexpr double kIso = 300.0;
+constexpr double kPixelMm = 0.5;
+constexpr double kSliceMm = 5.0;
+constexpr double kLimitMm = kSliceMm; // one slice step, as the renderer limits it
+constexpr double kThinWallMm = 6.0;
+constexpr int kFactor = 4;
+
+// Three slices of a wall along j, `widthMm` wide, its centre at 10 mm in slice 0 and `shiftMm`
+// further along i in each next slice (a wall slanted across the slices), bone (1000) inside,
+// water outside, with a pixel of partial volume at each edge.
+Volume slantedWall(double widthMm, double shiftMm) {
+    return lw::test::makeFilledVolume<std::int16_t>(
+        {96, 8, 3},
+        [&](int i, int, int k) {
+            const double centre = 10.0 + shiftMm * k;
+            const double inside = std::clamp(
+                0.5 + (0.5 * widthMm - std::abs(i * kPixelMm - centre)) / kPixelMm, 0.0, 1.0);
+            return std::lround(1000.0 * inside);
+        },
+        VolumeGeometry::regular({0, 0, 0}, {kPixelMm, kPixelMm, kSliceMm}));
+}
+
+// The shape-based field of `slices`, refined kFactor times along k: what the renderer draws
+// before the bridge.
+Volume refinedField(const Volume& slices) {
+    Volume field({slices.dims().x, slices.dims().y, (slices.dims().z - 1) * kFactor + 1},
+                 VoxelType::Int16, slices.geometry().refined({1, 1, kFactor}, slices.dims().z));
+    writeSignedSliceDistance(slices, kIso, kLimitMm, kFactor, field, 1);
+    refineBetweenSlices(field, kFactor, 1, SliceInterpolation::MonotoneCubic);
+    return field;
+}
+
+double mm(const Volume& field, double iMm, int refinedSlice) {
+    return field.dataAs<std::int16_t>()[field.index(int(std::lround(iMm / kPixelMm)), 4,
+                                                    refinedSlice)] /
+           kSliceDistanceStepsPerMm;
+}
+
+TEST(SliceBridging, SlidesAThinWallAcrossTheGapBetweenItsCuts) {
+    // 2 mm wide, 5 mm further each slice: the cuts do not overlap.
+    const Volume pointwise = refinedField(slantedWall(2.0, 5.0));
+    Volume bridged = pointwise.clone();
+    bridgeThinWalls(bridged, kFactor, kLimitMm, kThinWallMm, 1);
+    // The iso contour runs 0.2 mm outside each edge (300 of the rim's 0-500 ramp over half a
+    // millimetre): the cut is 2.4 mm wide. Half-way between slices 0 and 1 the wall lies at
+    // 11.3-13.7 mm. Point by point the field is outside there at every depth (the pinch);
+    // bridged, the wall's middle is 1.2 mm inside.
+    EXPECT_LT(mm(pointwise, 12.5, kFactor / 2), 0.0);
+    EXPECT_NEAR(mm(bridged, 12.5, kFactor / 2), 1.2, 0.05);
+    EXPECT_NEAR(mm(bridged, 11.0, kFactor / 2), -0.3, 0.05);
+    EXPECT_NEAR(mm(bridged, 14.0, kFactor / 2), -0.3, 0.05);
+    // A quarter of the way, 10.05-12.45 mm (the pixel at 11.5 mm 0.95 mm inside); between
+    // slices 1 and 2 the same as between 0 and 1, 5 mm on.
+    EXPECT_NEAR(mm(bridged, 11.5, 1), 0.95, 0.05);
+    EXPECT_NEAR(mm(bridged, 17.5, kFactor + kFactor / 2), 1.2, 0.05);
+    // Far from the wall (beyond the limit) nothing changes.
+    EXPECT_EQ(mm(bridged, 40.0, kFactor / 2), mm(pointwise, 40.0, kFactor / 2));
+}
+
+TEST(SliceBridging, NeverLowersTheFieldAndLeavesTheSlicesAsTheyAre) {
+    const Volume pointwise = refinedField(slantedWall(2.0, 5.0));
+    Volume bridged = pointwise.clone();
+    bridgeThinWalls(bridged, kFactor, kLimitMm, kThinWallMm, 2);
+    const std::int16_t* before = pointwise.dataAs<std::int16_t>();
+    const std::int16_t* after = bridged.dataAs<std::int16_t>();
+    const std::size_t plane = std::size_t(pointwise.dims().x) * std::size_t(pointwise.dims().y);
+    std::size_t raised = 0;
+    for (std::size_t v = 0; v < pointwise.voxelCount(); ++v) {
+        ASSERT_GE(after[v], before[v]) << "voxel " << v;
+        if ((v / plane) % kFactor == 0) {
+            ASSERT_EQ(after[v], before[v]) << "slice voxel " << v;
+        }
+        raised += after[v] > before[v] ? 1 : 0;
+    }
+    EXPECT_GT(raised, 0u);
+}
+
+TEST(SliceBridging, LeavesWallsWiderThanTheLimitAlone) {
+    // 8 mm wide, 4 mm further each slice: a wide wall, which the pointwise field already moves
+    // straight (the cuts overlap); and the thin wall bridged with a width of 0 (off).
+    const Volume wide = refinedField(slantedWall(8.0, 4.0));
+    Volume bridged = wide.clone();
+    bridgeThinWalls(bridged, kFactor, kLimitMm, kThinWallMm, 1);
+    EXPECT_TRUE(std::equal(wide.dataAs<std::int16_t>(),
+                           wide.dataAs<std::int16_t>() + wide.voxelCount(),
+                           bridged.dataAs<std::int16_t>()));
+    const Volume thin = refinedField(slantedWall(2.0, 5.0));
+    Volume off = thin.clone();
+    bridgeThinWalls(off, kFactor, kLimitMm, 0.0, 1);
+    EXPECT_TRUE(std::equal(thin.dataAs<std::int16_t>(),
+                           thin.dataAs<std::int16_t>() + thin.voxelCount(),
+                           off.dataAs<std::int16_t>()));
+}
+
+TEST(SliceBridging, RefusesAFieldOfAnotherTypeOrSliceCount) {
+    Volume floats({8, 8, 9}, VoxelType::Float32);
+    EXPECT_THROW(bridgeThinWalls(floats, kFactor, kLimitMm, kThinWallMm), core::Error);
+    Volume uneven({8, 8, 8}, VoxelType::Int16);
+    EXPECT_THROW(bridgeThinWalls(uneven, kFactor, kLimitMm, kThinWallMm), core::Error);
+}
+
+} // namespace
+} // namespace lw::volume
