@@ -1,13 +1,14 @@
 #pragma once
 
 // The thick-slice field on the device: per slice the signed distance to its iso contour, then
-// refined along the slices by the monotone cubic (and in-plane linearly) -- the int16 volume that
-// lw::volume's signedSliceDistance followed by oversampled(..., MonotoneCubic) makes on the host,
-// bit for bit (kernels/slice_field_rules.h holds the shared arithmetic).
+// refined along the slices by the monotone cubic (and in-plane linearly), thin walls slid between
+// the slices -- the int16 volume that lw::volume's signedSliceDistance, oversampled(...,
+// MonotoneCubic) and bridgeThinWalls make on the host, bit for bit (kernels/slice_field_rules.h
+// and kernels/thin_shell_bridge.h hold the shared arithmetic).
 //
 // The field depends on the iso-value, so on the host a new iso-value costs a new field (the
 // distance transform of every slice and the refinement of the whole copy). Here the slices are
-// uploaded once per volume and each iso-value costs four kernels and one download:
+// uploaded once per volume and each iso-value costs up to six kernels and one download:
 //   above      per source voxel: the real value less the iso-value (float)
 //   nearest    per pixel: the nearest crossing along its row and along its column (a window as
 //              wide as the limit reaches, plus one pixel: crossings further away are beyond the
@@ -40,8 +41,8 @@ struct ThickSliceFieldSetup {
     double thinWallMm = 0.0;               // walls this wide slide between slices (0: none)
 };
 
-// Stage times of the last field and its download (CUDA events, ms; refineMs includes the faces'
-// maxima).
+// Stage times of the last field and its download (CUDA events, ms; refineMs includes the bridge
+// and the faces' maxima).
 struct ThickSliceFieldTimes {
     double distanceMs = 0.0, refineMs = 0.0, downloadMs = 0.0;
     double totalMs() const { return distanceMs + refineMs + downloadMs; }
