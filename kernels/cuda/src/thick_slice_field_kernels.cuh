@@ -187,14 +187,8 @@ __global__ void bridgeKernel(std::int16_t* refined, ThinShellSlices pair, int fa
     ThinShellCuts cuts{};
     if (!thinShellCuts(slices, x, y, cuts))
         return;
-    const std::size_t at = std::size_t(y) * std::size_t(pair.width) + std::size_t(x);
-    for (int step = 1; step < factor; ++step) {
-        const float t = float(step) / float(factor);
-        const int value = thinShellValue(slices, cuts, t);
-        std::int16_t& voxel = lower[plane * std::size_t(step) + at];
-        if (value > int(voxel))
-            voxel = std::int16_t(value);
-    }
+    raiseToSlidWall(lower + plane, plane, std::size_t(y) * std::size_t(pair.width) + std::size_t(x),
+                    factor, slices, cuts);
 }
 
 // Each face's largest value of the refined field (nx x ny x nz, x fastest); blockIdx.y is the

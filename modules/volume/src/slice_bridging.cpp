@@ -18,15 +18,8 @@ void bridgeRow(const kernels::ThinShellSlices& slices, std::int16_t* between, st
     const std::size_t row = std::size_t(y) * std::size_t(slices.width);
     for (int x = 1; x + 1 < slices.width; ++x) {
         kernels::ThinShellCuts cuts{};
-        if (!kernels::thinShellCuts(slices, x, y, cuts))
-            continue;
-        for (int step = 1; step < factor; ++step) {
-            const float t = float(step) / float(factor);
-            const int value = kernels::thinShellValue(slices, cuts, t);
-            std::int16_t& voxel = between[plane * std::size_t(step - 1) + row + std::size_t(x)];
-            if (value > int(voxel))
-                voxel = std::int16_t(value);
-        }
+        if (kernels::thinShellCuts(slices, x, y, cuts))
+            kernels::raiseToSlidWall(between, plane, row + std::size_t(x), factor, slices, cuts);
     }
 }
 

@@ -53,25 +53,27 @@ LW_HOST_DEVICE inline float stepTerm(float scale, int steps) {
     return scale * float(steps * steps);
 }
 
-// The stored int16 of a distance: mm limited to `limitMm`, signed (+ inside), in
-// 1/stepsPerMm mm, rounded half away from zero (std::lround's rule). The whole part is taken as
-// an int (limitMm * stepsPerMm is at most 32767, so it is exact), which a CPU vectorises.
+// Steps rounded half away from zero (std::lround's rule). The whole part is taken as an int
+// (the field's values are at most 32767 steps, so it is exact), which a CPU vectorises.
+LW_HOST_DEVICE inline int roundedSteps(double scaled) {
+    const int wholeSteps = static_cast<int>(scaled);
+    const double fraction = scaled - double(wholeSteps);
+    return wholeSteps + (fraction >= 0.5 ? 1 : 0) - (fraction <= -0.5 ? 1 : 0);
+}
+
+// The stored int16 of a distance: mm limited to `limitMm` (limitMm * stepsPerMm is at most
+// 32767), signed (+ inside), in 1/stepsPerMm mm, rounded by roundedSteps.
 LW_HOST_DEVICE inline std::int16_t storedSliceDistance(float squaredMm, bool inside, double limitMm,
                                                        double stepsPerMm) {
     const double mm = double(sqrtf(squaredMm));
     const double limited = mm < limitMm ? mm : limitMm;
-    const double scaled = (inside ? limited : -limited) * stepsPerMm;
-    const int wholeSteps = static_cast<int>(scaled);
-    const double fraction = scaled - double(wholeSteps);
-    return std::int16_t(wholeSteps + (fraction >= 0.5 ? 1 : 0) - (fraction <= -0.5 ? 1 : 0));
+    return std::int16_t(roundedSteps((inside ? limited : -limited) * stepsPerMm));
 }
 
 // The stored value of a distance at the limit (storedSliceDistance's of limitMm, inside): what
 // the field holds wherever a slice has no contour within the limit.
 LW_HOST_DEVICE inline float storedSliceLimit(double limitMm, double stepsPerMm) {
-    const double scaled = limitMm * stepsPerMm;
-    const int wholeSteps = static_cast<int>(scaled);
-    return float(wholeSteps + (scaled - double(wholeSteps) >= 0.5 ? 1 : 0));
+    return float(roundedSteps(limitMm * stepsPerMm));
 }
 
 // Along the slices, the monotone cubic (volume/oversampling.h): Fritsch-Butland tangents (the

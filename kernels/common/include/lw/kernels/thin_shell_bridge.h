@@ -25,6 +25,7 @@
 #include "lw/kernels/host_device.h"
 #include "lw/kernels/slice_field_rules.h"
 
+#include <cstddef>
 #include <cstdint>
 
 namespace lw::kernels {
@@ -180,6 +181,21 @@ LW_HOST_DEVICE inline int thinShellValue(const ThinShellSlices& s, const ThinShe
     const float limited =
         steps < s.limitSteps ? (steps > -s.limitSteps ? steps : -s.limitSteps) : s.limitSteps;
     return roundHalfAway(limited);
+}
+
+// The slices between a gap's two raised, at one pixel (`at` within a plane), to the wall slid
+// from one cut to the other: `between` is the first slice after the gap's lower one, `plane` the
+// voxels a slice, `factor` the steps from one slice to the next. Never lowers a voxel.
+LW_HOST_DEVICE inline void raiseToSlidWall(std::int16_t* between, std::size_t plane, std::size_t at,
+                                           int factor, const ThinShellSlices& s,
+                                           const ThinShellCuts& cuts) {
+    for (int step = 1; step < factor; ++step) {
+        const float t = float(step) / float(factor);
+        const int value = thinShellValue(s, cuts, t);
+        std::int16_t& voxel = between[plane * std::size_t(step - 1) + at];
+        if (value > int(voxel))
+            voxel = std::int16_t(value);
+    }
 }
 
 } // namespace lw::kernels
