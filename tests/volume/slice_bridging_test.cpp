@@ -3,7 +3,9 @@
 // pass raises the slices between to the wall slid straight from one cut to the other.
 #include "filled_volume.h"
 #include "lw/core/error.h"
+#include "lw/kernels/thin_shell_bridge.h"
 #include "lw/volume/oversampling.h"
+#include "lw/volume/phantom.h"
 #include "lw/volume/slice_bridging.h"
 #include "lw/volume/slice_distance.h"
 #include "lw/volume/volume.h"
@@ -12,6 +14,7 @@
 #include <cmath>
 #include <cstdint>
 #include <gtest/gtest.h>
+#include <vector>
 
 namespace lw::volume {
 namespace {
@@ -108,6 +111,92 @@ TEST(SliceBridging, LeavesWallsWiderThanTheLimitAlone) {
     EXPECT_TRUE(std::equal(thin.dataAs<std::int16_t>(),
                            thin.dataAs<std::int16_t>() + thin.voxelCount(),
                            off.dataAs<std::int16_t>()));
+}
+
+// The rule at every inner pixel with none of the pass's shortcuts (the candidate mask made in
+// integers, the tests from the central differences before the gradients' lengths): the
+// candidate test, both unit gradients, the cuts, the raise.
+void bridgeByTheFullRule(Volume& field, int factor, double limitMm, double widthMm) {
+    const glm::ivec3 dims = field.dims();
+    kernels::ThinShellSlices s = kernels::thinShellSlices(
+        dims.x, dims.y, field.geometry().spacingI(), field.geometry().spacingJ(),
+        kSliceDistanceStepsPerMm, limitMm, widthMm);
+    std::int16_t* voxels = field.dataAs<std::int16_t>();
+    const std::size_t plane = std::size_t(dims.x) * std::size_t(dims.y);
+    for (int gap = 0; gap < (dims.z - 1) / factor; ++gap) {
+        s.lower = voxels + plane * std::size_t(gap * factor);
+        s.upper = s.lower + plane * std::size_t(factor);
+        std::int16_t* between = voxels + plane * std::size_t(gap * factor + 1);
+        for (int y = 1; y + 1 < dims.y; ++y)
+            for (int x = 1; x + 1 < dims.x; ++x) {
+                const std::size_t at = std::size_t(y) * std::size_t(dims.x) + std::size_t(x);
+                const float lowerD = float(s.lower[at]), upperD = float(s.upper[at]);
+                float lgx, lgy, ugx, ugy;
+                kernels::thinShellDifferences(s.lower, s, x, y, lgx, lgy);
+                kernels::thinShellDifferences(s.upper, s, x, y, ugx, ugy);
+                kernels::ThinShellCuts cuts{};
+                if (kernels::thinShellCandidate(lowerD, upperD, s.limitSteps) &&
+                    kernels::thinShellUnit(lgx, lgy) && kernels::thinShellUnit(ugx, ugy) &&
+                    kernels::thinShellCuts(s, x, y, lowerD, upperD, lgx, lgy, ugx, ugy, cuts))
+                    kernels::raiseToSlidWall(between, plane, at, factor, s, cuts);
+            }
+    }
+}
+
+// The CT phantom (1 mm) with every `thickness` slices averaged into one, as a scanner's thick
+// reconstruction integrates them: a skull-like shell, thin walls slanted to the slices.
+Volume thickCtPhantom(int thickness) {
+    const Volume thin = makePhantom({128, 128, 128}, PhantomKind::Ct, 2);
+    const std::int16_t* voxels = thin.dataAs<std::int16_t>();
+    return lw::test::makeFilledVolume<std::int16_t>(
+        {128, 128, 128 / thickness},
+        [&](int i, int j, int k) {
+            long sum = 0;
+            for (int n = 0; n < thickness; ++n)
+                sum += voxels[thin.index(i, j, k * thickness + n)];
+            return std::lround(double(sum) / thickness);
+        },
+        VolumeGeometry::regular({0, 0, 0}, {1.0, 1.0, double(thickness)}));
+}
+
+class SliceBridgingShortcuts : public ::testing::TestWithParam<double> {};
+
+TEST_P(SliceBridgingShortcuts, ChangeNothingOnAThickCtPhantom) {
+    const double iso = GetParam();
+    const Volume slices = thickCtPhantom(5);
+    const double limitMm = 5.0;
+    Volume pointwise({slices.dims().x, slices.dims().y, (slices.dims().z - 1) * 3 + 1},
+                     VoxelType::Int16, slices.geometry().refined({1, 1, 3}, slices.dims().z));
+    writeSignedSliceDistance(slices, iso, limitMm, 3, pointwise, 2);
+    refineBetweenSlices(pointwise, 3, 2, SliceInterpolation::MonotoneCubic);
+    Volume fast = pointwise.clone();
+    bridgeThinWalls(fast, 3, limitMm, 10.0, 2);
+    Volume full = pointwise.clone();
+    bridgeByTheFullRule(full, 3, limitMm, 10.0);
+    const std::int16_t* expected = full.dataAs<std::int16_t>();
+    const std::int16_t* got = fast.dataAs<std::int16_t>();
+    std::size_t raised = 0;
+    for (std::size_t v = 0; v < full.voxelCount(); ++v) {
+        ASSERT_EQ(got[v], expected[v]) << "voxel " << v;
+        raised += expected[v] != pointwise.dataAs<std::int16_t>()[v] ? 1 : 0;
+    }
+    EXPECT_GT(raised, 100u) << "the phantom should hold thin walls the rule raises";
+}
+
+INSTANTIATE_TEST_SUITE_P(IsoValues, SliceBridgingShortcuts, ::testing::Values(150.0, 300.0, 700.0));
+
+TEST(SliceBridging, RoundsAboveIsRoundingThenComparing) {
+    // Whole numbers, halves and the floats either side of them, for voxels of both signs.
+    std::vector<float> values;
+    for (int n = -40; n <= 40; ++n)
+        for (const float base : {float(n), float(n) + 0.5f, float(n) - 0.5f, float(n) + 0.25f})
+            for (const float value :
+                 {base, std::nextafter(base, -1e9f), std::nextafter(base, 1e9f)})
+                values.push_back(value);
+    for (int voxel = -30; voxel <= 30; ++voxel)
+        for (const float value : values)
+            ASSERT_EQ(kernels::roundsAbove(value, voxel), kernels::roundHalfAway(value) > voxel)
+                << value << " against " << voxel;
 }
 
 TEST(SliceBridging, RefusesAFieldOfAnotherTypeOrSliceCount) {

@@ -184,11 +184,7 @@ __global__ void bridgeKernel(std::int16_t* refined, ThinShellSlices pair, int fa
     ThinShellSlices slices = pair;
     slices.lower = lower;
     slices.upper = lower + plane * std::size_t(factor);
-    ThinShellCuts cuts{};
-    if (!thinShellCuts(slices, x, y, cuts))
-        return;
-    raiseToSlidWall(lower + plane, plane, std::size_t(y) * std::size_t(pair.width) + std::size_t(x),
-                    factor, slices, cuts);
+    bridgeThinShellPixel(slices, lower + plane, plane, factor, x, y);
 }
 
 // Each face's largest value of the refined field (nx x ny x nz, x fastest); blockIdx.y is the

@@ -75,12 +75,17 @@ inline constexpr float kThinShellMinGradient = 0.5f;
 // The two slices' gradients must be within about 30 degrees of parallel or antiparallel.
 inline constexpr float kThinShellMinAlignment = 0.866f;
 
-// The unit gradient (in-plane, mm) of one slice's distance at an inner pixel; false on a ridge.
-LW_HOST_DEVICE inline bool thinShellGradient(const std::int16_t* slice, const ThinShellSlices& s,
-                                             int x, int y, float& gx, float& gy) {
+// One slice's central differences at an inner pixel, in mm per mm (a signed distance's gradient,
+// not yet of unit length).
+LW_HOST_DEVICE inline void thinShellDifferences(const std::int16_t* slice, const ThinShellSlices& s,
+                                                int x, int y, float& gx, float& gy) {
     const int v = y * s.width + x;
     gx = float(int(slice[v + 1]) - int(slice[v - 1])) * s.gradientScaleI;
     gy = float(int(slice[v + s.width]) - int(slice[v - s.width])) * s.gradientScaleJ;
+}
+
+// (gx, gy) made of unit length; false on a ridge (much shorter than a distance's gradient).
+LW_HOST_DEVICE inline bool thinShellUnit(float& gx, float& gy) {
     const float length = sqrtf(gx * gx + gy * gy);
     if (!(length >= kThinShellMinGradient))
         return false;
@@ -131,22 +136,14 @@ LW_HOST_DEVICE inline bool thinShellCandidate(float lowerD, float upperD, float 
            fabsf(upperD) < limitSteps;
 }
 
-// Both cuts on the nearer slice's gradient line through the inner pixel (x, y): the other
-// slice's interval flips where its gradient points the other way. False where the pixel is not
-// between two thin cuts of one wall within the limit: either slice has no contour near, a
-// gradient is undefined (a ridge) or the two are not near parallel (not one wall), the pixel is
-// outside both cuts on the same side of them (the field already moves the near faces straight
-// there), or a wall is wider than widthMm.
-LW_HOST_DEVICE inline bool thinShellCuts(const ThinShellSlices& s, int x, int y,
+// Both cuts on the nearer slice's gradient line through the inner pixel (x, y), from the two
+// slices' unit gradients: the other slice's interval flips where its gradient points the other
+// way. False where the two are not near parallel (not one wall), the pixel is outside both cuts
+// on the same side of them (the field already moves the near faces straight there), or a wall
+// is wider than widthMm.
+LW_HOST_DEVICE inline bool thinShellCuts(const ThinShellSlices& s, int x, int y, float lowerD,
+                                         float upperD, float lgx, float lgy, float ugx, float ugy,
                                          ThinShellCuts& cuts) {
-    const int v = y * s.width + x;
-    const float lowerD = float(s.lower[v]), upperD = float(s.upper[v]);
-    if (!thinShellCandidate(lowerD, upperD, s.limitSteps))
-        return false;
-    float lgx, lgy, ugx, ugy;
-    if (!thinShellGradient(s.lower, s, x, y, lgx, lgy) ||
-        !thinShellGradient(s.upper, s, x, y, ugx, ugy))
-        return false;
     const float alignment = lgx * ugx + lgy * ugy;
     if (!(fabsf(alignment) >= kThinShellMinAlignment))
         return false;
@@ -171,16 +168,48 @@ LW_HOST_DEVICE inline bool thinShellCuts(const ThinShellSlices& s, int x, int y,
     return true;
 }
 
-// The stored value the slid interval gives the pixel at depth t (0 < t < 1), within the limit.
-LW_HOST_DEVICE inline int thinShellValue(const ThinShellSlices& s, const ThinShellCuts& cuts,
-                                         float t) {
+// A depth inside the slid interval (mm) in steps, within the limit, not yet rounded.
+LW_HOST_DEVICE inline float thinShellLimitedSteps(const ThinShellSlices& s, float insideMm) {
+    const float steps = insideMm * s.stepsPerMm;
+    return steps < s.limitSteps ? (steps > -s.limitSteps ? steps : -s.limitSteps) : s.limitSteps;
+}
+
+// Whether roundHalfAway(limited) > voxel, without rounding: the values that round above a whole
+// number v are those from v + 0.5 on where v >= 0 (v + 0.5 rounds up, away from 0) and those
+// above v + 0.5 where v < 0 (there v + 0.5 rounds down to v). Exact, as v + 0.5 is a float for
+// every stored value; most voxels the bridge looks at are not raised, and this spares their
+// rounding.
+LW_HOST_DEVICE inline bool roundsAbove(float limited, int voxel) {
+    const float half = float(voxel) + 0.5f;
+    return voxel >= 0 ? limited >= half : limited > half;
+}
+
+// The slid interval at depth t (0 < t < 1): how far the pixel lies inside it (mm).
+LW_HOST_DEVICE inline float thinShellInside(const ThinShellCuts& cuts, float t) {
     const float lo = (1.0f - t) * cuts.lowerLo + t * cuts.upperLo;
     const float hi = (1.0f - t) * cuts.lowerHi + t * cuts.upperHi;
-    const float inside = -lo < hi ? -lo : hi;
-    const float steps = inside * s.stepsPerMm;
-    const float limited =
-        steps < s.limitSteps ? (steps > -s.limitSteps ? steps : -s.limitSteps) : s.limitSteps;
-    return roundHalfAway(limited);
+    return -lo < hi ? -lo : hi;
+}
+
+// Where the two cuts are not flipped, both intervals' near edges are the slices' own -d, so at
+// depth t the pixel lies at most -lo(t) = (1 - t) d0 + t d1 inside, whatever the far edges (the
+// straight field between the slices: the cuts' walls can only make it less). Whether that bound
+// is above a voxel between: where it is not, the slid wall cannot raise the pixel, and neither
+// gradient's length, the alignment nor the cuts need be found. The same floats as
+// raiseToSlidWall's (the steps, their limit and rounding are monotone), so leaving such pixels out
+// changes nothing.
+LW_HOST_DEVICE inline bool nearEdgesMayRaise(const ThinShellSlices& s, const std::int16_t* between,
+                                             std::size_t plane, std::size_t at, int factor,
+                                             float lowerD, float upperD) {
+    const float lowerLo = -lowerD * s.mmPerStep, upperLo = -upperD * s.mmPerStep;
+    for (int step = 1; step < factor; ++step) {
+        const float t = float(step) / float(factor);
+        const float lo = (1.0f - t) * lowerLo + t * upperLo;
+        if (roundsAbove(thinShellLimitedSteps(s, -lo),
+                        int(between[plane * std::size_t(step - 1) + at])))
+            return true;
+    }
+    return false;
 }
 
 // The slices between a gap's two raised, at one pixel (`at` within a plane), to the wall slid
@@ -191,11 +220,46 @@ LW_HOST_DEVICE inline void raiseToSlidWall(std::int16_t* between, std::size_t pl
                                            const ThinShellCuts& cuts) {
     for (int step = 1; step < factor; ++step) {
         const float t = float(step) / float(factor);
-        const int value = thinShellValue(s, cuts, t);
+        const float limited = thinShellLimitedSteps(s, thinShellInside(cuts, t));
         std::int16_t& voxel = between[plane * std::size_t(step - 1) + at];
-        if (value > int(voxel))
-            voxel = std::int16_t(value);
+        if (roundsAbove(limited, int(voxel)))
+            voxel = std::int16_t(roundHalfAway(limited));
     }
+}
+
+// One inner pixel (x, y) of a gap that passed thinShellCandidate, its two slices holding lowerD
+// and upperD: the slices between raised where the pixel lies between two thin cuts of one wall
+// (thinShellCuts). The cheap tests first, each leaving out only pixels the full rule leaves
+// alone: from the central differences alone, a pair outside both whose gradients do not point
+// apart (never flipped, so on the same side) and a pair not flipped whose near edges cannot raise
+// a voxel (nearEdgesMayRaise). Of the demo's 0.66 M candidates about a fifth pass them.
+LW_HOST_DEVICE inline void bridgeThinShellCandidate(const ThinShellSlices& s, std::int16_t* between,
+                                                    std::size_t plane, int factor, int x, int y,
+                                                    float lowerD, float upperD) {
+    const std::size_t at = std::size_t(y) * std::size_t(s.width) + std::size_t(x);
+    float lgx, lgy, ugx, ugy;
+    thinShellDifferences(s.lower, s, x, y, lgx, lgy);
+    thinShellDifferences(s.upper, s, x, y, ugx, ugy);
+    // The unit gradients' product has this sign wherever its size can pass the alignment test.
+    const bool apart = lgx * ugx + lgy * ugy < 0.0f;
+    if (!apart && ((lowerD < 0.0f && upperD < 0.0f) ||
+                   !nearEdgesMayRaise(s, between, plane, at, factor, lowerD, upperD)))
+        return;
+    ThinShellCuts cuts{};
+    if (!thinShellUnit(lgx, lgy) || !thinShellUnit(ugx, ugy) ||
+        !thinShellCuts(s, x, y, lowerD, upperD, lgx, lgy, ugx, ugy, cuts))
+        return;
+    raiseToSlidWall(between, plane, at, factor, s, cuts);
+}
+
+// The same for any inner pixel: the candidate test first (of the demo's 7.1 M pixel-gaps about
+// 0.66 M pass it).
+LW_HOST_DEVICE inline void bridgeThinShellPixel(const ThinShellSlices& s, std::int16_t* between,
+                                                std::size_t plane, int factor, int x, int y) {
+    const int v = y * s.width + x;
+    const float lowerD = float(s.lower[v]), upperD = float(s.upper[v]);
+    if (thinShellCandidate(lowerD, upperD, s.limitSteps))
+        bridgeThinShellCandidate(s, between, plane, factor, x, y, lowerD, upperD);
 }
 
 } // namespace lw::kernels
