@@ -135,7 +135,7 @@ void bridgeByTheFullRule(Volume& field, int factor, double limitMm, double width
                 kernels::thinShellDifferences(s.lower, s, x, y, lgx, lgy);
                 kernels::thinShellDifferences(s.upper, s, x, y, ugx, ugy);
                 kernels::ThinShellCuts cuts{};
-                if (kernels::thinShellCandidate(lowerD, upperD, s.limitSteps) &&
+                if (kernels::thinShellCandidate(s.lower[at], s.upper[at], int(s.limitSteps)) &&
                     kernels::thinShellUnit(lgx, lgy) && kernels::thinShellUnit(ugx, ugy) &&
                     kernels::thinShellCuts(s, x, y, lowerD, upperD, lgx, lgy, ugx, ugy, cuts))
                     kernels::raiseToSlidWall(between, plane, at, factor, s, cuts);

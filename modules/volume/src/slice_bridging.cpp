@@ -19,17 +19,11 @@ constexpr int kRowsPerItem = 16;
 // int16 voxels in a 64-byte cache line.
 constexpr int kVoxelsPerCacheLine = 32;
 
-// thinShellCandidate on whole rows: for each pixel whether the two slices' values are within the
-// limit and not both inside, in integers (the stored limit is a whole number of steps) and with
-// no branch, so that the compiler makes it vector code -- the per-pixel test with its branches
-// was half the pass, since about nine pixels in ten are not candidates.
+// thinShellCandidate over a row of pixels into a mask (vector code: the test has no branch).
 void markCandidates(const std::int16_t* lower, const std::int16_t* upper, int count, int limitSteps,
                     std::uint8_t* candidate) {
-    for (int x = 0; x < count; ++x) {
-        const int l = lower[x], u = upper[x];
-        candidate[x] = std::uint8_t((l > -limitSteps) & (l < limitSteps) & (u > -limitSteps) &
-                                    (u < limitSteps) & ((l < 0) | (u < 0)));
-    }
+    for (int x = 0; x < count; ++x)
+        candidate[x] = std::uint8_t(kernels::thinShellCandidate(lower[x], upper[x], limitSteps));
 }
 
 // One row of one gap: the slices between raised to the wall slid from one cut to the other where
