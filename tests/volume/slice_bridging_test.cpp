@@ -78,6 +78,38 @@ TEST(SliceBridging, SlidesAThinWallAcrossTheGapBetweenItsCuts) {
     EXPECT_EQ(mm(bridged, 40.0, kFactor / 2), mm(pointwise, 40.0, kFactor / 2));
 }
 
+// Two walls 1 mm wide along j: one staying at 20 mm, the other at 30 mm in slice 0 sliding to
+// 25 mm in slice 1 (and staying there in slice 2). Between slices 0 and 1 the gap between them
+// narrows; a pixel in it at 23 mm is nearer the first in slice 0 and the second in slice 1.
+Volume wallBesideASlidingOne() {
+    return lw::test::makeFilledVolume<std::int16_t>(
+        {96, 8, 3},
+        [&](int i, int, int k) {
+            const auto inside = [&](double centre) {
+                return std::clamp(0.5 + (0.5 - std::abs(i * kPixelMm - centre)) / kPixelMm, 0.0,
+                                  1.0);
+            };
+            return std::lround(1000.0 * (inside(20.0) + inside(k == 0 ? 30.0 : 25.0)));
+        },
+        VolumeGeometry::regular({0, 0, 0}, {kPixelMm, kPixelMm, kSliceMm}));
+}
+
+TEST(SliceBridging, PutsNoWallIntoTheGapBetweenTwoWalls) {
+    const Volume pointwise = refinedField(wallBesideASlidingOne());
+    Volume bridged = pointwise.clone();
+    bridgeThinWalls(bridged, kFactor, kLimitMm, kThinWallMm, 1);
+    // At 23 mm, in the gap, the gradients point apart: to the staying wall in slice 0 (2.3 mm
+    // off) and to the sliding one in slice 1 (1.3 mm off). Sliding "one wall" from the first
+    // cut to the second would cross the gap half-way between the slices; the field must stay
+    // outside there, as it is point by point.
+    for (const double gapMm : {22.0, 22.5, 23.0, 23.5}) {
+        ASSERT_LT(mm(pointwise, gapMm, kFactor / 2), 0.0) << gapMm << " mm";
+        EXPECT_LT(mm(bridged, gapMm, kFactor / 2), 0.0) << gapMm << " mm";
+        EXPECT_LT(mm(bridged, gapMm, 1), 0.0) << gapMm << " mm";
+        EXPECT_LT(mm(bridged, gapMm, kFactor - 1), 0.0) << gapMm << " mm";
+    }
+}
+
 TEST(SliceBridging, NeverLowersTheFieldAndLeavesTheSlicesAsTheyAre) {
     const Volume pointwise = refinedField(slantedWall(2.0, 5.0));
     Volume bridged = pointwise.clone();
