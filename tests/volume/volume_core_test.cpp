@@ -290,6 +290,35 @@ TEST(BrickGrid, OneBrickIsTheWholeVolume) {
     EXPECT_TRUE(grid.activeBricks(1000.5).empty());
 }
 
+TEST(BrickGrid, ExtractionOverOneBrickDoesNotScanIt) {
+    Volume v = randomVolume<float>({9, 8, 7}, VoxelType::Float32, 3, -100, 100);
+    // One brick: the whole volume, bounds not read from the voxels, so it may hold any surface
+    // (the extraction's own pass finds an empty one).
+    for (const glm::ivec3 cells : {glm::ivec3(8, 7, 6), glm::ivec3(64)}) {
+        const BrickGrid grid = BrickGrid::forExtraction(v, cells);
+        ASSERT_EQ(grid.bricks().size(), 1u);
+        EXPECT_EQ(grid.bricks()[0].cellBegin, glm::ivec3(0));
+        EXPECT_EQ(grid.bricks()[0].cellEnd, glm::ivec3(8, 7, 6));
+        EXPECT_EQ(grid.brickCells(), glm::ivec3(8, 7, 6));
+        for (double iso : {-1e30, -100.0, 0.0, 100.5, 1e30})
+            EXPECT_EQ(grid.activeBricks(iso), std::vector<int>{0}) << iso;
+    }
+    // More than one brick: build()'s grid, min and max scanned.
+    v.dataAs<float>()[v.index(8, 7, 6)] = 1000.0f;
+    const BrickGrid split = BrickGrid::forExtraction(v, {4, 7, 6});
+    const BrickGrid built = BrickGrid::build(v, {4, 7, 6});
+    ASSERT_EQ(split.bricks().size(), built.bricks().size());
+    for (std::size_t b = 0; b < split.bricks().size(); ++b) {
+        EXPECT_EQ(split.bricks()[b].minValue, built.bricks()[b].minValue);
+        EXPECT_EQ(split.bricks()[b].maxValue, built.bricks()[b].maxValue);
+    }
+    EXPECT_EQ(split.bricks().back().maxValue, 1000.0f);
+    EXPECT_TRUE(split.activeBricks(1000.5).empty());
+    EXPECT_TRUE(BrickGrid::forExtraction(Volume({10, 10, 1}, VoxelType::UInt8), {8, 8, 8})
+                    .bricks()
+                    .empty());
+}
+
 TEST(BrickGrid, FlatVolumeHasNoCells) {
     const Volume v({10, 10, 1}, VoxelType::UInt8);
     EXPECT_TRUE(BrickGrid::build(v, {8, 8, 8}).bricks().empty());

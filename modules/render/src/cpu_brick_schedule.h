@@ -42,7 +42,7 @@ public:
                       kernels::GradientStencil stencil, bool rebuildGrid) {
         if (rebuildGrid || m_brickCells != brickCells) {
             m_brickCells = 0; // no half-built grid is taken for a good one if build() throws
-            m_grid = volume::BrickGrid::build(volume, glm::ivec3(brickCells));
+            m_grid = volume::BrickGrid::forExtraction(volume, glm::ivec3(brickCells));
             m_brickCells = brickCells;
         }
         return {m_grid, m_grid.activeBricks(storedIso),

@@ -51,7 +51,7 @@ IsoSurfaceExtractor::IsoSurfaceExtractor(const volume::Volume& volume,
     const glm::ivec3 cells = glm::max(volume.dims() - 1, glm::ivec3(0));
     const int edge =
         options.brickCells > 0 ? options.brickCells : std::max({cells.x, cells.y, cells.z, 1});
-    m_impl->grid = volume::BrickGrid::build(volume, glm::ivec3(edge));
+    m_impl->grid = volume::BrickGrid::forExtraction(volume, glm::ivec3(edge));
 }
 
 IsoSurfaceExtractor::~IsoSurfaceExtractor() {

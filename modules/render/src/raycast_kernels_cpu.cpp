@@ -50,7 +50,7 @@ void CpuRayCastKernels::prepare(double storedIso, const SilhouetteSettings& sett
     const glm::ivec3 cells = glm::max(m_volume->dims() - 1, glm::ivec3(0));
     const int edge =
         settings.brickCells > 0 ? settings.brickCells : std::max({cells.x, cells.y, cells.z, 1});
-    const volume::BrickGrid grid = volume::BrickGrid::build(*m_volume, glm::ivec3(edge));
+    const volume::BrickGrid grid = volume::BrickGrid::forExtraction(*m_volume, glm::ivec3(edge));
     // Normal cones pay off only when the cells serve several views (mode a).
     const bool cones = settings.mode == ExtractionMode::CachedA;
     if (!m_kernel->prepare(*m_volume, grid, storedIso, cones, settings.threads, settings.cancel,

@@ -3,12 +3,13 @@
 #include "lw/core/parallel.h"
 
 #include <algorithm>
+#include <limits>
 
 namespace lw::volume {
 
-BrickGrid BrickGrid::build(const Volume& volume, glm::ivec3 brickCells) {
+BrickGrid BrickGrid::partition(glm::ivec3 dims, glm::ivec3 brickCells) {
     BrickGrid grid;
-    const glm::ivec3 cells = glm::max(volume.dims() - 1, glm::ivec3(0));
+    const glm::ivec3 cells = glm::max(dims - 1, glm::ivec3(0));
     if (cells.x == 0 || cells.y == 0 || cells.z == 0)
         return grid;
     grid.m_brickCells = glm::clamp(brickCells, glm::ivec3(1), cells);
@@ -21,6 +22,20 @@ BrickGrid BrickGrid::build(const Volume& volume, glm::ivec3 brickCells) {
                 brick.cellEnd = glm::min(brick.cellBegin + grid.m_brickCells, cells);
                 grid.m_bricks.push_back(brick);
             }
+    return grid;
+}
+
+BrickGrid BrickGrid::forExtraction(const Volume& volume, glm::ivec3 brickCells) {
+    BrickGrid grid = partition(volume.dims(), brickCells);
+    if (grid.m_bricks.size() != 1)
+        return build(volume, brickCells);
+    grid.m_bricks[0].minValue = -std::numeric_limits<float>::infinity();
+    grid.m_bricks[0].maxValue = std::numeric_limits<float>::infinity();
+    return grid;
+}
+
+BrickGrid BrickGrid::build(const Volume& volume, glm::ivec3 brickCells) {
+    BrickGrid grid = partition(volume.dims(), brickCells);
     dispatchVoxelType(volume.voxelType(), [&](auto tag) {
         using T = decltype(tag);
         const T* voxels = volume.dataAs<T>();

@@ -51,12 +51,15 @@ struct IsoSurfaceOptions {
 
 struct IsoSurfaceStats {
     std::size_t totalBricks = 0;
-    std::size_t activeBricks = 0; // bricks whose min/max admit the iso-value (the rest are skipped)
+    // Bricks whose min/max admit the iso-value (the rest are skipped); the whole volume's one
+    // brick is not scanned and always counts (volume::BrickGrid::forExtraction).
+    std::size_t activeBricks = 0;
 };
 
 // Extraction from one volume at changing iso-values: the brick grid (min/max per brick, one
-// scan of the volume) is built once here, each extract() then skips the bricks that cannot
-// hold the surface. The volume must outlive the extractor.
+// scan of the volume; none for the whole volume's one brick, volume::BrickGrid::forExtraction) is
+// built once here, each extract() then skips the bricks that cannot hold the surface. The volume
+// must outlive the extractor.
 class IsoSurfaceExtractor {
 public:
     IsoSurfaceExtractor(const volume::Volume& volume, const IsoSurfaceOptions& options = {});
