@@ -44,7 +44,7 @@ public:
     // brick covers the volume (the whole-volume schedule). That brick's min/max could only skip
     // an extraction with no surface at all, which the extraction's own first pass finds empty;
     // the scan reads every voxel, and a volume made anew per iso-value (the thick-slice field)
-    // would pay it at every iso-value -- 43 MB on the demo, 6-10 ms on two cores. So the one
+    // would pay it at every iso-value -- 43 MB on the demo, 4-10 ms on one thread. So the one
     // brick is not scanned: its bounds are -inf and +inf, and it may always hold the surface.
     static BrickGrid forExtraction(const Volume& volume, glm::ivec3 brickCells);
 
