@@ -27,8 +27,10 @@ BrickGrid BrickGrid::partition(glm::ivec3 dims, glm::ivec3 brickCells) {
 
 BrickGrid BrickGrid::forExtraction(const Volume& volume, glm::ivec3 brickCells) {
     BrickGrid grid = partition(volume.dims(), brickCells);
-    if (grid.m_bricks.size() != 1)
-        return build(volume, brickCells);
+    if (grid.m_bricks.size() != 1) {
+        grid.scanBounds(volume);
+        return grid;
+    }
     grid.m_bricks[0].minValue = -std::numeric_limits<float>::infinity();
     grid.m_bricks[0].maxValue = std::numeric_limits<float>::infinity();
     return grid;
@@ -36,11 +38,16 @@ BrickGrid BrickGrid::forExtraction(const Volume& volume, glm::ivec3 brickCells) 
 
 BrickGrid BrickGrid::build(const Volume& volume, glm::ivec3 brickCells) {
     BrickGrid grid = partition(volume.dims(), brickCells);
+    grid.scanBounds(volume);
+    return grid;
+}
+
+void BrickGrid::scanBounds(const Volume& volume) {
     dispatchVoxelType(volume.voxelType(), [&](auto tag) {
         using T = decltype(tag);
         const T* voxels = volume.dataAs<T>();
-        core::parallelFor(grid.m_bricks.size(), [&](std::size_t b) {
-            Brick& brick = grid.m_bricks[b];
+        core::parallelFor(m_bricks.size(), [&](std::size_t b) {
+            Brick& brick = m_bricks[b];
             T lo = voxels[volume.index(brick.cellBegin.x, brick.cellBegin.y, brick.cellBegin.z)];
             T hi = lo;
             // Corner voxels of the brick's cells: [cellBegin, cellEnd] inclusive.
@@ -56,7 +63,6 @@ BrickGrid BrickGrid::build(const Volume& volume, glm::ivec3 brickCells) {
             brick.maxValue = float(hi);
         });
     });
-    return grid;
 }
 
 std::vector<int> BrickGrid::activeBricks(double storedIso) const {

@@ -57,6 +57,8 @@ public:
 private:
     // The bricks of `brickCells` over a volume of `dims`, their min/max not yet set.
     static BrickGrid partition(glm::ivec3 dims, glm::ivec3 brickCells);
+    // Each brick's min/max over its corner voxels, in parallel.
+    void scanBounds(const Volume& volume);
 
     std::vector<Brick> m_bricks;
     glm::ivec3 m_brickCells{0};
