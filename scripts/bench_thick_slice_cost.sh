@@ -5,7 +5,8 @@
 # figure is (copy + marching cubes on it) / (marching cubes on linear's field), from
 #   linework-cli bench --methods mc --variants S --modes a --oversample auto --border closed
 #                      --min-stroke 10 --thick-slices smooth|linear --backend BACKEND --json
-# (the copy's time is bench's note "... into a kept copy, as the review makes it"). On a shared
+# (the copy's time is bench's note: "... into a kept copy, as the review makes it" on the host, "on
+# the CUDA device" where the back-end is CUDA: kernels and the download). On a shared
 # machine the load drifts by more than the goal's margin between two runs minutes apart, so the
 # script interleaves: each round runs smooth and linear, the order turning each round, and the
 # result is the median of the rounds' paired ratios, with the rounds' own figures and the load.
@@ -47,12 +48,17 @@ echo "after:   $(uptime | sed 's/.*load average/load average/')"
 python3 - "$work" "$rounds" <<'EOF'
 import json, os, re, statistics, sys
 work, rounds = sys.argv[1], int(sys.argv[2])
-copy_note = re.compile(r"on the host ([0-9.]+) ms into a kept copy")
+# The copy as the back-end makes it: the device's (kernels and download) where there is one.
+copy_notes = (re.compile(r"on the CUDA device ([0-9.]+) ms"),
+              re.compile(r"on the host ([0-9.]+) ms into a kept copy"))
 def figures(mode, round_):
     report = json.load(open(os.path.join(work, f"{mode}.{round_}.json")))
     mc = next(row for row in report["rows"] if row["method"] == "mc")
-    copies = [float(m.group(1)) for n in report["notes"] for m in [copy_note.search(n)] if m]
-    return mc["ms_median"], (copies[0] if copies else 0.0)
+    for pattern in copy_notes:
+        copies = [float(m.group(1)) for n in report["notes"] for m in [pattern.search(n)] if m]
+        if copies:
+            return mc["ms_median"], copies[0]
+    return mc["ms_median"], 0.0
 print("\n| round | copy (ms) | marching cubes, smooth (ms) | marching cubes, linear (ms) | ratio |")
 print("|---|---|---|---|---|")
 ratios = []
