@@ -12,6 +12,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstring>
 #include <gtest/gtest.h>
 #include <limits>
@@ -253,6 +254,45 @@ TEST(BorderCap, FaceMaximaGiveTheSameCap) {
             kernels::cpu::borderCap(volume, iso, kernels::GradientStencil::Central, &maxima),
             scanned))
             << iso;
+    }
+}
+
+// Where the first and the last slice alone hold inside voxels (a head cut by both ends of the
+// series), their caps are made side by side: the same bytes as the one walk over the shell,
+// which runs where a side face is marked as holding an inside voxel (it holds none here, so that
+// walk emits the same cells in the same order), and the surface of the padded volume.
+TEST(BorderCap, BothEndsMadeApartAreTheOneWalksBytes) {
+    for (const int slices : {2, 3, 6}) {
+        SCOPED_TRACE(std::to_string(slices) + " slices");
+        const glm::dvec3 origin(0.5, -1.0, 2.0), spacing(0.5, 0.5, 1.25);
+        volume::Volume volume(glm::ivec3(13, 11, slices), volume::VoxelType::Float32,
+                              volume::VolumeGeometry::regular(origin, spacing));
+        for (int z = 0; z < slices; ++z) // a tube along z, thicker at one end, off the sides
+            for (int y = 0; y < 11; ++y)
+                for (int x = 0; x < 13; ++x) {
+                    const double r = std::hypot(x - 6.0, y - 5.0);
+                    volume.dataAs<float>()[volume.index(x, y, z)] =
+                        float(std::min(r - 1.5, 3.5 + 0.2 * z - r));
+                }
+        kernels::cpu::BorderFaceMaxima oneWalk = kernels::cpu::borderFaceMaxima(volume);
+        for (std::size_t side = 0; side < 4; ++side)
+            ASSERT_LT(oneWalk.value[side], 0.0) << "side face " << side;
+        ASSERT_GE(oneWalk.value[4], 0.0);
+        ASSERT_GE(oneWalk.value[5], 0.0);
+        oneWalk.value[0] = 1.0;
+        const Mesh apart = kernels::cpu::borderCap(volume, 0.0);
+        const Mesh walked =
+            kernels::cpu::borderCap(volume, 0.0, kernels::GradientStencil::Central, &oneWalk);
+        ASSERT_GT(apart.triangleCount(), 0u);
+        ASSERT_EQ(apart.positions.size(), walked.positions.size());
+        EXPECT_EQ(std::memcmp(apart.positions.data(), walked.positions.data(),
+                              apart.positions.size() * sizeof(apart.positions.front())),
+                  0);
+        EXPECT_EQ(std::memcmp(apart.normals.data(), walked.normals.data(),
+                              apart.normals.size() * sizeof(apart.normals.front())),
+                  0);
+        EXPECT_EQ(apart.indices, walked.indices);
+        expectCapIsPaddedSurface(volume, origin, spacing);
     }
 }
 

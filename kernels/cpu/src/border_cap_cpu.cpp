@@ -1,13 +1,16 @@
 #include "lw/kernels/cpu/border_cap_cpu.h"
 
+#include "lw/core/parallel.h"
 #include "lw/kernels/cpu/marching_cubes_cpu.h"
 #include "lw/kernels/marching_cubes.h"
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cstdint>
+#include <cstring>
 #include <limits>
-#include <unordered_map>
+#include <utility>
 #include <vector>
 
 namespace lw::kernels::cpu {
@@ -16,17 +19,79 @@ namespace {
 // The six faces of the volume, low and high side per axis: face 2 * axis + (high ? 1 : 0).
 using FaceFlags = std::array<bool, 6>;
 
+// The cap's vertex ids by edge: open addressing with linear probing, doubled at half full (a
+// cap of the demo has 20 700 vertices; std::unordered_map allocated a node for each). An edge is
+// named by its voxel row ((z + 1) * (ny + 2) + y + 1 in the padded volume) and its place along
+// it (3 * (x + 1) + axis): a row's edges go to consecutive slots from a scattered start, so that
+// neighbouring cells' edges share cache lines.
+class VertexIdMap {
+public:
+    // The id kept for the edge, or `fresh` kept for it now (second: whether it was new).
+    std::pair<std::uint32_t, bool> findOrInsert(std::uint64_t row, std::uint32_t along,
+                                                std::uint32_t fresh) {
+        if ((m_count + 1) * 2 > m_slots.size())
+            grow();
+        Slot& slot = probe(m_slots, row, along);
+        if (slot.row == row && slot.along == along)
+            return {slot.id, false};
+        slot = {row, along, fresh};
+        ++m_count;
+        return {fresh, true};
+    }
+
+private:
+    // Never a row: rows number the padded volume's voxel rows, fewer than 2^64 - 1.
+    static constexpr std::uint64_t kEmpty = std::numeric_limits<std::uint64_t>::max();
+    struct Slot {
+        std::uint64_t row = kEmpty;
+        std::uint32_t along = 0;
+        std::uint32_t id = 0;
+    };
+
+    // The slot holding the edge, or the empty one where it goes.
+    static Slot& probe(std::vector<Slot>& slots, std::uint64_t row, std::uint32_t along) {
+        const std::size_t mask = slots.size() - 1;
+        const int bits = std::countr_zero(slots.size());
+        const std::size_t start = std::size_t((row * 0x9E3779B97F4A7C15ull) >> (64 - bits));
+        std::size_t at = (start + along) & mask;
+        while (slots[at].row != kEmpty && !(slots[at].row == row && slots[at].along == along))
+            at = (at + 1) & mask;
+        return slots[at];
+    }
+
+    void grow() {
+        std::vector<Slot> larger(std::max<std::size_t>(1024, m_slots.size() * 2));
+        for (const Slot& slot : m_slots)
+            if (slot.row != kEmpty)
+                probe(larger, slot.row, slot.along) = slot;
+        m_slots = std::move(larger);
+    }
+
+    std::vector<Slot> m_slots; // a power of two of them, or none
+    std::size_t m_count = 0;
+};
+
 template <typename T> class CapBuilder {
 public:
     CapBuilder(const volume::Volume& volume, double iso, GradientStencil stencil)
         : m_voxels(volume.dataAs<T>()), m_dims(makeGridDims(volume.dims())), m_iso(iso),
           m_isoF(insideThreshold(iso)), m_threshold(voxelInsideThreshold<T>(iso)),
-          m_grid(voxelGridSetup(volume, stencil)), m_gradient{m_voxels, m_grid.spans()} {
+          m_grid(voxelGridSetup(volume, stencil)), m_gradient{m_voxels, m_grid.spans()},
+          m_insideColumns(std::size_t(m_dims.nx) + 2, 0),
+          m_rowIds(kRowIdKinds * (std::size_t(m_dims.nx) + 2)) {
         setFaceNormals();
     }
 
-    TriangleMesh build(const BorderFaceMaxima& maxima) {
-        const FaceFlags faces = facesOf(maxima);
+    // The faces with an inside voxel.
+    FaceFlags facesOf(const BorderFaceMaxima& maxima) const {
+        FaceFlags faces{};
+        for (std::size_t f = 0; f < faces.size(); ++f)
+            faces[f] = maxima.value[f] >= double(m_threshold);
+        return faces;
+    }
+
+    // The cap over `faces` (facesOf: those with an inside voxel, or fewer).
+    TriangleMesh build(const FaceFlags& faces) {
         const int cx = m_dims.cx, cy = m_dims.cy, cz = m_dims.cz;
         // Padded cells (i, j, k), i in [-1, cx] (cell i spans voxels i .. i+1), in cell order;
         // the shell is every cell with a padded corner. A shell cell's real corners lie on the
@@ -63,13 +128,6 @@ private:
         return real(x, y, z) && m_voxels[index(x, y, z)] >= m_threshold;
     }
 
-    FaceFlags facesOf(const BorderFaceMaxima& maxima) const {
-        FaceFlags faces{};
-        for (std::size_t f = 0; f < faces.size(); ++f)
-            faces[f] = maxima.value[f] >= double(m_threshold);
-        return faces;
-    }
-
     // Outward unit normal of each face: the padded gradient at a pad -> real edge is the pad
     // step along the axis (oblique frame; along the stack axis its sign follows the slice
     // order), mapped to patient space like every marching-cubes gradient.
@@ -89,18 +147,50 @@ private:
 
     // The cells (i, j, k) of a whole shell row, i in [-1, cx], in order. Only cells with an
     // inside corner emit anything, so the walk covers just the columns from one left of the
-    // first inside voxel to the last one, over the real voxel rows the cells' corners lie on:
-    // at a new iso-value of the demo (512 x 512 x 82) the cap took 7.8 ms on dev-2c testing 8
-    // corners of every cell of the first and last slice, and 3.2-3.6 ms so (2.3-2.7 ms with the
-    // faces' maxima kept); in the H200 workstation's worker, 16-17 ms (most of method 3's frame)
-    // and 7-7.5 ms.
+    // first inside voxel to the last one, over the real voxel rows the cells' corners lie on,
+    // and within that span only the cells with an inside corner (a skull cut by the first
+    // slice is a ring; the span is the head's width). At a new iso-value of the demo
+    // (512 x 512 x 82, 400 HU: 18 652 cells emit 37 264 triangles) the cap took 7.8 ms on dev-2c
+    // testing 8 corners of every cell of the first and last slice, 3.2-3.6 ms over the span.
     void emitCellRow(int j, int k) {
         int first = m_dims.nx, last = -1;
         for (int y = std::max(j, 0); y <= std::min(j + 1, m_dims.ny - 1); ++y)
             for (int z = std::max(k, 0); z <= std::min(k + 1, m_dims.nz - 1); ++z)
                 widenToInside(y, z, first, last);
-        for (int i = std::max(first - 1, -1); i <= std::min(last, m_dims.cx); ++i)
-            emitCell(i, j, k);
+        if (first > last)
+            return; // no inside voxel: every cell of the row is empty
+        markInsideColumns(j, k, first, last);
+        m_row = {j, k, m_row.generation + 1};
+        // Cell i has an inside corner where column i or i + 1 has one: m_insideColumns[i + 1]
+        // or [i + 2]. Eight cells at a time, in order.
+        const std::uint8_t* columns = m_insideColumns.data();
+        const int end = std::min(last, m_dims.cx) + 1;
+        int i = first - 1;
+        for (; i + 8 <= end; i += 8) {
+            std::uint64_t here, next;
+            std::memcpy(&here, columns + i + 1, 8);
+            std::memcpy(&next, columns + i + 2, 8);
+            for (std::uint64_t any = here | next; any != 0; any &= any - 1)
+                emitCell(i + std::countr_zero(any) / 8, j, k); // little-endian: byte order
+        }
+        for (; i < end; ++i)
+            if ((columns[i + 1] | columns[i + 2]) != 0)
+                emitCell(i, j, k);
+        std::fill(m_insideColumns.begin() + first + 1, m_insideColumns.begin() + last + 2, 0);
+        m_row.j = kNoRow; // x-face cells (emitCell alone) look up the map
+    }
+
+    // m_insideColumns[x + 1] = 1 for x in [first, last] where a voxel row the cell row (j, k)'s
+    // corners lie on is inside at x (the array is 0 elsewhere, and again after the row).
+    void markInsideColumns(int j, int k, int first, int last) {
+        std::uint8_t* columns = m_insideColumns.data() + 1;
+        const T threshold = m_threshold;
+        for (int y = std::max(j, 0); y <= std::min(j + 1, m_dims.ny - 1); ++y)
+            for (int z = std::max(k, 0); z <= std::min(k + 1, m_dims.nz - 1); ++z) {
+                const T* row = m_voxels + index(0, y, z);
+                for (int x = first; x <= last; ++x)
+                    columns[x] |= std::uint8_t(row[x] >= threshold);
+            }
     }
 
     // [first, last] grown to cover the inside voxels of voxel row (y, z), a row on a face (the
@@ -162,21 +252,31 @@ private:
         }
     }
 
-    // The id of the vertex on the edge leaving (padded) voxel (x, y, z) along `axis`.
+    // The id of the vertex on the edge leaving (padded) voxel (x, y, z) along `axis`: within a
+    // cell row, from its memo (the row's cells share edges, each asked for by up to four of them
+    // and by up to six triangles), else from the map.
     std::uint32_t vertexId(int x, int y, int z, int axis) {
-        const std::uint64_t key =
-            ((std::uint64_t(z + 1) * std::uint64_t(m_dims.ny + 2) + std::uint64_t(y + 1)) *
-                 std::uint64_t(m_dims.nx + 2) +
-             std::uint64_t(x + 1)) *
-                3 +
-            std::uint64_t(axis);
-        const auto [it, isNew] = m_ids.try_emplace(key, std::uint32_t(m_mesh.positions.size()));
+        if (m_row.j == kNoRow)
+            return mappedVertexId(x, y, z, axis);
+        const std::size_t kind = std::size_t(((z - m_row.k) * 2 + (y - m_row.j)) * 3 + axis);
+        RowId& memo = m_rowIds[kind * (std::size_t(m_dims.nx) + 2) + std::size_t(x + 1)];
+        if (memo.generation != m_row.generation)
+            memo = {mappedVertexId(x, y, z, axis), m_row.generation};
+        return memo.id;
+    }
+
+    std::uint32_t mappedVertexId(int x, int y, int z, int axis) {
+        const std::uint64_t row =
+            std::uint64_t(z + 1) * std::uint64_t(m_dims.ny + 2) + std::uint64_t(y + 1);
+        const auto along = std::uint32_t(3 * (x + 1) + axis);
+        const auto [id, isNew] =
+            m_ids.findOrInsert(row, along, std::uint32_t(m_mesh.positions.size()));
         if (isNew) {
             const McVertex v = edgeVertex(x, y, z, axis);
             m_mesh.positions.emplace_back(v.position.x, v.position.y, v.position.z);
             m_mesh.normals.emplace_back(v.normal.x, v.normal.y, v.normal.z);
         }
-        return it->second;
+        return id;
     }
 
     McVertex edgeVertex(int x, int y, int z, int axis) const {
@@ -207,8 +307,23 @@ private:
     VoxelGridSetup m_grid;
     VoxelGradientSampler<T> m_gradient;
     McVec3 m_faceNormal[6]{};
-    std::unordered_map<std::uint64_t, std::uint32_t> m_ids;
+    VertexIdMap m_ids;
     std::array<std::vector<RowRange>, 4> m_faceRows; // faceRowRange's memo
+    std::vector<std::uint8_t> m_insideColumns;       // markInsideColumns', x + 1 for x in [-1, nx]
+    // The memo of the cell row emitCellRow walks: a vertex id per edge of its cells, by the edge's
+    // voxel row (y - j, z - k: 0 or 1), axis and x + 1; an entry counts for the generation that
+    // wrote it.
+    static constexpr int kNoRow = std::numeric_limits<int>::min();
+    static constexpr std::size_t kRowIdKinds = 2 * 2 * 3;
+    struct CellRow {
+        int j = kNoRow, k = 0;
+        std::uint32_t generation = 0;
+    };
+    struct RowId {
+        std::uint32_t id = 0, generation = 0;
+    };
+    CellRow m_row;
+    std::vector<RowId> m_rowIds;
     TriangleMesh m_mesh;
 };
 
@@ -252,10 +367,27 @@ TriangleMesh borderCap(const volume::Volume& volume, double storedIso, GradientS
     const glm::ivec3 d = volume.dims();
     if (d.x < 1 || d.y < 1 || d.z < 1)
         return {};
+    const BorderFaceMaxima maxima = faces ? *faces : borderFaceMaxima(volume);
     return volume::dispatchVoxelType(volume.voxelType(), [&](auto tag) {
         using T = decltype(tag);
-        return CapBuilder<T>(volume, storedIso, stencil)
-            .build(faces ? *faces : borderFaceMaxima(volume));
+        CapBuilder<T> builder(volume, storedIso, stencil);
+        const FaceFlags inside = builder.facesOf(maxima);
+        // The first and last slice alone hold inside voxels (a head in the field of view, cut
+        // by the ends of the series): their caps share no edge (z in {-1, 0} and {nz - 1, nz}),
+        // and the walk makes the first one's cells and vertices before any of the last one's,
+        // so the two made side by side and joined are the same bytes.
+        const bool slicesAlone = !inside[0] && !inside[1] && !inside[2] && !inside[3];
+        if (!(slicesAlone && inside[4] && inside[5] && d.z >= 2))
+            return builder.build(inside);
+        std::array<TriangleMesh, 2> ends;
+        core::parallelFor(2, [&](std::size_t end) {
+            FaceFlags one{};
+            one[4 + end] = true;
+            ends[end] = end == 0 ? builder.build(one)
+                                 : CapBuilder<T>(volume, storedIso, stencil).build(one);
+        });
+        appendMesh(ends[0], ends[1]);
+        return std::move(ends[0]);
     });
 }
 
