@@ -77,8 +77,7 @@ public:
         : m_voxels(volume.dataAs<T>()), m_dims(makeGridDims(volume.dims())), m_iso(iso),
           m_isoF(insideThreshold(iso)), m_threshold(voxelInsideThreshold<T>(iso)),
           m_grid(voxelGridSetup(volume, stencil)), m_gradient{m_voxels, m_grid.spans()},
-          m_insideColumns(std::size_t(m_dims.nx) + 2, 0),
-          m_rowIds(kRowIdKinds * (std::size_t(m_dims.nx) + 2)) {
+          m_insideColumns(std::size_t(m_dims.nx) + 2, 0) {
         setFaceNormals();
     }
 
@@ -160,7 +159,6 @@ private:
         if (first > last)
             return; // no inside voxel: every cell of the row is empty
         markInsideColumns(j, k, first, last);
-        m_row = {j, k, m_row.generation + 1};
         // Cell i has an inside corner where column i or i + 1 has one: m_insideColumns[i + 1]
         // or [i + 2]. Eight cells at a time, in order.
         const std::uint8_t* columns = m_insideColumns.data();
@@ -177,7 +175,6 @@ private:
             if ((columns[i + 1] | columns[i + 2]) != 0)
                 emitCell(i, j, k);
         std::fill(m_insideColumns.begin() + first + 1, m_insideColumns.begin() + last + 2, 0);
-        m_row.j = kNoRow; // x-face cells (emitCell alone) look up the map
     }
 
     // m_insideColumns[x + 1] = 1 for x in [first, last] where a voxel row the cell row (j, k)'s
@@ -252,20 +249,8 @@ private:
         }
     }
 
-    // The id of the vertex on the edge leaving (padded) voxel (x, y, z) along `axis`: within a
-    // cell row, from its memo (the row's cells share edges, each asked for by up to four of them
-    // and by up to six triangles), else from the map.
+    // The id of the vertex on the edge leaving (padded) voxel (x, y, z) along `axis`.
     std::uint32_t vertexId(int x, int y, int z, int axis) {
-        if (m_row.j == kNoRow)
-            return mappedVertexId(x, y, z, axis);
-        const std::size_t kind = std::size_t(((z - m_row.k) * 2 + (y - m_row.j)) * 3 + axis);
-        RowId& memo = m_rowIds[kind * (std::size_t(m_dims.nx) + 2) + std::size_t(x + 1)];
-        if (memo.generation != m_row.generation)
-            memo = {mappedVertexId(x, y, z, axis), m_row.generation};
-        return memo.id;
-    }
-
-    std::uint32_t mappedVertexId(int x, int y, int z, int axis) {
         const std::uint64_t row =
             std::uint64_t(z + 1) * std::uint64_t(m_dims.ny + 2) + std::uint64_t(y + 1);
         const auto along = std::uint32_t(3 * (x + 1) + axis);
@@ -310,20 +295,6 @@ private:
     VertexIdMap m_ids;
     std::array<std::vector<RowRange>, 4> m_faceRows; // faceRowRange's memo
     std::vector<std::uint8_t> m_insideColumns;       // markInsideColumns', x + 1 for x in [-1, nx]
-    // The memo of the cell row emitCellRow walks: a vertex id per edge of its cells, by the edge's
-    // voxel row (y - j, z - k: 0 or 1), axis and x + 1; an entry counts for the generation that
-    // wrote it.
-    static constexpr int kNoRow = std::numeric_limits<int>::min();
-    static constexpr std::size_t kRowIdKinds = 2 * 2 * 3;
-    struct CellRow {
-        int j = kNoRow, k = 0;
-        std::uint32_t generation = 0;
-    };
-    struct RowId {
-        std::uint32_t id = 0, generation = 0;
-    };
-    CellRow m_row;
-    std::vector<RowId> m_rowIds;
     TriangleMesh m_mesh;
 };
 
