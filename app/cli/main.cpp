@@ -106,7 +106,7 @@ commands:
                               --thin-walls MM: with smooth, walls up to MM wide (default 10; 0:
                               none) slide straight from one slice's cut to the next one's where
                               the cuts lie side by side, so a skull shallow to the slices does
-                              not break into one lip per slice;
+                              not break into one lip per slice (fading out up to 1.5 MM);
                               --suggestive: suggestive contours drawn with the silhouette
                               (PNG or SVG; TAU: their derivative test, default 1);
                               SVG: the visible silhouette as paths, --line-width (default 1)

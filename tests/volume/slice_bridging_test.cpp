@@ -128,10 +128,46 @@ TEST(SliceBridging, NeverLowersTheFieldAndLeavesTheSlicesAsTheyAre) {
     EXPECT_GT(raised, 0u);
 }
 
+TEST(SliceBridging, FadesOutOverWallsALittleWiderThanTheWidest) {
+    // Walls slid by their width and 1 mm more (the cuts apart, so point by point the wall pinches
+    // half-way), from under kThinWallMm (6 mm) to past its fade (9 mm): half-way between the
+    // slices the slid wall's middle lies half its cut inside where the wall is slid whole, and
+    // by a share of the raise less where it fades out, (cut - 6) / 3 mm less.
+    struct Wall {
+        double widthMm, raisedShare;
+    };
+    const double cutOverWall = 0.4; // the iso contour 0.2 mm outside each edge (first test)
+    double previousRaise = 1e9;
+    for (const Wall wall : {Wall{5.2, 1.0}, Wall{6.2, 0.8}, Wall{7.2, 7.0 / 15.0},
+                            Wall{8.2, 2.0 / 15.0}, Wall{9.2, 0.0}}) {
+        const double shiftMm = wall.widthMm + 1.0;
+        const Volume pointwise = refinedField(slantedWall(wall.widthMm, shiftMm));
+        Volume bridged = pointwise.clone();
+        bridgeThinWalls(bridged, kFactor, kLimitMm, kThinWallMm, 1);
+        const double middleMm = 10.0 + 0.5 * shiftMm;
+        const double pixelMm = kPixelMm * std::round(middleMm / kPixelMm); // what mm() reads
+        const double before = mm(pointwise, pixelMm, kFactor / 2);
+        const double after = mm(bridged, pixelMm, kFactor / 2);
+        const double slidWhole = 0.5 * (wall.widthMm + cutOverWall) - std::abs(pixelMm - middleMm);
+        ASSERT_LT(before, 0.0) << wall.widthMm << " mm: pinched point by point";
+        EXPECT_NEAR(after, before + wall.raisedShare * (slidWhole - before), 0.1)
+            << wall.widthMm << " mm";
+        if (wall.raisedShare == 0.0) {
+            EXPECT_TRUE(std::equal(pointwise.dataAs<std::int16_t>(),
+                                   pointwise.dataAs<std::int16_t>() + pointwise.voxelCount(),
+                                   bridged.dataAs<std::int16_t>()))
+                << wall.widthMm << " mm: past the fade, nothing raised";
+        }
+        EXPECT_LT(after - before, previousRaise) << wall.widthMm << " mm: the raise shrinks";
+        previousRaise = after - before;
+    }
+}
+
 TEST(SliceBridging, LeavesWallsWiderThanTheLimitAlone) {
-    // 8 mm wide, 4 mm further each slice: a wide wall, which the pointwise field already moves
-    // straight (the cuts overlap); and the thin wall bridged with a width of 0 (off).
-    const Volume wide = refinedField(slantedWall(8.0, 4.0));
+    // 10 mm wide, 4 mm further each slice: a wall wider than kThinWallMm and its fade (9 mm),
+    // which the pointwise field already moves straight (the cuts overlap); and the thin wall
+    // bridged with a width of 0 (off).
+    const Volume wide = refinedField(slantedWall(10.0, 4.0));
     Volume bridged = wide.clone();
     bridgeThinWalls(bridged, kFactor, kLimitMm, kThinWallMm, 1);
     EXPECT_TRUE(std::equal(wide.dataAs<std::int16_t>(),

@@ -19,8 +19,9 @@
 //
 // At depth t between the slices the interval is [(1 - t) lo0 + t lo1, (1 - t) hi0 + t hi1], and
 // x (at 0 on u) lies min(-lo, hi) inside it. The field is raised to that where it is larger,
-// never lowered, and only where both cuts are walls at most `widthMm` wide, both slices have a
-// contour within the limit and their gradients are near parallel (the same wall in both).
+// never lowered, and only where both cuts are thin walls, both slices have a contour within the
+// limit and their gradients are near parallel (the same wall in both). Walls up to `widthMm` are
+// slid whole; the raise fades out over walls up to half as wide again (kThinShellFade).
 
 #include "lw/kernels/host_device.h"
 #include "lw/kernels/slice_field_rules.h"
@@ -67,6 +68,7 @@ LW_HOST_DEVICE inline ThinShellSlices thinShellSlices(int width, int height, dou
 // The two cuts' intervals on the line u through one pixel (mm along u, the pixel at 0).
 struct ThinShellCuts {
     float lowerLo, lowerHi, upperLo, upperHi;
+    float weight; // the share of the raise: 1 for walls up to widthMm, less as they fade out
 };
 
 // Gradients of a signed distance have length 1; where the central difference is much shorter
@@ -74,6 +76,12 @@ struct ThinShellCuts {
 inline constexpr float kThinShellMinGradient = 0.5f;
 // The two slices' gradients must be within about 30 degrees of parallel or antiparallel.
 inline constexpr float kThinShellMinAlignment = 0.866f;
+// Walls wider than widthMm fade out over this share of it: a wall `over` mm wider is raised by
+// 1 - over / (kThinShellFade * widthMm) of the slid wall's raise. Where the rule stopped at
+// widthMm, a wall about that wide (its width read at each pixel) was slid at some pixels and left
+// pinched at their neighbours, which drew rows of pixel-sized beads along the slices (the demo's
+// skull top, walls of about 11 mm in the slice plane).
+inline constexpr float kThinShellFade = 0.5f;
 
 // One slice's central differences at an inner pixel, in mm per mm (a signed distance's gradient,
 // not yet of unit length).
@@ -111,20 +119,31 @@ LW_HOST_DEVICE inline bool thinShellSample(const std::int16_t* slice, const Thin
 }
 
 // One slice's cut on its own gradient's line through (x, y): the near edge at -d (mm), the far
-// edge a wall's width beyond, the width read at widthMm past the near edge (there the distance is
-// -(widthMm - wall) when the wall is thinner). False where the wall is wider or unreadable.
+// edge a wall's width beyond, the width read at widthMm past the near edge: there the distance
+// is -(widthMm - wall) when the wall is thinner, and wall - widthMm (to the far edge) when it is
+// wider but under twice as wide. `weight`: 1 up to widthMm, then fading out (kThinShellFade).
+// False where the wall is wider than that or unreadable.
 LW_HOST_DEVICE inline bool thinShellCut(const std::int16_t* slice, const ThinShellSlices& s, int x,
-                                        int y, float gx, float gy, float& near, float& far) {
+                                        int y, float gx, float gy, float& near, float& far,
+                                        float& weight) {
     near = -float(slice[y * s.width + x]) * s.mmPerStep;
     const float reach = near + s.widthMm;
     float beyond;
     if (!thinShellSample(slice, s, float(x) + reach * gx * s.pixelsPerMmI,
                          float(y) + reach * gy * s.pixelsPerMmJ, beyond))
         return false;
-    if (beyond > 0.0f)
-        return false; // still inside: wider than widthMm
+    if (beyond > 0.0f) { // still inside: wider than widthMm
+        const float over = beyond * s.mmPerStep;
+        const float fade = kThinShellFade * s.widthMm;
+        if (!(over < fade))
+            return false;
+        far = reach + over;
+        weight = 1.0f - over / fade;
+        return true;
+    }
     const float wall = beyond * s.mmPerStep + s.widthMm;
     far = near + (wall > 0.0f ? wall : 0.0f);
+    weight = 1.0f;
     return true;
 }
 
@@ -167,7 +186,8 @@ LW_HOST_DEVICE inline bool thinShellGapBetweenWalls(const ThinShellSlices& s, in
 // slices' unit gradients: the other slice's interval flips where its gradient points the other
 // way. False where the two are not near parallel (not one wall), the pixel is outside both cuts
 // on the same side of them (the field already moves the near faces straight there), it lies in
-// the gap between two walls (thinShellGapBetweenWalls), or a wall is wider than widthMm.
+// the gap between two walls (thinShellGapBetweenWalls), or a wall is too wide (thinShellCut).
+// The cuts' weight is the smaller of the two walls'.
 LW_HOST_DEVICE inline bool thinShellCuts(const ThinShellSlices& s, int x, int y, float lowerD,
                                          float upperD, float lgx, float lgy, float ugx, float ugy,
                                          ThinShellCuts& cuts) {
@@ -177,10 +197,11 @@ LW_HOST_DEVICE inline bool thinShellCuts(const ThinShellSlices& s, int x, int y,
     const bool flip = alignment < 0.0f;
     if (!flip && lowerD < 0.0f && upperD < 0.0f)
         return false;
-    float lowerNear, lowerFar, upperNear, upperFar;
-    if (!thinShellCut(s.lower, s, x, y, lgx, lgy, lowerNear, lowerFar) ||
-        !thinShellCut(s.upper, s, x, y, ugx, ugy, upperNear, upperFar))
+    float lowerNear, lowerFar, upperNear, upperFar, lowerWeight, upperWeight;
+    if (!thinShellCut(s.lower, s, x, y, lgx, lgy, lowerNear, lowerFar, lowerWeight) ||
+        !thinShellCut(s.upper, s, x, y, ugx, ugy, upperNear, upperFar, upperWeight))
         return false;
+    cuts.weight = lowerWeight < upperWeight ? lowerWeight : upperWeight;
     if (flip && lowerD < 0.0f && upperD < 0.0f &&
         thinShellGapBetweenWalls(s, x, y, lgx, lgy, ugx, ugy, 0.5f * (lowerNear + lowerFar),
                                  0.5f * (upperNear + upperFar)))
@@ -227,8 +248,8 @@ LW_HOST_DEVICE inline float thinShellInside(const ThinShellCuts& cuts, float t) 
 // straight field between the slices: the cuts' walls can only make it less). Whether that bound
 // is above a voxel between: where it is not, the slid wall cannot raise the pixel, and neither
 // gradient's length, the alignment nor the cuts need be found. The same floats as
-// raiseToSlidWall's (the steps, their limit and rounding are monotone), so leaving such pixels out
-// changes nothing.
+// raiseToSlidWall's (the steps, their limit and rounding are monotone; a faded raise is a share
+// of that), so leaving such pixels out changes nothing.
 LW_HOST_DEVICE inline bool nearEdgesMayRaise(const ThinShellSlices& s, const std::int16_t* between,
                                              std::size_t plane, std::size_t at, int factor,
                                              float lowerD, float upperD) {
@@ -244,15 +265,18 @@ LW_HOST_DEVICE inline bool nearEdgesMayRaise(const ThinShellSlices& s, const std
 }
 
 // The slices between a gap's two raised, at one pixel (`at` within a plane), to the wall slid
-// from one cut to the other: `between` is the first slice after the gap's lower one, `plane` the
-// voxels a slice, `factor` the steps from one slice to the next. Never lowers a voxel.
+// from one cut to the other -- by the cuts' weight of the way where the walls fade out: `between`
+// is the first slice after the gap's lower one, `plane` the voxels a slice, `factor` the steps
+// from one slice to the next. Never lowers a voxel (a share of a raise is a raise).
 LW_HOST_DEVICE inline void raiseToSlidWall(std::int16_t* between, std::size_t plane, std::size_t at,
                                            int factor, const ThinShellSlices& s,
                                            const ThinShellCuts& cuts) {
     for (int step = 1; step < factor; ++step) {
         const float t = float(step) / float(factor);
-        const float limited = thinShellLimitedSteps(s, thinShellInside(cuts, t));
+        float limited = thinShellLimitedSteps(s, thinShellInside(cuts, t));
         std::int16_t& voxel = between[plane * std::size_t(step - 1) + at];
+        if (cuts.weight < 1.0f)
+            limited = float(voxel) + cuts.weight * (limited - float(voxel));
         if (roundsAbove(limited, int(voxel)))
             voxel = std::int16_t(roundHalfAway(limited));
     }

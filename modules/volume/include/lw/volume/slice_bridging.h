@@ -9,9 +9,11 @@
 // into one lip per slice, which the silhouette draws as slits and ridge lines, slice after slice.
 // This pass slides each cut straight to the other's place instead, where both are walls at most
 // `widthMm` wide whose contours face along the same line, and raises the slices between to the
-// slid wall (never lowers them): kernels/thin_shell_bridge.h holds the geometry, shared with the
-// CUDA back-end so that both make the same field bit for bit. The slices themselves do not
-// change, nor does anything wider than `widthMm` or farther than the field's limit.
+// slid wall (never lowers them); walls up to half as wide again get a share of that raise, less
+// the wider they are, so that the pass fades out instead of stopping at one width.
+// kernels/thin_shell_bridge.h holds the geometry, shared with the CUDA back-end so that both make
+// the same field bit for bit. The slices themselves do not change, nor does anything wider than
+// 1.5 `widthMm` or farther than the field's limit.
 
 #include "lw/volume/volume.h"
 
