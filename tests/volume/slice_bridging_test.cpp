@@ -130,9 +130,9 @@ TEST(SliceBridging, NeverLowersTheFieldAndLeavesTheSlicesAsTheyAre) {
 
 TEST(SliceBridging, FadesOutOverWallsALittleWiderThanTheWidest) {
     // Walls slid by their width and 1 mm more (the cuts apart, so point by point the wall pinches
-    // half-way), from under kThinWallMm (6 mm) to past its fade (9 mm): half-way between the
-    // slices the slid wall's middle lies half its cut inside where the wall is slid whole, and
-    // by a share of the raise less where it fades out, (cut - 6) / 3 mm less.
+    // half-way), from under kThinWallMm (6 mm) to past its fade (cuts of 6 to 9 mm): half-way
+    // between the slices the slid wall's middle lies half its cut inside where the wall is slid
+    // whole, and where it fades out it gets 1 - (cut - 6 mm) / 3 mm of that raise.
     struct Wall {
         double widthMm, raisedShare;
     };
