@@ -56,12 +56,18 @@ work, rounds = sys.argv[1], int(sys.argv[2])
 # The copy as the back-end makes it: the device's (kernels and download) where there is one.
 copy_notes = (re.compile(r"on the CUDA device ([0-9.]+) ms"),
               re.compile(r"on the host ([0-9.]+) ms into a kept copy"))
+# On the device, the download's own stage (CUDA events): the kernels alone are the rest.
+download_note = re.compile(r"download ([0-9.]+) ms\)")
+downloads = []
 def figures(mode, round_):
     report = json.load(open(os.path.join(work, f"{mode}.{round_}.json")))
     mc = next(row for row in report["rows"] if row["method"] == "mc")
     for pattern in copy_notes:
         copies = [float(m.group(1)) for n in report["notes"] for m in [pattern.search(n)] if m]
         if copies:
+            if mode == "smooth":
+                downloads.extend(float(m.group(1)) for n in report["notes"]
+                                 for m in [download_note.search(n)] if m)
             return mc["ms_median"], copies[0]
     if mode == "smooth":  # no copy per iso-value: the volume's slices are not thick
         sys.exit(f"round {round_}: bench made no thick-slice copy of the input (its slices are "
@@ -79,4 +85,7 @@ for r in range(1, rounds + 1):
 print(f"\n(copy + marching cubes) / linear's marching cubes: median of {rounds} rounds "
       f"**{statistics.median(ratios):.2f}x** (rounds {min(ratios):.2f}-{max(ratios):.2f}); "
       "goal <= 1.5x")
+if downloads:
+    print(f"of the device's copy, the download: median {statistics.median(downloads):.3f} ms "
+          f"(rounds {min(downloads):.3f}-{max(downloads):.3f})")
 EOF

@@ -603,13 +603,21 @@ void noteDrawnCopyTimes(const BenchVolume& input, const Plan& plan,
     render::DrawnVolumeMaker maker(source, plan.backend);
     maker.make(plan.sampling, input.iso, plan.threads); // the slices' upload, once a volume
     if (maker.lastMadeOnDevice()) {
+        std::vector<double> distances, refinements, downloads;
         for (int i = 0; i < plan.repeat; ++i) {
             const auto start = Clock::now();
             maker.make(plan.sampling, input.iso, plan.threads);
             device.push_back(msSince(start));
+            const render::DeviceCopyTimes stages = maker.lastDeviceTimes();
+            distances.push_back(stages.distanceMs);
+            refinements.push_back(stages.refinementMs);
+            downloads.push_back(stages.downloadMs);
         }
         note += ", on the CUDA device " + std::to_string(median(device)) +
-                " ms (kernels and the copy's download)";
+                " ms (kernels and the copy's download; stages by CUDA events: distances " +
+                std::to_string(median(distances)) + ", refinement " +
+                std::to_string(median(refinements)) + ", download " +
+                std::to_string(median(downloads)) + " ms)";
     }
     notes.push_back(note + " (median ms)");
 }

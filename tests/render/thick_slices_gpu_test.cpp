@@ -81,6 +81,27 @@ Volume thinShellOnThickSlices() {
         VolumeGeometry::regular({0.0, 0.0, 0.0}, {0.5, 0.5, 4.0}));
 }
 
+// A 3 mm shell around a wavy sphere, with noise, on very thick slices of fine pixels: the
+// distance limit (a slice step) reaches 33 pixels at 0.25 mm pixels and 8 mm slices, 84 at
+// 0.12 mm and 10 mm -- windows wider than a block of 32 pixels, where the device's search must
+// still find every crossing the host's scans find. Sizes off the blocks.
+Volume shellOnFinePixels(glm::ivec3 dims, double pixelMm, double sliceMm) {
+    std::mt19937 random(7);
+    std::uniform_int_distribution<int> noise(-40, 40);
+    const glm::dvec3 centre(dims.x * pixelMm / 2.0, dims.y * pixelMm / 2.0,
+                            (dims.z - 1) * sliceMm / 2.0);
+    const double radius = 0.38 * std::min(dims.x, dims.y) * pixelMm;
+    return lw::test::makeFilledVolume<std::int16_t>(
+        dims,
+        [&](int x, int y, int k) {
+            const glm::dvec3 p = glm::dvec3(x * pixelMm, y * pixelMm, k * sliceMm) - centre;
+            const double wavy = radius + 0.6 * std::sin(3.0 * std::atan2(p.y, p.x));
+            const double wall = std::clamp(1.5 - std::abs(glm::length(p) - wavy), 0.0, 1.0);
+            return std::lround(1000.0 * wall) + noise(random);
+        },
+        VolumeGeometry::regular({0.0, 0.0, 0.0}, {pixelMm, pixelMm, sliceMm}));
+}
+
 // Coarse noise of type T on coarse pixels, so that the refinement splits rows and columns too.
 template <typename T> Volume coarseNoise(glm::ivec3 dims, glm::dvec3 spacing, unsigned seed) {
     std::mt19937 random(seed);
@@ -100,6 +121,16 @@ std::vector<Case> cases() {
              return coarseNoise<std::uint8_t>({40, 23, 19}, {3.0, 3.0, 12.0}, 1);
          },
          {100.0, 150.5}},
+        {"shell on 8 mm slices of 0.25 mm pixels",
+         [] {
+             return shellOnFinePixels({150, 141, 7}, 0.25, 8.0);
+         },
+         {400.0, 0.5}},
+        {"shell on 10 mm slices of 0.12 mm pixels",
+         [] {
+             return shellOnFinePixels({205, 97, 4}, 0.12, 10.0);
+         },
+         {400.0}},
         {"uint16 noise 33x9x5",
          [] {
              return coarseNoise<std::uint16_t>({33, 9, 5}, {0.8, 0.8, 4.0}, 2);

@@ -332,6 +332,16 @@ DeviceVoxelCopy DrawnVolumeMaker::deviceCopy() const {
     return {};
 }
 
+DeviceCopyTimes DrawnVolumeMaker::lastDeviceTimes() const {
+#if LINEWORK_CUDA
+    if (m_impl->lastOnDevice) {
+        const kernels::cuda::ThickSliceFieldTimes& t = m_impl->device.times();
+        return {t.distanceMs, t.refineMs, t.downloadMs};
+    }
+#endif
+    return {};
+}
+
 std::string DrawnVolumeMaker::takeNote() {
     return std::exchange(m_impl->note, std::string());
 }

@@ -98,6 +98,12 @@ std::shared_ptr<const volume::Volume> volumeToRender(std::shared_ptr<const volum
                                                      VolumeSampling sampling, double iso,
                                                      unsigned threads = 0);
 
+// The stages of a copy made on the device (CUDA events, ms; refinement includes the thin walls and
+// the faces' maxima).
+struct DeviceCopyTimes {
+    double distanceMs = 0.0, refinementMs = 0.0, downloadMs = 0.0;
+};
+
 // The volume to draw of one source, made again only when the sampling or (for the shape-based
 // field) the iso-value changes. On the CUDA back-end the shape-based field is made on the device
 // (kernels/cuda/thick_slice_field_cuda.h: the same int16 copy, bit for bit): the slices go up
@@ -121,6 +127,8 @@ public:
     // the next make(): what the renderers of the copy take device to device
     // (SilhouetteRenderer::setVolumeWithDeviceCopy).
     DeviceVoxelCopy deviceCopy() const;
+    // The last copy's stages where it was made on the device (else zeros).
+    DeviceCopyTimes lastDeviceTimes() const;
     // Why the device stopped making the field ("" while it has not): once, then "".
     std::string takeNote();
 
