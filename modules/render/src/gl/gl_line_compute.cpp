@@ -142,8 +142,11 @@ void GlLineCompute::computeSegments(unsigned positions, unsigned normals, unsign
     dispatchFor(triangleCount);
     bindStorage({0, 0, 0, 0, 0});
     glBindTexture(GL_TEXTURE_2D, 0);
-    // Pass 2 reads the segments in its vertex shader and the count as a draw command.
-    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
+    // Pass 2 reads the segments in its vertex shader and the count as a draw command;
+    // segmentCounts() reads the command with glGetBufferSubData, which sees a shader's storage
+    // writes only after a buffer-update barrier (they are incoherent).
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT |
+                    GL_BUFFER_UPDATE_BARRIER_BIT);
     glUseProgram(0);
     checkGlError("GlLineCompute::computeSegments");
 }
