@@ -554,7 +554,10 @@ SilhouetteGlStats SilhouetteGlRenderer::queuedStats() {
             stats.linePassMs = nanosecondsToMs(between, queryResult(m_timerQueries[2].get()));
     }
     if (frame.segmentsOnGpu) {
-        const gl::GlLineCompute::SegmentCounts counts = m_compute->segmentCounts();
+        // With no triangles the compute pass did not run, and its command holds no count of this
+        // frame (before the first pass, no count at all: the buffer's contents are undefined).
+        const gl::GlLineCompute::SegmentCounts counts =
+            frame.triangles > 0 ? m_compute->segmentCounts() : gl::GlLineCompute::SegmentCounts{};
         stats.segments = counts.found;
         if (counts.toDraw > m_compute->segmentCapacity()) {
             // Rare: the buffer holds a quarter of the triangles' count from the start, and keeps
