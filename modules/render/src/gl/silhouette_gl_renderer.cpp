@@ -518,7 +518,8 @@ void SilhouetteGlRenderer::queueRender(const glm::mat4& viewProjection, glm::vec
     }
     mark(1);
     if (frame.drawLines) {
-        if (frame.segmentsOnGpu && m_indexCount > 0)
+        frame.segmentsComputed = frame.segmentsOnGpu && m_indexCount > 0;
+        if (frame.segmentsComputed)
             computeSegments(viewProjection, viewer, width, height, options, frame.drawSurface);
         const bool query = frame.countSegments && !frame.segmentsOnGpu;
         if (query)
@@ -554,10 +555,11 @@ SilhouetteGlStats SilhouetteGlRenderer::queuedStats() {
             stats.linePassMs = nanosecondsToMs(between, queryResult(m_timerQueries[2].get()));
     }
     if (frame.segmentsOnGpu) {
-        // With no triangles the compute pass did not run, and its command holds no count of this
-        // frame (before the first pass, no count at all: the buffer's contents are undefined).
-        const gl::GlLineCompute::SegmentCounts counts =
-            frame.triangles > 0 ? m_compute->segmentCounts() : gl::GlLineCompute::SegmentCounts{};
+        // Where the compute pass did not run, its command holds no count of this frame (before
+        // the first pass, no count at all: the buffer's contents are undefined).
+        const gl::GlLineCompute::SegmentCounts counts = frame.segmentsComputed
+                                                            ? m_compute->segmentCounts()
+                                                            : gl::GlLineCompute::SegmentCounts{};
         stats.segments = counts.found;
         if (counts.toDraw > m_compute->segmentCapacity()) {
             // Rare: the buffer holds a quarter of the triangles' count from the start, and keeps

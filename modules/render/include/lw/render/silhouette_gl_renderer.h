@@ -236,6 +236,7 @@ private:
     struct QueuedFrame {
         std::size_t triangles = 0;
         bool drawSurface = false, drawLines = false, segmentsOnGpu = false;
+        bool segmentsComputed = false; // the compute pass ran (not where there are no triangles)
         bool countSegments = false, timePasses = false;
     };
     std::optional<QueuedFrame> m_queued;
