@@ -61,14 +61,17 @@ CudaStatus MarchingCubesCuda::Impl::uploadGridTables(const VoxelGridSetup& setup
     LW_RETURN_IF_FAILED(sliceOffset.reserve(slices, "cudaMalloc(sliceOffset)"));
     LW_RETURN_IF_FAILED(spanK.reserve(slices, "cudaMalloc(spanK)"));
     LW_RETURN_IF_FAILED(invSpanK.reserve(slices, "cudaMalloc(invSpanK)"));
-    LW_CUDA_TRY(cudaMemcpy(sliceOffset.data(), offsets.data(), slices * sizeof(double),
-                           cudaMemcpyHostToDevice),
+    // On the kernels' stream (non-blocking, so not ordered after a plain cudaMemcpy, which may
+    // return from pageable memory before its DMA lands).
+    const cudaStream_t st = stream.get();
+    LW_CUDA_TRY(cudaMemcpyAsync(sliceOffset.data(), offsets.data(), slices * sizeof(double),
+                                cudaMemcpyHostToDevice, st),
                 "cudaMemcpy(sliceOffset)");
-    LW_CUDA_TRY(cudaMemcpy(spanK.data(), setup.spans().spanK, slices * sizeof(float),
-                           cudaMemcpyHostToDevice),
+    LW_CUDA_TRY(cudaMemcpyAsync(spanK.data(), setup.spans().spanK, slices * sizeof(float),
+                                cudaMemcpyHostToDevice, st),
                 "cudaMemcpy(spanK)");
-    LW_CUDA_TRY(cudaMemcpy(invSpanK.data(), setup.spans().invSpanK, slices * sizeof(float),
-                           cudaMemcpyHostToDevice),
+    LW_CUDA_TRY(cudaMemcpyAsync(invSpanK.data(), setup.spans().invSpanK, slices * sizeof(float),
+                                cudaMemcpyHostToDevice, st),
                 "cudaMemcpy(invSpanK)");
     spans = setup.spans();
     spans.spanK = spanK.data();

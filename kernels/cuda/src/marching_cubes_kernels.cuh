@@ -64,6 +64,9 @@ static CudaStatus uploadTables() {
             if (!status.ok())
                 return;
         }
+        // Landed before any kernel reads them: the copies above may return before their DMA is
+        // done, and the kernels run on non-blocking streams that do not wait for it.
+        status = dispatch::statusOf(cudaDeviceSynchronize(), "cudaMemcpyToSymbol(tables)");
     });
     return status;
 }

@@ -143,8 +143,10 @@ CudaStatus RayCastSilhouetteCuda::setVolume(const VolumeView& hostVolume,
     LW_RETURN_IF_FAILED(s.placeVolume(hostVolume, setup, mapped, deviceVoxels));
     s.rayGrid = rayGrid;
     LW_RETURN_IF_FAILED(s.rayOffsets.reserve(rayGrid.offsets.size(), "cudaMalloc(rayOffsets)"));
-    LW_CUDA_TRY(cudaMemcpy(s.rayOffsets.data(), rayGrid.offsets.data(),
-                           rayGrid.offsets.size() * sizeof(double), cudaMemcpyHostToDevice),
+    // On the rays' stream, as marching cubes' grid tables (see uploadGridTables).
+    LW_CUDA_TRY(cudaMemcpyAsync(s.rayOffsets.data(), rayGrid.offsets.data(),
+                                rayGrid.offsets.size() * sizeof(double), cudaMemcpyHostToDevice,
+                                s.mc().stream.get()),
                 "cudaMemcpy(rayOffsets)");
     s.rayGrid.view.offsets = s.rayOffsets.data();
     s.rayGrid.view.offsetCount = int(rayGrid.offsets.size());

@@ -140,8 +140,11 @@ CudaStatus ThickSliceFieldCuda::setVolume(const VolumeView& hostVolume) {
         return CudaStatus::failure(CudaStatus::Code::Failed, "thick slices", "an empty volume");
     LW_RETURN_IF_FAILED(d.stream.create());
     LW_RETURN_IF_FAILED(d.source.reserve(hostVolume.byteCount(), "thick slices: the slices"));
-    LW_CUDA_TRY(cudaMemcpy(d.source.data(), hostVolume.voxels, hostVolume.byteCount(),
-                           cudaMemcpyHostToDevice),
+    // On the field's own stream: a plain cudaMemcpy from pageable memory may return before its
+    // DMA lands, and the stream (non-blocking) is not ordered after the legacy default stream, so
+    // the first kernels could read the slices half-written.
+    LW_CUDA_TRY(cudaMemcpyAsync(d.source.data(), hostVolume.voxels, hostVolume.byteCount(),
+                                cudaMemcpyHostToDevice, d.stream.get()),
                 "thick slices: slices upload");
     d.kind = hostVolume.kind;
     d.dims = hostVolume.dims;
