@@ -25,8 +25,16 @@ inline constexpr int kRayBlock = 128;
 // Method 2: one thread per kept triangle (light threads; one atomic per block).
 inline constexpr int kSegmentTriangleBlock = 512;
 
-// The thick-slice field: per source voxel (the values less the iso-value).
-inline constexpr int kFieldVoxelBlock = 256;
+// The thick-slice field's nearest crossings through global memory (reaches past the tile's):
+// rows a warp walks down each of its columns (the
+// walk starts and ends the limit's reach beyond them, so longer runs waste less), and warps a
+// block (fewer where the runs of edges along the rows need more shared memory).
+inline constexpr int kNearRowsPerWarp = 16;
+inline constexpr int kNearWarps = 8;
+// Its distances: a 32 x 32 tile a block, with its values, row and column terms in shared memory,
+// for reaches up to kDistanceTileMaxReach pixels (29 KiB at 12, 83 KiB at 40; over 48 KiB the
+// kernel opts in, where the device allows); longer reaches go through global memory.
+inline constexpr int kDistanceTileMaxReach = 40;
 // The field's face maxima: blocks per face (grid-stride; a 512 x 82 face is 168 blocks' worth)
 // and threads per block (whole warps: the kernel reduces by shuffles).
 inline constexpr int kFaceMaximaBlocks = 32;

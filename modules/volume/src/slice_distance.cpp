@@ -23,22 +23,10 @@ namespace {
 using kernels::crossesIso;
 using kernels::crossingOffset;
 using kernels::nearTerm;
+using kernels::squaredReachingLimit;
 using kernels::stepTerm;
 
 constexpr float kNoCrossing = std::numeric_limits<float>::infinity();
-
-// The smallest float square whose distance reaches the limit: every squared distance of at least
-// this much is stored as the limit (storedSliceDistance takes sqrtf, which is monotone), so a
-// candidate that large can be left out of a minimum without changing any stored value.
-float squaredReachingLimit(double limitMm) {
-    float value = float(limitMm * limitMm);
-    const auto reaches = [limitMm](float v) { return double(std::sqrt(v)) >= limitMm; };
-    while (value > 0.0f && reaches(std::nextafter(value, 0.0f)))
-        value = std::nextafter(value, 0.0f);
-    while (!reaches(value))
-        value = std::nextafter(value, kNoCrossing);
-    return value;
-}
 
 // A slice's values less the iso-value as the shared arithmetic has them, float(real - iso), and
 // which pixels are inside (>= 0). For 8- and 16-bit voxels a table holds every stored value's

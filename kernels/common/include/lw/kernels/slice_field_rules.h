@@ -24,6 +24,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <limits>
 
 namespace lw::kernels {
 
@@ -68,6 +69,20 @@ LW_HOST_DEVICE inline std::int16_t storedSliceDistance(float squaredMm, bool ins
     const double mm = double(sqrtf(squaredMm));
     const double limited = mm < limitMm ? mm : limitMm;
     return std::int16_t(roundedSteps((inside ? limited : -limited) * stepsPerMm));
+}
+
+// The smallest float square whose distance reaches the limit: every squared distance of at least
+// this much is stored as the limit (storedSliceDistance takes sqrtf, which is monotone), so a
+// candidate that large can be left out of a minimum without changing any stored value. (Host
+// code: the device takes it as an argument.)
+inline float squaredReachingLimit(double limitMm) {
+    float value = float(limitMm * limitMm);
+    const auto reaches = [limitMm](float v) { return double(std::sqrt(v)) >= limitMm; };
+    while (value > 0.0f && reaches(std::nextafter(value, 0.0f)))
+        value = std::nextafter(value, 0.0f);
+    while (!reaches(value))
+        value = std::nextafter(value, std::numeric_limits<float>::infinity());
+    return value;
 }
 
 // The stored value of a distance at the limit (storedSliceDistance's of limitMm, inside): what
