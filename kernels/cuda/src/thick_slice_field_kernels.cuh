@@ -239,87 +239,103 @@ __device__ inline float outwardMinimum(const float* terms, int stride, int p, in
     return squared;
 }
 
-template <typename T>
-__global__ void __launch_bounds__(256)
-    sliceDistanceTileKernel(const T* voxels, AboveIso above, SliceGrid grid, DistanceTile tile,
-                            DistanceSetup setup, std::int16_t* distance) {
-    constexpr int kRun = 8;
-    extern __shared__ float shared[];
-    const int vw = tile.valueWidth(), vh = tile.valueHeight();
-    float* values = shared;
-    float* rowTerms = values + vw * vh;
-    float* columnTerms = rowTerms + tile.rowSpan() * 32;
-    const int x0 = int(blockIdx.x) * 32, y0 = int(blockIdx.y) * 32, k = int(blockIdx.z);
-    const int vx0 = x0 - tile.reachI - 2, vy0 = y0 - tile.reachJ - 2;
-    const int thread = int(threadIdx.y * blockDim.x + threadIdx.x);
-    const int threads = int(blockDim.x * blockDim.y);
-    const T* slice = voxels + grid.at(0, 0, k);
+// Where a block's tile lies: the tile's first pixel (x0, y0) and its values' first pixel
+// (vx0, vy0), vw x vh of them (DistanceTile's picture).
+struct TilePlace {
+    int x0, y0, vx0, vy0, vw, vh;
+    __device__ TilePlace(const DistanceTile& tile)
+        : x0(int(blockIdx.x) * 32), y0(int(blockIdx.y) * 32), vx0(x0 - tile.reachI - 2),
+          vy0(y0 - tile.reachJ - 2), vw(tile.valueWidth()), vh(tile.valueHeight()) {}
+};
 
-    // A warp a row of the values at a time, its lanes along the row.
+// Step 1: the tile's values into shared memory, a warp a row at a time, its lanes along the row;
+// whether they hold both sides of the iso-value. Every thread of the block calls it.
+template <typename T>
+__device__ bool loadTileValues(const T* slice, AboveIso above, SliceGrid grid, const TilePlace& at,
+                               float* values) {
     bool sawInside = false, sawOutside = false;
-    for (int ly = int(threadIdx.y); ly < vh; ly += int(blockDim.y)) {
-        const int y = vy0 + ly;
+    for (int ly = int(threadIdx.y); ly < at.vh; ly += int(blockDim.y)) {
+        const int y = at.vy0 + ly;
         if (y < 0 || y >= grid.height)
             continue;
         const T* row = slice + std::size_t(y) * std::size_t(grid.width);
-        for (int lx = int(threadIdx.x); lx < vw; lx += int(blockDim.x)) {
-            const int x = vx0 + lx;
+        for (int lx = int(threadIdx.x); lx < at.vw; lx += int(blockDim.x)) {
+            const int x = at.vx0 + lx;
             if (x < 0 || x >= grid.width)
                 continue;
             const float v = above(row[x]);
-            values[ly * vw + lx] = v;
+            values[ly * at.vw + lx] = v;
             sawInside |= v >= 0.0f;
             sawOutside |= !(v >= 0.0f);
         }
     }
     const int anyInside = __syncthreads_or(sawInside);
     const int anyOutside = __syncthreads_or(sawOutside);
-    const bool crossings = anyInside && anyOutside;
-    const auto valueAt = [&](int x, int y) { return values[(y - vy0) * vw + (x - vx0)]; };
+    return anyInside && anyOutside;
+}
 
-    if (crossings) {
-        const int rowItems = tile.rowSpan() * (32 / kRun);
-        for (int i = thread; i < rowItems; i += threads) {
-            const int r = i % tile.rowSpan(), run = i / tile.rowSpan();
-            const int y = y0 - tile.reachJ + r;
-            if (y < 0 || y >= grid.height)
-                continue;
-            const float* line = values + (y - vy0) * vw - vx0;
-            nearestAlongRun<kRun>([&](int x) { return line[x]; }, x0 + run * kRun, 0,
-                                  grid.width - 1, tile.reachI, setup.scaleI,
-                                  rowTerms + r * 32 + run * kRun, 1);
-        }
-        const int columnItems = tile.columnSpan() * (32 / kRun);
-        for (int i = thread; i < columnItems; i += threads) {
-            const int c = i % tile.columnSpan(), run = i / tile.columnSpan();
-            const int x = x0 - tile.reachI + c;
-            if (x < 0 || x >= grid.width)
-                continue;
-            const float* line = values + (x - vx0) - vy0 * vw;
-            nearestAlongRun<kRun>([&](int y) { return line[y * vw]; }, y0 + run * kRun, 0,
-                                  grid.height - 1, tile.reachJ, setup.scaleJ,
-                                  columnTerms + run * kRun * tile.columnSpan() + c,
-                                  tile.columnSpan());
-        }
+// Step 2: the row and column terms, a run of kRun pixels a thread.
+template <int kRun>
+__device__ void tileNearTerms(const float* values, const DistanceTile& tile,
+                              const DistanceSetup& setup, SliceGrid grid, const TilePlace& at,
+                              float* rowTerms, float* columnTerms) {
+    const int thread = int(threadIdx.y * blockDim.x + threadIdx.x);
+    const int threads = int(blockDim.x * blockDim.y);
+    const int rowItems = tile.rowSpan() * (32 / kRun);
+    for (int i = thread; i < rowItems; i += threads) {
+        const int r = i % tile.rowSpan(), run = i / tile.rowSpan();
+        const int y = at.y0 - tile.reachJ + r;
+        if (y < 0 || y >= grid.height)
+            continue;
+        const float* line = values + (y - at.vy0) * at.vw - at.vx0;
+        nearestAlongRun<kRun>([&](int x) { return line[x]; }, at.x0 + run * kRun, 0, grid.width - 1,
+                              tile.reachI, setup.scaleI, rowTerms + r * 32 + run * kRun, 1);
     }
+    const int columnItems = tile.columnSpan() * (32 / kRun);
+    for (int i = thread; i < columnItems; i += threads) {
+        const int c = i % tile.columnSpan(), run = i / tile.columnSpan();
+        const int x = at.x0 - tile.reachI + c;
+        if (x < 0 || x >= grid.width)
+            continue;
+        const float* line = values + (x - at.vx0) - at.vy0 * at.vw;
+        nearestAlongRun<kRun>([&](int y) { return line[y * at.vw]; }, at.y0 + run * kRun, 0,
+                              grid.height - 1, tile.reachJ, setup.scaleJ,
+                              columnTerms + run * kRun * tile.columnSpan() + c, tile.columnSpan());
+    }
+}
+
+// Steps 1-3 (DistanceTile's picture), blockIdx.z the slice.
+template <typename T>
+__global__ void __launch_bounds__(256)
+    sliceDistanceTileKernel(const T* voxels, AboveIso above, SliceGrid grid, DistanceTile tile,
+                            DistanceSetup setup, std::int16_t* distance) {
+    extern __shared__ float shared[];
+    const TilePlace at(tile);
+    float* values = shared;
+    float* rowTerms = values + at.vw * at.vh;
+    float* columnTerms = rowTerms + tile.rowSpan() * 32;
+    const int k = int(blockIdx.z);
+    const bool crossings = loadTileValues(voxels + grid.at(0, 0, k), above, grid, at, values);
+    if (crossings)
+        tileNearTerms<8>(values, tile, setup, grid, at, rowTerms, columnTerms);
     __syncthreads();
 
-    const int x = x0 + int(threadIdx.x);
+    const int x = at.x0 + int(threadIdx.x);
     if (x >= grid.width)
         return;
     const int lx = int(threadIdx.x);
     for (int row = int(threadIdx.y); row < 32; row += int(blockDim.y)) {
-        const int y = y0 + row;
+        const int y = at.y0 + row;
         if (y >= grid.height)
             break;
         float squared = setup.reaching;
         if (crossings) {
-            squared = outwardMinimum(rowTerms + (tile.reachJ - y0) * 32 + lx, 32, y, grid.height,
+            squared = outwardMinimum(rowTerms + (tile.reachJ - at.y0) * 32 + lx, 32, y, grid.height,
                                      tile.reachJ, setup.scaleJ, squared);
-            squared = outwardMinimum(columnTerms + row * tile.columnSpan() + tile.reachI - x0, 1, x,
-                                     grid.width, tile.reachI, setup.scaleI, squared);
+            squared = outwardMinimum(columnTerms + row * tile.columnSpan() + tile.reachI - at.x0, 1,
+                                     x, grid.width, tile.reachI, setup.scaleI, squared);
         }
-        const bool inside = valueAt(x, y) >= 0.0f;
+        const bool inside = values[(y - at.vy0) * at.vw + (x - at.vx0)] >= 0.0f;
         distance[grid.at(x, y, k)] =
             squared < setup.reaching
                 ? storedSliceDistance(squared, inside, setup.limitMm, setup.stepsPerMm)
