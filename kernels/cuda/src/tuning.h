@@ -26,9 +26,9 @@ inline constexpr int kRayBlock = 128;
 inline constexpr int kSegmentTriangleBlock = 512;
 
 // The thick-slice field's nearest crossings through global memory (reaches past the tile's):
-// rows a warp walks down each of its columns (the
-// walk starts and ends the limit's reach beyond them, so longer runs waste less), and warps a
-// block (fewer where the runs of edges along the rows need more shared memory).
+// rows a warp walks down each of its columns (the walk starts and ends the limit's reach beyond
+// them, so longer runs waste less), and warps a block (fewer where the runs of edges along the
+// rows need more shared memory).
 inline constexpr int kNearRowsPerWarp = 16;
 inline constexpr int kNearWarps = 8;
 // Its distances: a 32 x 32 tile a block, with its values, row and column terms in shared memory,
